@@ -31,7 +31,7 @@ inline constexpr int max_facet_nodes = 9;
 int dimension(CellType t);
 /// Number of nodes.
 int n_nodes(CellType t);
-/// Polynomial order of the geometry/displacement interpolation (1 or 2).
+/// Polynomial order of the geometry/displacement interpolation (1 or 2; 0 for point1).
 int order(CellType t);
 /// Number of vertex (corner) nodes; corners come first in the node list.
 int n_vertices(CellType t);
@@ -47,11 +47,16 @@ int vtk_type(CellType t);
 /// vtk_node_order(t)[i] = seam-local node written at VTK position i.
 std::span<const int> vtk_node_order(CellType t);
 
-/// Facets (codimension 1): their number, type and local nodes. Facet node lists are ordered
-/// so that the facet's own parametrisation gives the outward normal of the cell:
+/// Facets (codimension 1): their number, type and local nodes. A facet's node list starts
+/// with its corners, cycling around the facet so that the facet's own parametrisation gives
+/// the outward normal of the cell:
 /// 3D: (dx/dxi x dx/deta) points out of the cell; 2D: for a line facet from node a to node b
 /// the outward normal is (t_y, -t_x) with t = dx/dxi (i.e. the cell is on the left of the
-/// facet direction, counter-clockwise cells).
+/// facet direction, counter-clockwise cells). Mid-edge nodes follow in the facet type's own
+/// node order, then the face centre (quad9 facets of hex27). Lines have two point1 facets,
+/// xi = -1 (outward -1) and xi = +1; point1 has none. Facet order: tri/quad edges start at
+/// node 0, 1, 2(, 3); tet faces (0,2,1), (0,1,3), (0,3,2), (3,1,2) and hex faces z=-1, y=-1,
+/// x=-1, x=+1, y=+1, z=+1 as in Gmsh, so hex27 facet f has its centre at node 20 + f.
 int n_facets(CellType t);
 CellType facet_type(CellType t, int facet);
 std::span<const int> facet_nodes(CellType t, int facet);
@@ -67,22 +72,27 @@ void shape_values(CellType t, const double* xi, double* N);
 void shape_gradients(CellType t, const double* xi, double* dN);
 
 /// A quadrature rule on a reference cell: n points, points[q*dim + a], weights[q].
-/// Weights sum to the reference measure (2, 1/2, 4, 1/6, 8).
+/// Weights sum to the reference measure (2, 1/2, 4, 1/6, 8; 1 for point1). All weights are
+/// positive and all points interior.
 struct QuadratureRule {
   int dim = 0;
-  int degree = 0; ///< polynomials of total degree (simplex) / per-direction degree (tensor) <= degree are exact
+  /// polynomials of total degree (simplex) / per-direction degree (tensor) <= degree are
+  /// exact; may exceed the degree asked for (Gauss rules are exact to an odd degree).
+  int degree = 0;
   int n_points = 0;
   std::span<const double> points;
   std::span<const double> weights;
 };
 
-/// The cheapest rule of the reference domain of t integrating polynomials of the given degree
-/// exactly (tensor cells: per direction). Rules are built once and cached (thread-safe).
-/// Throws InputError if no rule of that degree is available (simplices: at least degree 8).
+/// The cheapest rule seam has (positive weights, interior points) on the reference domain of t
+/// integrating polynomials of the given degree exactly (tensor cells: per direction). Rules
+/// are built once and cached (thread-safe). Throws InputError if no rule of that degree is
+/// available; every cell has rules for 0 <= degree <= max_quadrature_degree.
 QuadratureRule quadrature(CellType t, int degree);
+inline constexpr int max_quadrature_degree = 63;
 
-/// Default degree for stiffness integration of a cell of this type
-/// (2 * order for tensor cells, 2 * (order - 1) + 1 rounded up for simplices...). Documented in the .cpp.
+/// Default degree for mass and stiffness integration of a cell of this type: 2 * order on
+/// every cell (full Gauss integration on tensor cells; reasons in quadrature.cpp).
 int default_quadrature_degree(CellType t);
 
 } // namespace seam::fem

@@ -1,0 +1,311 @@
+// seam-bench search: seam's tree search against brute force and CGAL's box_intersection_d on
+// two nearly touching wavy surfaces (BENCHMARKS.md, "Search").
+#include "registry.hpp"
+
+#include "seam/search/facets.hpp"
+#include "seam/search/traversal.hpp"
+#include "seam/search/tree.hpp"
+
+#ifdef SEAM_HAVE_CGAL
+#include <CGAL/Box_intersection_d/Box_with_info_d.h>
+#include <CGAL/box_intersection_d.h>
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace seam::search;
+using seam::local_index;
+
+/// CPU seconds of this thread. Everything timed here is single-threaded, and on a shared
+/// machine CPU time is what the code costs, where wall time would include waiting for a core.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+struct Surface {
+  int dim;
+  std::vector<double> coords;
+  std::vector<local_index> offsets{0}, conn;
+  FacetSurface view() const { return {dim, coords, offsets, conn}; }
+};
+
+// Wave shared by both surfaces: amplitude 0.05, wavelength 0.5 on the unit square/interval.
+double wave(double x, double y) {
+  return 0.05 * std::sin(4.0 * std::numbers::pi * x) * std::sin(4.0 * std::numbers::pi * y);
+}
+
+/// Triangulated grid n_x x n_y over [0,1]^2 (shifted by (sx, sy)), lifted onto the wave plus z0;
+/// `flip` splits the cells along the other diagonal, so two surfaces do not match.
+Surface wavy_triangles(int nx, int ny, double sx, double sy, double z0, bool flip) {
+  Surface s{3, {}, {0}, {}};
+  s.coords.reserve(3 * std::size_t(nx + 1) * (ny + 1));
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double x = double(i) / nx + sx, y = double(j) / ny + sy;
+      s.coords.insert(s.coords.end(), {x, y, z0 + wave(x, 0.25 + y)});
+    }
+  s.conn.reserve(6 * std::size_t(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const local_index a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
+      if (flip)
+        s.conn.insert(s.conn.end(), {a, b, d, b, c, d});
+      else
+        s.conn.insert(s.conn.end(), {a, b, c, a, c, d});
+      s.offsets.push_back(static_cast<local_index>(s.conn.size() - 3));
+      s.offsets.push_back(static_cast<local_index>(s.conn.size()));
+    }
+  return s;
+}
+
+/// Polyline of n segments over [0,1] (shifted by sx) on the wave plus y0.
+Surface wavy_polyline(int n, double sx, double y0) {
+  Surface s{2, {}, {0}, {}};
+  for (int i = 0; i <= n; ++i) {
+    const double x = double(i) / n + sx;
+    s.coords.insert(s.coords.end(), {x, y0 + wave(x, 0.125)});
+  }
+  for (int i = 0; i < n; ++i) {
+    s.conn.insert(s.conn.end(), {i, i + 1});
+    s.offsets.push_back(static_cast<local_index>(s.conn.size()));
+  }
+  return s;
+}
+
+template <class F>
+double best_seconds(int repeat, F&& f) {
+  double best = 1e300;
+  for (int r = 0; r < repeat; ++r) {
+    const double t0 = cpu_seconds();
+    f();
+    best = std::min(best, cpu_seconds() - t0);
+  }
+  return best;
+}
+
+struct SeamTimes {
+  double build_s = 0, build_query_s = 0, refit_s = 0, query_s = 0;
+  std::vector<CandidatePair> pairs; // sorted
+};
+
+/// Build, refit (to the moved master, with the step-start positions) and query, each the best
+/// of `repeat` runs. The trees after the last refit are left in `slave` / `master`.
+SeamTimes time_seam(const Surface& s, const Surface& m, const std::vector<double>& m_new,
+                    TreeOptions opt, int repeat, std::vector<Tree>& kept) {
+  SeamTimes t;
+  std::vector<CandidatePair> pairs;
+  t.build_s = best_seconds(repeat, [&] {
+    kept.clear();
+    kept.emplace_back(s.view(), opt);
+    kept.emplace_back(m.view(), opt);
+  });
+  t.build_query_s = best_seconds(repeat, [&] {
+    std::vector<CandidatePair> fresh; // a query right after a build starts with no capacity
+    find_pairs(kept[0], kept[1], fresh);
+  });
+  t.refit_s = best_seconds(repeat, [&] {
+    kept[0].update(s.coords);
+    kept[1].update(m_new, m.coords);
+  });
+  t.query_s = best_seconds(repeat, [&] { find_pairs(kept[0], kept[1], pairs); });
+  std::sort(pairs.begin(), pairs.end());
+  t.pairs = std::move(pairs);
+  return t;
+}
+
+#ifdef SEAM_HAVE_CGAL
+template <int D>
+double time_cgal(const Tree& slave, const Tree& master, std::ptrdiff_t cutoff, int repeat,
+                 std::size_t expected, std::vector<CandidatePair>& out) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<float, D, local_index,
+                                                        CGAL::Box_intersection_d::ID_EXPLICIT>;
+  auto make = [](const Tree& t) {
+    std::vector<float> lo, hi;
+    t.facet_boxes(lo, hi);
+    std::vector<Box> boxes;
+    boxes.reserve(t.n_facets());
+    for (local_index f = 0; f < t.n_facets(); ++f)
+      boxes.emplace_back(lo.data() + std::size_t(f) * D, hi.data() + std::size_t(f) * D, f);
+    return boxes;
+  };
+  const std::vector<Box> bs = make(slave), bm = make(master);
+  double best = 1e300;
+  for (int r = 0; r < repeat; ++r) {
+    std::vector<Box> a = bs, b = bm; // box_intersection_d reorders its input
+    out.clear();
+    out.reserve(expected); // as warm as seam's reused pair vector
+    const double t0 = cpu_seconds();
+    CGAL::box_intersection_d(
+        a.begin(), a.end(), b.begin(), b.end(),
+        [&](const Box& x, const Box& y) { out.push_back({x.info(), y.info()}); }, cutoff,
+        CGAL::Box_intersection_d::CLOSED, CGAL::Box_intersection_d::BIPARTITE);
+    best = std::min(best, cpu_seconds() - t0);
+  }
+  std::sort(out.begin(), out.end());
+  return best;
+}
+#endif
+
+void help() {
+  std::printf(
+      "usage: seam-bench search --dim 2|3 --facets N [--json] [--cgal-cutoff C] [--repeat R]\n"
+      "  Two nearly touching wavy surfaces (triangles in 3D, polylines in 2D) of about N\n"
+      "  facets each; gap 0.5 h, inflation 0.3 h (h the grid spacing), master moved by ~0.05 h\n"
+      "  over the step. Times seam's tree (k-DOP and AABB) build, refit and query, brute\n"
+      "  force (N <= 2e4) and CGAL box_intersection_d on the same inflated boxes.\n"
+      "  --json prints one JSON object as the last line.\n");
+}
+
+int run_search(int argc, char** argv) {
+  int dim = 3;
+  long n_target = 10000;
+  bool json = false;
+  long cutoff = 10000;
+  int repeat = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) throw std::invalid_argument("missing value after " + a);
+      return argv[++i];
+    };
+    if (a == "--dim")
+      dim = std::atoi(value());
+    else if (a == "--facets")
+      n_target = std::lround(std::atof(value()));
+    else if (a == "--json")
+      json = true;
+    else if (a == "--cgal-cutoff")
+      cutoff = std::lround(std::atof(value()));
+    else if (a == "--repeat")
+      repeat = std::atoi(value());
+    else if (a == "--help" || a == "-h") {
+      help();
+      return 0;
+    } else
+      throw std::invalid_argument("unknown option " + a);
+  }
+  if ((dim != 2 && dim != 3) || n_target < 2 || n_target > 50'000'000)
+    throw std::invalid_argument("need --dim 2|3 and 2 <= --facets <= 5e7");
+  if (repeat <= 0) repeat = n_target <= 10'000 ? 7 : n_target <= 100'000 ? 3 : 2;
+
+  // Surfaces: slave on the wave, master 0.5 h above it on a shifted, differently split grid.
+  Surface slave, master;
+  double h;
+  if (dim == 3) {
+    const int nx = std::max(1, int(std::lround(std::sqrt(double(n_target) / 2.0))));
+    const int ny = std::max(1, int(std::lround(double(n_target) / (2.0 * nx))));
+    h = 1.0 / nx;
+    slave = wavy_triangles(nx, ny, 0.0, 0.0, 0.0, false);
+    master = wavy_triangles(nx, ny, 0.37 * h, 0.61 * h, 0.5 * h, true);
+  } else {
+    h = 1.0 / double(n_target);
+    slave = wavy_polyline(int(n_target), 0.0, 0.0);
+    master = wavy_polyline(int(n_target), 0.37 * h, 0.5 * h);
+  }
+  // Over the step the master moves by 0.05 h along x and towards the slave.
+  std::vector<double> master_new = master.coords;
+  for (std::size_t i = 0; i < master_new.size(); i += dim) {
+    master_new[i] += 0.05 * h;
+    master_new[i + dim - 1] -= 0.05 * h;
+  }
+  const long n_facets = slave.view().n_facets();
+  TreeOptions opt;
+  opt.inflation = 0.3 * std::min(min_edge_length(slave.view()), min_edge_length(master.view()));
+
+  std::vector<Tree> kdop_trees, aabb_trees;
+  opt.volume = BoundingVolume::kdop;
+  const SeamTimes k = time_seam(slave, master, master_new, opt, repeat, kdop_trees);
+  opt.volume = BoundingVolume::aabb;
+  const SeamTimes x = time_seam(slave, master, master_new, opt, repeat, aabb_trees);
+  const char* kname = dim == 3 ? "18-DOP" : "8-DOP";
+
+  double brute_s = -1;
+  long brute_pairs = -1;
+  bool brute_match = false;
+  if (n_facets <= 20'000) {
+    std::vector<CandidatePair> b;
+    brute_s = best_seconds(1, [&] { b = find_pairs_brute_force(kdop_trees[0], kdop_trees[1]); });
+    brute_pairs = long(b.size());
+    brute_match = b == k.pairs;
+  }
+
+  double cgal_s = -1;
+  long cgal_pairs = -1;
+  bool cgal_match = false;
+#ifdef SEAM_HAVE_CGAL
+  {
+    std::vector<CandidatePair> c;
+    cgal_s = dim == 3 ? time_cgal<3>(aabb_trees[0], aabb_trees[1], cutoff, repeat, x.pairs.size(), c)
+                      : time_cgal<2>(aabb_trees[0], aabb_trees[1], cutoff, repeat, x.pairs.size(), c);
+    cgal_pairs = long(c.size());
+    cgal_match = c == x.pairs;
+  }
+#endif
+
+  const double rq = k.refit_s + k.query_s;
+  std::printf("seam-bench search: %dD, %ld facets per surface, inflation %.3g (0.3 h_min), "
+              "best of %d, CPU seconds\n",
+              dim, n_facets, opt.inflation, repeat);
+  std::printf("  %-22s %10s %10s %10s %12s %12s\n", "", "build s", "refit s", "query s", "pairs",
+              "ns/facet r+q");
+  std::printf("  %-22s %10.4f %10.4f %10.4f %12zu %12.1f\n", (std::string("seam ") + kname).c_str(),
+              k.build_s, k.refit_s, k.query_s, k.pairs.size(), 1e9 * rq / n_facets);
+  std::printf("  %-22s %10.4f %10.4f %10.4f %12zu %12.1f\n", "seam AABB", x.build_s, x.refit_s,
+              x.query_s, x.pairs.size(), 1e9 * (x.refit_s + x.query_s) / n_facets);
+  if (brute_s >= 0)
+    std::printf("  %-22s %32.4f %12ld   same pairs as seam %s: %s\n", "brute force", brute_s,
+                brute_pairs, kname, brute_match ? "yes" : "NO");
+  else
+    std::printf("  brute force            skipped (N > 2e4)\n");
+  if (cgal_s >= 0) {
+    std::printf("  %-22s %32.4f %12ld   same pairs as seam AABB: %s\n", "CGAL box_intersection_d",
+                cgal_s, cgal_pairs, cgal_match ? "yes" : "NO");
+    std::printf("  CGAL cutoff %ld, closed boxes, bipartite, on seam's inflated AABBs\n", cutoff);
+    std::printf("  ratios: CGAL / seam(refit+query) = %.2f, CGAL / seam(build+query) = %.2f, "
+                "pairs seam %s / AABB = %.3f\n",
+                cgal_s / rq, cgal_s / (k.build_s + k.build_query_s), kname,
+                double(k.pairs.size()) / double(x.pairs.size()));
+  } else {
+    std::printf("  CGAL: not available in this build\n");
+  }
+  if (brute_s >= 0) std::printf("  ratio: brute / seam(refit+query) = %.1f\n", brute_s / rq);
+
+  if (json) {
+    auto num = [](double v) { return v >= 0 ? std::to_string(v) : std::string("null"); };
+    auto cnt = [](long v) { return v >= 0 ? std::to_string(v) : std::string("null"); };
+    std::printf(
+        "{\"dim\": %d, \"facets\": %ld, \"pairs\": %zu, \"build_s\": %.6g, \"refit_s\": %.6g, "
+        "\"query_s\": %.6g, \"build_query_s\": %.6g, \"brute_s\": %s, \"brute_pairs\": %s, "
+        "\"brute_match\": %s, \"cgal_s\": %s, \"cgal_pairs\": %s, \"cgal_cutoff\": %ld, "
+        "\"cgal_match_aabb\": %s, \"aabb_build_s\": %.6g, \"aabb_refit_s\": %.6g, "
+        "\"aabb_query_s\": %.6g, \"aabb_pairs\": %zu, \"refit_query_ns_per_facet\": %.6g, "
+        "\"cgal_over_refit_query\": %s, \"cgal_over_build_query\": %s}\n",
+        dim, n_facets, k.pairs.size(), k.build_s, k.refit_s, k.query_s, k.build_query_s,
+        num(brute_s).c_str(), cnt(brute_pairs).c_str(),
+        brute_s >= 0 ? (brute_match ? "true" : "false") : "null", num(cgal_s).c_str(),
+        cnt(cgal_pairs).c_str(), cutoff, cgal_s >= 0 ? (cgal_match ? "true" : "false") : "null",
+        x.build_s, x.refit_s, x.query_s, x.pairs.size(), 1e9 * rq / n_facets,
+        cgal_s >= 0 ? num(cgal_s / rq).c_str() : "null",
+        cgal_s >= 0 ? num(cgal_s / (k.build_s + k.build_query_s)).c_str() : "null");
+  }
+  return (brute_s >= 0 && !brute_match) || (cgal_s >= 0 && !cgal_match) ? 1 : 0;
+}
+
+const seam::bench::Register registered{
+    "search", "contact search: seam tree vs brute force and CGAL box_intersection_d",
+    &run_search};
+
+} // namespace

@@ -1,0 +1,210 @@
+#include "seam/geometry/polygon.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace seam::geometry {
+
+namespace {
+
+double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Working storage for the clip: Sutherland–Hodgman adds at most one vertex per clipping edge
+// to a convex polygon; the margin covers the nearly degenerate cases that tolerance-snapped
+// classification can produce before duplicates are merged again.
+constexpr int work_capacity = 2 * max_polygon_vertices + 4;
+using WorkPolygon = StaticVector<Point2, work_capacity>;
+
+template <class P>
+double signed_area_of(const P& p) {
+  // Shoelace about the first vertex: translation-invariant, so far-from-origin polygons do not
+  // lose digits to cancellation.
+  double twice = 0.0;
+  for (int i = 1; i + 1 < p.size(); ++i) twice += cross(p[i] - p[0], p[i + 1] - p[0]);
+  return 0.5 * twice;
+}
+
+template <class P>
+double min_edge_of(const P& p) {
+  if (p.size() < 2) return 0.0;
+  double m = (p[0] - p[p.size() - 1]).norm();
+  for (int i = 0; i + 1 < p.size(); ++i) m = std::min(m, (p[i + 1] - p[i]).norm());
+  return m;
+}
+
+template <class P>
+void reverse_in_place(P& p) {
+  for (int i = 0, j = p.size() - 1; i < j; ++i, --j) std::swap(p[i], p[j]);
+}
+
+template <class P>
+void checked_push(P& p, const Point2& x) {
+  if (p.full()) SEAM_THROW(InternalError, "clip_polygons: working polygon capacity exceeded");
+  p.push_back(x);
+}
+
+// Drop each vertex that lies within tol of its (cyclic) predecessor; the first of a cluster
+// survives.
+template <class P>
+void merge_close_vertices(P& p, double tol) {
+  P out;
+  for (const Point2& x : p) {
+    if (out.empty() || (x - out.back()).norm() > tol) out.push_back(x);
+  }
+  while (out.size() > 1 && (out.back() - out[0]).norm() <= tol) out.pop_back();
+  p = out;
+}
+
+// Drop vertices within tol of the line through their neighbours: they add no area, and a
+// fan about the centroid would otherwise contain slivers.
+template <class P>
+void remove_collinear_vertices(P& p, double tol) {
+  bool changed = true;
+  while (changed && p.size() >= 3) {
+    changed = false;
+    const int n = p.size();
+    for (int i = 0; i < n; ++i) {
+      const Point2& prev = p[(i + n - 1) % n];
+      const Point2& next = p[(i + 1) % n];
+      const Point2 chord = next - prev;
+      const double length = chord.norm();
+      const double distance =
+          length > tol ? std::abs(cross(chord, p[i] - prev)) / length : (p[i] - prev).norm();
+      if (distance <= tol) {
+        p.erase(i);
+        changed = true;
+        break;
+      }
+    }
+  }
+}
+
+template <class P>
+void copy_cleaned(const Polygon& in, P& out) {
+  out.clear();
+  for (const Point2& x : in) out.push_back(x);
+}
+
+} // namespace
+
+double signed_area(const Polygon& polygon) { return signed_area_of(polygon); }
+
+double area(const Polygon& polygon) { return std::abs(signed_area_of(polygon)); }
+
+Point2 centroid(const Polygon& polygon) {
+  const int n = polygon.size();
+  if (n == 0) return Point2::Zero();
+  const Point2 origin = polygon[0];
+  Point2 vertex_sum = Point2::Zero();
+  for (const Point2& x : polygon) vertex_sum += x - origin;
+  // Sum over the fan triangles (origin, p_i, p_{i+1}) of area * triangle centroid.
+  double twice_area = 0.0;
+  Point2 moment = Point2::Zero();
+  for (int i = 1; i + 1 < n; ++i) {
+    const Point2 u = polygon[i] - origin;
+    const Point2 v = polygon[i + 1] - origin;
+    const double twice = cross(u, v);
+    twice_area += twice;
+    moment += twice * (u + v) / 3.0;
+  }
+  const double scale = std::max(max_edge_length(polygon), 1e-300);
+  if (std::abs(twice_area) <= 1e-14 * scale * scale) return origin + vertex_sum / n;
+  return origin + moment / twice_area;
+}
+
+void make_counter_clockwise(Polygon& polygon) {
+  if (signed_area_of(polygon) < 0.0) reverse_in_place(polygon);
+}
+
+double min_edge_length(const Polygon& polygon) { return min_edge_of(polygon); }
+
+double max_edge_length(const Polygon& polygon) {
+  const int n = polygon.size();
+  if (n < 2) return 0.0;
+  double m = (polygon[0] - polygon[n - 1]).norm();
+  for (int i = 0; i + 1 < n; ++i) m = std::max(m, (polygon[i + 1] - polygon[i]).norm());
+  return m;
+}
+
+Polygon clip_polygons(const Polygon& subject, const Polygon& clipper, const ClipOptions& options) {
+  SEAM_CHECK(subject.size() <= max_clip_input_vertices &&
+                 clipper.size() <= max_clip_input_vertices,
+             InputError, "clip_polygons: inputs may have at most ", max_clip_input_vertices,
+             " vertices (got ", subject.size(), " and ", clipper.size(), ")");
+  const double input_tol =
+      options.merge_tolerance * std::min(max_edge_length(subject), max_edge_length(clipper));
+
+  WorkPolygon s;
+  copy_cleaned(subject, s);
+  merge_close_vertices(s, input_tol);
+  WorkPolygon c;
+  copy_cleaned(clipper, c);
+  merge_close_vertices(c, input_tol);
+  if (s.size() < 3 || c.size() < 3) return {};
+
+  const double subject_area = std::abs(signed_area_of(s));
+  if (signed_area_of(s) < 0.0) reverse_in_place(s);
+  if (signed_area_of(c) < 0.0) reverse_in_place(c);
+  if (subject_area == 0.0 || signed_area_of(c) == 0.0) return {};
+
+  // The tolerance is relative to the shortest edge so it scales with the mesh and never
+  // swallows a genuine edge (ALGORITHMS.md §2, step 4: tol = 1e-8 * min edge length).
+  const double tol = options.merge_tolerance * std::min(min_edge_of(s), min_edge_of(c));
+
+  std::array<double, work_capacity> distance{};
+  for (int k = 0; k < c.size(); ++k) {
+    const Point2& a = c[k];
+    const Point2 edge = c[(k + 1) % c.size()] - a;
+    const double length = edge.norm();
+    const int n = s.size();
+    // Signed distance to the clipping line, positive on the inner (left) side. Points within
+    // tol count as on the line: this is what makes coincident and nearly parallel edges safe,
+    // since no intersection of two almost parallel lines is ever computed from them.
+    for (int i = 0; i < n; ++i) {
+      const double d = cross(edge, s[i] - a) / length;
+      distance[static_cast<std::size_t>(i)] = std::abs(d) <= tol ? 0.0 : d;
+    }
+    WorkPolygon out;
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      const double dc = distance[static_cast<std::size_t>(i)];
+      const double dn = distance[static_cast<std::size_t>(j)];
+      if (dc >= 0.0) checked_push(out, s[i]);
+      if ((dc > 0.0 && dn < 0.0) || (dc < 0.0 && dn > 0.0)) {
+        checked_push(out, s[i] + (dc / (dc - dn)) * (s[j] - s[i]));
+      }
+    }
+    merge_close_vertices(out, tol);
+    s = out;
+    if (s.size() < 3) return {};
+  }
+
+  remove_collinear_vertices(s, tol);
+  if (s.size() < 3) return {};
+  const double result_area = signed_area_of(s);
+  if (result_area <= options.min_relative_area * subject_area) return {};
+  if (s.size() > max_polygon_vertices) {
+    SEAM_THROW(InternalError, "clip_polygons: result has ", s.size(), " vertices");
+  }
+  Polygon result;
+  for (const Point2& x : s) result.push_back(x);
+  return result;
+}
+
+double Triangle2::area() const { return 0.5 * cross(b - a, c - a); }
+
+TriangleList triangulate_fan(const Polygon& polygon) {
+  TriangleList cells;
+  const int n = polygon.size();
+  if (n < 3) return cells;
+  if (n == 3) {
+    cells.push_back({polygon[0], polygon[1], polygon[2]});
+    return cells;
+  }
+  const Point2 center = centroid(polygon);
+  for (int i = 0; i < n; ++i) cells.push_back({center, polygon[i], polygon[(i + 1) % n]});
+  return cells;
+}
+
+} // namespace seam::geometry

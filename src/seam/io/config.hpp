@@ -1,0 +1,186 @@
+#pragma once
+// The input file (CONTRACT.md, "Input file (YAML)") parsed once into typed, validated structs.
+// Every later stage receives the part it needs; nothing reads YAML after load_config.
+#include "seam/io/expression.hpp"
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace seam::io {
+
+/// Where something came from in the input, so that a later stage (e.g. the one that knows
+/// the mesh's regions) can point the user at the exact spot.
+struct Mark {
+  std::string file;     ///< the input file as the user named it
+  int line = 0;         ///< 1-based; 0 if unknown
+  int column = 0;       ///< 1-based; 0 if unknown
+  std::string key_path; ///< e.g. "boundary_conditions[2].region"
+};
+
+/// Throws InputError "FILE:LINE:COL: KEY.PATH: MESSAGE".
+[[noreturn]] void fail_at(const Mark& mark, std::string_view message);
+/// The "FILE:LINE:COL: KEY.PATH" prefix of such a message.
+std::string to_string(const Mark& mark);
+
+/// A mesh region (Gmsh physical group) named in the input, with where it was named.
+struct RegionRef {
+  std::string name;
+  Mark mark;
+};
+
+enum class PlaneMode { strain, stress };
+enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hooke };
+enum class BoundaryType { dirichlet, pressure, traction, body_force };
+enum class InterfaceType { mesh_tying, contact };
+enum class Multiplier { dual, standard };
+enum class Strategy { condensed, saddle_point };
+enum class FrictionModel { frictionless, coulomb };
+/// `static` in the input: a sequence of equilibrium states, t is a load parameter.
+enum class Integrator { quasi_static, generalized_alpha, energy_momentum };
+enum class LinearSolverKind { direct, iterative };
+
+/// The spelling used in the input file.
+std::string_view to_string(PlaneMode value);
+std::string_view to_string(MaterialModel value);
+std::string_view to_string(BoundaryType value);
+std::string_view to_string(InterfaceType value);
+std::string_view to_string(Multiplier value);
+std::string_view to_string(Strategy value);
+std::string_view to_string(FrictionModel value);
+std::string_view to_string(Integrator value);
+std::string_view to_string(LinearSolverKind value);
+
+struct MeshConfig {
+  std::filesystem::path file; ///< absolute; a .msh file, or empty if `geo` is given
+  std::filesystem::path geo;  ///< absolute; a .geo file meshed at start, or empty
+  std::optional<double> size; ///< geo only: characteristic mesh size
+  int order = 1;              ///< geo only: 1 (linear) or 2 (quadratic)
+  Mark mark;
+};
+
+struct Material {
+  std::string name;
+  MaterialModel model = MaterialModel::linear_elastic;
+  double young = 0.0;   ///< > 0
+  double poisson = 0.0; ///< in (-1, 0.5)
+  double density = 0.0; ///< >= 0; > 0 for every body in dynamics
+  Mark mark;
+};
+
+struct Body {
+  RegionRef region;     ///< physical group of the mesh's highest dimension
+  std::string material; ///< a key of Config::materials
+  Mark mark;
+};
+
+/// One entry of `boundary_conditions`. Values are functions of (t, x, y, z) with x, y, z the
+/// reference coordinates: prescribed displacement (dirichlet), follower pressure on the
+/// current surface (pressure), dead load per reference area (traction), force per reference
+/// volume (body_force, on a body region).
+struct BoundaryCondition {
+  RegionRef region;
+  BoundaryType type = BoundaryType::dirichlet;
+  /// dirichlet: the listed components (0 = x, 1 = y, 2 = z), all if omitted;
+  /// traction, body_force: 0 .. dimension-1; pressure: empty.
+  std::vector<int> components;
+  /// one expression per entry of `components`; pressure: exactly one.
+  std::vector<Expression> value;
+  Mark mark;
+};
+
+struct InitialCondition {
+  RegionRef region;
+  std::vector<Expression> velocity; ///< `dimension` entries
+  Mark mark;
+};
+
+struct RigidPlane {
+  std::array<double, 3> point{};  ///< a point of the plane in the reference state (z = 0 in 2D)
+  std::array<double, 3> normal{}; ///< unit normal, as given then normalized
+  /// `dimension` expressions in t: displacement of the plane (default: at rest)
+  std::vector<Expression> motion;
+  Mark mark;
+};
+
+struct Friction {
+  FrictionModel model = FrictionModel::frictionless;
+  double coefficient = 0.0; ///< Coulomb coefficient, >= 0
+};
+
+struct Interface {
+  std::string name; ///< unique; used in output file names
+  InterfaceType type = InterfaceType::mesh_tying;
+  RegionRef slave;
+  std::optional<RegionRef> master;       ///< exactly one of master and rigid_plane
+  std::optional<RigidPlane> rigid_plane; ///< contact only
+  Multiplier multiplier = Multiplier::dual;
+  /// default condensed with dual multipliers, saddle_point with standard ones (a standard
+  /// multiplier's D matrix is not diagonal, so it cannot be condensed cheaply).
+  Strategy strategy = Strategy::condensed;
+  Friction friction; ///< contact only
+  Mark mark;
+};
+
+struct TimeConfig {
+  Integrator integrator = Integrator::quasi_static;
+  /// Spectral radius at infinite frequency (Chung & Hulbert 1993). The default 0.8 damps the
+  /// unresolved high-frequency modes that contact impacts excite, at second-order accuracy;
+  /// 1.0 gives the undamped trapezoidal rule.
+  double rho_inf = 0.8;
+  double end = 1.0; ///< > 0
+  int n_steps = 1;  ///< `steps`, or ceil(end / dt) if `dt` was given
+  double dt = 1.0;  ///< `dt`, or end / steps if `steps` was given
+  int max_step_cuts = 5;
+  Mark mark;
+
+  [[nodiscard]] bool is_dynamic() const { return integrator != Integrator::quasi_static; }
+  /// Time at the end of step `step` (0 = start); the last step ends exactly at `end`.
+  [[nodiscard]] double time_at(int step) const;
+};
+
+struct NewtonConfig {
+  double tolerance = 1e-10; ///< on the relative residual norm
+  int max_iterations = 25;
+};
+
+struct SolverConfig {
+  NewtonConfig newton;
+  LinearSolverKind linear = LinearSolverKind::direct;
+};
+
+struct Probe {
+  std::array<double, 3> point{}; ///< reference coordinates, z = 0 in 2D
+  Mark mark;
+};
+
+struct OutputConfig {
+  int every = 1; ///< write every n-th step
+  std::vector<Probe> probes;
+};
+
+struct Config {
+  std::filesystem::path source; ///< absolute path of the input file
+  std::string title;
+  int dimension = 3;
+  PlaneMode plane = PlaneMode::strain; ///< 2D only
+  MeshConfig mesh;
+  std::map<std::string, Material> materials;
+  std::vector<Body> bodies;
+  std::vector<BoundaryCondition> boundary_conditions;
+  std::vector<InitialCondition> initial_conditions;
+  std::vector<Interface> interfaces;
+  TimeConfig time;
+  SolverConfig solver;
+  OutputConfig output;
+};
+
+/// Reads and validates an input file. Paths inside it become absolute, relative to the
+/// file's folder. Throws InputError "FILE:LINE:COL: KEY.PATH: what was expected".
+Config load_config(const std::filesystem::path& yaml);
+
+} // namespace seam::io

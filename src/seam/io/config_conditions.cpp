@@ -1,0 +1,210 @@
+// The sections of the input that name mesh regions: boundary conditions, initial conditions
+// and interfaces. Each keeps the Mark of its region names for the stage that has the mesh.
+#include "seam/common/error.hpp"
+#include "seam/io/config_reader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace seam::io::detail {
+
+namespace {
+
+constexpr std::array<std::pair<std::string_view, int>, 3> component_names{
+    {{"x", 0}, {"y", 1}, {"z", 2}}};
+
+RegionRef region_of(const Node& node) {
+  const std::string name = node.string();
+  if (name.empty()) node.fail("expected a region name (a Gmsh physical group), got ''");
+  return RegionRef{name, node.mark()};
+}
+
+std::vector<int> read_components(const Node& node, int dimension) {
+  const auto items = node.sequence();
+  if (items.empty())
+    node.fail("expected at least one of 'x', 'y'" + std::string(dimension == 3 ? ", 'z'" : ""));
+  std::vector<int> components;
+  for (const Node& item : items) {
+    const int component = item.choice(component_names);
+    if (component >= dimension)
+      item.fail(concat("component 'z' does not exist in 2D; expected 'x' or 'y'"));
+    for (const int seen : components) {
+      if (seen == component)
+        item.fail(concat("component '", component_names[component].first, "' is listed twice"));
+    }
+    components.push_back(component);
+  }
+  return components;
+}
+
+BoundaryCondition read_boundary_condition(const Node& node, int dimension) {
+  const Map map(node, {"region", "type", "components", "value"});
+  BoundaryCondition condition;
+  condition.mark = node.mark();
+  condition.region = region_of(map.required("region"));
+  condition.type = map.required("type").choice(boundary_names);
+  map.forbid("components", condition.type != BoundaryType::dirichlet,
+             "applies only to type 'dirichlet'");
+  const Node value = map.required("value");
+  switch (condition.type) {
+  case BoundaryType::dirichlet: {
+    const auto listed = map.get("components");
+    if (listed) {
+      condition.components = read_components(*listed, dimension);
+    } else {
+      for (int i = 0; i < dimension; ++i) condition.components.push_back(i);
+    }
+    const std::size_t n = condition.components.size();
+    if (n == 1 && value.yaml().IsScalar()) {
+      condition.value.push_back(value.expression());
+    } else {
+      const std::string what =
+          listed ? concat("values (one per entry of 'components')")
+                 : concat("values (all components, dimension is ", dimension, ")");
+      for (const Node& item : value.sequence(n, what)) condition.value.push_back(item.expression());
+    }
+    break;
+  }
+  case BoundaryType::pressure:
+    if (!value.yaml().IsScalar())
+      value.fail(concat("expected one number or expression (a pressure is a scalar), got ",
+                        value.describe()));
+    condition.value.push_back(value.expression());
+    break;
+  case BoundaryType::traction:
+  case BoundaryType::body_force:
+    for (int i = 0; i < dimension; ++i) condition.components.push_back(i);
+    condition.value = value.expressions(dimension);
+    break;
+  }
+  return condition;
+}
+
+RigidPlane read_rigid_plane(const Node& node, int dimension) {
+  const Map map(node, {"point", "normal", "motion"});
+  RigidPlane plane;
+  plane.mark = node.mark();
+  plane.point = map.required("point").point(dimension);
+  const Node normal = map.required("normal");
+  plane.normal = normal.point(dimension);
+  const double length = std::hypot(plane.normal[0], plane.normal[1], plane.normal[2]);
+  if (!(length > 0.0)) normal.fail("the normal must not be the zero vector");
+  for (double& component : plane.normal) component /= length;
+  if (const auto motion = map.get("motion")) {
+    plane.motion = motion->expressions(dimension);
+  } else {
+    plane.motion.assign(static_cast<std::size_t>(dimension), Expression(0.0));
+  }
+  return plane;
+}
+
+Friction read_friction(const Node& node) {
+  const Map map(node, {"model", "coefficient"});
+  Friction friction;
+  friction.model = map.required("model").choice(friction_names);
+  map.forbid("coefficient", friction.model == FrictionModel::frictionless,
+             "applies only to model 'coulomb'");
+  if (friction.model == FrictionModel::coulomb) {
+    const Node coefficient = map.required("coefficient");
+    friction.coefficient = coefficient.number();
+    if (friction.coefficient < 0.0)
+      coefficient.fail(concat("must be >= 0, got ", format_number(friction.coefficient)));
+  }
+  return friction;
+}
+
+// Interface names become parts of output file names (interface_<name>.csv).
+void check_name(const Node& node, const std::string& name) {
+  const bool valid = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+  if (!valid)
+    node.fail(concat("expected a name of letters, digits, '_', '-' or '.', got '", name, "'"));
+}
+
+Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
+  const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "multiplier", "strategy",
+                       "friction"});
+  Interface interface;
+  interface.mark = node.mark();
+  const Node name = map.required("name");
+  interface.name = name.string();
+  check_name(name, interface.name);
+  for (const Interface& other : previous) {
+    if (other.name == interface.name)
+      name.fail(concat("duplicate interface name '", interface.name, "' (first at line ",
+                       other.mark.line, ")"));
+  }
+  interface.type = map.required("type").choice(interface_names);
+  const bool contact = interface.type == InterfaceType::contact;
+  interface.slave = region_of(map.required("slave"));
+
+  const auto master = map.get("master");
+  const auto rigid_plane = map.get("rigid_plane");
+  map.forbid("rigid_plane", !contact, "applies only to type 'contact'");
+  if (master && rigid_plane) rigid_plane->fail("give either 'master' or 'rigid_plane', not both");
+  if (!master && !rigid_plane) {
+    node.fail(contact ? "missing required key 'master' (or 'rigid_plane')"
+                      : "missing required key 'master'");
+  }
+  if (master) {
+    interface.master = region_of(*master);
+    if (!contact && interface.master->name == interface.slave.name)
+      master->fail(concat("a mesh tying interface needs two different regions; slave is also '",
+                          interface.slave.name, "'"));
+  } else {
+    interface.rigid_plane = read_rigid_plane(*rigid_plane, dimension);
+  }
+
+  if (const auto multiplier = map.get("multiplier"))
+    interface.multiplier = multiplier->choice(multiplier_names);
+  interface.strategy =
+      interface.multiplier == Multiplier::dual ? Strategy::condensed : Strategy::saddle_point;
+  if (const auto strategy = map.get("strategy")) {
+    interface.strategy = strategy->choice(strategy_names);
+    // Condensation inverts the slave mortar matrix D, which only the dual basis keeps
+    // diagonal (Wohlmuth 2000; Popp et al. 2010, sec. 3).
+    if (interface.strategy == Strategy::condensed && interface.multiplier == Multiplier::standard)
+      strategy->fail("strategy 'condensed' needs multiplier 'dual'; with multiplier 'standard' "
+                     "use strategy 'saddle_point'");
+  }
+
+  map.forbid("friction", !contact, "applies only to type 'contact'");
+  if (const auto friction = map.get("friction")) interface.friction = read_friction(*friction);
+  return interface;
+}
+
+} // namespace
+
+std::vector<BoundaryCondition> read_boundary_conditions(const Node& node, int dimension) {
+  std::vector<BoundaryCondition> conditions;
+  if (node.yaml().IsNull()) return conditions;
+  for (const Node& item : node.sequence())
+    conditions.push_back(read_boundary_condition(item, dimension));
+  return conditions;
+}
+
+std::vector<InitialCondition> read_initial_conditions(const Node& node, int dimension) {
+  std::vector<InitialCondition> conditions;
+  if (node.yaml().IsNull()) return conditions;
+  for (const Node& item : node.sequence()) {
+    const Map map(item, {"region", "velocity"});
+    InitialCondition condition;
+    condition.mark = item.mark();
+    condition.region = region_of(map.required("region"));
+    condition.velocity = map.required("velocity").expressions(dimension);
+    conditions.push_back(std::move(condition));
+  }
+  return conditions;
+}
+
+std::vector<Interface> read_interfaces(const Node& node, int dimension) {
+  std::vector<Interface> interfaces;
+  if (node.yaml().IsNull()) return interfaces;
+  for (const Node& item : node.sequence())
+    interfaces.push_back(read_interface(item, dimension, interfaces));
+  return interfaces;
+}
+
+} // namespace seam::io::detail

@@ -1,0 +1,244 @@
+#include "seam/la/petsc.hpp"
+
+#include "seam/common/error.hpp"
+
+#include <petscsys.h>
+
+#include <string>
+
+namespace seam::la {
+
+namespace {
+
+// The specific message of the last PETSc error (PETSc's own text, e.g. which entry of a
+// matrix was out of range); the error code alone only names the class of error.
+thread_local std::string last_petsc_message;
+
+PetscErrorCode capture_error(MPI_Comm, int line, const char* function, const char* file,
+                             PetscErrorCode n, PetscErrorType p, const char* message, void*) {
+  if (p == PETSC_ERROR_INITIAL)
+    last_petsc_message = std::string(message ? message : "") + " [" + (function ? function : "") +
+                         " " + (file ? file : "") + ":" + std::to_string(line) + "]";
+  return n;
+}
+
+} // namespace
+
+void check(PetscErrorCode ierr, const char* what) {
+  if (ierr == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(ierr, &text, nullptr);
+  std::string detail;
+  std::swap(detail, last_petsc_message);
+  SEAM_THROW(InternalError, "PETSc error in ", what, ": ", text ? text : "unknown error", " (code ",
+             static_cast<int>(ierr), "): ", detail);
+}
+
+Session::Session(int& argc, char**& argv, const std::vector<std::string>& petsc_args) {
+  // Options after `--` go to PETSc; seam's own arguments never reach its parser.
+  int pargc = 1;
+  char* pargv0 = argc > 0 ? argv[0] : nullptr;
+  char** pargv = &pargv0;
+  check(PetscInitialize(&pargc, &pargv, nullptr, nullptr), "PetscInitialize");
+  PetscPushErrorHandler(capture_error, nullptr);
+  std::string opts = "-no_signal_handler";
+  for (const auto& a : petsc_args) opts += " " + a;
+  check(PetscOptionsInsertString(nullptr, opts.c_str()), "reading PETSc options");
+}
+
+Session::~Session() { PetscFinalize(); }
+
+Vector::Vector(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> ghosts) {
+  check(VecCreateGhost(comm, n_owned, PETSC_DECIDE, static_cast<PetscInt>(ghosts.size()),
+                       ghosts.data(), &v_),
+        "VecCreateGhost");
+}
+
+Vector::~Vector() {
+  if (v_) VecDestroy(&v_);
+}
+
+Vector& Vector::operator=(Vector&& o) noexcept {
+  if (this != &o) {
+    if (v_) VecDestroy(&v_);
+    v_ = o.v_;
+    o.v_ = nullptr;
+  }
+  return *this;
+}
+
+Vector Vector::duplicate() const {
+  Vector out;
+  check(VecDuplicate(v_, &out.v_), "VecDuplicate");
+  check(VecSet(out.v_, 0.0), "VecSet");
+  return out;
+}
+
+void Vector::copy_from(const Vector& src) { check(VecCopy(src.v_, v_), "VecCopy"); }
+void Vector::zero() { check(VecSet(v_, 0.0), "VecSet"); }
+
+void Vector::add_values(std::span<const PetscInt> rows, std::span<const double> values) {
+  check(VecSetValues(v_, static_cast<PetscInt>(rows.size()), rows.data(), values.data(),
+                     ADD_VALUES),
+        "VecSetValues");
+}
+
+void Vector::set_values(std::span<const PetscInt> rows, std::span<const double> values) {
+  check(VecSetValues(v_, static_cast<PetscInt>(rows.size()), rows.data(), values.data(),
+                     INSERT_VALUES),
+        "VecSetValues");
+}
+
+void Vector::assemble() {
+  check(VecAssemblyBegin(v_), "VecAssemblyBegin");
+  check(VecAssemblyEnd(v_), "VecAssemblyEnd");
+}
+
+void Vector::update_ghosts() {
+  check(VecGhostUpdateBegin(v_, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateBegin");
+  check(VecGhostUpdateEnd(v_, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateEnd");
+}
+
+void Vector::accumulate_ghosts() {
+  check(VecGhostUpdateBegin(v_, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateBegin");
+  check(VecGhostUpdateEnd(v_, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateEnd");
+}
+
+double Vector::norm() const {
+  PetscReal n = 0;
+  check(VecNorm(v_, NORM_2, &n), "VecNorm");
+  return n;
+}
+
+double Vector::dot(const Vector& o) const {
+  PetscScalar d = 0;
+  check(VecDot(v_, o.v_, &d), "VecDot");
+  return d;
+}
+
+void Vector::axpy(double a, const Vector& x) { check(VecAXPY(v_, a, x.v_), "VecAXPY"); }
+void Vector::scale(double a) { check(VecScale(v_, a), "VecScale"); }
+
+PetscInt Vector::owned_size() const {
+  PetscInt n = 0;
+  check(VecGetLocalSize(v_, &n), "VecGetLocalSize");
+  return n;
+}
+
+PetscInt Vector::global_size() const {
+  PetscInt n = 0;
+  check(VecGetSize(v_, &n), "VecGetSize");
+  return n;
+}
+
+PetscInt Vector::owned_begin() const {
+  PetscInt lo = 0, hi = 0;
+  check(VecGetOwnershipRange(v_, &lo, &hi), "VecGetOwnershipRange");
+  return lo;
+}
+
+Vector::LocalView::LocalView(const Vector& v, bool write) : owner_(v.v_), write_(write) {
+  check(VecGhostGetLocalForm(owner_, &local_), "VecGhostGetLocalForm");
+  check(VecGetLocalSize(local_, &n_), "VecGetLocalSize");
+  check(VecGetArray(local_, &data_), "VecGetArray");
+}
+
+Vector::LocalView::~LocalView() {
+  VecRestoreArray(local_, &data_);
+  VecGhostRestoreLocalForm(owner_, &local_);
+  if (write_) {
+    // Writes through the local form do not touch the global vector's state counter; a
+    // get/restore pair on it bumps the counter so cached norms are not reused.
+    double* a = nullptr;
+    VecGetArray(owner_, &a);
+    VecRestoreArray(owner_, &a);
+  }
+}
+
+Matrix::Matrix(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> d_nnz,
+               std::span<const PetscInt> o_nnz, PetscInt block_size) {
+  check(MatCreate(comm, &m_), "MatCreate");
+  check(MatSetSizes(m_, n_owned, n_owned, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(m_, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(m_, block_size), "MatSetBlockSize");
+  check(MatSeqAIJSetPreallocation(m_, 0, d_nnz.data()), "MatSeqAIJSetPreallocation");
+  check(MatMPIAIJSetPreallocation(m_, 0, d_nnz.data(), 0, o_nnz.data()),
+        "MatMPIAIJSetPreallocation");
+  check(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  check(MatSetOption(m_, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
+}
+
+Matrix::~Matrix() {
+  if (m_) MatDestroy(&m_);
+}
+
+Matrix& Matrix::operator=(Matrix&& o) noexcept {
+  if (this != &o) {
+    if (m_) MatDestroy(&m_);
+    m_ = o.m_;
+    o.m_ = nullptr;
+  }
+  return *this;
+}
+
+void Matrix::zero() { check(MatZeroEntries(m_), "MatZeroEntries"); }
+
+void Matrix::add_values(std::span<const PetscInt> rows, std::span<const PetscInt> cols,
+                        std::span<const double> values) {
+  check(MatSetValues(m_, static_cast<PetscInt>(rows.size()), rows.data(),
+                     static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES),
+        "MatSetValues");
+}
+
+void Matrix::assemble() {
+  check(MatAssemblyBegin(m_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(m_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
+void Matrix::zero_rows_columns(std::span<const PetscInt> rows, const Vector* x, Vector* b) {
+  check(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0,
+                           x ? x->get() : nullptr, b ? b->get() : nullptr),
+        "MatZeroRowsColumns");
+}
+
+void Matrix::set_near_null_space(const Vector& coordinates) {
+  MatNullSpace nsp = nullptr;
+  check(MatNullSpaceCreateRigidBody(coordinates.get(), &nsp), "MatNullSpaceCreateRigidBody");
+  check(MatSetNearNullSpace(m_, nsp), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&nsp);
+}
+
+LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
+  check(KSPCreate(comm, &ksp_), "KSPCreate");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  if (kind == SolverKind::direct) {
+    check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+    check(PCSetType(pc, PCLU), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  } else {
+    check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
+    check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+    check(KSPSetTolerances(ksp_, 1e-10, 1e-50, PETSC_DEFAULT, 2000), "KSPSetTolerances");
+  }
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+}
+
+LinearSolver::~LinearSolver() {
+  if (ksp_) KSPDestroy(&ksp_);
+}
+
+bool LinearSolver::solve(const Matrix& A, const Vector& b, Vector& x) {
+  check(KSPSetOperators(ksp_, A.get(), A.get()), "KSPSetOperators");
+  PetscErrorCode ierr = KSPSolve(ksp_, b.get(), x.get());
+  if (ierr) return false; // e.g. a zero pivot in the factorization: the caller cuts the step
+  KSPConvergedReason reason;
+  check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+  PetscInt its = 0;
+  KSPGetIterationNumber(ksp_, &its);
+  iterations_ = static_cast<int>(its);
+  return reason > 0;
+}
+
+} // namespace seam::la

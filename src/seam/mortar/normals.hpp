@@ -1,0 +1,24 @@
+#pragma once
+// Averaged nodal normals of a slave surface (ALGORITHMS.md §1; Popp et al. 2009, 2010):
+// n_j = normalized sum of the unit normals of the facets adjacent to node j, each evaluated
+// at the node. They define the projection directions of 2D segmentation and the normal of
+// the weighted gap; interpolated along a facet, n(xi) = sum N_k(xi) n_k / |.|.
+#include <vector>
+
+#include "seam/mortar/facet.hpp"
+
+namespace seam::mortar {
+
+/// dim values per node of the set's coordinate array; zero vectors for nodes on no facet.
+/// Throws InputError if the normals at a node cancel (a surface folded onto itself).
+std::vector<double> averaged_nodal_normals(const FacetSet& facets);
+
+/// Unit normal interpolated from nodal normals (columns) with shape values N.
+template <int Dim>
+Eigen::Matrix<double, Dim, 1>
+interpolated_normal(const Eigen::Matrix<double, Dim, max_facet_nodes>& nodal_normals,
+                    const NodalVector& N) {
+  return (nodal_normals * N).normalized();
+}
+
+} // namespace seam::mortar

@@ -1,0 +1,245 @@
+#include "seam/problem/output.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/fem/cell.hpp"
+#include "seam/io/json.hpp"
+#include "seam/mesh/locate.hpp"
+#include "seam/solid/element.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace seam::problem {
+
+namespace {
+
+std::vector<std::string> columns(std::initializer_list<const char*> names) {
+  return {names.begin(), names.end()};
+}
+
+} // namespace
+
+Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
+               std::filesystem::path dir, bool quiet)
+    : config_(config), disc_(disc), model_(model), dir_(std::move(dir)), quiet_(quiet),
+      start_wall_(wall_seconds()) {
+  const auto& comm = disc.comm();
+  const auto& mesh = disc.mesh();
+
+  // Probes: every rank locates them in the (replicated) mesh; the owner of the cell evaluates.
+  for (const auto& p : config.output.probes) {
+    const auto loc = mesh::locate_point(mesh, std::span<const double>(p.point.data(), mesh.dim),
+                                        1e-10);
+    if (!loc) {
+      std::ostringstream s;
+      s << "probe (" << p.point[0] << ", " << p.point[1];
+      if (mesh.dim == 3) s << ", " << p.point[2];
+      s << ") lies outside the mesh";
+      io::fail_at(p.mark, s.str());
+    }
+    probes_.push_back({p.point, loc->cell, loc->xi});
+  }
+
+  if (comm.is_root()) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir_, ec);
+    if (ec) SEAM_THROW(InputError, "cannot create the output directory ", dir_.string(), ": ", ec.message());
+    steps_ = std::make_unique<io::CsvTable>(
+        dir_ / "steps.csv",
+        columns({"step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
+                 "kinetic_energy", "internal_energy", "external_work", "total_energy",
+                 "momentum_x", "momentum_y", "momentum_z", "angular_momentum_x",
+                 "angular_momentum_y", "angular_momentum_z", "wall_seconds"}));
+    newton_ = std::make_unique<io::CsvTable>(
+        dir_ / "newton.csv",
+        columns({"step", "iteration", "residual", "increment", "active_set_changes"}));
+    reactions_ = std::make_unique<io::CsvTable>(
+        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}));
+    probes_table_ = std::make_unique<io::CsvTable>(
+        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}));
+    interfaces_ = std::make_unique<io::CsvTable>(
+        dir_ / "interfaces.csv",
+        columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
+                 "slip_nodes", "contact_area"}));
+    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+  }
+  comm.barrier(); // the directory exists before any rank writes a piece
+
+  // The VTU topology of this rank's piece: its local cells over its local nodes.
+  for (auto c : disc.local_cells()) {
+    const auto type = mesh.cell_type[c];
+    const auto nodes = mesh.cell(c);
+    for (int k : fem::vtk_node_order(type)) {
+      const auto n = nodes[k];
+      connectivity_.push_back(disc.local_dof(n, 0) / disc.dim());
+    }
+    offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
+    types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
+    cell_rank_.push_back(comm.rank());
+    cell_material_.push_back(model.cell_material[c]);
+  }
+}
+
+Output::~Output() = default;
+
+void Output::newton(const NewtonRecord& r) {
+  if (!disc_.comm().is_root()) return;
+  newton_->add_row({r.step, r.iteration, r.residual, r.increment, r.active_set_changes});
+}
+
+void Output::initial(const la::Vector& u) { write_fields(0, 0.0, u, nullptr); }
+
+void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
+                  std::span<const double> reactions, bool force_fields) {
+  ScopedTimer timer(timers_, "output");
+  const auto& comm = disc_.comm();
+  const int dim = disc_.dim();
+  const double wall = wall_seconds() - start_wall_;
+
+  // Probes: interpolate on the rank that owns the probe's cell, then sum over ranks.
+  std::vector<double> probe_u(probes_.size() * 3, 0.0);
+  {
+    la::Vector::LocalView view(u, false);
+    const auto ul = view.values();
+    std::array<double, fem::max_cell_nodes> N{};
+    for (std::size_t p = 0; p < probes_.size(); ++p) {
+      const auto c = probes_[p].cell;
+      if (!disc_.is_local_cell(c)) continue;
+      const auto type = disc_.mesh().cell_type[c];
+      fem::shape_values(type, probes_[p].xi.data(), N.data());
+      const auto nodes = disc_.mesh().cell(c);
+      for (std::size_t a = 0; a < nodes.size(); ++a)
+        for (int i = 0; i < dim; ++i) probe_u[p * 3 + i] += N[a] * ul[disc_.local_dof(nodes[a], i)];
+    }
+  }
+  comm.sum_in_place(probe_u);
+
+  if (comm.is_root()) {
+    const double total = r.kinetic_energy + r.internal_energy;
+    steps_->add_row({r.step, r.time, r.newton_iterations, r.residual, r.active_nodes,
+                     r.slip_nodes, r.kinetic_energy, r.internal_energy, r.external_work, total,
+                     r.momentum[0], r.momentum[1], r.momentum[2], r.angular_momentum[0],
+                     r.angular_momentum[1], r.angular_momentum[2], wall});
+    for (std::size_t k = 0; k < model_.reaction_regions.size(); ++k) {
+      const double* f = &reactions[k * dim];
+      reactions_->add_row({r.step, r.time, model_.reaction_regions[k].name, f[0], f[1],
+                           dim == 3 ? f[2] : 0.0});
+    }
+    for (std::size_t p = 0; p < probes_.size(); ++p) {
+      const auto& pt = probes_[p].point;
+      probes_table_->add_row({r.step, r.time, static_cast<int>(p), pt[0], pt[1], pt[2],
+                              probe_u[p * 3], probe_u[p * 3 + 1], probe_u[p * 3 + 2]});
+    }
+    if (!quiet_)
+      std::printf("step %5d  t = %-12.6g newton %3d  residual %9.3e  wall %8.2f s\n", r.step,
+                  r.time, r.newton_iterations, r.residual, wall);
+    std::fflush(stdout);
+  }
+  if (force_fields || r.step % config_.output.every == 0) write_fields(r.step, r.time, u, v);
+}
+
+void Output::write_fields(int step, double time, const la::Vector& u, const la::Vector* v) {
+  const auto& comm = disc_.comm();
+  const auto& mesh = disc_.mesh();
+  const int dim = disc_.dim();
+  const auto local_nodes = disc_.local_nodes();
+  const std::size_t n_points = local_nodes.size();
+
+  std::vector<double> points(n_points * 3, 0.0), disp(n_points * 3, 0.0), vel(n_points * 3, 0.0);
+  {
+    la::Vector::LocalView view(u, false);
+    const auto ul = view.values();
+    for (std::size_t i = 0; i < n_points; ++i)
+      for (int c = 0; c < dim; ++c) {
+        disp[i * 3 + c] = ul[i * dim + c];
+        points[i * 3 + c] = mesh.x[static_cast<std::size_t>(local_nodes[i]) * dim + c] + disp[i * 3 + c];
+      }
+  }
+  if (v) {
+    la::Vector::LocalView view(*v, false);
+    const auto vl = view.values();
+    for (std::size_t i = 0; i < n_points; ++i)
+      for (int c = 0; c < dim; ++c) vel[i * 3 + c] = vl[i * dim + c];
+  }
+
+  // Cell stresses.
+  const auto cells = disc_.local_cells();
+  std::vector<double> stress(cells.size() * 6, 0.0), mises(cells.size(), 0.0);
+  {
+    la::Vector::LocalView view(u, false);
+    const auto ul = view.values();
+    std::array<double, fem::max_cell_nodes * 3> X{}, ue{};
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const auto c = cells[k];
+      const auto nodes = mesh.cell(c);
+      const int nd = static_cast<int>(nodes.size()) * dim;
+      for (std::size_t a = 0; a < nodes.size(); ++a)
+        for (int i = 0; i < dim; ++i) {
+          X[a * dim + i] = mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
+          ue[a * dim + i] = ul[disc_.local_dof(nodes[a], i)];
+        }
+      solid::ElementInput in{mesh.cell_type[c], dim, model_.plane,
+                             model_.materials[model_.cell_material[c]],
+                             std::span<const double>(X.data(), nd),
+                             std::span<const double>(ue.data(), nd), 0};
+      const auto s = solid::element_stress(in);
+      for (int i = 0; i < 6; ++i) stress[k * 6 + i] = s.cauchy[i];
+      mises[k] = s.von_mises;
+    }
+  }
+
+  io::VtuPiece piece;
+  piece.point_dim = 3;
+  piece.points = points;
+  piece.connectivity = connectivity_;
+  piece.offsets = offsets_;
+  piece.types = types_;
+  piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
+  piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
+  piece.cell_data.emplace_back("cauchy_stress", 6, std::span<const double>(stress));
+  piece.cell_data.emplace_back("von_mises", 1, std::span<const double>(mises));
+  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(cell_rank_));
+  piece.cell_data.emplace_back("material", 1, std::span<const std::int32_t>(cell_material_));
+  piece.time = time;
+  piece.cycle = step;
+
+  std::string file;
+  if (comm.size() == 1) {
+    file = io::step_file_name("results", step, ".vtu");
+    io::write_vtu(dir_ / file, piece);
+  } else {
+    io::write_vtu(dir_ / io::piece_file_name("results", step, comm.rank()), piece);
+    comm.barrier();
+    file = io::step_file_name("results", step, ".pvtu");
+    if (comm.is_root()) {
+      std::vector<std::string> pieces;
+      for (int r = 0; r < comm.size(); ++r) pieces.push_back(io::piece_file_name("results", step, r));
+      io::write_pvtu(dir_ / file, piece, pieces);
+    }
+  }
+  if (comm.is_root()) pvd_->add(time, file);
+  last_field_step_ = step;
+}
+
+void Output::finish(bool converged, int n_steps) {
+  const auto& comm = disc_.comm();
+  const double wall = comm.max(wall_seconds() - start_wall_);
+  std::vector<double> phases;
+  const char* names[] = {"assembly", "mortar", "search", "linear_solve", "output"};
+  for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
+  if (!comm.is_root()) return;
+  io::Json j = io::Json::object();
+  j["status"] = converged ? "converged" : "failed";
+  j["steps"] = n_steps;
+  j["dofs"] = static_cast<std::int64_t>(disc_.n_global_dofs());
+  j["ranks"] = comm.size();
+  j["wall_seconds"] = wall;
+  auto& t = j["timings"];
+  for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
+  j["nodes"] = disc_.mesh().n_nodes();
+  j["cells"] = disc_.mesh().n_cells();
+  j["interfaces"] = io::Json::array();
+  io::write_json(dir_ / "summary.json", j);
+}
+
+} // namespace seam::problem

@@ -1,0 +1,91 @@
+#pragma once
+// Everything a run writes (CONTRACT.md, "Output directory"): VTU/PVTU pieces and the PVD
+// collection, steps.csv, newton.csv, reactions.csv, probes.csv, interfaces.csv and
+// summary.json. Rows are flushed per step, so a failed run keeps every converged step.
+#include "seam/common/timer.hpp"
+#include "seam/io/config.hpp"
+#include "seam/io/table.hpp"
+#include "seam/io/vtu.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/problem/discretization.hpp"
+#include "seam/problem/model.hpp"
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace seam::problem {
+
+struct StepRecord {
+  int step = 0;
+  double time = 0.0;
+  int newton_iterations = 0;
+  double residual = 0.0;
+  int active_nodes = 0;
+  int slip_nodes = 0;
+  double kinetic_energy = 0.0;
+  double internal_energy = 0.0;
+  double external_work = 0.0;
+  std::array<double, 3> momentum{};
+  std::array<double, 3> angular_momentum{};
+};
+
+struct NewtonRecord {
+  int step = 0;
+  int iteration = 0;
+  double residual = 0.0;
+  double increment = 0.0;
+  int active_set_changes = 0;
+};
+
+/// A probe located in the mesh: the cell that contains it and its reference coordinates.
+struct LocatedProbe {
+  std::array<double, 3> point{};
+  std::int32_t cell = -1;
+  std::array<double, 3> xi{};
+};
+
+class Output {
+public:
+  Output(const io::Config& config, const Discretization& disc, const Model& model,
+         std::filesystem::path dir, bool quiet);
+  ~Output();
+
+  PhaseTimers& timers() { return timers_; }
+  const std::filesystem::path& directory() const { return dir_; }
+
+  /// One Newton iteration (newton.csv; the terminal table when it is not quiet).
+  void newton(const NewtonRecord& r);
+  /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due
+  /// (every n-th, and always `force_fields`). `reactions` holds dim values per reaction region
+  /// (summed over ranks), `u` and `v` are ghosted and up to date. Collective.
+  void step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
+            std::span<const double> reactions, bool force_fields);
+  /// The initial state (step 0) as fields only. Collective.
+  void initial(const la::Vector& u);
+  /// summary.json; `converged` false for a run that gave up. Collective.
+  void finish(bool converged, int n_steps);
+
+private:
+  void write_fields(int step, double time, const la::Vector& u, const la::Vector* v);
+
+  const io::Config& config_;
+  const Discretization& disc_;
+  const Model& model_;
+  std::filesystem::path dir_;
+  bool quiet_;
+  PhaseTimers timers_;
+  double start_wall_;
+  std::vector<LocatedProbe> probes_;
+  std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_;
+  std::unique_ptr<io::PvdCollection> pvd_;
+  int last_field_step_ = -1;
+  // VTU piece of this rank (fixed topology): connectivity in VTK order over local nodes.
+  std::vector<std::int32_t> connectivity_, offsets_;
+  std::vector<std::uint8_t> types_;
+  std::vector<std::int32_t> cell_rank_, cell_material_;
+};
+
+} // namespace seam::problem

@@ -1,0 +1,134 @@
+#include "seam/problem/run.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/common/mpi.hpp"
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/mesh/gmsh_reader.hpp"
+#include "seam/problem/discretization.hpp"
+#include "seam/problem/model.hpp"
+#include "seam/problem/output.hpp"
+#include "seam/problem/static_solver.hpp"
+
+#include <cstdio>
+#include <map>
+#include <optional>
+
+namespace seam::problem {
+
+const char* version() { return "0.1.0"; }
+
+namespace {
+
+/// Rank 0 runs `f`; an InputError there is re-thrown on every rank (no rank is left waiting
+/// in a collective).
+template <class F> void on_root_collectively(const Comm& comm, F&& f) {
+  std::string error;
+  if (comm.is_root()) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+  }
+  comm.broadcast(error);
+  if (!error.empty()) throw InputError(error);
+}
+
+void broadcast_mesh(const Comm& comm, mesh::Mesh& m) {
+  comm.broadcast_value(m.dim);
+  comm.broadcast(m.x);
+  comm.broadcast(m.cell_type);
+  comm.broadcast(m.cell_offsets);
+  comm.broadcast(m.cell_nodes);
+  std::uint64_t n_regions = m.regions.size();
+  comm.broadcast_value(n_regions);
+  m.regions.resize(n_regions);
+  for (auto& r : m.regions) {
+    comm.broadcast(r.name);
+    comm.broadcast_value(r.dim);
+    comm.broadcast_value(r.tag);
+    comm.broadcast(r.cells);
+    comm.broadcast(r.facet_cell);
+    comm.broadcast(r.facet_local);
+    comm.broadcast(r.nodes);
+  }
+}
+
+mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
+  mesh::Mesh m;
+  on_root_collectively(comm, [&] {
+    mesh::ReadOptions opts;
+    opts.dim = config.dimension;
+    if (!config.mesh.geo.empty()) {
+      opts.size = config.mesh.size;
+      opts.order = config.mesh.order;
+      m = mesh::read_mesh(config.mesh.geo, opts);
+    } else {
+      m = mesh::read_mesh(config.mesh.file, opts);
+    }
+  });
+  broadcast_mesh(comm, m);
+  return m;
+}
+
+std::filesystem::path output_directory(const RunOptions& options) {
+  if (!options.output_dir.empty()) return options.output_dir;
+  return std::filesystem::path(std::filesystem::path(options.input).stem().string() + "_out");
+}
+
+} // namespace
+
+int run(const RunOptions& options, int argc, char** argv) {
+  Comm comm;
+  la::Session petsc(argc, argv, options.petsc_args);
+  if (!options.restart.empty())
+    SEAM_THROW(InputError, "--restart ", options.restart,
+               ": restarting from a checkpoint is not available in this version of seam");
+  const auto config = io::load_config(options.input);
+  const auto mesh = load_mesh(config, comm);
+  const Discretization disc(mesh, comm);
+  const auto model = build_model(config, disc);
+  if (config.time.is_dynamic())
+    SEAM_THROW(InputError, options.input,
+               ": time.integrator: dynamics is not available in this version of seam; use static");
+  if (!config.interfaces.empty())
+    SEAM_THROW(InputError, options.input,
+               ": interfaces: mortar interfaces are not available in this version of seam");
+  Output out(config, disc, model, output_directory(options), options.quiet);
+  if (comm.is_root() && !options.quiet)
+    std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",
+                version(), config.title.empty() ? options.input.c_str() : config.title.c_str(),
+                mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
+                comm.size(), out.directory().string().c_str());
+  run_static(config, model, disc, out);
+  return 0;
+}
+
+int check(const std::string& input, const std::vector<std::string>& petsc_args) {
+  Comm comm;
+  const auto config = io::load_config(input);
+  const auto mesh = load_mesh(config, comm);
+  const Discretization disc(mesh, comm);
+  build_model(config, disc);
+  if (!comm.is_root()) return 0;
+  std::map<std::string, int> by_type;
+  for (auto t : mesh.cell_type) ++by_type[std::string(fem::name(t))];
+  std::printf("%s: ok\n", input.c_str());
+  if (!config.title.empty()) std::printf("  title: %s\n", config.title.c_str());
+  std::printf("  dimension %d, %d nodes, %d cells (", mesh.dim, mesh.n_nodes(), mesh.n_cells());
+  bool first = true;
+  for (const auto& [name, n] : by_type) {
+    std::printf("%s%d %s", first ? "" : ", ", n, name.c_str());
+    first = false;
+  }
+  std::printf("), %lld dofs\n", static_cast<long long>(disc.n_global_dofs()));
+  std::printf("  regions:");
+  for (const auto& r : mesh.regions) std::printf(" %s (dim %d)", r.name.c_str(), r.dim);
+  std::printf("\n  %zu bodies, %zu boundary conditions, %zu interfaces, %d steps to t = %g\n",
+              config.bodies.size(), config.boundary_conditions.size(), config.interfaces.size(),
+              config.time.n_steps, config.time.end);
+  return 0;
+}
+
+} // namespace seam::problem

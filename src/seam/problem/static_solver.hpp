@@ -1,0 +1,18 @@
+#pragma once
+// Quasi-static load stepping with Newton's method and automatic step cutting: a failed step
+// (no convergence, inverted element, failed linear solve) is halved and retried, and the step
+// size grows back after success; the run gives up (SolverError) only when the cuts of one
+// step are exhausted, after every converged step was written.
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/problem/discretization.hpp"
+#include "seam/problem/model.hpp"
+#include "seam/problem/output.hpp"
+
+namespace seam::problem {
+
+/// Runs all load steps; writes output through `out`. Throws SolverError on failure.
+void run_static(const io::Config& config, const Model& model, const Discretization& disc,
+                Output& out);
+
+} // namespace seam::problem

@@ -1,0 +1,140 @@
+#include "seam/search/interface_search.hpp"
+
+#include "seam/common/error.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+#include <variant>
+
+namespace seam::search {
+
+namespace {
+
+TreeOptions tree_options(const FacetSurface& slave, const FacetSurface& master,
+                         const SearchOptions& options) {
+  check_surface(slave);
+  check_surface(master);
+  SEAM_CHECK(slave.dim == master.dim, InputError, "search: slave surface is ", slave.dim,
+             "D, master surface ", master.dim, "D");
+  SEAM_CHECK(options.inflation_factor >= 0.0, InputError,
+             "search: inflation_factor must be >= 0, got ", options.inflation_factor);
+  TreeOptions t;
+  t.volume = options.volume;
+  t.rebuild_factor = options.rebuild_factor;
+  double l_min = 0.0;
+  const double ls = min_edge_length(slave), lm = min_edge_length(master);
+  if (ls > 0.0 && lm > 0.0)
+    l_min = std::min(ls, lm);
+  else
+    l_min = std::max(ls, lm);
+  t.inflation = options.inflation_factor * l_min;
+  return t;
+}
+
+} // namespace
+
+InterfaceSearch::InterfaceSearch(const FacetSurface& slave, const FacetSurface& master,
+                                 const SearchOptions& options)
+    : slave_(slave, tree_options(slave, master, options)),
+      master_(master, tree_options(slave, master, options)) {}
+
+void InterfaceSearch::update(std::span<const double> slave_coords,
+                             std::span<const double> master_coords,
+                             std::span<const double> slave_old_coords,
+                             std::span<const double> master_old_coords) {
+  slave_.update(slave_coords, slave_old_coords);
+  master_.update(master_coords, master_old_coords);
+}
+
+const std::vector<CandidatePair>& InterfaceSearch::find_pairs() {
+  search::find_pairs(slave_, master_, pairs_);
+  return pairs_;
+}
+
+std::vector<BodyPair> find_body_pairs(std::span<const Tree> bodies, bool include_self,
+                                      const SelfContactOptions& options) {
+  std::vector<BodyPair> out;
+  std::vector<CandidatePair> pairs;
+  const int n = static_cast<int>(bodies.size());
+  for (int a = 0; a < n; ++a) {
+    if (include_self) {
+      find_self_pairs(bodies[a], pairs, options);
+      for (const auto& p : pairs) out.push_back({a, p.slave, a, p.master});
+    }
+    // The traversal starts with a root-root test, so far-apart bodies cost one test each.
+    for (int b = a + 1; b < n; ++b) {
+      find_pairs(bodies[a], bodies[b], pairs);
+      for (const auto& p : pairs) out.push_back({a, p.slave, b, p.master});
+    }
+  }
+  return out;
+}
+
+std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const CandidatePair> pairs) {
+  SEAM_CHECK(tree.options().normal_cones, InputError,
+             "search: assign_roles needs a tree built with normal_cones = true");
+  const local_index n = tree.n_facets();
+  // Facet normal (axis of the leaf cone) of every facet.
+  std::vector<NormalCone> normal(n);
+  std::visit(
+      [&](const auto& b) {
+        for (local_index s = 0; s < n; ++s) normal[b.facet_of_slot[s]] = b.cones[b.node_of_slot[s]];
+      },
+      tree.bvh());
+  std::vector<std::pair<double, std::size_t>> order(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto& p = pairs[k];
+    SEAM_CHECK(p.slave >= 0 && p.slave < n && p.master >= 0 && p.master < n, InputError,
+               "search: pair (", p.slave, ", ", p.master, ") outside ", n, " facets");
+    const auto& a = normal[p.slave].axis;
+    const auto& b = normal[p.master].axis;
+    order[k] = {a[0] * b[0] + a[1] * b[1] + a[2] * b[2], k}; // most opposed first
+  }
+  std::sort(order.begin(), order.end());
+
+  // Union-find with parity: parity[f] is f's role relative to its parent (0 same, 1 other).
+  std::vector<local_index> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<std::uint8_t> parity(n, 0);
+  auto find = [&](local_index f) {
+    std::uint8_t par = 0;
+    local_index r = f;
+    while (parent[r] != r) {
+      par ^= parity[r];
+      r = parent[r];
+    }
+    // Path compression, keeping each node's parity relative to the root.
+    std::uint8_t p_f = par;
+    while (parent[f] != r) {
+      const local_index next = parent[f];
+      const std::uint8_t p_next = p_f ^ parity[f];
+      parent[f] = r;
+      parity[f] = p_f;
+      f = next;
+      p_f = p_next;
+    }
+    return std::pair{r, par};
+  };
+  for (const auto& [weight, k] : order) {
+    const auto [ra, pa] = find(pairs[k].slave);
+    const auto [rb, pb] = find(pairs[k].master);
+    if (ra == rb) continue; // consistent already, or an odd cycle: left as it is
+    parent[rb] = ra;
+    parity[rb] = static_cast<std::uint8_t>(pa ^ pb ^ 1); // opposite roles across the pair
+  }
+  std::vector<CandidatePair> out;
+  out.reserve(pairs.size());
+  for (const auto& p : pairs) {
+    const local_index lo = std::min(p.slave, p.master), hi = std::max(p.slave, p.master);
+    const std::uint8_t role_lo = find(lo).second, role_hi = find(hi).second;
+    if (role_lo == role_hi || role_lo == 0)
+      out.push_back({lo, hi});
+    else
+      out.push_back({hi, lo});
+  }
+  return out;
+}
+
+} // namespace seam::search

@@ -1,0 +1,72 @@
+#pragma once
+// What the mortar layer uses: the search of one slave/master interface kept between Newton
+// iterations, multi-body search, and the dynamic slave/master assignment of self contact.
+#include "seam/common/types.hpp"
+#include "seam/search/facets.hpp"
+#include "seam/search/traversal.hpp"
+#include "seam/search/tree.hpp"
+
+#include <span>
+#include <vector>
+
+namespace seam::search {
+
+struct SearchOptions {
+  BoundingVolume volume = BoundingVolume::kdop;
+  /// Inflation = inflation_factor * the shortest edge of both surfaces (ALGORITHMS.md Sect. 6).
+  double inflation_factor = 0.3;
+  double rebuild_factor = 1.5; ///< see TreeOptions::rebuild_factor
+};
+
+/// Candidate pairs of one mortar interface. Build once; per Newton iteration call update()
+/// with the current (and optionally step-start) coordinates, then find_pairs().
+class InterfaceSearch {
+public:
+  InterfaceSearch(const FacetSurface& slave, const FacetSurface& master,
+                  const SearchOptions& options = {});
+
+  /// Refits both trees (rebuilding one whose quality has degraded). Coordinates have the layout
+  /// of the surfaces given to the constructor.
+  void update(std::span<const double> slave_coords, std::span<const double> master_coords,
+              std::span<const double> slave_old_coords = {},
+              std::span<const double> master_old_coords = {});
+
+  /// Runs the dual-tree traversal; the result stays valid until the next call.
+  const std::vector<CandidatePair>& find_pairs();
+  const std::vector<CandidatePair>& pairs() const { return pairs_; }
+
+  double inflation() const { return slave_.inflation(); }
+  const Tree& slave_tree() const { return slave_; }
+  const Tree& master_tree() const { return master_; }
+
+private:
+  Tree slave_;
+  Tree master_;
+  std::vector<CandidatePair> pairs_;
+};
+
+/// A candidate pair between facet facet_a of body body_a and facet facet_b of body body_b;
+/// body_a < body_b, or body_a == body_b and facet_a < facet_b for self contact.
+struct BodyPair {
+  int body_a;
+  local_index facet_a;
+  int body_b;
+  local_index facet_b;
+};
+
+/// Multi-body contact: the pairs between all bodies (one tree each, same dimension and volume),
+/// plus each body's self-contact pairs if include_self (trees then need normal cones unless
+/// options.min_normal_angle <= 0).
+std::vector<BodyPair> find_body_pairs(std::span<const Tree> bodies, bool include_self,
+                                      const SelfContactOptions& options = {});
+
+/// Dynamic slave/master roles for self contact (Yang & Laursen 2008: roles alternate along
+/// contact pairs): two-colours the graph of `pairs` so that paired facets get different roles
+/// and returns each pair as (slave, master). Edges are taken in order of decreasing angle
+/// between the facet normals (the most clearly facing pairs first), so that where the graph has
+/// odd cycles (e.g. through a fold) only the weakest pairs are left unalternated; those keep
+/// the lower facet number as slave. `tree` is the self-contact tree (with normal cones) that
+/// produced the pairs.
+std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const CandidatePair> pairs);
+
+} // namespace seam::search

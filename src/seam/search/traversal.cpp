@@ -1,0 +1,204 @@
+#include "seam/search/traversal.hpp"
+
+#include "seam/common/error.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+namespace seam::search {
+
+namespace {
+
+using detail::Bvh;
+using detail::Link;
+using NodePair = std::pair<std::int32_t, std::int32_t>;
+
+/// Dual-tree traversal (seed paper Sect. 3.2). A node pair is pushed only if its volumes
+/// overlap, and a pair of two leaves is emitted at once instead of being pushed. Two inner nodes
+/// of similar size are split together (four child tests, one stack entry less per level);
+/// otherwise the larger one is split. The stack holds at most a few entries per tree level.
+template <int Dim, int NS>
+void dual_traversal(const Bvh<Dim, NS>& a, const Bvh<Dim, NS>& b,
+                    std::vector<CandidatePair>& out) {
+  if (a.n_facets() == 0 || b.n_facets() == 0) return;
+  if (!overlap(a.bounds[0], b.bounds[0])) return;
+  if (a.links[0].count == 1 && b.links[0].count == 1) {
+    out.push_back({a.facet_of_slot[0], b.facet_of_slot[0]});
+    return;
+  }
+  std::vector<NodePair> stack;
+  stack.reserve(256);
+  auto visit = [&](std::int32_t i, std::int32_t j) {
+    if (!overlap(a.bounds[i], b.bounds[j])) return;
+    const Link li = a.links[i], lj = b.links[j];
+    if (li.count == 1 && lj.count == 1)
+      out.push_back({a.facet_of_slot[li.first], b.facet_of_slot[lj.first]});
+    else
+      stack.emplace_back(i, j);
+  };
+  stack.emplace_back(0, 0);
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    const Link li = a.links[i];
+    const Link lj = b.links[j];
+    const bool split_a = li.count > 1 && 2 * li.count >= lj.count;
+    const bool split_b = lj.count > 1 && 2 * lj.count >= li.count;
+    if (split_a && split_b) {
+      visit(li.first, lj.first);
+      visit(li.first, lj.first + 1);
+      visit(li.first + 1, lj.first);
+      visit(li.first + 1, lj.first + 1);
+    } else if (split_a) {
+      visit(li.first, j);
+      visit(li.first + 1, j);
+    } else {
+      visit(i, lj.first);
+      visit(i, lj.first + 1);
+    }
+  }
+}
+
+template <int Dim, int NS>
+bool share_node(const Bvh<Dim, NS>& t, local_index slot_a, local_index slot_b) {
+  const auto na = t.slot_nodes(slot_a);
+  const auto nb = t.slot_nodes(slot_b);
+  for (local_index x : na)
+    for (local_index y : nb)
+      if (x == y) return true;
+  return false;
+}
+
+CandidatePair ordered(local_index f, local_index g) {
+  return f < g ? CandidatePair{f, g} : CandidatePair{g, f};
+}
+
+/// Single-tree traversal for self contact: (i, i) stands for "pairs within subtree i", (i, j)
+/// with i != j for pairs between two disjoint subtrees.
+template <int Dim, int NS>
+void self_traversal(const Bvh<Dim, NS>& t, double min_angle, std::vector<CandidatePair>& out) {
+  if (t.n_facets() < 2) return;
+  const bool use_cones = min_angle > 0.0;
+  auto may_face = [&](std::int32_t i, std::int32_t j) {
+    return !use_cones || max_angle_between(t.cones[i], t.cones[j]) >= min_angle;
+  };
+  auto candidates = [&](std::int32_t i, std::int32_t j) {
+    return overlap(t.bounds[i], t.bounds[j]) && may_face(i, j);
+  };
+  std::vector<NodePair> stack;
+  stack.reserve(128);
+  stack.emplace_back(0, 0);
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    const Link li = t.links[i];
+    const Link lj = t.links[j];
+    if (i == j) {
+      // A smooth patch: no two of its normals are min_angle apart.
+      if (li.count == 1 || (use_cones && 2.0 * t.cones[i].angle < min_angle)) continue;
+      const std::int32_t l = li.first, r = li.first + 1;
+      stack.emplace_back(l, l);
+      stack.emplace_back(r, r);
+      if (candidates(l, r)) stack.emplace_back(l, r);
+    } else if (li.count == 1 && lj.count == 1) {
+      if (!share_node(t, li.first, lj.first))
+        out.push_back(ordered(t.facet_of_slot[li.first], t.facet_of_slot[lj.first]));
+    } else if (lj.count == 1 || (li.count != 1 && li.count >= lj.count)) {
+      if (candidates(li.first + 1, j)) stack.emplace_back(li.first + 1, j);
+      if (candidates(li.first, j)) stack.emplace_back(li.first, j);
+    } else {
+      if (candidates(i, lj.first + 1)) stack.emplace_back(i, lj.first + 1);
+      if (candidates(i, lj.first)) stack.emplace_back(i, lj.first);
+    }
+  }
+}
+
+void check_compatible(const Tree& a, const Tree& b) {
+  SEAM_CHECK(a.dim() == b.dim() && a.volume() == b.volume(), InputError,
+             "search: trees of different dimension or bounding volume cannot be paired");
+}
+
+void check_self(const Tree& tree, const SelfContactOptions& options) {
+  SEAM_CHECK(options.min_normal_angle <= 0.0 || tree.options().normal_cones, InputError,
+             "search: self contact with a normal-angle test needs a tree built with "
+             "normal_cones = true");
+}
+
+} // namespace
+
+void find_pairs(const Tree& slave, const Tree& master, std::vector<CandidatePair>& out) {
+  check_compatible(slave, master);
+  out.clear();
+  std::visit(
+      [&](const auto& a) {
+        using B = std::decay_t<decltype(a)>;
+        dual_traversal(a, std::get<B>(master.bvh()), out);
+      },
+      slave.bvh());
+}
+
+std::vector<CandidatePair> find_pairs(const Tree& slave, const Tree& master) {
+  std::vector<CandidatePair> out;
+  find_pairs(slave, master, out);
+  return out;
+}
+
+void find_self_pairs(const Tree& tree, std::vector<CandidatePair>& out,
+                     const SelfContactOptions& options) {
+  check_self(tree, options);
+  out.clear();
+  std::visit([&](const auto& t) { self_traversal(t, options.min_normal_angle, out); },
+             tree.bvh());
+}
+
+std::vector<CandidatePair> find_self_pairs(const Tree& tree, const SelfContactOptions& options) {
+  std::vector<CandidatePair> out;
+  find_self_pairs(tree, out, options);
+  return out;
+}
+
+std::vector<CandidatePair> find_pairs_brute_force(const Tree& slave, const Tree& master) {
+  check_compatible(slave, master);
+  std::vector<CandidatePair> out;
+  std::visit(
+      [&](const auto& a) {
+        using B = std::decay_t<decltype(a)>;
+        const B& b = std::get<B>(master.bvh());
+        for (local_index s = 0; s < a.n_facets(); ++s) {
+          const auto& va = a.bounds[a.node_of_slot[s]];
+          for (local_index m = 0; m < b.n_facets(); ++m)
+            if (overlap(va, b.bounds[b.node_of_slot[m]]))
+              out.push_back({a.facet_of_slot[s], b.facet_of_slot[m]});
+        }
+      },
+      slave.bvh());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<CandidatePair> find_self_pairs_brute_force(const Tree& tree,
+                                                       const SelfContactOptions& options) {
+  check_self(tree, options);
+  std::vector<CandidatePair> out;
+  std::visit(
+      [&](const auto& t) {
+        for (local_index s = 0; s < t.n_facets(); ++s) {
+          const std::int32_t ns = t.node_of_slot[s];
+          for (local_index r = s + 1; r < t.n_facets(); ++r) {
+            const std::int32_t nr = t.node_of_slot[r];
+            if (!overlap(t.bounds[ns], t.bounds[nr]) || share_node(t, s, r)) continue;
+            if (options.min_normal_angle > 0.0 &&
+                max_angle_between(t.cones[ns], t.cones[nr]) < options.min_normal_angle)
+              continue;
+            out.push_back(ordered(t.facet_of_slot[s], t.facet_of_slot[r]));
+          }
+        }
+      },
+      tree.bvh());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+} // namespace seam::search

@@ -1,0 +1,181 @@
+// Bad mesh input ends in an InputError that names the file and says what is wrong; a failed
+// read leaves Gmsh usable for the next one.
+#include "mesh_test_support.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/mesh/gmsh_reader.hpp"
+
+#include <gtest/gtest.h>
+
+namespace seam::mesh {
+namespace {
+
+// The InputError message of read_mesh(file, options), or "" if it did not throw.
+std::string read_error(const std::filesystem::path& file, const ReadOptions& options = {}) {
+  try {
+    (void)read_mesh(file, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+#define EXPECT_MESSAGE_HAS(message, text)                                                          \
+  EXPECT_NE((message).find(text), std::string::npos) << "message: " << (message)
+
+TEST(ReadErrors, MissingFile) {
+  test::ScratchDir dir;
+  const auto file = dir / "nowhere.msh";
+  const auto message = read_error(file);
+  EXPECT_MESSAGE_HAS(message, file.string());
+  EXPECT_MESSAGE_HAS(message, "does not exist");
+}
+
+TEST(ReadErrors, UnknownExtension) {
+  test::ScratchDir dir;
+  const auto file = dir.write("mesh.txt", "1 2 3\n");
+  EXPECT_MESSAGE_HAS(read_error(file), "unknown extension");
+}
+
+TEST(ReadErrors, GarbageFilesThenAGoodOne) {
+  test::ScratchDir dir;
+  const auto msh = dir.write("garbage.msh", "this is not a mesh\n$MeshFormat\n@@@\n");
+  auto message = read_error(msh);
+  EXPECT_MESSAGE_HAS(message, msh.string());
+  EXPECT_MESSAGE_HAS(message, "garbage.msh");
+
+  const auto geo = dir.write("garbage.geo", "Point(1) = {0, 0, 0;\nfoo bar\n");
+  message = read_error(geo);
+  EXPECT_MESSAGE_HAS(message, geo.string());
+  EXPECT_MESSAGE_HAS(message, "syntax error");
+
+  // Gmsh must still work after its parser failed.
+  const auto good = dir.write("good.geo", test::unit_square_geo(2, true));
+  const Mesh mesh = read_mesh(good);
+  EXPECT_EQ(mesh.n_cells(), 4);
+}
+
+TEST(ReadErrors, TruncatedMsh) {
+  test::ScratchDir dir;
+  const auto good = dir.write("good.geo", test::unit_square_geo(4, true));
+  const Mesh mesh = read_mesh(good);
+  EXPECT_EQ(mesh.n_cells(), 16);
+  // A hand-written msh 4.1 whose element block promises more elements than it has.
+  const auto file = dir.write("truncated.msh", R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Nodes
+1 4 1 4
+2 1 0 4
+1
+2
+3
+4
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+$EndNodes
+$Elements
+1 2 1 2
+2 1 3 2
+1 1 2 3 4
+)");
+  EXPECT_MESSAGE_HAS(read_error(file), "truncated.msh");
+}
+
+TEST(ReadErrors, UnsupportedElementType) {
+  test::ScratchDir dir;
+  // Extruding triangles with layers gives prisms (Gmsh type 6), which seam does not support.
+  const auto file = dir.write("prisms.geo", R"(
+Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {0, 1, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
+Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
+Extrude {0, 0, 1} { Surface{1}; Layers{2}; Recombine; }
+)");
+  const auto message = read_error(file);
+  EXPECT_MESSAGE_HAS(message, "prisms.geo");
+  EXPECT_MESSAGE_HAS(message, "not supported");
+  EXPECT_MESSAGE_HAS(message, "Gmsh element type 6");
+}
+
+TEST(ReadErrors, PlanarMeshOffTheXYPlane) {
+  test::ScratchDir dir;
+  const auto file = dir.write("lifted.geo", R"(
+Point(1) = {0, 0, 0.5}; Point(2) = {1, 0, 0.5}; Point(3) = {1, 1, 0.5}; Point(4) = {0, 1, 0.5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+)");
+  EXPECT_MESSAGE_HAS(read_error(file), "z = 0");
+}
+
+TEST(ReadErrors, BoundaryElementThatIsNoFacet) {
+  test::ScratchDir dir;
+  // Curve 5 is meshed but touches no triangle.
+  const auto file = dir.write("stray.geo", test::unit_square_geo(2, false) + R"(
+Point(11) = {2, 0, 0}; Point(12) = {3, 0, 0}; Line(5) = {11, 12};
+Physical Curve("stray") = {5};
+)");
+  const auto message = read_error(file);
+  EXPECT_MESSAGE_HAS(message, "stray.geo");
+  EXPECT_MESSAGE_HAS(message, "'stray'");
+}
+
+TEST(ReadErrors, NoCellsOfDimensionTwoOrThree) {
+  test::ScratchDir dir;
+  const auto file = dir.write("curve.geo", "Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0};\n"
+                                           "Line(1) = {1, 2};\nPhysical Curve(\"c\") = {1};\n");
+  EXPECT_MESSAGE_HAS(read_error(file), "no elements of dimension 2 or 3");
+  const auto empty = dir.write("empty.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  EXPECT_MESSAGE_HAS(read_error(empty), "no elements at all");
+}
+
+TEST(ReadErrors, DimensionMismatchAndBadOptions) {
+  test::ScratchDir dir;
+  const auto file = dir.write("square.geo", test::unit_square_geo(2, true));
+  ReadOptions o;
+  o.dim = 3;
+  EXPECT_MESSAGE_HAS(read_error(file, o), "dimension 2 but dimension 3");
+  o = {};
+  o.order = 3;
+  EXPECT_MESSAGE_HAS(read_error(file, o), "order");
+  o = {};
+  o.size = -1.0;
+  EXPECT_MESSAGE_HAS(read_error(file, o), "size");
+}
+
+TEST(ReadErrors, RegionLookupListsTheRegions) {
+  test::ScratchDir dir;
+  const Mesh mesh = read_mesh(dir.write("square.geo", test::unit_square_geo(2, true)));
+  EXPECT_EQ(mesh.find_region("nope"), nullptr);
+  EXPECT_EQ(mesh.find_region("left", 2), nullptr);
+  ASSERT_NE(mesh.find_region("left", 1), nullptr);
+  try {
+    (void)mesh.region("nope");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_MESSAGE_HAS(message, "'nope'");
+    EXPECT_MESSAGE_HAS(message, "bottom (dim 1)");
+  }
+}
+
+TEST(ReadErrors, UnnamedGroupsAreNamedByDimensionAndTag) {
+  test::ScratchDir dir;
+  const auto file = dir.write("unnamed.geo", R"(
+Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Surface(7) = {1};
+Physical Curve(12) = {1, 2};
+)");
+  const Mesh mesh = read_mesh(file);
+  const auto* body = mesh.find_region("2:7", 2);
+  ASSERT_NE(body, nullptr);
+  EXPECT_EQ(body->tag, 7);
+  EXPECT_EQ(body->cells.size(), static_cast<std::size_t>(mesh.n_cells()));
+  ASSERT_NE(mesh.find_region("1:12", 1), nullptr);
+}
+
+} // namespace
+} // namespace seam::mesh

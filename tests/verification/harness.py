@@ -1,0 +1,116 @@
+"""Helpers for seam's verification tests: run the executable (serially or under mpirun),
+read the CSV and JSON outputs, and assert with readable messages.
+
+Every case computes its reference values from formulas, never from an earlier seam run.
+Environment: SEAM (path of the seam executable), MPIEXEC (path of mpirun).
+"""
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+SEAM = os.environ.get("SEAM", "seam")
+MPIEXEC = os.environ.get("MPIEXEC", "mpirun")
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def mpi_env():
+    env = dict(os.environ)
+    env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+    env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    env.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+    # A single-node run needs no network transports; keeps start-up fast and quiet.
+    env.setdefault("OMPI_MCA_btl", "self,vader")
+    env.setdefault("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+    return env
+
+
+def run(args, np=1, cwd=None, check=True, timeout=1800):
+    """Runs `seam ARGS` on np ranks; returns (exit code, stdout, stderr)."""
+    cmd = [SEAM] + list(args)
+    if np > 1:
+        cmd = [MPIEXEC, "--oversubscribe", "-np", str(np)] + cmd
+    p = subprocess.run(cmd, cwd=cwd, env=mpi_env(), capture_output=True, text=True,
+                       timeout=timeout)
+    if check and p.returncode != 0:
+        raise AssertionError("seam failed (%d): %s\nstdout:\n%s\nstderr:\n%s"
+                             % (p.returncode, " ".join(cmd), p.stdout[-4000:], p.stderr[-4000:]))
+    return p.returncode, p.stdout, p.stderr
+
+
+def solve(yaml_path, np=1, extra=()):
+    """Runs a case into a fresh temporary directory; returns the output directory."""
+    out = tempfile.mkdtemp(prefix="seam_verif_")
+    run(["run", yaml_path, "-o", out, "--quiet"] + list(extra), np=np)
+    return out
+
+
+def write_case(directory, name, text):
+    path = os.path.join(directory, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    out = []
+    for r in rows:
+        conv = {}
+        for k, v in r.items():
+            try:
+                conv[k] = float(v)
+            except ValueError:
+                conv[k] = v
+        out.append(conv)
+    return out
+
+
+def read_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def last_step_rows(rows):
+    last = max(r["step"] for r in rows)
+    return [r for r in rows if r["step"] == last]
+
+
+def assert_close(actual, expected, rtol=0.0, atol=0.0, what="value"):
+    if not (abs(actual - expected) <= atol + rtol * abs(expected)):
+        raise AssertionError("%s: got %.17g, expected %.17g (|diff| = %.3e, rtol %.1e, atol %.1e)"
+                             % (what, actual, expected, abs(actual - expected), rtol, atol))
+
+
+def slope(h, e):
+    """Least-squares slope of log e against log h."""
+    lx = [math.log(v) for v in h]
+    ly = [math.log(v) for v in e]
+    mx = sum(lx) / len(lx)
+    my = sum(ly) / len(ly)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+
+
+def cleanup(*dirs):
+    for d in dirs:
+        shutil.rmtree(d, ignore_errors=True)
+
+
+def main(tests):
+    """Runs the given test functions; prints a summary line; exits non-zero on failure."""
+    failed = 0
+    for t in tests:
+        try:
+            t()
+            print("PASS", t.__name__)
+        except Exception as e:  # noqa: BLE001 - report every failure, keep going
+            failed += 1
+            print("FAIL", t.__name__, "\n   ", str(e).replace("\n", "\n    "))
+    print("%d passed, %d failed" % (len(tests) - failed, failed))
+    sys.stdout.flush()
+    sys.exit(1 if failed else 0)
