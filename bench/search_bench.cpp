@@ -20,6 +20,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -85,8 +86,7 @@ Surface wavy_polyline(int n, double sx, double y0) {
   return s;
 }
 
-template <class F>
-double best_seconds(int repeat, F&& f) {
+template <class F> double best_seconds(int repeat, F&& f) {
   double best = 1e300;
   for (int r = 0; r < repeat; ++r) {
     const double t0 = cpu_seconds();
@@ -150,8 +150,10 @@ double time_cgal(const Tree& slave, const Tree& master, std::ptrdiff_t cutoff, i
     const double t0 = cpu_seconds();
     CGAL::box_intersection_d(
         a.begin(), a.end(), b.begin(), b.end(),
-        [&](const Box& x, const Box& y) { out.push_back({x.info(), y.info()}); }, cutoff,
-        CGAL::Box_intersection_d::CLOSED, CGAL::Box_intersection_d::BIPARTITE);
+        [&](const Box& x, const Box& y) {
+          out.push_back({x.info(), y.info()});
+        },
+        cutoff, CGAL::Box_intersection_d::CLOSED, CGAL::Box_intersection_d::BIPARTITE);
     best = std::min(best, cpu_seconds() - t0);
   }
   std::sort(out.begin(), out.end());
@@ -161,11 +163,14 @@ double time_cgal(const Tree& slave, const Tree& master, std::ptrdiff_t cutoff, i
 
 void help() {
   std::printf(
-      "usage: seam-bench search --dim 2|3 --facets N [--json] [--cgal-cutoff C] [--repeat R]\n"
+      "usage: seam-bench search --dim 2|3 --facets N [--json] [--cgal-cutoff C[,C2,...]]\n"
+      "                         [--repeat R]"
+      " [--leaf-size L]\n"
       "  Two nearly touching wavy surfaces (triangles in 3D, polylines in 2D) of about N\n"
       "  facets each; gap 0.5 h, inflation 0.3 h (h the grid spacing), master moved by ~0.05 h\n"
       "  over the step. Times seam's tree (k-DOP and AABB) build, refit and query, brute\n"
       "  force (N <= 2e4) and CGAL box_intersection_d on the same inflated boxes.\n"
+      "  --cgal-cutoff: CGAL's cutoff (default 10000); with a list the fastest is reported.\n"
       "  --json prints one JSON object as the last line.\n");
 }
 
@@ -173,8 +178,10 @@ int run_search(int argc, char** argv) {
   int dim = 3;
   long n_target = 10000;
   bool json = false;
-  long cutoff = 10000;
+  std::vector<long> cutoffs{10000};
+  long cutoff = 10000; // the best of `cutoffs`
   int repeat = 0;
+  int leaf_size = TreeOptions{}.leaf_size;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> const char* {
@@ -187,8 +194,18 @@ int run_search(int argc, char** argv) {
       n_target = std::lround(std::atof(value()));
     else if (a == "--json")
       json = true;
-    else if (a == "--cgal-cutoff")
-      cutoff = std::lround(std::atof(value()));
+    else if (a == "--cgal-cutoff") {
+      // One cutoff or a comma-separated list; the fastest is reported.
+      cutoffs.clear();
+      for (std::string list = value(); !list.empty();) {
+        const auto comma = list.find(',');
+        cutoffs.push_back(std::lround(std::atof(list.substr(0, comma).c_str())));
+        list = comma == std::string::npos ? "" : list.substr(comma + 1);
+      }
+      if (cutoffs.empty() || *std::min_element(cutoffs.begin(), cutoffs.end()) < 1)
+        throw std::invalid_argument("--cgal-cutoff needs positive values");
+    } else if (a == "--leaf-size")
+      leaf_size = std::atoi(value());
     else if (a == "--repeat")
       repeat = std::atoi(value());
     else if (a == "--help" || a == "-h") {
@@ -223,6 +240,7 @@ int run_search(int argc, char** argv) {
   }
   const long n_facets = slave.view().n_facets();
   TreeOptions opt;
+  opt.leaf_size = leaf_size;
   opt.inflation = 0.3 * std::min(min_edge_length(slave.view()), min_edge_length(master.view()));
 
   std::vector<Tree> kdop_trees, aabb_trees;
@@ -243,37 +261,47 @@ int run_search(int argc, char** argv) {
   }
 
   double cgal_s = -1;
+  std::vector<std::pair<long, double>> cutoff_times;
   long cgal_pairs = -1;
   bool cgal_match = false;
 #ifdef SEAM_HAVE_CGAL
-  {
+  for (long cut : cutoffs) {
     std::vector<CandidatePair> c;
-    cgal_s = dim == 3 ? time_cgal<3>(aabb_trees[0], aabb_trees[1], cutoff, repeat, x.pairs.size(), c)
-                      : time_cgal<2>(aabb_trees[0], aabb_trees[1], cutoff, repeat, x.pairs.size(), c);
-    cgal_pairs = long(c.size());
-    cgal_match = c == x.pairs;
+    const double t =
+        dim == 3 ? time_cgal<3>(aabb_trees[0], aabb_trees[1], cut, repeat, x.pairs.size(), c)
+                 : time_cgal<2>(aabb_trees[0], aabb_trees[1], cut, repeat, x.pairs.size(), c);
+    cutoff_times.emplace_back(cut, t);
+    if (cgal_s < 0 || t < cgal_s) {
+      cgal_s = t;
+      cutoff = cut;
+      cgal_pairs = long(c.size());
+      cgal_match = c == x.pairs;
+    }
   }
 #endif
 
   const double rq = k.refit_s + k.query_s;
   std::printf("seam-bench search: %dD, %ld facets per surface, inflation %.3g (0.3 h_min), "
-              "best of %d, CPU seconds\n",
-              dim, n_facets, opt.inflation, repeat);
+              "leaf size %d, best of %d, CPU seconds\n",
+              dim, n_facets, opt.inflation, leaf_size, repeat);
   std::printf("  %-22s %10s %10s %10s %12s %12s\n", "", "build s", "refit s", "query s", "pairs",
               "ns/facet r+q");
-  std::printf("  %-22s %10.4f %10.4f %10.4f %12zu %12.1f\n", (std::string("seam ") + kname).c_str(),
+  std::printf("  %-22s %10.3g %10.3g %10.3g %12zu %12.1f\n", (std::string("seam ") + kname).c_str(),
               k.build_s, k.refit_s, k.query_s, k.pairs.size(), 1e9 * rq / n_facets);
-  std::printf("  %-22s %10.4f %10.4f %10.4f %12zu %12.1f\n", "seam AABB", x.build_s, x.refit_s,
+  std::printf("  %-22s %10.3g %10.3g %10.3g %12zu %12.1f\n", "seam AABB", x.build_s, x.refit_s,
               x.query_s, x.pairs.size(), 1e9 * (x.refit_s + x.query_s) / n_facets);
   if (brute_s >= 0)
-    std::printf("  %-22s %32.4f %12ld   same pairs as seam %s: %s\n", "brute force", brute_s,
+    std::printf("  %-22s %32.3g %12ld   same pairs as seam %s: %s\n", "brute force", brute_s,
                 brute_pairs, kname, brute_match ? "yes" : "NO");
   else
     std::printf("  brute force            skipped (N > 2e4)\n");
   if (cgal_s >= 0) {
-    std::printf("  %-22s %32.4f %12ld   same pairs as seam AABB: %s\n", "CGAL box_intersection_d",
+    std::printf("  %-22s %32.3g %12ld   same pairs as seam AABB: %s\n", "CGAL box_intersection_d",
                 cgal_s, cgal_pairs, cgal_match ? "yes" : "NO");
-    std::printf("  CGAL cutoff %ld, closed boxes, bipartite, on seam's inflated AABBs\n", cutoff);
+    std::printf("  CGAL cutoff %ld%s, closed boxes, bipartite, on seam's inflated AABBs\n", cutoff,
+                cutoffs.size() > 1 ? " (fastest tried)" : "");
+    if (cutoff_times.size() > 1)
+      for (const auto& [cut, t] : cutoff_times) std::printf("    cutoff %8ld: %.3g s\n", cut, t);
     std::printf("  ratios: CGAL / seam(refit+query) = %.2f, CGAL / seam(build+query) = %.2f, "
                 "pairs seam %s / AABB = %.3f\n",
                 cgal_s / rq, cgal_s / (k.build_s + k.build_query_s), kname,
@@ -305,7 +333,6 @@ int run_search(int argc, char** argv) {
 }
 
 const seam::bench::Register registered{
-    "search", "contact search: seam tree vs brute force and CGAL box_intersection_d",
-    &run_search};
+    "search", "contact search: seam tree vs brute force and CGAL box_intersection_d", &run_search};
 
 } // namespace

@@ -44,7 +44,8 @@ int dispatch(int argc, char** argv) {
   run->add_flag("-q,--quiet", run_opts.quiet, "no per-step progress on the terminal");
   run->add_option("--restart", run_opts.restart, "continue from a checkpoint file");
   std::string check_input;
-  auto* check = app.add_subcommand("check", "parse and validate INPUT.yaml, load the mesh, solve nothing");
+  auto* check =
+      app.add_subcommand("check", "parse and validate INPUT.yaml, load the mesh, solve nothing");
   check->add_option("input", check_input, "input file (YAML)")->required();
 
   try {

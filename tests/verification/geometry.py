@@ -60,9 +60,9 @@ def box(kind, h, order=1, serendipity=False, lx=2.0, ly=1.0, lz=1.0):
         lines += [
             "For c In {1:12}",
             "  bb() = BoundingBox Curve{c};",
-            "  If (Fabs(bb(3) - bb(0)) > 1e-9)",
+            "  If (Fabs(bb(3) - bb(0)) > 1e-5)",
             "    Transfinite Curve{c} = %d;" % (n[0] + 1),
-            "  ElseIf (Fabs(bb(4) - bb(1)) > 1e-9)",
+            "  ElseIf (Fabs(bb(4) - bb(1)) > 1e-5)",
             "    Transfinite Curve{c} = %d;" % (n[1] + 1),
             "  Else",
             "    Transfinite Curve{c} = %d;" % (n[2] + 1),

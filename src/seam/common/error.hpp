@@ -27,8 +27,7 @@ public:
 };
 
 namespace detail {
-template <class... Args>
-std::string concat(const Args&... args) {
+template <class... Args> std::string concat(const Args&... args) {
   std::ostringstream s;
   (s << ... << args);
   return s.str();
@@ -46,5 +45,5 @@ std::string concat(const Args&... args) {
 /// Always-on check of something the caller (ultimately the user) can cause.
 #define SEAM_CHECK(cond, Type, ...)                                                                \
   do {                                                                                             \
-    if (!(cond)) SEAM_THROW(Type, __VA_ARGS__);                                                   \
+    if (!(cond)) SEAM_THROW(Type, __VA_ARGS__);                                                    \
   } while (0)

@@ -8,7 +8,9 @@ namespace seam::geometry {
 
 namespace {
 
-double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Point2& a, const Point2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // Working storage for the clip: Sutherland–Hodgman adds at most one vertex per clipping edge
 // to a convex polygon; the margin covers the nearly degenerate cases that tolerance-snapped
@@ -16,8 +18,7 @@ double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * 
 constexpr int work_capacity = 2 * max_polygon_vertices + 4;
 using WorkPolygon = StaticVector<Point2, work_capacity>;
 
-template <class P>
-double signed_area_of(const P& p) {
+template <class P> double signed_area_of(const P& p) {
   // Shoelace about the first vertex: translation-invariant, so far-from-origin polygons do not
   // lose digits to cancellation.
   double twice = 0.0;
@@ -25,29 +26,25 @@ double signed_area_of(const P& p) {
   return 0.5 * twice;
 }
 
-template <class P>
-double min_edge_of(const P& p) {
+template <class P> double min_edge_of(const P& p) {
   if (p.size() < 2) return 0.0;
   double m = (p[0] - p[p.size() - 1]).norm();
   for (int i = 0; i + 1 < p.size(); ++i) m = std::min(m, (p[i + 1] - p[i]).norm());
   return m;
 }
 
-template <class P>
-void reverse_in_place(P& p) {
+template <class P> void reverse_in_place(P& p) {
   for (int i = 0, j = p.size() - 1; i < j; ++i, --j) std::swap(p[i], p[j]);
 }
 
-template <class P>
-void checked_push(P& p, const Point2& x) {
+template <class P> void checked_push(P& p, const Point2& x) {
   if (p.full()) SEAM_THROW(InternalError, "clip_polygons: working polygon capacity exceeded");
   p.push_back(x);
 }
 
 // Drop each vertex that lies within tol of its (cyclic) predecessor; the first of a cluster
 // survives.
-template <class P>
-void merge_close_vertices(P& p, double tol) {
+template <class P> void merge_close_vertices(P& p, double tol) {
   P out;
   for (const Point2& x : p) {
     if (out.empty() || (x - out.back()).norm() > tol) out.push_back(x);
@@ -58,8 +55,7 @@ void merge_close_vertices(P& p, double tol) {
 
 // Drop vertices within tol of the line through their neighbours: they add no area, and a
 // fan about the centroid would otherwise contain slivers.
-template <class P>
-void remove_collinear_vertices(P& p, double tol) {
+template <class P> void remove_collinear_vertices(P& p, double tol) {
   bool changed = true;
   while (changed && p.size() >= 3) {
     changed = false;
@@ -80,17 +76,20 @@ void remove_collinear_vertices(P& p, double tol) {
   }
 }
 
-template <class P>
-void copy_cleaned(const Polygon& in, P& out) {
+template <class P> void copy_into(const Polygon& in, P& out) {
   out.clear();
   for (const Point2& x : in) out.push_back(x);
 }
 
 } // namespace
 
-double signed_area(const Polygon& polygon) { return signed_area_of(polygon); }
+double signed_area(const Polygon& polygon) {
+  return signed_area_of(polygon);
+}
 
-double area(const Polygon& polygon) { return std::abs(signed_area_of(polygon)); }
+double area(const Polygon& polygon) {
+  return std::abs(signed_area_of(polygon));
+}
 
 Point2 centroid(const Polygon& polygon) {
   const int n = polygon.size();
@@ -117,7 +116,9 @@ void make_counter_clockwise(Polygon& polygon) {
   if (signed_area_of(polygon) < 0.0) reverse_in_place(polygon);
 }
 
-double min_edge_length(const Polygon& polygon) { return min_edge_of(polygon); }
+double min_edge_length(const Polygon& polygon) {
+  return min_edge_of(polygon);
+}
 
 double max_edge_length(const Polygon& polygon) {
   const int n = polygon.size();
@@ -128,18 +129,17 @@ double max_edge_length(const Polygon& polygon) {
 }
 
 Polygon clip_polygons(const Polygon& subject, const Polygon& clipper, const ClipOptions& options) {
-  SEAM_CHECK(subject.size() <= max_clip_input_vertices &&
-                 clipper.size() <= max_clip_input_vertices,
+  SEAM_CHECK(subject.size() <= max_clip_input_vertices && clipper.size() <= max_clip_input_vertices,
              InputError, "clip_polygons: inputs may have at most ", max_clip_input_vertices,
              " vertices (got ", subject.size(), " and ", clipper.size(), ")");
   const double input_tol =
       options.merge_tolerance * std::min(max_edge_length(subject), max_edge_length(clipper));
 
   WorkPolygon s;
-  copy_cleaned(subject, s);
+  copy_into(subject, s);
   merge_close_vertices(s, input_tol);
   WorkPolygon c;
-  copy_cleaned(clipper, c);
+  copy_into(clipper, c);
   merge_close_vertices(c, input_tol);
   if (s.size() < 3 || c.size() < 3) return {};
 
@@ -192,7 +192,9 @@ Polygon clip_polygons(const Polygon& subject, const Polygon& clipper, const Clip
   return result;
 }
 
-double Triangle2::area() const { return 0.5 * cross(b - a, c - a); }
+double Triangle2::area() const {
+  return 0.5 * cross(b - a, c - a);
+}
 
 TriangleList triangulate_fan(const Polygon& polygon) {
   TriangleList cells;

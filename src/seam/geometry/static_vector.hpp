@@ -10,8 +10,7 @@
 
 namespace seam::geometry {
 
-template <class T, int Capacity>
-class StaticVector {
+template <class T, int Capacity> class StaticVector {
 public:
   static constexpr int capacity = Capacity;
 
@@ -33,7 +32,8 @@ public:
   /// Remove the element at position i, keeping the order of the others.
   void erase(int i) {
     SEAM_ASSERT(i >= 0 && i < n_);
-    for (int k = i; k + 1 < n_; ++k) data_[static_cast<std::size_t>(k)] = data_[static_cast<std::size_t>(k + 1)];
+    for (int k = i; k + 1 < n_; ++k)
+      data_[static_cast<std::size_t>(k)] = data_[static_cast<std::size_t>(k + 1)];
     --n_;
   }
 

@@ -42,7 +42,7 @@ fs::path resolve(const Node& node, const fs::path& folder) {
 }
 
 MeshConfig read_mesh(const Node& node, const fs::path& folder) {
-  const Map map(node, {"file", "geo", "size", "order"});
+  const Map map(node, {"file", "geo", "size", "order", "serendipity"});
   MeshConfig mesh;
   mesh.mark = node.mark();
   const auto file = map.get("file");
@@ -61,6 +61,14 @@ MeshConfig read_mesh(const Node& node, const fs::path& folder) {
   }
   map.forbid("size", !geo, "applies only to a 'geo' geometry (a .msh file is already meshed)");
   map.forbid("order", !geo, "applies only to a 'geo' geometry (a .msh file is already meshed)");
+  map.forbid("serendipity", !geo,
+             "applies only to a 'geo' geometry (a .msh file is already meshed)");
+  if (const auto serendipity = map.get("serendipity")) {
+    const auto word = serendipity->string();
+    if (word != "true" && word != "false")
+      serendipity->fail(concat("expected true or false, got '", word, "'"));
+    mesh.serendipity = word == "true";
+  }
   if (const auto size = map.get("size")) {
     mesh.size = size->number();
     if (*mesh.size <= 0.0) size->fail(concat("must be > 0, got ", format_number(*mesh.size)));
@@ -203,7 +211,7 @@ SolverConfig read_solver(const Node& node) {
 }
 
 OutputConfig read_output(const Node& node, int dimension) {
-  const Map map(node, {"every", "probes"});
+  const Map map(node, {"every", "probes", "exact_displacement"});
   OutputConfig output;
   if (const auto every = map.get("every")) {
     output.every = every->integer();
@@ -213,6 +221,8 @@ OutputConfig read_output(const Node& node, int dimension) {
     for (const Node& probe : probes->sequence())
       output.probes.push_back(Probe{probe.point(dimension), probe.mark()});
   }
+  if (const auto exact = map.get("exact_displacement"))
+    output.exact_displacement = exact->expressions(dimension);
   return output;
 }
 

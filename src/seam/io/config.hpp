@@ -59,7 +59,8 @@ struct MeshConfig {
   std::filesystem::path file; ///< absolute; a .msh file, or empty if `geo` is given
   std::filesystem::path geo;  ///< absolute; a .geo file meshed at start, or empty
   std::optional<double> size; ///< geo only: characteristic mesh size
-  int order = 1;              ///< geo only: 1 (linear) or 2 (quadratic)
+  int order = 0;              ///< geo only: 1 (linear) or 2 (quadratic); 0 = as the .geo says
+  bool serendipity = false;   ///< geo only, order 2: quad8/hex20 instead of quad9/hex27
   Mark mark;
 };
 
@@ -161,6 +162,9 @@ struct Probe {
 struct OutputConfig {
   int every = 1; ///< write every n-th step
   std::vector<Probe> probes;
+  /// Optional exact displacement (`dimension` expressions): the L2 and H1 errors of every
+  /// written step go to errors.csv (method of manufactured solutions).
+  std::vector<Expression> exact_displacement;
 };
 
 struct Config {

@@ -145,7 +145,8 @@ Expression Node::expression() const {
   try {
     return Expression(yaml_.Scalar());
   } catch (const InputError& error) {
-    fail(error.what());
+    fail(concat(error.what(), "\n    expected an expression in t, x, y, z (constants _pi, _e; "
+                              "muparser syntax, e.g. \"2*sin(_pi*t)*(t<=0.5)\")"));
   }
 }
 

@@ -46,7 +46,9 @@ Session::Session(int& argc, char**& argv, const std::vector<std::string>& petsc_
   check(PetscOptionsInsertString(nullptr, opts.c_str()), "reading PETSc options");
 }
 
-Session::~Session() { PetscFinalize(); }
+Session::~Session() {
+  PetscFinalize();
+}
 
 Vector::Vector(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> ghosts) {
   check(VecCreateGhost(comm, n_owned, PETSC_DECIDE, static_cast<PetscInt>(ghosts.size()),
@@ -74,13 +76,17 @@ Vector Vector::duplicate() const {
   return out;
 }
 
-void Vector::copy_from(const Vector& src) { check(VecCopy(src.v_, v_), "VecCopy"); }
-void Vector::zero() { check(VecSet(v_, 0.0), "VecSet"); }
+void Vector::copy_from(const Vector& src) {
+  check(VecCopy(src.v_, v_), "VecCopy");
+}
+void Vector::zero() {
+  check(VecSet(v_, 0.0), "VecSet");
+}
 
 void Vector::add_values(std::span<const PetscInt> rows, std::span<const double> values) {
-  check(VecSetValues(v_, static_cast<PetscInt>(rows.size()), rows.data(), values.data(),
-                     ADD_VALUES),
-        "VecSetValues");
+  check(
+      VecSetValues(v_, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
+      "VecSetValues");
 }
 
 void Vector::set_values(std::span<const PetscInt> rows, std::span<const double> values) {
@@ -116,8 +122,12 @@ double Vector::dot(const Vector& o) const {
   return d;
 }
 
-void Vector::axpy(double a, const Vector& x) { check(VecAXPY(v_, a, x.v_), "VecAXPY"); }
-void Vector::scale(double a) { check(VecScale(v_, a), "VecScale"); }
+void Vector::axpy(double a, const Vector& x) {
+  check(VecAXPY(v_, a, x.v_), "VecAXPY");
+}
+void Vector::scale(double a) {
+  check(VecScale(v_, a), "VecScale");
+}
 
 PetscInt Vector::owned_size() const {
   PetscInt n = 0;
@@ -181,7 +191,9 @@ Matrix& Matrix::operator=(Matrix&& o) noexcept {
   return *this;
 }
 
-void Matrix::zero() { check(MatZeroEntries(m_), "MatZeroEntries"); }
+void Matrix::zero() {
+  check(MatZeroEntries(m_), "MatZeroEntries");
+}
 
 void Matrix::add_values(std::span<const PetscInt> rows, std::span<const PetscInt> cols,
                         std::span<const double> values) {

@@ -80,7 +80,8 @@ private:
 class Matrix {
 public:
   Matrix() = default;
-  /// Square matrix with n_owned local rows/cols; d_nnz/o_nnz per owned row as in MatMPIAIJSetPreallocation.
+  /// Square matrix with n_owned local rows/cols; d_nnz/o_nnz per owned row as in
+  /// MatMPIAIJSetPreallocation.
   Matrix(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> d_nnz,
          std::span<const PetscInt> o_nnz, PetscInt block_size);
   ~Matrix();

@@ -9,8 +9,7 @@ namespace {
 
 bool is_simplex(fem::CellType t) {
   using fem::CellType;
-  return t == CellType::tri3 || t == CellType::tri6 || t == CellType::tet4 ||
-         t == CellType::tet10;
+  return t == CellType::tri3 || t == CellType::tri6 || t == CellType::tet4 || t == CellType::tet10;
 }
 
 // Node coordinates of facet `local` of cell c (3 per node); returns the facet node count.
@@ -22,8 +21,7 @@ int facet_coordinates(const Mesh& mesh, std::int32_t c, int local,
   const int n = static_cast<int>(local_nodes.size());
   for (int i = 0; i < n; ++i) {
     const auto x = mesh.node(nodes[local_nodes[i]]);
-    for (int a = 0; a < 3; ++a)
-      xf[3 * i + a] = a < mesh.dim ? x[a] : 0.0;
+    for (int a = 0; a < 3; ++a) xf[3 * i + a] = a < mesh.dim ? x[a] : 0.0;
   }
   return n;
 }
@@ -34,10 +32,13 @@ Point reference_centre(fem::CellType t) {
   using fem::CellType;
   switch (t) {
   case CellType::tri3:
-  case CellType::tri6: return {1.0 / 3.0, 1.0 / 3.0, 0.0};
+  case CellType::tri6:
+    return {1.0 / 3.0, 1.0 / 3.0, 0.0};
   case CellType::tet4:
-  case CellType::tet10: return {0.25, 0.25, 0.25};
-  default: return {0.0, 0.0, 0.0}; // point, lines, quads, hexes: centred on 0
+  case CellType::tet10:
+    return {0.25, 0.25, 0.25};
+  default:
+    return {0.0, 0.0, 0.0}; // point, lines, quads, hexes: centred on 0
   }
 }
 
@@ -47,8 +48,7 @@ int cell_coordinates(const Mesh& mesh, std::int32_t c,
   const int n = static_cast<int>(nodes.size());
   for (int i = 0; i < n; ++i) {
     const auto x = mesh.node(nodes[i]);
-    for (int a = 0; a < 3; ++a)
-      xc[3 * i + a] = a < mesh.dim ? x[a] : 0.0;
+    for (int a = 0; a < 3; ++a) xc[3 * i + a] = a < mesh.dim ? x[a] : 0.0;
   }
   return n;
 }
@@ -73,9 +73,7 @@ double jacobian(const Mesh& mesh, std::int32_t c, const double* xi, std::array<d
   J.fill(0.0);
   for (int i = 0; i < n; ++i)
     for (int a = 0; a < d; ++a)
-      for (int b = 0; b < d; ++b)
-        J[a * d + b] +=
-            xc[3 * i + a] * dN[i * d + b];
+      for (int b = 0; b < d; ++b) J[a * d + b] += xc[3 * i + a] * dN[i * d + b];
   if (d == 2) return J[0] * J[3] - J[1] * J[2];
   return J[0] * (J[4] * J[8] - J[5] * J[7]) - J[1] * (J[3] * J[8] - J[5] * J[6]) +
          J[2] * (J[3] * J[7] - J[4] * J[6]);
@@ -93,8 +91,7 @@ double cell_volume(const Mesh& mesh, std::int32_t c) {
   std::array<double, 9> J{};
   double volume = 0.0;
   for (int q = 0; q < rule.n_points; ++q)
-    volume += rule.weights[q] *
-              jacobian(mesh, c, &rule.points[q * rule.dim], J);
+    volume += rule.weights[q] * jacobian(mesh, c, &rule.points[q * rule.dim], J);
   return volume;
 }
 
@@ -140,9 +137,7 @@ Point facet_normal(const Mesh& mesh, std::int32_t c, int local, const double* xi
   std::array<Point, 2> t{}; // tangents dx/dxi_f (and dx/deta_f in 3D)
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < fd; ++k)
-      for (int a = 0; a < 3; ++a)
-        t[k][a] +=
-            dN[i * fd + k] * xf[3 * i + a];
+      for (int a = 0; a < 3; ++a) t[k][a] += dN[i * fd + k] * xf[3 * i + a];
   Point normal{};
   if (mesh.dim == 2) {
     // Cells lie to the left of their facets' direction, so (t_y, -t_x) points out.
@@ -151,7 +146,8 @@ Point facet_normal(const Mesh& mesh, std::int32_t c, int local, const double* xi
     normal = {t[0][1] * t[1][2] - t[0][2] * t[1][1], t[0][2] * t[1][0] - t[0][0] * t[1][2],
               t[0][0] * t[1][1] - t[0][1] * t[1][0]};
   }
-  const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  const double length =
+      std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
   if (area_element != nullptr) *area_element = length;
   if (length > 0.0)
     for (auto& v : normal) v /= length;

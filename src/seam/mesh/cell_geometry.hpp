@@ -21,8 +21,7 @@ int cell_coordinates(const Mesh& mesh, std::int32_t c,
 Point map_to_physical(const Mesh& mesh, std::int32_t c, const double* xi);
 
 /// Jacobian J[a * dim + b] = dx_a / dxi_b of cell c at xi (dim = mesh.dim); returns det J.
-double jacobian(const Mesh& mesh, std::int32_t c, const double* xi,
-                std::array<double, 9>& J);
+double jacobian(const Mesh& mesh, std::int32_t c, const double* xi, std::array<double, 9>& J);
 
 /// Quadrature degree that integrates det J exactly: dim * (order - 1) for simplices (total
 /// degree), dim * order - 1 per direction for tensor cells.

@@ -56,8 +56,7 @@ FacetIndex::FacetIndex(const Mesh& mesh) {
     for (int f = 0; f < n_f; ++f) {
       const int n = facet_corners(mesh, c, f, corners);
       auto& entry = map_[make_key(std::span<const std::int32_t>(corners.data(), n))];
-      if (entry.n_cells < 2)
-        entry.cells[entry.n_cells] = {c, static_cast<std::int8_t>(f)};
+      if (entry.n_cells < 2) entry.cells[entry.n_cells] = {c, static_cast<std::int8_t>(f)};
       ++entry.n_cells;
     }
   }
@@ -77,7 +76,9 @@ std::optional<FacetRef> FacetIndex::neighbour(const Mesh& mesh, FacetRef facet) 
   return entry->cells[0].cell == facet.cell ? entry->cells[1] : entry->cells[0];
 }
 
-FacetList exterior_facets(const Mesh& mesh) { return exterior_facets(mesh, FacetIndex(mesh)); }
+FacetList exterior_facets(const Mesh& mesh) {
+  return exterior_facets(mesh, FacetIndex(mesh));
+}
 
 FacetList exterior_facets(const Mesh& mesh, const FacetIndex& index) {
   FacetList out;

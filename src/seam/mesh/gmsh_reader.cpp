@@ -59,8 +59,7 @@ public:
   const std::string& file() const { return file_; }
 
   // Run one Gmsh step; anything Gmsh reported as an error becomes an InputError naming the file.
-  template <class F>
-  void run(std::string_view doing, F&& step) {
+  template <class F> void run(std::string_view doing, F&& step) {
     std::string thrown;
     try {
       step();
@@ -130,7 +129,8 @@ struct Elements {
 
 Elements get_elements(GmshSession& g, int dim, int tag) {
   Elements e;
-  g.run("reading elements", [&] { gmsh::model::mesh::getElements(e.types, e.tags, e.nodes, dim, tag); });
+  g.run("reading elements",
+        [&] { gmsh::model::mesh::getElements(e.types, e.tags, e.nodes, dim, tag); });
   return e;
 }
 
@@ -159,8 +159,8 @@ std::string lower_extension(const std::filesystem::path& file) {
 }
 
 bool is_geometry_extension(std::string_view ext) {
-  static constexpr std::array<std::string_view, 7> geometry{".geo", ".geo_unrolled", ".step",
-                                                              ".stp", ".brep", ".iges", ".igs"};
+  static constexpr std::array<std::string_view, 7> geometry{
+      ".geo", ".geo_unrolled", ".step", ".stp", ".brep", ".iges", ".igs"};
   return std::find(geometry.begin(), geometry.end(), ext) != geometry.end();
 }
 
@@ -216,9 +216,8 @@ std::vector<std::size_t> build_nodes_and_cells(GmshSession& g, std::span<const C
 
   std::vector<std::size_t> node_tags;
   std::vector<double> coords, parametric;
-  g.run("reading nodes", [&] {
-    gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
-  });
+  g.run("reading nodes",
+        [&] { gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false); });
   const TagMap gmsh_node(node_tags);
   const int dim = mesh.dim;
   mesh.x.resize(used.size() * static_cast<std::size_t>(dim));
@@ -235,8 +234,8 @@ std::vector<std::size_t> build_nodes_and_cells(GmshSession& g, std::span<const C
     max_z = std::max(max_z, std::abs(p[2]));
   }
   // A 2D analysis is in the x-y plane; a surface mesh elsewhere in space is not a 2D mesh.
-  SEAM_CHECK(dim == 3 || max_z <= 1e-12 * std::max(extent, 1.0), InputError, "mesh '",
-             g.file(), "': a 2D mesh must lie in the plane z = 0, but a node has |z| = ", max_z);
+  SEAM_CHECK(dim == 3 || max_z <= 1e-12 * std::max(extent, 1.0), InputError, "mesh '", g.file(),
+             "': a 2D mesh must lie in the plane z = 0, but a node has |z| = ", max_z);
 
   const TagMap mesh_node(used);
   std::array<std::int32_t, fem::max_cell_nodes> local{};
@@ -256,15 +255,15 @@ void sort_unique(std::vector<std::int32_t>& v) {
 struct RegionContext {
   GmshSession& g;
   const Mesh& mesh;
-  const TagMap& mesh_node;   // Gmsh node tag -> mesh node
+  const TagMap& mesh_node;                // Gmsh node tag -> mesh node
   std::span<const std::size_t> cell_tags; // sorted Gmsh element tags of the cells
   const FacetIndex& facets;
 };
 
 std::int32_t region_node(const RegionContext& ctx, const Region& r, std::size_t tag) {
   const auto n = ctx.mesh_node.find(tag);
-  SEAM_CHECK(n >= 0, InputError, "mesh '", ctx.g.file(), "': region '", r.name, "' has node ",
-             tag, ", which belongs to no cell of dimension ", ctx.mesh.dim);
+  SEAM_CHECK(n >= 0, InputError, "mesh '", ctx.g.file(), "': region '", r.name, "' has node ", tag,
+             ", which belongs to no cell of dimension ", ctx.mesh.dim);
   return n;
 }
 
@@ -287,18 +286,21 @@ void add_facets(const RegionContext& ctx, const Elements& e, Region& r) {
     const int n_corners = fem::n_vertices(type);
     for (std::size_t k = 0; k < e.tags[i].size(); ++k) {
       const std::size_t* nodes = e.nodes[i].data() + k * n_nodes;
-      for (int a = 0; a < n_corners; ++a)
-        corners[a] = region_node(ctx, r, nodes[a]);
-      const auto* entry = ctx.facets.find(std::span<const std::int32_t>(corners.data(),
-                                                                        static_cast<std::size_t>(n_corners)));
-      SEAM_CHECK(entry != nullptr, InputError, "mesh '", ctx.g.file(), "': element ",
-                 e.tags[i][k], " of boundary region '", r.name,
-                 "' is not a facet of any cell of dimension ", ctx.mesh.dim);
+      for (int a = 0; a < n_corners; ++a) corners[a] = region_node(ctx, r, nodes[a]);
+      const auto* entry = ctx.facets.find(
+          std::span<const std::int32_t>(corners.data(), static_cast<std::size_t>(n_corners)));
+      SEAM_CHECK(entry != nullptr, InputError, "mesh '", ctx.g.file(), "': element ", e.tags[i][k],
+                 " of boundary region '", r.name, "' is not a facet of any cell of dimension ",
+                 ctx.mesh.dim);
       r.facet_cell.push_back(entry->cells[0].cell);
       r.facet_local.push_back(entry->cells[0].local);
     }
   }
-  // Sort (cell, local) pairs and drop duplicates (the same facet in two entities of the group).
+}
+
+// Once all entities are in: sort the (cell, local) pairs, drop duplicates (the same facet in
+// two entities of the group) and collect the facets' nodes, high-order ones included.
+void finish_facets(const RegionContext& ctx, Region& r) {
   std::vector<std::pair<std::int32_t, std::int8_t>> pairs(r.facet_cell.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {r.facet_cell[k], r.facet_local[k]};
   std::sort(pairs.begin(), pairs.end());
@@ -346,6 +348,7 @@ std::vector<Region> read_regions(const RegionContext& ctx) {
       else
         add_nodes(ctx, elements, r);
     }
+    if (dim == ctx.mesh.dim - 1) finish_facets(ctx, r);
     sort_unique(r.cells);
     sort_unique(r.nodes);
     regions.push_back(std::move(r));
@@ -365,8 +368,7 @@ Mesh extract_mesh(GmshSession& g, const ReadOptions& options) {
              top < 0 ? std::string(" (no elements at all)")
                      : " (highest element dimension is " + std::to_string(top) + ")");
   SEAM_CHECK(options.dim == 0 || options.dim == top, InputError, "mesh '", g.file(),
-             "': the mesh has dimension ", top, " but dimension ", options.dim,
-             " was asked for");
+             "': the mesh has dimension ", top, " but dimension ", options.dim, " was asked for");
 
   Mesh mesh;
   mesh.dim = top;
@@ -374,8 +376,8 @@ Mesh extract_mesh(GmshSession& g, const ReadOptions& options) {
   const auto used = build_nodes_and_cells(g, cells, mesh);
   std::vector<std::size_t> cell_tags(cells.size());
   for (std::size_t c = 0; c < cells.size(); ++c) cell_tags[c] = cells[c].tag;
-  SEAM_CHECK(std::adjacent_find(cell_tags.begin(), cell_tags.end()) == cell_tags.end(),
-             InputError, "mesh '", g.file(), "': two elements share a tag");
+  SEAM_CHECK(std::adjacent_find(cell_tags.begin(), cell_tags.end()) == cell_tags.end(), InputError,
+             "mesh '", g.file(), "': two elements share a tag");
 
   const TagMap mesh_node(used);
   const FacetIndex facets(mesh);
@@ -391,8 +393,8 @@ Mesh read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
   check_file(path, file);
   const auto ext = lower_extension(path);
   const bool geometry = is_geometry_extension(ext);
-  SEAM_CHECK(geometry || ext == ".msh", InputError, "mesh '", file, "': unknown extension '",
-             ext, "' (expected .msh, or a geometry file such as .geo)");
+  SEAM_CHECK(geometry || ext == ".msh", InputError, "mesh '", file, "': unknown extension '", ext,
+             "' (expected .msh, or a geometry file such as .geo)");
 
   const std::lock_guard lock(gmsh_mutex());
   GmshSession g(file);

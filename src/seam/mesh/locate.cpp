@@ -13,8 +13,7 @@ namespace {
 
 bool is_simplex(fem::CellType t) {
   using fem::CellType;
-  return t == CellType::tri3 || t == CellType::tri6 || t == CellType::tet4 ||
-         t == CellType::tet10;
+  return t == CellType::tri3 || t == CellType::tri6 || t == CellType::tet4 || t == CellType::tet10;
 }
 
 // Largest extent of the nodes of a cell (its length scale).
@@ -125,8 +124,7 @@ PointLocator::PointLocator(const Mesh& mesh) : mesh_(&mesh) {
   }
 }
 
-std::optional<PointLocation> PointLocator::locate(std::span<const double> point,
-                                                  double tol) const {
+std::optional<PointLocation> PointLocator::locate(std::span<const double> point, double tol) const {
   const Mesh& mesh = *mesh_;
   SEAM_CHECK(static_cast<int>(point.size()) == mesh.dim, InputError, "a point in a ", mesh.dim,
              "D mesh needs ", mesh.dim, " coordinates, not ", point.size());
@@ -147,7 +145,7 @@ std::optional<PointLocation> PointLocator::locate(std::span<const double> point,
     if (!xi) continue;
     const double distance = reference_distance(mesh.cell_type[c], xi->data());
     // Inside up to round-off: the lowest-index cell wins, which makes shared facets deterministic.
-    if (distance <= 1e-13) best = PointLocation{c, *xi};
+    if (distance <= 1e-13) return PointLocation{c, *xi};
     if (distance <= tol && distance < best_distance) {
       best_distance = distance;
       best = PointLocation{c, *xi};

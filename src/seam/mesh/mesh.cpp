@@ -42,8 +42,8 @@ void Mesh::check() const {
     const auto t = cell_type[c];
     SEAM_CHECK(fem::dimension(t) == dim, InternalError, "cell ", c, " (", fem::name(t),
                ") has not the mesh dimension ", dim);
-    SEAM_CHECK(cell_offsets[c + 1] - cell_offsets[c] == fem::n_nodes(t), InternalError, "cell ",
-               c, " (", fem::name(t), ") has ", cell_offsets[c + 1] - cell_offsets[c], " nodes");
+    SEAM_CHECK(cell_offsets[c + 1] - cell_offsets[c] == fem::n_nodes(t), InternalError, "cell ", c,
+               " (", fem::name(t), ") has ", cell_offsets[c + 1] - cell_offsets[c], " nodes");
   }
   for (auto n : cell_nodes)
     SEAM_CHECK(n >= 0 && n < n_n, InternalError, "cell node index ", n, " out of range");

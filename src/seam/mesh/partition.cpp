@@ -12,8 +12,8 @@ namespace seam::mesh {
 std::vector<int> partition_cells(const Mesh& mesh, int n_parts) {
   const std::int32_t n_cells = mesh.n_cells();
   SEAM_CHECK(n_parts >= 1, InputError, "cannot partition a mesh into ", n_parts, " parts");
-  SEAM_CHECK(n_parts <= n_cells, InputError, "cannot partition a mesh of ", n_cells,
-             " cells into ", n_parts, " parts (more parts than cells)");
+  SEAM_CHECK(n_parts <= n_cells, InputError, "cannot partition a mesh of ", n_cells, " cells into ",
+             n_parts, " parts (more parts than cells)");
   std::vector<int> part(static_cast<std::size_t>(n_cells), 0);
   if (n_parts == 1) return part;
 
@@ -27,8 +27,8 @@ std::vector<int> partition_cells(const Mesh& mesh, int n_parts) {
     for (int i = 0; i < n_v; ++i) eind.push_back(static_cast<idx_t>(nodes[i]));
     eptr.push_back(static_cast<idx_t>(eind.size()));
   }
-  SEAM_CHECK(eind.size() <= static_cast<std::size_t>(std::numeric_limits<idx_t>::max()),
-             InputError, "mesh too large for 32-bit METIS indices");
+  SEAM_CHECK(eind.size() <= static_cast<std::size_t>(std::numeric_limits<idx_t>::max()), InputError,
+             "mesh too large for 32-bit METIS indices");
 
   idx_t ne = n_cells, nn = mesh.n_nodes(), ncommon = mesh.dim == 2 ? 2 : 3, nparts = n_parts;
   idx_t objval = 0;
@@ -40,8 +40,8 @@ std::vector<int> partition_cells(const Mesh& mesh, int n_parts) {
   const int status =
       METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts,
                          nullptr, options.data(), &objval, epart.data(), npart.data());
-  SEAM_CHECK(status == METIS_OK, InternalError, "METIS_PartMeshDual failed with status ",
-             status, " for ", n_cells, " cells and ", n_parts, " parts");
+  SEAM_CHECK(status == METIS_OK, InternalError, "METIS_PartMeshDual failed with status ", status,
+             " for ", n_cells, " cells and ", n_parts, " parts");
   for (std::size_t c = 0; c < part.size(); ++c) part[c] = static_cast<int>(epart[c]);
   return part;
 }

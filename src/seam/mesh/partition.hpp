@@ -18,10 +18,10 @@ std::vector<int> partition_cells(const Mesh& mesh, int n_parts);
 /// the cells touching it, and each part's nodes are numbered contiguously, ordered by part and
 /// then by mesh node index.
 struct NodeNumbering {
-  std::vector<int> owner;                ///< mesh node -> owning part
-  std::vector<std::int64_t> new_index;   ///< mesh node -> global index
-  std::vector<std::int32_t> old_index;   ///< global index -> mesh node (inverse of new_index)
-  std::vector<std::int64_t> offsets;     ///< n_parts + 1: part p owns [offsets[p], offsets[p+1])
+  std::vector<int> owner;              ///< mesh node -> owning part
+  std::vector<std::int64_t> new_index; ///< mesh node -> global index
+  std::vector<std::int32_t> old_index; ///< global index -> mesh node (inverse of new_index)
+  std::vector<std::int64_t> offsets;   ///< n_parts + 1: part p owns [offsets[p], offsets[p+1])
 };
 
 /// Nodes no cell uses (only possible in hand-built meshes) go to part 0. Throws InputError if

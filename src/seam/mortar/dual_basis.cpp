@@ -25,11 +25,15 @@ double basis_modification(CellType type, Multiplier multiplier) {
 
 std::span<const EdgeNode> edge_nodes(CellType type) {
   switch (type) {
-  case CellType::line3: return line3_edges;
-  case CellType::tri6: return tri6_edges;
+  case CellType::line3:
+    return line3_edges;
+  case CellType::tri6:
+    return tri6_edges;
   case CellType::quad8:
-  case CellType::quad9: return quad_edges;
-  default: return {};
+  case CellType::quad9:
+    return quad_edges;
+  default:
+    return {};
   }
 }
 
@@ -57,8 +61,7 @@ SmallMatrix transformation_matrix(CellType type, double a) {
   return T;
 }
 
-template <int Dim>
-SmallMatrix dual_coefficients(const Facet<Dim>& facet, double a) {
+template <int Dim> SmallMatrix dual_coefficients(const Facet<Dim>& facet, double a) {
   const int n = facet.n_nodes;
   // On a flat facet J is a polynomial: of degree 2p - 1 per direction on a quad of order p,
   // 2p - 2 on a triangle, p - 1 on a straight line; with N~_j N~_k (degree 2p) the integrand
@@ -69,7 +72,8 @@ SmallMatrix dual_coefficients(const Facet<Dim>& facet, double a) {
   double measure = 0.0;
   for (int q = 0; q < rule.n_points; ++q) {
     const auto point = evaluate(facet, rule.points.data() + q * (Dim - 1));
-    const double jw = scaled_normal<Dim>(point.dx).norm() * rule.weights[static_cast<std::size_t>(q)];
+    const double jw =
+        scaled_normal<Dim>(point.dx).norm() * rule.weights[static_cast<std::size_t>(q)];
     NodalVector N = point.N;
     modify_basis(facet.type, a, N.data());
     M.noalias() += jw * N.head(n) * N.head(n).transpose();
@@ -85,8 +89,7 @@ SmallMatrix dual_coefficients(const Facet<Dim>& facet, double a) {
   return ldlt.solve(D).transpose();
 }
 
-template <int Dim>
-SlaveBasis make_slave_basis(const Facet<Dim>& facet, Multiplier multiplier) {
+template <int Dim> SlaveBasis make_slave_basis(const Facet<Dim>& facet, Multiplier multiplier) {
   SlaveBasis basis;
   basis.multiplier = multiplier;
   basis.modification = basis_modification(facet.type, multiplier);

@@ -44,8 +44,7 @@ SmallMatrix transformation_matrix(fem::CellType type, double a);
 /// Dual coefficients A_e = D_e M_e^{-1} for the basis N~ with modification a, integrated with
 /// the facet's own Jacobian J (so they follow the facet into any configuration). Throws
 /// InputError for a degenerate facet (M_e singular).
-template <int Dim>
-SmallMatrix dual_coefficients(const Facet<Dim>& facet, double a);
+template <int Dim> SmallMatrix dual_coefficients(const Facet<Dim>& facet, double a);
 
 /// Everything needed to evaluate a slave facet's displacement and multiplier functions.
 struct SlaveBasis {
@@ -54,8 +53,7 @@ struct SlaveBasis {
   SmallMatrix A;             ///< dual coefficients (n x n); unused for standard multipliers
 };
 
-template <int Dim>
-SlaveBasis make_slave_basis(const Facet<Dim>& facet, Multiplier multiplier);
+template <int Dim> SlaveBasis make_slave_basis(const Facet<Dim>& facet, Multiplier multiplier);
 
 /// Slave displacement functions N~ and multiplier functions Phi from the standard values N.
 inline void slave_functions(const SlaveBasis& basis, fem::CellType type, int n_nodes,

@@ -40,13 +40,16 @@ constexpr std::array<SubFacet, 4> quad9_pieces = {{
 bool is_interface_facet(CellType type, int dim) {
   switch (type) {
   case CellType::line2:
-  case CellType::line3: return dim == 2;
+  case CellType::line3:
+    return dim == 2;
   case CellType::tri3:
   case CellType::tri6:
   case CellType::quad4:
   case CellType::quad8:
-  case CellType::quad9: return dim == 3;
-  default: return false;
+  case CellType::quad9:
+    return dim == 3;
+  default:
+    return false;
   }
 }
 
@@ -73,14 +76,13 @@ void validate(const FacetSet& facets, const char* side) {
     SEAM_CHECK(end - begin == fem::n_nodes(type), InputError, side, " facet ", f, ": a ",
                fem::name(type), " has ", fem::n_nodes(type), " nodes, got ", end - begin);
     for (const local_index node : facets.facet_nodes(f)) {
-      SEAM_CHECK(node >= 0 && node < n_nodes, InputError, side, " facet ", f, ": node index ",
-                 node, " is outside the coordinate array (", n_nodes, " nodes)");
+      SEAM_CHECK(node >= 0 && node < n_nodes, InputError, side, " facet ", f, ": node index ", node,
+                 " is outside the coordinate array (", n_nodes, " nodes)");
     }
   }
 }
 
-template <int Dim>
-Facet<Dim> gather_facet(const FacetSet& facets, local_index f) {
+template <int Dim> Facet<Dim> gather_facet(const FacetSet& facets, local_index f) {
   SEAM_ASSERT(facets.dim == Dim);
   Facet<Dim> facet;
   facet.type = facets.types[static_cast<std::size_t>(f)];
@@ -88,13 +90,13 @@ Facet<Dim> gather_facet(const FacetSet& facets, local_index f) {
   facet.n_nodes = static_cast<int>(nodes.size());
   for (int i = 0; i < facet.n_nodes; ++i) {
     const auto base = static_cast<std::size_t>(nodes[static_cast<std::size_t>(i)]) * Dim;
-    for (int a = 0; a < Dim; ++a) facet.x(a, i) = facets.coordinates[base + static_cast<std::size_t>(a)];
+    for (int a = 0; a < Dim; ++a)
+      facet.x(a, i) = facets.coordinates[base + static_cast<std::size_t>(a)];
   }
   return facet;
 }
 
-template <int Dim>
-FacetPoint<Dim> evaluate(const Facet<Dim>& facet, const double* xi) {
+template <int Dim> FacetPoint<Dim> evaluate(const Facet<Dim>& facet, const double* xi) {
   constexpr int p = Dim - 1;
   FacetPoint<Dim> point;
   std::array<double, max_facet_nodes * p> gradients{};
@@ -111,21 +113,54 @@ FacetPoint<Dim> evaluate(const Facet<Dim>& facet, const double* xi) {
 std::array<double, 2> reference_center(CellType type) {
   switch (type) {
   case CellType::tri3:
-  case CellType::tri6: return {1.0 / 3.0, 1.0 / 3.0};
-  default: return {0.0, 0.0};
+  case CellType::tri6:
+    return {1.0 / 3.0, 1.0 / 3.0};
+  default:
+    return {0.0, 0.0};
   }
 }
 
 std::span<const SubFacet> linear_subfacets(CellType type) {
   switch (type) {
-  case CellType::tri3: return tri3_pieces;
-  case CellType::quad4: return quad4_pieces;
-  case CellType::tri6: return tri6_pieces;
-  case CellType::quad8: return quad8_pieces;
-  case CellType::quad9: return quad9_pieces;
+  case CellType::tri3:
+    return tri3_pieces;
+  case CellType::quad4:
+    return quad4_pieces;
+  case CellType::tri6:
+    return tri6_pieces;
+  case CellType::quad8:
+    return quad8_pieces;
+  case CellType::quad9:
+    return quad9_pieces;
   default:
     SEAM_THROW(InputError, "linear_subfacets: a ", fem::name(type), " is not a surface facet");
   }
+}
+
+geometry::CurveProjection project_onto_facet(const Facet<2>& facet, const Eigen::Vector2d& p,
+                                             const Eigen::Vector2d& d, double xi0,
+                                             const geometry::NewtonOptions& options) {
+  const auto curve = [&facet](double xi) {
+    const auto point = evaluate(facet, &xi);
+    return geometry::CurvePoint{point.x, point.dx.col(0)};
+  };
+  return geometry::project_onto_curve(curve, p, d, xi0, options);
+}
+
+geometry::SurfaceProjection project_onto_facet(const Facet<3>& facet, const Eigen::Vector3d& p,
+                                               const Eigen::Vector3d& d, const Eigen::Vector2d& xi0,
+                                               const geometry::NewtonOptions& options) {
+  const auto surface = [&facet](const Eigen::Vector2d& xi) {
+    const auto point = evaluate(facet, xi.data());
+    return geometry::SurfacePoint{point.x, point.dx};
+  };
+  return geometry::project_onto_surface(surface, p, d, xi0, options);
+}
+
+geometry::SurfaceProjection project_onto_facet(const Facet<3>& facet, const Eigen::Vector3d& p,
+                                               const Eigen::Vector3d& d) {
+  const auto center = reference_center(facet.type);
+  return project_onto_facet(facet, p, d, Eigen::Vector2d(center[0], center[1]));
 }
 
 template Facet<2> gather_facet<2>(const FacetSet&, local_index);

@@ -11,6 +11,7 @@
 
 #include "seam/common/types.hpp"
 #include "seam/fem/cell.hpp"
+#include "seam/geometry/projection.hpp"
 
 namespace seam::mortar {
 
@@ -25,8 +26,8 @@ using NodalVector = Eigen::Matrix<double, max_facet_nodes, 1>;
 struct FacetSet {
   int dim = 3;
   std::span<const double> coordinates;
-  std::span<const fem::CellType> types;   ///< one per facet
-  std::span<const local_index> offsets;   ///< n_facets + 1 entries into `nodes`
+  std::span<const fem::CellType> types; ///< one per facet
+  std::span<const local_index> offsets; ///< n_facets + 1 entries into `nodes`
   std::span<const local_index> nodes;
 
   local_index n_facets() const { return static_cast<local_index>(types.size()); }
@@ -49,20 +50,18 @@ void validate(const FacetSet& facets, const char* side);
 bool is_interface_facet(fem::CellType type, int dim);
 
 /// One facet's type and nodal coordinates (columns; unused columns are zero).
-template <int Dim>
-struct Facet {
+template <int Dim> struct Facet {
   fem::CellType type = Dim == 2 ? fem::CellType::line2 : fem::CellType::tri3;
   int n_nodes = 0;
-  Eigen::Matrix<double, Dim, max_facet_nodes> x = Eigen::Matrix<double, Dim, max_facet_nodes>::Zero();
+  Eigen::Matrix<double, Dim, max_facet_nodes> x =
+      Eigen::Matrix<double, Dim, max_facet_nodes>::Zero();
 };
 
 /// Copy facet f of a set into fixed-size storage.
-template <int Dim>
-Facet<Dim> gather_facet(const FacetSet& facets, local_index f);
+template <int Dim> Facet<Dim> gather_facet(const FacetSet& facets, local_index f);
 
 /// Shape functions, position and tangents of a facet at one reference point.
-template <int Dim>
-struct FacetPoint {
+template <int Dim> struct FacetPoint {
   NodalVector N = NodalVector::Zero();
   Eigen::Matrix<double, max_facet_nodes, Dim - 1> dN =
       Eigen::Matrix<double, max_facet_nodes, Dim - 1>::Zero();
@@ -70,8 +69,7 @@ struct FacetPoint {
   Eigen::Matrix<double, Dim, Dim - 1> dx; ///< tangents dx/dxi (and dx/deta)
 };
 
-template <int Dim>
-FacetPoint<Dim> evaluate(const Facet<Dim>& facet, const double* xi);
+template <int Dim> FacetPoint<Dim> evaluate(const Facet<Dim>& facet, const double* xi);
 
 /// Normal whose length is the surface Jacobian: 2D (t_y, -t_x) for the tangent t, 3D
 /// x_xi x x_eta. It points out of the facet's body (seam::fem facet orientation).
@@ -87,6 +85,20 @@ Eigen::Matrix<double, Dim, 1> scaled_normal(const Eigen::Matrix<double, Dim, Dim
 /// Reference coordinates of the facet's centre: 0 on lines, (0,0) on quads, (1/3,1/3) on
 /// triangles.
 std::array<double, 2> reference_center(fem::CellType type);
+
+/// Project p along direction d onto a line facet: xi with (x(xi) - p) x d = 0 (Newton from
+/// xi0; the result reports convergence). The parameter may lie outside [-1, 1].
+geometry::CurveProjection project_onto_facet(const Facet<2>& facet, const Eigen::Vector2d& p,
+                                             const Eigen::Vector2d& d, double xi0 = 0.0,
+                                             const geometry::NewtonOptions& options = {});
+
+/// Project p along direction d onto a surface facet: x(xi) + alpha d = p (Newton from xi0,
+/// by default the facet centre). The parameters may lie outside the reference domain.
+geometry::SurfaceProjection project_onto_facet(const Facet<3>& facet, const Eigen::Vector3d& p,
+                                               const Eigen::Vector3d& d, const Eigen::Vector2d& xi0,
+                                               const geometry::NewtonOptions& options = {});
+geometry::SurfaceProjection project_onto_facet(const Facet<3>& facet, const Eigen::Vector3d& p,
+                                               const Eigen::Vector3d& d);
 
 /// A linear piece of a facet: its 3 or 4 vertices as local node indices of the parent facet,
 /// in the parent's orientation.

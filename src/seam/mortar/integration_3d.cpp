@@ -66,8 +66,7 @@ Vector3d center_position(const Facet<3>& facet) {
 
 // Call f(b0, b1, b2, w) for each point of a triangle rule of the given degree, in barycentric
 // coordinates with weights summing to 1.
-template <class F>
-void for_each_cell_point(int degree, F&& f) {
+template <class F> void for_each_cell_point(int degree, F&& f) {
   if (degree <= 5) {
     using Rule = geometry::TriangleRule7;
     for (int q = 0; q < Rule::n_points; ++q) {
@@ -92,18 +91,9 @@ PairContribution integrate_pair(const SlaveFacet<3>& slave, const Facet<3>& mast
   const Facet<3>& s = slave.facet;
   PairContribution c = detail::empty_contribution(s.n_nodes, master.n_nodes);
 
-  const double reach =
-      options.max_center_distance_factor * std::max(longest_corner_edge(s), longest_corner_edge(master));
+  const double reach = options.max_center_distance_factor *
+                       std::max(longest_corner_edge(s), longest_corner_edge(master));
   if ((center_position(s) - center_position(master)).norm() > reach) return c;
-
-  const auto surface = [](const Facet<3>& f) {
-    return [&f](const Vector2d& xi) {
-      const auto p = evaluate(f, xi.data());
-      return geometry::SurfacePoint{p.x, p.dx};
-    };
-  };
-  const auto slave_surface = surface(s);
-  const auto master_surface = surface(master);
 
   const auto master_subfacets = linear_subfacets(master.type);
   std::array<Piece, 5> master_pieces;
@@ -113,7 +103,7 @@ PairContribution integrate_pair(const SlaveFacet<3>& slave, const Facet<3>& mast
 
   const int degree = options.cell_quadrature_degree > 0 ? options.cell_quadrature_degree
                      : fem::order(s.type) == 1 && fem::order(master.type) == 1 ? 5
-                                                                                : 8;
+                                                                               : 8;
   NodalVector N_tilde;
   NodalVector Phi;
   for (const SubFacet& slave_sub : linear_subfacets(s.type)) {
@@ -143,10 +133,10 @@ PairContribution integrate_pair(const SlaveFacet<3>& slave, const Facet<3>& mast
         for_each_cell_point(degree, [&](double b0, double b1, double b2, double weight) {
           const Vector3d x_cell = plane.to_global(b0 * cell.a + b1 * cell.b + b2 * cell.c);
           // Back-projection along the plane normal onto the full (possibly quadratic) facets.
-          const auto on_slave = geometry::project_onto_surface(slave_surface, x_cell, plane.normal,
-                                                               sp.xi_center, options.newton);
-          const auto on_master = geometry::project_onto_surface(
-              master_surface, x_cell, plane.normal, mp.xi_center, options.newton);
+          const auto on_slave =
+              project_onto_facet(s, x_cell, plane.normal, sp.xi_center, options.newton);
+          const auto on_master =
+              project_onto_facet(master, x_cell, plane.normal, mp.xi_center, options.newton);
           if (!on_slave.converged || !on_master.converged) {
             ++c.n_projection_failures;
             return;

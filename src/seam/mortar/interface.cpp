@@ -18,7 +18,8 @@ SlaveFacet<Dim> prepare_slave(const FacetSet& slave, local_index f,
   const auto nodes = slave.facet_nodes(f);
   for (int i = 0; i < sf.facet.n_nodes; ++i) {
     const auto base = static_cast<std::size_t>(nodes[static_cast<std::size_t>(i)]) * Dim;
-    for (int a = 0; a < Dim; ++a) sf.normals(a, i) = nodal_normals[base + static_cast<std::size_t>(a)];
+    for (int a = 0; a < Dim; ++a)
+      sf.normals(a, i) = nodal_normals[base + static_cast<std::size_t>(a)];
   }
   sf.basis = make_slave_basis(sf.facet, multiplier);
   return sf;
@@ -56,7 +57,8 @@ void assemble(const FacetSet& slave, const FacetSet& master,
       const local_index row = s_nodes[static_cast<std::size_t>(j)];
       for (int k = 0; k < c.n_slave; ++k) {
         // Dual: only the diagonal is accumulated; skip the structural zeros.
-        if (c.D(j, k) != 0.0) ops.D.push_back({row, s_nodes[static_cast<std::size_t>(k)], c.D(j, k)});
+        if (c.D(j, k) != 0.0)
+          ops.D.push_back({row, s_nodes[static_cast<std::size_t>(k)], c.D(j, k)});
       }
       for (int l = 0; l < c.n_master; ++l) {
         ops.M.push_back({row, m_nodes[static_cast<std::size_t>(l)], c.M(j, l)});
@@ -82,7 +84,8 @@ std::vector<Triplet> transformation_triplets(const FacetSet& slave, Multiplier m
     for (int i = 0; i < T.rows(); ++i) {
       for (int k = 0; k < T.cols(); ++k) {
         if (T(i, k) != 0.0) {
-          t.push_back({nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(k)], T(i, k)});
+          t.push_back(
+              {nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(k)], T(i, k)});
         }
       }
     }

@@ -43,7 +43,8 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
                "initialize_slave_coordinates: master node ", t.col,
                " is outside the master coordinate array");
     for (int a = 0; a < dim; ++a) {
-      rhs(position.at(t.row), a) += t.value * master_coordinates[base + static_cast<std::size_t>(a)];
+      rhs(position.at(t.row), a) +=
+          t.value * master_coordinates[base + static_cast<std::size_t>(a)];
     }
   }
 
@@ -58,7 +59,8 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
   } else {
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(ops.D.size());
-    for (const Triplet& t : ops.D) entries.emplace_back(position.at(t.row), position.at(t.col), t.value);
+    for (const Triplet& t : ops.D)
+      entries.emplace_back(position.at(t.row), position.at(t.col), t.value);
     Eigen::SparseMatrix<double> D(n, n);
     D.setFromTriplets(entries.begin(), entries.end());
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
@@ -71,8 +73,8 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
   if (ops.T.empty()) {
     for (int i = 0; i < n; ++i) {
       for (int a = 0; a < dim; ++a) {
-        result[static_cast<std::size_t>(rows[static_cast<std::size_t>(i)]) * d + static_cast<std::size_t>(a)] =
-            modified(i, a);
+        result[static_cast<std::size_t>(rows[static_cast<std::size_t>(i)]) * d +
+               static_cast<std::size_t>(a)] = modified(i, a);
       }
     }
     return result;

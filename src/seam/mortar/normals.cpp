@@ -8,8 +8,7 @@ namespace seam::mortar {
 
 namespace {
 
-template <int Dim>
-void accumulate_facet_normals(const FacetSet& facets, std::vector<double>& sum) {
+template <int Dim> void accumulate_facet_normals(const FacetSet& facets, std::vector<double>& sum) {
   constexpr int p = Dim - 1;
   for (local_index f = 0; f < facets.n_facets(); ++f) {
     const Facet<Dim> facet = gather_facet<Dim>(facets, f);
@@ -43,7 +42,8 @@ std::vector<double> averaged_nodal_normals(const FacetSet& facets) {
   for (std::size_t node = 0; node < on_surface.size(); ++node) {
     if (!on_surface[node]) continue;
     double length = 0.0;
-    for (std::size_t a = 0; a < dim; ++a) length += normals[node * dim + a] * normals[node * dim + a];
+    for (std::size_t a = 0; a < dim; ++a)
+      length += normals[node * dim + a] * normals[node * dim + a];
     length = std::sqrt(length);
     SEAM_CHECK(length > 1e-8, InputError, "slave node ", node,
                ": the normals of its facets cancel (the surface folds back onto itself)");

@@ -37,8 +37,7 @@ struct PairOptions {
 
 /// A slave facet ready for integration: geometry, averaged nodal normals (columns) and
 /// multiplier basis.
-template <int Dim>
-struct SlaveFacet {
+template <int Dim> struct SlaveFacet {
   Facet<Dim> facet;
   Eigen::Matrix<double, Dim, max_facet_nodes> normals =
       Eigen::Matrix<double, Dim, max_facet_nodes>::Zero();

@@ -75,10 +75,6 @@ PairContribution integrate_pair(const SlaveFacet<2>& slave, const Facet<2>& mast
     const auto p = evaluate(s, &xi);
     return CurvePoint{p.x, p.dx.col(0)};
   };
-  const auto master_curve = [&master](double xi) {
-    const auto p = evaluate(master, &xi);
-    return CurvePoint{p.x, p.dx.col(0)};
-  };
   // Unnormalized interpolated slave normal: scaling does not move the zero of
   // (x_s(xi) - p) x n(xi), and its derivative stays a plain sum.
   const auto slave_normal_field = [&slave](double xi) {
@@ -97,8 +93,8 @@ PairContribution integrate_pair(const SlaveFacet<2>& slave, const Facet<2>& mast
   for (int k = 0; k < 2; ++k) {
     master_on_slave[static_cast<std::size_t>(k)] = geometry::project_onto_curve_along_field(
         slave_curve, slave_normal_field, master.x.col(k), 0.0, options.newton);
-    slave_on_master[static_cast<std::size_t>(k)] = geometry::project_onto_curve(
-        master_curve, s.x.col(k), slave.normals.col(k), 0.0, options.newton);
+    slave_on_master[static_cast<std::size_t>(k)] =
+        project_onto_facet(master, s.x.col(k), slave.normals.col(k), 0.0, options.newton);
   }
   const Segment segment = overlap_segment(slave_curve, master, master_on_slave, slave_on_master,
                                           options.projection_range_tolerance);
@@ -115,19 +111,17 @@ PairContribution integrate_pair(const SlaveFacet<2>& slave, const Facet<2>& mast
     const auto sp = evaluate(s, &xi);
     const Eigen::Vector2d n = interpolated_normal<2>(slave.normals, sp.N);
     // The Gauss point's image on the master along the interpolated slave normal.
-    const CurveProjection image =
-        geometry::project_onto_curve(master_curve, sp.x, n, eta_guess, options.newton);
+    const CurveProjection image = project_onto_facet(master, sp.x, n, eta_guess, options.newton);
     if (!image.converged) {
       ++c.n_projection_failures;
       continue;
     }
     eta_guess = image.xi;
     const auto mp = evaluate(master, &image.xi);
-    const double w = Rule::weights[static_cast<std::size_t>(q)] * sp.dx.col(0).norm() *
-                     segment_jacobian;
+    const double w =
+        Rule::weights[static_cast<std::size_t>(q)] * sp.dx.col(0).norm() * segment_jacobian;
     slave_functions(slave.basis, s.type, s.n_nodes, sp.N, N_tilde, Phi);
-    detail::accumulate_point(c, slave.basis.multiplier, w, N_tilde, Phi, mp.N,
-                             n.dot(mp.x - sp.x));
+    detail::accumulate_point(c, slave.basis.multiplier, w, N_tilde, Phi, mp.N, n.dot(mp.x - sp.x));
     c.area += w;
   }
   c.n_cells = 1;

@@ -39,8 +39,7 @@ void gather(const Discretization& disc, std::span<const double> u_local,
 } // namespace
 
 AssemblyStatus assemble(const Model& model, const Discretization& disc, const la::Vector& u,
-                        double t, la::Vector& residual, la::Matrix* tangent,
-                        la::Vector* external) {
+                        double t, la::Vector& residual, la::Matrix* tangent, la::Vector* external) {
   const auto& mesh = disc.mesh();
   const int dim = disc.dim();
   residual.zero();

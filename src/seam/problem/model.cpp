@@ -1,9 +1,13 @@
 #include "seam/problem/model.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/mesh/locate.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <map>
+#include <span>
 #include <sstream>
 
 namespace seam::problem {
@@ -12,9 +16,12 @@ namespace {
 
 solid::MaterialModel to_solid(io::MaterialModel m) {
   switch (m) {
-  case io::MaterialModel::linear_elastic: return solid::MaterialModel::linear_elastic;
-  case io::MaterialModel::saint_venant_kirchhoff: return solid::MaterialModel::saint_venant_kirchhoff;
-  case io::MaterialModel::neo_hooke: return solid::MaterialModel::neo_hooke;
+  case io::MaterialModel::linear_elastic:
+    return solid::MaterialModel::linear_elastic;
+  case io::MaterialModel::saint_venant_kirchhoff:
+    return solid::MaterialModel::saint_venant_kirchhoff;
+  case io::MaterialModel::neo_hooke:
+    return solid::MaterialModel::neo_hooke;
   }
   return solid::MaterialModel::linear_elastic;
 }
@@ -24,6 +31,31 @@ std::string describe_regions(const mesh::Mesh& mesh) {
   for (std::size_t i = 0; i < mesh.regions.size(); ++i)
     s << (i ? ", " : "") << mesh.regions[i].name << " (dim " << mesh.regions[i].dim << ")";
   return mesh.regions.empty() ? std::string("none (the mesh has no physical groups)") : s.str();
+}
+
+// A probe outside the mesh is an input error (CONTRACT.md); found here so that `seam check`
+// reports it too, with the mesh's extent to show where the points may lie.
+void check_probes(const io::Config& config, const mesh::Mesh& mesh) {
+  if (config.output.probes.empty()) return;
+  const mesh::PointLocator locator(mesh);
+  const auto dim = static_cast<std::size_t>(mesh.dim);
+  for (const auto& probe : config.output.probes) {
+    if (locator.locate(std::span<const double>(probe.point.data(), dim))) continue;
+    std::array<double, 3> lower, upper;
+    lower.fill(std::numeric_limits<double>::infinity());
+    upper.fill(-std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < mesh.x.size(); ++i) {
+      lower[i % dim] = std::min(lower[i % dim], mesh.x[i]);
+      upper[i % dim] = std::max(upper[i % dim], mesh.x[i]);
+    }
+    std::ostringstream s;
+    s << "probe (";
+    for (std::size_t a = 0; a < dim; ++a) s << (a ? ", " : "") << probe.point[a];
+    s << ") lies outside the mesh; expected a point of the mesh, which spans ";
+    for (std::size_t a = 0; a < dim; ++a)
+      s << (a ? " x " : "") << '[' << lower[a] << ", " << upper[a] << ']';
+    io::fail_at(probe.mark, s.str());
+  }
 }
 
 } // namespace
@@ -72,8 +104,7 @@ Model build_model(const io::Config& config, const Discretization& disc) {
     const int mat = material_index.at(body.material);
     for (auto c : region.cells) model.cell_material[c] = mat;
   }
-  const auto uncovered =
-      std::count(model.cell_material.begin(), model.cell_material.end(), -1);
+  const auto uncovered = std::count(model.cell_material.begin(), model.cell_material.end(), -1);
   if (uncovered > 0) {
     std::ostringstream s;
     s << uncovered << " of " << mesh.n_cells()
@@ -101,7 +132,8 @@ Model build_model(const io::Config& config, const Discretization& disc) {
         const int expr = static_cast<int>(model.dirichlet_values.size());
         model.dirichlet_values.push_back(bc.value[k]);
         for (auto n : region.nodes)
-          if (disc.owns_node(n)) dirichlet.push_back({disc.global_dof(n, bc.components[k]), n, expr});
+          if (disc.owns_node(n))
+            dirichlet.push_back({disc.global_dof(n, bc.components[k]), n, expr});
       }
       for (auto n : region.nodes)
         if (disc.owns_node(n)) reaction.owned_nodes.push_back(n);
@@ -143,6 +175,7 @@ Model build_model(const io::Config& config, const Discretization& disc) {
     find_region(mesh, itf.slave, {dim - 1}, "an interface side");
     if (itf.master) find_region(mesh, *itf.master, {dim - 1}, "an interface side");
   }
+  check_probes(config, mesh);
   return model;
 }
 

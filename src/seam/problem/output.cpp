@@ -4,6 +4,7 @@
 #include "seam/fem/cell.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
+#include "seam/problem/error_norms.hpp"
 #include "seam/solid/element.hpp"
 
 #include <cstdio>
@@ -28,8 +29,8 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
 
   // Probes: every rank locates them in the (replicated) mesh; the owner of the cell evaluates.
   for (const auto& p : config.output.probes) {
-    const auto loc = mesh::locate_point(mesh, std::span<const double>(p.point.data(), mesh.dim),
-                                        1e-10);
+    const auto loc =
+        mesh::locate_point(mesh, std::span<const double>(p.point.data(), mesh.dim), 1e-10);
     if (!loc) {
       std::ostringstream s;
       s << "probe (" << p.point[0] << ", " << p.point[1];
@@ -43,13 +44,15 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
   if (comm.is_root()) {
     std::error_code ec;
     std::filesystem::create_directories(dir_, ec);
-    if (ec) SEAM_THROW(InputError, "cannot create the output directory ", dir_.string(), ": ", ec.message());
+    if (ec)
+      SEAM_THROW(InputError, "cannot create the output directory ", dir_.string(), ": ",
+                 ec.message());
     steps_ = std::make_unique<io::CsvTable>(
         dir_ / "steps.csv",
         columns({"step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
-                 "kinetic_energy", "internal_energy", "external_work", "total_energy",
-                 "momentum_x", "momentum_y", "momentum_z", "angular_momentum_x",
-                 "angular_momentum_y", "angular_momentum_z", "wall_seconds"}));
+                 "kinetic_energy", "internal_energy", "external_work", "total_energy", "momentum_x",
+                 "momentum_y", "momentum_z", "angular_momentum_x", "angular_momentum_y",
+                 "angular_momentum_z", "wall_seconds"}));
     newton_ = std::make_unique<io::CsvTable>(
         dir_ / "newton.csv",
         columns({"step", "iteration", "residual", "increment", "active_set_changes"}));
@@ -62,6 +65,9 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
                  "slip_nodes", "contact_area"}));
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+    if (!config.output.exact_displacement.empty())
+      errors_ = std::make_unique<io::CsvTable>(
+          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}));
   }
   comm.barrier(); // the directory exists before any rank writes a piece
 
@@ -87,7 +93,9 @@ void Output::newton(const NewtonRecord& r) {
   newton_->add_row({r.step, r.iteration, r.residual, r.increment, r.active_set_changes});
 }
 
-void Output::initial(const la::Vector& u) { write_fields(0, 0.0, u, nullptr); }
+void Output::initial(const la::Vector& u) {
+  write_fields(0, 0.0, u, nullptr);
+}
 
 void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
                   std::span<const double> reactions, bool force_fields) {
@@ -113,22 +121,29 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
     }
   }
   comm.sum_in_place(probe_u);
+  std::optional<ErrorNorms> errors;
+  if (!config_.output.exact_displacement.empty())
+    errors = error_norms(disc_, u, r.time, config_.output.exact_displacement);
 
   if (comm.is_root()) {
     const double total = r.kinetic_energy + r.internal_energy;
-    steps_->add_row({r.step, r.time, r.newton_iterations, r.residual, r.active_nodes,
-                     r.slip_nodes, r.kinetic_energy, r.internal_energy, r.external_work, total,
-                     r.momentum[0], r.momentum[1], r.momentum[2], r.angular_momentum[0],
-                     r.angular_momentum[1], r.angular_momentum[2], wall});
+    steps_->add_row({r.step, r.time, r.newton_iterations, r.residual, r.active_nodes, r.slip_nodes,
+                     r.kinetic_energy, r.internal_energy, r.external_work, total, r.momentum[0],
+                     r.momentum[1], r.momentum[2], r.angular_momentum[0], r.angular_momentum[1],
+                     r.angular_momentum[2], wall});
     for (std::size_t k = 0; k < model_.reaction_regions.size(); ++k) {
       const double* f = &reactions[k * dim];
-      reactions_->add_row({r.step, r.time, model_.reaction_regions[k].name, f[0], f[1],
-                           dim == 3 ? f[2] : 0.0});
+      reactions_->add_row(
+          {r.step, r.time, model_.reaction_regions[k].name, f[0], f[1], dim == 3 ? f[2] : 0.0});
     }
     for (std::size_t p = 0; p < probes_.size(); ++p) {
       const auto& pt = probes_[p].point;
       probes_table_->add_row({r.step, r.time, static_cast<int>(p), pt[0], pt[1], pt[2],
                               probe_u[p * 3], probe_u[p * 3 + 1], probe_u[p * 3 + 2]});
+    }
+    if (errors) {
+      errors_->add_row({r.step, r.time, errors->l2, errors->h1_semi, errors->l2_exact});
+      last_errors_ = {errors->l2, errors->h1_semi};
     }
     if (!quiet_)
       std::printf("step %5d  t = %-12.6g newton %3d  residual %9.3e  wall %8.2f s\n", r.step,
@@ -152,7 +167,8 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
     for (std::size_t i = 0; i < n_points; ++i)
       for (int c = 0; c < dim; ++c) {
         disp[i * 3 + c] = ul[i * dim + c];
-        points[i * 3 + c] = mesh.x[static_cast<std::size_t>(local_nodes[i]) * dim + c] + disp[i * 3 + c];
+        points[i * 3 + c] =
+            mesh.x[static_cast<std::size_t>(local_nodes[i]) * dim + c] + disp[i * 3 + c];
       }
   }
   if (v) {
@@ -178,10 +194,13 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
           X[a * dim + i] = mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
           ue[a * dim + i] = ul[disc_.local_dof(nodes[a], i)];
         }
-      solid::ElementInput in{mesh.cell_type[c], dim, model_.plane,
+      solid::ElementInput in{mesh.cell_type[c],
+                             dim,
+                             model_.plane,
                              model_.materials[model_.cell_material[c]],
                              std::span<const double>(X.data(), nd),
-                             std::span<const double>(ue.data(), nd), 0};
+                             std::span<const double>(ue.data(), nd),
+                             0};
       const auto s = solid::element_stress(in);
       for (int i = 0; i < 6; ++i) stress[k * 6 + i] = s.cauchy[i];
       mises[k] = s.von_mises;
@@ -213,7 +232,8 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
     file = io::step_file_name("results", step, ".pvtu");
     if (comm.is_root()) {
       std::vector<std::string> pieces;
-      for (int r = 0; r < comm.size(); ++r) pieces.push_back(io::piece_file_name("results", step, r));
+      for (int r = 0; r < comm.size(); ++r)
+        pieces.push_back(io::piece_file_name("results", step, r));
       io::write_pvtu(dir_ / file, piece, pieces);
     }
   }
@@ -239,6 +259,10 @@ void Output::finish(bool converged, int n_steps) {
   j["nodes"] = disc_.mesh().n_nodes();
   j["cells"] = disc_.mesh().n_cells();
   j["interfaces"] = io::Json::array();
+  if (last_errors_.size() == 2) {
+    j["errors"]["l2"] = last_errors_[0];
+    j["errors"]["h1"] = last_errors_[1];
+  }
   io::write_json(dir_ / "summary.json", j);
 }
 

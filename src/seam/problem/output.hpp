@@ -79,7 +79,8 @@ private:
   PhaseTimers timers_;
   double start_wall_;
   std::vector<LocatedProbe> probes_;
-  std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_;
+  std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_;
+  std::vector<double> last_errors_; // l2, h1 of the last step, with an exact solution
   std::unique_ptr<io::PvdCollection> pvd_;
   int last_field_step_ = -1;
   // VTU piece of this rank (fixed topology): connectivity in VTK order over local nodes.

@@ -11,12 +11,16 @@
 #include "seam/problem/static_solver.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <optional>
+#include <system_error>
 
 namespace seam::problem {
 
-const char* version() { return "0.1.0"; }
+const char* version() {
+  return "0.1.0";
+}
 
 namespace {
 
@@ -60,12 +64,20 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
   on_root_collectively(comm, [&] {
     mesh::ReadOptions opts;
     opts.dim = config.dimension;
-    if (!config.mesh.geo.empty()) {
-      opts.size = config.mesh.size;
-      opts.order = config.mesh.order;
-      m = mesh::read_mesh(config.mesh.geo, opts);
-    } else {
-      m = mesh::read_mesh(config.mesh.file, opts);
+    // The reader names the mesh file; the prefix names the input file and key that chose it.
+    io::Mark mark = config.mesh.mark;
+    mark.key_path = config.mesh.geo.empty() ? "mesh.file" : "mesh.geo";
+    try {
+      if (!config.mesh.geo.empty()) {
+        opts.size = config.mesh.size;
+        opts.order = config.mesh.order;
+        opts.serendipity = config.mesh.serendipity;
+        m = mesh::read_mesh(config.mesh.geo, opts);
+      } else {
+        m = mesh::read_mesh(config.mesh.file, opts);
+      }
+    } catch (const InputError& e) {
+      io::fail_at(mark, e.what());
     }
   });
   broadcast_mesh(comm, m);
@@ -75,6 +87,18 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
 std::filesystem::path output_directory(const RunOptions& options) {
   if (!options.output_dir.empty()) return options.output_dir;
   return std::filesystem::path(std::filesystem::path(options.input).stem().string() + "_out");
+}
+
+// Only rank 0 writes files; creating the directory here, with the error shared by all ranks,
+// keeps an unusable directory from stopping rank 0 while the others wait in a collective.
+void make_output_directory(const std::filesystem::path& dir, const Comm& comm) {
+  on_root_collectively(comm, [&] {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      SEAM_THROW(InputError, "output directory '", dir.string(), "' cannot be created (",
+                 ec.message(), "); choose another one with -o DIR");
+  });
 }
 
 } // namespace
@@ -95,6 +119,7 @@ int run(const RunOptions& options, int argc, char** argv) {
   if (!config.interfaces.empty())
     SEAM_THROW(InputError, options.input,
                ": interfaces: mortar interfaces are not available in this version of seam");
+  make_output_directory(output_directory(options), comm);
   Output out(config, disc, model, output_directory(options), options.quiet);
   if (comm.is_root() && !options.quiet)
     std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",

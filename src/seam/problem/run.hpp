@@ -9,7 +9,7 @@ struct RunOptions {
   std::string input;
   std::string output_dir; ///< empty: "<input stem>_out" in the working directory
   bool quiet = false;
-  std::string restart;    ///< checkpoint to continue from; empty: start at t = 0
+  std::string restart; ///< checkpoint to continue from; empty: start at t = 0
   std::vector<std::string> petsc_args;
 };
 

@@ -9,8 +9,8 @@
 namespace seam::search::detail {
 
 template <int Dim, int NS>
-auto Bvh<Dim, NS>::leaf_volume(local_index slot, std::span<const double> coords,
-                               std::span<const double> old_coords) const -> Volume {
+auto Bvh<Dim, NS>::facet_volume(local_index slot, std::span<const double> coords,
+                                std::span<const double> old_coords) const -> Volume {
   KdopBuilder<Dim, NS> b;
   const local_index end = offsets[slot + 1];
   for (local_index k = offsets[slot]; k < end; ++k) {
@@ -26,24 +26,23 @@ auto Bvh<Dim, NS>::leaf_volume(local_index slot, std::span<const double> coords,
 
 template <int Dim, int NS>
 void Bvh<Dim, NS>::build(const FacetSurface& surface, std::span<const double> old_coords,
-                         double inflation, bool with_normal_cones) {
+                         double inflation, int leaf_size, bool with_normal_cones) {
+  SEAM_ASSERT(leaf_size >= 1);
   n_facets_ = surface.n_facets();
-  n_nodes_ = n_facets_ > 0 ? 2 * n_facets_ - 1 : 0;
+  leaf_size_ = leaf_size;
   n_coords_ = surface.coords.size();
   inflation_ = inflation;
   offsets.assign(surface.offsets.begin(), surface.offsets.end());
   conn.assign(surface.connectivity.begin(), surface.connectivity.end());
   facet_of_slot.resize(n_facets_);
   std::iota(facet_of_slot.begin(), facet_of_slot.end(), 0);
-
-  std::vector<Volume> leaf_volumes(n_facets_);
-  std::vector<NormalCone> leaf_cones(with_normal_cones ? n_facets_ : 0);
+  facet_bounds.resize(n_facets_);
+  facet_cones.resize(with_normal_cones ? n_facets_ : 0);
   for (local_index s = 0; s < n_facets_; ++s) {
-    leaf_volumes[s] = leaf_volume(s, surface.coords, old_coords);
-    if (with_normal_cones) leaf_cones[s] = facet_normal_cone(Dim, surface.coords, slot_nodes(s));
+    facet_bounds[s] = facet_volume(s, surface.coords, old_coords);
+    if (with_normal_cones) facet_cones[s] = facet_normal_cone(Dim, surface.coords, slot_nodes(s));
   }
-  cones.assign(with_normal_cones ? n_nodes_ : 0, NormalCone{});
-  build_topology(leaf_volumes, leaf_cones);
+  build_topology();
   merge_upwards();
 }
 
@@ -52,38 +51,32 @@ void Bvh<Dim, NS>::refit(std::span<const double> coords, std::span<const double>
   SEAM_ASSERT(coords.size() == n_coords_);
   const bool with_cones = has_normal_cones();
   for (local_index s = 0; s < n_facets_; ++s) {
-    const std::int32_t node = node_of_slot[s];
-    bounds[node] = leaf_volume(s, coords, old_coords);
-    if (with_cones) cones[node] = facet_normal_cone(Dim, coords, slot_nodes(s));
+    facet_bounds[s] = facet_volume(s, coords, old_coords);
+    if (with_cones) facet_cones[s] = facet_normal_cone(Dim, coords, slot_nodes(s));
   }
   merge_upwards();
 }
 
-template <int Dim, int NS>
-void Bvh<Dim, NS>::rebuild_from_leaves() {
-  std::vector<Volume> leaf_volumes(n_facets_);
-  std::vector<NormalCone> leaf_cones(has_normal_cones() ? n_facets_ : 0);
-  for (local_index s = 0; s < n_facets_; ++s) {
-    leaf_volumes[s] = bounds[node_of_slot[s]];
-    if (has_normal_cones()) leaf_cones[s] = cones[node_of_slot[s]];
-  }
-  build_topology(leaf_volumes, leaf_cones);
+template <int Dim, int NS> void Bvh<Dim, NS>::rebuild_from_leaves() {
+  build_topology();
   merge_upwards();
 }
 
-template <int Dim, int NS>
-void Bvh<Dim, NS>::build_topology(const std::vector<Volume>& leaf_volumes,
-                                  const std::vector<NormalCone>& leaf_cones) {
-  links.resize(n_nodes_);
-  bounds.resize(n_nodes_);
-  node_of_slot.resize(n_facets_);
-  if (n_facets_ == 0) return;
+template <int Dim, int NS> void Bvh<Dim, NS>::build_topology() {
+  links.clear();
+  if (n_facets_ == 0) {
+    bounds.clear();
+    cones.clear();
+    return;
+  }
+  links.reserve(4 * static_cast<std::size_t>(n_facets_) / leaf_size_ + 1);
+  links.push_back({0, 0});
 
-  // Split positions are the centres of the leaves' axis-aligned extents.
+  // Split positions are the centres of the facets' axis-aligned extents.
   std::vector<float> centre(static_cast<std::size_t>(n_facets_) * Dim);
   for (local_index s = 0; s < n_facets_; ++s)
     for (int d = 0; d < Dim; ++d)
-      centre[s * Dim + d] = 0.5f * leaf_volumes[s].lo[d] + 0.5f * leaf_volumes[s].hi[d];
+      centre[s * Dim + d] = 0.5f * facet_bounds[s].lo[d] + 0.5f * facet_bounds[s].hi[d];
 
   // order[new slot] = old slot
   std::vector<local_index> order(n_facets_);
@@ -95,13 +88,11 @@ void Bvh<Dim, NS>::build_topology(const std::vector<Volume>& leaf_volumes,
   std::vector<Task> tasks;
   tasks.reserve(128);
   tasks.push_back({0, 0, n_facets_});
-  std::int32_t next_node = 1;
   while (!tasks.empty()) {
     const Task t = tasks.back();
     tasks.pop_back();
-    if (t.end - t.begin == 1) {
-      links[t.node] = {t.begin, 1};
-      node_of_slot[t.begin] = t.node;
+    if (t.end - t.begin <= leaf_size_) {
+      links[t.node] = {t.begin, -(t.end - t.begin)};
       continue;
     }
     float lo[Dim], hi[Dim];
@@ -138,16 +129,20 @@ void Bvh<Dim, NS>::build_topology(const std::vector<Volume>& leaf_volumes,
                          [&](local_index a, local_index b) { return key(a) < key(b); });
     }
     // All centres equal (e.g. every facet in one point): any balanced split will do.
-    const std::int32_t left = next_node;
-    next_node += 2;
+    const std::int32_t left = static_cast<std::int32_t>(links.size());
+    links.push_back({0, 0});
+    links.push_back({0, 0});
     links[t.node] = {left, t.end - t.begin};
     tasks.push_back({left + 1, mid, t.end});
     tasks.push_back({left, t.begin, mid});
   }
-  SEAM_ASSERT(next_node == n_nodes_);
+  bounds.resize(links.size());
+  cones.resize(facet_cones.empty() ? 0 : links.size());
 
-  // Put the facets, their connectivity and leaf data into the new slot order.
-  std::vector<local_index> facet(n_facets_), new_offsets(n_facets_ + 1), new_conn(conn.size());
+  // Put the facets, their connectivity, volumes and cones into the new slot order.
+  Array<local_index> facet(n_facets_), new_offsets(n_facets_ + 1), new_conn(conn.size());
+  Array<Volume> volumes(n_facets_);
+  Array<NormalCone> facet_normals(facet_cones.size());
   new_offsets[0] = 0;
   for (local_index s = 0; s < n_facets_; ++s) {
     const local_index old = order[s];
@@ -155,30 +150,42 @@ void Bvh<Dim, NS>::build_topology(const std::vector<Volume>& leaf_volumes,
     const local_index n = offsets[old + 1] - offsets[old];
     std::copy_n(conn.data() + offsets[old], n, new_conn.data() + new_offsets[s]);
     new_offsets[s + 1] = new_offsets[s] + n;
-    bounds[node_of_slot[s]] = leaf_volumes[old];
-    if (!leaf_cones.empty()) cones[node_of_slot[s]] = leaf_cones[old];
+    volumes[s] = facet_bounds[old];
+    if (!facet_cones.empty()) facet_normals[s] = facet_cones[old];
   }
   facet_of_slot.swap(facet);
   offsets.swap(new_offsets);
   conn.swap(new_conn);
+  facet_bounds.swap(volumes);
+  facet_cones.swap(facet_normals);
 }
 
-template <int Dim, int NS>
-void Bvh<Dim, NS>::merge_upwards() {
+template <int Dim, int NS> void Bvh<Dim, NS>::merge_upwards() {
   // Children follow their parent, so one backward sweep sees every child before its parent.
   const bool with_cones = has_normal_cones();
-  double inner = 0.0, leaves = 0.0;
-  for (std::int32_t i = n_nodes_ - 1; i >= 0; --i) {
+  double nodes = 0.0, facets = 0.0;
+  for (std::int32_t i = n_tree_nodes() - 1; i >= 0; --i) {
     const Link l = links[i];
-    if (l.count == 1) {
-      leaves += margin<Dim>(bounds[i]);
-      continue;
+    if (is_leaf(l)) {
+      Volume v = facet_bounds[l.first];
+      facets += margin<Dim>(v);
+      for (std::int32_t s = l.first + 1; s < l.first - l.count; ++s) {
+        v = merge(v, facet_bounds[s]);
+        facets += margin<Dim>(facet_bounds[s]);
+      }
+      bounds[i] = v;
+      if (with_cones) {
+        NormalCone c = facet_cones[l.first];
+        for (std::int32_t s = l.first + 1; s < l.first - l.count; ++s) c = merge(c, facet_cones[s]);
+        cones[i] = c;
+      }
+    } else {
+      bounds[i] = merge(bounds[l.first], bounds[l.first + 1]);
+      if (with_cones) cones[i] = merge(cones[l.first], cones[l.first + 1]);
     }
-    bounds[i] = merge(bounds[l.first], bounds[l.first + 1]);
-    inner += margin<Dim>(bounds[i]);
-    if (with_cones) cones[i] = merge(cones[l.first], cones[l.first + 1]);
+    nodes += margin<Dim>(bounds[i]);
   }
-  quality_ = leaves > 0.0 ? inner / leaves : 0.0;
+  quality_ = facets > 0.0 ? nodes / facets : 0.0;
 }
 
 template class Bvh<2, 2>;

@@ -15,15 +15,17 @@ int n_corners(int dim, int n_nodes) {
 }
 
 void check_surface(const FacetSurface& s) {
-  SEAM_CHECK(s.dim == 2 || s.dim == 3, InputError,
-             "search: surface dimension must be 2 or 3, got ", s.dim);
+  SEAM_CHECK(s.dim == 2 || s.dim == 3, InputError, "search: surface dimension must be 2 or 3, got ",
+             s.dim);
   SEAM_CHECK(s.coords.size() % static_cast<std::size_t>(s.dim) == 0, InputError,
              "search: ", s.coords.size(), " coordinates are not a multiple of dim = ", s.dim);
-  SEAM_CHECK(!s.offsets.empty() && s.offsets[0] == 0, InputError,
+  // No offsets at all is an empty surface (e.g. a rank that owns no facet of an interface).
+  SEAM_CHECK(s.offsets.empty() ? s.connectivity.empty() : s.offsets[0] == 0, InputError,
              "search: facet offsets must hold n_facets + 1 entries starting at 0");
-  SEAM_CHECK(static_cast<std::size_t>(s.offsets.back()) == s.connectivity.size(), InputError,
-             "search: last facet offset ", s.offsets.back(), " does not match the ",
-             s.connectivity.size(), " connectivity entries");
+  SEAM_CHECK(s.offsets.empty() ||
+                 static_cast<std::size_t>(s.offsets.back()) == s.connectivity.size(),
+             InputError, "search: last facet offset does not match the ", s.connectivity.size(),
+             " connectivity entries");
   const local_index n_nodes = s.n_nodes();
   for (local_index f = 0; f < s.n_facets(); ++f) {
     const local_index n = s.offsets[f + 1] - s.offsets[f];

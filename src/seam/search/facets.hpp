@@ -24,8 +24,8 @@ struct FacetSurface {
 };
 
 /// Throws InputError unless `surface` is well formed: dim 2 or 3, coordinate count a multiple of
-/// dim, monotone offsets starting at 0 that match the connectivity, node indices in range,
-/// supported node counts per facet and finite coordinates.
+/// dim, offsets starting at 0 that match the connectivity (or no offsets: no facets), node
+/// indices in range, supported node counts per facet and finite coordinates.
 void check_surface(const FacetSurface& surface);
 
 /// Number of corner nodes of a facet with `n_nodes` nodes (2 in 2D; 3 or 4 in 3D).

@@ -37,8 +37,11 @@ TreeOptions tree_options(const FacetSurface& slave, const FacetSurface& master,
 
 InterfaceSearch::InterfaceSearch(const FacetSurface& slave, const FacetSurface& master,
                                  const SearchOptions& options)
-    : slave_(slave, tree_options(slave, master, options)),
-      master_(master, tree_options(slave, master, options)) {}
+    : InterfaceSearch(slave, master, tree_options(slave, master, options)) {}
+
+InterfaceSearch::InterfaceSearch(const FacetSurface& slave, const FacetSurface& master,
+                                 const TreeOptions& options)
+    : slave_(slave, options), master_(master, options) {}
 
 void InterfaceSearch::update(std::span<const double> slave_coords,
                              std::span<const double> master_coords,
@@ -80,7 +83,7 @@ std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const Candid
   std::vector<NormalCone> normal(n);
   std::visit(
       [&](const auto& b) {
-        for (local_index s = 0; s < n; ++s) normal[b.facet_of_slot[s]] = b.cones[b.node_of_slot[s]];
+        for (local_index s = 0; s < n; ++s) normal[b.facet_of_slot[s]] = b.facet_cones[s];
       },
       tree.bvh());
   std::vector<std::pair<double, std::size_t>> order(pairs.size());

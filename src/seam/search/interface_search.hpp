@@ -40,6 +40,9 @@ public:
   const Tree& master_tree() const { return master_; }
 
 private:
+  InterfaceSearch(const FacetSurface& slave, const FacetSurface& master,
+                  const TreeOptions& options);
+
   Tree slave_;
   Tree master_;
   std::vector<CandidatePair> pairs_;

@@ -34,8 +34,7 @@ constexpr int n_slabs(int dim, BoundingVolume volume) {
 /// A k-DOP with NS = k/2 slabs; slab s is [lo[s], hi[s]] along direction s of slab_direction().
 /// The first `dim` slabs are always the coordinate axes, so (lo[0..dim), hi[0..dim)) is the
 /// axis-aligned box of any k-DOP.
-template <int NS>
-struct Kdop {
+template <int NS> struct Kdop {
   std::array<float, NS> lo;
   std::array<float, NS> hi;
 
@@ -51,8 +50,7 @@ struct Kdop {
 /// Closed overlap test: true iff every slab pair intersects (touching counts). All slabs are
 /// compared without branches, four at a time with SSE2 where available: the traversal spends
 /// most of its time here, and a mispredicted early exit costs more than the remaining compares.
-template <int NS>
-inline bool overlap(const Kdop<NS>& a, const Kdop<NS>& b) {
+template <int NS> inline bool overlap(const Kdop<NS>& a, const Kdop<NS>& b) {
   int s = 0;
   bool separated = false;
 #if defined(__SSE2__)
@@ -70,8 +68,7 @@ inline bool overlap(const Kdop<NS>& a, const Kdop<NS>& b) {
 }
 
 /// Smallest k-DOP containing a and b.
-template <int NS>
-inline Kdop<NS> merge(const Kdop<NS>& a, const Kdop<NS>& b) {
+template <int NS> inline Kdop<NS> merge(const Kdop<NS>& a, const Kdop<NS>& b) {
   Kdop<NS> m;
   for (int s = 0; s < NS; ++s) {
     m.lo[s] = a.lo[s] < b.lo[s] ? a.lo[s] : b.lo[s];
@@ -82,8 +79,7 @@ inline Kdop<NS> merge(const Kdop<NS>& a, const Kdop<NS>& b) {
 
 /// Sum of the axis extents (the "margin"); used as a size measure that stays meaningful for
 /// flat (zero-volume) boxes, e.g. for the rebuild criterion.
-template <int Dim, int NS>
-inline double margin(const Kdop<NS>& k) {
+template <int Dim, int NS> inline double margin(const Kdop<NS>& k) {
   double m = 0.0;
   for (int s = 0; s < Dim; ++s) m += static_cast<double>(k.hi[s]) - static_cast<double>(k.lo[s]);
   return m;
@@ -111,8 +107,7 @@ constexpr std::array<double, 3> slab_direction(int dim, int ns, int s) {
 
 /// Projections d_s . x of one point onto all slab directions; written out so that they cost
 /// only additions.
-template <int Dim, int NS>
-inline void project(const double* x, double* p) {
+template <int Dim, int NS> inline void project(const double* x, double* p) {
   static_assert((Dim == 2 && (NS == 2 || NS == 4)) || (Dim == 3 && (NS == 3 || NS == 9)));
   if constexpr (Dim == 2) {
     p[0] = x[0];
@@ -137,8 +132,7 @@ inline void project(const double* x, double* p) {
 }
 
 /// |d_s|: 1 for the axes, sqrt(2) for the diagonals.
-template <int Dim, int NS>
-constexpr double slab_norm(int s) {
+template <int Dim, int NS> constexpr double slab_norm(int s) {
   return s < Dim ? 1.0 : 1.4142135623730951;
 }
 
@@ -150,12 +144,13 @@ inline float round_down(double v) {
 }
 
 /// A float >= v, at most about 3 float ulps above it (see round_down).
-inline float round_up(double v) { return static_cast<float>(v + (std::abs(v) * 0x1p-22 + 0x1p-120)); }
+inline float round_up(double v) {
+  return static_cast<float>(v + (std::abs(v) * 0x1p-22 + 0x1p-120));
+}
 
 /// Accumulates the double-precision slab intervals of a point set, then widens them by a
 /// distance and rounds outwards into a float k-DOP.
-template <int Dim, int NS>
-struct KdopBuilder {
+template <int Dim, int NS> struct KdopBuilder {
   std::array<double, NS> lo;
   std::array<double, NS> hi;
 

@@ -10,24 +10,35 @@ namespace {
 
 using Vec = std::array<double, 3>;
 
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec sub(const Vec& a, const Vec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const Vec& a, const Vec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 Vec cross(const Vec& a, const Vec& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
+double norm(const Vec& a) {
+  return std::sqrt(dot(a, a));
+}
 
 /// Angle between unit vectors, robust near 0 and pi (atan2 of |a x b| and a . b).
-double angle_between(const Vec& a, const Vec& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+double angle_between(const Vec& a, const Vec& b) {
+  return std::atan2(norm(cross(a, b)), dot(a, b));
+}
 
 // Cones are grown by this much so that rounding never makes them too narrow.
 constexpr double angle_slack = 1e-9;
 
-NormalCone full_cone() { return {{0.0, 0.0, 1.0}, std::numbers::pi}; }
+NormalCone full_cone() {
+  return {{0.0, 0.0, 1.0}, std::numbers::pi};
+}
 
 } // namespace
 
-NormalCone facet_normal_cone(int dim, std::span<const double> coords, std::span<const local_index> nodes) {
+NormalCone facet_normal_cone(int dim, std::span<const double> coords,
+                             std::span<const local_index> nodes) {
   auto point = [&](int i) {
     Vec p{0.0, 0.0, 0.0};
     for (int d = 0; d < dim; ++d) p[d] = coords[static_cast<std::size_t>(nodes[i]) * dim + d];
@@ -50,8 +61,7 @@ NormalCone facet_normal_cone(int dim, std::span<const double> coords, std::span<
   Vec mean{0.0, 0.0, 0.0};
   for (int i = 0; i < n_nodes; ++i) {
     const Vec x = point(i);
-    corner[i] =
-        cross(sub(point((i + 1) % n_nodes), x), sub(point((i + n_nodes - 1) % n_nodes), x));
+    corner[i] = cross(sub(point((i + 1) % n_nodes), x), sub(point((i + n_nodes - 1) % n_nodes), x));
     const double l = norm(corner[i]);
     if (l == 0.0) return full_cone();
     for (int d = 0; d < 3; ++d) corner[i][d] /= l;

@@ -16,36 +16,41 @@ using detail::Link;
 using NodePair = std::pair<std::int32_t, std::int32_t>;
 
 /// Dual-tree traversal (seed paper Sect. 3.2). A node pair is pushed only if its volumes
-/// overlap, and a pair of two leaves is emitted at once instead of being pushed. Two inner nodes
-/// of similar size are split together (four child tests, one stack entry less per level);
-/// otherwise the larger one is split. The stack holds at most a few entries per tree level.
+/// overlap; two leaves are resolved at once by testing their facets against each other. Two
+/// inner nodes of similar size are split together (four child tests, one stack entry less per
+/// level), otherwise the larger one is split. The stack holds a few entries per tree level.
 template <int Dim, int NS>
-void dual_traversal(const Bvh<Dim, NS>& a, const Bvh<Dim, NS>& b,
-                    std::vector<CandidatePair>& out) {
+void dual_traversal(const Bvh<Dim, NS>& a, const Bvh<Dim, NS>& b, std::vector<CandidatePair>& out) {
   if (a.n_facets() == 0 || b.n_facets() == 0) return;
-  if (!overlap(a.bounds[0], b.bounds[0])) return;
-  if (a.links[0].count == 1 && b.links[0].count == 1) {
-    out.push_back({a.facet_of_slot[0], b.facet_of_slot[0]});
-    return;
-  }
+  auto leaf_pairs = [&](Link li, Link lj) {
+    for (std::int32_t s = li.first; s < li.first - li.count; ++s) {
+      const auto& vs = a.facet_bounds[s];
+      for (std::int32_t t = lj.first; t < lj.first - lj.count; ++t)
+        if (overlap(vs, b.facet_bounds[t])) out.push_back({a.facet_of_slot[s], b.facet_of_slot[t]});
+    }
+  };
   std::vector<NodePair> stack;
   stack.reserve(256);
   auto visit = [&](std::int32_t i, std::int32_t j) {
     if (!overlap(a.bounds[i], b.bounds[j])) return;
     const Link li = a.links[i], lj = b.links[j];
-    if (li.count == 1 && lj.count == 1)
-      out.push_back({a.facet_of_slot[li.first], b.facet_of_slot[lj.first]});
-    else
-      stack.emplace_back(i, j);
+    if (is_leaf(li) && is_leaf(lj)) {
+      leaf_pairs(li, lj);
+      return;
+    }
+    // The pair pushed last is popped next: start loading the children it will test.
+    if (!is_leaf(li)) __builtin_prefetch(&a.bounds[li.first]);
+    if (!is_leaf(lj)) __builtin_prefetch(&b.bounds[lj.first]);
+    stack.emplace_back(i, j);
   };
-  stack.emplace_back(0, 0);
+  visit(0, 0);
   while (!stack.empty()) {
     const auto [i, j] = stack.back();
     stack.pop_back();
     const Link li = a.links[i];
     const Link lj = b.links[j];
-    const bool split_a = li.count > 1 && 2 * li.count >= lj.count;
-    const bool split_b = lj.count > 1 && 2 * lj.count >= li.count;
+    const bool split_a = !is_leaf(li) && 2 * li.count >= n_facets_below(lj);
+    const bool split_b = !is_leaf(lj) && 2 * lj.count >= n_facets_below(li);
     if (split_a && split_b) {
       visit(li.first, lj.first);
       visit(li.first, lj.first + 1);
@@ -75,17 +80,27 @@ CandidatePair ordered(local_index f, local_index g) {
   return f < g ? CandidatePair{f, g} : CandidatePair{g, f};
 }
 
+/// The self-contact test of two facet slots: volumes overlap, no shared node, and normals that
+/// may be at least min_angle apart.
+template <int Dim, int NS>
+bool self_candidates(const Bvh<Dim, NS>& t, std::int32_t s, std::int32_t r, double min_angle) {
+  if (!overlap(t.facet_bounds[s], t.facet_bounds[r]) || share_node(t, s, r)) return false;
+  return min_angle <= 0.0 || max_angle_between(t.facet_cones[s], t.facet_cones[r]) >= min_angle;
+}
+
 /// Single-tree traversal for self contact: (i, i) stands for "pairs within subtree i", (i, j)
 /// with i != j for pairs between two disjoint subtrees.
 template <int Dim, int NS>
 void self_traversal(const Bvh<Dim, NS>& t, double min_angle, std::vector<CandidatePair>& out) {
   if (t.n_facets() < 2) return;
   const bool use_cones = min_angle > 0.0;
-  auto may_face = [&](std::int32_t i, std::int32_t j) {
-    return !use_cones || max_angle_between(t.cones[i], t.cones[j]) >= min_angle;
-  };
   auto candidates = [&](std::int32_t i, std::int32_t j) {
-    return overlap(t.bounds[i], t.bounds[j]) && may_face(i, j);
+    return overlap(t.bounds[i], t.bounds[j]) &&
+           (!use_cones || max_angle_between(t.cones[i], t.cones[j]) >= min_angle);
+  };
+  auto emit = [&](std::int32_t s, std::int32_t r) {
+    if (self_candidates(t, s, r, min_angle))
+      out.push_back(ordered(t.facet_of_slot[s], t.facet_of_slot[r]));
   };
   std::vector<NodePair> stack;
   stack.reserve(128);
@@ -95,17 +110,20 @@ void self_traversal(const Bvh<Dim, NS>& t, double min_angle, std::vector<Candida
     stack.pop_back();
     const Link li = t.links[i];
     const Link lj = t.links[j];
-    if (i == j) {
-      // A smooth patch: no two of its normals are min_angle apart.
-      if (li.count == 1 || (use_cones && 2.0 * t.cones[i].angle < min_angle)) continue;
+    // A smooth patch: no two of its normals are min_angle apart.
+    if (i == j && use_cones && 2.0 * t.cones[i].angle < min_angle) continue;
+    if (i == j && is_leaf(li)) {
+      for (std::int32_t s = li.first; s < li.first - li.count; ++s)
+        for (std::int32_t r = s + 1; r < li.first - li.count; ++r) emit(s, r);
+    } else if (i == j) {
       const std::int32_t l = li.first, r = li.first + 1;
       stack.emplace_back(l, l);
       stack.emplace_back(r, r);
       if (candidates(l, r)) stack.emplace_back(l, r);
-    } else if (li.count == 1 && lj.count == 1) {
-      if (!share_node(t, li.first, lj.first))
-        out.push_back(ordered(t.facet_of_slot[li.first], t.facet_of_slot[lj.first]));
-    } else if (lj.count == 1 || (li.count != 1 && li.count >= lj.count)) {
+    } else if (is_leaf(li) && is_leaf(lj)) {
+      for (std::int32_t s = li.first; s < li.first - li.count; ++s)
+        for (std::int32_t r = lj.first; r < lj.first - lj.count; ++r) emit(s, r);
+    } else if (is_leaf(lj) || (!is_leaf(li) && li.count >= n_facets_below(lj))) {
       if (candidates(li.first + 1, j)) stack.emplace_back(li.first + 1, j);
       if (candidates(li.first, j)) stack.emplace_back(li.first, j);
     } else {
@@ -149,8 +167,7 @@ void find_self_pairs(const Tree& tree, std::vector<CandidatePair>& out,
                      const SelfContactOptions& options) {
   check_self(tree, options);
   out.clear();
-  std::visit([&](const auto& t) { self_traversal(t, options.min_normal_angle, out); },
-             tree.bvh());
+  std::visit([&](const auto& t) { self_traversal(t, options.min_normal_angle, out); }, tree.bvh());
 }
 
 std::vector<CandidatePair> find_self_pairs(const Tree& tree, const SelfContactOptions& options) {
@@ -166,12 +183,10 @@ std::vector<CandidatePair> find_pairs_brute_force(const Tree& slave, const Tree&
       [&](const auto& a) {
         using B = std::decay_t<decltype(a)>;
         const B& b = std::get<B>(master.bvh());
-        for (local_index s = 0; s < a.n_facets(); ++s) {
-          const auto& va = a.bounds[a.node_of_slot[s]];
+        for (local_index s = 0; s < a.n_facets(); ++s)
           for (local_index m = 0; m < b.n_facets(); ++m)
-            if (overlap(va, b.bounds[b.node_of_slot[m]]))
+            if (overlap(a.facet_bounds[s], b.facet_bounds[m]))
               out.push_back({a.facet_of_slot[s], b.facet_of_slot[m]});
-        }
       },
       slave.bvh());
   std::sort(out.begin(), out.end());
@@ -184,17 +199,10 @@ std::vector<CandidatePair> find_self_pairs_brute_force(const Tree& tree,
   std::vector<CandidatePair> out;
   std::visit(
       [&](const auto& t) {
-        for (local_index s = 0; s < t.n_facets(); ++s) {
-          const std::int32_t ns = t.node_of_slot[s];
-          for (local_index r = s + 1; r < t.n_facets(); ++r) {
-            const std::int32_t nr = t.node_of_slot[r];
-            if (!overlap(t.bounds[ns], t.bounds[nr]) || share_node(t, s, r)) continue;
-            if (options.min_normal_angle > 0.0 &&
-                max_angle_between(t.cones[ns], t.cones[nr]) < options.min_normal_angle)
-              continue;
-            out.push_back(ordered(t.facet_of_slot[s], t.facet_of_slot[r]));
-          }
-        }
+        for (local_index s = 0; s < t.n_facets(); ++s)
+          for (local_index r = s + 1; r < t.n_facets(); ++r)
+            if (self_candidates(t, s, r, options.min_normal_angle))
+              out.push_back(ordered(t.facet_of_slot[s], t.facet_of_slot[r]));
       },
       tree.bvh());
   std::sort(out.begin(), out.end());

@@ -25,13 +25,15 @@ Tree::Tree(const FacetSurface& surface, const TreeOptions& options,
   check_surface(surface);
   SEAM_CHECK(std::isfinite(options.inflation) && options.inflation >= 0.0, InputError,
              "search: inflation must be a finite distance >= 0, got ", options.inflation);
-  SEAM_CHECK(options.rebuild_factor >= 1.0, InputError,
-             "search: rebuild_factor must be >= 1, got ", options.rebuild_factor);
+  SEAM_CHECK(options.rebuild_factor >= 1.0, InputError, "search: rebuild_factor must be >= 1, got ",
+             options.rebuild_factor);
+  SEAM_CHECK(options.leaf_size >= 1 && options.leaf_size <= 64, InputError,
+             "search: leaf_size must be in [1, 64], got ", options.leaf_size);
   check_coords(surface.coords, old_coords);
   bvh_ = make_variant(dim_, options.volume);
   std::visit(
       [&](auto& b) {
-        b.build(surface, old_coords, options.inflation, options.normal_cones);
+        b.build(surface, old_coords, options.inflation, options.leaf_size, options.normal_cones);
         build_quality_ = b.quality();
       },
       bvh_);
@@ -93,7 +95,7 @@ void Tree::facet_boxes(std::vector<float>& lo, std::vector<float>& hi) const {
         lo.resize(static_cast<std::size_t>(b.n_facets()) * dim_);
         hi.resize(lo.size());
         for (local_index s = 0; s < b.n_facets(); ++s) {
-          const auto& v = b.bounds[b.node_of_slot[s]];
+          const auto& v = b.facet_bounds[s];
           const std::size_t f = static_cast<std::size_t>(b.facet_of_slot[s]) * dim_;
           for (int d = 0; d < dim_; ++d) {
             lo[f + d] = v.lo[d];

@@ -22,6 +22,8 @@ struct TreeOptions {
   double rebuild_factor = 1.5;
   /// Keep normal cones per node; required by find_self_pairs.
   bool normal_cones = false;
+  /// Most facets per leaf (1 gives the textbook one-facet leaves). Results do not depend on it.
+  int leaf_size = 4;
 };
 
 class Tree {
@@ -44,7 +46,7 @@ public:
   const TreeOptions& options() const { return options_; }
   local_index n_facets() const;
   double inflation() const { return options_.inflation; }
-  /// Inner-node margin over leaf margin (see detail::Bvh::quality), and its value after the
+  /// Node margins over facet margins (see detail::Bvh::quality), and its value after the
   /// last (re)build.
   double quality() const;
   double build_quality() const { return build_quality_; }

@@ -6,7 +6,9 @@
 #include "seam/geometry/cell_quadrature.hpp"
 
 namespace {
-double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+double factorial(int n) {
+  return n <= 1 ? 1.0 : n * factorial(n - 1);
+}
 } // namespace
 
 TEST(CellQuadrature, LineRuleExactToDegreeNine) {

@@ -113,12 +113,12 @@ TEST(ClipPolygons, SharedEdgeWithOverlap) {
 
 TEST(ClipPolygons, TouchingOnlyIsEmpty) {
   const Polygon a = rectangle(0, 0, 1, 1);
-  EXPECT_TRUE(clip_polygons(a, rectangle(1, 0, 2, 1)).empty());       // shared edge
-  EXPECT_TRUE(clip_polygons(a, rectangle(1, 0.3, 2, 0.6)).empty());   // part of an edge
-  EXPECT_TRUE(clip_polygons(a, rectangle(1, 1, 2, 2)).empty());       // shared vertex
+  EXPECT_TRUE(clip_polygons(a, rectangle(1, 0, 2, 1)).empty());            // shared edge
+  EXPECT_TRUE(clip_polygons(a, rectangle(1, 0.3, 2, 0.6)).empty());        // part of an edge
+  EXPECT_TRUE(clip_polygons(a, rectangle(1, 1, 2, 2)).empty());            // shared vertex
   EXPECT_TRUE(clip_polygons(a, make({{1, 0.5}, {2, 0}, {2, 1}})).empty()); // vertex on edge
-  EXPECT_TRUE(clip_polygons(a, rectangle(1 + 1e-12, 0, 2, 1)).empty()); // separated by a hair
-  EXPECT_TRUE(clip_polygons(a, rectangle(3, 3, 4, 4)).empty());       // far apart
+  EXPECT_TRUE(clip_polygons(a, rectangle(1 + 1e-12, 0, 2, 1)).empty());    // separated by a hair
+  EXPECT_TRUE(clip_polygons(a, rectangle(3, 3, 4, 4)).empty());            // far apart
 }
 
 TEST(ClipPolygons, VertexOnEdge) {
@@ -313,7 +313,7 @@ TEST(PolygonHelpers, AreaAndCentroid) {
   const Polygon r = rectangle(1, 2, 4, 3);
   EXPECT_NEAR(signed_area(r), 3.0, 1e-15);
   EXPECT_TRUE(seam::geometry::centroid(r).isApprox(Point2(2.5, 2.5), 1e-15));
-  // L-free check on a triangle: centroid is the vertex mean.
+  // A triangle's centroid is its vertex mean.
   const Polygon t = make({{0, 0}, {3, 0}, {0, 6}});
   EXPECT_TRUE(seam::geometry::centroid(t).isApprox(Point2(1, 2), 1e-15));
   // Trapezoid (0,0),(4,0),(3,2),(1,2): area 6, centroid y = h(b + 2a)/(3(a + b)) with the
@@ -324,4 +324,33 @@ TEST(PolygonHelpers, AreaAndCentroid) {
   EXPECT_NEAR(seam::geometry::centroid(z).y(), 8.0 / 9.0, 1e-15);
   EXPECT_NEAR(seam::geometry::min_edge_length(z), 2.0, 1e-15);
   EXPECT_NEAR(seam::geometry::max_edge_length(z), 4.0, 1e-15);
+}
+
+TEST(ClipPolygons, NearlyDegenerateConfigurationsStayClean) {
+  // Coincident polygons perturbed by rotations and shifts around the merge tolerance: the
+  // result must keep the exact area to first order, have no near-duplicate vertices and
+  // turn strictly left at every vertex (no slivers or spikes from nearly parallel edges).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-16, -7);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = 3 + trial % 6;
+    const Polygon a = regular(n, 1.0, {0.1, -0.2}, u(rng));
+    const double angle = std::pow(10.0, exponent(rng)) * u(rng);
+    const Point2 shift = std::pow(10.0, exponent(rng)) * Point2(u(rng), u(rng));
+    const Polygon b = transformed(a, angle, {u(rng), u(rng)}, shift);
+    const Polygon r = clip_polygons(a, b);
+    ASSERT_GE(r.size(), 3) << trial;
+    EXPECT_LE(r.size(), 2 * n);
+    EXPECT_NEAR(area(r), area(a), 1e-6 * area(a)) << trial;
+    const double edge = seam::geometry::min_edge_length(a);
+    for (int i = 0; i < r.size(); ++i) {
+      const Point2 p = r[(i + r.size() - 1) % r.size()], q = r[i], s = r[(i + 1) % r.size()];
+      EXPECT_GT((q - p).norm(), 1e-9 * edge) << trial;
+      const Point2 e1 = q - p, e2 = s - q;
+      // Height of q above the chord p-s: clearly positive for a clean convex polygon.
+      const double turn = (e1.x() * e2.y() - e1.y() * e2.x()) / (s - p).norm();
+      EXPECT_GT(turn, 1e-9 * edge) << trial << " vertex " << i << " of " << r.size();
+    }
+  }
 }

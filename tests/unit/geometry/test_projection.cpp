@@ -113,7 +113,7 @@ TEST(ProjectOntoSurface, ReportsFailure) {
 
 TEST(Plane, OrthonormalRightHandedFrame) {
   for (const Vector3d& n : {Vector3d(0, 0, 1), Vector3d(0, 0, -2), Vector3d(1, 0, 0),
-                           Vector3d(0.3, -0.4, 0.2), Vector3d(1e-9, 1, 1e-9)}) {
+                            Vector3d(0.3, -0.4, 0.2), Vector3d(1e-9, 1, 1e-9)}) {
     const auto plane = seam::geometry::make_plane(Vector3d(1, 2, 3), n);
     EXPECT_NEAR(plane.normal.norm(), 1.0, 1e-15);
     EXPECT_TRUE(plane.normal.isApprox(n.normalized(), 1e-15));

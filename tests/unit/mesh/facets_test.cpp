@@ -51,7 +51,8 @@ TEST(Facets, TwoTetsShareOneFace) {
   // three faces of the second tet through (1, 1, 1), each with area sqrt(3)/2.
   double area = 0;
   for (std::int32_t k = 0; k < exterior.size(); ++k)
-    area += facet_area(m, exterior.cell[static_cast<std::size_t>(k)], exterior.local[static_cast<std::size_t>(k)]);
+    area += facet_area(m, exterior.cell[static_cast<std::size_t>(k)],
+                       exterior.local[static_cast<std::size_t>(k)]);
   EXPECT_NEAR(area, 1.5 + 1.5 * std::sqrt(3.0), 1e-14);
   EXPECT_NEAR(cell_volume(m, 0), 1.0 / 6.0, 1e-15);
   // det[(-1, 1, 0), (-1, 0, 1), (0, 1, 1)] / 6 = 2 / 6.
@@ -72,7 +73,8 @@ TEST(Facets, MixedQuadTriangleStrip) {
   EXPECT_EQ(exterior.size(), 7);
   double perimeter = 0;
   for (std::int32_t k = 0; k < exterior.size(); ++k)
-    perimeter += facet_area(m, exterior.cell[static_cast<std::size_t>(k)], exterior.local[static_cast<std::size_t>(k)]);
+    perimeter += facet_area(m, exterior.cell[static_cast<std::size_t>(k)],
+                            exterior.local[static_cast<std::size_t>(k)]);
   EXPECT_NEAR(perimeter, 3 + 2 + 1 + std::sqrt(2.0), 1e-14); // bottom, top, left, hypotenuse
   double area = 0;
   for (std::int32_t c = 0; c < m.n_cells(); ++c) area += cell_volume(m, c);

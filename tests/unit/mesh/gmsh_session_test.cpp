@@ -16,8 +16,9 @@ using fem::CellType;
 
 TEST(GmshSession, FileOptionsDoNotLeakIntoTheNextRead) {
   test::ScratchDir dir;
-  const auto quadratic = dir.write("quadratic.geo", "Mesh.ElementOrder = 2;\nMesh.RecombineAll = 1;\n" +
-                                                        test::unit_square_geo(2, false));
+  const auto quadratic =
+      dir.write("quadratic.geo", "Mesh.ElementOrder = 2;\nMesh.RecombineAll = 1;\n" +
+                                     test::unit_square_geo(2, false));
   const auto plain = dir.write("plain.geo", test::unit_square_geo(2, false));
   const Mesh a = read_mesh(quadratic);
   for (auto t : a.cell_type) EXPECT_EQ(t, CellType::quad9);

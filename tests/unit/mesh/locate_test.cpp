@@ -46,8 +46,9 @@ void distort(Mesh& mesh, std::mt19937& rng) {
       for (int j = 0; j < i; ++j) {
         double d2 = 0;
         for (int a = 0; a < mesh.dim; ++a) {
-          const double d = mesh.node(nodes[static_cast<std::size_t>(i)])[static_cast<std::size_t>(a)] -
-                           mesh.node(nodes[static_cast<std::size_t>(j)])[static_cast<std::size_t>(a)];
+          const double d =
+              mesh.node(nodes[static_cast<std::size_t>(i)])[static_cast<std::size_t>(a)] -
+              mesh.node(nodes[static_cast<std::size_t>(j)])[static_cast<std::size_t>(a)];
           d2 += d * d;
         }
         shortest = std::min(shortest, std::sqrt(d2));
@@ -62,7 +63,8 @@ void distort(Mesh& mesh, std::mt19937& rng) {
   for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
     if (!vertex[static_cast<std::size_t>(n)])
       for (int a = 0; a < mesh.dim; ++a)
-        mesh.x[static_cast<std::size_t>(n * mesh.dim + a)] += shift(rng) * scale[static_cast<std::size_t>(n)];
+        mesh.x[static_cast<std::size_t>(n * mesh.dim + a)] +=
+            shift(rng) * scale[static_cast<std::size_t>(n)];
 }
 
 // A random point well inside the reference domain of t.
@@ -87,7 +89,9 @@ std::array<double, 3> random_reference_point(CellType t, std::mt19937& rng) {
   return xi;
 }
 
-std::ostream& operator<<(std::ostream& os, const LocateCase& c) { return os << c.label; }
+std::ostream& operator<<(std::ostream& os, const LocateCase& c) {
+  return os << c.label;
+}
 
 class Locate : public ::testing::TestWithParam<LocateCase> {};
 
@@ -98,9 +102,10 @@ TEST_P(Locate, FindsCellAndReferencePointOnDistortedMesh) {
   if (p.size > 0) o.size = p.size;
   o.order = p.order;
   o.serendipity = p.serendipity;
-  Mesh mesh = read_mesh(dir.write("domain.geo", p.dim == 2 ? test::unit_square_geo(p.structured_n, p.quads)
-                                                           : test::unit_cube_geo(p.structured_n)),
-                        o);
+  Mesh mesh =
+      read_mesh(dir.write("domain.geo", p.dim == 2 ? test::unit_square_geo(p.structured_n, p.quads)
+                                                   : test::unit_cube_geo(p.structured_n)),
+                o);
   std::mt19937 rng(42);
   distort(mesh, rng);
 
@@ -111,12 +116,16 @@ TEST_P(Locate, FindsCellAndReferencePointOnDistortedMesh) {
     const auto rule = fem::quadrature(t, 2);
     std::array<double, 9> J{};
     for (int q = 0; q < rule.n_points; ++q)
-      ASSERT_GT(jacobian(mesh, c, &rule.points[static_cast<std::size_t>(q * rule.dim)], J), 0.0) << "cell " << c;
+      ASSERT_GT(jacobian(mesh, c, &rule.points[static_cast<std::size_t>(q * rule.dim)], J), 0.0)
+          << "cell " << c;
     const auto ref = fem::reference_nodes(t);
     const auto nodes = mesh.cell(c);
     for (int i = 0; i < fem::n_nodes(t); ++i) {
       const auto x = map_to_physical(mesh, c, &ref[static_cast<std::size_t>(i * p.dim)]);
-      for (int a = 0; a < p.dim; ++a) ASSERT_NEAR(x[static_cast<std::size_t>(a)], mesh.node(nodes[static_cast<std::size_t>(i)])[static_cast<std::size_t>(a)], 1e-14);
+      for (int a = 0; a < p.dim; ++a)
+        ASSERT_NEAR(x[static_cast<std::size_t>(a)],
+                    mesh.node(nodes[static_cast<std::size_t>(i)])[static_cast<std::size_t>(a)],
+                    1e-14);
     }
   }
 
@@ -126,7 +135,8 @@ TEST_P(Locate, FindsCellAndReferencePointOnDistortedMesh) {
     const auto c = pick(rng);
     const auto xi0 = random_reference_point(mesh.cell_type[static_cast<std::size_t>(c)], rng);
     const auto x = map_to_physical(mesh, c, xi0.data());
-    const auto found = locator.locate(std::span<const double>(x.data(), static_cast<std::size_t>(p.dim)));
+    const auto found =
+        locator.locate(std::span<const double>(x.data(), static_cast<std::size_t>(p.dim)));
     ASSERT_TRUE(found.has_value()) << "cell " << c;
     EXPECT_EQ(found->cell, c);
     const auto y = map_to_physical(mesh, found->cell, found->xi.data());
@@ -146,27 +156,29 @@ TEST_P(Locate, FindsCellAndReferencePointOnDistortedMesh) {
     ASSERT_TRUE(found.has_value());
     EXPECT_EQ(found->cell, lowest);
     const auto y = map_to_physical(mesh, found->cell, found->xi.data());
-    for (int a = 0; a < p.dim; ++a) EXPECT_NEAR(y[static_cast<std::size_t>(a)], mesh.node(node)[static_cast<std::size_t>(a)], 1e-12);
+    for (int a = 0; a < p.dim; ++a)
+      EXPECT_NEAR(y[static_cast<std::size_t>(a)], mesh.node(node)[static_cast<std::size_t>(a)],
+                  1e-12);
   }
 
   // Outside: beyond the distorted box (x < -0.2 or x > 1.5 everywhere).
   for (double x0 : {-0.3, 1.6}) {
     const std::array<double, 3> q{x0, 0.5, 0.5};
-    EXPECT_FALSE(locator.locate(std::span<const double>(q.data(), static_cast<std::size_t>(p.dim))).has_value());
+    EXPECT_FALSE(locator.locate(std::span<const double>(q.data(), static_cast<std::size_t>(p.dim)))
+                     .has_value());
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Mesh, Locate,
-    ::testing::Values(LocateCase{"tri3", 2, 0, false, 0.25, 1, false},
-                      LocateCase{"tri6", 2, 0, false, 0.25, 2, false},
-                      LocateCase{"quad9", 2, 4, true, 0, 2, false},
-                      LocateCase{"quad8", 2, 4, true, 0, 2, true},
-                      LocateCase{"tet10", 3, 0, false, 0.4, 2, false},
-                      LocateCase{"hex8", 3, 3, false, 0, 1, false},
-                      LocateCase{"hex27", 3, 2, false, 0, 2, false},
-                      LocateCase{"hex20", 3, 2, false, 0, 2, true}),
-    [](const auto& info) { return info.param.label; });
+INSTANTIATE_TEST_SUITE_P(Mesh, Locate,
+                         ::testing::Values(LocateCase{"tri3", 2, 0, false, 0.25, 1, false},
+                                           LocateCase{"tri6", 2, 0, false, 0.25, 2, false},
+                                           LocateCase{"quad9", 2, 4, true, 0, 2, false},
+                                           LocateCase{"quad8", 2, 4, true, 0, 2, true},
+                                           LocateCase{"tet10", 3, 0, false, 0.4, 2, false},
+                                           LocateCase{"hex8", 3, 3, false, 0, 1, false},
+                                           LocateCase{"hex27", 3, 2, false, 0, 2, false},
+                                           LocateCase{"hex20", 3, 2, false, 0, 2, true}),
+                         [](const auto& info) { return info.param.label; });
 
 // The tolerance is in reference units: a point just outside the boundary is found only with a
 // tolerance larger than its reference distance, and then with xi outside the reference cell.
@@ -179,7 +191,9 @@ TEST(Locate, ToleranceOutsideTheBoundary) {
   EXPECT_FALSE(locate_point(mesh, q, 5e-4).has_value());
   const auto found = locate_point(mesh, q, 1e-3);
   ASSERT_TRUE(found.has_value());
-  EXPECT_NEAR(reference_distance(mesh.cell_type[static_cast<std::size_t>(found->cell)], found->xi.data()), 8e-4, 1e-12);
+  EXPECT_NEAR(
+      reference_distance(mesh.cell_type[static_cast<std::size_t>(found->cell)], found->xi.data()),
+      8e-4, 1e-12);
   const auto y = map_to_physical(mesh, found->cell, found->xi.data());
   EXPECT_NEAR(y[0], q[0], 1e-14);
   EXPECT_NEAR(y[1], q[1], 1e-14);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -19,8 +20,10 @@ public:
   /// Named after the running test, or after `name` outside a test (suite set-up).
   explicit ScratchDir(const std::string& name = "") {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::string label =
+    std::string label =
         info != nullptr ? std::string(info->test_suite_name()) + "_" + info->name() : name;
+    std::replace(label.begin(), label.end(), '/', '_'); // parameterised test names
+
     path_ = std::filesystem::temp_directory_path() /
             ("seam_mesh_" + std::to_string(::getpid()) + "_" + label);
     std::filesystem::remove_all(path_);
@@ -76,17 +79,16 @@ inline std::string unit_cube_geo(int structured_n) {
       double lo[3] = {-0.1, -0.1, -0.1}, hi[3] = {1.1, 1.1, 1.1};
       lo[a] = side - 0.1;
       hi[a] = side + 0.1;
-      geo += std::string("Physical Surface(\"") + names[a][side] +
-             "\") = Surface In BoundingBox{" + std::to_string(lo[0]) + ", " +
-             std::to_string(lo[1]) + ", " + std::to_string(lo[2]) + ", " + std::to_string(hi[0]) +
-             ", " + std::to_string(hi[1]) + ", " + std::to_string(hi[2]) + "};\n";
+      geo += std::string("Physical Surface(\"") + names[a][side] + "\") = Surface In BoundingBox{" +
+             std::to_string(lo[0]) + ", " + std::to_string(lo[1]) + ", " + std::to_string(lo[2]) +
+             ", " + std::to_string(hi[0]) + ", " + std::to_string(hi[1]) + ", " +
+             std::to_string(hi[2]) + "};\n";
     }
   return geo;
 }
 
 /// Apply a map to every node (the map gets and returns 3 coordinates; z = 0 in 2D).
-template <class Map>
-void transform(Mesh& mesh, Map&& map) {
+template <class Map> void transform(Mesh& mesh, Map&& map) {
   for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) {
     std::array<double, 3> p{};
     for (int a = 0; a < mesh.dim; ++a) p[a] = mesh.x[static_cast<std::size_t>(n * mesh.dim + a)];

@@ -19,7 +19,8 @@ struct Format {
 // Mesh the .geo once with Gmsh and write it in every format (its own Gmsh session, closed
 // before read_mesh opens another).
 void write_formats(const std::filesystem::path& geo, const ReadOptions& o,
-                   const std::vector<std::filesystem::path>& files, const std::vector<Format>& formats) {
+                   const std::vector<std::filesystem::path>& files,
+                   const std::vector<Format>& formats) {
   gmsh::initialize(0, nullptr, false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::open(geo.string());
@@ -63,7 +64,9 @@ struct FormatCase {
   std::size_t n_regions;
 };
 
-std::ostream& operator<<(std::ostream& os, const FormatCase& c) { return os << c.label; }
+std::ostream& operator<<(std::ostream& os, const FormatCase& c) {
+  return os << c.label;
+}
 
 class MshFormats : public ::testing::TestWithParam<FormatCase> {};
 
@@ -71,7 +74,8 @@ TEST_P(MshFormats, ReadBackIdentically) {
   const auto& p = GetParam();
   test::ScratchDir dir;
   const auto geo = dir.write("domain.geo", p.geo);
-  const std::vector<Format> formats{{"v22.msh", 2.2, false}, {"v41.msh", 4.1, false}, {"v41b.msh", 4.1, true}};
+  const std::vector<Format> formats{
+      {"v22.msh", 2.2, false}, {"v41.msh", 4.1, false}, {"v41b.msh", 4.1, true}};
   std::vector<std::filesystem::path> files;
   for (const auto& f : formats) files.push_back(dir / f.file);
   write_formats(geo, p.options, files, formats);

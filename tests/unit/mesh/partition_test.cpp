@@ -28,7 +28,8 @@ void check_numbering(const Mesh& mesh, const std::vector<int>& part, int n_parts
   std::vector<int> owner(n, INT_MAX);
   for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
     for (auto node : mesh.cell(c))
-      owner[static_cast<std::size_t>(node)] = std::min(owner[static_cast<std::size_t>(node)], part[static_cast<std::size_t>(c)]);
+      owner[static_cast<std::size_t>(node)] =
+          std::min(owner[static_cast<std::size_t>(node)], part[static_cast<std::size_t>(c)]);
   EXPECT_EQ(numbering.owner, owner);
 
   // A bijection onto [0, n), each node inside its owner's range, increasing with the old index
@@ -50,7 +51,8 @@ void check_numbering(const Mesh& mesh, const std::vector<int>& part, int n_parts
       if (owner[i] == owner[j] && numbering.new_index[i] >= numbering.new_index[j])
         FAIL() << "nodes " << i << " < " << j << " of part " << owner[i] << " out of order";
   for (int p = 0; p < n_parts; ++p)
-    EXPECT_EQ(numbering.offsets[static_cast<std::size_t>(p) + 1] - numbering.offsets[static_cast<std::size_t>(p)],
+    EXPECT_EQ(numbering.offsets[static_cast<std::size_t>(p) + 1] -
+                  numbering.offsets[static_cast<std::size_t>(p)],
               std::count(owner.begin(), owner.end(), p));
 }
 
@@ -108,7 +110,8 @@ TEST_F(Partition, OnePartIsTrivial) {
   const auto part = partition_cells(*cube_, 1);
   EXPECT_TRUE(std::all_of(part.begin(), part.end(), [](int p) { return p == 0; }));
   const auto numbering = number_nodes(*cube_, part, 1);
-  for (std::int32_t n = 0; n < cube_->n_nodes(); ++n) EXPECT_EQ(numbering.new_index[static_cast<std::size_t>(n)], n);
+  for (std::int32_t n = 0; n < cube_->n_nodes(); ++n)
+    EXPECT_EQ(numbering.new_index[static_cast<std::size_t>(n)], n);
 }
 
 TEST_F(Partition, BadArguments) {

@@ -24,7 +24,9 @@ struct GeoCase {
   CellType expected;
 };
 
-std::ostream& operator<<(std::ostream& os, const GeoCase& c) { return os << c.label; }
+std::ostream& operator<<(std::ostream& os, const GeoCase& c) {
+  return os << c.label;
+}
 
 std::string boundary_name(int dim, int axis, int side) {
   if (dim == 2) {
@@ -38,13 +40,20 @@ std::string boundary_name(int dim, int axis, int side) {
 std::int64_t structured_node_count(CellType t, int n) {
   const std::int64_t m = n + 1, k = 2 * n + 1;
   switch (t) {
-  case CellType::quad4: return m * m;
-  case CellType::quad9: return k * k;
-  case CellType::quad8: return m * m + 2 * n * m; // corners + one node per edge
-  case CellType::hex8: return m * m * m;
-  case CellType::hex27: return k * k * k;
-  case CellType::hex20: return m * m * m + 3 * n * m * m;
-  default: return -1;
+  case CellType::quad4:
+    return m * m;
+  case CellType::quad9:
+    return k * k;
+  case CellType::quad8:
+    return m * m + 2 * n * m; // corners + one node per edge
+  case CellType::hex8:
+    return m * m * m;
+  case CellType::hex27:
+    return k * k * k;
+  case CellType::hex20:
+    return m * m * m + 3 * n * m * m;
+  default:
+    return -1;
   }
 }
 
@@ -53,8 +62,9 @@ class ReadGeo : public ::testing::TestWithParam<GeoCase> {};
 TEST_P(ReadGeo, GeometryTopologyAndRegions) {
   const auto& p = GetParam();
   test::ScratchDir dir;
-  const auto file = dir.write("domain.geo", p.dim == 2 ? test::unit_square_geo(p.structured_n, p.quads)
-                                                       : test::unit_cube_geo(p.structured_n));
+  const auto file =
+      dir.write("domain.geo", p.dim == 2 ? test::unit_square_geo(p.structured_n, p.quads)
+                                         : test::unit_cube_geo(p.structured_n));
   auto options = p.options;
   options.dim = p.dim;
   const Mesh mesh = read_mesh(file, options);
@@ -92,7 +102,8 @@ TEST_P(ReadGeo, GeometryTopologyAndRegions) {
         const auto c = r.facet_cell[static_cast<std::size_t>(k)];
         const int f = r.facet_local[static_cast<std::size_t>(k)];
         area += facet_area(mesh, c, f);
-        const auto centre = reference_centre(fem::facet_type(mesh.cell_type[static_cast<std::size_t>(c)], f));
+        const auto centre =
+            reference_centre(fem::facet_type(mesh.cell_type[static_cast<std::size_t>(c)], f));
         const auto n = facet_normal(mesh, c, f, centre.data());
         for (int a = 0; a < 3; ++a)
           EXPECT_NEAR(n[a], a == axis ? (side == 0 ? -1.0 : 1.0) : 0.0, 1e-12);
@@ -110,7 +121,8 @@ TEST_P(ReadGeo, GeometryTopologyAndRegions) {
     const auto c = exterior.cell[static_cast<std::size_t>(k)];
     const int f = exterior.local[static_cast<std::size_t>(k)];
     boundary_area += facet_area(mesh, c, f);
-    const auto centre = reference_centre(fem::facet_type(mesh.cell_type[static_cast<std::size_t>(c)], f));
+    const auto centre =
+        reference_centre(fem::facet_type(mesh.cell_type[static_cast<std::size_t>(c)], f));
     const auto x_f = facet_point(mesh, c, f, centre.data());
     const auto n = facet_normal(mesh, c, f, centre.data());
     const auto x_c = cell_centroid(mesh, c);
@@ -126,7 +138,8 @@ TEST_P(ReadGeo, GeometryTopologyAndRegions) {
   for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
     for (int f = 0; f < fem::n_facets(mesh.cell_type[static_cast<std::size_t>(c)]); ++f) {
       const int n = facet_corners(mesh, c, f, corners);
-      const auto* e = index.find(std::span<const std::int32_t>(corners.data(), static_cast<std::size_t>(n)));
+      const auto* e =
+          index.find(std::span<const std::int32_t>(corners.data(), static_cast<std::size_t>(n)));
       ASSERT_NE(e, nullptr);
       EXPECT_TRUE(e->n_cells == 1 || e->n_cells == 2);
     }
@@ -145,8 +158,8 @@ TEST_P(ReadGeo, GeometryTopologyAndRegions) {
     // A face of the structured mesh is a structured grid one dimension lower.
     const auto face_type = fem::facet_type(p.expected, 0);
     const auto& face = mesh.region(boundary_name(p.dim, 0, 0), p.dim - 1);
-    const std::int64_t face_nodes =
-        p.dim == 3 ? structured_node_count(face_type, n) : (fem::order(face_type) == 2 ? 2 * n + 1 : n + 1);
+    const std::int64_t face_nodes = p.dim == 3 ? structured_node_count(face_type, n)
+                                               : (fem::order(face_type) == 2 ? 2 * n + 1 : n + 1);
     EXPECT_EQ(static_cast<std::int64_t>(face.nodes.size()), face_nodes);
   }
 }
@@ -157,8 +170,9 @@ TEST_P(ReadGeo, GeometryTopologyAndRegions) {
 TEST_P(ReadGeo, CurvedVolume) {
   const auto& p = GetParam();
   test::ScratchDir dir;
-  const auto file = dir.write("domain.geo", p.dim == 2 ? test::unit_square_geo(p.structured_n, p.quads)
-                                                       : test::unit_cube_geo(p.structured_n));
+  const auto file =
+      dir.write("domain.geo", p.dim == 2 ? test::unit_square_geo(p.structured_n, p.quads)
+                                         : test::unit_cube_geo(p.structured_n));
   Mesh mesh = read_mesh(file, p.options);
   const double a = 0.2, b = 0.3, c = 0.25, d = 0.1;
   test::transform(mesh, [&](std::array<double, 3> x) {
@@ -237,7 +251,8 @@ Physical Curve("outer") = {1, 3, 4, 5, 6, 7};
     const FacetIndex index(mesh);
     double length = 0;
     for (std::int32_t k = 0; k < interface.n_facets(); ++k) {
-      const FacetRef f{interface.facet_cell[static_cast<std::size_t>(k)], interface.facet_local[static_cast<std::size_t>(k)]};
+      const FacetRef f{interface.facet_cell[static_cast<std::size_t>(k)],
+                       interface.facet_local[static_cast<std::size_t>(k)]};
       const auto other = index.neighbour(mesh, f);
       ASSERT_TRUE(other.has_value());
       EXPECT_LT(f.cell, other->cell);
@@ -268,11 +283,13 @@ TEST(ReadGeo, AffineMapScalesVolumeAndAreas) {
   const std::array<double, 3> ay{0.5, 1, 0}, az{0, 0.3, 1.5};
   const std::array<double, 3> cross{ay[1] * az[2] - ay[2] * az[1], ay[2] * az[0] - ay[0] * az[2],
                                     ay[0] * az[1] - ay[1] * az[0]};
-  const double expected = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+  const double expected =
+      std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
   const auto& face = mesh.region("x0");
   double area = 0;
   for (std::int32_t k = 0; k < face.n_facets(); ++k)
-    area += facet_area(mesh, face.facet_cell[static_cast<std::size_t>(k)], face.facet_local[static_cast<std::size_t>(k)]);
+    area += facet_area(mesh, face.facet_cell[static_cast<std::size_t>(k)],
+                       face.facet_local[static_cast<std::size_t>(k)]);
   EXPECT_NEAR(area, expected, 1e-12);
 }
 

@@ -26,7 +26,8 @@ struct Surface {
   local_index n_nodes() const { return static_cast<local_index>(coordinates.size()) / dim; }
   Eigen::VectorXd coordinate(int a) const {
     Eigen::VectorXd x(n_nodes());
-    for (local_index i = 0; i < n_nodes(); ++i) x(i) = coordinates[static_cast<std::size_t>(i * dim + a)];
+    for (local_index i = 0; i < n_nodes(); ++i)
+      x(i) = coordinates[static_cast<std::size_t>(i * dim + a)];
     return x;
   }
   void add_facet(CellType type, std::initializer_list<local_index> facet_nodes) {
@@ -71,21 +72,27 @@ inline Surface grid(int nx, int ny, CellType type,
   const int NX = 2 * nx + 1, NY = 2 * ny + 1;
   for (int J = 0; J < NY; ++J) {
     for (int I = 0; I < NX; ++I) {
-      const Eigen::Vector3d x = surface(static_cast<double>(I) / (NX - 1), static_cast<double>(J) / (NY - 1));
+      const Eigen::Vector3d x =
+          surface(static_cast<double>(I) / (NX - 1), static_cast<double>(J) / (NY - 1));
       for (int a = 0; a < 3; ++a) s.coordinates.push_back(x(a));
     }
   }
   using Lattice = std::array<int, 2>;
   const auto id = [NX](Lattice p) { return static_cast<local_index>(p[1] * NX + p[0]); };
-  const auto mid = [](Lattice p, Lattice q) { return Lattice{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2}; };
+  const auto mid = [](Lattice p, Lattice q) {
+    return Lattice{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2};
+  };
   const auto add = [&](std::vector<Lattice> corners) {
     if (flip) std::reverse(corners.begin() + 1, corners.end());
     std::vector<local_index> facet;
     for (const Lattice& c : corners) facet.push_back(id(c));
     const int n = static_cast<int>(corners.size());
-    const bool quadratic = type == CellType::tri6 || type == CellType::quad8 || type == CellType::quad9;
+    const bool quadratic =
+        type == CellType::tri6 || type == CellType::quad8 || type == CellType::quad9;
     if (quadratic) {
-      for (int i = 0; i < n; ++i) facet.push_back(id(mid(corners[static_cast<std::size_t>(i)], corners[static_cast<std::size_t>((i + 1) % n)])));
+      for (int i = 0; i < n; ++i)
+        facet.push_back(id(mid(corners[static_cast<std::size_t>(i)],
+                               corners[static_cast<std::size_t>((i + 1) % n)])));
     }
     if (type == CellType::quad9) facet.push_back(id(mid(corners[0], corners[2])));
     s.types.push_back(type);
@@ -95,7 +102,8 @@ inline Surface grid(int nx, int ny, CellType type,
   const bool triangles = type == CellType::tri3 || type == CellType::tri6;
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
-      const Lattice a{2 * i, 2 * j}, b{2 * i + 2, 2 * j}, c{2 * i + 2, 2 * j + 2}, d{2 * i, 2 * j + 2};
+      const Lattice a{2 * i, 2 * j}, b{2 * i + 2, 2 * j}, c{2 * i + 2, 2 * j + 2},
+          d{2 * i, 2 * j + 2};
       if (triangles) {
         add({a, b, c});
         add({a, c, d});
@@ -111,7 +119,8 @@ inline Surface grid(int nx, int ny, CellType type,
 inline std::vector<CandidatePair> all_pairs(const Surface& slave, const Surface& master) {
   std::vector<CandidatePair> pairs;
   for (local_index i = 0; i < static_cast<local_index>(slave.types.size()); ++i) {
-    for (local_index k = 0; k < static_cast<local_index>(master.types.size()); ++k) pairs.push_back({i, k});
+    for (local_index k = 0; k < static_cast<local_index>(master.types.size()); ++k)
+      pairs.push_back({i, k});
   }
   return pairs;
 }

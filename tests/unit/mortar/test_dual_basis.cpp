@@ -17,7 +17,8 @@ namespace {
 // Facet whose nodes are the reference nodes mapped by an affine map (2D: xi -> x; 3D:
 // (xi, eta) -> x) plus an optional in-plane perturbation.
 template <int Dim>
-Facet<Dim> mapped_facet(CellType type, const std::function<Eigen::Matrix<double, Dim, 1>(const double*)>& map) {
+Facet<Dim> mapped_facet(CellType type,
+                        const std::function<Eigen::Matrix<double, Dim, 1>(const double*)>& map) {
   Facet<Dim> f;
   f.type = type;
   f.n_nodes = seam::fem::n_nodes(type);
@@ -26,7 +27,9 @@ Facet<Dim> mapped_facet(CellType type, const std::function<Eigen::Matrix<double,
   return f;
 }
 
-Eigen::Vector2d straight_line(const double* xi) { return {2.0 + 1.5 * xi[0], -1.0 + 0.5 * xi[0]}; }
+Eigen::Vector2d straight_line(const double* xi) {
+  return {2.0 + 1.5 * xi[0], -1.0 + 0.5 * xi[0]};
+}
 
 Eigen::Vector3d parallelogram(const double* xi) {
   return Eigen::Vector3d(1, 2, 3) + xi[0] * Eigen::Vector3d(1.2, 0.3, -0.1) +
@@ -45,8 +48,7 @@ NodalVector phi(const Facet<Dim>& f, const SmallMatrix& A, double a, const doubl
 }
 
 // int Phi_j N~_k J and int N~_k J with a rule of much higher degree than the one used to build A.
-template <int Dim>
-void expect_biorthogonal(const Facet<Dim>& f, double a, double tol) {
+template <int Dim> void expect_biorthogonal(const Facet<Dim>& f, double a, double tol) {
   const SmallMatrix A = dual_coefficients(f, a);
   const int n = f.n_nodes;
   const auto rule = seam::fem::quadrature(f.type, 16);

@@ -25,8 +25,8 @@ double integrate(const std::function<double(double)>& f, double a, double b, int
 
 double integrate2(const std::function<double(double, double)>& f, double x0, double x1, double y0,
                   double y1) {
-  return integrate([&](double x) { return integrate([&](double y) { return f(x, y); }, y0, y1, 4); },
-                   x0, x1, 4);
+  return integrate(
+      [&](double x) { return integrate([&](double y) { return f(x, y); }, y0, y1, 4); }, x0, x1, 4);
 }
 
 // Slave line2 on y = 0 from x = 1 (node 0) to x = 0 (node 1): body below, normal +y.
@@ -87,15 +87,18 @@ TEST(Pair2D, StandardAndDualMatricesOnPartialOverlap) {
     const PairContribution r = integrate_pair(slave_line(m), master_line(0.5, 1.5, h));
     for (int j = 0; j < 2; ++j) {
       for (int l = 0; l < 2; ++l) {
-        EXPECT_NEAR(r.M(j, l), integrate([&](double x) { return Phi[j](x) * Nm[l](x); }, 0.5, 1), 1e-15);
+        EXPECT_NEAR(r.M(j, l), integrate([&](double x) { return Phi[j](x) * Nm[l](x); }, 0.5, 1),
+                    1e-15);
       }
       for (int k = 0; k < 2; ++k) {
-        const double exact = m == Multiplier::dual
-                                 ? (j == k ? integrate([&](double x) { return Phi[j](x); }, 0.5, 1) : 0.0)
-                                 : integrate([&](double x) { return Phi[j](x) * N[k](x); }, 0.5, 1);
+        const double exact =
+            m == Multiplier::dual
+                ? (j == k ? integrate([&](double x) { return Phi[j](x); }, 0.5, 1) : 0.0)
+                : integrate([&](double x) { return Phi[j](x) * N[k](x); }, 0.5, 1);
         EXPECT_NEAR(r.D(j, k), exact, 1e-15);
       }
-      EXPECT_NEAR(r.weighted_gap(j), h * integrate([&](double x) { return Phi[j](x); }, 0.5, 1), 1e-15);
+      EXPECT_NEAR(r.weighted_gap(j), h * integrate([&](double x) { return Phi[j](x); }, 0.5, 1),
+                  1e-15);
     }
   }
 }
@@ -140,9 +143,9 @@ Facet<3> square(double x0, double y0, double size, double z, bool flip) {
   Facet<3> f;
   f.type = CellType::quad4;
   f.n_nodes = 4;
-  const std::array<Eigen::Vector3d, 4> c = {Eigen::Vector3d(x0, y0, z), Eigen::Vector3d(x0 + size, y0, z),
-                                            Eigen::Vector3d(x0 + size, y0 + size, z),
-                                            Eigen::Vector3d(x0, y0 + size, z)};
+  const std::array<Eigen::Vector3d, 4> c = {
+      Eigen::Vector3d(x0, y0, z), Eigen::Vector3d(x0 + size, y0, z),
+      Eigen::Vector3d(x0 + size, y0 + size, z), Eigen::Vector3d(x0, y0 + size, z)};
   for (int i = 0; i < 4; ++i) f.x.col(i) = c[static_cast<std::size_t>(flip ? (4 - i) % 4 : i)];
   return f;
 }
@@ -166,7 +169,7 @@ TEST(Pair3D, Quad4OverlapMatchesAnalyticIntegrals) {
   const double h = 0.3;
   const Facet<3> master = square(0.5, 0.25, 1, h, true);
   // Dual functions of the unit square: Phi_i = (1 + 3 xi_i xi)(1 + 3 eta_i eta)/4 in [-1,1]^2,
-  // i.e. per direction (3 s - 1) at the node's own end s = 1 ... written via N's factors.
+  // i.e. in x in [0, 1] a factor 3x - 1 for a node at x = 1 and 2 - 3x for one at x = 0.
   const auto dual = [&](int i, double x, double y) {
     const double fx = s.facet.x(0, i) == 0 ? 2 - 3 * x : 3 * x - 1;
     const double fy = s.facet.x(1, i) == 0 ? 2 - 3 * y : 3 * y - 1;
@@ -183,17 +186,24 @@ TEST(Pair3D, Quad4OverlapMatchesAnalyticIntegrals) {
     };
     for (int j = 0; j < 4; ++j) {
       for (int l = 0; l < 4; ++l) {
-        const double exact = integrate2([&](double x, double y) { return phi(j, x, y) * bilinear(master, l, x, y); }, 0.5, 1, 0.25, 1);
+        const double exact =
+            integrate2([&](double x, double y) { return phi(j, x, y) * bilinear(master, l, x, y); },
+                       0.5, 1, 0.25, 1);
         EXPECT_NEAR(r.M(j, l), exact, 1e-15) << j << " " << l;
       }
       for (int k = 0; k < 4; ++k) {
         const double exact =
             m == Multiplier::dual
-                ? (j == k ? integrate2([&](double x, double y) { return phi(j, x, y); }, 0.5, 1, 0.25, 1) : 0.0)
-                : integrate2([&](double x, double y) { return phi(j, x, y) * bilinear(s.facet, k, x, y); }, 0.5, 1, 0.25, 1);
+                ? (j == k ? integrate2([&](double x, double y) { return phi(j, x, y); }, 0.5, 1,
+                                       0.25, 1)
+                          : 0.0)
+                : integrate2(
+                      [&](double x, double y) { return phi(j, x, y) * bilinear(s.facet, k, x, y); },
+                      0.5, 1, 0.25, 1);
         EXPECT_NEAR(r.D(j, k), exact, 1e-15);
       }
-      const double gap = h * integrate2([&](double x, double y) { return phi(j, x, y); }, 0.5, 1, 0.25, 1);
+      const double gap =
+          h * integrate2([&](double x, double y) { return phi(j, x, y); }, 0.5, 1, 0.25, 1);
       EXPECT_NEAR(r.weighted_gap(j), gap, 1e-15);
     }
   }
@@ -223,8 +233,10 @@ TEST(Pair3D, TiltedMasterGap) {
   const PairContribution r = integrate_pair(s, master);
   EXPECT_NEAR(r.area, 1.0, 1e-15);
   for (int j = 0; j < 4; ++j) {
-    EXPECT_NEAR(r.weighted_gap(j),
-                integrate2([&](double x, double y) { return bilinear(s.facet, j, x, y) * (h + t * x); }, 0, 1, 0, 1),
-                1e-15);
+    EXPECT_NEAR(
+        r.weighted_gap(j),
+        integrate2([&](double x, double y) { return bilinear(s.facet, j, x, y) * (h + t * x); }, 0,
+                   1, 0, 1),
+        1e-15);
   }
 }

@@ -2,8 +2,10 @@
 // Facet surfaces for the search tests: structured, random, degenerate and self-contacting.
 #include "seam/search/facets.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -31,9 +33,9 @@ inline Mesh wavy_surface(int nx, int ny, double z0, double a, double shift, bool
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
       const double x = double(i) / nx + shift, y = double(j) / ny + shift;
-      m.coords.insert(m.coords.end(), {x, y,
-                                       z0 + a * std::sin(2 * std::numbers::pi * x) *
-                                                std::sin(2 * std::numbers::pi * y)});
+      m.coords.insert(
+          m.coords.end(),
+          {x, y, z0 + a * std::sin(2 * std::numbers::pi * x) * std::sin(2 * std::numbers::pi * y)});
     }
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
@@ -94,7 +96,8 @@ inline Mesh folded_strip(double leg, double r, double w, int n_leg, int n_bend, 
   for (int i = 0; i <= n_leg; ++i) line.push_back({leg - leg * i / n_leg, r});
   const int n_along = static_cast<int>(line.size());
   for (int i = 0; i < n_along; ++i)
-    for (int j = 0; j <= n_w; ++j) m.coords.insert(m.coords.end(), {line[i][0], w * j / n_w, line[i][1]});
+    for (int j = 0; j <= n_w; ++j)
+      m.coords.insert(m.coords.end(), {line[i][0], w * j / n_w, line[i][1]});
   for (int i = 0; i + 1 < n_along; ++i)
     for (int j = 0; j < n_w; ++j) {
       const local_index a = i * (n_w + 1) + j, b = (i + 1) * (n_w + 1) + j;

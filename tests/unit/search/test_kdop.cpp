@@ -21,8 +21,7 @@ Kdop<NS> volume_of(const std::vector<std::array<double, 3>>& points, double infl
   return b.finish(inflation);
 }
 
-template <int Dim, int NS>
-bool contains(const Kdop<NS>& k, const double* x) {
+template <int Dim, int NS> bool contains(const Kdop<NS>& k, const double* x) {
   double p[NS];
   project<Dim, NS>(x, p);
   for (int s = 0; s < NS; ++s)

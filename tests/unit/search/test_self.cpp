@@ -14,10 +14,11 @@ using seam::search::test::Mesh;
 
 namespace {
 
-TreeOptions self_options(double inflation) {
+TreeOptions self_options(double inflation, int leaf_size = 4) {
   TreeOptions o;
   o.inflation = inflation;
   o.normal_cones = true;
+  o.leaf_size = leaf_size;
   return o;
 }
 
@@ -49,32 +50,34 @@ Part part_of(seam::local_index f) {
 } // namespace
 
 TEST(SelfContact, FoldedStripFindsTheFacingLegs) {
-  const Mesh m = test::folded_strip(leg, radius, width, n_leg, n_bend, n_w);
-  const Tree t(m.view(), self_options(inflation));
-  const auto pairs = sorted_self_pairs(t);
-  const std::set<CandidatePair> found(pairs.begin(), pairs.end());
-  // Lower segment i lies exactly below upper segment 2 n_leg + n_bend - 1 - i, same column:
-  // the gap 2 r is below twice the inflation, so every such pair must be found.
-  for (int i = 0; i < n_leg; ++i)
-    for (int j = 0; j < n_w; ++j) {
-      const seam::local_index lower = i * n_w + j, upper = (2 * n_leg + n_bend - 1 - i) * n_w + j;
-      EXPECT_TRUE(found.count({lower, upper})) << "segment " << i << " column " << j;
+  for (int leaf : {1, 4}) {
+    const Mesh m = test::folded_strip(leg, radius, width, n_leg, n_bend, n_w);
+    const Tree t(m.view(), self_options(inflation, leaf));
+    const auto pairs = sorted_self_pairs(t);
+    const std::set<CandidatePair> found(pairs.begin(), pairs.end());
+    // Lower segment i lies exactly below upper segment 2 n_leg + n_bend - 1 - i, same column:
+    // the gap 2 r is below twice the inflation, so every such pair must be found.
+    for (int i = 0; i < n_leg; ++i)
+      for (int j = 0; j < n_w; ++j) {
+        const seam::local_index lower = i * n_w + j, upper = (2 * n_leg + n_bend - 1 - i) * n_w + j;
+        EXPECT_TRUE(found.count({lower, upper})) << "segment " << i << " column " << j;
+      }
+    for (const auto& p : pairs) {
+      EXPECT_LT(p.slave, p.master);
+      EXPECT_FALSE(share_node(m, p.slave, p.master)) << p.slave << " " << p.master;
+      // Facets of one flat leg have parallel normals: never candidates.
+      EXPECT_FALSE(part_of(p.slave) == Part::lower && part_of(p.master) == Part::lower);
+      EXPECT_FALSE(part_of(p.slave) == Part::upper && part_of(p.master) == Part::upper);
     }
-  for (const auto& p : pairs) {
-    EXPECT_LT(p.slave, p.master);
-    EXPECT_FALSE(share_node(m, p.slave, p.master)) << p.slave << " " << p.master;
-    // Facets of one flat leg have parallel normals: never candidates.
-    EXPECT_FALSE(part_of(p.slave) == Part::lower && part_of(p.master) == Part::lower);
-    EXPECT_FALSE(part_of(p.slave) == Part::upper && part_of(p.master) == Part::upper);
+    EXPECT_TRUE(pairs == find_self_pairs_brute_force(t));
+    // Without the normal test the legs pair with themselves too, but still never adjacent facets.
+    const SelfContactOptions no_cones{0.0};
+    const auto all = sorted_self_pairs(t, no_cones);
+    EXPECT_GT(all.size(), pairs.size());
+    EXPECT_TRUE(std::includes(all.begin(), all.end(), pairs.begin(), pairs.end()));
+    for (const auto& p : all) EXPECT_FALSE(share_node(m, p.slave, p.master));
+    EXPECT_TRUE(all == find_self_pairs_brute_force(t, no_cones));
   }
-  EXPECT_TRUE(pairs == find_self_pairs_brute_force(t));
-  // Without the normal test the legs pair with themselves too, but still never adjacent facets.
-  const SelfContactOptions no_cones{0.0};
-  const auto all = sorted_self_pairs(t, no_cones);
-  EXPECT_GT(all.size(), pairs.size());
-  EXPECT_TRUE(std::includes(all.begin(), all.end(), pairs.begin(), pairs.end()));
-  for (const auto& p : all) EXPECT_FALSE(share_node(m, p.slave, p.master));
-  EXPECT_TRUE(all == find_self_pairs_brute_force(t, no_cones));
 }
 
 TEST(SelfContact, FoldedStripOpeningLosesTheContact) {
@@ -107,20 +110,22 @@ TEST(SelfContact, RolesAlternateAcrossTheFold) {
 TEST(SelfContact, BuckledRingFindsTheDentTouchingTheBottom) {
   const int n = 600;
   const Mesh m = test::buckled_ring(1.0, 0.02, 0.35, n);
-  const Tree t(m.view(), self_options(0.015)); // gap 0.02 < 2 * 0.015
-  const auto pairs = sorted_self_pairs(t);
-  const std::set<CandidatePair> found(pairs.begin(), pairs.end());
-  // Node n/4 is the bottom (0, -1), node 3n/4 the dent's lowest point (0, -0.98).
-  for (int a : {n / 4 - 1, n / 4})
-    for (int b : {3 * n / 4 - 1, 3 * n / 4}) EXPECT_TRUE(found.count({a, b})) << a << " " << b;
-  for (const auto& p : pairs) {
-    EXPECT_FALSE(share_node(m, p.slave, p.master));
-    // Facets 0 .. n/2 - 1 form the lower half (circle), n/2 .. n - 1 the dented upper half:
-    // the only contact is between the two.
-    EXPECT_LT(p.slave, n / 2);
-    EXPECT_GE(p.master, n / 2);
+  for (int leaf : {1, 4}) {
+    const Tree t(m.view(), self_options(0.015, leaf)); // gap 0.02 < 2 * 0.015
+    const auto pairs = sorted_self_pairs(t);
+    const std::set<CandidatePair> found(pairs.begin(), pairs.end());
+    // Node n/4 is the bottom (0, -1), node 3n/4 the dent's lowest point (0, -0.98).
+    for (int a : {n / 4 - 1, n / 4})
+      for (int b : {3 * n / 4 - 1, 3 * n / 4}) EXPECT_TRUE(found.count({a, b})) << a << " " << b;
+    for (const auto& p : pairs) {
+      EXPECT_FALSE(share_node(m, p.slave, p.master));
+      // Facets 0 .. n/2 - 1 form the lower half (circle), n/2 .. n - 1 the dented upper half:
+      // the only contact is between the two.
+      EXPECT_LT(p.slave, n / 2);
+      EXPECT_GE(p.master, n / 2);
+    }
+    EXPECT_TRUE(pairs == find_self_pairs_brute_force(t));
   }
-  EXPECT_TRUE(pairs == find_self_pairs_brute_force(t));
 }
 
 TEST(SelfContact, SmoothSphereHasNoSelfContact) {

@@ -34,10 +34,11 @@ void expect_tree_equals_brute_force(const Tree& a, const Tree& b, bool expect_so
   }
 }
 
-TreeOptions options(BoundingVolume v, double inflation) {
+TreeOptions options(BoundingVolume v, double inflation, int leaf_size = 4) {
   TreeOptions o;
   o.volume = v;
   o.inflation = inflation;
+  o.leaf_size = leaf_size;
   return o;
 }
 
@@ -47,22 +48,26 @@ const BoundingVolume volumes[] = {BoundingVolume::kdop, BoundingVolume::aabb};
 
 TEST(Tree, RandomFacetsMatchBruteForce) {
   for (int dim : {2, 3})
-    for (auto v : volumes) {
-      const Mesh a = test::random_facets(dim, 700, 0.03, 1), b = test::random_facets(dim, 500, 0.03, 2);
-      const Tree ta(a.view(), options(v, 0.01)), tb(b.view(), options(v, 0.01));
-      expect_tree_equals_brute_force(ta, tb);
-    }
+    for (auto v : volumes)
+      for (int leaf : {1, 4, 7}) {
+        const Mesh a = test::random_facets(dim, 700, 0.03, 1),
+                   b = test::random_facets(dim, 500, 0.03, 2);
+        const Tree ta(a.view(), options(v, 0.01, leaf)), tb(b.view(), options(v, 0.01, leaf));
+        expect_tree_equals_brute_force(ta, tb);
+      }
 }
 
 TEST(Tree, StructuredWavySurfacesMatchBruteForce) {
   for (auto v : volumes) {
-    for (bool quads : {false, true}) {
-      const Mesh a = test::wavy_surface(24, 20, 0.0, 0.1, 0.0, quads);
-      const Mesh b = test::wavy_surface(17, 19, 0.01, 0.1, 0.013, quads);
-      const Tree ta(a.view(), options(v, 0.015)), tb(b.view(), options(v, 0.015));
-      expect_tree_equals_brute_force(ta, tb);
-    }
-    const Mesh a = test::wavy_polyline(300, 0.0, 0.1, 0.0), b = test::wavy_polyline(211, 0.004, 0.1, 0.002);
+    for (bool quads : {false, true})
+      for (int leaf : {1, 4}) {
+        const Mesh a = test::wavy_surface(24, 20, 0.0, 0.1, 0.0, quads);
+        const Mesh b = test::wavy_surface(17, 19, 0.01, 0.1, 0.013, quads);
+        const Tree ta(a.view(), options(v, 0.015, leaf)), tb(b.view(), options(v, 0.015, 5 - leaf));
+        expect_tree_equals_brute_force(ta, tb);
+      }
+    const Mesh a = test::wavy_polyline(300, 0.0, 0.1, 0.0),
+               b = test::wavy_polyline(211, 0.004, 0.1, 0.002);
     const Tree ta(a.view(), options(v, 0.002)), tb(b.view(), options(v, 0.002));
     expect_tree_equals_brute_force(ta, tb);
   }
@@ -71,7 +76,8 @@ TEST(Tree, StructuredWavySurfacesMatchBruteForce) {
 TEST(Tree, CoplanarAndCollapsedFacets) {
   for (auto v : volumes) {
     // All facets in the plane z = 0 (zero extent in z for every volume).
-    const Mesh a = test::wavy_surface(15, 15, 0.0, 0.0, 0.0), b = test::wavy_surface(11, 13, 0.0, 0.0, 0.01);
+    const Mesh a = test::wavy_surface(15, 15, 0.0, 0.0, 0.0),
+               b = test::wavy_surface(11, 13, 0.0, 0.0, 0.01);
     const Tree ta(a.view(), options(v, 0.0)), tb(b.view(), options(v, 0.0));
     expect_tree_equals_brute_force(ta, tb);
     // Every node in one point: all pairs overlap (closed test), depth stays bounded.
@@ -91,16 +97,25 @@ TEST(Tree, CoplanarAndCollapsedFacets) {
 TEST(Tree, EmptyAndSingleFacet) {
   const Mesh one = test::random_facets(3, 1, 0.1, 5);
   Mesh none;
-  const Tree t1(one.view(), options(BoundingVolume::kdop, 0.1)), t0(none.view(), options(BoundingVolume::kdop, 0.1));
+  const Tree t1(one.view(), options(BoundingVolume::kdop, 0.1)),
+      t0(none.view(), options(BoundingVolume::kdop, 0.1));
   EXPECT_EQ(find_pairs(t1, t1).size(), 1u);
   EXPECT_TRUE(find_pairs(t0, t1).empty());
   EXPECT_TRUE(find_pairs(t1, t0).empty());
+  // A rank without facets may pass no offsets at all.
+  const FacetSurface nothing{3, {}, {}, {}};
+  const Tree te(nothing, options(BoundingVolume::kdop, 0.1));
+  EXPECT_EQ(te.n_facets(), 0);
+  EXPECT_TRUE(find_pairs(te, t1).empty());
+  EXPECT_TRUE(find_pairs(t1, te).empty());
 }
 
 TEST(Tree, MovingSurfacesAfterRefitsAndRebuilds) {
   for (int dim : {2, 3}) {
-    Mesh a = dim == 3 ? test::wavy_surface(20, 20, 0.0, 0.05, 0.0) : test::wavy_polyline(400, 0.0, 0.05, 0.0);
-    Mesh b = dim == 3 ? test::wavy_surface(16, 18, 0.02, 0.05, 0.01) : test::wavy_polyline(300, 0.003, 0.05, 0.001);
+    Mesh a = dim == 3 ? test::wavy_surface(20, 20, 0.0, 0.05, 0.0)
+                      : test::wavy_polyline(400, 0.0, 0.05, 0.0);
+    Mesh b = dim == 3 ? test::wavy_surface(16, 18, 0.02, 0.05, 0.01)
+                      : test::wavy_polyline(300, 0.003, 0.05, 0.001);
     Tree ta(a.view(), options(BoundingVolume::kdop, 0.01));
     Tree tb(b.view(), options(BoundingVolume::kdop, 0.01));
     std::mt19937 gen(11);
@@ -117,7 +132,8 @@ TEST(Tree, MovingSurfacesAfterRefitsAndRebuilds) {
       // Pairs found with the old positions included are a superset of those without.
       Tree fresh(b.view(), options(BoundingVolume::kdop, 0.01));
       const auto with_motion = sorted_tree_pairs(ta, tb), without = sorted_tree_pairs(ta, fresh);
-      EXPECT_TRUE(std::includes(with_motion.begin(), with_motion.end(), without.begin(), without.end()));
+      EXPECT_TRUE(
+          std::includes(with_motion.begin(), with_motion.end(), without.begin(), without.end()));
     }
   }
 }
@@ -141,7 +157,8 @@ TEST(Tree, DegradedTreeIsRebuilt) {
   for (int f = 0; f < 800; ++f)
     for (int v = 0; v < 3; ++v)
       for (int d = 0; d < 3; ++d)
-        swapped[9 * f + 3 * v + d] = a.coords[9 * f + 3 * v + d] - a.coords[9 * f + d] + a.coords[9 * perm[f] + d];
+        swapped[9 * f + 3 * v + d] =
+            a.coords[9 * f + 3 * v + d] - a.coords[9 * f + d] + a.coords[9 * perm[f] + d];
   EXPECT_TRUE(ta.update(swapped));
   EXPECT_EQ(ta.n_rebuilds(), 1);
   expect_tree_equals_brute_force(ta, tb);
@@ -149,11 +166,15 @@ TEST(Tree, DegradedTreeIsRebuilt) {
 
 TEST(Tree, KdopPairsAreASubsetOfAabbPairs) {
   for (int dim : {2, 3}) {
-    const Mesh a = dim == 3 ? test::wavy_surface(30, 30, 0.0, 0.1, 0.0) : test::wavy_polyline(600, 0.0, 0.1, 0.0);
-    const Mesh b = dim == 3 ? test::wavy_surface(25, 27, 0.01, 0.1, 0.005) : test::wavy_polyline(500, 0.002, 0.1, 0.0007);
+    const Mesh a = dim == 3 ? test::wavy_surface(30, 30, 0.0, 0.1, 0.0)
+                            : test::wavy_polyline(600, 0.0, 0.1, 0.0);
+    const Mesh b = dim == 3 ? test::wavy_surface(25, 27, 0.01, 0.1, 0.005)
+                            : test::wavy_polyline(500, 0.002, 0.1, 0.0007);
     const double infl = dim == 3 ? 0.01 : 0.001;
-    const Tree ka(a.view(), options(BoundingVolume::kdop, infl)), kb(b.view(), options(BoundingVolume::kdop, infl));
-    const Tree xa(a.view(), options(BoundingVolume::aabb, infl)), xb(b.view(), options(BoundingVolume::aabb, infl));
+    const Tree ka(a.view(), options(BoundingVolume::kdop, infl)),
+        kb(b.view(), options(BoundingVolume::kdop, infl));
+    const Tree xa(a.view(), options(BoundingVolume::aabb, infl)),
+        xb(b.view(), options(BoundingVolume::aabb, infl));
     const auto k = sorted_tree_pairs(ka, kb), x = sorted_tree_pairs(xa, xb);
     EXPECT_LE(k.size(), x.size());
     EXPECT_TRUE(std::includes(x.begin(), x.end(), k.begin(), k.end()));
