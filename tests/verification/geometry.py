@@ -84,3 +84,80 @@ def box(kind, h, order=1, serendipity=False, lx=2.0, ly=1.0, lz=1.0):
         "Mesh.SecondOrderIncomplete = %d;" % (1 if serendipity else 0),
     ]
     return "\n".join(lines) + "\n"
+
+
+def tied_rectangles(h_lower, h_upper, order=1, kind="tri"):
+    """Two unit squares stacked in y, meshed independently (non-matching at y = 1).
+    Regions: lower, upper (surfaces); bottom (y = 0), top (y = 2), left (x = 0, both),
+    right (x = 1, both), lower_top, upper_bottom (the two sides of the interface)."""
+    lines = ["Geometry.AutoCoherence = 0;",
+             "Point(1) = {0, 0, 0, %g}; Point(2) = {1, 0, 0, %g};" % (h_lower, h_lower),
+             "Point(3) = {1, 1, 0, %g}; Point(4) = {0, 1, 0, %g};" % (h_lower, h_lower),
+             "Point(5) = {0, 1, 0, %g}; Point(6) = {1, 1, 0, %g};" % (h_upper, h_upper),
+             "Point(7) = {1, 2, 0, %g}; Point(8) = {0, 2, 0, %g};" % (h_upper, h_upper),
+             "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};",
+             "Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};",
+             "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};",
+             "Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};"]
+    if kind == "quad":
+        lines += ["Recombine Surface{1, 2};"]
+    lines += ['Physical Surface("lower") = {1};', 'Physical Surface("upper") = {2};',
+              'Physical Curve("bottom") = {1};', 'Physical Curve("top") = {7};',
+              'Physical Curve("left") = {4, 8};', 'Physical Curve("right") = {2, 6};',
+              'Physical Curve("lower_top") = {3};', 'Physical Curve("upper_bottom") = {5};',
+              "Mesh.ElementOrder = %d;" % order]
+    return "\n".join(lines) + "\n"
+
+
+def tied_boxes(h_lower, h_upper, order=1, kind="tet"):
+    """Two unit cubes stacked in z, meshed independently (non-matching at z = 1).
+    Regions: lower, upper; bottom (z = 0), top (z = 2), left (x = 0), right (x = 1),
+    front (y = 0), back (y = 1) over both cubes; lower_top, upper_bottom."""
+    lines = ['SetFactory("OpenCASCADE");',
+             "Box(1) = {0, 0, 0, 1, 1, 1};",
+             "Box(2) = {0, 0, 1, 1, 1, 1};"]
+    if kind == "hex":
+        for vol, h in ((1, h_lower), (2, h_upper)):
+            n = max(1, round(1.0 / h))
+            lines += ["Transfinite Curve{CombinedBoundary{Boundary{Volume{%d};}}} = %d;" % (vol, n + 1)]
+        lines += ["Transfinite Surface{:};", "Recombine Surface{:};", "Transfinite Volume{1, 2};"]
+    else:
+        lines += ["MeshSize{PointsOf{Volume{1};}} = %g;" % h_lower,
+                  "MeshSize{PointsOf{Volume{2};}} = %g;" % h_upper]
+    lines += ['Physical Volume("lower") = {1};', 'Physical Volume("upper") = {2};',
+              'Physical Surface("bottom") = {5};', 'Physical Surface("top") = {12};',
+              'Physical Surface("left") = {1, 7};', 'Physical Surface("right") = {2, 8};',
+              'Physical Surface("front") = {3, 9};', 'Physical Surface("back") = {4, 10};',
+              'Physical Surface("lower_top") = {6};', 'Physical Surface("upper_bottom") = {11};',
+              "Mesh.ElementOrder = %d;" % order]
+    return "\n".join(lines) + "\n"
+
+
+def plate_with_inclusion(h_plate, h_disk, order=1, radius=0.5):
+    """The square [-1, 1]^2 with a circular hole of the given radius and a disk filling it,
+    meshed independently (non-matching curved interface). Regions: plate, disk; left, right,
+    bottom, top (the square's sides); hole (the plate's circle), rim (the disk's circle)."""
+    r = radius
+    lines = ["Geometry.AutoCoherence = 0;",
+             "Point(1) = {-1, -1, 0, %g}; Point(2) = {1, -1, 0, %g};" % (h_plate, h_plate),
+             "Point(3) = {1, 1, 0, %g}; Point(4) = {-1, 1, 0, %g};" % (h_plate, h_plate),
+             "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};",
+             "Point(5) = {0, 0, 0, %g};" % h_plate]
+    for k, (x, y) in enumerate(((r, 0), (0, r), (-r, 0), (0, -r))):
+        lines.append("Point(%d) = {%g, %g, 0, %g};" % (6 + k, x, y, h_plate))
+    lines += ["Circle(5) = {6, 5, 7}; Circle(6) = {7, 5, 8};",
+              "Circle(7) = {8, 5, 9}; Circle(8) = {9, 5, 6};",
+              "Curve Loop(1) = {1, 2, 3, 4}; Curve Loop(2) = {5, 6, 7, 8};",
+              "Plane Surface(1) = {1, 2};",
+              "Point(10) = {0, 0, 0, %g};" % h_disk]
+    for k, (x, y) in enumerate(((r, 0), (0, r), (-r, 0), (0, -r))):
+        lines.append("Point(%d) = {%g, %g, 0, %g};" % (11 + k, x, y, h_disk))
+    lines += ["Circle(9) = {11, 10, 12}; Circle(10) = {12, 10, 13};",
+              "Circle(11) = {13, 10, 14}; Circle(12) = {14, 10, 11};",
+              "Curve Loop(3) = {9, 10, 11, 12}; Plane Surface(2) = {3};",
+              'Physical Surface("plate") = {1};', 'Physical Surface("disk") = {2};',
+              'Physical Curve("bottom") = {1};', 'Physical Curve("right") = {2};',
+              'Physical Curve("top") = {3};', 'Physical Curve("left") = {4};',
+              'Physical Curve("hole") = {5, 6, 7, 8};', 'Physical Curve("rim") = {9, 10, 11, 12};',
+              "Mesh.ElementOrder = %d;" % order]
+    return "\n".join(lines) + "\n"

@@ -147,6 +147,23 @@ PetscInt Vector::owned_begin() const {
   return lo;
 }
 
+std::vector<double> Vector::gather_all() const {
+  VecScatter scatter = nullptr;
+  Vec all = nullptr;
+  check(VecScatterCreateToAll(v_, &scatter, &all), "VecScatterCreateToAll");
+  check(VecScatterBegin(scatter, v_, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(scatter, v_, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  PetscInt n = 0;
+  check(VecGetSize(all, &n), "VecGetSize");
+  const double* a = nullptr;
+  check(VecGetArrayRead(all, &a), "VecGetArrayRead");
+  std::vector<double> out(a, a + n);
+  VecRestoreArrayRead(all, &a);
+  VecScatterDestroy(&scatter);
+  VecDestroy(&all);
+  return out;
+}
+
 Vector::LocalView::LocalView(const Vector& v, bool write) : owner_(v.v_), write_(write) {
   check(VecGhostGetLocalForm(owner_, &local_), "VecGhostGetLocalForm");
   check(VecGetLocalSize(local_, &n_), "VecGetLocalSize");
@@ -189,6 +206,25 @@ Matrix& Matrix::operator=(Matrix&& o) noexcept {
     o.m_ = nullptr;
   }
   return *this;
+}
+
+Matrix Matrix::ptap(const Matrix& A, const Matrix& P) {
+  Mat C = nullptr;
+  check(MatPtAP(A.m_, P.m_, MAT_INITIAL_MATRIX, 2.0, &C), "MatPtAP");
+  return adopt(C);
+}
+
+void Matrix::mult(const Vector& x, Vector& y) const {
+  check(MatMult(m_, x.get(), y.get()), "MatMult");
+}
+
+void Matrix::mult_transpose(const Vector& x, Vector& y) const {
+  check(MatMultTranspose(m_, x.get(), y.get()), "MatMultTranspose");
+}
+
+void Matrix::add_diagonal(const Vector& values) {
+  check(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+  check(MatDiagonalSet(m_, values.get(), ADD_VALUES), "MatDiagonalSet");
 }
 
 void Matrix::zero() {

@@ -54,6 +54,8 @@ public:
   PetscInt owned_size() const;
   PetscInt global_size() const;
   PetscInt owned_begin() const;
+  /// The whole vector on every rank, in global numbering (collective; for output only).
+  std::vector<double> gather_all() const;
 
   /// Read access to the local form: owned entries first, then ghosts.
   class LocalView {
@@ -91,6 +93,19 @@ public:
   Matrix& operator=(const Matrix&) = delete;
 
   Mat get() const { return m_; }
+  /// Takes ownership of a PETSc matrix.
+  static Matrix adopt(Mat m) {
+    Matrix out;
+    out.m_ = m;
+    return out;
+  }
+  /// P^T A P as a new matrix.
+  static Matrix ptap(const Matrix& A, const Matrix& P);
+  /// y = this x, and y = this^T x.
+  void mult(const Vector& x, Vector& y) const;
+  void mult_transpose(const Vector& x, Vector& y) const;
+  /// Adds `values` to the diagonal (entries may be new).
+  void add_diagonal(const Vector& values);
   void zero();
   /// Dense block K (rows.size() x cols.size(), row-major) added at global (rows, cols).
   void add_values(std::span<const PetscInt> rows, std::span<const PetscInt> cols,

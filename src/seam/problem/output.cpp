@@ -7,6 +7,7 @@
 #include "seam/problem/error_norms.hpp"
 #include "seam/solid/element.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -21,9 +22,10 @@ std::vector<std::string> columns(std::initializer_list<const char*> names) {
 } // namespace
 
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
+               const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
                std::filesystem::path dir, bool quiet)
-    : config_(config), disc_(disc), model_(model), dir_(std::move(dir)), quiet_(quiet),
-      start_wall_(wall_seconds()) {
+    : config_(config), disc_(disc), model_(model), tied_(tied), tying_(tying), dir_(std::move(dir)),
+      quiet_(quiet), start_wall_(wall_seconds()) {
   const auto& comm = disc.comm();
   const auto& mesh = disc.mesh();
 
@@ -94,11 +96,98 @@ void Output::newton(const NewtonRecord& r) {
 }
 
 void Output::initial(const la::Vector& u) {
-  write_fields(0, 0.0, u, nullptr);
+  std::vector<InterfaceState> states(tied_.size());
+  for (std::size_t k = 0; k < tied_.size(); ++k) {
+    const auto n = tied_[k].slave.mesh_nodes.size() * disc_.dim();
+    states[k] = {std::vector<double>(n, 0.0), std::vector<double>(n / disc_.dim(), 0.0),
+                 std::vector<double>(n, 0.0)};
+  }
+  write_fields(0, 0.0, u, nullptr, states);
+}
+
+std::vector<Output::InterfaceState>
+Output::interface_states(const la::Vector& u, std::span<const double> residual) const {
+  std::vector<InterfaceState> states;
+  if (tied_.empty()) return states;
+  const int dim = disc_.dim();
+  const auto u_all = u.gather_all(); // global numbering
+  for (std::size_t k = 0; k < tied_.size(); ++k) {
+    const auto& t = tied_[k];
+    InterfaceState s;
+    s.lambda = tying_.multipliers(k, residual);
+    disc_.comm().sum_in_place(s.lambda);
+    const auto n_slave = t.slave.mesh_nodes.size();
+    s.displacement.assign(n_slave * dim, 0.0);
+    for (std::size_t j = 0; j < n_slave; ++j)
+      for (int c = 0; c < dim; ++c)
+        s.displacement[j * dim + c] = u_all[disc_.global_dof(t.slave.mesh_nodes[j], c)];
+    // Weighted constraint residual D u_S - M u_M, its part along the slave normal.
+    std::vector<double> g(n_slave * dim, 0.0);
+    for (const auto& e : t.operators.D)
+      for (int c = 0; c < dim; ++c) g[e.row * dim + c] += e.value * s.displacement[e.col * dim + c];
+    for (const auto& e : t.operators.M)
+      for (int c = 0; c < dim; ++c)
+        g[e.row * dim + c] -= e.value * u_all[disc_.global_dof(t.master.mesh_nodes[e.col], c)];
+    s.gap.assign(n_slave, 0.0);
+    for (std::size_t j = 0; j < n_slave; ++j)
+      for (int c = 0; c < dim; ++c)
+        s.gap[j] += g[j * dim + c] * t.operators.nodal_normals[j * dim + c];
+    states.push_back(std::move(s));
+  }
+  return states;
+}
+
+void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
+                              bool write_nodes) {
+  const int dim = disc_.dim();
+  for (std::size_t k = 0; k < tied_.size(); ++k) {
+    const auto& t = tied_[k];
+    const auto& s = states[k];
+    const auto& normals = t.operators.nodal_normals;
+    // Interface force on the slave side from the multipliers: F_j = D_jj lambda_j.
+    double fn = 0.0;
+    std::array<double, 3> ft{};
+    int tied = 0;
+    for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
+      const double d = tying_.d_diagonal(k, j);
+      if (d == 0.0) continue;
+      ++tied;
+      double ln = 0.0;
+      for (int c = 0; c < dim; ++c) ln += s.lambda[j * dim + c] * normals[j * dim + c];
+      fn += d * ln;
+      for (int c = 0; c < dim; ++c)
+        ft[c] += d * (s.lambda[j * dim + c] - ln * normals[j * dim + c]);
+    }
+    const double ft_norm = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+    interfaces_->add_row(
+        {r.step, r.time, t.name, fn, ft_norm, tied, 0, t.operators.integrated_area});
+    if (!write_nodes) continue;
+    io::CsvTable table(dir_ / ("interface_" + t.name + ".csv"),
+                       columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
+                                "tangential_traction", "status"}));
+    const auto& mesh = disc_.mesh();
+    for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
+      const auto node = t.slave.mesh_nodes[j];
+      double X[3] = {0, 0, 0}, U[3] = {0, 0, 0}, ln = 0.0, lt2 = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        X[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
+        U[c] = s.displacement[j * dim + c];
+        ln += s.lambda[j * dim + c] * normals[j * dim + c];
+      }
+      for (int c = 0; c < dim; ++c) {
+        const double lt = s.lambda[j * dim + c] - ln * normals[j * dim + c];
+        lt2 += lt * lt;
+      }
+      const bool is_tied = tying_.d_diagonal(k, j) != 0.0;
+      table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], s.gap[j], ln, std::sqrt(lt2),
+                     is_tied ? "tied" : "inactive"});
+    }
+  }
 }
 
 void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
-                  std::span<const double> reactions, bool force_fields) {
+                  std::span<const double> reactions, std::span<const double> residual,
+                  bool force_fields) {
   ScopedTimer timer(timers_, "output");
   const auto& comm = disc_.comm();
   const int dim = disc_.dim();
@@ -150,10 +239,14 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
                   r.time, r.newton_iterations, r.residual, wall);
     std::fflush(stdout);
   }
-  if (force_fields || r.step % config_.output.every == 0) write_fields(r.step, r.time, u, v);
+  const bool fields = force_fields || r.step % config_.output.every == 0;
+  const auto states = interface_states(u, residual);
+  if (comm.is_root()) write_interfaces(r, states, fields);
+  if (fields) write_fields(r.step, r.time, u, v, states);
 }
 
-void Output::write_fields(int step, double time, const la::Vector& u, const la::Vector* v) {
+void Output::write_fields(int step, double time, const la::Vector& u, const la::Vector* v,
+                          const std::vector<InterfaceState>& states) {
   const auto& comm = disc_.comm();
   const auto& mesh = disc_.mesh();
   const int dim = disc_.dim();
@@ -215,6 +308,26 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   piece.types = types_;
   piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
+  // Interface fields on the slave nodes: multiplier, weighted gap, status (-1 off the
+  // interface, 0 inactive, 1 tied / stick, 2 slip).
+  std::vector<double> lambda(n_points * 3, 0.0), gap(n_points, 0.0);
+  std::vector<std::int32_t> status(n_points, -1);
+  for (std::size_t k = 0; k < tied_.size(); ++k) {
+    const auto& t = tied_[k];
+    for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
+      const auto node = t.slave.mesh_nodes[j];
+      if (!disc_.has_node(node)) continue;
+      const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
+      for (int c = 0; c < dim; ++c) lambda[i * 3 + c] = states[k].lambda[j * dim + c];
+      gap[i] = states[k].gap[j];
+      status[i] = tying_.d_diagonal(k, j) != 0.0 ? 1 : 0;
+    }
+  }
+  if (!tied_.empty()) {
+    piece.point_data.emplace_back("lagrange_multiplier", 3, std::span<const double>(lambda));
+    piece.point_data.emplace_back("weighted_gap", 1, std::span<const double>(gap));
+    piece.point_data.emplace_back("contact_status", 1, std::span<const std::int32_t>(status));
+  }
   piece.cell_data.emplace_back("cauchy_stress", 6, std::span<const double>(stress));
   piece.cell_data.emplace_back("von_mises", 1, std::span<const double>(mises));
   piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(cell_rank_));
@@ -258,7 +371,22 @@ void Output::finish(bool converged, int n_steps) {
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
   j["nodes"] = disc_.mesh().n_nodes();
   j["cells"] = disc_.mesh().n_cells();
-  j["interfaces"] = io::Json::array();
+  auto& itfs = j["interfaces"];
+  itfs = io::Json::array();
+  for (const auto& t : tied_) {
+    io::Json e = io::Json::object();
+    e["name"] = t.name;
+    e["type"] = "mesh_tying";
+    e["slave_elements"] = t.slave.n_facets();
+    e["master_elements"] = t.master.n_facets();
+    e["candidate_pairs"] = t.operators.n_candidates;
+    e["integrated_pairs"] = t.operators.n_pairs_integrated;
+    e["integration_cells"] = t.operators.n_integration_cells;
+    e["projection_failures"] = t.operators.n_projection_failures;
+    e["area"] = t.operators.integrated_area;
+    e["max_slave_relocation"] = t.max_relocation;
+    itfs.push_back(std::move(e));
+  }
   if (last_errors_.size() == 2) {
     j["errors"]["l2"] = last_errors_[0];
     j["errors"]["h1"] = last_errors_[1];

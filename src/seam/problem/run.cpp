@@ -5,6 +5,7 @@
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
+#include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
@@ -101,6 +102,14 @@ void make_output_directory(const std::filesystem::path& dir, const Comm& comm) {
   });
 }
 
+/// Contact interfaces are parsed and validated, but not solved by this version.
+void reject_contact(const io::Config& config) {
+  for (const auto& itf : config.interfaces)
+    if (itf.type == io::InterfaceType::contact)
+      io::fail_at(itf.mark, "contact interfaces are not available in this version of seam "
+                            "(mesh_tying is)");
+}
+
 } // namespace
 
 int run(const RunOptions& options, int argc, char** argv) {
@@ -110,32 +119,37 @@ int run(const RunOptions& options, int argc, char** argv) {
     SEAM_THROW(InputError, "--restart ", options.restart,
                ": restarting from a checkpoint is not available in this version of seam");
   const auto config = io::load_config(options.input);
-  const auto mesh = load_mesh(config, comm);
+  auto mesh = load_mesh(config, comm);
   const Discretization disc(mesh, comm);
   const auto model = build_model(config, disc);
   if (config.time.is_dynamic())
     SEAM_THROW(InputError, options.input,
                ": time.integrator: dynamics is not available in this version of seam; use static");
-  if (!config.interfaces.empty())
-    SEAM_THROW(InputError, options.input,
-               ": interfaces: mortar interfaces are not available in this version of seam");
+  reject_contact(config);
+  PhaseTimers setup_timers;
+  const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
+  const TyingConstraint tying(tied, disc, model);
   make_output_directory(output_directory(options), comm);
-  Output out(config, disc, model, output_directory(options), options.quiet);
+  Output out(config, disc, model, tied, tying, output_directory(options), options.quiet);
+  for (const auto& [phase, seconds] : setup_timers.all()) out.timers().add(phase, seconds);
   if (comm.is_root() && !options.quiet)
     std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",
                 version(), config.title.empty() ? options.input.c_str() : config.title.c_str(),
                 mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
                 comm.size(), out.directory().string().c_str());
-  run_static(config, model, disc, out);
+  run_static(config, model, disc, tying, out);
   return 0;
 }
 
 int check(const std::string& input, const std::vector<std::string>& petsc_args) {
   Comm comm;
   const auto config = io::load_config(input);
-  const auto mesh = load_mesh(config, comm);
+  auto mesh = load_mesh(config, comm);
   const Discretization disc(mesh, comm);
   build_model(config, disc);
+  reject_contact(config);
+  PhaseTimers timers;
+  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers);
   if (!comm.is_root()) return 0;
   std::map<std::string, int> by_type;
   for (auto t : mesh.cell_type) ++by_type[std::string(fem::name(t))];
@@ -153,6 +167,11 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   std::printf("\n  %zu bodies, %zu boundary conditions, %zu interfaces, %d steps to t = %g\n",
               config.bodies.size(), config.boundary_conditions.size(), config.interfaces.size(),
               config.time.n_steps, config.time.end);
+  for (const auto& t : tied)
+    std::printf("  interface %s: %d slave and %d master facets, %d integration cells, "
+                "slave nodes moved by at most %.3g\n",
+                t.name.c_str(), t.slave.n_facets(), t.master.n_facets(),
+                t.operators.n_integration_cells, t.max_relocation);
   return 0;
 }
 

@@ -54,14 +54,21 @@ struct NewtonResult {
 class NewtonSolver {
 public:
   NewtonSolver(const io::Config& config, const Model& model, const Discretization& disc,
-               Output& out)
-      : config_(config), model_(model), disc_(disc), out_(out), K_(disc.make_matrix()),
-        r_(disc.make_vector()), r_full_(disc.make_vector()), du_(disc.make_vector()),
+               const TyingConstraint& tying, Output& out)
+      : config_(config), model_(model), disc_(disc), tying_(tying), out_(out),
+        K_(disc.make_matrix()), r_(disc.make_vector()), r_full_(disc.make_vector()),
+        rt_(disc.make_vector()), du_(disc.make_vector()), dut_(disc.make_vector()),
         g_(disc.make_vector()), f_ext_(disc.make_vector()),
         solver_(disc.comm().get(), config.solver.linear == io::LinearSolverKind::direct
                                        ? la::SolverKind::direct
                                        : la::SolverKind::iterative) {
     for (const auto& d : model_.dirichlet) dirichlet_rows_.push_back(d.dof);
+    // Rows fixed in the Newton system: Dirichlet dofs and (with condensed tying) the
+    // eliminated slave dofs, whose rows of T^T K T are empty.
+    fixed_rows_ = dirichlet_rows_;
+    if (tying.active())
+      fixed_rows_.insert(fixed_rows_.end(), tying.eliminated_dofs().begin(),
+                         tying.eliminated_dofs().end());
     if (config.solver.linear == io::LinearSolverKind::iterative)
       K_.set_near_null_space(disc.coordinates_vector());
   }
@@ -85,10 +92,22 @@ public:
         res.failure = "an element is inverted (det F <= 0)";
         return res;
       }
-      const double full_norm = r_.norm();
-      r_full_.copy_from(r_);
-      zero_dirichlet_rows(model_, disc_, r_);
-      const double norm = r_.norm();
+      // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
+      la::Matrix* K_sys = &K_;
+      la::Vector* r_sys = &r_;
+      la::Vector* d_sys = &du_;
+      if (tying_.active()) {
+        ScopedTimer timer(out_.timers(), "mortar");
+        tying_.condense_matrix(K_, Kt_);
+        tying_.condense_vector(r_, rt_);
+        K_sys = &Kt_;
+        r_sys = &rt_;
+        d_sys = &dut_;
+      }
+      const double full_norm = r_sys->norm();
+      r_full_.copy_from(*r_sys);
+      zero_dirichlet_rows(model_, disc_, *r_sys);
+      const double norm = r_sys->norm();
       if (!std::isfinite(norm) || !std::isfinite(full_norm)) {
         res.failure = "the residual is not finite";
         return res;
@@ -117,14 +136,15 @@ public:
         return res;
       }
       if (it == nc.max_iterations) break;
-      r_.scale(-1.0);
-      K_.zero_rows_columns(dirichlet_rows_, predictor ? &g_ : nullptr, predictor ? &r_ : nullptr);
+      r_sys->scale(-1.0);
+      K_sys->zero_rows_columns(fixed_rows_, predictor ? &g_ : nullptr, predictor ? r_sys : nullptr);
       bool solved;
       {
         ScopedTimer timer(out_.timers(), "linear_solve");
-        du_.zero();
-        solved = solver_.solve(K_, r_, du_);
+        d_sys->zero();
+        solved = solver_.solve(*K_sys, *r_sys, *d_sys);
       }
+      if (solved && tying_.active()) tying_.expand(dut_, du_);
       if (!solved) {
         res.failure = "the linear solver failed";
         return res;
@@ -164,13 +184,19 @@ public:
     out.axpy(1.0, r_full_);
   }
 
+  /// The residual f_int - f_ext of the last evaluation, before condensation (its slave rows
+  /// give the mesh-tying multipliers).
+  const la::Vector& raw_residual() const { return r_; }
+
 private:
   const io::Config& config_;
   const Model& model_;
   const Discretization& disc_;
+  const TyingConstraint& tying_;
   Output& out_;
-  la::Matrix K_;
-  la::Vector r_, r_full_, du_, g_, f_ext_;
+  la::Matrix K_, Kt_;
+  la::Vector r_, r_full_, rt_, du_, dut_, g_, f_ext_;
+  std::vector<PetscInt> fixed_rows_;
   la::LinearSolver solver_;
   std::vector<PetscInt> dirichlet_rows_;
   double last_increment_ = 0.0;
@@ -179,9 +205,9 @@ private:
 } // namespace
 
 void run_static(const io::Config& config, const Model& model, const Discretization& disc,
-                Output& out) {
+                const TyingConstraint& tying, Output& out) {
   const auto& tc = config.time;
-  NewtonSolver newton(config, model, disc, out);
+  NewtonSolver newton(config, model, disc, tying, out);
   la::Vector u = disc.make_vector();
   la::Vector u_saved = disc.make_vector();
   out.initial(u);
@@ -234,7 +260,8 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     rec.internal_energy = res.strain_energy;
     rec.external_work = external_work;
     const bool last = t_new >= end * (1.0 - 1e-12);
-    out.step(rec, u, nullptr, reactions, last);
+    la::Vector::LocalView r_view(newton.raw_residual(), false);
+    out.step(rec, u, nullptr, reactions, r_view.values(), last);
     t = t_new;
     if (cuts > 0) {
       dt = std::min(2.0 * dt, dt0); // grow back after a successful cut step

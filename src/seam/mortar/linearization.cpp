@@ -1,0 +1,350 @@
+#include "seam/mortar/linearization.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "seam/common/error.hpp"
+#include "seam/mortar/linearization_pair.hpp"
+
+namespace seam::mortar {
+
+namespace {
+
+using ad::FacetT;
+
+template <class S, int Dim>
+Eigen::Matrix<S, Dim, max_facet_nodes>
+seed_columns(const Eigen::Matrix<double, Dim, max_facet_nodes>& x, int n, int first) {
+  Eigen::Matrix<S, Dim, max_facet_nodes> r = Eigen::Matrix<S, Dim, max_facet_nodes>::Zero();
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < Dim; ++a) r(a, i) = S::variable(x(a, i), first + Dim * i + a);
+  return r;
+}
+
+template <class S>
+void copy_gradient(const S& x, int n_variables, std::vector<double>& out, std::size_t entry) {
+  std::copy_n(x.gradient.begin(), n_variables,
+              out.begin() +
+                  static_cast<std::ptrdiff_t>(entry * static_cast<std::size_t>(n_variables)));
+}
+
+template <int Dim, int N>
+void run_pair(const SlaveFacet<Dim>& slave, const Facet<Dim>& master, const PairOptions& options,
+              PairLinearization& out) {
+  using S = Dual<N>;
+  const int ns = slave.facet.n_nodes;
+  const int nm = master.n_nodes;
+  const ad::FacetT<S, Dim> sf = ad::seed<S>(slave.facet, 0);
+  const ad::FacetT<S, Dim> mf = ad::seed<S>(master, Dim * ns);
+  const auto normals = seed_columns<S, Dim>(slave.normals, ns, Dim * (ns + nm));
+  const auto st = ad::make_slave_facet_t(sf, normals, slave.basis.multiplier);
+  const ad::PairContributionT<S> c = ad::integrate_pair_t<S>(st, mf, options);
+
+  out.dim = Dim;
+  out.n_slave = ns;
+  out.n_master = nm;
+  out.n_variables = ad::pair_variable_count(Dim, ns, nm);
+  PairContribution& v = out.values;
+  v = detail::empty_contribution(ns, nm);
+  v.n_cells = c.n_cells;
+  v.area = c.area;
+  v.n_projection_failures = c.n_projection_failures;
+  const auto nv = static_cast<std::size_t>(out.n_variables);
+  out.D_gradient.resize(static_cast<std::size_t>(ns * ns) * nv);
+  out.M_gradient.resize(static_cast<std::size_t>(ns * nm) * nv);
+  out.gap_gradient.resize(static_cast<std::size_t>(ns) * nv);
+  for (int j = 0; j < ns; ++j) {
+    for (int k = 0; k < ns; ++k) {
+      v.D(j, k) = c.D(j, k).value;
+      copy_gradient(c.D(j, k), out.n_variables, out.D_gradient,
+                    static_cast<std::size_t>(j * ns + k));
+    }
+    for (int l = 0; l < nm; ++l) {
+      v.M(j, l) = c.M(j, l).value;
+      copy_gradient(c.M(j, l), out.n_variables, out.M_gradient,
+                    static_cast<std::size_t>(j * nm + l));
+    }
+    v.weighted_gap(j) = c.weighted_gap(j).value;
+    copy_gradient(c.weighted_gap(j), out.n_variables, out.gap_gradient,
+                  static_cast<std::size_t>(j));
+  }
+}
+
+template <int Dim> void validate_pair(const SlaveFacet<Dim>& slave, const Facet<Dim>& master) {
+  SEAM_CHECK(is_interface_facet(slave.facet.type, Dim) && is_interface_facet(master.type, Dim) &&
+                 slave.facet.n_nodes == fem::n_nodes(slave.facet.type) &&
+                 master.n_nodes == fem::n_nodes(master.type),
+             InputError, "linearize_pair: the facets are not ", Dim,
+             "D interface facets with their full node count");
+}
+
+} // namespace
+
+void linearize_pair(const SlaveFacet<2>& slave, const Facet<2>& master, const PairOptions& options,
+                    PairLinearization& out) {
+  validate_pair(slave, master);
+  if (ad::pair_variable_count(2, slave.facet.n_nodes, master.n_nodes) <= 12) {
+    run_pair<2, 12>(slave, master, options, out);
+  } else {
+    run_pair<2, 18>(slave, master, options, out);
+  }
+}
+
+void linearize_pair(const SlaveFacet<3>& slave, const Facet<3>& master, const PairOptions& options,
+                    PairLinearization& out) {
+  validate_pair(slave, master);
+  if (ad::pair_variable_count(3, slave.facet.n_nodes, master.n_nodes) <= 36) {
+    run_pair<3, 36>(slave, master, options, out);
+  } else {
+    run_pair<3, 81>(slave, master, options, out);
+  }
+}
+
+NodeFacets node_facets(const FacetSet& facets) {
+  validate(facets, "slave");
+  NodeFacets r;
+  const auto n = static_cast<std::size_t>(facets.n_nodes());
+  r.offsets.assign(n + 1, 0);
+  for (const local_index node : facets.nodes) ++r.offsets[static_cast<std::size_t>(node) + 1];
+  for (std::size_t i = 0; i < n; ++i) r.offsets[i + 1] += r.offsets[i];
+  r.facets.resize(facets.nodes.size());
+  std::vector<local_index> fill(r.offsets.begin(), r.offsets.end() - 1);
+  for (local_index f = 0; f < facets.n_facets(); ++f) {
+    for (const local_index node : facets.facet_nodes(f))
+      r.facets[static_cast<std::size_t>(fill[static_cast<std::size_t>(node)]++)] = f;
+  }
+  return r;
+}
+
+namespace {
+
+// One facet's unit normal at its local node i with derivatives with respect to the facet's
+// nodal coordinates (Dim * 9 variables at most).
+template <int Dim>
+void add_facet_normal(const FacetSet& facets, local_index f, local_index node,
+                      NodalNormalLinearization& out, std::array<double, 3>& sum) {
+  constexpr int capacity = Dim * max_facet_nodes;
+  using S = Dual<capacity>;
+  const Facet<Dim> facet = gather_facet<Dim>(facets, f);
+  const auto nodes = facets.facet_nodes(f);
+  const auto it = std::find(nodes.begin(), nodes.end(), node);
+  SEAM_ASSERT(it != nodes.end());
+  const int i = static_cast<int>(it - nodes.begin());
+  const ad::FacetT<S, Dim> fs = ad::seed<S>(facet, 0);
+  const ad::Vector<S, Dim> u = ad::unit_normal_at_node(fs, i);
+  const auto n = static_cast<std::size_t>(out.nodes.size());
+  for (int k = 0; k < facet.n_nodes; ++k) {
+    const auto position = static_cast<std::size_t>(
+        std::lower_bound(out.nodes.begin(), out.nodes.end(), nodes[static_cast<std::size_t>(k)]) -
+        out.nodes.begin());
+    for (int a = 0; a < Dim; ++a) {
+      for (int b = 0; b < Dim; ++b) {
+        out.jacobian[static_cast<std::size_t>(a) * Dim * n + Dim * position +
+                     static_cast<std::size_t>(b)] +=
+            u(a).gradient[static_cast<std::size_t>(Dim * k + b)];
+      }
+    }
+  }
+  for (int a = 0; a < Dim; ++a) sum[static_cast<std::size_t>(a)] += u(a).value;
+}
+
+} // namespace
+
+void linearize_nodal_normal(const FacetSet& facets, local_index node,
+                            std::span<const local_index> adjacent, NodalNormalLinearization& out) {
+  const int dim = facets.dim;
+  out.dim = dim;
+  out.nodes.clear();
+  for (const local_index f : adjacent) {
+    for (const local_index k : facets.facet_nodes(f)) out.nodes.push_back(k);
+  }
+  std::sort(out.nodes.begin(), out.nodes.end());
+  out.nodes.erase(std::unique(out.nodes.begin(), out.nodes.end()), out.nodes.end());
+  const std::size_t width = static_cast<std::size_t>(dim) * out.nodes.size();
+  out.jacobian.assign(static_cast<std::size_t>(dim) * width, 0.0);
+  std::array<double, 3> sum{};
+  for (const local_index f : adjacent) {
+    if (dim == 2) {
+      add_facet_normal<2>(facets, f, node, out, sum);
+    } else {
+      add_facet_normal<3>(facets, f, node, out, sum);
+    }
+  }
+  double length = 0.0;
+  for (int a = 0; a < dim; ++a)
+    length += sum[static_cast<std::size_t>(a)] * sum[static_cast<std::size_t>(a)];
+  length = std::sqrt(length);
+  SEAM_CHECK(length > 1e-8, InputError, "slave node ", node,
+             ": the normals of its facets cancel (the surface folds back onto itself)");
+  for (int a = 0; a < dim; ++a)
+    out.normal[static_cast<std::size_t>(a)] = sum[static_cast<std::size_t>(a)] / length;
+  // dn = (I - n n^T) ds / |s| (the derivative of the normalization).
+  for (std::size_t v = 0; v < width; ++v) {
+    double n_dot_ds = 0.0;
+    for (int a = 0; a < dim; ++a)
+      n_dot_ds += out.normal[static_cast<std::size_t>(a)] *
+                  out.jacobian[static_cast<std::size_t>(a) * width + v];
+    for (int a = 0; a < dim; ++a) {
+      double& entry = out.jacobian[static_cast<std::size_t>(a) * width + v];
+      entry = (entry - out.normal[static_cast<std::size_t>(a)] * n_dot_ds) / length;
+    }
+  }
+}
+
+namespace {
+
+template <int Dim>
+void linearize_slave_facet_impl(const FacetSet& slave, const FacetSet& master,
+                                const NodeFacets& adjacency, local_index slave_facet,
+                                std::span<const local_index> master_facets,
+                                const MortarOptions& options, SlaveFacetLinearization& out) {
+  const auto facet_nodes = slave.facet_nodes(slave_facet);
+  const int ns = static_cast<int>(facet_nodes.size());
+  out.dim = Dim;
+  out.n_slave = ns;
+  out.multiplier = options.multiplier;
+  out.n_pairs_integrated = 0;
+  out.n_cells = 0;
+  out.n_projection_failures = 0;
+  out.area = 0.0;
+
+  // Slave variables: the facet's nodes, then the rest of their normal patches.
+  out.slave_nodes.assign(facet_nodes.begin(), facet_nodes.end());
+  out.normals.resize(static_cast<std::size_t>(ns));
+  for (int k = 0; k < ns; ++k) {
+    const local_index node = facet_nodes[static_cast<std::size_t>(k)];
+    NodalNormalLinearization& nl = out.normals[static_cast<std::size_t>(k)];
+    linearize_nodal_normal(slave, node, adjacency.of(node), nl);
+    for (const local_index other : nl.nodes) {
+      if (std::find(facet_nodes.begin(), facet_nodes.end(), other) == facet_nodes.end())
+        out.slave_nodes.push_back(other);
+    }
+  }
+  std::sort(out.slave_nodes.begin() + ns, out.slave_nodes.end());
+  out.slave_nodes.erase(std::unique(out.slave_nodes.begin() + ns, out.slave_nodes.end()),
+                        out.slave_nodes.end());
+  out.master_nodes.clear();
+  for (const local_index f : master_facets) {
+    for (const local_index node : master.facet_nodes(f)) {
+      if (std::find(out.master_nodes.begin(), out.master_nodes.end(), node) ==
+          out.master_nodes.end())
+        out.master_nodes.push_back(node);
+    }
+  }
+  const int n_us = static_cast<int>(out.slave_nodes.size());
+  const int n_mn = out.n_master_nodes();
+  const auto nv = static_cast<std::size_t>(out.n_variables());
+  const auto slave_position = [&out](local_index node) {
+    return static_cast<int>(std::find(out.slave_nodes.begin(), out.slave_nodes.end(), node) -
+                            out.slave_nodes.begin());
+  };
+
+  // dn_k / d(slave variables), dense rows.
+  out.normal_jacobian.assign(static_cast<std::size_t>(ns * Dim) * nv, 0.0);
+  SlaveFacet<Dim> sf;
+  sf.facet = gather_facet<Dim>(slave, slave_facet);
+  sf.basis.multiplier = options.multiplier;
+  for (int k = 0; k < ns; ++k) {
+    const NodalNormalLinearization& nl = out.normals[static_cast<std::size_t>(k)];
+    const std::size_t width = static_cast<std::size_t>(Dim) * nl.nodes.size();
+    for (int a = 0; a < Dim; ++a) sf.normals(a, k) = nl.normal[static_cast<std::size_t>(a)];
+    for (std::size_t i = 0; i < nl.nodes.size(); ++i) {
+      const int u = slave_position(nl.nodes[i]);
+      for (int a = 0; a < Dim; ++a) {
+        for (int b = 0; b < Dim; ++b) {
+          out.normal_jacobian[static_cast<std::size_t>(k * Dim + a) * nv +
+                              static_cast<std::size_t>(Dim * u + b)] =
+              nl.jacobian[static_cast<std::size_t>(a) * width + Dim * i +
+                          static_cast<std::size_t>(b)];
+        }
+      }
+    }
+  }
+
+  out.D.assign(static_cast<std::size_t>(ns * ns), 0.0);
+  out.M.assign(static_cast<std::size_t>(ns * n_mn), 0.0);
+  out.weighted_gap.assign(static_cast<std::size_t>(ns), 0.0);
+  out.D_gradient.assign(static_cast<std::size_t>(ns * ns) * nv, 0.0);
+  out.M_gradient.assign(static_cast<std::size_t>(ns * n_mn) * nv, 0.0);
+  out.gap_gradient.assign(static_cast<std::size_t>(ns) * nv, 0.0);
+
+  for (const local_index f : master_facets) {
+    const Facet<Dim> mf = gather_facet<Dim>(master, f);
+    const auto m_nodes = master.facet_nodes(f);
+    linearize_pair(sf, mf, options.pair, out.pair);
+    const PairLinearization& p = out.pair;
+    out.n_projection_failures += p.values.n_projection_failures;
+    if (p.values.n_cells == 0) continue;
+    ++out.n_pairs_integrated;
+    out.n_cells += p.values.n_cells;
+    out.area += p.values.area;
+    const int nm = p.n_master;
+    out.master_position.resize(static_cast<std::size_t>(nm));
+    for (int l = 0; l < nm; ++l) {
+      out.master_position[static_cast<std::size_t>(l)] =
+          static_cast<int>(std::find(out.master_nodes.begin(), out.master_nodes.end(),
+                                     m_nodes[static_cast<std::size_t>(l)]) -
+                           out.master_nodes.begin());
+    }
+    // Chain one pair gradient into a slave-facet gradient row.
+    const auto scatter = [&](std::span<const double> g, double* row) {
+      for (int k = 0; k < ns; ++k)
+        for (int a = 0; a < Dim; ++a) row[Dim * k + a] += g[static_cast<std::size_t>(Dim * k + a)];
+      for (int l = 0; l < nm; ++l) {
+        const int column = Dim * (n_us + out.master_position[static_cast<std::size_t>(l)]);
+        for (int a = 0; a < Dim; ++a)
+          row[column + a] += g[static_cast<std::size_t>(Dim * (ns + l) + a)];
+      }
+      for (int k = 0; k < ns; ++k) {
+        for (int a = 0; a < Dim; ++a) {
+          const double dn = g[static_cast<std::size_t>(Dim * (ns + nm + k) + a)];
+          if (dn == 0.0) continue;
+          const double* jac =
+              out.normal_jacobian.data() + static_cast<std::size_t>(k * Dim + a) * nv;
+          for (int v = 0; v < Dim * n_us; ++v) row[v] += dn * jac[v];
+        }
+      }
+    };
+    for (int j = 0; j < ns; ++j) {
+      for (int k = 0; k < ns; ++k) {
+        out.D[static_cast<std::size_t>(j * ns + k)] += p.values.D(j, k);
+        scatter(p.dD(j, k), out.D_gradient.data() + static_cast<std::size_t>(j * ns + k) * nv);
+      }
+      for (int l = 0; l < nm; ++l) {
+        const int column = out.master_position[static_cast<std::size_t>(l)];
+        out.M[static_cast<std::size_t>(j * n_mn + column)] += p.values.M(j, l);
+        scatter(p.dM(j, l),
+                out.M_gradient.data() + static_cast<std::size_t>(j * n_mn + column) * nv);
+      }
+      out.weighted_gap[static_cast<std::size_t>(j)] += p.values.weighted_gap(j);
+      scatter(p.dgap(j), out.gap_gradient.data() + static_cast<std::size_t>(j) * nv);
+    }
+  }
+}
+
+} // namespace
+
+void linearize_slave_facet(const FacetSet& slave, const FacetSet& master,
+                           const NodeFacets& slave_facets_of_node, local_index slave_facet,
+                           std::span<const local_index> master_facets, const MortarOptions& options,
+                           SlaveFacetLinearization& out) {
+  SEAM_CHECK(slave.dim == master.dim, InputError, "slave facets are ", slave.dim,
+             "D but master facets are ", master.dim, "D");
+  SEAM_CHECK(slave_facet >= 0 && slave_facet < slave.n_facets(), InputError, "slave facet ",
+             slave_facet, " is out of range (", slave.n_facets(), " facets)");
+  SEAM_CHECK(slave_facets_of_node.offsets.size() == static_cast<std::size_t>(slave.n_nodes()) + 1,
+             InputError, "the node-to-facet adjacency does not match the slave facets");
+  for (const local_index f : master_facets) {
+    SEAM_CHECK(f >= 0 && f < master.n_facets(), InputError, "master facet ", f,
+               " is out of range (", master.n_facets(), " facets)");
+  }
+  if (slave.dim == 2) {
+    linearize_slave_facet_impl<2>(slave, master, slave_facets_of_node, slave_facet, master_facets,
+                                  options, out);
+  } else {
+    linearize_slave_facet_impl<3>(slave, master, slave_facets_of_node, slave_facet, master_facets,
+                                  options, out);
+  }
+}
+
+} // namespace seam::mortar
