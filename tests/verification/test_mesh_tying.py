@@ -44,7 +44,13 @@ def check_linear_field(out, strains, origin, scale, what):
                            what="%s probe %d %s" % (what, int(p["probe"]), comp))
 
 
-def tied_3d(kind, h, order, slave, master, direction, np=1):
+def interface_line(slave, master, multiplier, strategy):
+    return "  - {name: tie, type: mesh_tying, slave: %s, master: %s, multiplier: %s, strategy: %s}" % (
+        slave, master, multiplier, strategy)
+
+
+def tied_3d(kind, h, order, slave, master, direction, np=1, multiplier="dual",
+            strategy="condensed"):
     """Uniaxial stress T along `direction` (z: normal to the interface, x: tangential)."""
     load_face = {"z": "top", "x": "right"}[direction]
     traction = {"z": "[0, 0, %g]" % T, "x": "[%g, 0, 0]" % T}[direction]
@@ -59,7 +65,7 @@ def tied_3d(kind, h, order, slave, master, direction, np=1):
         "  - {region: front, type: dirichlet, components: [y], value: [0]}",
         "  - {region: %s, type: traction, value: %s}" % (load_face, traction),
         "interfaces:",
-        "  - {name: tie, type: mesh_tying, slave: %s, master: %s}" % (slave, master),
+        interface_line(slave, master, multiplier, strategy),
         "time: {integrator: static, end: 1, steps: 1}",
         "output: {probes: [[0.3, 0.4, 0.5], [0.7, 0.2, 1.5], [0.5, 0.5, 1.0], [0.9, 0.9, 1.9]]}",
     ]) + "\n"
@@ -80,7 +86,8 @@ def tied_3d(kind, h, order, slave, master, direction, np=1):
     H.cleanup(work, out)
 
 
-def tied_2d(geo, order, slave, master, plane="strain", np=1, curved=False):
+def tied_2d(geo, order, slave, master, plane="strain", np=1, curved=False, multiplier="dual",
+            strategy="condensed"):
     if curved:
         bcs = ["  - {region: left, type: dirichlet, components: [x], value: [0]}",
                "  - {region: bottom, type: dirichlet, components: [y], value: [0]}",
@@ -103,7 +110,7 @@ def tied_2d(geo, order, slave, master, plane="strain", np=1, curved=False):
         "bodies: %s" % bodies,
         "boundary_conditions:"] + bcs + [
         "interfaces:",
-        "  - {name: tie, type: mesh_tying, slave: %s, master: %s}" % (slave, master),
+        interface_line(slave, master, multiplier, strategy),
         "time: {integrator: static, end: 1, steps: 1}",
         "output: {probes: %s}" % probes,
     ]) + "\n"
@@ -131,6 +138,14 @@ def test_3d_tet_normal_np3(): tied_3d("tet", (0.34, 0.26), 1, "upper_bottom", "l
 def test_3d_tet_tangential_swapped(): tied_3d("tet", (0.26, 0.34), 1, "lower_top", "upper_bottom", "x")
 def test_3d_hex_normal(): tied_3d("hex", (0.34, 0.26), 1, "upper_bottom", "lower_top", "z")
 def test_3d_hex27_tangential_np3(): tied_3d("hex", (0.5, 0.34), 2, "lower_top", "upper_bottom", "x", np=3)
+def test_3d_tet_saddle_dual_np3(): tied_3d("tet", (0.34, 0.26), 1, "upper_bottom", "lower_top", "z", np=3, strategy="saddle_point")
+def test_3d_tet_saddle_standard(): tied_3d("tet", (0.34, 0.26), 1, "lower_top", "upper_bottom", "x", multiplier="standard", strategy="saddle_point")
+def test_3d_tet10_saddle_standard(): tied_3d("tet", (0.5, 0.4), 2, "upper_bottom", "lower_top", "z", multiplier="standard", strategy="saddle_point")
+def test_3d_hex27_saddle_standard_np3(): tied_3d("hex", (0.5, 0.34), 2, "upper_bottom", "lower_top", "z", np=3, multiplier="standard", strategy="saddle_point")
+def test_2d_tri6_saddle_standard(): tied_2d(geometry.tied_rectangles(0.3, 0.2, 2), 2, "upper_bottom", "lower_top", multiplier="standard", strategy="saddle_point")
+def test_2d_quad_saddle_dual_np3(): tied_2d(geometry.tied_rectangles(0.2, 0.3, 1, "quad"), 1, "lower_top", "upper_bottom", np=3, strategy="saddle_point")
+
+
 def test_2d_tri_flat(): tied_2d(geometry.tied_rectangles(0.3, 0.2), 1, "upper_bottom", "lower_top")
 def test_2d_quad_flat_np3(): tied_2d(geometry.tied_rectangles(0.2, 0.3, 1, "quad"), 1, "lower_top", "upper_bottom", np=3)
 def test_2d_tri6_flat(): tied_2d(geometry.tied_rectangles(0.3, 0.2, 2), 2, "upper_bottom", "lower_top", plane="strain")
@@ -181,7 +196,10 @@ def test_neo_hooke_stretch():
 
 
 if __name__ == "__main__":
-    H.main([test_3d_tet_normal, test_3d_tet_normal_np3, test_3d_tet_tangential_swapped,
+    H.main([test_3d_tet_saddle_dual_np3, test_3d_tet_saddle_standard, test_3d_tet10_saddle_standard,
+            test_3d_hex27_saddle_standard_np3, test_2d_tri6_saddle_standard,
+            test_2d_quad_saddle_dual_np3,
+            test_3d_tet_normal, test_3d_tet_normal_np3, test_3d_tet_tangential_swapped,
             test_3d_hex_normal, test_3d_hex27_tangential_np3, test_2d_tri_flat,
             test_2d_quad_flat_np3, test_2d_tri6_flat, test_2d_curved_linear,
             test_2d_curved_quadratic, test_2d_curved_np3, test_neo_hooke_stretch])

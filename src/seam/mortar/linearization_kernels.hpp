@@ -83,8 +83,8 @@ Eigen::Matrix<S, Dim, Cols> times(const Eigen::Matrix<S, Dim, max_facet_nodes>& 
 
 /// X * N over the first n columns, N of scalar type S.
 template <class S, int Dim>
-Vector<S, Dim> times(const Eigen::Matrix<S, Dim, max_facet_nodes>& X, const NodalVectorT<S>& N,
-                     int n) {
+Vector<S, Dim> interpolate(const Eigen::Matrix<S, Dim, max_facet_nodes>& X,
+                           const NodalVectorT<S>& N, int n) {
   Vector<S, Dim> r = Vector<S, Dim>::Zero();
   for (int i = 0; i < n; ++i)
     for (int a = 0; a < Dim; ++a) r(a) += X(a, i) * N(i);
@@ -302,7 +302,7 @@ CurveProjectionT<S> project_onto_line_t(const FacetT<S, 2>& f, const Vector<S, 2
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, &r.xi, 1);
   const NodalVectorT<S> N = s.N.template cast<S>();
-  const Vector<S, 2> x = times<S, 2>(f.x, N, f.n_nodes);
+  const Vector<S, 2> x = interpolate<S, 2>(f.x, N, f.n_nodes);
   const Eigen::Vector2d dx = values(f.x) * s.dN.col(0);
   const double slope = geometry::cross2(dx, values(d));
   out.xi = at_root<S>(r.xi, r.xi - cross2<S>(x - p, d) / slope);
@@ -332,8 +332,8 @@ project_along_normals_t(const FacetT<S, 2>& f, const Eigen::Matrix<S, 2, max_fac
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, &r.xi, 1);
   const NodalVectorT<S> N = s.N.template cast<S>();
-  const Vector<S, 2> residual = times<S, 2>(f.x, N, f.n_nodes) - p;
-  const Vector<S, 2> direction = times<S, 2>(normals, N, f.n_nodes);
+  const Vector<S, 2> residual = interpolate<S, 2>(f.x, N, f.n_nodes) - p;
+  const Vector<S, 2> direction = interpolate<S, 2>(normals, N, f.n_nodes);
   const Eigen::Vector2d dx = fv.x * s.dN.col(0);
   const Eigen::Vector2d dn = nv * s.dN.col(0);
   const double slope = geometry::cross2(dx, nv * s.N) + geometry::cross2(values(residual), dn);
@@ -353,7 +353,7 @@ SurfaceProjectionT<S> project_onto_surface_t(const FacetT<S, 3>& f, const Vector
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, r.xi.data(), 2);
   const NodalVectorT<S> N = s.N.template cast<S>();
-  const Vector<S, 3> residual = times<S, 3>(f.x, N, f.n_nodes) + r.alpha * d - p;
+  const Vector<S, 3> residual = interpolate<S, 3>(f.x, N, f.n_nodes) + r.alpha * d - p;
   Eigen::Matrix3d jacobian;
   jacobian.leftCols<2>() = fv.x * s.dN;
   jacobian.col(2) = values(d);

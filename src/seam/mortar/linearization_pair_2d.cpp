@@ -106,8 +106,8 @@ PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 2>& slave, const Face
     const double g = Rule::points[static_cast<std::size_t>(q)];
     const S xi = 0.5 * ((1.0 - g) * segment.xa + (1.0 + g) * segment.xb);
     const NodalVectorT<S> N = shape_values_t<S, 2>(s.type, &xi);
-    const Vector<S, 2> x_s = times<S, 2>(s.x, N, s.n_nodes);
-    const Vector<S, 2> n = normalized(times<S, 2>(slave.normals, N, s.n_nodes));
+    const Vector<S, 2> x_s = interpolate<S, 2>(s.x, N, s.n_nodes);
+    const Vector<S, 2> n = normalized(interpolate<S, 2>(slave.normals, N, s.n_nodes));
     // The Gauss point's image on the master along the interpolated slave normal.
     const CurveProjectionT<S> image =
         project_onto_line_t<S>(master, x_s, n, eta_guess, options.newton);
@@ -117,7 +117,7 @@ PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 2>& slave, const Face
     }
     eta_guess = value_of(image.xi);
     const NodalVectorT<S> Nm = shape_values_t<S, 2>(master.type, &image.xi);
-    const Vector<S, 2> x_m = times<S, 2>(master.x, Nm, master.n_nodes);
+    const Vector<S, 2> x_m = interpolate<S, 2>(master.x, Nm, master.n_nodes);
     const S w = Rule::weights[static_cast<std::size_t>(q)] * norm(line_tangent_t<S>(s, xi)) *
                 segment_jacobian;
     detail::slave_functions_t(slave, N, N_tilde, Phi);

@@ -138,9 +138,9 @@ PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 3>& slave, const Face
           }
           const NodalVectorT<S> N = shape_values_t<S, 3>(s.type, on_slave.xi.data());
           const NodalVectorT<S> Nm = shape_values_t<S, 3>(master.type, on_master.xi.data());
-          const Vector<S, 3> x_s = times<S, 3>(s.x, N, s.n_nodes);
-          const Vector<S, 3> x_m = times<S, 3>(master.x, Nm, master.n_nodes);
-          const Vector<S, 3> n = normalized(times<S, 3>(slave.normals, N, s.n_nodes));
+          const Vector<S, 3> x_s = interpolate<S, 3>(s.x, N, s.n_nodes);
+          const Vector<S, 3> x_m = interpolate<S, 3>(master.x, Nm, master.n_nodes);
+          const Vector<S, 3> n = normalized(interpolate<S, 3>(slave.normals, N, s.n_nodes));
           detail::slave_functions_t(slave, N, N_tilde, Phi);
           detail::accumulate_point_t(c, slave.multiplier, S(weight * cell_area), N_tilde, Phi, Nm,
                                      dot(n, Vector<S, 3>(x_m - x_s)));

@@ -22,12 +22,17 @@ std::vector<std::string> columns(std::initializer_list<const char*> names) {
 } // namespace
 
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
-               const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-               std::filesystem::path dir, bool quiet)
-    : config_(config), disc_(disc), model_(model), tied_(tied), tying_(tying), dir_(std::move(dir)),
-      quiet_(quiet), start_wall_(wall_seconds()) {
+               const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
+               bool quiet)
+    : config_(config), disc_(disc), model_(model), tied_(tied), dir_(std::move(dir)), quiet_(quiet),
+      start_wall_(wall_seconds()) {
   const auto& comm = disc.comm();
   const auto& mesh = disc.mesh();
+  for (const auto& t : tied_) {
+    auto& rows = tied_rows_.emplace_back(t.slave.mesh_nodes.size(), 0);
+    for (const auto& e : t.operators.D)
+      if (e.value != 0.0) rows[e.row] = 1;
+  }
 
   // Probes: every rank locates them in the (replicated) mesh; the owner of the cell evaluates.
   for (const auto& p : config.output.probes) {
@@ -106,7 +111,8 @@ void Output::initial(const la::Vector& u) {
 }
 
 std::vector<Output::InterfaceState>
-Output::interface_states(const la::Vector& u, std::span<const double> residual) const {
+Output::interface_states(const la::Vector& u,
+                         const std::vector<std::vector<double>>& multipliers) const {
   std::vector<InterfaceState> states;
   if (tied_.empty()) return states;
   const int dim = disc_.dim();
@@ -114,8 +120,7 @@ Output::interface_states(const la::Vector& u, std::span<const double> residual) 
   for (std::size_t k = 0; k < tied_.size(); ++k) {
     const auto& t = tied_[k];
     InterfaceState s;
-    s.lambda = tying_.multipliers(k, residual);
-    disc_.comm().sum_in_place(s.lambda);
+    s.lambda = multipliers[k];
     const auto n_slave = t.slave.mesh_nodes.size();
     s.displacement.assign(n_slave * dim, 0.0);
     for (std::size_t j = 0; j < n_slave; ++j)
@@ -144,19 +149,20 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
     const auto& t = tied_[k];
     const auto& s = states[k];
     const auto& normals = t.operators.nodal_normals;
-    // Interface force on the slave side from the multipliers: F_j = D_jj lambda_j.
+    // Interface force on the slave nodes from the multipliers, F = D^T lambda; its normal
+    // part along the slave nodal normals and the magnitude of the rest.
+    std::vector<double> force(t.slave.mesh_nodes.size() * dim, 0.0);
+    for (const auto& e : t.operators.D)
+      for (int c = 0; c < dim; ++c) force[e.col * dim + c] += e.value * s.lambda[e.row * dim + c];
     double fn = 0.0;
     std::array<double, 3> ft{};
     int tied = 0;
     for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
-      const double d = tying_.d_diagonal(k, j);
-      if (d == 0.0) continue;
-      ++tied;
-      double ln = 0.0;
-      for (int c = 0; c < dim; ++c) ln += s.lambda[j * dim + c] * normals[j * dim + c];
-      fn += d * ln;
-      for (int c = 0; c < dim; ++c)
-        ft[c] += d * (s.lambda[j * dim + c] - ln * normals[j * dim + c]);
+      tied += tied_rows_[k][j];
+      double fj_n = 0.0;
+      for (int c = 0; c < dim; ++c) fj_n += force[j * dim + c] * normals[j * dim + c];
+      fn += fj_n;
+      for (int c = 0; c < dim; ++c) ft[c] += force[j * dim + c] - fj_n * normals[j * dim + c];
     }
     const double ft_norm = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
     interfaces_->add_row(
@@ -178,7 +184,7 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
         const double lt = s.lambda[j * dim + c] - ln * normals[j * dim + c];
         lt2 += lt * lt;
       }
-      const bool is_tied = tying_.d_diagonal(k, j) != 0.0;
+      const bool is_tied = tied_rows_[k][j] != 0;
       table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], s.gap[j], ln, std::sqrt(lt2),
                      is_tied ? "tied" : "inactive"});
     }
@@ -186,8 +192,8 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
 }
 
 void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
-                  std::span<const double> reactions, std::span<const double> residual,
-                  bool force_fields) {
+                  std::span<const double> reactions,
+                  const std::vector<std::vector<double>>& multipliers, bool force_fields) {
   ScopedTimer timer(timers_, "output");
   const auto& comm = disc_.comm();
   const int dim = disc_.dim();
@@ -240,7 +246,7 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
     std::fflush(stdout);
   }
   const bool fields = force_fields || r.step % config_.output.every == 0;
-  const auto states = interface_states(u, residual);
+  const auto states = interface_states(u, multipliers);
   if (comm.is_root()) write_interfaces(r, states, fields);
   if (fields) write_fields(r.step, r.time, u, v, states);
 }
@@ -320,7 +326,7 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
       const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
       for (int c = 0; c < dim; ++c) lambda[i * 3 + c] = states[k].lambda[j * dim + c];
       gap[i] = states[k].gap[j];
-      status[i] = tying_.d_diagonal(k, j) != 0.0 ? 1 : 0;
+      status[i] = tied_rows_[k][j] ? 1 : 0;
     }
   }
   if (!tied_.empty()) {

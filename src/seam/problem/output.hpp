@@ -7,9 +7,9 @@
 #include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
-#include "seam/problem/tying_constraint.hpp"
 
 #include <array>
 #include <filesystem>
@@ -51,8 +51,7 @@ struct LocatedProbe {
 class Output {
 public:
   Output(const io::Config& config, const Discretization& disc, const Model& model,
-         const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-         std::filesystem::path dir, bool quiet);
+         const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir, bool quiet);
   ~Output();
 
   PhaseTimers& timers() { return timers_; }
@@ -62,10 +61,12 @@ public:
   void newton(const NewtonRecord& r);
   /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due
   /// (every n-th, and always `force_fields`). `reactions` holds dim values per reaction region
-  /// (summed over ranks), `u` and `v` are ghosted and up to date, `residual` is the local form
-  /// of f_int - f_ext before any condensation (for the interface multipliers). Collective.
+  /// (summed over ranks), `u` and `v` are ghosted and up to date, `multipliers` holds per
+  /// mesh-tying interface the Lagrange multiplier of every slave node (dim values each, the
+  /// same on every rank). Collective.
   void step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
-            std::span<const double> reactions, std::span<const double> residual, bool force_fields);
+            std::span<const double> reactions, const std::vector<std::vector<double>>& multipliers,
+            bool force_fields);
   /// The initial state (step 0) as fields only. Collective.
   void initial(const la::Vector& u);
   /// summary.json; `converged` false for a run that gave up. Collective.
@@ -78,8 +79,8 @@ private:
     std::vector<double> gap;          ///< normal part of D u_S - M u_M per slave node
     std::vector<double> displacement; ///< dim per slave node
   };
-  std::vector<InterfaceState> interface_states(const la::Vector& u,
-                                               std::span<const double> residual) const;
+  std::vector<InterfaceState>
+  interface_states(const la::Vector& u, const std::vector<std::vector<double>>& multipliers) const;
   void write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
                         bool write_nodes);
   void write_fields(int step, double time, const la::Vector& u, const la::Vector* v,
@@ -89,7 +90,7 @@ private:
   const Discretization& disc_;
   const Model& model_;
   const std::vector<meshtying::TiedInterface>& tied_;
-  const TyingConstraint& tying_;
+  std::vector<std::vector<char>> tied_rows_; // per interface and slave node: has a row of D
   std::filesystem::path dir_;
   bool quiet_;
   PhaseTimers timers_;

@@ -9,6 +9,7 @@
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
+#include "seam/problem/saddle_point.hpp"
 #include "seam/problem/static_solver.hpp"
 
 #include <cstdio>
@@ -129,15 +130,19 @@ int run(const RunOptions& options, int argc, char** argv) {
   PhaseTimers setup_timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
   const TyingConstraint tying(tied, disc, model);
+  SaddlePoint saddle(tied, disc, model);
+  if (tying.active() && saddle.active())
+    SEAM_THROW(InputError, options.input,
+               ": interfaces: condensed and saddle_point mesh tying cannot be mixed in one run");
   make_output_directory(output_directory(options), comm);
-  Output out(config, disc, model, tied, tying, output_directory(options), options.quiet);
+  Output out(config, disc, model, tied, output_directory(options), options.quiet);
   for (const auto& [phase, seconds] : setup_timers.all()) out.timers().add(phase, seconds);
   if (comm.is_root() && !options.quiet)
     std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",
                 version(), config.title.empty() ? options.input.c_str() : config.title.c_str(),
                 mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
                 comm.size(), out.directory().string().c_str());
-  run_static(config, model, disc, tying, out);
+  run_static(config, model, disc, tied, tying, saddle, out);
   return 0;
 }
 

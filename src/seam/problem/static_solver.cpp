@@ -2,6 +2,7 @@
 
 #include "seam/common/error.hpp"
 #include "seam/problem/assembly.hpp"
+#include "seam/problem/saddle_point.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -54,8 +55,8 @@ struct NewtonResult {
 class NewtonSolver {
 public:
   NewtonSolver(const io::Config& config, const Model& model, const Discretization& disc,
-               const TyingConstraint& tying, Output& out)
-      : config_(config), model_(model), disc_(disc), tying_(tying), out_(out),
+               const TyingConstraint& tying, SaddlePoint& saddle, Output& out)
+      : config_(config), model_(model), disc_(disc), tying_(tying), saddle_(saddle), out_(out),
         K_(disc.make_matrix()), r_(disc.make_vector()), r_full_(disc.make_vector()),
         rt_(disc.make_vector()), du_(disc.make_vector()), dut_(disc.make_vector()),
         g_(disc.make_vector()), f_ext_(disc.make_vector()),
@@ -92,6 +93,7 @@ public:
         res.failure = "an element is inverted (det F <= 0)";
         return res;
       }
+      if (saddle_.active()) saddle_.add_interface_forces(r_);
       // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
       la::Matrix* K_sys = &K_;
       la::Vector* r_sys = &r_;
@@ -107,7 +109,8 @@ public:
       const double full_norm = r_sys->norm();
       r_full_.copy_from(*r_sys);
       zero_dirichlet_rows(model_, disc_, *r_sys);
-      const double norm = r_sys->norm();
+      double norm = r_sys->norm();
+      if (saddle_.active()) norm = std::hypot(norm, saddle_.constraint_norm(u));
       if (!std::isfinite(norm) || !std::isfinite(full_norm)) {
         res.failure = "the residual is not finite";
         return res;
@@ -137,9 +140,13 @@ public:
       }
       if (it == nc.max_iterations) break;
       r_sys->scale(-1.0);
-      K_sys->zero_rows_columns(fixed_rows_, predictor ? &g_ : nullptr, predictor ? r_sys : nullptr);
       bool solved;
-      {
+      if (saddle_.active()) {
+        ScopedTimer timer(out_.timers(), "linear_solve");
+        solved = saddle_.solve(K_, r_, u, dirichlet_rows_, predictor ? &g_ : nullptr, solver_, du_);
+      } else {
+        K_sys->zero_rows_columns(fixed_rows_, predictor ? &g_ : nullptr,
+                                 predictor ? r_sys : nullptr);
         ScopedTimer timer(out_.timers(), "linear_solve");
         d_sys->zero();
         solved = solver_.solve(*K_sys, *r_sys, *d_sys);
@@ -184,15 +191,30 @@ public:
     out.axpy(1.0, r_full_);
   }
 
-  /// The residual f_int - f_ext of the last evaluation, before condensation (its slave rows
-  /// give the mesh-tying multipliers).
-  const la::Vector& raw_residual() const { return r_; }
+  /// The Lagrange multipliers of every mesh-tying interface (per slave node, dim values), on
+  /// every rank: unknowns of the saddle-point system, or recovered from the slave rows of the
+  /// residual before condensation, lambda = -r_S / D_SS. Collective.
+  std::vector<std::vector<double>>
+  multipliers(const std::vector<meshtying::TiedInterface>& tied) const {
+    std::vector<std::vector<double>> out;
+    la::Vector::LocalView r_view(r_, false);
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      if (tied[k].strategy == io::Strategy::saddle_point) {
+        out.push_back(saddle_.multipliers(k));
+      } else {
+        out.push_back(tying_.multipliers(k, r_view.values()));
+        disc_.comm().sum_in_place(out.back());
+      }
+    }
+    return out;
+  }
 
 private:
   const io::Config& config_;
   const Model& model_;
   const Discretization& disc_;
   const TyingConstraint& tying_;
+  SaddlePoint& saddle_;
   Output& out_;
   la::Matrix K_, Kt_;
   la::Vector r_, r_full_, rt_, du_, dut_, g_, f_ext_;
@@ -205,9 +227,10 @@ private:
 } // namespace
 
 void run_static(const io::Config& config, const Model& model, const Discretization& disc,
-                const TyingConstraint& tying, Output& out) {
+                const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
+                SaddlePoint& saddle, Output& out) {
   const auto& tc = config.time;
-  NewtonSolver newton(config, model, disc, tying, out);
+  NewtonSolver newton(config, model, disc, tying, saddle, out);
   la::Vector u = disc.make_vector();
   la::Vector u_saved = disc.make_vector();
   out.initial(u);
@@ -233,6 +256,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     if (!res.converged) {
       u.copy_from(u_saved);
       u.update_ghosts();
+      saddle.restore();
       if (cuts >= tc.max_step_cuts) {
         out.finish(false, step);
         SEAM_THROW(SolverError, res.failure, " at t = ", t_new, " after ", cuts, " step cuts; the ",
@@ -260,8 +284,8 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     rec.internal_energy = res.strain_energy;
     rec.external_work = external_work;
     const bool last = t_new >= end * (1.0 - 1e-12);
-    la::Vector::LocalView r_view(newton.raw_residual(), false);
-    out.step(rec, u, nullptr, reactions, r_view.values(), last);
+    out.step(rec, u, nullptr, reactions, newton.multipliers(tied), last);
+    saddle.save();
     t = t_new;
     if (cuts > 0) {
       dt = std::min(2.0 * dt, dt0); // grow back after a successful cut step

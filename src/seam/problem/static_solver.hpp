@@ -8,12 +8,14 @@
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
+#include "seam/problem/saddle_point.hpp"
 #include "seam/problem/tying_constraint.hpp"
 
 namespace seam::problem {
 
 /// Runs all load steps; writes output through `out`. Throws SolverError on failure.
 void run_static(const io::Config& config, const Model& model, const Discretization& disc,
-                const TyingConstraint& tying, Output& out);
+                const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
+                SaddlePoint& saddle, Output& out);
 
 } // namespace seam::problem

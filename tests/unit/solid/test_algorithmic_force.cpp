@@ -227,7 +227,9 @@ TEST(AlgorithmicForce, TangentMatchesCentralDifferencesNextToTheSwitch) {
           algorithmic_internal_force(make_input(s, m, X, u_n, u_next), f, K);
       ASSERT_EQ(res.status, KernelStatus::ok);
       ASSERT_EQ(res.n_midpoint_points, ratio < 1.0 ? n_points : 0) << label(s, m.model);
-      const double h = 1e-8, K_scale = max_abs(K);
+      // h moves |dC| by ~1e-2 of its size; a much smaller h would resolve the round-off of
+      // the discrete-gradient correction (~ eps_mach |S| / |dE|) instead of the derivative.
+      const double h = 1e-6, K_scale = max_abs(K);
       double worst = 0.0;
       for (std::size_t j = 0; j < nd; ++j) {
         std::vector<double> up = u_next, um = u_next;
@@ -271,7 +273,7 @@ TEST(AlgorithmicForce, ReducesToTheStandardForceForAZeroStep) {
       const std::vector<double> d = random_vector(nd, 0.1, 22);
       double previous = 0.0;
       for (int k = 0; k < 4; ++k) {
-        const double t = 0.5 / (1 << k);
+        const double t = 0.02 / (1 << k);
         std::vector<double> u1(nd), um(nd);
         for (std::size_t j = 0; j < nd; ++j) u1[j] = u[j] + t * d[j], um[j] = u[j] + 0.5 * t * d[j];
         ASSERT_EQ(algorithmic_internal_force(make_input(s, m, X, u, u1), f, {}).status,
@@ -280,7 +282,7 @@ TEST(AlgorithmicForce, ReducesToTheStandardForceForAZeroStep) {
         double gap = 0.0;
         for (std::size_t j = 0; j < nd; ++j) gap = std::max(gap, std::abs(f[j] - r[j]));
         if (k > 0) {
-          EXPECT_NEAR(previous / gap, 4.0, 0.4) << label(s, model) << " t " << t;
+          EXPECT_NEAR(previous / gap, 4.0, 0.3) << label(s, model) << " t " << t;
         }
         previous = gap;
       }
