@@ -117,9 +117,10 @@ def tied_boxes(h_lower, h_upper, order=1, kind="tet"):
              "Box(1) = {0, 0, 0, 1, 1, 1};",
              "Box(2) = {0, 0, 1, 1, 1, 1};"]
     if kind == "hex":
-        for vol, h in ((1, h_lower), (2, h_upper)):
+        # OpenCASCADE numbers the 12 edges of box 1 as curves 1-12, those of box 2 as 13-24.
+        for first, h in ((1, h_lower), (13, h_upper)):
             n = max(1, round(1.0 / h))
-            lines += ["Transfinite Curve{CombinedBoundary{Boundary{Volume{%d};}}} = %d;" % (vol, n + 1)]
+            lines += ["Transfinite Curve{%d:%d} = %d;" % (first, first + 11, n + 1)]
         lines += ["Transfinite Surface{:};", "Recombine Surface{:};", "Transfinite Volume{1, 2};"]
     else:
         lines += ["MeshSize{PointsOf{Volume{1};}} = %g;" % h_lower,
