@@ -28,10 +28,14 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
       start_wall_(wall_seconds()) {
   const auto& comm = disc.comm();
   const auto& mesh = disc.mesh();
+  // A slave node is tied if it has a row of D and not every component is prescribed.
+  std::vector<double> n_prescribed(mesh.n_nodes(), 0.0);
+  for (const auto& d : model.dirichlet) n_prescribed[d.node] += 1.0;
+  if (!tied_.empty()) comm.sum_in_place(n_prescribed);
   for (const auto& t : tied_) {
     auto& rows = tied_rows_.emplace_back(t.slave.mesh_nodes.size(), 0);
     for (const auto& e : t.operators.D)
-      if (e.value != 0.0) rows[e.row] = 1;
+      if (e.value != 0.0 && n_prescribed[t.slave.mesh_nodes[e.row]] < mesh.dim) rows[e.row] = 1;
   }
 
   // Probes: every rank locates them in the (replicated) mesh; the owner of the cell evaluates.

@@ -124,7 +124,9 @@ std::vector<double> TyingConstraint::multipliers(std::size_t interface,
     const auto s = t.slave.mesh_nodes[j];
     const double d = d_diag_[interface][j];
     if (d == 0.0 || !disc_.owns_node(s)) continue;
-    for (int c = 0; c < dim; ++c) lambda[j * dim + c] = -r_local[disc_.local_dof(s, c)] / d;
+    for (int c = 0; c < dim; ++c)
+      if (std::binary_search(eliminated_.begin(), eliminated_.end(), disc_.global_dof(s, c)))
+        lambda[j * dim + c] = -r_local[disc_.local_dof(s, c)] / d;
   }
   return lambda;
 }

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-// Derivation of the discrete gradient (Gonzalez 2000, Sec. 4; written in terms of E = (C-I)/2,
+// Derivation of the discrete gradient (Gonzalez 2000, CMAME 190; written in terms of E = (C-I)/2,
 // dE = E_{n+1} - E_n, E_mid = (E_n + E_{n+1})/2, ":" the full tensor contraction).
 //
 // Wanted: a symmetric S_alg(E_n, E_{n+1}) with
@@ -23,7 +23,7 @@
 // For a quadratic W (St. Venant–Kirchhoff, and the small-strain model in eps) phi = 0
 // identically: W(E_{n+1}) - W(E_n) = (E_{n+1} - E_n):CC:(E_{n+1} + E_n)/2 = dE:S(E_mid). The
 // correction is then pure round-off divided by |dE|^2, so those models use S(E_mid)
-// = (S_n + S_{n+1})/2 directly (Simo & Tarnow 1992, Eq. 3.11).
+// = (S_n + S_{n+1})/2 directly (Simo & Tarnow 1992).
 //
 // Plane stress: the energy returned by evaluate() is W2(C_2D) = W(C_2D, C33*) with C33* the
 // solution of S33 = 0; by the envelope theorem dW2/dE_2D = S_2D. The construction above is

@@ -2,7 +2,9 @@
 // Algorithmic (discrete-gradient) stress of a time step t_n -> t_{n+1}, the material-point part
 // of the energy-momentum method for nonlinear elastodynamics.
 //
-// The time-stepping scheme (Simo & Tarnow 1992; Gonzalez 2000) evaluates the internal force
+// The time-stepping scheme (J.C. Simo & N. Tarnow, The discrete energy-momentum method, ZAMP
+// 43 (1992) 757-792; O. Gonzalez, Exact energy and momentum conserving algorithms for general
+// models in nonlinear elasticity, CMAME 190 (2000) 1763-1783) evaluates the internal force
 // at the midpoint configuration with an algorithmic stress S_alg in place of S:
 //   f_alg = int B_mid^T S_alg dV,  B_mid built with F_mid = (F_n + F_{n+1}) / 2.
 // Because C_{n+1} - C_n = F_mid^T dF + dF^T F_mid exactly (dF = F_{n+1} - F_n), the strain
@@ -18,8 +20,7 @@
 //   linear_elastic          sigma(eps_mid): the midpoint rule, exact for a quadratic energy.
 //   saint_venant_kirchhoff  (S(E_n) + S(E_{n+1}))/2 (Simo & Tarnow 1992): S is linear in E,
 //                           so this equals S(E_mid) and has the directionality property.
-//   neo_hooke               Gonzalez's discrete gradient (Gonzalez 2000, J. Nonlinear Sci.;
-//                           Gonzalez & Simo 1996):
+//   neo_hooke               Gonzalez's discrete gradient (usable for any W(C)):
 //                             S_alg = S(C_mid) + [W_{n+1} - W_n - S(C_mid):dE] dE / (dE:dE),
 //                           C_mid = (C_n + C_{n+1})/2; S(C_mid) alone when
 //                           |dC| <= threshold |C_mid| (the correction is O(|dC|^2) there).
@@ -34,11 +35,11 @@
 namespace seam::solid {
 
 /// Relative increment |C_{n+1} - C_n|_F / |C_mid|_F at or below which the discrete gradient
-/// is replaced by S(C_mid). The correction term is computed from the difference
-/// W_{n+1} - W_n, whose round-off does not shrink with the increment: it perturbs the stress
-/// by ~ eps_mach |S| / |dE| and the tangent by ~ eps_mach |S| / |dE|^2. Dropping the
-/// correction instead breaks the directionality property by O(|dE|^3). 1e-4 keeps both well
-/// below 1e-8 relative (see test_algorithmic_force.cpp).
+/// is replaced by S(C_mid). The correction is computed from W_{n+1} - W_n, whose round-off
+/// (~ eps_mach |CC|) does not shrink with the increment: just above the switch it perturbs the
+/// stress by ~ eps_mach |CC| / |dE| (~1e-12 |CC|) and the tangent by ~ eps_mach |CC| / |dE|^2
+/// (~1e-8 |CC|). Just below, the omitted correction is O(|CC| |dE|^2) (~1e-8 |CC|) and the
+/// directionality defect O(|CC| |dE|^3), ~1e-8 of the step's energy change.
 inline constexpr double default_discrete_gradient_threshold = 1e-4;
 
 /// The algorithmic stress of a material point over one time step.

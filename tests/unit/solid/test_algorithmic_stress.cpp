@@ -139,7 +139,7 @@ TEST(AlgorithmicStress, TangentMatchesCentralDifferences) {
   // dS_alg/dE_{n+1} column l from S_alg at F_{n+1} = sqrt(I + 2 (E1 +- h e_l)). The increments
   // cover large steps and both sides of the switch, |dC|/|C_mid| = 3 and 1/3 times the
   // threshold. Above it h is ~1e-2 |dE|: large enough that the round-off of the correction
-  // (~ eps_mach |S| / |dE|, amplified by 1/h in the difference) stays below the derivative.
+  // (~ eps_mach |CC| / |dE|, amplified by 1/h in the difference) stays below the derivative.
   const double tau = default_discrete_gradient_threshold;
   for (auto model : all_models) {
     for (auto mode : all_modes) {
