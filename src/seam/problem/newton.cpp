@@ -1,0 +1,130 @@
+#include "seam/problem/newton.hpp"
+
+#include <cmath>
+
+namespace seam::problem {
+
+/// g = (prescribed values at time t) - u on the Dirichlet dofs, 0 elsewhere. Returns whether
+/// any rank has a nonzero prescribed increment.
+bool dirichlet_increment(const Model& model, const Discretization& disc, const la::Vector& u,
+                         double t, la::Vector& g) {
+  bool nonzero = false;
+  {
+    la::Vector::LocalView gv(g, true);
+    la::Vector::LocalView uv(u, false);
+    auto gl = gv.values();
+    const auto ul = uv.values();
+    std::fill(gl.begin(), gl.end(), 0.0);
+    const auto& x = disc.mesh().x;
+    const int dim = disc.dim();
+    const PetscInt first = disc.first_owned_dof();
+    for (const auto& d : model.dirichlet) {
+      const double* p = &x[static_cast<std::size_t>(d.node) * dim];
+      const auto i = d.dof - first;
+      gl[i] = model.dirichlet_values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0) - ul[i];
+      nonzero = nonzero || gl[i] != 0.0;
+    }
+  }
+  return disc.comm().any(nonzero);
+}
+
+/// Zeroes the Dirichlet rows of r (they hold the reactions, kept in the full residual).
+void zero_dirichlet_rows(const Model& model, const Discretization& disc, la::Vector& r) {
+  la::Vector::LocalView view(r, true);
+  auto v = view.values();
+  const PetscInt first = disc.first_owned_dof();
+  for (const auto& d : model.dirichlet) v[d.dof - first] = 0.0;
+}
+
+NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evaluator& evaluate) {
+  NewtonResult res;
+  const auto& nc = config_.solver.newton;
+  double reference = 0.0;
+  const bool moving_boundary = dirichlet_increment(model_, disc_, u, t, g_);
+  for (int it = 0; it <= nc.max_iterations; ++it) {
+    AssemblyStatus status;
+    {
+      ScopedTimer timer(out_.timers(), "assembly");
+      status = evaluate(u, r_, K_, f_ext_);
+    }
+    if (disc_.comm().any(status.inverted)) {
+      res.failure = "an element is inverted (det F <= 0)";
+      return res;
+    }
+    if (saddle_.active()) saddle_.add_interface_forces(r_);
+    // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
+    la::Matrix* K_sys = &K_;
+    la::Vector* r_sys = &r_;
+    la::Vector* d_sys = &du_;
+    if (tying_.active()) {
+      ScopedTimer timer(out_.timers(), "mortar");
+      tying_.condense_matrix(K_, Kt_);
+      tying_.condense_vector(r_, rt_);
+      K_sys = &Kt_;
+      r_sys = &rt_;
+      d_sys = &dut_;
+    }
+    const double full_norm = r_sys->norm();
+    r_full_.copy_from(*r_sys);
+    zero_dirichlet_rows(model_, disc_, *r_sys);
+    double norm = r_sys->norm();
+    if (saddle_.active()) norm = std::hypot(norm, saddle_.constraint_norm(u));
+    if (!std::isfinite(norm) || !std::isfinite(full_norm)) {
+      res.failure = "the residual is not finite";
+      return res;
+    }
+    // Relative residual: against the first residual of the step and the force level of
+    // the system (reactions and external loads), so that a step with a tiny increment is
+    // not asked to go below round-off.
+    // After a predictor the reference is taken from the first corrector, whose residual
+    // reflects the prescribed motion.
+    const bool predictor = it == 0 && moving_boundary;
+    if (it == 0 || (it == 1 && moving_boundary))
+      reference = std::max({reference, norm, full_norm, f_ext_.norm()});
+    // Or the last correction was negligible against the displacement: on stiff, badly
+    // conditioned systems the residual stagnates at the linear solver's round-off level
+    // above tol * reference while the state no longer changes.
+    const bool small_increment =
+        it >= 2 && last_increment_ <= nc.tolerance * std::max(u.norm(), 1e-300);
+    const bool converged =
+        !predictor && (norm <= nc.tolerance * reference || reference == 0.0 || small_increment);
+    out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, 0});
+    res.residual = reference > 0 ? norm / reference : 0.0;
+    res.iterations = it;
+    res.strain_energy = disc_.comm().sum(status.strain_energy);
+    if (converged) {
+      res.converged = true;
+      return res;
+    }
+    if (it == nc.max_iterations) break;
+    r_sys->scale(-1.0);
+    bool solved;
+    if (saddle_.active()) {
+      ScopedTimer timer(out_.timers(), "linear_solve");
+      solved = saddle_.solve(K_, r_, u, dirichlet_rows_, predictor ? &g_ : nullptr, solver_, du_);
+    } else {
+      K_sys->zero_rows_columns(fixed_rows_, predictor ? &g_ : nullptr, predictor ? r_sys : nullptr);
+      ScopedTimer timer(out_.timers(), "linear_solve");
+      d_sys->zero();
+      solved = solver_.solve(*K_sys, *r_sys, *d_sys);
+    }
+    if (solved && tying_.active()) tying_.expand(dut_, du_);
+    if (!solved) {
+      res.failure = "the linear solver failed";
+      return res;
+    }
+    last_increment_ = du_.norm();
+    u.axpy(1.0, du_);
+    if (predictor) {
+      // The constrained rows of the solve return the prescribed increment up to round-off;
+      // make the prescribed values exact.
+      dirichlet_increment(model_, disc_, u, t, g_);
+      u.axpy(1.0, g_);
+    }
+    u.update_ghosts();
+  }
+  res.failure = "Newton's method did not converge";
+  return res;
+}
+
+} // namespace seam::problem

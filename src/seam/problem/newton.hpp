@@ -1,0 +1,120 @@
+#pragma once
+// Newton's method on the bulk system with its constraints: Dirichlet conditions (with a
+// predictor that carries the prescribed increment), condensed mesh tying (T^T K T) or
+// saddle-point mesh tying. What is solved (static equilibrium, a time step of a dynamic
+// scheme) comes in as an evaluator of the residual and tangent.
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/problem/assembly.hpp"
+#include "seam/problem/discretization.hpp"
+#include "seam/problem/model.hpp"
+#include "seam/problem/output.hpp"
+#include "seam/problem/saddle_point.hpp"
+#include "seam/problem/tying_constraint.hpp"
+
+#include <functional>
+#include <vector>
+
+namespace seam::problem {
+
+/// g = (prescribed values at time t) - u on the Dirichlet dofs, 0 elsewhere. Returns whether
+/// any rank has a nonzero prescribed increment.
+bool dirichlet_increment(const Model& model, const Discretization& disc, const la::Vector& u,
+                         double t, la::Vector& g);
+/// Zeroes the Dirichlet rows of r (they hold the reactions, kept in the full residual).
+void zero_dirichlet_rows(const Model& model, const Discretization& disc, la::Vector& r);
+
+struct NewtonResult {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;
+  double strain_energy = 0.0;
+  const char* failure = "";
+};
+
+class NewtonSolver {
+public:
+  NewtonSolver(const io::Config& config, const Model& model, const Discretization& disc,
+               const TyingConstraint& tying, SaddlePoint& saddle, Output& out)
+      : config_(config), model_(model), disc_(disc), tying_(tying), saddle_(saddle), out_(out),
+        K_(disc.make_matrix()), r_(disc.make_vector()), r_full_(disc.make_vector()),
+        rt_(disc.make_vector()), du_(disc.make_vector()), dut_(disc.make_vector()),
+        g_(disc.make_vector()), f_ext_(disc.make_vector()),
+        solver_(disc.comm().get(), config.solver.linear == io::LinearSolverKind::direct
+                                       ? la::SolverKind::direct
+                                       : la::SolverKind::iterative) {
+    for (const auto& d : model_.dirichlet) dirichlet_rows_.push_back(d.dof);
+    // Rows fixed in the Newton system: Dirichlet dofs and (with condensed tying) the
+    // eliminated slave dofs, whose rows of T^T K T are empty.
+    fixed_rows_ = dirichlet_rows_;
+    if (tying.active())
+      fixed_rows_.insert(fixed_rows_.end(), tying.eliminated_dofs().begin(),
+                         tying.eliminated_dofs().end());
+    if (config.solver.linear == io::LinearSolverKind::iterative)
+      K_.set_near_null_space(disc.coordinates_vector());
+  }
+
+  /// Newton iterations at time t from the last converged u. The first iteration is the
+  /// predictor: it is linearized at the old state and carries the increment of the prescribed
+  /// displacements as an inhomogeneous constraint, so the interior follows the moving
+  /// boundary instead of being left behind (which would invert the elements next to it).
+  /// Evaluates r = f_int - f_ext (plus any inertia), its tangent K and f_ext alone at u.
+  using Evaluator = std::function<AssemblyStatus(const la::Vector& u, la::Vector& r, la::Matrix& K,
+                                                 la::Vector& f_ext)>;
+  NewtonResult solve(la::Vector& u, double t, int step, const Evaluator& evaluate);
+
+  /// Reaction force per reaction region (dim values each), summed over ranks: the full
+  /// residual f_int - f_ext at the region's nodes.
+  std::vector<double> reactions() const {
+    const int dim = disc_.dim();
+    std::vector<double> out(model_.reaction_regions.size() * dim, 0.0);
+    la::Vector::LocalView view(r_full_, false);
+    const auto r = view.values();
+    for (std::size_t k = 0; k < model_.reaction_regions.size(); ++k)
+      for (auto n : model_.reaction_regions[k].owned_nodes)
+        for (int c = 0; c < dim; ++c) out[k * dim + c] += r[disc_.local_dof(n, c)];
+    disc_.comm().sum_in_place(out);
+    return out;
+  }
+
+  /// All forces the surroundings exert on the body at the last evaluation: applied loads plus
+  /// support reactions, f_ext + (f_int - f_ext) = f_int at equilibrium.
+  void total_external_force(la::Vector& out) const {
+    out.copy_from(f_ext_);
+    out.axpy(1.0, r_full_);
+  }
+
+  /// The Lagrange multipliers of every mesh-tying interface (per slave node, dim values), on
+  /// every rank: unknowns of the saddle-point system, or recovered from the slave rows of the
+  /// residual before condensation, lambda = -r_S / D_SS. Collective.
+  std::vector<std::vector<double>>
+  multipliers(const std::vector<meshtying::TiedInterface>& tied) const {
+    std::vector<std::vector<double>> out;
+    la::Vector::LocalView r_view(r_, false);
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      if (tied[k].strategy == io::Strategy::saddle_point) {
+        out.push_back(saddle_.multipliers(k));
+      } else {
+        out.push_back(tying_.multipliers(k, r_view.values()));
+        disc_.comm().sum_in_place(out.back());
+      }
+    }
+    return out;
+  }
+
+private:
+  const io::Config& config_;
+  const Model& model_;
+  const Discretization& disc_;
+  const TyingConstraint& tying_;
+  SaddlePoint& saddle_;
+  Output& out_;
+  la::Matrix K_, Kt_;
+  la::Vector r_, r_full_, rt_, du_, dut_, g_, f_ext_;
+  std::vector<PetscInt> fixed_rows_;
+  la::LinearSolver solver_;
+  std::vector<PetscInt> dirichlet_rows_;
+  double last_increment_ = 0.0;
+};
+
+} // namespace seam::problem
