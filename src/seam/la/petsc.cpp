@@ -222,6 +222,14 @@ void Matrix::mult_transpose(const Vector& x, Vector& y) const {
   check(MatMultTranspose(m_, x.get(), y.get()), "MatMultTranspose");
 }
 
+void Matrix::scale(double a) {
+  check(MatScale(m_, a), "MatScale");
+}
+
+void Matrix::axpy(double a, const Matrix& X) {
+  check(MatAXPY(m_, a, X.m_, SAME_NONZERO_PATTERN), "MatAXPY");
+}
+
 void Matrix::add_diagonal(const Vector& values) {
   check(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
   check(MatDiagonalSet(m_, values.get(), ADD_VALUES), "MatDiagonalSet");

@@ -104,6 +104,9 @@ public:
   /// y = this x, and y = this^T x.
   void mult(const Vector& x, Vector& y) const;
   void mult_transpose(const Vector& x, Vector& y) const;
+  /// this = a * this; this += a * X (X with the same nonzero pattern).
+  void scale(double a);
+  void axpy(double a, const Matrix& X);
   /// Adds `values` to the diagonal (entries may be new).
   void add_diagonal(const Vector& values);
   void zero();

@@ -2,8 +2,10 @@
 
 #include "seam/common/error.hpp"
 #include "seam/fem/cell.hpp"
+#include "seam/solid/algorithmic_force.hpp"
 #include "seam/solid/element.hpp"
 #include "seam/solid/loads.hpp"
+#include "seam/solid/mass.hpp"
 
 #include <array>
 
@@ -38,47 +40,14 @@ void gather(const Discretization& disc, std::span<const double> u_local,
 
 } // namespace
 
-AssemblyStatus assemble(const Model& model, const Discretization& disc, const la::Vector& u,
-                        double t, la::Vector& residual, la::Matrix* tangent, la::Vector* external) {
+bool add_loads(const Model& model, const Discretization& disc, std::span<const double> u_local,
+               double t, la::Vector& residual, la::Matrix* tangent, double tangent_scale,
+               la::Vector* external) {
   const auto& mesh = disc.mesh();
   const int dim = disc.dim();
-  residual.zero();
-  if (tangent) tangent->zero();
-  if (external) external->zero();
-  AssemblyStatus status;
-
-  la::Vector::LocalView u_view(u, false);
-  const auto u_local = u_view.values();
+  bool inverted = false;
   CellData d;
   std::array<double, max_dofs> minus_r{};
-
-  for (auto c : disc.local_cells()) {
-    const auto type = mesh.cell_type[c];
-    gather(disc, u_local, mesh.cell(c), d);
-    const int nd = d.n * dim;
-    solid::ElementInput in{type,
-                           dim,
-                           model.plane,
-                           model.materials[model.cell_material[c]],
-                           std::span<const double>(d.X.data(), nd),
-                           std::span<const double>(d.u.data(), nd),
-                           0};
-    const auto res = solid::internal_force(
-        in, std::span<double>(d.r.data(), nd),
-        tangent ? std::span<double>(d.K.data(), static_cast<std::size_t>(nd) * nd)
-                : std::span<double>());
-    if (res.status != solid::KernelStatus::ok) {
-      status.inverted = true;
-      continue;
-    }
-    status.strain_energy += res.energy;
-    const std::span<const PetscInt> dofs(d.dofs.data(), nd);
-    residual.add_values(dofs, std::span<const double>(d.r.data(), nd));
-    if (tangent)
-      tangent->add_values(dofs, dofs,
-                          std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
-  }
-
   // Loads: each kernel returns its contribution to r = f_int - f_ext (minus the load).
   auto add_load = [&](int nd) {
     const std::span<const PetscInt> dofs(d.dofs.data(), nd);
@@ -110,6 +79,9 @@ AssemblyStatus assemble(const Model& model, const Discretization& disc, const la
             tangent ? std::span<double>(d.K.data(), static_cast<std::size_t>(nd) * nd)
                     : std::span<double>());
         if (tangent) {
+          if (tangent_scale != 1.0)
+            for (std::size_t k = 0; k < static_cast<std::size_t>(nd) * nd; ++k)
+              d.K[k] *= tangent_scale;
           const std::span<const PetscInt> dofs(d.dofs.data(), nd);
           tangent->add_values(
               dofs, dofs, std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
@@ -143,13 +115,133 @@ AssemblyStatus assemble(const Model& model, const Discretization& disc, const la
                              0};
       if (solid::body_force(in, force, std::span<double>(d.r.data(), nd)) !=
           solid::KernelStatus::ok) {
-        status.inverted = true;
+        inverted = true;
         continue;
       }
       add_load(nd);
     }
   }
 
+  return inverted;
+}
+
+AssemblyStatus assemble(const Model& model, const Discretization& disc, const la::Vector& u,
+                        double t, la::Vector& residual, la::Matrix* tangent, la::Vector* external) {
+  const auto& mesh = disc.mesh();
+  const int dim = disc.dim();
+  residual.zero();
+  if (tangent) tangent->zero();
+  if (external) external->zero();
+  AssemblyStatus status;
+
+  la::Vector::LocalView u_view(u, false);
+  const auto u_local = u_view.values();
+  CellData d;
+
+  for (auto c : disc.local_cells()) {
+    const auto type = mesh.cell_type[c];
+    gather(disc, u_local, mesh.cell(c), d);
+    const int nd = d.n * dim;
+    solid::ElementInput in{type,
+                           dim,
+                           model.plane,
+                           model.materials[model.cell_material[c]],
+                           std::span<const double>(d.X.data(), nd),
+                           std::span<const double>(d.u.data(), nd),
+                           0};
+    const auto res = solid::internal_force(
+        in, std::span<double>(d.r.data(), nd),
+        tangent ? std::span<double>(d.K.data(), static_cast<std::size_t>(nd) * nd)
+                : std::span<double>());
+    if (res.status != solid::KernelStatus::ok) {
+      status.inverted = true;
+      continue;
+    }
+    status.strain_energy += res.energy;
+    const std::span<const PetscInt> dofs(d.dofs.data(), nd);
+    residual.add_values(dofs, std::span<const double>(d.r.data(), nd));
+    if (tangent)
+      tangent->add_values(dofs, dofs,
+                          std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+  }
+
+  status.inverted =
+      status.inverted || add_loads(model, disc, u_local, t, residual, tangent, 1.0, external);
+  residual.assemble();
+  if (tangent) tangent->assemble();
+  if (external) external->assemble();
+  return status;
+}
+
+void assemble_mass(const Model& model, const Discretization& disc, la::Matrix& M) {
+  const auto& mesh = disc.mesh();
+  const int dim = disc.dim();
+  M.zero();
+  CellData d;
+  const std::vector<double> no_displacement(
+      static_cast<std::size_t>(disc.n_owned_dofs()) + disc.local_nodes().size() * dim, 0.0);
+  for (auto c : disc.local_cells()) {
+    gather(disc, no_displacement, mesh.cell(c), d);
+    const int nd = d.n * dim;
+    const auto status =
+        solid::consistent_mass(mesh.cell_type[c], dim, std::span<const double>(d.X.data(), nd),
+                               model.materials[model.cell_material[c]].density,
+                               std::span<double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+    if (status != solid::KernelStatus::ok)
+      SEAM_THROW(InputError, "cell ", c, " of the mesh is inverted (det dX/dxi <= 0)");
+    const std::span<const PetscInt> dofs(d.dofs.data(), nd);
+    M.add_values(dofs, dofs,
+                 std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+  }
+  M.assemble();
+}
+
+AssemblyStatus assemble_algorithmic(const Model& model, const Discretization& disc,
+                                    const la::Vector& u_n, const la::Vector& u_next, double t_mid,
+                                    la::Vector& residual, la::Matrix* tangent,
+                                    la::Vector* external) {
+  const auto& mesh = disc.mesh();
+  const int dim = disc.dim();
+  residual.zero();
+  if (tangent) tangent->zero();
+  if (external) external->zero();
+  AssemblyStatus status;
+  la::Vector::LocalView n_view(u_n, false), next_view(u_next, false);
+  const auto un = n_view.values();
+  const auto unext = next_view.values();
+  CellData d, d_next;
+  for (auto c : disc.local_cells()) {
+    gather(disc, un, mesh.cell(c), d);
+    gather(disc, unext, mesh.cell(c), d_next);
+    const int nd = d.n * dim;
+    solid::AlgorithmicInput in;
+    in.cell = mesh.cell_type[c];
+    in.dim = dim;
+    in.plane = model.plane;
+    in.material = model.materials[model.cell_material[c]];
+    in.X = std::span<const double>(d.X.data(), nd);
+    in.u_n = std::span<const double>(d.u.data(), nd);
+    in.u_next = std::span<const double>(d_next.u.data(), nd);
+    const auto res = solid::algorithmic_internal_force(
+        in, std::span<double>(d.r.data(), nd),
+        tangent ? std::span<double>(d.K.data(), static_cast<std::size_t>(nd) * nd)
+                : std::span<double>());
+    if (res.status != solid::KernelStatus::ok) {
+      status.inverted = true;
+      continue;
+    }
+    status.strain_energy += res.energy_next;
+    const std::span<const PetscInt> dofs(d.dofs.data(), nd);
+    residual.add_values(dofs, std::span<const double>(d.r.data(), nd));
+    if (tangent)
+      tangent->add_values(dofs, dofs,
+                          std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+  }
+  // Loads at the midpoint configuration; d(u_mid)/d(u_next) = 1/2.
+  std::vector<double> mid(un.size());
+  for (std::size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5 * (un[i] + unext[i]);
+  status.inverted =
+      status.inverted || add_loads(model, disc, mid, t_mid, residual, tangent, 0.5, external);
   residual.assemble();
   if (tangent) tangent->assemble();
   if (external) external->assemble();

@@ -7,6 +7,7 @@
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/discretization.hpp"
+#include "seam/problem/dynamic_solver.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/saddle_point.hpp"
@@ -123,9 +124,6 @@ int run(const RunOptions& options, int argc, char** argv) {
   auto mesh = load_mesh(config, comm);
   const Discretization disc(mesh, comm);
   const auto model = build_model(config, disc);
-  if (config.time.is_dynamic())
-    SEAM_THROW(InputError, options.input,
-               ": time.integrator: dynamics is not available in this version of seam; use static");
   reject_contact(config);
   PhaseTimers setup_timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
@@ -142,7 +140,10 @@ int run(const RunOptions& options, int argc, char** argv) {
                 version(), config.title.empty() ? options.input.c_str() : config.title.c_str(),
                 mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
                 comm.size(), out.directory().string().c_str());
-  run_static(config, model, disc, tied, tying, saddle, out);
+  if (config.time.is_dynamic())
+    run_dynamic(config, model, disc, tied, tying, saddle, out);
+  else
+    run_static(config, model, disc, tied, tying, saddle, out);
   return 0;
 }
 

@@ -1,0 +1,240 @@
+#include "seam/problem/dynamic_solver.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/problem/assembly.hpp"
+#include "seam/problem/newton.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace seam::problem {
+
+namespace {
+
+/// Generalized-alpha parameters from the spectral radius at infinity (Chung & Hulbert 1993).
+struct AlphaParameters {
+  double alpha_m, alpha_f, beta, gamma;
+  explicit AlphaParameters(double rho) {
+    alpha_m = (2 * rho - 1) / (rho + 1);
+    alpha_f = rho / (rho + 1);
+    beta = 0.25 * (1 - alpha_m + alpha_f) * (1 - alpha_m + alpha_f);
+    gamma = 0.5 - alpha_m + alpha_f;
+  }
+};
+
+/// The initial velocity field from `initial_conditions` (owned dofs).
+void initial_velocity(const io::Config& config, const Discretization& disc, la::Vector& v) {
+  const auto& mesh = disc.mesh();
+  const int dim = disc.dim();
+  {
+    la::Vector::LocalView view(v, true);
+    auto vl = view.values();
+    for (const auto& ic : config.initial_conditions) {
+      const auto& region = find_region(mesh, ic.region, {0, 1, 2, 3}, "an initial condition");
+      for (auto n : region.nodes) {
+        if (!disc.owns_node(n)) continue;
+        const double* X = &mesh.x[static_cast<std::size_t>(n) * dim];
+        for (int c = 0; c < dim; ++c)
+          vl[disc.local_dof(n, c)] = ic.velocity[c](0.0, X[0], X[1], dim == 3 ? X[2] : 0.0);
+      }
+    }
+  }
+  v.update_ghosts();
+}
+
+/// Linear and angular momentum of the mass M, velocity v, displacement u: p = sum_a (M v)_a,
+/// L = sum_a x_a x (M v)_a with x = X + u.
+void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& u,
+             const la::Vector& v, la::Vector& work, std::array<double, 3>& p,
+             std::array<double, 3>& L) {
+  M.mult(v, work);
+  const int dim = disc.dim();
+  const auto& mesh = disc.mesh();
+  double acc[6] = {0, 0, 0, 0, 0, 0};
+  la::Vector::LocalView wv(work, false), uv(u, false);
+  const auto w = wv.values();
+  const auto ul = uv.values();
+  const auto nodes = disc.local_nodes();
+  for (std::int32_t i = 0; i < disc.n_owned_nodes(); ++i) {
+    double x[3] = {0, 0, 0}, f[3] = {0, 0, 0};
+    for (int c = 0; c < dim; ++c) {
+      x[c] = mesh.x[static_cast<std::size_t>(nodes[i]) * dim + c] + ul[i * dim + c];
+      f[c] = w[i * dim + c];
+      acc[c] += f[c];
+    }
+    acc[3] += x[1] * f[2] - x[2] * f[1];
+    acc[4] += x[2] * f[0] - x[0] * f[2];
+    acc[5] += x[0] * f[1] - x[1] * f[0];
+  }
+  disc.comm().sum_in_place(std::span<double>(acc, 6));
+  p = {acc[0], acc[1], acc[2]};
+  L = {acc[3], acc[4], acc[5]};
+}
+
+} // namespace
+
+void run_dynamic(const io::Config& config, const Model& model, const Discretization& disc,
+                 const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
+                 SaddlePoint& saddle, Output& out) {
+  const auto& tc = config.time;
+  const bool emm = tc.integrator == io::Integrator::energy_momentum;
+  const AlphaParameters ga(tc.rho_inf);
+  NewtonSolver newton(config, model, disc, tying, saddle, out);
+
+  la::Matrix M = disc.make_matrix();
+  {
+    ScopedTimer timer(out.timers(), "assembly");
+    assemble_mass(model, disc, M);
+  }
+  la::Vector u = disc.make_vector(), v = disc.make_vector(), a = disc.make_vector();
+  la::Vector u_n = disc.make_vector(), v_n = disc.make_vector(), a_n = disc.make_vector();
+  la::Vector work = disc.make_vector(), mid = disc.make_vector(), w2 = disc.make_vector();
+  initial_velocity(config, disc, v);
+  if (tying.active()) {
+    // The velocity must satisfy the tying constraint: slave velocities follow the master's.
+    work.copy_from(v);
+    tying.expand(work, v);
+    v.update_ghosts();
+  }
+  // Initial acceleration: a0 = 0 is exact for a stress-free, unloaded start (the seed's
+  // examples); otherwise the first generalized-alpha steps carry a transient.
+  out.initial(u);
+
+  auto record = [&](int step, double t, const NewtonResult& res, double internal,
+                    double external_work) {
+    StepRecord rec;
+    rec.step = step;
+    rec.time = t;
+    rec.newton_iterations = res.iterations;
+    rec.residual = res.residual;
+    M.mult(v, work);
+    rec.kinetic_energy = 0.5 * work.dot(v);
+    rec.internal_energy = internal;
+    rec.external_work = external_work;
+    momenta(disc, M, u, v, work, rec.momentum, rec.angular_momentum);
+    return rec;
+  };
+
+  double t = 0.0, dt = tc.dt;
+  int step = 0, cuts = 0;
+  double external_work = 0.0;
+  la::Vector force = disc.make_vector(), force_old = disc.make_vector(), du = disc.make_vector();
+  while (t < tc.end * (1.0 - 1e-12)) {
+    double t_new = std::min(t + dt, tc.end);
+    {
+      const double k = std::round(t_new / tc.dt);
+      if (std::abs(t_new - k * tc.dt) < 1e-9 * tc.dt) t_new = tc.time_at(static_cast<int>(k));
+    }
+    const double h = t_new - t;
+    u_n.copy_from(u);
+    v_n.copy_from(v);
+    a_n.copy_from(a);
+    u_n.update_ghosts();
+
+    NewtonSolver::Evaluator evaluate;
+    if (emm) {
+      // M (v_{n+1} - v_n)/h + f_alg(u_n, u_{n+1}) - f_ext(t_{n+1/2}) = 0 with
+      // v_{n+1} = 2 (u_{n+1} - u_n)/h - v_n.
+      evaluate = [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
+        const auto status =
+            assemble_algorithmic(model, disc, u_n, state, 0.5 * (t + t_new), r, &K, &f_ext);
+        w2.copy_from(state);
+        w2.axpy(-1.0, u_n);
+        w2.axpy(-h, v_n);
+        w2.scale(2.0 / (h * h));
+        M.mult(w2, work);
+        r.axpy(1.0, work);
+        K.axpy(2.0 / (h * h), M);
+        return status;
+      };
+    } else {
+      // M a_{n+1-alpha_m} + r(u_{n+1-alpha_f}, t_{n+1-alpha_f}) = 0 (Chung & Hulbert 1993).
+      const double t_m = (1 - ga.alpha_f) * t_new + ga.alpha_f * t;
+      evaluate = [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
+        mid.copy_from(state);
+        mid.scale(1 - ga.alpha_f);
+        mid.axpy(ga.alpha_f, u_n);
+        mid.update_ghosts();
+        const auto status = assemble(model, disc, mid, t_m, r, &K, &f_ext);
+        // a_{n+1}(u) and a_{n+1-alpha_m} = (1 - alpha_m) a_{n+1} + alpha_m a_n.
+        w2.copy_from(state);
+        w2.axpy(-1.0, u_n);
+        w2.axpy(-h, v_n);
+        w2.scale(1.0 / (ga.beta * h * h));
+        w2.axpy(-(1 - 2 * ga.beta) / (2 * ga.beta), a_n);
+        w2.scale(1 - ga.alpha_m);
+        w2.axpy(ga.alpha_m, a_n);
+        M.mult(w2, work);
+        r.axpy(1.0, work);
+        K.scale(1 - ga.alpha_f);
+        K.axpy((1 - ga.alpha_m) / (ga.beta * h * h), M);
+        return status;
+      };
+    }
+    const auto res = newton.solve(u, t_new, step + 1, evaluate);
+    if (!res.converged) {
+      u.copy_from(u_n);
+      u.update_ghosts();
+      saddle.restore();
+      if (cuts >= tc.max_step_cuts) {
+        out.finish(false, step);
+        SEAM_THROW(SolverError, res.failure, " at t = ", t_new, " after ", cuts, " step cuts; the ",
+                   step, " converged steps are written in ", out.directory().string());
+      }
+      ++cuts;
+      dt *= 0.5;
+      if (disc.comm().is_root())
+        std::fprintf(stdout, "seam: %s at t = %g; cutting the step to dt = %g\n", res.failure,
+                     t_new, dt);
+      continue;
+    }
+    ++step;
+    // New velocity and acceleration.
+    if (emm) {
+      v.copy_from(u);
+      v.axpy(-1.0, u_n);
+      v.scale(2.0 / h);
+      v.axpy(-1.0, v_n);
+    } else {
+      a.copy_from(u);
+      a.axpy(-1.0, u_n);
+      a.axpy(-h, v_n);
+      a.scale(1.0 / (ga.beta * h * h));
+      a.axpy(-(1 - 2 * ga.beta) / (2 * ga.beta), a_n);
+      v.copy_from(v_n);
+      v.axpy(h * (1 - ga.gamma), a_n);
+      v.axpy(h * ga.gamma, a);
+    }
+    v.update_ghosts();
+    a.update_ghosts();
+    // Strain energy at u_{n+1} (generalized-alpha evaluated the midpoint state).
+    double internal = res.strain_energy;
+    if (!emm) {
+      ScopedTimer timer(out.timers(), "assembly");
+      internal = disc.comm().sum(assemble(model, disc, u, t_new, work, nullptr).strain_energy);
+    }
+    // External work of loads and supports, trapezoidal in the displacement increment.
+    du.copy_from(u);
+    du.axpy(-1.0, u_n);
+    newton.total_external_force(force);
+    if (emm) {
+      // The loads of the energy-momentum step act at the midpoint: their work is F_mid . du.
+      external_work += force.dot(du);
+    } else {
+      external_work += 0.5 * (force.dot(du) + force_old.dot(du));
+      force_old.copy_from(force);
+    }
+    const auto rec = record(step, t_new, res, internal, external_work);
+    const bool last = t_new >= tc.end * (1.0 - 1e-12);
+    out.step(rec, u, &v, newton.reactions(), newton.multipliers(tied), last);
+    saddle.save();
+    t = t_new;
+    if (cuts > 0) {
+      dt = std::min(2.0 * dt, tc.dt);
+      if (dt >= tc.dt) cuts = 0;
+    }
+  }
+  out.finish(true, step);
+}
+
+} // namespace seam::problem
