@@ -109,7 +109,7 @@ def tied_rectangles(h_lower, h_upper, order=1, kind="tri"):
     return "\n".join(lines) + "\n"
 
 
-def tied_boxes(h_lower, h_upper, order=1, kind="tet"):
+def tied_boxes(h_lower, h_upper, order=1, kind="tet", serendipity=False):
     """Two unit cubes stacked in z, meshed independently (non-matching at z = 1).
     Regions: lower, upper; bottom (z = 0), top (z = 2), left (x = 0), right (x = 1),
     front (y = 0), back (y = 1) over both cubes; lower_top, upper_bottom."""
@@ -130,7 +130,8 @@ def tied_boxes(h_lower, h_upper, order=1, kind="tet"):
               'Physical Surface("left") = {1, 7};', 'Physical Surface("right") = {2, 8};',
               'Physical Surface("front") = {3, 9};', 'Physical Surface("back") = {4, 10};',
               'Physical Surface("lower_top") = {6};', 'Physical Surface("upper_bottom") = {11};',
-              "Mesh.ElementOrder = %d;" % order]
+              "Mesh.ElementOrder = %d;" % order,
+              "Mesh.SecondOrderIncomplete = %d;" % (1 if serendipity else 0)]
     return "\n".join(lines) + "\n"
 
 

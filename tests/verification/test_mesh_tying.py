@@ -50,7 +50,7 @@ def interface_line(slave, master, multiplier, strategy):
 
 
 def tied_3d(kind, h, order, slave, master, direction, np=1, multiplier="dual",
-            strategy="condensed"):
+            strategy="condensed", serendipity=False):
     """Uniaxial stress T along `direction` (z: normal to the interface, x: tangential)."""
     load_face = {"z": "top", "x": "right"}[direction]
     traction = {"z": "[0, 0, %g]" % T, "x": "[%g, 0, 0]" % T}[direction]
@@ -69,7 +69,7 @@ def tied_3d(kind, h, order, slave, master, direction, np=1, multiplier="dual",
         "time: {integrator: static, end: 1, steps: 1}",
         "output: {probes: [[0.3, 0.4, 0.5], [0.7, 0.2, 1.5], [0.5, 0.5, 1.0], [0.9, 0.9, 1.9]]}",
     ]) + "\n"
-    work, out = run_case(geometry.tied_boxes(h[0], h[1], order, kind), yaml, np)
+    work, out = run_case(geometry.tied_boxes(h[0], h[1], order, kind, serendipity), yaml, np)
     main, lateral = T / E, -NU * T / E
     strains = (main, lateral, lateral) if direction == "x" else (lateral, lateral, main)
     check_linear_field(out, strains, (0, 0, 0), 2 * main, "%s %s" % (kind, direction))
@@ -146,6 +146,11 @@ def test_2d_tri6_saddle_standard(): tied_2d(geometry.tied_rectangles(0.3, 0.2, 2
 def test_2d_quad_saddle_dual_np3(): tied_2d(geometry.tied_rectangles(0.2, 0.3, 1, "quad"), 1, "lower_top", "upper_bottom", np=3, strategy="saddle_point")
 
 
+def test_3d_tet10_dual_condensed(): tied_3d("tet", (0.5, 0.4), 2, "upper_bottom", "lower_top", "z")
+def test_3d_tet10_dual_condensed_tangential_np3(): tied_3d("tet", (0.5, 0.4), 2, "lower_top", "upper_bottom", "x", np=3)
+def test_3d_hex20_dual_condensed(): tied_3d("hex", (0.5, 0.34), 2, "upper_bottom", "lower_top", "z", serendipity=True)
+
+
 def test_2d_tri_flat(): tied_2d(geometry.tied_rectangles(0.3, 0.2), 1, "upper_bottom", "lower_top")
 def test_2d_quad_flat_np3(): tied_2d(geometry.tied_rectangles(0.2, 0.3, 1, "quad"), 1, "lower_top", "upper_bottom", np=3)
 def test_2d_tri6_flat(): tied_2d(geometry.tied_rectangles(0.3, 0.2, 2), 2, "upper_bottom", "lower_top", plane="strain")
@@ -198,7 +203,8 @@ def test_neo_hooke_stretch():
 if __name__ == "__main__":
     H.main([test_3d_tet_saddle_dual_np3, test_3d_tet_saddle_standard, test_3d_tet10_saddle_standard,
             test_3d_hex27_saddle_standard_np3, test_2d_tri6_saddle_standard,
-            test_2d_quad_saddle_dual_np3,
+            test_2d_quad_saddle_dual_np3, test_3d_tet10_dual_condensed,
+            test_3d_tet10_dual_condensed_tangential_np3, test_3d_hex20_dual_condensed,
             test_3d_tet_normal, test_3d_tet_normal_np3, test_3d_tet_tangential_swapped,
             test_3d_hex_normal, test_3d_hex27_tangential_np3, test_2d_tri_flat,
             test_2d_quad_flat_np3, test_2d_tri6_flat, test_2d_curved_linear,

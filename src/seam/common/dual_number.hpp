@@ -160,6 +160,22 @@ template <int N> bool isfinite(const Dual<N>& a) {
   return true;
 }
 
+/// acc += a * b without temporaries (the hot operation of interpolation and quadrature sums).
+inline void add_product(double& acc, double a, double b) {
+  acc += a * b;
+}
+template <int N> void add_product(Dual<N>& acc, const Dual<N>& a, const Dual<N>& b) {
+  acc.value += a.value * b.value;
+  for (int i = 0; i < N; ++i) acc.gradient[i] += a.value * b.gradient[i] + b.value * a.gradient[i];
+}
+template <int N> void add_product(Dual<N>& acc, const Dual<N>& a, double b) {
+  acc.value += a.value * b;
+  for (int i = 0; i < N; ++i) acc.gradient[i] += b * a.gradient[i];
+}
+template <int N> void add_product(Dual<N>& acc, double a, const Dual<N>& b) {
+  add_product(acc, b, a);
+}
+
 /// The value of a plain or dual scalar, for decisions and value-only algorithms.
 inline double value_of(double x) {
   return x;

@@ -77,7 +77,7 @@ Eigen::Matrix<S, Dim, Cols> times(const Eigen::Matrix<S, Dim, max_facet_nodes>& 
   Eigen::Matrix<S, Dim, Cols> r = Eigen::Matrix<S, Dim, Cols>::Zero();
   for (int i = 0; i < n; ++i)
     for (int c = 0; c < Cols; ++c)
-      for (int a = 0; a < Dim; ++a) r(a, c) += X(a, i) * B(i, c);
+      for (int a = 0; a < Dim; ++a) add_product(r(a, c), X(a, i), B(i, c));
   return r;
 }
 
@@ -87,7 +87,7 @@ Vector<S, Dim> interpolate(const Eigen::Matrix<S, Dim, max_facet_nodes>& X,
                            const NodalVectorT<S>& N, int n) {
   Vector<S, Dim> r = Vector<S, Dim>::Zero();
   for (int i = 0; i < n; ++i)
-    for (int a = 0; a < Dim; ++a) r(a) += X(a, i) * N(i);
+    for (int a = 0; a < Dim; ++a) add_product(r(a), X(a, i), N(i));
   return r;
 }
 
@@ -154,7 +154,7 @@ template <class S, int Dim> NodalVectorT<S> shape_values_t(fem::CellType type, c
     const int n = fem::n_nodes(type);
     for (int a = 0; a < p; ++a) {
       const S dxi = xi[a] - v[static_cast<std::size_t>(a)];
-      for (int i = 0; i < n; ++i) N(i) += s.dN(i, a) * dxi;
+      for (int i = 0; i < n; ++i) add_product(N(i), dxi, s.dN(i, a));
     }
   }
   return N;
@@ -301,8 +301,7 @@ CurveProjectionT<S> project_onto_line_t(const FacetT<S, 2>& f, const Vector<S, 2
   out.converged = r.converged;
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, &r.xi, 1);
-  const NodalVectorT<S> N = s.N.template cast<S>();
-  const Vector<S, 2> x = interpolate<S, 2>(f.x, N, f.n_nodes);
+  const Vector<S, 2> x = times<S, 2, 1>(f.x, s.N, f.n_nodes);
   const Eigen::Vector2d dx = values(f.x) * s.dN.col(0);
   const double slope = geometry::cross2(dx, values(d));
   out.xi = at_root<S>(r.xi, r.xi - cross2<S>(x - p, d) / slope);
@@ -331,9 +330,8 @@ project_along_normals_t(const FacetT<S, 2>& f, const Eigen::Matrix<S, 2, max_fac
   out.converged = r.converged;
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, &r.xi, 1);
-  const NodalVectorT<S> N = s.N.template cast<S>();
-  const Vector<S, 2> residual = interpolate<S, 2>(f.x, N, f.n_nodes) - p;
-  const Vector<S, 2> direction = interpolate<S, 2>(normals, N, f.n_nodes);
+  const Vector<S, 2> residual = times<S, 2, 1>(f.x, s.N, f.n_nodes) - p;
+  const Vector<S, 2> direction = times<S, 2, 1>(normals, s.N, f.n_nodes);
   const Eigen::Vector2d dx = fv.x * s.dN.col(0);
   const Eigen::Vector2d dn = nv * s.dN.col(0);
   const double slope = geometry::cross2(dx, nv * s.N) + geometry::cross2(values(residual), dn);
@@ -352,16 +350,15 @@ SurfaceProjectionT<S> project_onto_surface_t(const FacetT<S, 3>& f, const Vector
   out.converged = r.converged;
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, r.xi.data(), 2);
-  const NodalVectorT<S> N = s.N.template cast<S>();
-  const Vector<S, 3> residual = interpolate<S, 3>(f.x, N, f.n_nodes) + r.alpha * d - p;
+  const Vector<S, 3> residual = times<S, 3, 1>(f.x, s.N, f.n_nodes) + r.alpha * d - p;
   Eigen::Matrix3d jacobian;
   jacobian.leftCols<2>() = fv.x * s.dN;
   jacobian.col(2) = values(d);
   const Eigen::Matrix3d inverse = jacobian.inverse();
-  std::array<S, 3> step;
+  std::array<S, 3> step{};
   for (int i = 0; i < 3; ++i) {
-    step[static_cast<std::size_t>(i)] =
-        -(inverse(i, 0) * residual(0) + inverse(i, 1) * residual(1) + inverse(i, 2) * residual(2));
+    for (int k = 0; k < 3; ++k)
+      add_product(step[static_cast<std::size_t>(i)], residual(k), -inverse(i, k));
   }
   out.xi(0) = at_root<S>(r.xi(0), r.xi(0) + step[0]);
   out.xi(1) = at_root<S>(r.xi(1), r.xi(1) + step[1]);

@@ -85,7 +85,7 @@ void slave_functions_t(const SlaveFacetT<S, Dim>& slave, const NodalVectorT<S>& 
     const int n = slave.facet.n_nodes;
     Phi.setZero();
     for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) Phi(j) += slave.A(j, k) * N_tilde(k);
+      for (int k = 0; k < n; ++k) add_product(Phi(j), slave.A(j, k), N_tilde(k));
   } else {
     Phi = N_tilde;
   }
@@ -97,21 +97,19 @@ template <class S>
 void accumulate_point_t(PairContributionT<S>& c, Multiplier multiplier, const S& w,
                         const NodalVectorT<S>& N_tilde, const NodalVectorT<S>& Phi,
                         const NodalVectorT<S>& Nm, const S& gap) {
+  // Dual: D_jj gets w Phi_j sum_l Nm_l, the row sum of this point's M entries.
+  S master_sum = 0.0;
+  if (multiplier == Multiplier::dual)
+    for (int l = 0; l < c.n_master; ++l) master_sum += Nm(l);
   for (int j = 0; j < c.n_slave; ++j) {
     const S wphi = w * Phi(j);
+    for (int l = 0; l < c.n_master; ++l) add_product(c.M(j, l), wphi, Nm(l));
     if (multiplier == Multiplier::dual) {
-      S row = 0.0;
-      for (int l = 0; l < c.n_master; ++l) {
-        const S product = wphi * Nm(l);
-        c.M(j, l) += product;
-        row += product;
-      }
-      c.D(j, j) += row;
+      add_product(c.D(j, j), wphi, master_sum);
     } else {
-      for (int l = 0; l < c.n_master; ++l) c.M(j, l) += wphi * Nm(l);
-      for (int k = 0; k < c.n_slave; ++k) c.D(j, k) += wphi * N_tilde(k);
+      for (int k = 0; k < c.n_slave; ++k) add_product(c.D(j, k), wphi, N_tilde(k));
     }
-    c.weighted_gap(j) += wphi * gap;
+    add_product(c.weighted_gap(j), wphi, gap);
   }
 }
 

@@ -23,15 +23,12 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
     for (auto n : t.slave.mesh_nodes) is_slave_node[n] = 1;
 
   d_diag_.resize(interfaces.size());
+  transforms_.resize(interfaces.size());
   for (std::size_t k = 0; k < interfaces.size(); ++k) {
     const auto& t = interfaces[k];
     if (t.strategy != io::Strategy::condensed) continue;
     active_ = true;
     const auto& ops = t.operators;
-    if (!ops.T.empty())
-      SEAM_THROW(InputError, "interface '", t.name,
-                 "': condensed mesh tying of tri6/quad8 slave faces (modified dual basis) is "
-                 "not available; use strategy: saddle_point or quad9/tri3/quad4 slave faces");
     auto& diag = d_diag_[k];
     diag.assign(t.slave.mesh_nodes.size(), 0.0);
     for (const auto& e : ops.D)
@@ -39,13 +36,25 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
     // Row scale for "D_jj is zero": nodes outside the overlap are left untied.
     double d_max = 0.0;
     for (double v : diag) d_max = std::max(d_max, std::abs(v));
-    std::size_t m = 0;
+    for (auto& v : diag)
+      if (v <= 1e-12 * d_max) v = 0.0;
+    // P = D^{-1} M, side-local: slave node -> (master node, value). With a modified slave basis
+    // (dual multipliers on tri6/quad8, ALGORITHMS.md §3) the constraint holds for the modified
+    // coefficients, D d~_S = M d_M, and the nodal displacements are d_S = T d~_S: P = T D^{-1} M.
+    std::vector<std::map<local_index, double>> P(diag.size());
+    std::vector<std::vector<std::pair<local_index, double>>> dm(diag.size());
+    for (const auto& e : ops.M)
+      if (diag[e.row] != 0.0) dm[e.row].emplace_back(e.col, e.value / diag[e.row]);
+    if (ops.T.empty()) {
+      for (std::size_t j = 0; j < diag.size(); ++j)
+        for (const auto& [l, v] : dm[j]) P[j][l] += v;
+    } else {
+      for (const auto& e : ops.T)
+        for (const auto& [l, v] : dm[e.col]) P[e.row][l] += e.value * v;
+    }
     for (std::size_t j = 0; j < diag.size(); ++j) {
       const auto s = t.slave.mesh_nodes[j];
-      const bool tied = diag[j] > 1e-12 * d_max;
-      if (!tied) diag[j] = 0.0;
-      while (m < ops.M.size() && static_cast<std::size_t>(ops.M[m].row) < j) ++m;
-      if (!tied || !disc.owns_node(s)) continue;
+      if (P[j].empty() || !disc.owns_node(s)) continue;
       for (int c = 0; c < dim; ++c) {
         const PetscInt row = disc.global_dof(s, c);
         if (dirichlet[row - first]) continue; // the prescribed value wins
@@ -53,16 +62,16 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
         if (!entries.empty())
           SEAM_THROW(InputError, "interface '", t.name, "': slave node ", s,
                      " is tied by two interfaces; slave sides must not share nodes");
-        for (std::size_t q = m; q < ops.M.size() && ops.M[q].row == static_cast<local_index>(j);
-             ++q) {
-          const auto master = t.master.mesh_nodes[ops.M[q].col];
+        for (const auto& [l, v] : P[j]) {
+          const auto master = t.master.mesh_nodes[l];
           if (is_slave_node[master])
             SEAM_THROW(InputError, "interface '", t.name, "': master node ", master,
                        " is a slave node of another interface; chained tying is not supported");
-          entries.emplace_back(disc.global_dof(master, c), ops.M[q].value / diag[j]);
+          entries.emplace_back(disc.global_dof(master, c), v);
         }
       }
     }
+    if (!ops.T.empty()) transforms_[k] = ops.T;
   }
   active_ = disc.comm().any(active_);
   if (!active_) return;
@@ -118,15 +127,30 @@ std::vector<double> TyingConstraint::multipliers(std::size_t interface,
                                                  std::span<const double> r_local) const {
   const auto& t = interfaces_[interface];
   const int dim = disc_.dim();
-  std::vector<double> lambda(t.slave.mesh_nodes.size() * dim, 0.0);
+  const auto n = t.slave.mesh_nodes.size();
+  std::vector<double> lambda(n * dim, 0.0);
   if (d_diag_[interface].empty()) return lambda;
-  for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
+  // The slave rows of the residual this rank owns (eliminated dofs only).
+  std::vector<double> r(n * dim, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
     const auto s = t.slave.mesh_nodes[j];
-    const double d = d_diag_[interface][j];
-    if (d == 0.0 || !disc_.owns_node(s)) continue;
+    if (!disc_.owns_node(s)) continue;
     for (int c = 0; c < dim; ++c)
       if (std::binary_search(eliminated_.begin(), eliminated_.end(), disc_.global_dof(s, c)))
-        lambda[j * dim + c] = -r_local[disc_.local_dof(s, c)] / d;
+        r[j * dim + c] = r_local[disc_.local_dof(s, c)];
+  }
+  // Slave rows of the equilibrium: T^T r_S + D lambda = 0 (T = I without modification).
+  std::vector<double> tr(n * dim, 0.0);
+  if (transforms_[interface].empty()) {
+    tr = r;
+  } else {
+    for (const auto& e : transforms_[interface])
+      for (int c = 0; c < dim; ++c) tr[e.col * dim + c] += e.value * r[e.row * dim + c];
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const double d = d_diag_[interface][j];
+    if (d == 0.0) continue;
+    for (int c = 0; c < dim; ++c) lambda[j * dim + c] = -tr[j * dim + c] / d;
   }
   return lambda;
 }

@@ -32,8 +32,9 @@ public:
   const std::vector<PetscInt>& eliminated_dofs() const { return eliminated_; }
 
   /// Per interface and slave node (side-local), the multiplier lambda (dim values) from the
-  /// full residual r (owned + ghost values, local form): lambda = -r_S / D_SS. Slave nodes
-  /// this rank does not own get zeros; the caller sums over ranks.
+  /// full residual r (owned + ghost values, local form): lambda = -D^{-1} T^T r_S (T = I
+  /// unless the slave basis is modified). This rank contributes the rows it owns; the caller
+  /// sums over ranks.
   std::vector<double> multipliers(std::size_t interface, std::span<const double> r_local) const;
   /// D_jj of a tied slave node (side-local), 0 if untied.
   double d_diagonal(std::size_t interface, std::size_t slave_node) const {
@@ -47,6 +48,7 @@ private:
   la::Matrix T_;
   std::vector<PetscInt> eliminated_;
   std::vector<std::vector<double>> d_diag_;
+  std::vector<std::vector<mortar::Triplet>> transforms_; ///< per interface: T of a modified basis
 };
 
 } // namespace seam::problem
