@@ -30,8 +30,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("runs", nargs="+", help="seam output directories")
     parser.add_argument("-o", "--output", default="energy_momentum.png")
+    parser.add_argument("--free-from", type=float, default=0.5,
+                        help="time after which no load acts (drift panel), default 0.5")
     args = parser.parse_args()
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.2))
     for run in args.runs:
         d = read(run)
         label = os.path.basename(os.path.normpath(run))
@@ -46,7 +48,18 @@ def main():
         axes[2].plot(t, d["total_energy"], label=label + " total")
         axes[2].plot(t, d["kinetic_energy"], "--", label=label + " kinetic")
         axes[2].plot(t, d["internal_energy"], ":", label=label + " internal")
-    for ax, title in zip(axes, ("|linear momentum|", "|angular momentum|", "energy")):
+        # Relative drift once the load is off, on a log scale: conservation made visible.
+        free = [i for i, ti in enumerate(t) if ti > args.free_from + 1e-12]
+        if free:
+            i0 = free[0]
+            for series, name in ((d["total_energy"], "energy"), (L, "|L|")):
+                ref = abs(series[i0]) or 1.0
+                axes[3].semilogy([t[i] for i in free],
+                                 [max(abs(series[i] - series[i0]) / ref, 1e-17) for i in free],
+                                 label="%s %s" % (label, name))
+    axes[3].set_ylim(1e-17, 1)
+    for ax, title in zip(axes, ("|linear momentum|", "|angular momentum|", "energy",
+                                "relative drift after the load")):
         ax.set_xlabel("time")
         ax.set_title(title)
         ax.grid(True, alpha=0.3)
