@@ -244,7 +244,10 @@ void check_densities(const Config& config, const Node& time_node) {
 
 double TimeConfig::time_at(int step) const {
   if (step >= n_steps) return end;
-  return std::min(end, step * dt);
+  // end * step / n_steps is correctly rounded (3.3, not 3.3000000000000003) when the steps
+  // divide the interval evenly.
+  const double t = std::abs(n_steps * dt - end) <= 1e-12 * end ? end * step / n_steps : step * dt;
+  return std::min(end, t);
 }
 
 std::string_view to_string(PlaneMode value) {

@@ -27,7 +27,14 @@ template <class S> struct PlaneT {
     const Vector<S, 3> r = x - origin;
     return {dot(r, t1), dot(r, t2)};
   }
-  Vector<S, 3> to_global(const Vector<S, 2>& u) const { return origin + u(0) * t1 + u(1) * t2; }
+  Vector<S, 3> to_global(const Vector<S, 2>& u) const {
+    Vector<S, 3> x = origin;
+    for (int a = 0; a < 3; ++a) {
+      add_product(x(a), u(0), t1(a));
+      add_product(x(a), u(1), t2(a));
+    }
+    return x;
+  }
 };
 
 /// geometry::make_plane on S: the first axis comes from the coordinate axis least aligned with

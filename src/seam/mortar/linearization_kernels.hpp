@@ -350,7 +350,11 @@ SurfaceProjectionT<S> project_onto_surface_t(const FacetT<S, 3>& f, const Vector
   out.converged = r.converged;
   if (!r.converged) return out;
   const ShapeAt s = shape_at(f.type, r.xi.data(), 2);
-  const Vector<S, 3> residual = times<S, 3, 1>(f.x, s.N, f.n_nodes) + r.alpha * d - p;
+  Vector<S, 3> residual = times<S, 3, 1>(f.x, s.N, f.n_nodes);
+  for (int a = 0; a < 3; ++a) {
+    add_product(residual(a), d(a), r.alpha);
+    residual(a) -= p(a);
+  }
   Eigen::Matrix3d jacobian;
   jacobian.leftCols<2>() = fv.x * s.dN;
   jacobian.col(2) = values(d);

@@ -126,8 +126,13 @@ PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 3>& slave, const Face
       for (const TriangleT<S>& cell : cells) {
         const S cell_area = cell.area();
         for_each_cell_point(degree, [&](double b0, double b1, double b2, double weight) {
-          const Vector<S, 3> x_cell =
-              plane.to_global(Vector<S, 2>(b0 * cell.a + b1 * cell.b + b2 * cell.c));
+          Vector<S, 2> u = Vector<S, 2>::Zero();
+          for (int k = 0; k < 2; ++k) {
+            add_product(u(k), cell.a(k), b0);
+            add_product(u(k), cell.b(k), b1);
+            add_product(u(k), cell.c(k), b2);
+          }
+          const Vector<S, 3> x_cell = plane.to_global(u);
           const SurfaceProjectionT<S> on_slave =
               project_onto_surface_t<S>(s, x_cell, plane.normal, sp.xi_center, options.newton);
           const SurfaceProjectionT<S> on_master =

@@ -2,6 +2,7 @@
 // the original double-valued seam function: dual-number arithmetic, averaged nodal normals,
 // dual coefficients A_e, the three kinds of projection (including the 2D segment ends), the
 // auxiliary plane, clip polygon vertices, the fan centroid and the cell areas (Jacobians).
+#include <cstdio>
 #include <functional>
 #include <numbers>
 #include <random>
@@ -36,7 +37,8 @@ double max_relative_error(const Function& f, const Eigen::VectorXd& q, const Eig
     qm(v) -= h;
     fd.col(v) = (f(qp) - f(qm)) / (2 * h);
   }
-  const double global = std::max({ad.cwiseAbs().maxCoeff(), 10.0 * f(q).cwiseAbs().maxCoeff(), 1e-300});
+  const double global =
+      std::max({ad.cwiseAbs().maxCoeff(), 10.0 * f(q).cwiseAbs().maxCoeff(), 1e-300});
   double worst = 0.0;
   for (int i = 0; i < ad.rows(); ++i) {
     const double scale = std::max(ad.row(i).cwiseAbs().maxCoeff(), 1e-3 * global);
@@ -73,8 +75,8 @@ Facet<3> random_surface_facet(CellType type, std::mt19937& rng) {
   const double* X = seam::fem::reference_nodes(type).data();
   for (int i = 0; i < f.n_nodes; ++i) {
     const double a = X[2 * i], b = X[2 * i + 1];
-    f.x.col(i) = Eigen::Vector3d(a, 0.8 * b + 0.2 * a, 0.2 * a * a - 0.1 * b) +
-                 random_vector(rng, 3, 0.05);
+    f.x.col(i) =
+        Eigen::Vector3d(a, 0.8 * b + 0.2 * a, 0.2 * a * a - 0.1 * b) + random_vector(rng, 3, 0.05);
   }
   return f;
 }
@@ -85,7 +87,8 @@ Facet<2> random_line_facet(CellType type, std::mt19937& rng) {
   f.n_nodes = seam::fem::n_nodes(type);
   f.x.col(0) = Eigen::Vector2d(1, 0) + random_vector(rng, 2, 0.05);
   f.x.col(1) = Eigen::Vector2d(0, 0.1) + random_vector(rng, 2, 0.05);
-  if (type == CellType::line3) f.x.col(2) = Eigen::Vector2d(0.5, 0.12) + random_vector(rng, 2, 0.03);
+  if (type == CellType::line3)
+    f.x.col(2) = Eigen::Vector2d(0.5, 0.12) + random_vector(rng, 2, 0.03);
   return f;
 }
 
@@ -132,8 +135,8 @@ TEST(LinearizationBlocks, AveragedNodalNormals) {
         false));
   }
   surfaces.push_back(test::line_mesh(
-      4, CellType::line3,
-      [](double s) { return Eigen::Vector2d(std::cos(s), 0.8 * std::sin(s)); }, false));
+      4, CellType::line3, [](double s) { return Eigen::Vector2d(std::cos(s), 0.8 * std::sin(s)); },
+      false));
   double worst = 0.0;
   for (test::Surface& surface : surfaces) {
     for (double& x : surface.coordinates) x += random_vector(rng, 1, 0.02)(0);
@@ -180,8 +183,8 @@ TEST(LinearizationBlocks, DualCoefficients) {
   constexpr double h = 1e-6;
   std::mt19937 rng(5);
   double worst = 0.0;
-  for (const CellType type : {CellType::tri3, CellType::quad4, CellType::tri6, CellType::quad8,
-                              CellType::quad9}) {
+  for (const CellType type :
+       {CellType::tri3, CellType::quad4, CellType::tri6, CellType::quad8, CellType::quad9}) {
     const double a = basis_modification(type, Multiplier::dual);
     const Facet<3> facet = random_surface_facet(type, rng);
     using S = Dual<27>;
@@ -192,7 +195,8 @@ TEST(LinearizationBlocks, DualCoefficients) {
       for (int k = 0; k < n; ++k) jac.row(j * n + k) = gradient(A(j, k), 3 * n);
     const auto f = [&](const Eigen::VectorXd& q) {
       const SmallMatrix Av = dual_coefficients(with_coordinates(facet, q), a);
-      return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(Av.transpose()).data(), n * n));
+      return Eigen::VectorXd(
+          Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(Av.transpose()).data(), n * n));
     };
     const double e = max_relative_error(f, coordinates(facet), jac, h);
     EXPECT_LT(e, 1e-6) << seam::fem::name(type);
@@ -208,7 +212,8 @@ TEST(LinearizationBlocks, DualCoefficients) {
       for (int k = 0; k < n; ++k) jac.row(j * n + k) = gradient(A(j, k), 2 * n);
     const auto f = [&](const Eigen::VectorXd& q) {
       const SmallMatrix Av = dual_coefficients(with_coordinates(facet, q), 0.0);
-      return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(Av.transpose()).data(), n * n));
+      return Eigen::VectorXd(
+          Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(Av.transpose()).data(), n * n));
     };
     const double e = max_relative_error(f, coordinates(facet), jac, h);
     EXPECT_LT(e, 1e-6) << seam::fem::name(type);
@@ -226,7 +231,7 @@ TEST(LinearizationBlocks, SurfaceBackProjection) {
     const int n = 3 * facet.n_nodes;
     Eigen::VectorXd q(n + 6);
     q.head(n) = coordinates(facet);
-    q.segment<3>(n) = Eigen::Vector3d(0.2, 0.1, 0.4) + random_vector(rng, 3, 0.1); // p
+    q.segment<3>(n) = Eigen::Vector3d(0.2, 0.1, 0.4) + random_vector(rng, 3, 0.1);      // p
     q.segment<3>(n + 3) = Eigen::Vector3d(0.1, -0.2, 1.0) + random_vector(rng, 3, 0.1); // d
     using S = Dual<33>;
     const auto x = seeds<33>(q);
@@ -243,7 +248,8 @@ TEST(LinearizationBlocks, SurfaceBackProjection) {
     };
     const Eigen::Vector3d value(r.xi(0).value, r.xi(1).value, r.alpha.value);
     EXPECT_LT((value - f(q)).norm(), 1e-14);
-    const double e = max_relative_error([&](const Eigen::VectorXd& y) { return Eigen::VectorXd(f(y)); }, q, jac);
+    const double e =
+        max_relative_error([&](const Eigen::VectorXd& y) { return Eigen::VectorXd(f(y)); }, q, jac);
     EXPECT_LT(e, 1e-6) << seam::fem::name(type);
     worst = std::max(worst, e);
   }
@@ -266,9 +272,9 @@ TEST(LinearizationBlocks, LineProjectionsAndSegmentEnds) {
       q.segment<2>(n + 2) = Eigen::Vector2d(0.2, 1.0) + random_vector(rng, 2, 0.1);
       using S = Dual<10>;
       const auto x = seeds<10>(q);
-      const auto r = ad::project_onto_line_t<S>(ad::seed<S, 2>(facet, 0),
-                                                ad::Vector<S, 2>(x[n], x[n + 1]),
-                                                ad::Vector<S, 2>(x[n + 2], x[n + 3]), 0.0, {});
+      const auto r =
+          ad::project_onto_line_t<S>(ad::seed<S, 2>(facet, 0), ad::Vector<S, 2>(x[n], x[n + 1]),
+                                     ad::Vector<S, 2>(x[n + 2], x[n + 3]), 0.0, {});
       ASSERT_TRUE(r.converged);
       const Eigen::MatrixXd jac = gradient(r.xi, n + 4);
       const auto f = [&](const Eigen::VectorXd& y) {
@@ -289,7 +295,8 @@ TEST(LinearizationBlocks, LineProjectionsAndSegmentEnds) {
       Eigen::VectorXd q(n + nn + 2);
       q.head(n) = coordinates(facet);
       for (int k = 0; k < facet.n_nodes; ++k)
-        q.segment<2>(n + 2 * k) = (Eigen::Vector2d(0.1, 1.0) + random_vector(rng, 2, 0.2)).normalized();
+        q.segment<2>(n + 2 * k) =
+            (Eigen::Vector2d(0.1, 1.0) + random_vector(rng, 2, 0.2)).normalized();
       q.segment<2>(n + nn) = Eigen::Vector2d(0.35, 0.4) + random_vector(rng, 2, 0.05);
       using S = Dual<20>;
       const auto x = seeds<20>(q);
@@ -301,7 +308,8 @@ TEST(LinearizationBlocks, LineProjectionsAndSegmentEnds) {
       const Eigen::MatrixXd jac = gradient(r.xi, n + nn + 2);
       const auto f = [&](const Eigen::VectorXd& y) {
         const Facet<2> g = with_coordinates(facet, y.head(n));
-        Eigen::Matrix<double, 2, max_facet_nodes> nv = Eigen::Matrix<double, 2, max_facet_nodes>::Zero();
+        Eigen::Matrix<double, 2, max_facet_nodes> nv =
+            Eigen::Matrix<double, 2, max_facet_nodes>::Zero();
         for (int k = 0; k < facet.n_nodes; ++k) nv.col(k) = y.segment<2>(n + 2 * k);
         const auto curve = [&g](double xi) {
           const auto p = evaluate(g, &xi);
@@ -312,7 +320,9 @@ TEST(LinearizationBlocks, LineProjectionsAndSegmentEnds) {
           return seam::geometry::CurvePoint{nv * p.N, nv * p.dN.col(0)};
         };
         Eigen::VectorXd v(1);
-        v(0) = seam::geometry::project_onto_curve_along_field(curve, field, y.segment<2>(n + nn), 0.0).xi;
+        v(0) =
+            seam::geometry::project_onto_curve_along_field(curve, field, y.segment<2>(n + nn), 0.0)
+                .xi;
         return v;
       };
       EXPECT_LT(std::abs(r.xi.value - f(q)(0)), 1e-14);
@@ -343,7 +353,8 @@ TEST(LinearizationBlocks, PlaneClipCentroidAndCells) {
     const Eigen::Vector2d shift(0.6 * u(rng), 0.6 * u(rng));
     for (int i = 0; i < nm; ++i) {
       const double t = 2 * std::numbers::pi * i / nm + phase + 0.2 * u(rng);
-      q.segment<2>(2 * (ns + i)) = shift + Eigen::Vector2d(std::cos(t), std::sin(t)) * (0.9 + 0.1 * u(rng));
+      q.segment<2>(2 * (ns + i)) =
+          shift + Eigen::Vector2d(std::cos(t), std::sin(t)) * (0.9 + 0.1 * u(rng));
     }
     const auto polygons = [&](const Eigen::VectorXd& y) {
       std::array<seam::geometry::Polygon, 2> p;
@@ -370,7 +381,8 @@ TEST(LinearizationBlocks, PlaneClipCentroidAndCells) {
     const auto x = seeds<16>(q);
     ad::PolygonT<S> sp, mp;
     for (int i = 0; i < ns; ++i) sp.push_back(ad::Vector<S, 2>(x[2 * i], x[2 * i + 1]));
-    for (int i = 0; i < nm; ++i) mp.push_back(ad::Vector<S, 2>(x[2 * (ns + i)], x[2 * (ns + i) + 1]));
+    for (int i = 0; i < nm; ++i)
+      mp.push_back(ad::Vector<S, 2>(x[2 * (ns + i)], x[2 * (ns + i) + 1]));
     const auto c = ad::clip_polygons_t<S>(sp, mp, {});
     ASSERT_EQ(c.size(), clip.size());
     const int nv = static_cast<int>(q.size());
@@ -383,7 +395,8 @@ TEST(LinearizationBlocks, PlaneClipCentroidAndCells) {
     jac.row(2 * c.size()) = gradient(center(0), nv);
     jac.row(2 * c.size() + 1) = gradient(center(1), nv);
     const auto cells = ad::triangulate_fan_t<S>(c);
-    for (int i = 0; i < cells.size(); ++i) jac.row(2 * c.size() + 2 + i) = gradient(cells[i].area(), nv);
+    for (int i = 0; i < cells.size(); ++i)
+      jac.row(2 * c.size() + 2 + i) = gradient(cells[i].area(), nv);
     const double e = max_relative_error(f, q, jac);
     EXPECT_LT(e, 1e-6) << "trial " << trial;
     worst = std::max(worst, e);
@@ -397,8 +410,8 @@ TEST(LinearizationBlocks, PlaneClipCentroidAndCells) {
     q(3 + trial % 3) += 2.0; // exercise each choice of first axis
     using S = Dual<9>;
     const auto x = seeds<9>(q);
-    const auto plane = ad::make_plane_t<S>(ad::Vector<S, 3>(x[0], x[1], x[2]),
-                                           ad::Vector<S, 3>(x[3], x[4], x[5]));
+    const auto plane =
+        ad::make_plane_t<S>(ad::Vector<S, 3>(x[0], x[1], x[2]), ad::Vector<S, 3>(x[3], x[4], x[5]));
     const auto local = plane.to_local(ad::Vector<S, 3>(x[6], x[7], x[8]));
     Eigen::MatrixXd jac(2, 9);
     jac << gradient(local(0), 9), gradient(local(1), 9);

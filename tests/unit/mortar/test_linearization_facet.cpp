@@ -5,9 +5,10 @@
 // central differences of assemble_mortar_operators restricted to that slave facet's pairs.
 // Curved, perturbed, non-matching (sliding) interfaces in 2D and 3D, dual and standard.
 #include <algorithm>
+#include <cstdio>
 #include <functional>
-#include <numeric>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -39,8 +40,8 @@ Interface interface_3d(CellType slave_type, CellType master_type, int ns, int nm
   const auto height = [](double x, double y) { return 0.15 * std::sin(2.0 * x) * std::cos(y); };
   Interface i;
   i.slave = test::grid(
-      ns, ns, slave_type,
-      [&](double u, double v) { return Eigen::Vector3d(u, v, height(u, v)); }, false);
+      ns, ns, slave_type, [&](double u, double v) { return Eigen::Vector3d(u, v, height(u, v)); },
+      false);
   const double c = std::cos(0.3), s = std::sin(0.3);
   i.master = test::grid(
       nm, nm, master_type,
@@ -87,15 +88,18 @@ std::vector<CandidatePair> candidates_of(local_index slave_facet, local_index n_
 Eigen::VectorXd assembled_outputs(const Interface& i, local_index slave_facet,
                                   const SlaveFacetLinearization& lin, Multiplier m) {
   const auto pairs = candidates_of(slave_facet, i.master.view().n_facets());
-  const MortarOperators ops = assemble_mortar_operators(i.slave.view(), i.master.view(), pairs, {m, {}});
+  const MortarOperators ops =
+      assemble_mortar_operators(i.slave.view(), i.master.view(), pairs, {m, {}});
   const Eigen::MatrixXd D = test::dense(ops.D, i.slave.n_nodes(), i.slave.n_nodes());
   const Eigen::MatrixXd M = test::dense(ops.M, i.slave.n_nodes(), i.master.n_nodes());
   const int ns = lin.n_slave, nm = lin.n_master_nodes();
   Eigen::VectorXd out(ns * ns + ns * nm + ns);
   for (int j = 0; j < ns; ++j) {
     const local_index row = lin.slave_nodes[static_cast<std::size_t>(j)];
-    for (int k = 0; k < ns; ++k) out(j * ns + k) = D(row, lin.slave_nodes[static_cast<std::size_t>(k)]);
-    for (int p = 0; p < nm; ++p) out(ns * ns + j * nm + p) = M(row, lin.master_nodes[static_cast<std::size_t>(p)]);
+    for (int k = 0; k < ns; ++k)
+      out(j * ns + k) = D(row, lin.slave_nodes[static_cast<std::size_t>(k)]);
+    for (int p = 0; p < nm; ++p)
+      out(ns * ns + j * nm + p) = M(row, lin.master_nodes[static_cast<std::size_t>(p)]);
     out(ns * ns + ns * nm + j) = ops.weighted_gap[static_cast<std::size_t>(row)];
   }
   return out;
@@ -121,7 +125,8 @@ FacetCheck check_facet(const Interface& iface, local_index slave_facet, Multipli
   for (int j = 0; j < ns; ++j) {
     for (int v = 0; v < nv; ++v) {
       for (int k = 0; k < ns; ++k) ad(j * ns + k, v) = lin.dD(j, k)[static_cast<std::size_t>(v)];
-      for (int p = 0; p < nm; ++p) ad(ns * ns + j * nm + p, v) = lin.dM(j, p)[static_cast<std::size_t>(v)];
+      for (int p = 0; p < nm; ++p)
+        ad(ns * ns + j * nm + p, v) = lin.dM(j, p)[static_cast<std::size_t>(v)];
       ad(ns * ns + ns * nm + j, v) = lin.dgap(j)[static_cast<std::size_t>(v)];
     }
   }
@@ -177,7 +182,8 @@ FacetCheck check_facet(const Interface& iface, local_index slave_facet, Multipli
 // Values of all slave facets summed against the interface assembly.
 double value_difference(const Interface& i, Multiplier m) {
   const FacetSet s = i.slave.view(), ms = i.master.view();
-  const MortarOperators ops = assemble_mortar_operators(s, ms, test::all_pairs(i.slave, i.master), {m, {}});
+  const MortarOperators ops =
+      assemble_mortar_operators(s, ms, test::all_pairs(i.slave, i.master), {m, {}});
   Eigen::MatrixXd D = test::dense(ops.D, i.slave.n_nodes(), i.slave.n_nodes());
   Eigen::MatrixXd M = test::dense(ops.M, i.slave.n_nodes(), i.master.n_nodes());
   Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(ops.weighted_gap.data(), i.slave.n_nodes());
@@ -191,13 +197,16 @@ double value_difference(const Interface& i, Multiplier m) {
     for (int j = 0; j < lin.n_slave; ++j) {
       const local_index row = lin.slave_nodes[static_cast<std::size_t>(j)];
       for (int k = 0; k < lin.n_slave; ++k)
-        D(row, lin.slave_nodes[static_cast<std::size_t>(k)]) -= lin.D[static_cast<std::size_t>(j * lin.n_slave + k)];
+        D(row, lin.slave_nodes[static_cast<std::size_t>(k)]) -=
+            lin.D[static_cast<std::size_t>(j * lin.n_slave + k)];
       for (int p = 0; p < lin.n_master_nodes(); ++p)
-        M(row, lin.master_nodes[static_cast<std::size_t>(p)]) -= lin.M[static_cast<std::size_t>(j * lin.n_master_nodes() + p)];
+        M(row, lin.master_nodes[static_cast<std::size_t>(p)]) -=
+            lin.M[static_cast<std::size_t>(j * lin.n_master_nodes() + p)];
       g(row) -= lin.weighted_gap[static_cast<std::size_t>(j)];
     }
   }
-  return std::max({D.cwiseAbs().maxCoeff(), M.cwiseAbs().maxCoeff(), g.cwiseAbs().maxCoeff()}) / scale;
+  return std::max({D.cwiseAbs().maxCoeff(), M.cwiseAbs().maxCoeff(), g.cwiseAbs().maxCoeff()}) /
+         scale;
 }
 
 const char* name(Multiplier m) {
@@ -213,9 +222,9 @@ TEST(LinearizationFacet, Curved3DInterfaceAgainstAssembly) {
     int ns, nm;
   };
   double worst = 0.0, worst_value = 0.0;
-  for (const Case c : {Case{CellType::quad4, CellType::quad4, 3, 4},
-                       Case{CellType::tri3, CellType::quad4, 3, 3},
-                       Case{CellType::quad4, CellType::tri3, 3, 3}}) {
+  for (const Case c :
+       {Case{CellType::quad4, CellType::quad4, 3, 4}, Case{CellType::tri3, CellType::quad4, 3, 3},
+        Case{CellType::quad4, CellType::tri3, 3, 3}}) {
     const Interface iface = interface_3d(c.slave, c.master, c.ns, c.nm, rng);
     for (const Multiplier m : {Multiplier::dual, Multiplier::standard}) {
       const double dv = value_difference(iface, m);
@@ -225,9 +234,8 @@ TEST(LinearizationFacet, Curved3DInterfaceAgainstAssembly) {
       const local_index interior = c.slave == CellType::quad4 ? 4 : 8;
       for (const local_index f : {interior, local_index{0}}) {
         const FacetCheck r = check_facet(iface, f, m);
-        EXPECT_LT(r.max_error, 1e-6) << seam::fem::name(c.slave) << "/"
-                                     << seam::fem::name(c.master) << " facet " << f << " "
-                                     << name(m);
+        EXPECT_LT(r.max_error, 1e-6) << seam::fem::name(c.slave) << "/" << seam::fem::name(c.master)
+                                     << " facet " << f << " " << name(m);
         EXPECT_LT(r.max_outside, 1e-14);
         worst = std::max(worst, r.max_error);
       }
@@ -285,8 +293,8 @@ TEST(LinearizationFacet, NodeFacetsAndInputErrors) {
   EXPECT_TRUE(adjacency.of(1).empty()); // lattice mid-point, used only by quadratic facets
   SlaveFacetLinearization lin;
   const std::vector<local_index> masters = {0, 7};
-  EXPECT_THROW(linearize_slave_facet(iface.slave.view(), iface.master.view(), adjacency, 0,
-                                     masters, {}, lin),
+  EXPECT_THROW(linearize_slave_facet(iface.slave.view(), iface.master.view(), adjacency, 0, masters,
+                                     {}, lin),
                seam::InputError);
   EXPECT_THROW(linearize_slave_facet(iface.slave.view(), iface.master.view(), adjacency, 9,
                                      std::vector<local_index>{0}, {}, lin),

@@ -3,6 +3,7 @@
 // recomputes the dual coefficients from the perturbed slave), on random perturbed flat,
 // tilted, curved and sliding configurations, 2D and 3D, dual and standard multipliers; the
 // values against integrate_pair itself.
+#include <cstdio>
 #include <functional>
 #include <random>
 
@@ -104,7 +105,9 @@ template <int Dim> Outcome check_pair(const PairCase<Dim>& c, Multiplier multipl
     put(ns * ns + ns * nm + j, lin.dgap(j), lin.values.weighted_gap(j));
   }
   const Eigen::VectorXd q = pack(c);
-  const auto f = [&](const Eigen::VectorXd& x) { return reference_outputs(unpack(c, x), multiplier); };
+  const auto f = [&](const Eigen::VectorXd& x) {
+    return reference_outputs(unpack(c, x), multiplier);
+  };
   Outcome o;
   o.n_cells = lin.values.n_cells;
   o.max_error = max_relative_error(f, q, ad);
@@ -155,17 +158,16 @@ PairCase<3> random_pair_3d(CellType slave_type, CellType master_type, Shape shap
   PairCase<3> c;
   c.slave = place(slave_type, false, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), 0.5);
   const Eigen::Matrix3d turn = rotation(Eigen::Vector3d(0, 0, 0.6 * u(rng)));
-  const Eigen::Matrix3d tilt =
-      shape == Shape::tilted ? rotation(Eigen::Vector3d(0.15 * u(rng), 0.15 * u(rng), 0))
-                             : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d tilt = shape == Shape::tilted
+                                   ? rotation(Eigen::Vector3d(0.15 * u(rng), 0.15 * u(rng), 0))
+                                   : Eigen::Matrix3d::Identity();
   const Eigen::Vector3d shift(0.3 * u(rng), 0.3 * u(rng), 0.02 + 0.02 * u(rng));
   c.master = place(master_type, true, tilt * turn, shift, 0.45 + 0.1 * u(rng));
   // Nodal normals: the facet normal at the node, disturbed as a neighbour patch would.
   const double* X = seam::fem::reference_nodes(slave_type).data();
   for (int k = 0; k < c.slave.n_nodes; ++k) {
     const auto p = evaluate(c.slave, X + 2 * k);
-    c.normals.col(k) =
-        (scaled_normal<3>(p.dx).normalized() + random_vector(rng, 0.1)).normalized();
+    c.normals.col(k) = (scaled_normal<3>(p.dx).normalized() + random_vector(rng, 0.1)).normalized();
   }
   if (shape != Shape::flat) {
     const Eigen::Matrix3d R = rotation(random_vector(rng, 1.5));
@@ -287,8 +289,8 @@ TEST(LinearizationPair3D, QuadraticFacetsAgainstFiniteDifferences) {
       const PairCase<3> c = random_pair_3d(combo[0], combo[1], Shape::curved, rng);
       const Outcome o = check_pair(c, m);
       ASSERT_GT(o.n_cells, 0);
-      EXPECT_LT(o.max_error, 1e-6) << seam::fem::name(combo[0]) << "/"
-                                   << seam::fem::name(combo[1]) << " " << name(m);
+      EXPECT_LT(o.max_error, 1e-6)
+          << seam::fem::name(combo[0]) << "/" << seam::fem::name(combo[1]) << " " << name(m);
       EXPECT_LT(o.max_value_difference, 1e-13);
       worst = std::max(worst, o.max_error);
     }
