@@ -26,11 +26,23 @@ template <class P> double signed_area_of(const P& p) {
   return 0.5 * twice;
 }
 
+// Shortest and longest edge (including the closing edge) in one pass over squared lengths.
+template <class P> void edge_length_range(const P& p, double& shortest, double& longest) {
+  double lo = (p[0] - p[p.size() - 1]).squaredNorm(), hi = lo;
+  for (int i = 0; i + 1 < p.size(); ++i) {
+    const double l2 = (p[i + 1] - p[i]).squaredNorm();
+    lo = std::min(lo, l2);
+    hi = std::max(hi, l2);
+  }
+  shortest = std::sqrt(lo);
+  longest = std::sqrt(hi);
+}
+
 template <class P> double min_edge_of(const P& p) {
   if (p.size() < 2) return 0.0;
-  double m = (p[0] - p[p.size() - 1]).norm();
-  for (int i = 0; i + 1 < p.size(); ++i) m = std::min(m, (p[i + 1] - p[i]).norm());
-  return m;
+  double m = (p[0] - p[p.size() - 1]).squaredNorm();
+  for (int i = 0; i + 1 < p.size(); ++i) m = std::min(m, (p[i + 1] - p[i]).squaredNorm());
+  return std::sqrt(m);
 }
 
 template <class P> void reverse_in_place(P& p) {
@@ -43,14 +55,16 @@ template <class P> void checked_push(P& p, const Point2& x) {
 }
 
 // Drop each vertex that lies within tol of its (cyclic) predecessor; the first of a cluster
-// survives.
+// survives. In place: the kept vertices move forward.
 template <class P> void merge_close_vertices(P& p, double tol) {
-  P out;
-  for (const Point2& x : p) {
-    if (out.empty() || (x - out.back()).norm() > tol) out.push_back(x);
+  const double tol2 = tol * tol; // compare squared distances: no square root per vertex
+  const int n = p.size();
+  int kept = 0;
+  for (int i = 0; i < n; ++i) {
+    if (kept == 0 || (p[i] - p[kept - 1]).squaredNorm() > tol2) p[kept++] = p[i];
   }
-  while (out.size() > 1 && (out.back() - out[0]).norm() <= tol) out.pop_back();
-  p = out;
+  while (kept > 1 && (p[kept - 1] - p[0]).squaredNorm() <= tol2) --kept;
+  while (p.size() > kept) p.pop_back();
 }
 
 // Drop vertices within tol of the line through their neighbours: they add no area, and a
@@ -61,8 +75,8 @@ template <class P> void remove_collinear_vertices(P& p, double tol) {
     changed = false;
     const int n = p.size();
     for (int i = 0; i < n; ++i) {
-      const Point2& prev = p[(i + n - 1) % n];
-      const Point2& next = p[(i + 1) % n];
+      const Point2& prev = p[i == 0 ? n - 1 : i - 1];
+      const Point2& next = p[i + 1 == n ? 0 : i + 1];
       const Point2 chord = next - prev;
       const double length = chord.norm();
       const double distance =
@@ -123,17 +137,20 @@ double min_edge_length(const Polygon& polygon) {
 double max_edge_length(const Polygon& polygon) {
   const int n = polygon.size();
   if (n < 2) return 0.0;
-  double m = (polygon[0] - polygon[n - 1]).norm();
-  for (int i = 0; i + 1 < n; ++i) m = std::max(m, (polygon[i + 1] - polygon[i]).norm());
-  return m;
+  double m = (polygon[0] - polygon[n - 1]).squaredNorm();
+  for (int i = 0; i + 1 < n; ++i) m = std::max(m, (polygon[i + 1] - polygon[i]).squaredNorm());
+  return std::sqrt(m);
 }
 
 Polygon clip_polygons(const Polygon& subject, const Polygon& clipper, const ClipOptions& options) {
   SEAM_CHECK(subject.size() <= max_clip_input_vertices && clipper.size() <= max_clip_input_vertices,
              InputError, "clip_polygons: inputs may have at most ", max_clip_input_vertices,
              " vertices (got ", subject.size(), " and ", clipper.size(), ")");
-  const double input_tol =
-      options.merge_tolerance * std::min(max_edge_length(subject), max_edge_length(clipper));
+  if (subject.size() < 3 || clipper.size() < 3) return {};
+  double subject_min = 0.0, subject_max = 0.0, clipper_min = 0.0, clipper_max = 0.0;
+  edge_length_range(subject, subject_min, subject_max);
+  edge_length_range(clipper, clipper_min, clipper_max);
+  const double input_tol = options.merge_tolerance * std::min(subject_max, clipper_max);
 
   WorkPolygon s;
   copy_into(subject, s);
@@ -143,52 +160,64 @@ Polygon clip_polygons(const Polygon& subject, const Polygon& clipper, const Clip
   merge_close_vertices(c, input_tol);
   if (s.size() < 3 || c.size() < 3) return {};
 
-  const double subject_area = std::abs(signed_area_of(s));
-  if (signed_area_of(s) < 0.0) reverse_in_place(s);
-  if (signed_area_of(c) < 0.0) reverse_in_place(c);
-  if (subject_area == 0.0 || signed_area_of(c) == 0.0) return {};
+  const double subject_signed_area = signed_area_of(s);
+  const double clipper_signed_area = signed_area_of(c);
+  const double subject_area = std::abs(subject_signed_area);
+  if (subject_signed_area < 0.0) reverse_in_place(s);
+  if (clipper_signed_area < 0.0) reverse_in_place(c);
+  if (subject_area == 0.0 || clipper_signed_area == 0.0) return {};
 
   // The tolerance is relative to the shortest edge so it scales with the mesh and never
-  // swallows a genuine edge (ALGORITHMS.md §2, step 4: tol = 1e-8 * min edge length).
-  const double tol = options.merge_tolerance * std::min(min_edge_of(s), min_edge_of(c));
+  // swallows a genuine edge (ALGORITHMS.md §2, step 4: tol = 1e-8 * min edge length). Merging
+  // rarely removes a vertex; only then are the edges measured again.
+  if (s.size() != subject.size()) subject_min = min_edge_of(s);
+  if (c.size() != clipper.size()) clipper_min = min_edge_of(c);
+  const double tol = options.merge_tolerance * std::min(subject_min, clipper_min);
 
-  std::array<double, work_capacity> distance{};
+  std::array<double, work_capacity> distance;
+  // Each clipping edge writes the next polygon into the other buffer.
+  WorkPolygon buffer;
+  WorkPolygon* current = &s;
+  WorkPolygon* next = &buffer;
   for (int k = 0; k < c.size(); ++k) {
+    const WorkPolygon& p = *current;
     const Point2& a = c[k];
-    const Point2 edge = c[(k + 1) % c.size()] - a;
+    const Point2 edge = c[k + 1 == c.size() ? 0 : k + 1] - a;
     const double length = edge.norm();
-    const int n = s.size();
+    const int n = p.size();
     // Signed distance to the clipping line, positive on the inner (left) side. Points within
     // tol count as on the line: this is what makes coincident and nearly parallel edges safe,
     // since no intersection of two almost parallel lines is ever computed from them.
     for (int i = 0; i < n; ++i) {
-      const double d = cross(edge, s[i] - a) / length;
+      const double d = cross(edge, p[i] - a) / length;
       distance[static_cast<std::size_t>(i)] = std::abs(d) <= tol ? 0.0 : d;
     }
-    WorkPolygon out;
+    WorkPolygon& out = *next;
+    out.clear();
     for (int i = 0; i < n; ++i) {
-      const int j = (i + 1) % n;
+      const int j = i + 1 == n ? 0 : i + 1;
       const double dc = distance[static_cast<std::size_t>(i)];
       const double dn = distance[static_cast<std::size_t>(j)];
-      if (dc >= 0.0) checked_push(out, s[i]);
+      if (dc >= 0.0) checked_push(out, p[i]);
       if ((dc > 0.0 && dn < 0.0) || (dc < 0.0 && dn > 0.0)) {
-        checked_push(out, s[i] + (dc / (dc - dn)) * (s[j] - s[i]));
+        checked_push(out, p[i] + (dc / (dc - dn)) * (p[j] - p[i]));
       }
     }
     merge_close_vertices(out, tol);
-    s = out;
-    if (s.size() < 3) return {};
+    std::swap(current, next);
+    if (current->size() < 3) return {};
   }
+  WorkPolygon& clipped = *current;
 
-  remove_collinear_vertices(s, tol);
-  if (s.size() < 3) return {};
-  const double result_area = signed_area_of(s);
+  remove_collinear_vertices(clipped, tol);
+  if (clipped.size() < 3) return {};
+  const double result_area = signed_area_of(clipped);
   if (result_area <= options.min_relative_area * subject_area) return {};
-  if (s.size() > max_polygon_vertices) {
-    SEAM_THROW(InternalError, "clip_polygons: result has ", s.size(), " vertices");
+  if (clipped.size() > max_polygon_vertices) {
+    SEAM_THROW(InternalError, "clip_polygons: result has ", clipped.size(), " vertices");
   }
   Polygon result;
-  for (const Point2& x : s) result.push_back(x);
+  for (const Point2& x : clipped) result.push_back(x);
   return result;
 }
 
@@ -205,7 +234,8 @@ TriangleList triangulate_fan(const Polygon& polygon) {
     return cells;
   }
   const Point2 center = centroid(polygon);
-  for (int i = 0; i < n; ++i) cells.push_back({center, polygon[i], polygon[(i + 1) % n]});
+  for (int i = 0; i < n; ++i)
+    cells.push_back({center, polygon[i], polygon[i + 1 == n ? 0 : i + 1]});
   return cells;
 }
 

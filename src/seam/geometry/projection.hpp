@@ -30,10 +30,16 @@ struct SurfacePoint {
 };
 
 struct NewtonOptions {
-  /// Converged when the parameter increment is at most this (parameters are O(1)).
+  /// Converged when the parameter increment is at most this (parameters are O(1)), or at most
+  /// the increment that round-off in the residual alone can cause: x(xi) - p carries an error
+  /// of about eps (|x| + |p|) that no iteration removes, and on facets small against their
+  /// distance from the origin (|x| / h >~ 1e4) it maps to increments above 1e-12.
   double tolerance = 1e-12;
   int max_iterations = 10;
 };
+
+/// 16 unit roundoffs: the round-off floor of a residual is taken as this times its scale.
+inline constexpr double residual_roundoff = 16.0 * 2.220446049250313e-16;
 
 struct CurveProjection {
   double xi = 0.0;
@@ -74,7 +80,9 @@ CurveProjection project_onto_curve_along_field(const Curve& curve, const Field& 
     const double step = -f / df;
     result.xi += step;
     if (!std::isfinite(result.xi)) return result;
-    if (std::abs(step) <= options.tolerance) {
+    // Round-off floor with 1-norms (bounds of the 2-norms, and free of square roots).
+    if (std::abs(step) <= options.tolerance ||
+        std::abs(f) <= residual_roundoff * (c.x.lpNorm<1>() + p.lpNorm<1>()) * d.x.lpNorm<1>()) {
       result.converged = true;
       return result;
     }
@@ -111,12 +119,20 @@ SurfaceProjection project_onto_surface(const Surface& surface, const Eigen::Vect
     const double det = jacobian.determinant();
     const double scale = s.dx.col(0).norm() * s.dx.col(1).norm() * d.norm();
     if (!(std::abs(det) > 1e-14 * scale)) return result;
+    const double alpha_before = result.alpha;
     const Eigen::Vector3d residual = s.x + result.alpha * d - p;
-    const Eigen::Vector3d step = -jacobian.inverse() * residual;
+    const Eigen::Matrix3d inverse = jacobian.inverse();
+    const Eigen::Vector3d step = -inverse * residual;
     result.xi += step.head<2>();
     result.alpha += step(2);
     if (!result.xi.allFinite() || !std::isfinite(result.alpha)) return result;
-    if (step.head<2>().cwiseAbs().maxCoeff() <= options.tolerance) {
+    const double increment = step.head<2>().cwiseAbs().maxCoeff();
+    // Round-off floor with 1-norms (bounds of the 2-norms, and free of square roots).
+    if (increment <= options.tolerance ||
+        increment <=
+            residual_roundoff *
+                (s.x.lpNorm<1>() + p.lpNorm<1>() + std::abs(alpha_before) * d.lpNorm<1>()) *
+                inverse.topRows<2>().cwiseAbs().sum()) {
       result.converged = true;
       return result;
     }

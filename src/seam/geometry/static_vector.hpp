@@ -15,6 +15,18 @@ public:
   static constexpr int capacity = Capacity;
 
   StaticVector() = default;
+  // Copies move only the live elements: the per-pair polygons are copied often and are
+  // mostly far from full.
+  StaticVector(const StaticVector& other) : n_(other.n_) {
+    for (int i = 0; i < n_; ++i)
+      data_[static_cast<std::size_t>(i)] = other.data_[static_cast<std::size_t>(i)];
+  }
+  StaticVector& operator=(const StaticVector& other) {
+    n_ = other.n_;
+    for (int i = 0; i < n_; ++i)
+      data_[static_cast<std::size_t>(i)] = other.data_[static_cast<std::size_t>(i)];
+    return *this;
+  }
 
   int size() const { return n_; }
   bool empty() const { return n_ == 0; }
@@ -54,7 +66,9 @@ public:
   const T* end() const { return data_.data() + n_; }
 
 private:
-  std::array<T, static_cast<std::size_t>(Capacity)> data_{};
+  // Left uninitialized: only the first n_ elements are ever read, and zero-filling the whole
+  // capacity on every construction would cost more than the geometry itself.
+  std::array<T, static_cast<std::size_t>(Capacity)> data_;
   int n_ = 0;
 };
 
