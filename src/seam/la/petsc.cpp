@@ -258,10 +258,25 @@ void Matrix::zero_rows_columns(std::span<const PetscInt> rows, const Vector* x, 
 }
 
 void Matrix::set_near_null_space(const Vector& coordinates) {
+  // MatNullSpaceCreateRigidBody takes the spatial dimension from the vector's block size: a
+  // copy with the matrix's block size (the dimension) gives all 3 (2D) or 6 (3D) rigid-body
+  // modes, not just the constant vector.
+  PetscInt bs = 1, n = 0;
+  check(MatGetBlockSize(m_, &bs), "MatGetBlockSize");
+  check(VecGetLocalSize(coordinates.get(), &n), "VecGetLocalSize");
+  MPI_Comm comm = MPI_COMM_NULL;
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(m_), &comm), "PetscObjectGetComm");
+  Vec blocked = nullptr;
+  check(VecCreate(comm, &blocked), "VecCreate");
+  check(VecSetSizes(blocked, n, PETSC_DECIDE), "VecSetSizes");
+  check(VecSetBlockSize(blocked, bs), "VecSetBlockSize");
+  check(VecSetType(blocked, VECSTANDARD), "VecSetType");
+  check(VecCopy(coordinates.get(), blocked), "VecCopy");
   MatNullSpace nsp = nullptr;
-  check(MatNullSpaceCreateRigidBody(coordinates.get(), &nsp), "MatNullSpaceCreateRigidBody");
+  check(MatNullSpaceCreateRigidBody(blocked, &nsp), "MatNullSpaceCreateRigidBody");
   check(MatSetNearNullSpace(m_, nsp), "MatSetNearNullSpace");
   MatNullSpaceDestroy(&nsp);
+  VecDestroy(&blocked);
 }
 
 LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
