@@ -257,13 +257,61 @@ template <class F> void set_field(const problem::Discretization& disc, la::Vecto
 
 // ---------------------------------------------------------------------- global assembly
 
-/// Max over ranks of the wall time of f (started together after a barrier).
-template <class F> double timed(const Comm& comm, F&& f) {
-  comm.barrier();
-  const double t0 = wall();
-  f();
-  return comm.max(wall() - t0);
+/// Process CPU seconds (all threads): with other jobs on the machine, the wall time of a phase
+/// includes waiting for a core, its CPU time does not (it does include MPI's busy waiting).
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
+
+/// Wall and CPU seconds, each the maximum over ranks.
+struct Cost {
+  double wall = 0, cpu = 0;
+};
+
+/// The cost of f, started on all ranks together after a barrier.
+template <class F> Cost measure(const Comm& comm, F&& f) {
+  comm.barrier();
+  const double w0 = wall(), c0 = process_cpu_seconds();
+  f();
+  const double c = process_cpu_seconds() - c0, w = wall() - w0;
+  return {comm.max(w), comm.max(c)};
+}
+
+/// Best (smallest) wall and CPU time over `repeat` runs.
+template <class F> Cost best_of(const Comm& comm, int repeat, F&& f) {
+  Cost best{1e300, 1e300};
+  for (int i = 0; i < repeat; ++i) {
+    const Cost c = measure(comm, f);
+    best = {std::min(best.wall, c.wall), std::min(best.cpu, c.cpu)};
+  }
+  return best;
+}
+
+/// Buffers of one cell, filled as problem::assemble gathers them.
+struct CellBuffers {
+  static constexpr int max_dofs = fem::max_cell_nodes * 3;
+  std::array<double, max_dofs> X{}, u{}, r{};
+  std::array<PetscInt, max_dofs> dofs{};
+  std::vector<double> K = std::vector<double>(std::size_t(max_dofs) * max_dofs);
+  int nd = 0;
+
+  void gather(const problem::Discretization& disc, std::span<const double> u_local,
+              std::int32_t c) {
+    const auto nodes = disc.mesh().cell(c);
+    nd = int(nodes.size()) * 3;
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int k = 0; k < 3; ++k) {
+        X[a * 3 + k] = disc.mesh().x[std::size_t(nodes[a]) * 3 + k];
+        u[a * 3 + k] = u_local[std::size_t(disc.local_dof(nodes[a], k))];
+        dofs[a * 3 + k] = disc.global_dof(nodes[a], k);
+      }
+  }
+  std::span<const PetscInt> dof_span() const { return {dofs.data(), std::size_t(nd)}; }
+  std::span<double> r_span() { return {r.data(), std::size_t(nd)}; }
+  std::span<double> K_span() { return {K.data(), std::size_t(nd) * nd}; }
+};
 
 void run_assembly(const problem::Discretization& disc, const problem::Model& model, int repeat,
                   Json& json) {
@@ -275,118 +323,151 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
     return std::array<double, 3>{0.01 * y * z, 0.01 * x * z, -0.05 * z};
   });
   la::Matrix K;
-  const double t_matrix = timed(comm, [&] { K = disc.make_matrix(); });
+  const Cost matrix = measure(comm, [&] { K = disc.make_matrix(); });
 
-  auto best = [&](auto&& f) {
-    double b = 1e300;
-    for (int i = 0; i < repeat; ++i) b = std::min(b, timed(comm, f));
-    return b;
-  };
-  const double t_rK = best([&] { problem::assemble(model, disc, u, 0.0, r, &K); });
+  // seam's own code path.
+  const Cost rK = best_of(comm, repeat, [&] { problem::assemble(model, disc, u, 0.0, r, &K); });
   PetscReal norm_K = 0;
   MatNorm(K.get(), NORM_FROBENIUS, &norm_K);
-  const double norm_r = r.norm();
-  const double t_r = best([&] { problem::assemble(model, disc, u, 0.0, r, nullptr); });
+  const Cost r_only =
+      best_of(comm, repeat, [&] { problem::assemble(model, disc, u, 0.0, r, nullptr); });
 
-  // The same loop as problem::assemble with the phases timed per cell: gather + kernel, then
-  // MatSetValues/VecSetValues, then the final (communicating) MatAssembly/VecAssembly.
-  struct Split {
-    double zero = 0, kernel = 0, insert = 0, final = 0;
-  } split{1e300, 1e300, 1e300, 1e300};
-  constexpr int max_dofs = fem::max_cell_nodes * 3;
-  std::array<double, max_dofs> X{}, ue{}, re{};
-  std::array<PetscInt, max_dofs> dofs{};
-  std::vector<double> Ke(std::size_t(max_dofs) * max_dofs);
-  for (int i = 0; i < repeat; ++i) {
-    Split s;
-    comm.barrier();
-    double t0 = wall();
+  // Its phases, as separate loops (a clock read per cell would cost a good part of a hex8):
+  // gather + element kernel; gather + VecSetValues + MatSetValues of one fixed element
+  // matrix (the cost of insertion depends on the indices, not the values); the final
+  // Vec/MatAssemblyBegin/End, which sends the entries of rows owned by other ranks.
+  CellBuffers b;
+  const auto& mat = model.materials[0];
+  const Cost zero = best_of(comm, repeat, [&] {
     r.zero();
     K.zero();
-    s.zero = wall() - t0;
-    {
-      la::Vector::LocalView view(u, false);
-      const auto ul = view.values();
-      for (auto c : disc.local_cells()) {
-        t0 = wall();
-        const auto nodes = mesh.cell(c);
-        const int nd = int(nodes.size()) * 3;
-        for (std::size_t a = 0; a < nodes.size(); ++a)
-          for (int k = 0; k < 3; ++k) {
-            X[a * 3 + k] = mesh.x[std::size_t(nodes[a]) * 3 + k];
-            ue[a * 3 + k] = ul[std::size_t(disc.local_dof(nodes[a], k))];
-            dofs[a * 3 + k] = disc.global_dof(nodes[a], k);
-          }
-        const solid::ElementInput in{mesh.cell_type[c],
-                                     3,
-                                     solid::PlaneMode::none,
-                                     model.materials[std::size_t(model.cell_material[c])],
-                                     std::span<const double>(X.data(), nd),
-                                     std::span<const double>(ue.data(), nd),
-                                     0};
-        solid::internal_force(in, std::span<double>(re.data(), nd),
-                              std::span<double>(Ke.data(), std::size_t(nd) * nd));
-        const double t1 = wall();
-        const std::span<const PetscInt> d(dofs.data(), nd);
-        r.add_values(d, std::span<const double>(re.data(), nd));
-        K.add_values(d, d, std::span<const double>(Ke.data(), std::size_t(nd) * nd));
-        const double t2 = wall();
-        s.kernel += t1 - t0;
-        s.insert += t2 - t1;
-      }
+  });
+  const Cost kernel = best_of(comm, repeat, [&] {
+    la::Vector::LocalView v(u, false);
+    for (auto c : disc.local_cells()) {
+      b.gather(disc, v.values(), c);
+      const solid::ElementInput in{mesh.cell_type[c],
+                                   3,
+                                   solid::PlaneMode::none,
+                                   mat,
+                                   std::span<const double>(b.X.data(), std::size_t(b.nd)),
+                                   std::span<const double>(b.u.data(), std::size_t(b.nd)),
+                                   0};
+      solid::internal_force(in, b.r_span(), b.K_span());
     }
-    t0 = wall();
-    r.assemble();
-    K.assemble();
-    s.final = wall() - t0;
-    split.zero = std::min(split.zero, comm.max(s.zero));
-    split.kernel = std::min(split.kernel, comm.max(s.kernel));
-    split.insert = std::min(split.insert, comm.max(s.insert));
-    split.final = std::min(split.final, comm.max(s.final));
+  });
+  // b holds the last cell's r and K: insert those at every cell's dofs. Each final assembly
+  // follows its own insertion, so that it has the off-rank entries to send.
+  Cost insert{1e300, 1e300}, final{1e300, 1e300};
+  for (int i = 0; i < repeat; ++i) {
+    const Cost ins = measure(comm, [&] {
+      la::Vector::LocalView v(u, false);
+      for (auto c : disc.local_cells()) {
+        b.gather(disc, v.values(), c);
+        r.add_values(b.dof_span(), b.r_span());
+        K.add_values(b.dof_span(), b.dof_span(), b.K_span());
+      }
+    });
+    const Cost fin = measure(comm, [&] {
+      r.assemble();
+      K.assemble();
+    });
+    insert = {std::min(insert.wall, ins.wall), std::min(insert.cpu, ins.cpu)};
+    final = {std::min(final.wall, fin.wall), std::min(final.cpu, fin.cpu)};
   }
-  // The replica must build what problem::assemble built.
+  // Not seam's path: the same insertion into a block AIJ copy of the matrix (MATBAIJ, 3x3
+  // blocks) with MatSetValuesBlocked, which searches once per node pair instead of once per
+  // entry. Only the insertion is timed; the copy exists for this comparison alone.
+  Mat Kb = nullptr;
+  la::check(MatConvert(K.get(), MATBAIJ, MAT_INITIAL_MATRIX, &Kb), "MatConvert");
+  std::array<PetscInt, fem::max_cell_nodes> block{};
+  const Cost insert_blocked = best_of(comm, repeat, [&] {
+    la::Vector::LocalView v(u, false);
+    for (auto c : disc.local_cells()) {
+      b.gather(disc, v.values(), c);
+      const int nn = b.nd / 3;
+      for (int a = 0; a < nn; ++a) block[std::size_t(a)] = b.dofs[std::size_t(a) * 3] / 3;
+      r.add_values(b.dof_span(), b.r_span());
+      la::check(MatSetValuesBlocked(Kb, nn, block.data(), nn, block.data(), b.K.data(), ADD_VALUES),
+                "MatSetValuesBlocked");
+    }
+  });
+  la::check(MatAssemblyBegin(Kb, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  la::check(MatAssemblyEnd(Kb, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  r.assemble();
+  // Both insertions must build the same matrix: one untimed pass each from zero.
+  K.zero();
+  la::check(MatZeroEntries(Kb), "MatZeroEntries");
+  {
+    la::Vector::LocalView v(u, false);
+    for (auto c : disc.local_cells()) {
+      b.gather(disc, v.values(), c);
+      const int nn = b.nd / 3;
+      for (int a = 0; a < nn; ++a) block[std::size_t(a)] = b.dofs[std::size_t(a) * 3] / 3;
+      K.add_values(b.dof_span(), b.dof_span(), b.K_span());
+      la::check(MatSetValuesBlocked(Kb, nn, block.data(), nn, block.data(), b.K.data(), ADD_VALUES),
+                "MatSetValuesBlocked");
+    }
+  }
+  K.assemble();
+  la::check(MatAssemblyBegin(Kb, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  la::check(MatAssemblyEnd(Kb, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  PetscReal norm_aij = 0, norm_baij = 0;
+  MatNorm(K.get(), NORM_FROBENIUS, &norm_aij);
+  MatNorm(Kb, NORM_FROBENIUS, &norm_baij);
+  MatDestroy(&Kb);
+  // A second assembly after the timing loops must give the same matrix (problem::assemble
+  // zeroes what it assembles into).
+  problem::assemble(model, disc, u, 0.0, r, &K);
   PetscReal norm_K2 = 0;
   MatNorm(K.get(), NORM_FROBENIUS, &norm_K2);
-  const double dK = std::abs(norm_K2 - norm_K) / norm_K, dr = std::abs(r.norm() - norm_r) / norm_r;
 
   const auto type = std::string(fem::name(mesh.cell_type[0]));
   const std::int64_t local = comm.max(std::int64_t(disc.local_cells().size()));
+  const Cost sum{zero.wall + kernel.wall + insert.wall + final.wall,
+                 zero.cpu + kernel.cpu + insert.cpu + final.cpu};
   if (comm.is_root()) {
-    std::printf("\n2. Global assembly, problem::assemble into PETSc AIJ (wall time, max over "
-                "ranks, best of %d)\n",
+    std::printf("\n2. Global assembly, problem::assemble into PETSc AIJ (max over ranks, best of "
+                "%d)\n",
                 repeat);
     std::printf("  %s, %d cells, %lld dofs, %d rank(s), at most %lld cells per rank\n",
                 type.c_str(), mesh.n_cells(), (long long)disc.n_global_dofs(), comm.size(),
                 (long long)local);
-    std::printf("  %-40s %10s %14s\n", "phase", "s", "cells/s");
-    auto row = [&](const char* what, double t) {
-      std::printf("  %-40s %10.4g %14.4g\n", what, t, n_cells / t);
+    std::printf("  %-38s %9s %9s %12s %12s\n", "phase", "wall s", "CPU s", "cells/s wall",
+                "cells/s CPU");
+    auto row = [&](const char* what, Cost t) {
+      std::printf("  %-38s %9.4g %9.4g %12.4g %12.4g\n", what, t.wall, t.cpu, n_cells / t.wall,
+                  n_cells / t.cpu);
     };
-    row("make_matrix (pattern, preallocation)", t_matrix);
-    row("assemble r + K (problem::assemble)", t_rK);
-    row("assemble r only (problem::assemble)", t_r);
-    row("  split: zero r, K", split.zero);
-    row("  split: gather + element kernel", split.kernel);
-    row("  split: VecSetValues + MatSetValues", split.insert);
-    row("  split: Vec/MatAssemblyBegin/End", split.final);
-    const double sum = split.zero + split.kernel + split.insert + split.final;
-    std::printf("  split sum %.4g s (vs %.4g s); replica vs assemble: |K|_F rel. diff %.1e, |r| "
-                "%.1e\n",
-                sum, t_rK, dK, dr);
-    std::printf("  ratios: assemble r+K / kernel alone = %.2f, insertion / kernel = %.2f\n",
-                t_rK / split.kernel, split.insert / split.kernel);
+    row("make_matrix (pattern, preallocation)", matrix);
+    row("problem::assemble, r + K", rK);
+    row("problem::assemble, r only", r_only);
+    row("  phase: zero r, K", zero);
+    row("  phase: gather + element kernel", kernel);
+    row("  phase: gather + Vec/MatSetValues", insert);
+    row("  phase: Vec/MatAssemblyBegin/End", final);
+    row("  what-if: BAIJ, MatSetValuesBlocked", insert_blocked);
+    row("  sum of the phases", sum);
+    std::printf("  ratios (CPU): assemble r+K / kernel = %.2f, insertion / kernel = %.2f, BAIJ / "
+                "AIJ insertion = %.2f\n  checks: |K|_F of a repeated assembly, rel. diff %.1e; of "
+                "BAIJ vs AIJ "
+                "insertion %.1e\n",
+                rK.cpu / kernel.cpu, insert.cpu / kernel.cpu, insert_blocked.cpu / insert.cpu,
+                std::abs(norm_K2 - norm_K) / norm_K, std::abs(norm_baij - norm_aij) / norm_aij);
   }
   json.add("assembly_cell", type);
   json.add("assembly_cells", n_cells);
   json.add("assembly_dofs", double(disc.n_global_dofs()));
-  json.add("make_matrix_s", t_matrix);
-  json.add("assemble_rK_s", t_rK);
-  json.add("assemble_r_s", t_r);
-  json.add("assemble_rK_cells_per_s", n_cells / t_rK);
-  json.add("split_zero_s", split.zero);
-  json.add("split_kernel_s", split.kernel);
-  json.add("split_insert_s", split.insert);
-  json.add("split_final_s", split.final);
+  json.add("make_matrix_wall_s", matrix.wall);
+  json.add("assemble_rK_wall_s", rK.wall);
+  json.add("assemble_rK_cpu_s", rK.cpu);
+  json.add("assemble_r_wall_s", r_only.wall);
+  json.add("assemble_r_cpu_s", r_only.cpu);
+  json.add("assemble_rK_cells_per_cpu_s", n_cells / rK.cpu);
+  json.add("phase_kernel_cpu_s", kernel.cpu);
+  json.add("phase_insert_cpu_s", insert.cpu);
+  json.add("phase_final_cpu_s", final.cpu);
+  json.add("whatif_baij_insert_cpu_s", insert_blocked.cpu);
 }
 
 // ----------------------------------------------------------------------- Newton iteration
@@ -404,13 +485,47 @@ double event_seconds(const char* name) {
 /// predictor that carries the prescribed increment as an inhomogeneous constraint, then
 /// correctors until |r| <= tol * reference (Newton tolerance and linear solver of seam's
 /// iterative setting).
+/// Not seam's path: the near-null space from a coordinate vector with block size 3, from
+/// which MatNullSpaceCreateRigidBody makes the six rigid-body modes. (Discretization's
+/// coordinate vector has block size 1, for which PETSc makes the constant vector alone.)
+void set_rigid_body_modes(const problem::Discretization& disc, la::Matrix& K) {
+  const la::Vector x = disc.coordinates_vector();
+  Vec xb = nullptr;
+  la::check(VecCreate(disc.comm().get(), &xb), "VecCreate");
+  la::check(VecSetSizes(xb, disc.n_owned_dofs(), PETSC_DETERMINE), "VecSetSizes");
+  la::check(VecSetBlockSize(xb, 3), "VecSetBlockSize");
+  la::check(VecSetType(xb, VECSTANDARD), "VecSetType");
+  la::check(VecCopy(x.get(), xb), "VecCopy");
+  MatNullSpace nsp = nullptr;
+  la::check(MatNullSpaceCreateRigidBody(xb, &nsp), "MatNullSpaceCreateRigidBody");
+  la::check(MatSetNearNullSpace(K.get(), nsp), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&nsp);
+  VecDestroy(&xb);
+}
+
+/// Vectors of the matrix's near-null space (+1 if it holds the constant).
+int near_null_vectors(const la::Matrix& K) {
+  MatNullSpace nsp = nullptr;
+  la::check(MatGetNearNullSpace(K.get(), &nsp), "MatGetNearNullSpace");
+  if (!nsp) return 0;
+  PetscBool has_constant = PETSC_FALSE;
+  PetscInt n = 0;
+  const Vec* vecs = nullptr;
+  la::check(MatNullSpaceGetVecs(nsp, &has_constant, &n, &vecs), "MatNullSpaceGetVecs");
+  return int(n) + (has_constant ? 1 : 0);
+}
+
 void run_newton(const problem::Discretization& disc, const problem::Model& model,
-                double compression, int max_iterations, Json& json) {
+                double compression, int max_iterations, bool rigid_body_modes, Json& json) {
   const Comm comm = disc.comm();
   la::Vector u = disc.make_vector(), r = disc.make_vector(), du = disc.make_vector();
   la::Vector g = disc.make_vector();
   la::Matrix K = disc.make_matrix();
-  K.set_near_null_space(disc.coordinates_vector());
+  if (rigid_body_modes)
+    set_rigid_body_modes(disc, K);
+  else
+    K.set_near_null_space(disc.coordinates_vector()); // as problem::run_static
+  const int n_near_null = near_null_vectors(K);
   la::LinearSolver solver(comm.get(), la::SolverKind::iterative);
   // Bottom (z = 0) clamped; top (z = 1) clamped in x, y and moved down by `compression`.
   std::vector<PetscInt> rows;
@@ -440,74 +555,94 @@ void run_newton(const problem::Discretization& disc, const problem::Model& model
     std::printf("\n3. Newton, compressed Neo-Hooke block (%.0f %% of its height, clamped ends), "
                 "%lld dofs, %d rank(s)\n",
                 100 * compression, (long long)disc.n_global_dofs(), comm.size());
-    std::printf("  GMRES(200) + GAMG, rigid-body near-null space, rtol 1e-10; Newton tol 1e-10 "
-                "(wall s, max over ranks)\n");
-    std::printf("  %3s %11s %10s %9s %10s %10s %6s %10s\n", "it", "|r|/ref", "assembly", "bc",
-                "amg setup", "krylov", "ksp", "iteration");
+    std::printf("  GMRES(200) + GAMG, rtol 1e-10; near-null space: %d vector(s)%s; Newton tol "
+                "1e-10; seconds, max over ranks\n",
+                n_near_null,
+                rigid_body_modes ? " (--rigid-body-modes, not seam's path)"
+                                 : " (Discretization::coordinates_vector, as seam)");
+    std::printf("  %3s %10s %9s %9s %9s %9s %9s %5s %9s %9s\n", "it", "|r|/ref", "asm wall",
+                "asm CPU", "AMG setup", "Krylov", "solve CPU", "ksp", "it wall", "it CPU");
   }
   const double tol = 1e-10;
-  double reference = 0, sum_iteration = 0, sum_assembly = 0, sum_setup = 0, sum_krylov = 0;
+  double reference = 0;
+  Cost sum_it, sum_asm, sum_solve;
+  double sum_setup = 0;
   int n_solves = 0, ksp_total = 0;
   bool converged = false;
   for (int it = 0; it <= max_iterations; ++it) {
-    comm.barrier();
-    const double t0 = wall();
-    const auto status = problem::assemble(model, disc, u, 1.0, r, &K);
-    const double t_asm = comm.max(wall() - t0);
+    problem::AssemblyStatus status;
+    const Cost asm_cost =
+        measure(comm, [&] { status = problem::assemble(model, disc, u, 1.0, r, &K); });
     if (comm.any(status.inverted)) throw std::runtime_error("an element inverted");
-    {
-      la::Vector::LocalView view(r, true);
-      auto x = view.values();
-      for (auto row : rows) x[std::size_t(row - first)] = 0.0;
-    }
-    const double norm = r.norm();
+    double norm = 0;
     const bool predictor = it == 0;
+    const Cost bc_cost = measure(comm, [&] {
+      {
+        la::Vector::LocalView view(r, true);
+        auto x = view.values();
+        for (auto row : rows) x[std::size_t(row - first)] = 0.0;
+      }
+      norm = r.norm();
+    });
     if (it <= 1) reference = std::max(reference, norm);
     converged = !predictor && norm <= tol * reference;
     const double rel = reference > 0 ? norm / reference : 0.0;
     if (converged || it == max_iterations) {
-      if (comm.is_root()) std::printf("  %3d %11.3e %10.4g\n", it, rel, t_asm);
+      if (comm.is_root())
+        std::printf("  %3d %10.3e %9.4g %9.4g   (converged: assembly only)\n", it, rel,
+                    asm_cost.wall, asm_cost.cpu);
       break;
     }
-    const double t1 = wall();
-    r.scale(-1.0);
-    K.zero_rows_columns(rows, predictor ? &g : nullptr, predictor ? &r : nullptr);
-    const double t_bc = comm.max(wall() - t1);
     const double setup0 = event_seconds("PCSetUp");
-    const double t2 = wall();
-    du.zero();
-    if (!solver.solve(K, r, du)) throw std::runtime_error("the linear solver did not converge");
-    const double t_solve = comm.max(wall() - t2);
-    const double t_setup = comm.max(event_seconds("PCSetUp") - setup0);
-    u.axpy(1.0, du);
-    if (predictor) set_prescribed(u, false); // the prescribed values exactly
-    u.update_ghosts();
-    const double t_it = comm.max(wall() - t0);
-    if (comm.is_root())
-      std::printf("  %3d %11.3e %10.4g %9.3g %10.4g %10.4g %6d %10.4g\n", it, rel, t_asm, t_bc,
-                  t_setup, t_solve - t_setup, solver.last_iterations(), t_it);
+    bool solved = false;
+    const Cost solve_cost = measure(comm, [&] {
+      r.scale(-1.0);
+      K.zero_rows_columns(rows, predictor ? &g : nullptr, predictor ? &r : nullptr);
+      du.zero();
+      solved = solver.solve(K, r, du);
+      u.axpy(1.0, du);
+      if (predictor) set_prescribed(u, false); // the prescribed values exactly
+      u.update_ghosts();
+    });
+    if (comm.any(!solved)) throw std::runtime_error("the linear solver did not converge");
+    const double setup = comm.max(event_seconds("PCSetUp") - setup0);
+    const Cost it_cost{asm_cost.wall + bc_cost.wall + solve_cost.wall,
+                       asm_cost.cpu + bc_cost.cpu + solve_cost.cpu};
+    if (comm.is_root()) {
+      char label[16];
+      std::snprintf(label, sizeof label, predictor ? "pred." : "%10.3e", rel);
+      std::printf("  %3d %10s %9.4g %9.4g %9.4g %9.4g %9.4g %5d %9.4g %9.4g\n", it, label,
+                  asm_cost.wall, asm_cost.cpu, setup, solve_cost.wall - setup, solve_cost.cpu,
+                  solver.last_iterations(), it_cost.wall, it_cost.cpu);
+    }
     ++n_solves;
     ksp_total += solver.last_iterations();
-    sum_iteration += t_it;
-    sum_assembly += t_asm;
-    sum_setup += t_setup;
-    sum_krylov += t_solve - t_setup;
+    sum_it = {sum_it.wall + it_cost.wall, sum_it.cpu + it_cost.cpu};
+    sum_asm = {sum_asm.wall + asm_cost.wall, sum_asm.cpu + asm_cost.cpu};
+    sum_solve = {sum_solve.wall + solve_cost.wall, sum_solve.cpu + solve_cost.cpu};
+    sum_setup += setup;
   }
   const double rss = comm.max(max_rss_gib());
+  const double ns = std::max(n_solves, 1);
   if (comm.is_root())
-    std::printf("  %s after %d solves; per Newton iteration: %.4g s (assembly %.4g, AMG setup "
-                "%.4g, Krylov %.4g, %.1f GMRES its); peak RSS %.2f GiB per rank\n",
-                converged ? "converged" : "NOT converged", n_solves, sum_iteration / n_solves,
-                sum_assembly / n_solves, sum_setup / n_solves, sum_krylov / n_solves,
-                double(ksp_total) / n_solves, rss);
+    std::printf("  %s after %d solves. Mean per Newton iteration: %.4g s wall, %.4g s CPU "
+                "(assembly %.4g / %.4g, solve %.4g / %.4g, of which AMG setup %.4g wall), "
+                "%.1f GMRES its; peak RSS %.2f GiB per rank\n",
+                converged ? "Converged" : "NOT converged", n_solves, sum_it.wall / ns,
+                sum_it.cpu / ns, sum_asm.wall / ns, sum_asm.cpu / ns, sum_solve.wall / ns,
+                sum_solve.cpu / ns, sum_setup / ns, double(ksp_total) / ns, rss);
   json.add("newton_dofs", double(disc.n_global_dofs()));
+  json.add("newton_near_null_vectors", n_near_null);
   json.add("newton_converged", converged ? 1.0 : 0.0);
   json.add("newton_solves", n_solves);
-  json.add("newton_iteration_s", sum_iteration / n_solves);
-  json.add("newton_assembly_s", sum_assembly / n_solves);
-  json.add("newton_amg_setup_s", sum_setup / n_solves);
-  json.add("newton_krylov_s", sum_krylov / n_solves);
-  json.add("newton_ksp_its", double(ksp_total) / n_solves);
+  json.add("newton_iteration_wall_s", sum_it.wall / ns);
+  json.add("newton_iteration_cpu_s", sum_it.cpu / ns);
+  json.add("newton_assembly_wall_s", sum_asm.wall / ns);
+  json.add("newton_assembly_cpu_s", sum_asm.cpu / ns);
+  json.add("newton_solve_wall_s", sum_solve.wall / ns);
+  json.add("newton_solve_cpu_s", sum_solve.cpu / ns);
+  json.add("newton_amg_setup_wall_s", sum_setup / ns);
+  json.add("newton_ksp_its", double(ksp_total) / ns);
   json.add("peak_rss_gib", rss);
 }
 
@@ -517,20 +652,23 @@ void help() {
   std::printf(
       "usage: seam-bench assembly [--cells-per-side N] [--order 1|2] [--serendipity]\n"
       "                           [--newton] [--compression C] [--max-newton K] [--repeat R]\n"
-      "                           [--no-kernels] [--json] [-- PETSc options]\n"
+      "                           [--rigid-body-modes] [--no-kernels] [--no-assembly] [--json]\n"
+      "                           [-- PETSc options]\n"
       "  1. element kernels (one core): hex8/20/27 and tet4/10, Neo-Hooke residual and\n"
       "     residual + tangent against a linear-elastic element and the bare geometry loop;\n"
       "  2. problem::assemble of an N^3 block (hex8; --order 2: hex27, with --serendipity\n"
       "     hex20) into the PETSc matrix, split into kernel, insertion and final assembly;\n"
       "  3. --newton: time per Newton iteration (assembly + GMRES/GAMG) of the block\n"
-      "     compressed by C (default 0.1) of its height.\n"
+      "     compressed by C (default 0.1) of its height; --rigid-body-modes gives GAMG the six\n"
+      "     rigid-body modes (coordinates with block size 3) instead of seam's near-null space.\n"
       "  N defaults to about 1e6 dofs (69 hex8, 44 hex20, 35 hex27). Run under mpirun for\n"
       "  several ranks (the kernel table is then skipped). --json: one JSON object, last.\n");
 }
 
 int run_assembly_bench(int argc, char** argv) {
   int n = 0, order = 1, repeat = 3, max_newton = 15;
-  bool serendipity = false, newton = false, json_out = false, kernels = true;
+  bool serendipity = false, newton = false, json_out = false, kernels = true, rbm = false;
+  bool assembly = true;
   double compression = 0.1;
   std::vector<std::string> petsc_args;
   for (int i = 1; i < argc; ++i) {
@@ -555,6 +693,10 @@ int run_assembly_bench(int argc, char** argv) {
       max_newton = std::atoi(value());
     else if (a == "--repeat")
       repeat = std::atoi(value());
+    else if (a == "--rigid-body-modes")
+      rbm = true;
+    else if (a == "--no-assembly")
+      assembly = false;
     else if (a == "--no-kernels")
       kernels = false;
     else if (a == "--json")
@@ -575,6 +717,8 @@ int run_assembly_bench(int argc, char** argv) {
   if (n == 0) n = type == CellType::hex8 ? 69 : type == CellType::hex20 ? 44 : 35;
   if (n < 2) throw std::invalid_argument("--cells-per-side must be >= 2");
 
+  // Line-buffered, so that progress shows in a log file during the long sections.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   la::Session session(argc, argv, petsc_args);
   la::check(PetscLogDefaultBegin(), "PetscLogDefaultBegin"); // for the AMG setup time
   const Comm comm(PETSC_COMM_WORLD);
@@ -594,8 +738,8 @@ int run_assembly_bench(int argc, char** argv) {
   if (comm.is_root())
     std::printf("\n  mesh %d^3 %s + partition + numbering: %.3g s\n", n,
                 std::string(fem::name(type)).c_str(), t_setup);
-  run_assembly(disc, model, repeat, json);
-  if (newton) run_newton(disc, model, compression, max_newton, json);
+  if (assembly) run_assembly(disc, model, repeat, json);
+  if (newton) run_newton(disc, model, compression, max_newton, rbm, json);
   json.add("load_average_end", load_average());
   if (comm.is_root()) {
     std::printf("\n  load average %.2f at end\n", load_average());
