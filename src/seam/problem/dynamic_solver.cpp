@@ -115,16 +115,13 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     return rec;
   };
 
-  double t = 0.0, dt = tc.dt;
-  int step = 0, cuts = 0;
+  StepControl control(tc);
+  int step = 0;
   double external_work = 0.0;
   la::Vector force = disc.make_vector(), force_old = disc.make_vector(), du = disc.make_vector();
-  while (t < tc.end * (1.0 - 1e-12)) {
-    double t_new = std::min(t + dt, tc.end);
-    {
-      const double k = std::round(t_new / tc.dt);
-      if (std::abs(t_new - k * tc.dt) < 1e-9 * tc.dt) t_new = tc.time_at(static_cast<int>(k));
-    }
+  while (control.running()) {
+    const double t = control.time();
+    const double t_new = control.next();
     const double h = t_new - t;
     u_n.copy_from(u);
     v_n.copy_from(v);
@@ -176,16 +173,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
       u.copy_from(u_n);
       u.update_ghosts();
       saddle.restore();
-      if (cuts >= tc.max_step_cuts) {
-        out.finish(false, step);
-        SEAM_THROW(SolverError, res.failure, " at t = ", t_new, " after ", cuts, " step cuts; the ",
-                   step, " converged steps are written in ", out.directory().string());
-      }
-      ++cuts;
-      dt *= 0.5;
-      if (disc.comm().is_root())
-        std::fprintf(stdout, "seam: %s at t = %g; cutting the step to dt = %g\n", res.failure,
-                     t_new, dt);
+      control.fail(res, t_new, step, out, disc.comm());
       continue;
     }
     ++step;
@@ -228,11 +216,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     const bool last = t_new >= tc.end * (1.0 - 1e-12);
     out.step(rec, u, &v, newton.reactions(), newton.multipliers(tied), last);
     saddle.save();
-    t = t_new;
-    if (cuts > 0) {
-      dt = std::min(2.0 * dt, tc.dt);
-      if (dt >= tc.dt) cuts = 0;
-    }
+    control.accept(t_new);
   }
   out.finish(true, step);
 }

@@ -32,6 +32,27 @@ struct NewtonResult {
   const char* failure = "";
 };
 
+/// Step size control shared by the static and dynamic drivers: steps land on the nominal times
+/// k dt; a failed step is halved and retried, the size grows back after success; the run gives
+/// up (SolverError, after summary.json) when one step has used all its cuts.
+class StepControl {
+public:
+  explicit StepControl(const io::TimeConfig& tc) : tc_(tc), dt_(tc.dt) {}
+  bool running() const { return t_ < tc_.end * (1.0 - 1e-12); }
+  double time() const { return t_; }
+  /// The end of the next attempted step.
+  double next() const;
+  /// A failed attempt at t_new after `step` converged steps: cut, or give up.
+  void fail(const NewtonResult& result, double t_new, int step, Output& out, const Comm& comm);
+  /// A converged step ending at t_new.
+  void accept(double t_new);
+
+private:
+  const io::TimeConfig& tc_;
+  double t_ = 0.0, dt_;
+  int cuts_ = 0;
+};
+
 class NewtonSolver {
 public:
   NewtonSolver(const io::Config& config, const Model& model, const Discretization& disc,
