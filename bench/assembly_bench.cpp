@@ -1,6 +1,7 @@
 // seam-bench assembly: throughput of the solid element kernels, of the global assembly into
 // PETSc, and the time per Newton iteration (assembly + GMRES/GAMG solve) of a compressed
 // Neo-Hooke block (docs/performance.md).
+#include "allocation_counter.hpp"
 #include "registry.hpp"
 
 #include "seam/common/mpi.hpp"
@@ -126,6 +127,7 @@ template <class F> double elements_per_second(int n_cells, int repeat, F&& f) {
 
 struct KernelRates {
   double geometry = 0, le_rK = 0, nh_r = 0, nh_rK = 0;
+  double allocations = 0; ///< heap allocations per Neo-Hooke r+K call
 };
 
 KernelRates time_kernels(CellType type, int repeat) {
@@ -162,6 +164,16 @@ KernelRates time_kernels(CellType type, int repeat) {
   out.le_rK = kernel(MaterialModel::linear_elastic, true);
   out.nh_r = kernel(MaterialModel::neo_hooke, false);
   out.nh_rK = kernel(MaterialModel::neo_hooke, true);
+  // One untimed pass over the batch, counted: the kernels must not allocate.
+  const auto before = seam::bench::AllocationCount::now();
+  for (int e = 0; e < n_cells; ++e) {
+    const solid::ElementInput in{
+        type,      3, solid::PlaneMode::none, material(MaterialModel::neo_hooke), b.X_of(e),
+        b.u_of(e), 0};
+    solid::internal_force(in, std::span<double>(r.data(), b.nd), K);
+  }
+  const auto count = seam::bench::AllocationCount::now() - before;
+  out.allocations = double(count.operator_new + count.malloc) / n_cells;
   return out;
 }
 
@@ -169,23 +181,25 @@ void run_kernels(int repeat, Json& json) {
   std::printf("\n1. Element kernels, one core (CPU time, best of %d; 256 distorted cells, random "
               "u, E = 1, nu = 0.3, full Gauss integration)\n",
               repeat);
-  std::printf("  %-6s %4s %12s %12s %12s %12s %9s %9s %9s\n", "cell", "qp", "geometry/s",
-              "linel r+K/s", "NH r/s", "NH r+K/s", "us NH r+K", "NH/linel", "NH/geom");
+  std::printf("  %-6s %4s %12s %12s %12s %12s %9s %9s %9s %7s\n", "cell", "qp", "geometry/s",
+              "linel r+K/s", "NH r/s", "NH r+K/s", "us NH r+K", "NH/linel", "NH/geom", "allocs");
   for (CellType t :
        {CellType::hex8, CellType::hex20, CellType::hex27, CellType::tet4, CellType::tet10}) {
     const auto k = time_kernels(t, repeat);
     const int qp = fem::quadrature(t, fem::default_quadrature_degree(t)).n_points;
-    std::printf("  %-6s %4d %12.4g %12.4g %12.4g %12.4g %9.2f %9.2f %9.1f\n",
+    std::printf("  %-6s %4d %12.4g %12.4g %12.4g %12.4g %9.2f %9.2f %9.1f %7.3g\n",
                 std::string(fem::name(t)).c_str(), qp, k.geometry, k.le_rK, k.nh_r, k.nh_rK,
-                1e6 / k.nh_rK, k.le_rK / k.nh_rK, k.geometry / k.nh_rK);
+                1e6 / k.nh_rK, k.le_rK / k.nh_rK, k.geometry / k.nh_rK, k.allocations);
     const std::string p = "kernel_" + std::string(fem::name(t)) + "_";
     json.add(p + "geometry_per_s", k.geometry);
     json.add(p + "linear_elastic_rK_per_s", k.le_rK);
     json.add(p + "neo_hooke_r_per_s", k.nh_r);
     json.add(p + "neo_hooke_rK_per_s", k.nh_rK);
+    json.add(p + "allocations_per_call", k.allocations);
   }
   std::printf("  ratios: NH/linel = time of Neo-Hooke r+K over linear-elastic r+K; NH/geom = over "
-              "the geometry baseline\n");
+              "the geometry baseline;\n"
+              "  allocs = heap allocations per Neo-Hooke r+K call (operator new and malloc)\n");
 }
 
 // ------------------------------------------------------------------- structured block mesh
@@ -329,6 +343,13 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
   const Cost rK = best_of(comm, repeat, [&] { problem::assemble(model, disc, u, 0.0, r, &K); });
   PetscReal norm_K = 0;
   MatNorm(K.get(), NORM_FROBENIUS, &norm_K);
+  // Heap allocations of one more such assembly (this rank): PETSc may allocate in the final
+  // assembly (the stash of off-rank rows), the loop over cells should not.
+  const auto before = seam::bench::AllocationCount::now();
+  problem::assemble(model, disc, u, 0.0, r, &K);
+  const auto allocations = seam::bench::AllocationCount::now() - before;
+  const std::int64_t n_allocations =
+      comm.max(std::int64_t(allocations.operator_new + allocations.malloc));
   const Cost r_only =
       best_of(comm, repeat, [&] { problem::assemble(model, disc, u, 0.0, r, nullptr); });
 
@@ -448,12 +469,15 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
     row("  phase: Vec/MatAssemblyBegin/End", final);
     row("  what-if: BAIJ, MatSetValuesBlocked", insert_blocked);
     row("  sum of the phases", sum);
-    std::printf("  ratios (CPU): assemble r+K / kernel = %.2f, insertion / kernel = %.2f, BAIJ / "
-                "AIJ insertion = %.2f\n  checks: |K|_F of a repeated assembly, rel. diff %.1e; of "
-                "BAIJ vs AIJ "
-                "insertion %.1e\n",
-                rK.cpu / kernel.cpu, insert.cpu / kernel.cpu, insert_blocked.cpu / insert.cpu,
-                std::abs(norm_K2 - norm_K) / norm_K, std::abs(norm_baij - norm_aij) / norm_aij);
+    std::printf(
+        "  ratios (CPU): assemble r+K / kernel = %.2f, insertion / kernel = %.2f, BAIJ / "
+        "AIJ insertion = %.2f\n  heap allocations in one problem::assemble r+K: %lld (max over "
+        "ranks)\n  checks: |K|_F of a repeated assembly, rel. diff %.1e; of "
+        "BAIJ vs AIJ "
+        "insertion %.1e\n",
+        rK.cpu / kernel.cpu, insert.cpu / kernel.cpu, insert_blocked.cpu / insert.cpu,
+        (long long)n_allocations, std::abs(norm_K2 - norm_K) / norm_K,
+        std::abs(norm_baij - norm_aij) / norm_aij);
   }
   json.add("assembly_cell", type);
   json.add("assembly_cells", n_cells);
@@ -464,6 +488,7 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
   json.add("assemble_r_wall_s", r_only.wall);
   json.add("assemble_r_cpu_s", r_only.cpu);
   json.add("assemble_rK_cells_per_cpu_s", n_cells / rK.cpu);
+  json.add("assemble_rK_allocations", double(n_allocations));
   json.add("phase_kernel_cpu_s", kernel.cpu);
   json.add("phase_insert_cpu_s", insert.cpu);
   json.add("phase_final_cpu_s", final.cpu);
@@ -485,24 +510,6 @@ double event_seconds(const char* name) {
 /// predictor that carries the prescribed increment as an inhomogeneous constraint, then
 /// correctors until |r| <= tol * reference (Newton tolerance and linear solver of seam's
 /// iterative setting).
-/// Not seam's path: the near-null space from a coordinate vector with block size 3, from
-/// which MatNullSpaceCreateRigidBody makes the six rigid-body modes. (Discretization's
-/// coordinate vector has block size 1, for which PETSc makes the constant vector alone.)
-void set_rigid_body_modes(const problem::Discretization& disc, la::Matrix& K) {
-  const la::Vector x = disc.coordinates_vector();
-  Vec xb = nullptr;
-  la::check(VecCreate(disc.comm().get(), &xb), "VecCreate");
-  la::check(VecSetSizes(xb, disc.n_owned_dofs(), PETSC_DETERMINE), "VecSetSizes");
-  la::check(VecSetBlockSize(xb, 3), "VecSetBlockSize");
-  la::check(VecSetType(xb, VECSTANDARD), "VecSetType");
-  la::check(VecCopy(x.get(), xb), "VecCopy");
-  MatNullSpace nsp = nullptr;
-  la::check(MatNullSpaceCreateRigidBody(xb, &nsp), "MatNullSpaceCreateRigidBody");
-  la::check(MatSetNearNullSpace(K.get(), nsp), "MatSetNearNullSpace");
-  MatNullSpaceDestroy(&nsp);
-  VecDestroy(&xb);
-}
-
 /// Vectors of the matrix's near-null space (+1 if it holds the constant).
 int near_null_vectors(const la::Matrix& K) {
   MatNullSpace nsp = nullptr;
@@ -516,15 +523,12 @@ int near_null_vectors(const la::Matrix& K) {
 }
 
 void run_newton(const problem::Discretization& disc, const problem::Model& model,
-                double compression, int max_iterations, bool rigid_body_modes, Json& json) {
+                double compression, int max_iterations, Json& json) {
   const Comm comm = disc.comm();
   la::Vector u = disc.make_vector(), r = disc.make_vector(), du = disc.make_vector();
   la::Vector g = disc.make_vector();
   la::Matrix K = disc.make_matrix();
-  if (rigid_body_modes)
-    set_rigid_body_modes(disc, K);
-  else
-    K.set_near_null_space(disc.coordinates_vector()); // as problem::run_static
+  K.set_near_null_space(disc.coordinates_vector()); // as problem::run_static
   const int n_near_null = near_null_vectors(K);
   la::LinearSolver solver(comm.get(), la::SolverKind::iterative);
   // Bottom (z = 0) clamped; top (z = 1) clamped in x, y and moved down by `compression`.
@@ -555,11 +559,9 @@ void run_newton(const problem::Discretization& disc, const problem::Model& model
     std::printf("\n3. Newton, compressed Neo-Hooke block (%.0f %% of its height, clamped ends), "
                 "%lld dofs, %d rank(s)\n",
                 100 * compression, (long long)disc.n_global_dofs(), comm.size());
-    std::printf("  GMRES(200) + GAMG, rtol 1e-10; near-null space: %d vector(s)%s; Newton tol "
+    std::printf("  GMRES(200) + GAMG, rtol 1e-10, near-null space of %d vector(s); Newton tol "
                 "1e-10; seconds, max over ranks\n",
-                n_near_null,
-                rigid_body_modes ? " (--rigid-body-modes, not seam's path)"
-                                 : " (Discretization::coordinates_vector, as seam)");
+                n_near_null);
     std::printf("  %3s %10s %9s %9s %9s %9s %9s %5s %9s %9s\n", "it", "|r|/ref", "asm wall",
                 "asm CPU", "AMG setup", "Krylov", "solve CPU", "ksp", "it wall", "it CPU");
   }
@@ -652,22 +654,20 @@ void help() {
   std::printf(
       "usage: seam-bench assembly [--cells-per-side N] [--order 1|2] [--serendipity]\n"
       "                           [--newton] [--compression C] [--max-newton K] [--repeat R]\n"
-      "                           [--rigid-body-modes] [--no-kernels] [--no-assembly] [--json]\n"
-      "                           [-- PETSc options]\n"
+      "                           [--no-kernels] [--no-assembly] [--json] [-- PETSc options]\n"
       "  1. element kernels (one core): hex8/20/27 and tet4/10, Neo-Hooke residual and\n"
       "     residual + tangent against a linear-elastic element and the bare geometry loop;\n"
       "  2. problem::assemble of an N^3 block (hex8; --order 2: hex27, with --serendipity\n"
       "     hex20) into the PETSc matrix, split into kernel, insertion and final assembly;\n"
       "  3. --newton: time per Newton iteration (assembly + GMRES/GAMG) of the block\n"
-      "     compressed by C (default 0.1) of its height; --rigid-body-modes gives GAMG the six\n"
-      "     rigid-body modes (coordinates with block size 3) instead of seam's near-null space.\n"
+      "     compressed by C (default 0.1) of its height.\n"
       "  N defaults to about 1e6 dofs (69 hex8, 44 hex20, 35 hex27). Run under mpirun for\n"
       "  several ranks (the kernel table is then skipped). --json: one JSON object, last.\n");
 }
 
 int run_assembly_bench(int argc, char** argv) {
   int n = 0, order = 1, repeat = 3, max_newton = 15;
-  bool serendipity = false, newton = false, json_out = false, kernels = true, rbm = false;
+  bool serendipity = false, newton = false, json_out = false, kernels = true;
   bool assembly = true;
   double compression = 0.1;
   std::vector<std::string> petsc_args;
@@ -693,8 +693,6 @@ int run_assembly_bench(int argc, char** argv) {
       max_newton = std::atoi(value());
     else if (a == "--repeat")
       repeat = std::atoi(value());
-    else if (a == "--rigid-body-modes")
-      rbm = true;
     else if (a == "--no-assembly")
       assembly = false;
     else if (a == "--no-kernels")
@@ -739,7 +737,7 @@ int run_assembly_bench(int argc, char** argv) {
     std::printf("\n  mesh %d^3 %s + partition + numbering: %.3g s\n", n,
                 std::string(fem::name(type)).c_str(), t_setup);
   if (assembly) run_assembly(disc, model, repeat, json);
-  if (newton) run_newton(disc, model, compression, max_newton, rbm, json);
+  if (newton) run_newton(disc, model, compression, max_newton, json);
   json.add("load_average_end", load_average());
   if (comm.is_root()) {
     std::printf("\n  load average %.2f at end\n", load_average());
