@@ -550,6 +550,44 @@ def test_solver_gives_up_exit_2():
     expect_solver_gave_up(1)
 
 
+# --- contact interfaces -----------------------------------------------------------------
+
+CONTACT = BASE.replace("time:\n", """interfaces:
+  - name: floor
+    type: contact
+    slave: bottom
+    rigid_plane: {point: [0, 0], normal: [0, 1]}
+time:
+""", 1)
+
+
+def test_contact_coulomb_not_available():
+    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    friction: {model: coulomb, coefficient: 0.3}",
+                  CONTACT)
+    expect_input_error(text, ["interface 'floor'", "Coulomb friction is not available"])
+
+
+def test_contact_standard_multiplier():
+    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    multiplier: standard", CONTACT)
+    expect_input_error(text, ["interface 'floor'", "needs multiplier: dual"])
+
+
+def test_contact_c_n_negative():
+    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    c_n: -5", CONTACT)
+    expect_input_error(text, ["interfaces[0].c_n", "must be > 0, got -5"],
+                       at=position(text, "c_n: -5", "-5"))
+
+
+def test_contact_slave_region_missing():
+    text = mutate("slave: bottom", "slave: bottm", CONTACT)
+    expect_input_error(text, ["interfaces[0].slave", "no region 'bottm'"], at=position(text, "slave: bottm", "bottm"))
+
+
+def test_contact_rigid_plane_and_master():
+    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    master: top", CONTACT)
+    expect_input_error(text, ["either 'master' or 'rigid_plane', not both"])
+
+
 # --- on 3 ranks ------------------------------------------------------------------------
 
 def test_bad_expression_on_3_ranks():
@@ -580,6 +618,9 @@ if __name__ == "__main__":
         test_component_z_in_2d,
         test_output_directory_not_creatable, test_unknown_command_line_flag,
         test_version_and_help,
+        test_contact_coulomb_not_available, test_contact_standard_multiplier,
+        test_contact_c_n_negative, test_contact_slave_region_missing,
+        test_contact_rigid_plane_and_master,
         test_solver_gives_up_exit_2, test_bad_expression_on_3_ranks,
         test_solver_gives_up_exit_2_on_3_ranks,
     ])

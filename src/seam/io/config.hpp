@@ -124,6 +124,9 @@ struct Interface {
   /// multiplier's D matrix is not diagonal, so it cannot be condensed cheaply).
   Strategy strategy = Strategy::condensed;
   Friction friction; ///< contact only
+  /// Contact only: the complementarity parameter of C = lambda_n - max(0, lambda_n - c_n g)
+  /// (pressure per length); unset = chosen from the stiffness and the mesh size.
+  std::optional<double> c_n;
   Mark mark;
 };
 

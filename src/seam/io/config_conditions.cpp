@@ -125,7 +125,7 @@ void check_name(const Node& node, const std::string& name) {
 
 Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
   const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "multiplier", "strategy",
-                       "friction"});
+                       "friction", "c_n"});
   Interface interface;
   interface.mark = node.mark();
   const Node name = map.required("name");
@@ -172,6 +172,13 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
 
   map.forbid("friction", !contact, "applies only to type 'contact'");
   if (const auto friction = map.get("friction")) interface.friction = read_friction(*friction);
+  const auto c_n = map.get("c_n");
+  map.forbid("c_n", !contact, "applies only to type 'contact'");
+  if (c_n) {
+    interface.c_n = c_n->number();
+    if (!(*interface.c_n > 0.0))
+      c_n->fail(concat("must be > 0, got ", format_number(*interface.c_n)));
+  }
   return interface;
 }
 

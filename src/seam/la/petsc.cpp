@@ -214,6 +214,26 @@ Matrix Matrix::ptap(const Matrix& A, const Matrix& P) {
   return adopt(C);
 }
 
+Matrix Matrix::multiply(const Matrix& A, const Matrix& B) {
+  Mat C = nullptr;
+  check(MatMatMult(A.m_, B.m_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C), "MatMatMult");
+  return adopt(C);
+}
+
+Matrix Matrix::from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
+                             std::span<const PetscInt> cols, std::span<const double> values) {
+  Matrix out;
+  check(MatCreate(comm, &out.m_), "MatCreate");
+  check(MatSetSizes(out.m_, n_owned, n_owned, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(out.m_, MATAIJ), "MatSetType");
+  // MatSetPreallocationCOO may reorder its index arrays: hand it copies.
+  std::vector<PetscInt> i(rows.begin(), rows.end()), j(cols.begin(), cols.end());
+  check(MatSetPreallocationCOO(out.m_, static_cast<PetscCount>(i.size()), i.data(), j.data()),
+        "MatSetPreallocationCOO");
+  check(MatSetValuesCOO(out.m_, values.data(), INSERT_VALUES), "MatSetValuesCOO");
+  return out;
+}
+
 void Matrix::mult(const Vector& x, Vector& y) const {
   check(MatMult(m_, x.get(), y.get()), "MatMult");
 }
@@ -228,6 +248,11 @@ void Matrix::scale(double a) {
 
 void Matrix::axpy(double a, const Matrix& X) {
   check(MatAXPY(m_, a, X.m_, SAME_NONZERO_PATTERN), "MatAXPY");
+}
+
+void Matrix::axpy_any_pattern(double a, const Matrix& X) {
+  check(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+  check(MatAXPY(m_, a, X.m_, DIFFERENT_NONZERO_PATTERN), "MatAXPY");
 }
 
 void Matrix::add_diagonal(const Vector& values) {

@@ -101,12 +101,20 @@ public:
   }
   /// P^T A P as a new matrix.
   static Matrix ptap(const Matrix& A, const Matrix& P);
+  /// A B as a new matrix.
+  static Matrix multiply(const Matrix& A, const Matrix& B);
+  /// A square matrix with n_owned local rows/cols from coordinate triplets in global indices
+  /// (any rank may give entries of any row; repeated entries are summed). Collective.
+  static Matrix from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
+                              std::span<const PetscInt> cols, std::span<const double> values);
   /// y = this x, and y = this^T x.
   void mult(const Vector& x, Vector& y) const;
   void mult_transpose(const Vector& x, Vector& y) const;
   /// this = a * this; this += a * X (X with the same nonzero pattern).
   void scale(double a);
   void axpy(double a, const Matrix& X);
+  /// this += a * X for any pattern of X (the pattern of this grows as needed).
+  void axpy_any_pattern(double a, const Matrix& X);
   /// Adds `values` to the diagonal (entries may be new).
   void add_diagonal(const Vector& values);
   void zero();

@@ -75,11 +75,11 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
 
 void run_dynamic(const io::Config& config, const Model& model, const Discretization& disc,
                  const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-                 SaddlePoint& saddle, Output& out) {
+                 SaddlePoint& saddle, ContactConstraint& contact, Output& out) {
   const auto& tc = config.time;
   const bool emm = tc.integrator == io::Integrator::energy_momentum;
   const AlphaParameters ga(tc.rho_inf);
-  NewtonSolver newton(config, model, disc, tying, saddle, out);
+  NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
 
   la::Matrix M = disc.make_matrix();
   {
@@ -173,6 +173,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
       u.copy_from(u_n);
       u.update_ghosts();
       saddle.restore();
+      contact.restore();
       control.fail(res, t_new, step, out, disc.comm());
       continue;
     }
@@ -212,10 +213,15 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
       external_work += 0.5 * (force.dot(du) + force_old.dot(du));
       force_old.copy_from(force);
     }
-    const auto rec = record(step, t_new, res, internal, external_work);
+    auto rec = record(step, t_new, res, internal, external_work);
+    if (contact.active()) {
+      rec.active_nodes = contact.n_active();
+      out.contact_state(contact.reports(u));
+    }
     const bool last = t_new >= tc.end * (1.0 - 1e-12);
     out.step(rec, u, &v, newton.reactions(), newton.multipliers(tied), last);
     saddle.save();
+    contact.save();
     control.accept(t_new);
   }
   out.finish(true, step);

@@ -55,6 +55,8 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       return res;
     }
     if (saddle_.active()) saddle_.add_interface_forces(r_);
+    int changes = 0;
+    if (contact_.active()) changes = contact_.evaluate(u, t, it == 0, out_.timers());
     // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
     la::Matrix* K_sys = &K_;
     la::Vector* r_sys = &r_;
@@ -67,10 +69,22 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       r_sys = &rt_;
       d_sys = &dut_;
     }
-    const double full_norm = r_sys->norm();
-    r_full_.copy_from(*r_sys);
-    zero_dirichlet_rows(model_, disc_, *r_sys);
-    double norm = r_sys->norm();
+    double full_norm = 0.0, norm = 0.0;
+    if (contact_.active()) {
+      // The residual with the contact forces of the current multipliers, and the
+      // complementarity residual; the system itself is condensed below.
+      r_full_.copy_from(r_);
+      contact_.add_force(r_full_);
+      full_norm = r_full_.norm();
+      rt_.copy_from(r_full_);
+      zero_dirichlet_rows(model_, disc_, rt_);
+      norm = std::hypot(rt_.norm(), contact_.complementarity_norm());
+    } else {
+      full_norm = r_sys->norm();
+      r_full_.copy_from(*r_sys);
+      zero_dirichlet_rows(model_, disc_, *r_sys);
+      norm = r_sys->norm();
+    }
     if (saddle_.active()) norm = std::hypot(norm, saddle_.constraint_norm(u));
     if (!std::isfinite(norm) || !std::isfinite(full_norm)) {
       res.failure = "the residual is not finite";
@@ -90,8 +104,9 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     const bool small_increment =
         it >= 2 && last_increment_ <= nc.tolerance * std::max(u.norm(), 1e-300);
     const bool converged =
-        !predictor && (norm <= nc.tolerance * reference || reference == 0.0 || small_increment);
-    out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, 0});
+        !predictor && changes == 0 &&
+        (norm <= nc.tolerance * reference || reference == 0.0 || small_increment);
+    out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
     res.residual = reference > 0 ? norm / reference : 0.0;
     res.iterations = it;
     res.strain_energy = disc_.comm().sum(status.strain_energy);
@@ -100,6 +115,12 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       return res;
     }
     if (it == nc.max_iterations) break;
+    if (contact_.active()) {
+      contact_.condense(K_, r_, Kt_, rt_, out_.timers());
+      zero_dirichlet_rows(model_, disc_, rt_);
+      K_sys = &Kt_;
+      r_sys = &rt_;
+    }
     r_sys->scale(-1.0);
     bool solved;
     if (saddle_.active()) {
@@ -112,6 +133,10 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
     }
     if (solved && tying_.active()) tying_.expand(dut_, du_);
+    if (solved && contact_.active()) {
+      ScopedTimer timer(out_.timers(), "condensation");
+      contact_.recover(K_, r_, du_);
+    }
     if (!solved) {
       res.failure = "the linear solver failed";
       return res;

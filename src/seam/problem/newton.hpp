@@ -6,6 +6,7 @@
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/problem/assembly.hpp"
+#include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
@@ -56,11 +57,12 @@ private:
 class NewtonSolver {
 public:
   NewtonSolver(const io::Config& config, const Model& model, const Discretization& disc,
-               const TyingConstraint& tying, SaddlePoint& saddle, Output& out)
-      : config_(config), model_(model), disc_(disc), tying_(tying), saddle_(saddle), out_(out),
-        K_(disc.make_matrix()), r_(disc.make_vector()), r_full_(disc.make_vector()),
-        rt_(disc.make_vector()), du_(disc.make_vector()), dut_(disc.make_vector()),
-        g_(disc.make_vector()), f_ext_(disc.make_vector()),
+               const TyingConstraint& tying, SaddlePoint& saddle, ContactConstraint& contact,
+               Output& out)
+      : config_(config), model_(model), disc_(disc), tying_(tying), saddle_(saddle),
+        contact_(contact), out_(out), K_(disc.make_matrix()), r_(disc.make_vector()),
+        r_full_(disc.make_vector()), rt_(disc.make_vector()), du_(disc.make_vector()),
+        dut_(disc.make_vector()), g_(disc.make_vector()), f_ext_(disc.make_vector()),
         solver_(disc.comm().get(), config.solver.linear == io::LinearSolverKind::direct
                                        ? la::SolverKind::direct
                                        : la::SolverKind::iterative) {
@@ -129,6 +131,7 @@ private:
   const Discretization& disc_;
   const TyingConstraint& tying_;
   SaddlePoint& saddle_;
+  ContactConstraint& contact_;
   Output& out_;
   la::Matrix K_, Kt_;
   la::Vector r_, r_full_, rt_, du_, dut_, g_, f_ext_;

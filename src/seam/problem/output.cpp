@@ -26,6 +26,8 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
                bool quiet)
     : config_(config), disc_(disc), model_(model), tied_(tied), dir_(std::move(dir)), quiet_(quiet),
       start_wall_(wall_seconds()) {
+  for (const auto& itf : config.interfaces)
+    has_contact_ = has_contact_ || itf.type == io::InterfaceType::contact;
   const auto& comm = disc.comm();
   const auto& mesh = disc.mesh();
   // A slave node is tied if it has a row of D and not every component is prescribed.
@@ -102,6 +104,14 @@ Output::~Output() = default;
 void Output::newton(const NewtonRecord& r) {
   if (!disc_.comm().is_root()) return;
   newton_->add_row({r.step, r.iteration, r.residual, r.increment, r.active_set_changes});
+  // With contact, the iterations of every step as in the seed's Table 1: the active set
+  // changes are marked.
+  if (has_contact_ && !quiet_)
+    std::printf("  step %5d  iteration %3d  residual %9.3e  increment %9.3e  %s\n", r.step,
+                r.iteration, r.residual, r.increment,
+                r.active_set_changes > 0
+                    ? ("* active set: " + std::to_string(r.active_set_changes) + " changes").c_str()
+                    : "");
 }
 
 void Output::initial(const la::Vector& u) {
@@ -149,6 +159,25 @@ Output::interface_states(const la::Vector& u,
 void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
                               bool write_nodes) {
   const int dim = disc_.dim();
+  for (const auto& c : contact_) {
+    interfaces_->add_row(
+        {r.step, r.time, c.name, c.normal_force, 0.0, c.active_nodes, 0, c.contact_area});
+    if (!write_nodes) continue;
+    io::CsvTable table(dir_ / ("interface_" + c.name + ".csv"),
+                       columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
+                                "tangential_traction", "status"}));
+    const auto& mesh = disc_.mesh();
+    for (std::size_t j = 0; j < c.slave_nodes.size(); ++j) {
+      const auto node = c.slave_nodes[j];
+      double X[3] = {0, 0, 0}, U[3] = {0, 0, 0};
+      for (int k = 0; k < dim; ++k) {
+        X[k] = mesh.x[static_cast<std::size_t>(node) * dim + k];
+        U[k] = c.displacement[j * dim + k];
+      }
+      table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j], c.lambda_n[j], 0.0,
+                     c.active[j] ? "active" : "inactive"});
+    }
+  }
   for (std::size_t k = 0; k < tied_.size(); ++k) {
     const auto& t = tied_[k];
     const auto& s = states[k];
@@ -333,7 +362,17 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
       status[i] = tied_rows_[k][j] ? 1 : 0;
     }
   }
-  if (!tied_.empty()) {
+  for (const auto& c : contact_) {
+    for (std::size_t j = 0; j < c.slave_nodes.size(); ++j) {
+      const auto node = c.slave_nodes[j];
+      if (!disc_.has_node(node)) continue;
+      const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
+      for (int k = 0; k < dim; ++k) lambda[i * 3 + k] = c.lambda_n[j] * c.normal[j * dim + k];
+      gap[i] = c.weighted_gap[j];
+      status[i] = c.active[j] ? 1 : 0;
+    }
+  }
+  if (!tied_.empty() || has_contact_) {
     piece.point_data.emplace_back("lagrange_multiplier", 3, std::span<const double>(lambda));
     piece.point_data.emplace_back("weighted_gap", 1, std::span<const double>(gap));
     piece.point_data.emplace_back("contact_status", 1, std::span<const std::int32_t>(status));
@@ -368,7 +407,7 @@ void Output::finish(bool converged, int n_steps) {
   const auto& comm = disc_.comm();
   const double wall = comm.max(wall_seconds() - start_wall_);
   std::vector<double> phases;
-  const char* names[] = {"assembly", "mortar", "search", "linear_solve", "output"};
+  const char* names[] = {"assembly", "mortar", "search", "linear_solve", "output", "condensation"};
   for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
   if (!comm.is_root()) return;
   io::Json j = io::Json::object();
@@ -395,6 +434,18 @@ void Output::finish(bool converged, int n_steps) {
     e["projection_failures"] = t.operators.n_projection_failures;
     e["area"] = t.operators.integrated_area;
     e["max_slave_relocation"] = t.max_relocation;
+    itfs.push_back(std::move(e));
+  }
+  for (const auto& c : contact_) {
+    io::Json e = io::Json::object();
+    e["name"] = c.name;
+    e["type"] = "contact";
+    e["slave_elements"] = c.slave_elements;
+    e["master_elements"] = c.master_elements;
+    e["candidate_pairs"] = c.candidate_pairs;
+    e["active_nodes"] = c.active_nodes;
+    e["normal_force"] = c.normal_force;
+    e["contact_area"] = c.contact_area;
     itfs.push_back(std::move(e));
   }
   if (last_errors_.size() == 2) {

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace seam::problem {
@@ -39,6 +40,22 @@ struct NewtonRecord {
   double residual = 0.0;
   double increment = 0.0;
   int active_set_changes = 0;
+};
+
+/// A contact interface's state at a converged step, the same on every rank.
+struct ContactReport {
+  std::string name;
+  std::vector<std::int32_t> slave_nodes; ///< mesh nodes
+  std::vector<double> displacement;      ///< dim per slave node
+  std::vector<double> normal;            ///< dim per slave node, current averaged normal
+  std::vector<double> lambda_n;          ///< normal traction per slave node (> 0 pressure)
+  std::vector<double> gap;               ///< nodal gap g~_j / D_jj (0 off the overlap)
+  std::vector<double> weighted_gap;      ///< g~_j
+  std::vector<char> active;
+  double normal_force = 0.0; ///< sum_j D_jj lambda_n,j
+  double contact_area = 0.0; ///< sum of D_jj over the active nodes
+  int active_nodes = 0;
+  int slave_elements = 0, master_elements = 0, candidate_pairs = 0;
 };
 
 /// A probe located in the mesh: the cell that contains it and its reference coordinates.
@@ -67,6 +84,8 @@ public:
   void step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
             std::span<const double> reactions, const std::vector<std::vector<double>>& multipliers,
             bool force_fields);
+  /// The contact state written with the next step() (and in summary.json).
+  void contact_state(std::vector<ContactReport> reports) { contact_ = std::move(reports); }
   /// The initial state (step 0) as fields only. Collective.
   void initial(const la::Vector& u);
   /// summary.json; `converged` false for a run that gave up. Collective.
@@ -90,6 +109,8 @@ private:
   const Discretization& disc_;
   const Model& model_;
   const std::vector<meshtying::TiedInterface>& tied_;
+  std::vector<ContactReport> contact_;
+  bool has_contact_ = false;
   std::vector<std::vector<char>> tied_rows_; // per interface and slave node: has a row of D
   std::filesystem::path dir_;
   bool quiet_;

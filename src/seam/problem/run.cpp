@@ -6,6 +6,7 @@
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/dynamic_solver.hpp"
 #include "seam/problem/model.hpp"
@@ -104,14 +105,6 @@ void make_output_directory(const std::filesystem::path& dir, const Comm& comm) {
   });
 }
 
-/// Contact interfaces are parsed and validated, but not solved by this version.
-void reject_contact(const io::Config& config) {
-  for (const auto& itf : config.interfaces)
-    if (itf.type == io::InterfaceType::contact)
-      io::fail_at(itf.mark, "contact interfaces are not available in this version of seam "
-                            "(mesh_tying is)");
-}
-
 } // namespace
 
 int run(const RunOptions& options, int argc, char** argv) {
@@ -124,14 +117,18 @@ int run(const RunOptions& options, int argc, char** argv) {
   auto mesh = load_mesh(config, comm);
   const Discretization disc(mesh, comm);
   const auto model = build_model(config, disc);
-  reject_contact(config);
   PhaseTimers setup_timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
   const TyingConstraint tying(tied, disc, model);
   SaddlePoint saddle(tied, disc, model);
+  ContactConstraint contact(config, disc, model);
   if (tying.active() && saddle.active())
     SEAM_THROW(InputError, options.input,
                ": interfaces: condensed and saddle_point mesh tying cannot be mixed in one run");
+  if (contact.active() && (tying.active() || saddle.active()))
+    SEAM_THROW(InputError, options.input,
+               ": interfaces: contact and mesh tying in one run are not available in this "
+               "version of seam");
   make_output_directory(output_directory(options), comm);
   Output out(config, disc, model, tied, output_directory(options), options.quiet);
   for (const auto& [phase, seconds] : setup_timers.all()) out.timers().add(phase, seconds);
@@ -141,9 +138,9 @@ int run(const RunOptions& options, int argc, char** argv) {
                 mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
                 comm.size(), out.directory().string().c_str());
   if (config.time.is_dynamic())
-    run_dynamic(config, model, disc, tied, tying, saddle, out);
+    run_dynamic(config, model, disc, tied, tying, saddle, contact, out);
   else
-    run_static(config, model, disc, tied, tying, saddle, out);
+    run_static(config, model, disc, tied, tying, saddle, contact, out);
   return 0;
 }
 
@@ -152,10 +149,10 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   const auto config = io::load_config(input);
   auto mesh = load_mesh(config, comm);
   const Discretization disc(mesh, comm);
-  build_model(config, disc);
-  reject_contact(config);
+  const auto model = build_model(config, disc);
   PhaseTimers timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers);
+  const ContactConstraint contact(config, disc, model);
   if (!comm.is_root()) return 0;
   std::map<std::string, int> by_type;
   for (auto t : mesh.cell_type) ++by_type[std::string(fem::name(t))];

@@ -13,9 +13,9 @@ namespace seam::problem {
 
 void run_static(const io::Config& config, const Model& model, const Discretization& disc,
                 const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-                SaddlePoint& saddle, Output& out) {
+                SaddlePoint& saddle, ContactConstraint& contact, Output& out) {
   const auto& tc = config.time;
-  NewtonSolver newton(config, model, disc, tying, saddle, out);
+  NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
   la::Vector u = disc.make_vector();
   la::Vector u_saved = disc.make_vector();
   out.initial(u);
@@ -40,6 +40,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
       u.copy_from(u_saved);
       u.update_ghosts();
       saddle.restore();
+      contact.restore();
       control.fail(res, t_new, step, out, disc.comm());
       continue;
     }
@@ -57,9 +58,14 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     rec.residual = res.residual;
     rec.internal_energy = res.strain_energy;
     rec.external_work = external_work;
+    if (contact.active()) {
+      rec.active_nodes = contact.n_active();
+      out.contact_state(contact.reports(u));
+    }
     const bool last = t_new >= end * (1.0 - 1e-12);
     out.step(rec, u, nullptr, reactions, newton.multipliers(tied), last);
     saddle.save();
+    contact.save();
     control.accept(t_new);
   }
   out.finish(true, step);

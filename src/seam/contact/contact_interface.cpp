@@ -1,0 +1,317 @@
+#include "seam/contact/contact_interface.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/mortar/normals.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace seam::contact {
+
+namespace {
+
+const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref) {
+  const auto* r = mesh.find_region(ref.name, mesh.dim - 1);
+  if (!r)
+    io::fail_at(ref.mark, "no boundary region '" + ref.name + "' of dimension " +
+                              std::to_string(mesh.dim - 1) + " in the mesh");
+  return *r;
+}
+
+/// A normal of facet f (any length), for the facing test of candidate pairs.
+std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_index f) {
+  const int dim = side.dim;
+  const auto* nodes = &side.nodes[static_cast<std::size_t>(side.offsets[f])];
+  const auto x = [&](int i, int c) {
+    return side.coordinates[static_cast<std::size_t>(nodes[i]) * dim + c];
+  };
+  if (dim == 2) return {x(1, 1) - x(0, 1), -(x(1, 0) - x(0, 0)), 0.0};
+  const int n = fem::n_vertices(side.types[static_cast<std::size_t>(f)]);
+  // Diagonals of a quadrilateral, two edges of a triangle.
+  const int a0 = 0, a1 = n == 4 ? 2 : 1, b0 = n == 4 ? 1 : 0, b1 = n == 4 ? 3 : 2;
+  const double u[3] = {x(a1, 0) - x(a0, 0), x(a1, 1) - x(a0, 1), x(a1, 2) - x(a0, 2)};
+  const double v[3] = {x(b1, 0) - x(b0, 0), x(b1, 1) - x(b0, 1), x(b1, 2) - x(b0, 2)};
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+double mean_edge_length(const meshtying::InterfaceSide& side) {
+  const int dim = side.dim;
+  double sum = 0.0;
+  long count = 0;
+  for (local_index f = 0; f < side.n_facets(); ++f) {
+    const auto* nodes = &side.nodes[static_cast<std::size_t>(side.offsets[f])];
+    const int n = fem::n_vertices(side.types[static_cast<std::size_t>(f)]);
+    const int edges = dim == 2 ? 1 : n;
+    for (int e = 0; e < edges; ++e) {
+      const auto a = static_cast<std::size_t>(nodes[e]) * dim;
+      const auto b = static_cast<std::size_t>(nodes[(e + 1) % n]) * dim;
+      double d2 = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        const double d = side.coordinates[a + c] - side.coordinates[b + c];
+        d2 += d * d;
+      }
+      sum += std::sqrt(d2);
+      ++count;
+    }
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+} // namespace
+
+ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
+    : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value()) {
+  SEAM_ASSERT(config.type == io::InterfaceType::contact);
+  const int dim = mesh.dim;
+  slave_ = meshtying::extract_side(mesh, side_region(mesh, config.slave));
+  if (slave_.n_facets() == 0)
+    io::fail_at(config.slave.mark, "the slave region '" + config.slave.name + "' has no facets");
+  mesh_size_ = mean_edge_length(slave_);
+  options_.multiplier = config.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
+                                                                  : mortar::Multiplier::standard;
+  if (rigid_) {
+    // One master facet that covers every place the slave surface can reach: centred at the
+    // slave surface's projection onto the plane, ten times its extent.
+    const auto& plane = *config.rigid_plane;
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (std::size_t i = 0; i < slave_.mesh_nodes.size(); ++i)
+      for (int c = 0; c < dim; ++c) {
+        lo[c] = std::min(lo[c], slave_.coordinates[i * dim + c]);
+        hi[c] = std::max(hi[c], slave_.coordinates[i * dim + c]);
+      }
+    std::array<double, 3> centre{}, n = plane.normal;
+    double diagonal = 0.0, height = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      centre[c] = 0.5 * (lo[c] + hi[c]);
+      diagonal += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+      height += (centre[c] - plane.point[c]) * n[c];
+    }
+    for (int c = 0; c < dim; ++c) centre[c] -= height * n[c];
+    const double h = 10.0 * std::sqrt(diagonal) + std::abs(height);
+    master_.dim = dim;
+    if (dim == 2) {
+      // line2 from c - h t to c + h t with t = (-n_y, n_x): its normal (t_y, -t_x) is n.
+      const double t[2] = {-n[1], n[0]};
+      plane_corners_ = {centre[0] - h * t[0], centre[1] - h * t[1], centre[0] + h * t[0],
+                        centre[1] + h * t[1]};
+      master_.types = {fem::CellType::line2};
+      master_.offsets = {0, 2};
+      master_.nodes = {0, 1};
+    } else {
+      // quad4 with edges along a and b, a x b = n.
+      std::array<double, 3> a{};
+      const int axis = std::abs(n[0]) < 0.9 ? 0 : 1;
+      std::array<double, 3> e{};
+      e[axis] = 1.0;
+      a = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+      const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+      for (auto& v : a) v /= la;
+      const std::array<double, 3> b{n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2],
+                                    n[0] * a[1] - n[1] * a[0]};
+      const double s[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (const auto& st : s)
+        for (int c = 0; c < 3; ++c)
+          plane_corners_.push_back(centre[c] + h * (st[0] * a[c] + st[1] * b[c]));
+      master_.types = {fem::CellType::quad4};
+      master_.offsets = {0, 4};
+      master_.nodes = {0, 1, 2, 3};
+    }
+    master_.coordinates = plane_corners_;
+    plane_motion_ = plane.motion;
+  } else {
+    master_ = meshtying::extract_side(mesh, side_region(mesh, *config.master));
+    std::vector<std::int32_t> shared;
+    std::set_intersection(slave_.mesh_nodes.begin(), slave_.mesh_nodes.end(),
+                          master_.mesh_nodes.begin(), master_.mesh_nodes.end(),
+                          std::back_inserter(shared));
+    if (!shared.empty())
+      io::fail_at(config.mark, "the slave side '" + config.slave.name + "' and the master side '" +
+                                   config.master->name + "' share " +
+                                   std::to_string(shared.size()) +
+                                   " nodes; self contact is not available in this version");
+    master_mesh_nodes_ = master_.mesh_nodes;
+  }
+  slave_adjacency_ = mortar::node_facets(slave_.facet_set());
+  // Candidates up to about one slave element away, so that approaching parts are integrated
+  // (and get their weighted gaps) before they touch.
+  search::SearchOptions so;
+  so.inflation_factor = 0.75;
+  search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(), so);
+  normals_.assign(slave_.coordinates.size(), 0.0);
+}
+
+ContactInterface::~ContactInterface() = default;
+ContactInterface::ContactInterface(ContactInterface&&) noexcept = default;
+ContactInterface& ContactInterface::operator=(ContactInterface&&) noexcept = default;
+
+std::span<const std::int32_t> ContactInterface::master_nodes() const {
+  return master_mesh_nodes_;
+}
+
+std::int64_t ContactInterface::mesh_dof_of_master(local_index p) const {
+  if (rigid_) return -1;
+  return static_cast<std::int64_t>(master_mesh_nodes_[static_cast<std::size_t>(p)]) * dim();
+}
+
+void ContactInterface::update(std::span<const double> u, double t) {
+  const int dim = this->dim();
+  slave_.update_coordinates(*mesh_, u);
+  if (rigid_) {
+    for (std::size_t i = 0; i < plane_corners_.size(); ++i) {
+      const auto c = static_cast<int>(i % static_cast<std::size_t>(dim));
+      master_.coordinates[i] =
+          plane_corners_[i] + (plane_motion_.empty() ? 0.0 : plane_motion_[c](t));
+    }
+  } else {
+    master_.update_coordinates(*mesh_, u);
+  }
+  search_->update(slave_.coordinates, master_.coordinates);
+  const auto& found = search_->find_pairs();
+  // Only facets that face each other can come into contact.
+  std::vector<std::array<double, 3>> ns(static_cast<std::size_t>(slave_.n_facets()));
+  std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
+  for (local_index f = 0; f < slave_.n_facets(); ++f) ns[f] = facet_normal(slave_, f);
+  for (local_index f = 0; f < master_.n_facets(); ++f) nm[f] = facet_normal(master_, f);
+  pairs_.clear();
+  for (const auto& p : found) {
+    const auto& a = ns[p.slave];
+    const auto& b = nm[p.master];
+    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) pairs_.push_back({p.slave, p.master});
+  }
+  std::sort(pairs_.begin(), pairs_.end(), [](const auto& x, const auto& y) {
+    return x.slave != y.slave ? x.slave < y.slave : x.master < y.master;
+  });
+  pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
+  for (const auto& p : pairs_) ++pair_offsets_[static_cast<std::size_t>(p.slave) + 1];
+  for (std::size_t f = 0; f < static_cast<std::size_t>(slave_.n_facets()); ++f)
+    pair_offsets_[f + 1] += pair_offsets_[f];
+  normals_ = mortar::averaged_nodal_normals(slave_.facet_set());
+}
+
+void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
+  const auto n_slave = static_cast<std::size_t>(n_slave_nodes());
+  out.D.assign(n_slave, 0.0);
+  out.gap.assign(n_slave, 0.0);
+  out.M.clear();
+  out.area = 0.0;
+  out.n_pairs = 0;
+  out.n_cells = 0;
+  std::vector<mortar::CandidatePair> mine;
+  for (const auto& p : pairs_)
+    if (p.slave % n_parts == part) mine.push_back(p);
+  if (mine.empty()) return;
+  const auto ops =
+      mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), mine, options_);
+  for (const auto& e : ops.D)
+    if (e.row == e.col) out.D[static_cast<std::size_t>(e.row)] += e.value;
+  for (std::size_t j = 0; j < n_slave; ++j) out.gap[j] = ops.weighted_gap[j];
+  if (!rigid_)
+    for (const auto& e : ops.M)
+      out.M.push_back({e.row, master_mesh_nodes_[static_cast<std::size_t>(e.col)], e.value});
+  out.area = ops.integrated_area;
+  out.n_pairs = ops.n_pairs_integrated;
+  out.n_cells = ops.n_integration_cells;
+}
+
+void ContactInterface::add_force(const NodalValues& values, std::span<const double> lambda_n,
+                                 std::span<double> force) const {
+  const int dim = this->dim();
+  for (std::size_t j = 0; j < slave_.mesh_nodes.size(); ++j) {
+    const double s = values.D[j] * lambda_n[j];
+    if (s == 0.0) continue;
+    const auto row = static_cast<std::size_t>(slave_.mesh_nodes[j]) * dim;
+    for (int c = 0; c < dim; ++c) force[row + c] += s * normals_[j * dim + c];
+  }
+  for (const auto& e : values.M) {
+    const auto j = static_cast<std::size_t>(e.slave);
+    const double s = e.value * lambda_n[j];
+    if (s == 0.0) continue;
+    const auto row = static_cast<std::size_t>(e.master_node) * dim;
+    for (int c = 0; c < dim; ++c) force[row + c] -= s * normals_[j * dim + c];
+  }
+}
+
+void ContactInterface::linearize(int part, int n_parts, std::span<const double> lambda_n,
+                                 std::span<const char> want_gap, Linearization& out) const {
+  const int dim = this->dim();
+  out.force_tangent.clear();
+  out.gap_gradient.clear();
+  mortar::SlaveFacetLinearization lin;
+  std::vector<local_index> masters;
+  std::vector<std::int64_t> column; // mesh dof of every variable, -1 for rigid ones
+  for (local_index f = part; f < slave_.n_facets(); f += n_parts) {
+    const auto begin = pair_offsets_[static_cast<std::size_t>(f)];
+    const auto end = pair_offsets_[static_cast<std::size_t>(f) + 1];
+    if (begin == end) continue;
+    const auto nodes = slave_.facet_set().facet_nodes(f);
+    bool needed = false;
+    for (const auto j : nodes) needed = needed || lambda_n[j] != 0.0 || want_gap[j];
+    if (!needed) continue;
+    masters.clear();
+    for (auto i = begin; i < end; ++i)
+      masters.push_back(pairs_[static_cast<std::size_t>(i)].master);
+    mortar::linearize_slave_facet(slave_.facet_set(), master_.facet_set(), slave_adjacency_, f,
+                                  masters, options_, lin);
+    if (lin.n_pairs_integrated == 0) continue;
+    const int nv = lin.n_variables();
+    column.assign(static_cast<std::size_t>(nv), -1);
+    const auto n_sv = lin.slave_nodes.size();
+    for (std::size_t i = 0; i < n_sv; ++i)
+      for (int b = 0; b < dim; ++b)
+        column[i * dim + b] = static_cast<std::int64_t>(
+                                  slave_.mesh_nodes[static_cast<std::size_t>(lin.slave_nodes[i])]) *
+                                  dim +
+                              b;
+    for (int p = 0; p < lin.n_master_nodes(); ++p) {
+      const auto d = mesh_dof_of_master(lin.master_nodes[static_cast<std::size_t>(p)]);
+      for (int b = 0; b < dim; ++b)
+        column[(n_sv + static_cast<std::size_t>(p)) * dim + b] = d < 0 ? -1 : d + b;
+    }
+    const int ns = lin.n_slave;
+    const auto add_row = [&](std::int64_t row, std::span<const double> a, double sa,
+                             const double* b, double sb) {
+      for (int v = 0; v < nv; ++v) {
+        const double value = sa * a[static_cast<std::size_t>(v)] + (b ? sb * b[v] : 0.0);
+        if (value != 0.0 && column[static_cast<std::size_t>(v)] >= 0)
+          out.force_tangent.push_back({row, column[static_cast<std::size_t>(v)], value});
+      }
+    };
+    for (int j = 0; j < ns; ++j) {
+      const auto sj = static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(j)]);
+      if (want_gap[sj]) {
+        const auto g = lin.dgap(j);
+        for (int v = 0; v < nv; ++v)
+          if (g[static_cast<std::size_t>(v)] != 0.0 && column[static_cast<std::size_t>(v)] >= 0)
+            out.gap_gradient.push_back({static_cast<std::int64_t>(sj),
+                                        column[static_cast<std::size_t>(v)],
+                                        g[static_cast<std::size_t>(v)]});
+      }
+      const double lambda = lambda_n[sj];
+      if (lambda == 0.0) continue;
+      const double* n = &normals_[sj * dim];
+      // Slave node k: D_jk lambda_j n_j; derivative lambda_j (n_j dD_jk + D_jk dn_j).
+      for (int k = 0; k < ns; ++k) {
+        const double Djk = lin.D[static_cast<std::size_t>(j * ns + k)];
+        const auto sk = static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(k)]);
+        const auto row0 = static_cast<std::int64_t>(slave_.mesh_nodes[sk]) * dim;
+        for (int a = 0; a < dim; ++a)
+          add_row(row0 + a, lin.dD(j, k), lambda * n[a],
+                  lin.normal_jacobian.data() + static_cast<std::size_t>(j * dim + a) * nv,
+                  lambda * Djk);
+      }
+      // Master node p: -M_jp lambda_j n_j.
+      for (int p = 0; p < lin.n_master_nodes(); ++p) {
+        const auto row0 = mesh_dof_of_master(lin.master_nodes[static_cast<std::size_t>(p)]);
+        if (row0 < 0) continue;
+        const double Mjp = lin.M[static_cast<std::size_t>(j * lin.n_master_nodes() + p)];
+        for (int a = 0; a < dim; ++a)
+          add_row(row0 + a, lin.dM(j, p), -lambda * n[a],
+                  lin.normal_jacobian.data() + static_cast<std::size_t>(j * dim + a) * nv,
+                  -lambda * Mjp);
+      }
+    }
+  }
+}
+
+} // namespace seam::contact

@@ -1,0 +1,131 @@
+#pragma once
+// One mortar contact interface in the current configuration (seed paper Sect. 2 and 4.2;
+// ALGORITHMS.md §5): the slave side of the mesh against a master side of the mesh or a rigid
+// plane, the k-DOP search refitted to the current positions, and per slave node j the mortar
+// quantities of frictionless contact,
+//   D_jj,   g~_j = int Phi_j g dA,   n_j (averaged nodal normal),
+// the contact force of given normal multipliers lambda_n (slave node j: D_jj lambda_n,j n_j,
+// master node l: -sum_j M_jl lambda_n,j n_j) and its exact derivatives together with those of
+// the weighted gaps (mortar::linearize_slave_facet: normals, projections, clip polygons,
+// integration cells, dual coefficients, D, M and g~).
+//
+// No PETSc and no MPI: a caller that distributes the work evaluates the slave facets
+// f with f % n_parts == part on each rank and sums the partial results; the indices it gets
+// are mesh dofs, node * dim + component.
+//
+// A rigid plane is a single master facet (line2 / quad4) far larger than the slave surface,
+// moved by the prescribed motion; it has no dofs, so no derivative with respect to it is kept.
+#include "seam/io/config.hpp"
+#include "seam/mesh/mesh.hpp"
+#include "seam/meshtying/interface_side.hpp"
+#include "seam/mortar/interface.hpp"
+#include "seam/mortar/linearization.hpp"
+#include "seam/search/interface_search.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace seam::contact {
+
+/// A matrix entry over mesh dofs (row and column: node * dim + component).
+struct DofTriplet {
+  std::int64_t row = 0;
+  std::int64_t col = 0;
+  double value = 0.0;
+};
+
+/// An entry of M: slave node j (side-local), master mesh node, value.
+struct MortarEntry {
+  local_index slave = 0;
+  std::int32_t master_node = 0;
+  double value = 0.0;
+};
+
+/// One part's share of the nodal mortar quantities (sum the shares of all parts).
+struct NodalValues {
+  std::vector<double> D;   ///< D_jj per slave node
+  std::vector<double> gap; ///< g~_j per slave node
+  std::vector<MortarEntry> M;
+  double area = 0.0; ///< integrated area (length in 2D) of the slave/master overlap
+  local_index n_pairs = 0;
+  local_index n_cells = 0;
+};
+
+/// One part's share of the linearization at fixed normal multipliers.
+struct Linearization {
+  /// d(contact force)/d(displacement) at fixed lambda_n: rows and columns mesh dofs.
+  std::vector<DofTriplet> force_tangent;
+  /// d g~_j / d(displacement) of the requested slave nodes: row = j (side-local), column =
+  /// mesh dof.
+  std::vector<DofTriplet> gap_gradient;
+};
+
+class ContactInterface {
+public:
+  /// The sides of `config` (a `type: contact` interface) in `mesh` (kept by reference).
+  /// Located InputError for regions that are missing or not boundaries, and for sides that
+  /// share nodes.
+  ContactInterface(const io::Interface& config, const mesh::Mesh& mesh);
+  ~ContactInterface();
+  ContactInterface(ContactInterface&&) noexcept;
+  ContactInterface& operator=(ContactInterface&&) noexcept;
+
+  const std::string& name() const { return name_; }
+  int dim() const { return slave_.dim; }
+  const meshtying::InterfaceSide& slave() const { return slave_; }
+  /// Mesh nodes of the master side (empty for a rigid plane).
+  std::span<const std::int32_t> master_nodes() const;
+  bool rigid() const { return rigid_; }
+  local_index n_master_facets() const { return master_.n_facets(); }
+  /// Mean edge length of the slave facets in the reference configuration.
+  double slave_mesh_size() const { return mesh_size_; }
+  local_index n_slave_nodes() const { return static_cast<local_index>(slave_.mesh_nodes.size()); }
+
+  /// Places both sides at the mesh displacement `u` (dim values per mesh node; only interface
+  /// nodes are read) and the rigid plane at time t; refits the search trees and collects the
+  /// candidate pairs; recomputes the averaged nodal normals.
+  void update(std::span<const double> u, double t);
+
+  /// Averaged unit nodal normals of the slave side at the last update (dim per slave node).
+  const std::vector<double>& normals() const { return normals_; }
+  /// Candidate pairs of the last update (after the facing test).
+  local_index n_candidates() const { return static_cast<local_index>(pairs_.size()); }
+
+  /// D_jj, g~_j and M over the slave facets f with f % n_parts == part.
+  void evaluate(int part, int n_parts, NodalValues& out) const;
+
+  /// This part's contact force of the normal multipliers `lambda_n` (one per slave node) added
+  /// to `force` (mesh dofs), from this part's `values`.
+  void add_force(const NodalValues& values, std::span<const double> lambda_n,
+                 std::span<double> force) const;
+
+  /// The derivatives of this part's contact force at fixed `lambda_n` and of the weighted gaps
+  /// of the slave nodes with `want_gap[j]` != 0. Only slave facets with a node that has a
+  /// nonzero multiplier or a wanted gap are linearized.
+  void linearize(int part, int n_parts, std::span<const double> lambda_n,
+                 std::span<const char> want_gap, Linearization& out) const;
+
+private:
+  std::int64_t mesh_dof_of_master(local_index p) const; ///< -1 for rigid nodes
+
+  const mesh::Mesh* mesh_ = nullptr;
+  std::string name_;
+  bool rigid_ = false;
+  meshtying::InterfaceSide slave_, master_;
+  std::vector<std::int32_t> master_mesh_nodes_;
+  // Rigid plane: reference corners and the motion.
+  std::vector<double> plane_corners_;
+  std::vector<io::Expression> plane_motion_;
+  double mesh_size_ = 0.0;
+  mortar::MortarOptions options_;
+  mortar::NodeFacets slave_adjacency_;
+  std::unique_ptr<search::InterfaceSearch> search_;
+  std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
+  std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
+  std::vector<double> normals_;
+};
+
+} // namespace seam::contact

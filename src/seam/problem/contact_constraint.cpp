@@ -1,0 +1,350 @@
+#include "seam/problem/contact_constraint.hpp"
+
+#include "seam/common/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace seam::problem {
+
+namespace {
+
+/// A node whose prescribed components leave less than this share of its normal free cannot
+/// move towards the other side: it is kept out of the active set.
+constexpr double min_free_normal = 0.1;
+
+} // namespace
+
+ContactConstraint::ContactConstraint(const io::Config& config, const Discretization& disc,
+                                     const Model& model)
+    : disc_(disc) {
+  const int dim = disc.dim();
+  double young = 0.0;
+  for (const auto& m : model.materials) young = std::max(young, m.young);
+  for (const auto& itf : config.interfaces) {
+    if (itf.type != io::InterfaceType::contact) continue;
+    if (itf.friction.model != io::FrictionModel::frictionless)
+      io::fail_at(itf.mark, "interface '" + itf.name +
+                                "': Coulomb friction is not available in this version of seam "
+                                "(frictionless contact is)");
+    if (itf.multiplier != io::Multiplier::dual)
+      io::fail_at(itf.mark, "interface '" + itf.name +
+                                "': contact condenses the multipliers and needs multiplier: dual");
+    Side s(contact::ContactInterface(itf, disc.mesh()));
+    for (const auto type : s.itf.slave().types)
+      if (type == fem::CellType::tri6 || type == fem::CellType::quad8)
+        io::fail_at(itf.mark, "interface '" + itf.name +
+                                  "': contact on tri6/quad8 facets is not available in this "
+                                  "version of seam (line2, line3, tri3, quad4 and quad9 are)");
+    // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain.
+    s.c_n = itf.c_n ? *itf.c_n : young / s.itf.slave_mesh_size();
+    const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
+    s.lambda.assign(n, 0.0);
+    s.lambda_saved = s.lambda;
+    s.active.assign(n, 0);
+    s.active_previous = s.active;
+    s.active_before = s.active;
+    // Prescribed components of the slave nodes (known on the owning rank only).
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    std::vector<double> fixed(n * dim, 0.0);
+    for (const auto& d : model.dirichlet) {
+      const auto it = std::lower_bound(nodes.begin(), nodes.end(), d.node);
+      if (it == nodes.end() || *it != d.node) continue;
+      const auto j = static_cast<std::size_t>(it - nodes.begin());
+      for (int c = 0; c < dim; ++c)
+        if (disc.global_dof(d.node, c) == d.dof) fixed[j * dim + c] = 1.0;
+    }
+    disc.comm().sum_in_place(fixed);
+    s.dirichlet.assign(n * dim, 0);
+    for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
+    sides_.push_back(std::move(s));
+  }
+}
+
+std::vector<double> ContactConstraint::gather_mesh_displacement(const la::Vector& u) const {
+  const int dim = disc_.dim();
+  const auto all = u.gather_all();
+  const auto n = static_cast<std::size_t>(disc_.mesh().n_nodes());
+  std::vector<double> out(n * dim);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < dim; ++c)
+      out[i * dim + c] =
+          all[static_cast<std::size_t>(disc_.global_dof(static_cast<std::int32_t>(i), c))];
+  return out;
+}
+
+ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t j) const {
+  const int dim = disc_.dim();
+  NodeFrame f;
+  const double* n = &s.itf.normals()[j * dim];
+  double w2 = 0.0;
+  for (int c = 0; c < dim; ++c) {
+    f.w[c] = s.dirichlet[j * dim + c] ? 0.0 : n[c];
+    f.wn += f.w[c] * n[c];
+    w2 += f.w[c] * f.w[c];
+  }
+  f.gap_component = 0;
+  for (int c = 1; c < dim; ++c)
+    if (std::abs(f.w[c]) > std::abs(f.w[f.gap_component])) f.gap_component = c;
+  // Orthonormal basis of the free directions orthogonal to w (Gram-Schmidt on the unit
+  // vectors of the other free components).
+  const double wl = std::sqrt(w2);
+  for (int c = 0; c < dim; ++c) {
+    if (c == f.gap_component || s.dirichlet[j * dim + c]) continue;
+    double t[3] = {0, 0, 0};
+    t[c] = 1.0;
+    if (wl > 0.0)
+      for (int b = 0; b < dim; ++b) t[b] -= f.w[c] / wl * f.w[b] / wl;
+    for (int i = 0; i < f.n_tangents; ++i) {
+      double d = 0.0;
+      for (int b = 0; b < dim; ++b) d += f.tangent[i][b] * t[b];
+      for (int b = 0; b < dim; ++b) t[b] -= d * f.tangent[i][b];
+    }
+    double l = 0.0;
+    for (int b = 0; b < dim; ++b) l += t[b] * t[b];
+    l = std::sqrt(l);
+    for (int b = 0; b < dim; ++b) f.tangent[f.n_tangents][b] = t[b] / l;
+    f.tangent_component[f.n_tangents++] = c;
+  }
+  return f;
+}
+
+int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers) {
+  const auto& comm = disc_.comm();
+  const auto u_mesh = gather_mesh_displacement(u);
+  int changes = 0;
+  for (auto& s : sides_) {
+    {
+      ScopedTimer timer(timers, "search");
+      s.itf.update(u_mesh, t);
+    }
+    ScopedTimer timer(timers, "mortar");
+    s.itf.evaluate(comm.rank(), comm.size(), s.part);
+    s.D = s.part.D;
+    s.gap = s.part.gap;
+    comm.sum_in_place(s.D);
+    comm.sum_in_place(s.gap);
+    s.area = comm.sum(s.part.area);
+    double d_max = 0.0;
+    for (double d : s.D) d_max = std::max(d_max, d);
+    const double touching = 1e-9 * s.itf.slave_mesh_size();
+    if (first) s.frozen = false;
+    s.active_before = s.active_previous;
+    s.active_previous = s.active;
+    if (s.frozen) continue;
+    std::vector<char> next(s.active.size(), 0);
+    for (std::size_t j = 0; j < next.size(); ++j) {
+      if (s.D[j] <= 1e-12 * d_max) continue;
+      const NodeFrame f = frame(s, j);
+      if (f.wn < min_free_normal) continue;
+      // Touching (zero gap, zero pressure) counts as active: bodies held only by contact
+      // then start with a nonsingular system.
+      next[j] = s.lambda[j] - s.c_n * (s.gap[j] / s.D[j] - touching) > 0.0;
+    }
+    // Cycling guard: a set that returns to the one of two iterations ago is replaced by the
+    // union of the last two and kept for the rest of the step.
+    if (!first && next == s.active_before && next != s.active_previous) {
+      for (std::size_t j = 0; j < next.size(); ++j) next[j] = next[j] || s.active_previous[j];
+      s.frozen = true;
+    }
+    s.active = std::move(next);
+    for (std::size_t j = 0; j < s.active.size(); ++j)
+      changes += s.active[j] != s.active_previous[j];
+  }
+  return changes;
+}
+
+void ContactConstraint::add_force(la::Vector& r) const {
+  const int dim = disc_.dim();
+  std::vector<PetscInt> rows;
+  std::vector<double> values;
+  for (const auto& s : sides_) {
+    std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+    s.itf.add_force(s.part, s.lambda, f);
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (f[i] == 0.0) continue;
+      rows.push_back(
+          disc_.global_dof(static_cast<std::int32_t>(i / dim), static_cast<int>(i % dim)));
+      values.push_back(f[i]);
+    }
+  }
+  r.add_values(rows, values);
+  r.assemble();
+}
+
+double ContactConstraint::complementarity_norm() const {
+  double sum = 0.0;
+  for (const auto& s : sides_)
+    for (std::size_t j = 0; j < s.active.size(); ++j) {
+      const double c = s.active[j] ? s.c_n * s.gap[j] : s.D[j] * s.lambda[j];
+      sum += c * c;
+    }
+  return std::sqrt(sum);
+}
+
+void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::Matrix& Ksys,
+                                 la::Vector& rsys, PhaseTimers& timers) {
+  const auto& comm = disc_.comm();
+  const int dim = disc_.dim();
+  const PetscInt first = disc_.first_owned_dof();
+  const PetscInt n_owned = disc_.n_owned_dofs();
+  const auto dof = [&](std::int64_t mesh_dof) {
+    return disc_.global_dof(static_cast<std::int32_t>(mesh_dof / dim),
+                            static_cast<int>(mesh_dof % dim));
+  };
+  std::vector<PetscInt> ki, kj, li, lj, gi, gj;
+  std::vector<double> kv, lv, gv;
+  std::vector<char> replaced(static_cast<std::size_t>(n_owned), 0);
+  std::vector<PetscInt> gap_rows;
+  std::vector<double> gap_values;
+  for (auto& s : sides_) {
+    ScopedTimer timer(timers, "mortar");
+    s.itf.linearize(comm.rank(), comm.size(), s.lambda, s.active, s.lin);
+    for (const auto& e : s.lin.force_tangent) {
+      ki.push_back(dof(e.row));
+      kj.push_back(dof(e.col));
+      kv.push_back(e.value);
+    }
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    std::vector<NodeFrame> frames(nodes.size());
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (s.active[j]) frames[j] = frame(s, j);
+    for (const auto& e : s.lin.gap_gradient) {
+      const auto j = static_cast<std::size_t>(e.row);
+      gi.push_back(disc_.global_dof(nodes[j], frames[j].gap_component));
+      gj.push_back(dof(e.col));
+      gv.push_back(s.c_n * e.value);
+    }
+    // Master rows: (M_jl / (D_jj w.n_j)) n_j w^T applied to the rows of slave node j.
+    const double* normals = s.itf.normals().data();
+    for (const auto& e : s.part.M) {
+      const auto j = static_cast<std::size_t>(e.slave);
+      if (!s.active[j]) continue;
+      const NodeFrame& f = frames[j];
+      const double scale = e.value / (s.D[j] * f.wn);
+      for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) {
+          const double v = scale * normals[j * dim + a] * f.w[b];
+          if (v == 0.0) continue;
+          li.push_back(disc_.global_dof(e.master_node, a));
+          lj.push_back(disc_.global_dof(nodes[j], b));
+          lv.push_back(v);
+        }
+    }
+    // Free rows of the active slave nodes this rank owns: the gap row and the tangent rows.
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+      const NodeFrame& f = frames[j];
+      const PetscInt gap_row = disc_.global_dof(nodes[j], f.gap_component);
+      replaced[static_cast<std::size_t>(gap_row - first)] = 1;
+      gap_rows.push_back(gap_row);
+      gap_values.push_back(s.c_n * s.gap[j]);
+      for (int i = 0; i < f.n_tangents; ++i) {
+        const PetscInt row = disc_.global_dof(nodes[j], f.tangent_component[i]);
+        replaced[static_cast<std::size_t>(row - first)] = 1;
+        for (int b = 0; b < dim; ++b)
+          if (f.tangent[i][b] != 0.0) {
+            li.push_back(row);
+            lj.push_back(disc_.global_dof(nodes[j], b));
+            lv.push_back(f.tangent[i][b]);
+          }
+      }
+    }
+  }
+  ScopedTimer timer(timers, "condensation");
+  for (PetscInt i = 0; i < n_owned; ++i)
+    if (!replaced[static_cast<std::size_t>(i)]) {
+      li.push_back(first + i);
+      lj.push_back(first + i);
+      lv.push_back(1.0);
+    }
+  const MPI_Comm mpi = comm.get();
+  Kc_ = la::Matrix::from_triplets(mpi, n_owned, ki, kj, kv);
+  const auto L = la::Matrix::from_triplets(mpi, n_owned, li, lj, lv);
+  const auto G = la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv);
+  Ksys = la::Matrix::multiply(L, K);
+  Ksys.axpy_any_pattern(1.0, la::Matrix::multiply(L, Kc_));
+  Ksys.axpy_any_pattern(1.0, G);
+  L.mult(r, rsys);
+  rsys.set_values(gap_rows, gap_values);
+  rsys.assemble();
+}
+
+void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const la::Vector& dd) {
+  const int dim = disc_.dim();
+  la::Vector y = disc_.make_vector(), yc = disc_.make_vector();
+  K.mult(dd, y);
+  Kc_.mult(dd, yc);
+  y.axpy(1.0, yc);
+  y.axpy(1.0, r);
+  la::Vector::LocalView view(y, false);
+  const auto values = view.values();
+  const PetscInt first = disc_.first_owned_dof();
+  for (auto& s : sides_) {
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    std::vector<double> lambda(nodes.size(), 0.0);
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+      const NodeFrame f = frame(s, j);
+      double wy = 0.0;
+      for (int b = 0; b < dim; ++b)
+        wy += f.w[b] * values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)];
+      lambda[j] = -wy / (s.D[j] * f.wn);
+    }
+    disc_.comm().sum_in_place(lambda);
+    s.lambda = std::move(lambda);
+  }
+}
+
+void ContactConstraint::save() {
+  for (auto& s : sides_) s.lambda_saved = s.lambda;
+}
+
+void ContactConstraint::restore() {
+  for (auto& s : sides_) s.lambda = s.lambda_saved;
+}
+
+int ContactConstraint::n_active() const {
+  int n = 0;
+  for (const auto& s : sides_)
+    n += static_cast<int>(std::count(s.active.begin(), s.active.end(), 1));
+  return n;
+}
+
+std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {
+  const int dim = disc_.dim();
+  const auto u_mesh = gather_mesh_displacement(u);
+  std::vector<ContactReport> out;
+  for (const auto& s : sides_) {
+    ContactReport rep;
+    rep.name = s.itf.name();
+    rep.slave_nodes = s.itf.slave().mesh_nodes;
+    const auto n = rep.slave_nodes.size();
+    rep.displacement.resize(n * dim);
+    for (std::size_t j = 0; j < n; ++j)
+      for (int c = 0; c < dim; ++c)
+        rep.displacement[j * dim + c] =
+            u_mesh[static_cast<std::size_t>(rep.slave_nodes[j]) * dim + c];
+    rep.normal = s.itf.normals();
+    rep.lambda_n = s.lambda;
+    rep.weighted_gap = s.gap;
+    rep.gap.assign(n, 0.0);
+    for (std::size_t j = 0; j < n; ++j)
+      if (s.D[j] > 0.0) rep.gap[j] = s.gap[j] / s.D[j];
+    rep.active = s.active;
+    for (std::size_t j = 0; j < n; ++j) {
+      rep.normal_force += s.D[j] * s.lambda[j];
+      if (s.active[j]) {
+        rep.contact_area += s.D[j];
+        ++rep.active_nodes;
+      }
+    }
+    rep.slave_elements = s.itf.slave().n_facets();
+    rep.master_elements = s.itf.n_master_facets();
+    rep.candidate_pairs = s.itf.n_candidates();
+    out.push_back(std::move(rep));
+  }
+  return out;
+}
+
+} // namespace seam::problem

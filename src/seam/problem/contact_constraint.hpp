@@ -1,0 +1,98 @@
+#pragma once
+// Frictionless mortar contact solved by the semi-smooth Newton (primal-dual active set)
+// method with the dual multipliers condensed (seed paper Sect. 4.2; ALGORITHMS.md §5;
+// Popp et al. 2009, 2010; Hueeber & Wohlmuth 2005).
+//
+// Unknowns: the displacements d and one normal multiplier lambda_n,j per slave node (the
+// contact traction is lambda_n,j n_j, so the frictionless condition lambda_t = 0 holds by
+// construction). Nonlinear complementarity, with the nodal gap g_j = g~_j / D_jj,
+//   C_j = lambda_n,j - max(0, lambda_n,j - c_n g_j) = 0,
+// active set A = {j : lambda_n,j - c_n g_j > 0}. Each Newton iteration solves, for the new
+// multipliers lambda^{k+1} and the increment dd, with K~ = K + d(B^T lambda^k)/dd,
+//   K~ dd + B^T lambda^{k+1} = -r,   lambda_j^{k+1} = 0 (j in I),   dg~_j dd = -g~_j (j in A).
+// The dual basis makes D diagonal, so the slave rows give lambda_j explicitly. At an active
+// node j whose free (not prescribed) components span V, w = P_V n_j:
+//   lambda_j^{k+1} = -w . (K~_j dd + r_j) / (D_jj w . n_j),
+// which is substituted into the master rows (M_jl / (D_jj w.n_j)) n_j w^T (K~_j dd + r_j);
+// the free rows of node j become the gap row and the equilibrium along the directions of V
+// orthogonal to w, which carry no multiplier. In matrix form
+//   (L K~ + G) dd = -L r  (with c_n g~_j in the gap rows),
+// with L the identity on every other row. No saddle point, no tangent derivatives.
+#include "seam/common/timer.hpp"
+#include "seam/contact/contact_interface.hpp"
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/problem/discretization.hpp"
+#include "seam/problem/model.hpp"
+#include "seam/problem/output.hpp"
+
+#include <vector>
+
+namespace seam::problem {
+
+class ContactConstraint {
+public:
+  ContactConstraint(const io::Config& config, const Discretization& disc, const Model& model);
+
+  bool active() const { return !sides_.empty(); }
+
+  /// The state at displacement u (ghosted, up to date) and time t with the current
+  /// multipliers: geometry, search, D, g~; the active set from the complementarity function.
+  /// Returns the number of nodes whose status changed against the previous iteration.
+  /// `first` marks the first iteration of a step. Collective.
+  int evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers);
+  /// r += contact force of the current multipliers. Collective.
+  void add_force(la::Vector& r) const;
+  /// Complementarity residual in force units: c_n g~_j on active nodes, D_jj lambda_n,j on
+  /// inactive ones. Same on every rank.
+  double complementarity_norm() const;
+
+  /// The Newton system at the last evaluate(): Ksys = L (K + Kc) + G, rsys = L r with the gap
+  /// rows c_n g~_j (the caller negates it). K and r are the bulk ones (r without contact).
+  /// The linearization is timed as "mortar", the matrix products as "condensation".
+  void condense(const la::Matrix& K, const la::Vector& r, la::Matrix& Ksys, la::Vector& rsys,
+                PhaseTimers& timers);
+  /// The new multipliers from the solution dd of the condensed system. Collective.
+  void recover(const la::Matrix& K, const la::Vector& r, const la::Vector& dd);
+
+  /// Multipliers of the last converged step (save) are restored after a failed attempt.
+  void save();
+  void restore();
+
+  int n_active() const;
+  /// Per interface, the state for the output files (replicated).
+  std::vector<ContactReport> reports(const la::Vector& u) const;
+
+private:
+  struct Side {
+    explicit Side(contact::ContactInterface i) : itf(std::move(i)) {}
+    contact::ContactInterface itf;
+    double c_n = 0.0;
+    contact::NodalValues part;  ///< this rank's share
+    std::vector<double> D, gap; ///< summed over ranks
+    std::vector<double> lambda, lambda_saved;
+    std::vector<char> active, active_previous, active_before;
+    std::vector<char> dirichlet; ///< per slave node and component
+    contact::Linearization lin;
+    double area = 0.0;
+    bool frozen = false; ///< active set frozen after cycling was detected in this step
+  };
+  /// Free-direction data of an active slave node: w, the row that carries the gap and the
+  /// tangent rows.
+  struct NodeFrame {
+    double w[3] = {0, 0, 0};
+    double wn = 0.0;
+    int gap_component = 0;
+    int n_tangents = 0;
+    int tangent_component[2] = {0, 0};
+    double tangent[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  };
+  NodeFrame frame(const Side& s, std::size_t j) const;
+  std::vector<double> gather_mesh_displacement(const la::Vector& u) const;
+
+  const Discretization& disc_;
+  std::vector<Side> sides_;
+  la::Matrix Kc_;
+};
+
+} // namespace seam::problem

@@ -1,0 +1,187 @@
+// The contact linearization against central differences of the contact evaluation itself:
+// d(contact force)/d(displacement) at fixed normal multipliers and d g~_j/d(displacement), on
+// two non-matching meshes in 2D (line2) and 3D (quad4, tri3) pressed into each other with a
+// random perturbation, so that master edges cross the slave integration cells, some slave
+// nodes penetrate and others are open; and on a rigid plane. Every derivative the contact
+// Newton uses goes through here: normals, projections, clip polygons, cell Jacobians, dual
+// coefficients, D, M and g~.
+#include "seam/contact/contact_interface.hpp"
+#include "seam/mesh/gmsh_reader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+
+namespace seam::contact {
+namespace {
+
+std::filesystem::path write_geo(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+mesh::Mesh two_blocks(int dim, bool tets) {
+  std::string geo;
+  if (dim == 2) {
+    geo = R"(
+Point(1) = {0, -0.5, 0}; Point(2) = {1, -0.5, 0}; Point(3) = {1, 0, 0}; Point(4) = {0, 0, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Transfinite Curve{1, 3} = 8; Transfinite Curve{2, 4} = 3; Transfinite Surface{1}; Recombine Surface{1};
+Point(5) = {0.13, 0, 0}; Point(6) = {0.91, 0, 0}; Point(7) = {0.91, 0.4, 0}; Point(8) = {0.13, 0.4, 0};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Transfinite Curve{5, 7} = 6; Transfinite Curve{6, 8} = 3; Transfinite Surface{2}; Recombine Surface{2};
+Physical Surface("lower") = {1}; Physical Surface("upper") = {2};
+Physical Curve("master") = {3}; Physical Curve("slave") = {5};
+)";
+  } else {
+    geo = "SetFactory(\"OpenCASCADE\");\n"
+          "Box(1) = {0, 0, -0.5, 1, 1, 0.5};\n"
+          "Box(2) = {0.11, 0.07, 0, 0.8, 0.85, 0.4};\n";
+    if (tets) {
+      geo += "Mesh.MeshSizeMax = 0.3;\n";
+    } else {
+      geo += "Transfinite Curve{1:12} = 5; Transfinite Surface{1:6}; Recombine Surface{1:6};\n"
+             "Transfinite Volume{1};\n"
+             "Transfinite Curve{13:24} = 4; Transfinite Surface{7:12}; Recombine "
+             "Surface{7:12};\nTransfinite Volume{2};\n";
+    }
+    geo += "Physical Volume(\"lower\") = {1}; Physical Volume(\"upper\") = {2};\n"
+           "Physical Surface(\"master\") = {6}; Physical Surface(\"slave\") = {11};\n";
+  }
+  mesh::ReadOptions options;
+  options.dim = dim;
+  return mesh::read_mesh(write_geo(dim == 2 ? "contact_fd_2d.geo"
+                                            : (tets ? "contact_fd_tet.geo" : "contact_fd_hex.geo"),
+                                   geo),
+                         options);
+}
+
+io::Interface contact_config(bool rigid, int dim) {
+  io::Interface c;
+  c.name.assign("contact");
+  c.type = io::InterfaceType::contact;
+  c.slave.name.assign("slave");
+  if (rigid) {
+    io::RigidPlane p;
+    p.point = {0.0, 0.0, 0.0};
+    p.normal = {0.0, 0.0, 0.0};
+    p.normal[dim - 1] = 1.0;
+    c.rigid_plane = p;
+  } else {
+    c.master = io::RegionRef{"master", {}};
+  }
+  return c;
+}
+
+using Dense = std::map<std::pair<std::int64_t, std::int64_t>, double>;
+
+void check(int dim, bool tets, bool rigid) {
+  const auto mesh = two_blocks(dim, tets);
+  ContactInterface itf(contact_config(rigid, dim), mesh);
+  // Press the upper block into the lower one, perturb every interface node.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> perturb(-0.015, 0.015);
+  std::vector<double> u(mesh.x.size(), 0.0);
+  std::vector<std::int64_t> dofs;
+  // Every third slave node is lifted off, the others pushed in.
+  const auto add_side = [&](std::span<const std::int32_t> nodes, double push) {
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (int c = 0; c < dim; ++c) {
+        const auto n = nodes[i];
+        const double lift = i % 3 == 0 ? -2.0 * push : push;
+        u[static_cast<std::size_t>(n) * dim + c] = perturb(rng) + (c == dim - 1 ? lift : 0.0);
+        dofs.push_back(static_cast<std::int64_t>(n) * dim + c);
+      }
+  };
+  add_side(itf.slave().mesh_nodes, -0.01);
+  add_side(itf.master_nodes(), 0.0);
+  itf.update(u, 0.0);
+  NodalValues values;
+  itf.evaluate(0, 1, values);
+  const auto n_slave = static_cast<std::size_t>(itf.n_slave_nodes());
+  std::vector<double> lambda(n_slave);
+  std::uniform_real_distribution<double> pressure(0.5, 2.0);
+  int open = 0, closed = 0;
+  for (std::size_t j = 0; j < n_slave; ++j) {
+    lambda[j] = j % 5 == 3 ? 0.0 : pressure(rng); // some nodes without a multiplier
+    if (values.D[j] > 0.0) (values.gap[j] > 0.0 ? open : closed)++;
+  }
+  EXPECT_GT(closed, 0);
+  if (!rigid) {
+    EXPECT_GT(open, 0);
+  }
+  const std::vector<char> want(n_slave, 1);
+  Linearization lin;
+  itf.linearize(0, 1, lambda, want, lin);
+  Dense K, G;
+  for (const auto& e : lin.force_tangent) K[{e.row, e.col}] += e.value;
+  for (const auto& e : lin.gap_gradient) G[{e.row, e.col}] += e.value;
+
+  const auto state = [&](std::vector<double>& force, std::vector<double>& gap) {
+    itf.update(u, 0.0);
+    NodalValues v;
+    itf.evaluate(0, 1, v);
+    force.assign(u.size(), 0.0);
+    itf.add_force(v, lambda, force);
+    gap = v.gap;
+  };
+  const double h = 1e-6;
+  double k_max = 0.0, g_max = 0.0, k_err = 0.0, g_err = 0.0;
+  std::vector<double> fp, fm, gp, gm;
+  for (const auto d : dofs) {
+    const auto i = static_cast<std::size_t>(d);
+    const double u0 = u[i];
+    u[i] = u0 + h;
+    state(fp, gp);
+    u[i] = u0 - h;
+    state(fm, gm);
+    u[i] = u0;
+    for (std::size_t r = 0; r < fp.size(); ++r) {
+      const double fd = (fp[r] - fm[r]) / (2 * h);
+      const auto it = K.find({static_cast<std::int64_t>(r), d});
+      const double an = it == K.end() ? 0.0 : it->second;
+      k_max = std::max(k_max, std::abs(fd));
+      k_err = std::max(k_err, std::abs(fd - an));
+    }
+    for (std::size_t j = 0; j < n_slave; ++j) {
+      const double fd = (gp[j] - gm[j]) / (2 * h);
+      const auto it = G.find({static_cast<std::int64_t>(j), d});
+      const double an = it == G.end() ? 0.0 : it->second;
+      g_max = std::max(g_max, std::abs(fd));
+      g_err = std::max(g_err, std::abs(fd - an));
+    }
+  }
+  std::printf("  dim %d %s %s: %zu dofs, |dF/du| max %.3e err %.3e, |dg/du| max %.3e err %.3e\n",
+              dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
+              rigid ? "rigid plane" : "two bodies", dofs.size(), k_max, k_err, g_max, g_err);
+  EXPECT_GT(k_max, 0.1);
+  EXPECT_GT(g_max, 1e-3);
+  EXPECT_LT(k_err, 1e-6 * k_max);
+  EXPECT_LT(g_err, 1e-6 * g_max);
+}
+
+TEST(ContactLinearization, TwoBodies2D) {
+  check(2, false, false);
+}
+TEST(ContactLinearization, TwoBodiesQuad4) {
+  check(3, false, false);
+}
+TEST(ContactLinearization, TwoBodiesTri3) {
+  check(3, true, false);
+}
+TEST(ContactLinearization, RigidPlane2D) {
+  check(2, false, true);
+}
+TEST(ContactLinearization, RigidPlane3D) {
+  check(3, false, true);
+}
+
+} // namespace
+} // namespace seam::contact
