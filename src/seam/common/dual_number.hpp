@@ -17,16 +17,22 @@
 
 namespace seam {
 
-template <int N> struct Dual {
+/// The gradient comes first and the type is 16-byte aligned, so that the gradient loops below
+/// run on aligned packed vectors; every loop writes a local array or its own operand only, so
+/// the compiler needs no aliasing checks to vectorize it.
+template <int N> struct alignas(16) Dual {
   static_assert(N > 0, "a dual number needs at least one variable");
   static constexpr int n_variables = N;
 
+  std::array<double, N> gradient; ///< uninitialized after default construction, see below
   double value = 0.0;
-  std::array<double, N> gradient{};
 
+  // Like a double, a default-constructed dual number holds no defined gradient: the per-pair
+  // kernels hold fixed-capacity arrays of them (polygons, nodal vectors), and zeroing every
+  // unused slot would cost more than the arithmetic. Dual{}, Dual(0.0) and Zero() are zero.
   Dual() = default;
   // Implicit on purpose: constants enter dual expressions with a zero gradient.
-  Dual(double v) : value(v) {} // NOLINT(google-explicit-constructor)
+  Dual(double v) : gradient{}, value(v) {} // NOLINT(google-explicit-constructor)
 
   /// The independent variable number i with value v.
   static Dual variable(double v, int i) {
@@ -36,24 +42,30 @@ template <int N> struct Dual {
   }
 
   Dual& operator+=(const Dual& b) {
+    const std::array<double, N> g = b.gradient;
+    for (int i = 0; i < N; ++i) gradient[i] += g[i];
     value += b.value;
-    for (int i = 0; i < N; ++i) gradient[i] += b.gradient[i];
     return *this;
   }
   Dual& operator-=(const Dual& b) {
+    const std::array<double, N> g = b.gradient;
+    for (int i = 0; i < N; ++i) gradient[i] -= g[i];
     value -= b.value;
-    for (int i = 0; i < N; ++i) gradient[i] -= b.gradient[i];
     return *this;
   }
   Dual& operator*=(const Dual& b) {
-    for (int i = 0; i < N; ++i) gradient[i] = b.value * gradient[i] + value * b.gradient[i];
-    value *= b.value;
+    const double av = value, bv = b.value;
+    const std::array<double, N> g = b.gradient;
+    for (int i = 0; i < N; ++i) gradient[i] = bv * gradient[i] + av * g[i];
+    value = av * bv;
     return *this;
   }
   Dual& operator/=(const Dual& b) {
     const double inv = 1.0 / b.value;
-    value *= inv;
-    for (int i = 0; i < N; ++i) gradient[i] = (gradient[i] - value * b.gradient[i]) * inv;
+    const double q = value * inv;
+    const std::array<double, N> g = b.gradient;
+    for (int i = 0; i < N; ++i) gradient[i] = (gradient[i] - q * g[i]) * inv;
+    value = q;
     return *this;
   }
   Dual& operator+=(double b) {
@@ -80,17 +92,28 @@ template <int N> Dual<N> operator-(const Dual<N>& a) {
   for (int i = 0; i < N; ++i) r.gradient[i] = -a.gradient[i];
   return r;
 }
-template <int N> Dual<N> operator+(Dual<N> a, const Dual<N>& b) {
-  return a += b;
+template <int N> Dual<N> operator+(const Dual<N>& a, const Dual<N>& b) {
+  Dual<N> r(a.value + b.value);
+  for (int i = 0; i < N; ++i) r.gradient[i] = a.gradient[i] + b.gradient[i];
+  return r;
 }
-template <int N> Dual<N> operator-(Dual<N> a, const Dual<N>& b) {
-  return a -= b;
+template <int N> Dual<N> operator-(const Dual<N>& a, const Dual<N>& b) {
+  Dual<N> r(a.value - b.value);
+  for (int i = 0; i < N; ++i) r.gradient[i] = a.gradient[i] - b.gradient[i];
+  return r;
 }
-template <int N> Dual<N> operator*(Dual<N> a, const Dual<N>& b) {
-  return a *= b;
+template <int N> Dual<N> operator*(const Dual<N>& a, const Dual<N>& b) {
+  const double av = a.value, bv = b.value;
+  Dual<N> r(av * bv);
+  for (int i = 0; i < N; ++i) r.gradient[i] = bv * a.gradient[i] + av * b.gradient[i];
+  return r;
 }
-template <int N> Dual<N> operator/(Dual<N> a, const Dual<N>& b) {
-  return a /= b;
+template <int N> Dual<N> operator/(const Dual<N>& a, const Dual<N>& b) {
+  const double inv = 1.0 / b.value;
+  const double q = a.value * inv;
+  Dual<N> r(q);
+  for (int i = 0; i < N; ++i) r.gradient[i] = (a.gradient[i] - q * b.gradient[i]) * inv;
+  return r;
 }
 template <int N> Dual<N> operator+(Dual<N> a, double b) {
   return a += b;
@@ -165,12 +188,18 @@ inline void add_product(double& acc, double a, double b) {
   acc += a * b;
 }
 template <int N> void add_product(Dual<N>& acc, const Dual<N>& a, const Dual<N>& b) {
-  acc.value += a.value * b.value;
-  for (int i = 0; i < N; ++i) acc.gradient[i] += a.value * b.gradient[i] + b.value * a.gradient[i];
+  const double av = a.value, bv = b.value;
+  std::array<double, N> g;
+  for (int i = 0; i < N; ++i) g[i] = av * b.gradient[i] + bv * a.gradient[i];
+  for (int i = 0; i < N; ++i) acc.gradient[i] += g[i];
+  acc.value += av * bv;
 }
 template <int N> void add_product(Dual<N>& acc, const Dual<N>& a, double b) {
-  acc.value += a.value * b;
-  for (int i = 0; i < N; ++i) acc.gradient[i] += b * a.gradient[i];
+  const double av = a.value;
+  std::array<double, N> g;
+  for (int i = 0; i < N; ++i) g[i] = b * a.gradient[i];
+  for (int i = 0; i < N; ++i) acc.gradient[i] += g[i];
+  acc.value += av * b;
 }
 template <int N> void add_product(Dual<N>& acc, double a, const Dual<N>& b) {
   add_product(acc, b, a);

@@ -57,6 +57,17 @@ template <int Dim> struct Facet {
       Eigen::Matrix<double, Dim, max_facet_nodes>::Zero();
 };
 
+/// False for a quad4 that is not a parallelogram (x0 + x2 != x1 + x3): its bilinear map is
+/// not affine, so the mortar integrands are not polynomials on the integration cells and no
+/// cell rule integrates them exactly (Puso & Laursen 2004: the patch test then holds to
+/// quadrature accuracy only). Other linear facets are affine.
+template <int Dim> bool is_affine(const Facet<Dim>& f) {
+  if (f.type != fem::CellType::quad4) return true;
+  const auto d = (f.x.col(0) + f.x.col(2) - f.x.col(1) - f.x.col(3)).norm();
+  const auto diagonal = (f.x.col(2) - f.x.col(0)).norm() + (f.x.col(3) - f.x.col(1)).norm();
+  return d <= 1e-12 * diagonal;
+}
+
 /// Copy facet f of a set into fixed-size storage.
 template <int Dim> Facet<Dim> gather_facet(const FacetSet& facets, local_index f);
 

@@ -30,14 +30,30 @@ void copy_gradient(const S& x, int n_variables, std::vector<double>& out, std::s
 
 template <int Dim, int N>
 void run_pair(const SlaveFacet<Dim>& slave, const Facet<Dim>& master, const PairOptions& options,
-              PairLinearization& out) {
+              const ad::CoefficientLinearization* coefficients, PairLinearization& out) {
   using S = Dual<N>;
   const int ns = slave.facet.n_nodes;
   const int nm = master.n_nodes;
   const ad::FacetT<S, Dim> sf = ad::seed<S>(slave.facet, 0);
   const ad::FacetT<S, Dim> mf = ad::seed<S>(master, Dim * ns);
-  const auto normals = seed_columns<S, Dim>(slave.normals, ns, Dim * (ns + nm));
-  const auto st = ad::make_slave_facet_t(sf, normals, slave.basis.multiplier);
+  // The slave's dual coefficients with their derivatives come from a dual number over the
+  // slave coordinates only (Dim * ns variables), not over all pair variables.
+  ad::SlaveFacetT<S, Dim> st;
+  st.facet = sf;
+  st.normals = seed_columns<S, Dim>(slave.normals, ns, Dim * (ns + nm));
+  st.multiplier = slave.basis.multiplier;
+  st.modification = basis_modification(sf.type, st.multiplier);
+  if (st.multiplier == Multiplier::dual) {
+    SEAM_ASSERT(coefficients && coefficients->n == ns);
+    st.A.resize(ns, ns);
+    for (int j = 0; j < ns; ++j)
+      for (int k = 0; k < ns; ++k) {
+        S a(coefficients->A(j, k));
+        std::copy_n(coefficients->gradient.begin() + (j * ns + k) * coefficients->n_variables,
+                    coefficients->n_variables, a.gradient.begin());
+        st.A(j, k) = a;
+      }
+  }
   const ad::PairContributionT<S> c = ad::integrate_pair_t<S>(st, mf, options);
 
   out.dim = Dim;
@@ -70,6 +86,24 @@ void run_pair(const SlaveFacet<Dim>& slave, const Facet<Dim>& master, const Pair
   }
 }
 
+template <int K, int Dim>
+void coefficients_with(const Facet<Dim>& facet, double modification,
+                       ad::CoefficientLinearization& out) {
+  using S = Dual<K>;
+  const int n = facet.n_nodes;
+  SEAM_ASSERT(Dim * n <= K);
+  const ad::SmallMatrixT<S> A = ad::dual_coefficients_t(ad::seed<S, Dim>(facet, 0), modification);
+  out.n = n;
+  out.n_variables = Dim * n;
+  out.A.resize(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < n; ++k) {
+      out.A(j, k) = A(j, k).value;
+      std::copy_n(A(j, k).gradient.begin(), out.n_variables,
+                  out.gradient.begin() + (j * n + k) * out.n_variables);
+    }
+}
+
 template <int Dim> void validate_pair(const SlaveFacet<Dim>& slave, const Facet<Dim>& master) {
   SEAM_CHECK(is_interface_facet(slave.facet.type, Dim) && is_interface_facet(master.type, Dim) &&
                  slave.facet.n_nodes == fem::n_nodes(slave.facet.type) &&
@@ -78,27 +112,60 @@ template <int Dim> void validate_pair(const SlaveFacet<Dim>& slave, const Facet<
              "D interface facets with their full node count");
 }
 
+void linearize_pair_2d(const SlaveFacet<2>& slave, const Facet<2>& master,
+                       const PairOptions& options, const ad::CoefficientLinearization* coefficients,
+                       PairLinearization& out) {
+  if (ad::pair_variable_count(2, slave.facet.n_nodes, master.n_nodes) <= 12) {
+    run_pair<2, 12>(slave, master, options, coefficients, out);
+  } else {
+    run_pair<2, 18>(slave, master, options, coefficients, out);
+  }
+}
+
 } // namespace
 
 void linearize_pair(const SlaveFacet<2>& slave, const Facet<2>& master, const PairOptions& options,
                     PairLinearization& out) {
   validate_pair(slave, master);
-  if (ad::pair_variable_count(2, slave.facet.n_nodes, master.n_nodes) <= 12) {
-    run_pair<2, 12>(slave, master, options, out);
-  } else {
-    run_pair<2, 18>(slave, master, options, out);
-  }
+  static thread_local ad::CoefficientLinearization coefficients;
+  const bool dual = slave.basis.multiplier == Multiplier::dual;
+  if (dual)
+    ad::linearize_coefficients<2>(
+        slave.facet, basis_modification(slave.facet.type, slave.basis.multiplier), coefficients);
+  linearize_pair_2d(slave, master, options, dual ? &coefficients : nullptr, out);
 }
 
 void linearize_pair(const SlaveFacet<3>& slave, const Facet<3>& master, const PairOptions& options,
                     PairLinearization& out) {
   validate_pair(slave, master);
-  if (ad::pair_variable_count(3, slave.facet.n_nodes, master.n_nodes) <= 36) {
-    run_pair<3, 36>(slave, master, options, out);
+  static thread_local ad::CoefficientLinearization coefficients;
+  const bool dual = slave.basis.multiplier == Multiplier::dual;
+  if (dual)
+    ad::linearize_coefficients<3>(
+        slave.facet, basis_modification(slave.facet.type, slave.basis.multiplier), coefficients);
+  ad::linearize_pair_3d(slave, master, options, dual ? &coefficients : nullptr, out);
+}
+
+namespace ad {
+
+template <int Dim>
+void linearize_coefficients(const Facet<Dim>& facet, double modification,
+                            CoefficientLinearization& out) {
+  const int n_variables = Dim * facet.n_nodes;
+  if (n_variables <= 6) {
+    coefficients_with<6>(facet, modification, out);
+  } else if (n_variables <= 9) {
+    coefficients_with<9>(facet, modification, out);
+  } else if (n_variables <= 12) {
+    coefficients_with<12>(facet, modification, out);
   } else {
-    run_pair<3, 81>(slave, master, options, out);
+    coefficients_with<3 * max_facet_nodes>(facet, modification, out);
   }
 }
+template void linearize_coefficients(const Facet<2>&, double, CoefficientLinearization&);
+template void linearize_coefficients(const Facet<3>&, double, CoefficientLinearization&);
+
+} // namespace ad
 
 NodeFacets node_facets(const FacetSet& facets) {
   validate(facets, "slave");
@@ -118,15 +185,13 @@ NodeFacets node_facets(const FacetSet& facets) {
 
 namespace {
 
-// One facet's unit normal at its local node i with derivatives with respect to the facet's
-// nodal coordinates (Dim * 9 variables at most).
-template <int Dim>
-void add_facet_normal(const FacetSet& facets, local_index f, local_index node,
-                      NodalNormalLinearization& out, std::array<double, 3>& sum) {
-  constexpr int capacity = Dim * max_facet_nodes;
-  using S = Dual<capacity>;
-  const Facet<Dim> facet = gather_facet<Dim>(facets, f);
-  const auto nodes = facets.facet_nodes(f);
+// One facet's unit normal at the node `node` with derivatives with respect to the facet's
+// nodal coordinates (Dim * n_nodes <= K variables).
+template <int Dim, int K>
+void add_facet_normal_with(const Facet<Dim>& facet, std::span<const local_index> nodes,
+                           local_index node, NodalNormalLinearization& out,
+                           std::array<double, 3>& sum) {
+  using S = Dual<K>;
   const auto it = std::find(nodes.begin(), nodes.end(), node);
   SEAM_ASSERT(it != nodes.end());
   const int i = static_cast<int>(it - nodes.begin());
@@ -146,6 +211,27 @@ void add_facet_normal(const FacetSet& facets, local_index f, local_index node,
     }
   }
   for (int a = 0; a < Dim; ++a) sum[static_cast<std::size_t>(a)] += u(a).value;
+}
+
+// A dual number just wide enough for the facet's coordinates (linear facets are the common
+// case).
+template <int Dim>
+void add_facet_normal(const FacetSet& facets, local_index f, local_index node,
+                      NodalNormalLinearization& out, std::array<double, 3>& sum) {
+  const Facet<Dim> facet = gather_facet<Dim>(facets, f);
+  const auto nodes = facets.facet_nodes(f);
+  const int n_variables = Dim * facet.n_nodes;
+  if (n_variables <= 4) {
+    add_facet_normal_with<Dim, 4>(facet, nodes, node, out, sum);
+  } else if (n_variables <= 6) {
+    add_facet_normal_with<Dim, 6>(facet, nodes, node, out, sum);
+  } else if (n_variables <= 9) {
+    add_facet_normal_with<Dim, 9>(facet, nodes, node, out, sum);
+  } else if (n_variables <= 12) {
+    add_facet_normal_with<Dim, 12>(facet, nodes, node, out, sum);
+  } else {
+    add_facet_normal_with<Dim, Dim * max_facet_nodes>(facet, nodes, node, out, sum);
+  }
 }
 
 } // namespace
@@ -268,10 +354,21 @@ void linearize_slave_facet_impl(const FacetSet& slave, const FacetSet& master,
   out.M_gradient.assign(static_cast<std::size_t>(ns * n_mn) * nv, 0.0);
   out.gap_gradient.assign(static_cast<std::size_t>(ns) * nv, 0.0);
 
+  // The slave's dual coefficients and their derivatives serve all its master candidates.
+  static thread_local ad::CoefficientLinearization coefficients;
+  const bool dual = options.multiplier == Multiplier::dual;
+  if (dual)
+    ad::linearize_coefficients<Dim>(sf.facet, basis_modification(sf.facet.type, options.multiplier),
+                                    coefficients);
   for (const local_index f : master_facets) {
     const Facet<Dim> mf = gather_facet<Dim>(master, f);
     const auto m_nodes = master.facet_nodes(f);
-    linearize_pair(sf, mf, options.pair, out.pair);
+    validate_pair(sf, mf);
+    if constexpr (Dim == 3) {
+      ad::linearize_pair_3d(sf, mf, options.pair, dual ? &coefficients : nullptr, out.pair);
+    } else {
+      linearize_pair_2d(sf, mf, options.pair, dual ? &coefficients : nullptr, out.pair);
+    }
     const PairLinearization& p = out.pair;
     out.n_projection_failures += p.values.n_projection_failures;
     if (p.values.n_cells == 0) continue;

@@ -5,13 +5,17 @@
 // every nodal coordinate they depend on — slave facet nodes, master facet nodes, and the
 // nodes of the neighbour facets that enter the averaged nodal normals of the slave nodes.
 //
-// The pair kernels (linearization_pair.hpp) are the integrate_pair algorithms written on a
-// scalar type and run with forward-mode dual numbers (seam::Dual): normals and their
-// normalization, auxiliary plane, projection into it, clip polygon vertices (combinatorics
-// frozen at the evaluation point), fan centroid, cell Jacobians, back-projections (implicit
-// function theorem), 2D segment ends, dual coefficients A_e = D_e M_e^{-1} and the gap
-// g = n . (x_m - x_s) all carry derivatives. The nodal normals are linearized separately per
-// node, n_j = s_j / |s_j| with s_j the sum of the unit facet normals at j,
+// The pair kernels (linearization_pair.hpp) follow the integrate_pair algorithms: normals and
+// their normalization, auxiliary plane, projection into it, clip polygon vertices
+// (combinatorics frozen at the evaluation point), fan centroid, cell Jacobians,
+// back-projections (implicit function theorem), 2D segment ends, dual coefficients
+// A_e = D_e M_e^{-1} and the gap g = n . (x_m - x_s) all carry derivatives. 2D runs the
+// kernel with forward-mode dual numbers (seam::Dual) over the pair variables; 3D uses mixed
+// mode — small dual numbers for the plane and the clip polygon, hand-chained partial
+// derivatives per integration point (linearization_pair_3d.cpp). The dual coefficients and
+// their derivatives depend on the slave facet only and are computed once per slave facet in
+// linearize_slave_facet. The nodal normals are linearized separately per node,
+// n_j = s_j / |s_j| with s_j the sum of the unit facet normals at j,
 // dn_j = (I - n_j n_j^T) ds_j / |s_j|, and chained in.
 //
 // Values agree with integrate_pair / assemble_mortar_operators to round-off (same decisions,

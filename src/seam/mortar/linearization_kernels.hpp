@@ -141,43 +141,6 @@ inline ShapeAt shape_at(fem::CellType type, const double* xi, int p) {
   return s;
 }
 
-/// Shape values at a reference point of scalar type S. To first order, which is all forward
-/// mode carries, N(xi) = N(v) + dN(v) (xi - v) with v the value of xi.
-template <class S, int Dim> NodalVectorT<S> shape_values_t(fem::CellType type, const S* xi) {
-  constexpr int p = Dim - 1;
-  std::array<double, 2> v{};
-  for (int a = 0; a < p; ++a) v[static_cast<std::size_t>(a)] = value_of(xi[a]);
-  const ShapeAt s = shape_at(type, v.data(), p);
-  NodalVectorT<S> N;
-  for (int i = 0; i < max_facet_nodes; ++i) N(i) = s.N(i);
-  if constexpr (is_dual<S>) {
-    const int n = fem::n_nodes(type);
-    for (int a = 0; a < p; ++a) {
-      const S dxi = xi[a] - v[static_cast<std::size_t>(a)];
-      for (int i = 0; i < n; ++i) add_product(N(i), dxi, s.dN(i, a));
-    }
-  }
-  return N;
-}
-
-/// Tangent dx/dxi of a line facet at a parameter of scalar type S; the second derivatives of
-/// the shape functions are 0 on line2 and (1, 1, -2) on line3 (nodes -1, 1, 0).
-template <class S> Vector<S, 2> line_tangent_t(const FacetT<S, 2>& f, const S& xi) {
-  const double v = value_of(xi);
-  const ShapeAt s = shape_at(f.type, &v, 1);
-  Eigen::Matrix<double, max_facet_nodes, 1> dN = s.dN.col(0);
-  Vector<S, 2> t = times<S, 2, 1>(f.x, dN, f.n_nodes);
-  if constexpr (is_dual<S>) {
-    if (f.type == fem::CellType::line3) {
-      const Eigen::Matrix<double, max_facet_nodes, 1> d2N =
-          (Eigen::Matrix<double, max_facet_nodes, 1>() << 1.0, 1.0, -2.0, 0, 0, 0, 0, 0, 0)
-              .finished();
-      t += times<S, 2, 1>(f.x, d2N, f.n_nodes) * (xi - v);
-    }
-  }
-  return t;
-}
-
 /// Tangents dx/dxi (and dx/deta) at a plain reference point.
 template <class S, int Dim>
 Eigen::Matrix<S, Dim, Dim - 1> tangents_t(const FacetT<S, Dim>& f, const double* xi) {
@@ -194,17 +157,6 @@ template <class S, int Dim> Vector<S, Dim> unit_normal_at_node(const FacetT<S, D
   SEAM_CHECK(value_of(norm(n)) > 0.0, InputError,
              "slave facet is degenerate (zero Jacobian at its node ", i, ")");
   return normalized(n);
-}
-
-/// N~ from N for the basis modification a of dual_basis.hpp (linear in N, so any scalar).
-template <class S> void modify_basis_t(fem::CellType type, double a, NodalVectorT<S>& N) {
-  if (a == 0.0) return;
-  for (const EdgeNode& e : edge_nodes(type)) {
-    const S edge_value = N(e.node);
-    N(e.v0) += a * edge_value;
-    N(e.v1) += a * edge_value;
-    N(e.node) = (1.0 - 2.0 * a) * edge_value;
-  }
 }
 
 /// Solve A X = B for small square A by Gaussian elimination with partial pivoting on values.

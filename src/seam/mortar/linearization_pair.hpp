@@ -1,17 +1,49 @@
 #pragma once
-// The element-pair mortar kernels of pair_integration.hpp (2D segmentation, 3D auxiliary
-// plane + clipping) on a scalar type S. With S = double they reproduce integrate_pair; with
-// S = Dual<N> every output — D, M, weighted gaps — carries its exact derivative with respect
-// to whatever the caller seeded: slave and master nodal coordinates, slave nodal normals
-// (ALGORITHMS.md §5, consistent linearization). The dual coefficients A_e are recomputed from
-// the slave facet's current coordinates, so dA_e enters too.
+// The linearized element-pair mortar kernels (ALGORITHMS.md §5, consistent linearization).
 //
-// Instantiated for S = double, Dual<12>, Dual<18> (2D) and double, Dual<36>, Dual<81> (3D):
-// enough for every pair's variables Dim * (2 n_slave + n_master), see pair_variable_count.
+// 2D: the segmentation kernel of pair_integration.hpp on a scalar type S. With S = double it
+// reproduces integrate_pair; with S = Dual<N> every output — D, M, weighted gaps — carries
+// its exact derivative with respect to whatever the caller seeded: slave and master nodal
+// coordinates, slave nodal normals. Instantiated for double, Dual<12> and Dual<18>: exactly
+// the pair variables Dim * (2 n_slave + n_master) of line2 and line3 pairs.
+//
+// 3D: linearize_pair_3d differentiates the auxiliary-plane / clipping / cell quadrature in
+// mixed mode (dual numbers over a few local variables for the plane and the clip polygon,
+// hand-chained partial derivatives per integration point); see linearization_pair_3d.cpp.
+//
+// Both take the dual coefficients A_e with their derivatives dA_e from
+// CoefficientLinearization, so dA_e enters and a slave facet computes it once for all its
+// master candidates.
 #include "seam/mortar/linearization_kernels.hpp"
 #include "seam/mortar/pair_integration.hpp"
 
+namespace seam::mortar {
+struct PairLinearization;
+}
+
 namespace seam::mortar::ad {
+
+/// The dual coefficients A_e of a slave facet in its current configuration and their
+/// derivatives with respect to its nodal coordinates (ALGORITHMS.md §3:
+/// dA_e = (dD_e - A_e dM_e) M_e^{-1}); they depend on the slave facet only, so a slave facet
+/// computes them once for all its master candidates.
+struct CoefficientLinearization {
+  int n = 0;           ///< slave nodes
+  int n_variables = 0; ///< Dim * n
+  SmallMatrix A;
+  /// dA_jk / dx_v at (j * n + k) * n_variables + v.
+  std::array<double, max_facet_nodes * max_facet_nodes * 3 * max_facet_nodes> gradient{};
+};
+
+template <int Dim>
+void linearize_coefficients(const Facet<Dim>& facet, double modification,
+                            CoefficientLinearization& out);
+
+/// linearize_pair in 3D by mixed-mode differentiation (linearization_pair_3d.cpp).
+/// `coefficients` are the slave's (required for dual multipliers, ignored otherwise).
+void linearize_pair_3d(const SlaveFacet<3>& slave, const Facet<3>& master,
+                       const PairOptions& options, const CoefficientLinearization* coefficients,
+                       PairLinearization& out);
 
 /// A slave facet on scalar S: coordinates, unit averaged nodal normals (columns) and the
 /// multiplier basis evaluated in the same configuration.
@@ -22,19 +54,6 @@ template <class S, int Dim> struct SlaveFacetT {
   double modification = 0.0; ///< a of dual_basis.hpp
   SmallMatrixT<S> A;         ///< dual coefficients; unused for standard multipliers
 };
-
-template <class S, int Dim>
-SlaveFacetT<S, Dim> make_slave_facet_t(const FacetT<S, Dim>& facet,
-                                       const Eigen::Matrix<S, Dim, max_facet_nodes>& normals,
-                                       Multiplier multiplier) {
-  SlaveFacetT<S, Dim> s;
-  s.facet = facet;
-  s.normals = normals;
-  s.multiplier = multiplier;
-  s.modification = basis_modification(facet.type, multiplier);
-  if (multiplier == Multiplier::dual) s.A = dual_coefficients_t(facet, s.modification);
-  return s;
-}
 
 /// PairContribution on scalar S (the counters stay plain).
 template <class S> struct PairContributionT {
@@ -59,11 +78,6 @@ template <class S>
 PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 2>& slave, const FacetT<S, 2>& master,
                                       const PairOptions& options);
 
-/// 3D integration via auxiliary planes and clipping (integration_3d.cpp).
-template <class S>
-PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 3>& slave, const FacetT<S, 3>& master,
-                                      const PairOptions& options);
-
 namespace detail {
 
 template <class S> PairContributionT<S> empty_contribution_t(int n_slave, int n_master) {
@@ -73,22 +87,6 @@ template <class S> PairContributionT<S> empty_contribution_t(int n_slave, int n_
   c.D = SmallMatrixT<S>::Zero(n_slave, n_slave);
   c.M = SmallMatrixT<S>::Zero(n_slave, n_master);
   return c;
-}
-
-/// N~ and Phi = A N~ (or N~) from the standard shape values N (slave_functions).
-template <class S, int Dim>
-void slave_functions_t(const SlaveFacetT<S, Dim>& slave, const NodalVectorT<S>& N,
-                       NodalVectorT<S>& N_tilde, NodalVectorT<S>& Phi) {
-  N_tilde = N;
-  modify_basis_t(slave.facet.type, slave.modification, N_tilde);
-  if (slave.multiplier == Multiplier::dual) {
-    const int n = slave.facet.n_nodes;
-    Phi.setZero();
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) add_product(Phi(j), slave.A(j, k), N_tilde(k));
-  } else {
-    Phi = N_tilde;
-  }
 }
 
 /// detail::accumulate_point of pair_integration.hpp on S (with the same dual-multiplier row-sum
@@ -121,11 +119,5 @@ extern template PairContributionT<Dual<12>>
 integrate_pair_t(const SlaveFacetT<Dual<12>, 2>&, const FacetT<Dual<12>, 2>&, const PairOptions&);
 extern template PairContributionT<Dual<18>>
 integrate_pair_t(const SlaveFacetT<Dual<18>, 2>&, const FacetT<Dual<18>, 2>&, const PairOptions&);
-extern template PairContributionT<double>
-integrate_pair_t(const SlaveFacetT<double, 3>&, const FacetT<double, 3>&, const PairOptions&);
-extern template PairContributionT<Dual<36>>
-integrate_pair_t(const SlaveFacetT<Dual<36>, 3>&, const FacetT<Dual<36>, 3>&, const PairOptions&);
-extern template PairContributionT<Dual<81>>
-integrate_pair_t(const SlaveFacetT<Dual<81>, 3>&, const FacetT<Dual<81>, 3>&, const PairOptions&);
 
 } // namespace seam::mortar::ad

@@ -20,6 +20,38 @@ template <class S> struct SegmentT {
   S xb = 0.0;
 };
 
+// Shape functions of line2 / line3 (nodes -1, 1, 0) with first and second derivatives.
+struct LineShape {
+  std::array<double, 3> N{}, dN{}, d2N{};
+};
+
+LineShape line_shape(fem::CellType type, double xi) {
+  if (type == fem::CellType::line2)
+    return {{0.5 * (1.0 - xi), 0.5 * (1.0 + xi), 0.0}, {-0.5, 0.5, 0.0}, {}};
+  return {{0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi},
+          {xi - 0.5, xi + 0.5, -2.0 * xi},
+          {1.0, 1.0, -2.0}};
+}
+
+// project_onto_facet along d; a straight master (line2) in closed form: with
+// x(eta) = m + eta h, (x(eta) - p) x d = 0 gives eta = (p - m) x d / (h x d).
+geometry::CurveProjection project_on_master(const Facet<2>& master, const Eigen::Vector2d& p,
+                                            const Eigen::Vector2d& d, double eta0,
+                                            const geometry::NewtonOptions& options) {
+  if (master.type == fem::CellType::line2) {
+    const Eigen::Vector2d m = 0.5 * (master.x.col(0) + master.x.col(1));
+    const Eigen::Vector2d h = 0.5 * (master.x.col(1) - master.x.col(0));
+    const double slope = geometry::cross2(h, d);
+    if (std::abs(slope) > 1e-14 * h.norm() * d.norm()) {
+      geometry::CurveProjection r;
+      r.xi = geometry::cross2(Eigen::Vector2d(p - m), d) / slope;
+      r.converged = std::isfinite(r.xi);
+      if (r.converged) return r;
+    }
+  }
+  return project_onto_facet(master, p, d, eta0, options);
+}
+
 template <class S> S clamp_unit(const S& xi) {
   if (value_of(xi) < -1.0) return S(-1.0);
   if (value_of(xi) > 1.0) return S(1.0);
@@ -99,28 +131,72 @@ PairContributionT<S> integrate_pair_t(const SlaveFacetT<S, 2>& slave, const Face
 
   using Rule = geometry::LineRule5;
   const S segment_jacobian = 0.5 * (segment.xb - segment.xa);
+  const int ns = s.n_nodes, nm = master.n_nodes;
   double eta_guess = 0.0;
   NodalVectorT<S> N_tilde;
   NodalVectorT<S> Phi;
+  NodalVectorT<S> N = NodalVectorT<S>::Zero();
+  NodalVectorT<S> Nm = NodalVectorT<S>::Zero();
   for (int q = 0; q < Rule::n_points; ++q) {
     const double g = Rule::points[static_cast<std::size_t>(q)];
     const S xi = 0.5 * ((1.0 - g) * segment.xa + (1.0 + g) * segment.xb);
-    const NodalVectorT<S> N = shape_values_t<S, 2>(s.type, &xi);
-    const Vector<S, 2> x_s = interpolate<S, 2>(s.x, N, s.n_nodes);
-    const Vector<S, 2> n = normalized(interpolate<S, 2>(slave.normals, N, s.n_nodes));
-    // The Gauss point's image on the master along the interpolated slave normal.
-    const CurveProjectionT<S> image =
-        project_onto_line_t<S>(master, x_s, n, eta_guess, options.newton);
+    const double xi_value = value_of(xi);
+    // To first order N(xi) = N(v) + N'(v) (xi - v) and x'(xi) = x'(v) + x''(v) (xi - v).
+    const LineShape shape = line_shape(s.type, xi_value);
+    const S dxi = xi - xi_value;
+    Vector<S, 2> x_s = Vector<S, 2>::Zero(), normal = Vector<S, 2>::Zero(),
+                 tangent = Vector<S, 2>::Zero();
+    for (int k = 0; k < ns; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      N(k) = shape.N[i];
+      add_product(N(k), dxi, shape.dN[i]);
+      S dN = shape.dN[i];
+      if (shape.d2N[i] != 0.0) add_product(dN, dxi, shape.d2N[i]);
+      for (int a = 0; a < 2; ++a) {
+        add_product(x_s(a), s.x(a, k), N(k));
+        add_product(normal(a), slave.normals(a, k), N(k));
+        add_product(tangent(a), s.x(a, k), dN);
+      }
+    }
+    const Vector<S, 2> n = normalized(normal);
+    // The Gauss point's image on the master along the interpolated slave normal: Newton on
+    // values, then the implicit-function step (linearization_kernels.hpp).
+    const geometry::CurveProjection image =
+        project_on_master(mv, values(x_s), values(n), eta_guess, options.newton);
     if (!image.converged) {
       ++c.n_projection_failures;
       continue;
     }
-    eta_guess = value_of(image.xi);
-    const NodalVectorT<S> Nm = shape_values_t<S, 2>(master.type, &image.xi);
-    const Vector<S, 2> x_m = interpolate<S, 2>(master.x, Nm, master.n_nodes);
-    const S w = Rule::weights[static_cast<std::size_t>(q)] * norm(line_tangent_t<S>(s, xi)) *
-                segment_jacobian;
-    detail::slave_functions_t(slave, N, N_tilde, Phi);
+    eta_guess = image.xi;
+    const LineShape master_shape = line_shape(master.type, image.xi);
+    Vector<S, 2> residual = -x_s;
+    Eigen::Vector2d dx = Eigen::Vector2d::Zero();
+    for (int l = 0; l < nm; ++l) {
+      const auto i = static_cast<std::size_t>(l);
+      for (int a = 0; a < 2; ++a) add_product(residual(a), master.x(a, l), master_shape.N[i]);
+      dx += master_shape.dN[i] * mv.x.col(l);
+    }
+    const S eta =
+        at_root<S>(image.xi, image.xi - cross2<S>(residual, n) / geometry::cross2(dx, values(n)));
+    const S deta = eta - image.xi;
+    Vector<S, 2> x_m = Vector<S, 2>::Zero();
+    for (int l = 0; l < nm; ++l) {
+      const auto i = static_cast<std::size_t>(l);
+      Nm(l) = master_shape.N[i];
+      add_product(Nm(l), deta, master_shape.dN[i]);
+      for (int a = 0; a < 2; ++a) add_product(x_m(a), master.x(a, l), Nm(l));
+    }
+    const S w = Rule::weights[static_cast<std::size_t>(q)] * norm(tangent) * segment_jacobian;
+    // Phi = A N~ (N~ = N on lines) over the node count only.
+    for (int j = 0; j < ns; ++j) {
+      N_tilde(j) = N(j);
+      if (slave.multiplier == Multiplier::dual) {
+        Phi(j) = slave.A(j, 0) * N(0);
+        for (int k = 1; k < ns; ++k) add_product(Phi(j), slave.A(j, k), N(k));
+      } else {
+        Phi(j) = N(j);
+      }
+    }
     detail::accumulate_point_t(c, slave.multiplier, w, N_tilde, Phi, Nm,
                                dot(n, Vector<S, 2>(x_m - x_s)));
     c.area += value_of(w);

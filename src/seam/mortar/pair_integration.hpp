@@ -32,6 +32,9 @@ struct PairOptions {
   /// 3D: polynomial degree of the triangle rule per integration cell; 0 = automatic: the
   /// 7-point degree-5 rule (ALGORITHMS.md §2, step 6) when both facets are linear, degree 8
   /// when one is quadratic, which keeps Phi_j N_k of biquadratic facets exact on affine cells.
+  /// The rule must not change between Newton iterations (the derivatives would not be those
+  /// of the operators), so an interface chooses it once (e.g. degree 8 when it has quad4
+  /// facets that are not parallelograms, is_affine).
   int cell_quadrature_degree = 0;
 };
 

@@ -102,9 +102,11 @@ public:
 
   /// All forces the surroundings exert on the body at the last evaluation: applied loads plus
   /// support reactions, f_ext + (f_int - f_ext) = f_int at equilibrium.
+  /// With contact the bulk residual is taken, so that the contact forces of rigid planes count
+  /// as external actions too: f_ext + (f_int - f_ext) = f_int.
   void total_external_force(la::Vector& out) const {
     out.copy_from(f_ext_);
-    out.axpy(1.0, r_full_);
+    out.axpy(1.0, contact_.active() ? r_ : r_full_);
   }
 
   /// The Lagrange multipliers of every mesh-tying interface (per slave node, dim values), on

@@ -23,6 +23,12 @@ using test::Surface;
 
 namespace {
 
+MortarOptions options_for(Multiplier m) {
+  MortarOptions o;
+  o.multiplier = m;
+  return o;
+}
+
 void perturb(Surface& s, std::mt19937& rng, double amplitude) {
   std::uniform_real_distribution<double> u(-amplitude, amplitude);
   for (double& x : s.coordinates) x += u(rng);
@@ -89,7 +95,7 @@ Eigen::VectorXd assembled_outputs(const Interface& i, local_index slave_facet,
                                   const SlaveFacetLinearization& lin, Multiplier m) {
   const auto pairs = candidates_of(slave_facet, i.master.view().n_facets());
   const MortarOperators ops =
-      assemble_mortar_operators(i.slave.view(), i.master.view(), pairs, {m, {}});
+      assemble_mortar_operators(i.slave.view(), i.master.view(), pairs, options_for(m));
   const Eigen::MatrixXd D = test::dense(ops.D, i.slave.n_nodes(), i.slave.n_nodes());
   const Eigen::MatrixXd M = test::dense(ops.M, i.slave.n_nodes(), i.master.n_nodes());
   const int ns = lin.n_slave, nm = lin.n_master_nodes();
@@ -117,7 +123,7 @@ FacetCheck check_facet(const Interface& iface, local_index slave_facet, Multipli
   std::iota(masters.begin(), masters.end(), local_index{0});
   SlaveFacetLinearization lin;
   linearize_slave_facet(iface.slave.view(), iface.master.view(), adjacency, slave_facet, masters,
-                        {m, {}}, lin);
+                        options_for(m), lin);
   EXPECT_GT(lin.n_pairs_integrated, 0);
   const int dim = iface.slave.dim, ns = lin.n_slave, nm = lin.n_master_nodes();
   const int nv = lin.n_variables();
@@ -183,7 +189,7 @@ FacetCheck check_facet(const Interface& iface, local_index slave_facet, Multipli
 double value_difference(const Interface& i, Multiplier m) {
   const FacetSet s = i.slave.view(), ms = i.master.view();
   const MortarOperators ops =
-      assemble_mortar_operators(s, ms, test::all_pairs(i.slave, i.master), {m, {}});
+      assemble_mortar_operators(s, ms, test::all_pairs(i.slave, i.master), options_for(m));
   Eigen::MatrixXd D = test::dense(ops.D, i.slave.n_nodes(), i.slave.n_nodes());
   Eigen::MatrixXd M = test::dense(ops.M, i.slave.n_nodes(), i.master.n_nodes());
   Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(ops.weighted_gap.data(), i.slave.n_nodes());
@@ -193,7 +199,7 @@ double value_difference(const Interface& i, Multiplier m) {
   std::iota(masters.begin(), masters.end(), local_index{0});
   SlaveFacetLinearization lin;
   for (local_index f = 0; f < s.n_facets(); ++f) {
-    linearize_slave_facet(s, ms, adjacency, f, masters, {m, {}}, lin);
+    linearize_slave_facet(s, ms, adjacency, f, masters, options_for(m), lin);
     for (int j = 0; j < lin.n_slave; ++j) {
       const local_index row = lin.slave_nodes[static_cast<std::size_t>(j)];
       for (int k = 0; k < lin.n_slave; ++k)

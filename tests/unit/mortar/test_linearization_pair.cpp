@@ -63,12 +63,13 @@ template <int Dim> PairCase<Dim> unpack(PairCase<Dim> c, const Eigen::VectorXd& 
 
 // D (all n_s^2 entries), M, g~ from the original double kernel.
 template <int Dim>
-Eigen::VectorXd reference_outputs(const PairCase<Dim>& c, Multiplier multiplier) {
+Eigen::VectorXd reference_outputs(const PairCase<Dim>& c, Multiplier multiplier,
+                                  const PairOptions& options = {}) {
   SlaveFacet<Dim> s;
   s.facet = c.slave;
   s.normals = c.normals;
   s.basis = make_slave_basis(c.slave, multiplier);
-  const PairContribution r = integrate_pair(s, c.master);
+  const PairContribution r = integrate_pair(s, c.master, options);
   const int ns = c.slave.n_nodes, nm = c.master.n_nodes;
   Eigen::VectorXd out(ns * ns + ns * nm + ns);
   for (int j = 0; j < ns; ++j) {
@@ -85,13 +86,14 @@ struct Outcome {
   int n_cells = 0;
 };
 
-template <int Dim> Outcome check_pair(const PairCase<Dim>& c, Multiplier multiplier) {
+template <int Dim>
+Outcome check_pair(const PairCase<Dim>& c, Multiplier multiplier, const PairOptions& options = {}) {
   SlaveFacet<Dim> s;
   s.facet = c.slave;
   s.normals = c.normals;
   s.basis.multiplier = multiplier;
   PairLinearization lin;
-  linearize_pair(s, c.master, {}, lin);
+  linearize_pair(s, c.master, options, lin);
   const int ns = c.slave.n_nodes, nm = c.master.n_nodes;
   Eigen::MatrixXd ad(ns * ns + ns * nm + ns, lin.n_variables);
   Eigen::VectorXd values(ad.rows());
@@ -106,7 +108,7 @@ template <int Dim> Outcome check_pair(const PairCase<Dim>& c, Multiplier multipl
   }
   const Eigen::VectorXd q = pack(c);
   const auto f = [&](const Eigen::VectorXd& x) {
-    return reference_outputs(unpack(c, x), multiplier);
+    return reference_outputs(unpack(c, x), multiplier, options);
   };
   Outcome o;
   o.n_cells = lin.values.n_cells;
@@ -296,4 +298,42 @@ TEST(LinearizationPair3D, QuadraticFacetsAgainstFiniteDifferences) {
     }
   }
   std::printf("[ 3D quadratic pairs ] worst relative derivative error %.2e\n", worst);
+}
+
+// The higher-degree cell rule (seam::fem's triangle rule instead of the 7-point one) on linear
+// facets, and a slave facet reused for several masters (the dual coefficients are computed
+// per call): derivatives against central differences, values against integrate_pair.
+TEST(LinearizationPair3D, HigherCellRuleAndRepeatedCalls) {
+  std::mt19937 rng(17);
+  PairOptions options;
+  options.cell_quadrature_degree = 8;
+  double worst = 0.0;
+  PairLinearization reused;
+  for (const CellType st : {CellType::tri3, CellType::quad4}) {
+    for (const CellType mt : {CellType::quad4, CellType::tri3}) {
+      for (const Multiplier m : {Multiplier::dual, Multiplier::standard}) {
+        const PairCase<3> c = random_pair_3d(st, mt, Shape::curved, rng);
+        const Outcome o = check_pair(c, m, options);
+        ASSERT_GT(o.n_cells, 0);
+        EXPECT_LT(o.max_error, 1e-6) << seam::fem::name(st) << "/" << seam::fem::name(mt);
+        EXPECT_LT(o.max_value_difference, 1e-13);
+        worst = std::max(worst, o.max_error);
+        // The same pair through a PairLinearization that held a larger pair before: the
+        // result does not depend on what the reused buffers contained.
+        SlaveFacet<3> s;
+        s.facet = c.slave;
+        s.normals = c.normals;
+        s.basis.multiplier = m;
+        PairLinearization fresh;
+        linearize_pair(s, c.master, options, fresh);
+        linearize_pair(s, c.master, options, reused);
+        ASSERT_EQ(fresh.M_gradient.size(), reused.M_gradient.size());
+        for (std::size_t i = 0; i < fresh.M_gradient.size(); ++i)
+          ASSERT_EQ(fresh.M_gradient[i], reused.M_gradient[i]);
+        for (std::size_t i = 0; i < fresh.gap_gradient.size(); ++i)
+          ASSERT_EQ(fresh.gap_gradient[i], reused.gap_gradient[i]);
+      }
+    }
+  }
+  std::printf("[ 3D pairs, degree-8 cells ] worst relative derivative error %.2e\n", worst);
 }

@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""Draws contact results of seam runs.
+
+Hertz (examples/hertz_2d, examples/hertz_3d): the nodal contact pressure of the last step
+against the distance from the centre of contact, beside Hertz's p0 sqrt(1 - s^2/b^2) for the
+load measured at the loaded region (tests/verification/contact_analysis.py has the formulas).
+
+    /usr/bin/python3 scripts/plot_contact.py hertz hertz_2d_out --symmetry 2 \
+        --mesh examples/hertz_2d/cylinder.geo -o hertz_2d.png
+    /usr/bin/python3 scripts/plot_contact.py hertz hertz_3d_out --symmetry 4 \
+        --mesh examples/hertz_3d/sphere.geo -o hertz_3d.png
+
+History (examples/torus): contact force, active nodes and Newton iterations per step.
+
+    /usr/bin/python3 scripts/plot_contact.py history torus_out -o torus.png
+"""
+import argparse
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+                                "verification"))
+import contact_analysis as C  # noqa: E402
+
+
+def hertz(args):
+    name = [f for f in os.listdir(args.out) if f.startswith("interface_")][0]
+    rows = C.read_csv(os.path.join(args.out, name))
+    dim = 3 if any(abs(r["z"]) > 0 for r in rows) else 2
+    estar = args.young / (1 - args.poisson ** 2)
+    force = abs(C.reaction(args.out, args.reaction, dim - 1)) * args.symmetry
+    b_ref, p_ref = (C.hertz_2d if dim == 2 else C.hertz_3d)(force, args.radius, estar)
+
+    def distance(r, current):
+        x = r["x"] + (r["ux"] if current else 0.0)
+        y = r["y"] + (r["uy"] if current else 0.0)
+        return abs(x) if dim == 2 else math.hypot(x, y)
+
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    ss = [1.6 * b_ref * k / 400 for k in range(401)]
+    ax.plot([s / b_ref for s in ss], [math.sqrt(max(0.0, 1 - (s / b_ref) ** 2)) for s in ss],
+            "k-", label="Hertz, F = %.4g" % force)
+    near = [r for r in rows if distance(r, False) < 1.6 * b_ref]
+    ax.plot([distance(r, True) / b_ref for r in near], [r["normal_traction"] / p_ref for r in near],
+            "x", ms=4, color="0.6", label="seam, per current area at current positions")
+    if args.mesh:
+        mesh = args.mesh
+        if mesh.endswith(".geo"):
+            import tempfile
+            mesh = C.mesh_geo(mesh, dim, os.path.join(tempfile.mkdtemp(), "mesh.msh"))
+        facets, _ = C.slave_facets(C.read_msh(mesh), args.slave)
+        tractions, _ = C.reference_tractions(rows, facets)
+        p0, b = C.fitted_hertz(rows, dim, current=False, tractions=tractions)
+        ax.plot([distance(r, False) / b_ref for r in near],
+                [tractions[int(r["node"])] / p_ref for r in near], "o", ms=3,
+                label="seam, per reference area at reference positions")
+        ax.plot([s / b_ref for s in ss],
+                [p0 * math.sqrt(max(0.0, 1 - (s / b) ** 2)) / p_ref for s in ss], "C1--",
+                label="fit: b %+.2f %%, p0 %+.2f %%" % (100 * (b / b_ref - 1),
+                                                        100 * (p0 / p_ref - 1)))
+    ax.set_xlabel("distance from the centre / Hertz " +
+                  ("half-width" if dim == 2 else "contact radius"))
+    ax.set_ylabel("contact pressure / Hertz peak pressure")
+    ax.set_title("%dD Hertz contact, %d active nodes"
+                 % (dim, sum(1 for r in rows if C.is_active(r))))
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=130)
+
+
+def history(args):
+    itf = C.read_csv(os.path.join(args.out, "interfaces.csv"))
+    steps = C.read_csv(os.path.join(args.out, "steps.csv"))
+    fig, ax = plt.subplots(3, 1, figsize=(6, 7), sharex=True)
+    ax[0].plot([r["time"] for r in itf], [r["normal_force"] for r in itf], "C0-")
+    ax[0].set_ylabel("contact force")
+    ax[1].plot([r["time"] for r in itf], [r["active_nodes"] for r in itf], "C1-")
+    ax[1].set_ylabel("active nodes")
+    ax[2].step([r["time"] for r in steps], [r["newton_iterations"] for r in steps], "C2-",
+               where="post")
+    ax[2].set_ylabel("Newton iterations")
+    ax[2].set_xlabel("t")
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=130)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("kind", choices=["hertz", "history"])
+    p.add_argument("out", help="seam output directory")
+    p.add_argument("-o", "--output", default="contact.png")
+    p.add_argument("--radius", type=float, default=1.0)
+    p.add_argument("--young", type=float, default=1.0)
+    p.add_argument("--poisson", type=float, default=0.3)
+    p.add_argument("--symmetry", type=float, default=1.0)
+    p.add_argument("--reaction", default="top")
+    p.add_argument("--mesh", help="the run's .msh or .geo: adds the traction per reference area")
+    p.add_argument("--slave", default="surface", help="slave region (with --mesh)")
+    args = p.parse_args()
+    (hertz if args.kind == "hertz" else history)(args)
+
+
+if __name__ == "__main__":
+    main()

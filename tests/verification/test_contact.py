@@ -1,0 +1,452 @@
+"""Frictionless mortar contact against analytic solutions.
+
+- Contact patch tests (nu = 0, so that the uniform state has no lateral strain and the
+  pressure per reference and per current area agree): a block pressed onto a rigid plane by a
+  prescribed displacement d of its top, 2D (distorted quads) and 3D (structured hexahedra, and
+  tetrahedra split into hexahedra, whose quad faces are not parallelograms); two blocks of
+  different stiffness with non-matching meshes (2D quads with either side as slave, 3D
+  tetrahedra, 3D hexahedra on 3 ranks). The contact pressure is d / sum(H_i / E_i) at every
+  slave node to 1e-8 relative and balances the top reaction. With nu = 0.3 (tetrahedra) the
+  slave nodes slide outwards and the pressure must still be uniform.
+- Hertz, examples/hertz_2d (cylinder on a rigid plane, plane strain) and examples/hertz_3d
+  (quarter sphere) on coarse meshes: half-width and peak pressure fitted to the traction per
+  reference area (contact_analysis.py) against Johnson's formulas evaluated with the measured
+  load, within 3 %; no slave node below the plane; the rebuilt nodal forces sum to the
+  interface force, which balances the support; np = 1 and np = 3 agree to 1e-8; Newton
+  converges quadratically once the active set has settled (Neo-Hooke variant).
+- SEAM_FULL=1 adds the fine meshes, where half-width and peak pressure must be within 2 %,
+  np = 3 for the sphere, and examples/torus on a coarse mesh (energy and force balance,
+  quadratic convergence, no step cut).
+"""
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import contact_analysis as C  # noqa: E402
+import geometry as G  # noqa: E402
+import harness as H  # noqa: E402
+
+EXAMPLES = os.path.join(H.HERE, "..", "..", "examples")
+FULL = os.environ.get("SEAM_FULL") == "1"
+_dirs = []  # temporary directories, removed at exit (also after a failure)
+
+# Hertz tolerances (relative). The coarse CI meshes resolve the contact zone with 6 (3D) to
+# 12 (2D) elements; the fine ones (SEAM_FULL=1) with 12 to 47 (BENCHMARKS.md asks for 2 %).
+COARSE_TOL = 0.03
+FINE_TOL = 0.02
+
+
+# ---------------------------------------------------------------------------------------------
+# Contact patch tests
+
+
+def patch_yaml(dimension, bcs, materials, bodies, interface, steps=2):
+    lines = ["dimension: %d" % dimension, "mesh: {geo: case.geo}", "materials:"]
+    lines += ["  %s: {model: linear_elastic, young: %r, poisson: %r}" % m for m in materials]
+    lines += ["bodies:"] + ["  - {region: %s, material: %s}" % b for b in bodies]
+    lines += ["boundary_conditions:"] + ["  - " + b for b in bcs]
+    lines += ["interfaces:", "  - " + interface]
+    lines += ["time: {integrator: static, end: 1, steps: %d}" % steps,
+              "solver: {newton: {tolerance: 1.0e-12, max_iterations: 25}}"]
+    return "\n".join(lines) + "\n"
+
+
+def run_case(geo, yaml, np=1):
+    work = tempfile.mkdtemp(prefix="seam_contact_")
+    H.write_case(work, "case.geo", geo)
+    path = H.write_case(work, "case.yaml", yaml)
+    _dirs.append(work)
+    out = H.solve(path, np=np)
+    _dirs.append(out)
+    return work, out
+
+
+def check_uniform_pressure(out, expected, area, load_region, axis, rtol=1e-8, name="contact"):
+    rows = H.read_csv(os.path.join(out, "interface_%s.csv" % name))
+    inactive = [r for r in rows if not C.is_active(r)]
+    if inactive:
+        raise AssertionError("%d of %d slave nodes inactive under uniform compression"
+                             % (len(inactive), len(rows)))
+    p = [r["normal_traction"] for r in rows]
+    if expected is None:  # only uniformity
+        expected = sum(p) / len(p)
+    worst = max(abs(v - expected) for v in p) / abs(expected)
+    print("   %d slave nodes, pressure %.12g .. %.12g, expected %.12g, max rel. error %.2e"
+          % (len(p), min(p), max(p), expected, worst))
+    if worst > rtol:
+        raise AssertionError("contact pressure not uniform/exact: max relative error %.3e > %.0e"
+                             % (worst, rtol))
+    f = C.reaction(out, load_region, axis)
+    H.assert_close(-f, expected * area, rtol=rtol, what="top reaction = pressure x area")
+    itf = H.last_step_rows(H.read_csv(os.path.join(out, "interfaces.csv")))[0]
+    H.assert_close(itf["normal_force"], expected * area, rtol=rtol,
+                   what="interfaces.csv normal_force")
+
+
+def test_patch_2d_rigid_plane():
+    E, d, ly = 100.0, 0.01, 1.0
+    yaml = patch_yaml(2, ["{region: left, type: dirichlet, components: [x], value: [0]}",
+                          "{region: top, type: dirichlet, components: [y], value: ['-%r*t']}" % d],
+                      [("m", E, 0.0)], [("body", "m")],
+                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
+                      "rigid_plane: {point: [0, 0], normal: [0, 1]}}")
+    work, out = run_case(G.rectangle("quad", 0.23, lx=2.0, ly=ly), yaml)
+    check_uniform_pressure(out, E * d / ly, 2.0, "top", 1)
+    H.cleanup(work, out)
+
+
+def patch_3d_rigid_plane(kind, h, rtol=1e-8):
+    E, d, lz = 100.0, 0.01, 1.0
+    yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
+                          "{region: front, type: dirichlet, components: [y], value: [0]}",
+                          "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
+                      [("m", E, 0.0)], [("body", "m")],
+                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
+                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
+    work, out = run_case(G.box(kind, h, lx=1.0, ly=1.0, lz=lz), yaml)
+    check_uniform_pressure(out, E * d / lz, 1.0, "top", 2, rtol=rtol)
+    H.cleanup(work, out)
+
+
+def test_patch_3d_rigid_plane():
+    """Structured hexahedra: parallelogram slave faces."""
+    patch_3d_rigid_plane("hex_structured", 0.2)
+
+
+def test_patch_3d_rigid_plane_distorted_hex():
+    """Tetrahedra split into hexahedra: quad4 slave faces that are not parallelograms, whose
+    shape functions are not polynomial on the triangles of the integration cells, so no cell
+    rule is exact (Puso & Laursen 2004). seam integrates such interfaces with the degree-8
+    rule (about 1e-6 here; the degree-5 rule gave 3e-4): the patch test holds to quadrature
+    accuracy, 1e-5."""
+    patch_3d_rigid_plane("hex", 0.5, rtol=1e-5)
+
+
+def test_patch_3d_rigid_plane_poisson():
+    """nu = 0.3: the slave nodes slide outwards on the plane; the pressure stays uniform."""
+    d = 0.01
+    yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
+                          "{region: front, type: dirichlet, components: [y], value: [0]}",
+                          "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
+                      [("m", 100.0, 0.3)], [("body", "m")],
+                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
+                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
+    work, out = run_case(G.box("tet", 0.35, lx=1.0, ly=1.0, lz=1.0), yaml)
+    rows = H.read_csv(os.path.join(out, "interface_contact.csv"))
+    p = [r["normal_traction"] for r in rows]
+    spread = (max(p) - min(p)) / max(p)
+    print("   nu = 0.3: pressure %.12g .. %.12g (spread %.1e)" % (min(p), max(p), spread))
+    if spread > 1e-8 or not all(C.is_active(r) for r in rows):
+        raise AssertionError("pressure not uniform with nu = 0.3: spread %.3e" % spread)
+    f = C.reaction(out, "top", 2)
+    itf = H.last_step_rows(H.read_csv(os.path.join(out, "interfaces.csv")))[0]
+    H.assert_close(itf["normal_force"], -f, rtol=1e-8, what="interface force = top reaction")
+    H.cleanup(work, out)
+
+
+def two_block_case(dimension, geo, slave, master, np=1):
+    E_lower, E_upper, d = 100.0, 40.0, 0.02
+    if dimension == 2:
+        bcs = ["{region: bottom, type: dirichlet, components: [y], value: [0]}",
+               "{region: left, type: dirichlet, components: [x], value: [0]}",
+               "{region: top, type: dirichlet, components: [y], value: ['-%r*t']}" % d]
+    else:
+        bcs = ["{region: bottom, type: dirichlet, components: [z], value: [0]}",
+               "{region: left, type: dirichlet, components: [x], value: [0]}",
+               "{region: front, type: dirichlet, components: [y], value: [0]}",
+               "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d]
+    yaml = patch_yaml(dimension, bcs, [("lo", E_lower, 0.0), ("up", E_upper, 0.0)],
+                      [("lower", "lo"), ("upper", "up")],
+                      "{name: contact, type: contact, slave: %s, master: %s, multiplier: dual}"
+                      % (slave, master))
+    work, out = run_case(geo, yaml, np=np)
+    # Two unit-height blocks in series: sigma = d / (1/E_lower + 1/E_upper).
+    check_uniform_pressure(out, d / (1.0 / E_lower + 1.0 / E_upper), 1.0, "top", dimension - 1)
+    H.cleanup(work, out)
+
+
+def test_patch_2d_two_blocks_slave_finer():
+    two_block_case(2, G.tied_rectangles(0.26, 0.11, kind="quad"), "upper_bottom", "lower_top")
+
+
+def test_patch_2d_two_blocks_slave_coarser():
+    two_block_case(2, G.tied_rectangles(0.26, 0.11, kind="quad"), "lower_top", "upper_bottom")
+
+
+def test_patch_3d_two_blocks_tet():
+    two_block_case(3, G.tied_boxes(0.35, 0.25, kind="tet"), "upper_bottom", "lower_top")
+
+
+def test_patch_3d_two_blocks_hex_np3():
+    two_block_case(3, G.tied_boxes(1.0 / 3.0, 0.25, kind="hex"), "upper_bottom", "lower_top",
+                   np=3)
+
+
+# ---------------------------------------------------------------------------------------------
+# Hertz
+
+
+_runs = {}
+GMSH = os.environ.get("GMSH", "gmsh")
+
+
+def example_run(name, yaml_name, geo_name, refine, np=1, replace=()):
+    """Runs an example with `refine = R;` set in its geometry; cached per configuration.
+    The geometry is meshed here by the gmsh executable (the same library seam meshes .geo
+    files with), so that the slave facets are known; returns (output dir, mesh path)."""
+    key = (name, refine, np, tuple(replace))
+    if key in _runs:
+        return _runs[key]
+    work = tempfile.mkdtemp(prefix="seam_%s_" % name)
+    with open(os.path.join(EXAMPLES, name, geo_name)) as f:
+        geo = f.read()
+    if "refine = 1;" not in geo:
+        raise AssertionError("%s/%s has no 'refine = 1;' line" % (name, geo_name))
+    geo_path = H.write_case(work, geo_name, geo.replace("refine = 1;", "refine = %r;" % refine))
+    msh = os.path.join(work, "mesh.msh")
+    p = subprocess.run([GMSH, "-format", "msh41", "-o", msh, "-" + ("3" if "3d" in name else "2"),
+                        geo_path], capture_output=True, text=True)
+    if p.returncode != 0 or not os.path.exists(msh):
+        raise AssertionError("gmsh failed on %s:\n%s" % (geo_path, p.stdout[-2000:]))
+    with open(os.path.join(EXAMPLES, name, yaml_name)) as f:
+        yaml = f.read()
+    for old, new in (("geo: %s" % geo_name, "file: mesh.msh"),) + tuple(replace):
+        if old not in yaml:
+            raise AssertionError("%r not in %s" % (old, yaml_name))
+        yaml = yaml.replace(old, new)
+    path = H.write_case(work, yaml_name, yaml)
+    out = tempfile.mkdtemp(prefix="seam_%s_out_" % name)
+    H.run(["run", path, "-o", out, "--quiet"], np=np)
+    summary = H.read_json(os.path.join(out, "summary.json"))
+    _runs[key] = (out, msh)
+    _dirs.extend([work, out])
+    print("   %s refine %g np %d: %d dofs, %d steps, %.1f s"
+          % (name, refine, np, summary["dofs"], summary["steps"], summary["wall_seconds"]))
+    return out, msh
+
+
+HERTZ_2D = dict(radius=1.0, young=1.0, poisson=0.3, symmetry=2.0)
+HERTZ_3D = dict(radius=1.0, young=1.0, poisson=0.3, symmetry=4.0)
+COARSE_2D, FINE_2D = 0.5, 2.0
+COARSE_3D, FINE_3D = 1.0, 2.0
+
+
+def hertz_2d(refine, np=1):
+    return example_run("hertz_2d", "hertz_2d.yaml", "cylinder.geo", refine, np)
+
+
+def hertz_3d(refine, np=1):
+    return example_run("hertz_3d", "hertz_3d.yaml", "sphere.geo", refine, np)
+
+
+def check_hertz(run, dimension, params, tol):
+    out, msh = run
+    rows = H.read_csv(os.path.join(out, "interface_contact.csv"))
+    facets, coords = C.slave_facets(C.read_msh(msh), "surface")
+    for r in rows:  # the mesh read here is the one seam solved on
+        if max(abs(r[k] - coords[int(r["node"])][i]) for i, k in enumerate("xyz")) > 1e-12:
+            raise AssertionError("slave node %d: coordinates differ from %s" % (r["node"], msh))
+    # Mortar contact enforces the weighted gap, measured along the interpolated slave normals;
+    # at the edge of the contact zone these are tilted, and in 3D the active nodes there sit
+    # a few 1e-8 R below the plane (the weighted gaps are 0 to round-off).
+    axis = "xyz"[dimension - 1]
+    lowest = min(r[axis] + r["u" + axis] for r in rows)
+    if lowest < -1e-6 * params["radius"]:
+        raise AssertionError("slave node below the rigid plane: %s = %.3e" % (axis, lowest))
+    tractions, total = C.reference_tractions(rows, facets)
+    itf = H.last_step_rows(H.read_csv(os.path.join(out, "interfaces.csv")))[0]
+    H.assert_close(total, itf["normal_force"], rtol=1e-10,
+                   what="sum of D_jj lambda_j (D rebuilt from the mesh) vs normal_force")
+    estar = params["young"] / (1.0 - params["poisson"] ** 2)
+    force = abs(C.reaction(out, "top", dimension - 1)) * params["symmetry"]
+    if dimension == 2:
+        b_ref, p_ref = C.hertz_2d(force, params["radius"], estar)
+    else:
+        b_ref, p_ref = C.hertz_3d(force, params["radius"], estar)
+    # Small-strain theory: reference coordinates, traction per reference area.
+    p0, b = C.fitted_hertz(rows, dimension, current=False, tractions=tractions)
+    p0_cur, b_cur = C.fitted_hertz(rows, dimension, current=True)
+    nact = sum(1 for r in rows if C.is_active(r))
+    eb, ep = (b - b_ref) / b_ref, (p0 - p_ref) / p_ref
+    print("   F = %.6g: b = %.6g (Hertz %.6g, %+.2f %%), p0 = %.6g (Hertz %.6g, %+.2f %%), "
+          "%d active nodes, b/R = %.3f; per current area at current positions: b %+.2f %%, "
+          "p0 %+.2f %%" % (force, b, b_ref, 100 * eb, p0, p_ref, 100 * ep, nact,
+                           b / params["radius"], 100 * (b_cur / b_ref - 1),
+                           100 * (p0_cur / p_ref - 1)))
+    if abs(eb) > tol or abs(ep) > tol:
+        raise AssertionError("Hertz: half-width error %.2f %%, peak pressure error %.2f %% "
+                             "(tolerance %.1f %%)" % (100 * eb, 100 * ep, 100 * tol))
+
+
+def test_hertz_2d_coarse():
+    check_hertz(hertz_2d(COARSE_2D), 2, HERTZ_2D, COARSE_TOL)
+
+
+def test_hertz_2d_fine():
+    if not FULL:
+        print("   skipped (set SEAM_FULL=1)")
+        return
+    check_hertz(hertz_2d(FINE_2D), 2, HERTZ_2D, FINE_TOL)
+
+
+def test_hertz_2d_no_penetration_and_balance():
+    out, _ = hertz_2d(COARSE_2D)
+    rows = H.read_csv(os.path.join(out, "interface_contact.csv"))
+    d = 0.02  # the example's prescribed approach; a length scale for the tolerances
+    lowest = min(r["y"] + r["uy"] for r in rows)
+    print("   lowest slave node y = %.3e, smallest gap %.3e"
+          % (lowest, min(r["gap"] for r in rows)))
+    if lowest < -1e-9 * d:
+        raise AssertionError("slave node below the rigid plane: y = %.3e" % lowest)
+    if min(r["gap"] for r in rows) < -1e-9 * d:
+        raise AssertionError("negative gap %.3e" % min(r["gap"] for r in rows))
+    for r in rows:
+        if C.is_active(r) and r["normal_traction"] < -1e-12:
+            raise AssertionError("active node %d in tension: %.3e" % (r["node"],
+                                                                       r["normal_traction"]))
+        if not C.is_active(r) and r["normal_traction"] != 0.0:
+            raise AssertionError("inactive node %d carries traction %.3e"
+                                 % (r["node"], r["normal_traction"]))
+    # The only vertical forces on the body: the support at the cut and the contact. The
+    # contact forces act along the averaged slave normals, which at the edge of the contact
+    # zone are tilted by the neighbouring free facet: their sum differs from the vertical
+    # force by a few 1e-7 here.
+    f = C.reaction(out, "top", 1)
+    itf = H.last_step_rows(H.read_csv(os.path.join(out, "interfaces.csv")))[0]
+    H.assert_close(itf["normal_force"], -f, rtol=1e-5, what="contact force = top reaction")
+
+
+def test_hertz_2d_parallel():
+    a, _ = hertz_2d(COARSE_2D, np=1)
+    b, _ = hertz_2d(COARSE_2D, np=3)
+    for what, get in (("top reaction", lambda o: C.reaction(o, "top", 1)),
+                      ("peak nodal pressure", lambda o: max(
+                          r["normal_traction"]
+                          for r in H.read_csv(os.path.join(o, "interface_contact.csv")))),
+                      ("contact force", lambda o: H.last_step_rows(
+                          H.read_csv(os.path.join(o, "interfaces.csv")))[0]["normal_force"])):
+        H.assert_close(get(b), get(a), rtol=1e-8, what="np = 3 vs np = 1: " + what)
+    na = sum(1 for r in H.read_csv(os.path.join(a, "interface_contact.csv")) if C.is_active(r))
+    nb = sum(1 for r in H.read_csv(os.path.join(b, "interface_contact.csv")) if C.is_active(r))
+    if na != nb:
+        raise AssertionError("active nodes differ: np = 1 %d, np = 3 %d" % (na, nb))
+
+
+def check_quadratic(out, floor_rel=1e-11, min_order=1.6):
+    orders = []
+    for step, its in sorted(C.newton_table(out).items()):
+        # Iterations from the last active-set change on: a fixed active set, smooth problem.
+        last_change = max([k for k, it in enumerate(its) if it[3] != 0], default=0)
+        res = [it[1] for it in its[last_change:]]
+        if not res:
+            continue
+        floor = floor_rel * max(it[1] for it in its)
+        o = C.convergence_orders(res, floor)
+        print("   step %d: %d iterations, residuals %s, changes %s, orders %s"
+              % (step, len(its) - 1, " ".join("%.1e" % it[1] for it in its),
+                 " ".join(str(it[3]) for it in its), " ".join("%.2f" % v for v in o)))
+        orders += o
+    if not orders:
+        raise AssertionError("no Newton iterations above round-off after the active set settled")
+    if max(orders) < min_order:
+        raise AssertionError("Newton not quadratic: observed orders %s" % orders)
+
+
+def test_hertz_2d_newton_quadratic():
+    """Neo-Hooke instead of linear elasticity, so that the settled problem is still nonlinear
+    and the asymptotic rate is visible in newton.csv."""
+    out, _ = example_run("hertz_2d", "hertz_2d.yaml", "cylinder.geo", COARSE_2D,
+                      replace=(("model: linear_elastic", "model: neo_hooke"),
+                               ('"-0.02*t"', '"-0.1*t"')))
+    check_quadratic(out)
+
+
+def test_hertz_3d_coarse():
+    check_hertz(hertz_3d(COARSE_3D), 3, HERTZ_3D, COARSE_TOL)
+
+
+def test_hertz_3d_fine():
+    if not FULL:
+        print("   skipped (set SEAM_FULL=1)")
+        return
+    check_hertz(hertz_3d(FINE_3D), 3, HERTZ_3D, FINE_TOL)
+
+
+def test_hertz_3d_parallel():
+    if not FULL:
+        print("   skipped (set SEAM_FULL=1)")
+        return
+    a, _ = hertz_3d(COARSE_3D, np=1)
+    b, _ = hertz_3d(COARSE_3D, np=3)
+    H.assert_close(C.reaction(b, "top", 2), C.reaction(a, "top", 2), rtol=1e-8,
+                   what="np = 3 vs np = 1: top reaction")
+    pa = max(r["normal_traction"] for r in H.read_csv(os.path.join(a, "interface_contact.csv")))
+    pb = max(r["normal_traction"] for r in H.read_csv(os.path.join(b, "interface_contact.csv")))
+    H.assert_close(pb, pa, rtol=1e-8, what="np = 3 vs np = 1: peak nodal pressure")
+
+
+def test_torus_coarse():
+    """examples/torus on a coarse mesh (1536 cells, 25 steps): every step converges without a
+    cut and quadratically at the end; the wall's work equals the strain energy and its force
+    the support reaction (to the trapezoidal rule and the tilt of the averaged normals at the
+    edge of the contact zone); the crown follows the wall."""
+    if not FULL:
+        print("   skipped (set SEAM_FULL=1)")
+        return
+    work = tempfile.mkdtemp(prefix="seam_torus_")
+    _dirs.append(work)
+    with open(os.path.join(EXAMPLES, "torus", "torus.geo")) as f:
+        geo = f.read()
+    for old, new in (("nc = 12;", "nc = 8;"), ("na = 30;", "na = 12;")):
+        if old not in geo:
+            raise AssertionError("%r not in torus.geo" % old)
+        geo = geo.replace(old, new)
+    H.write_case(work, "torus.geo", geo)
+    with open(os.path.join(EXAMPLES, "torus", "torus.yaml")) as f:
+        yaml = f.read()
+    if "steps: 50}" not in yaml:
+        raise AssertionError("torus.yaml: no 'steps: 50}'")
+    path = H.write_case(work, "torus.yaml", yaml.replace("steps: 50}", "steps: 25}"))
+    out = H.solve(path)
+    _dirs.append(out)
+    steps = H.read_csv(os.path.join(out, "steps.csv"))
+    if len(steps) != 25:
+        raise AssertionError("%d steps instead of 25: step cuts" % len(steps))
+    itf = H.read_csv(os.path.join(out, "interfaces.csv"))
+    work_wall, prev_t, prev_f = 0.0, 0.0, 0.0
+    for r in itf:  # the wall moves by 50 t
+        work_wall += 0.5 * (r["normal_force"] + prev_f) * 50.0 * (r["time"] - prev_t)
+        prev_t, prev_f = r["time"], r["normal_force"]
+    energy = steps[-1]["internal_energy"]
+    support = C.reaction(out, "bottom", 2)
+    print("   wall work %.6g, strain energy %.6g; wall force %.6g, support %.6g; "
+          "%d active nodes, %d Newton iterations"
+          % (work_wall, energy, itf[-1]["normal_force"], support, itf[-1]["active_nodes"],
+             sum(int(r["newton_iterations"]) for r in steps)))
+    H.assert_close(work_wall, energy, rtol=0.01, what="work of the wall vs strain energy")
+    H.assert_close(itf[-1]["normal_force"], support, rtol=0.01, what="wall force vs support")
+    crown = [r for r in H.read_csv(os.path.join(out, "probes.csv"))
+             if r["probe"] == 0 and r["step"] == len(steps)][0]
+    H.assert_close(crown["uz"], -50.0, atol=0.05, what="crown displacement")
+    check_quadratic(out)
+
+
+def cleanup_runs():
+    H.cleanup(*_dirs)
+
+
+if __name__ == "__main__":
+    try:
+        H.main([test_patch_2d_rigid_plane, test_patch_3d_rigid_plane,
+                test_patch_3d_rigid_plane_distorted_hex,
+                test_patch_3d_rigid_plane_poisson, test_patch_2d_two_blocks_slave_finer,
+                test_patch_2d_two_blocks_slave_coarser, test_patch_3d_two_blocks_tet,
+                test_patch_3d_two_blocks_hex_np3,
+                test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
+                test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
+                test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
+                test_torus_coarse])
+    finally:
+        cleanup_runs()
