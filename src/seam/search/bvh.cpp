@@ -49,12 +49,8 @@ void Bvh<Dim, NS>::build(const FacetSurface& surface, std::span<const double> ol
 template <int Dim, int NS>
 void Bvh<Dim, NS>::refit(std::span<const double> coords, std::span<const double> old_coords) {
   SEAM_ASSERT(coords.size() == n_coords_);
-  const bool with_cones = has_normal_cones();
-  for (local_index s = 0; s < n_facets_; ++s) {
-    facet_bounds[s] = facet_volume(s, coords, old_coords);
-    if (with_cones) facet_cones[s] = facet_normal_cone(Dim, coords, slot_nodes(s));
-  }
-  merge_upwards();
+  SEAM_ASSERT(old_coords.empty() || old_coords.size() == n_coords_);
+  merge_upwards(coords, old_coords, true);
 }
 
 template <int Dim, int NS> void Bvh<Dim, NS>::rebuild_from_leaves() {
@@ -63,14 +59,12 @@ template <int Dim, int NS> void Bvh<Dim, NS>::rebuild_from_leaves() {
 }
 
 template <int Dim, int NS> void Bvh<Dim, NS>::build_topology() {
-  links.clear();
+  nodes.clear();
   if (n_facets_ == 0) {
-    bounds.clear();
     cones.clear();
     return;
   }
-  links.reserve(4 * static_cast<std::size_t>(n_facets_) / leaf_size_ + 1);
-  links.push_back({0, 0});
+  nodes.reserve(4 * static_cast<std::size_t>(n_facets_) / leaf_size_ + 1);
 
   // Split positions are the centres of the facets' axis-aligned extents.
   std::vector<float> centre(static_cast<std::size_t>(n_facets_) * Dim);
@@ -82,17 +76,22 @@ template <int Dim, int NS> void Bvh<Dim, NS>::build_topology() {
   std::vector<local_index> order(n_facets_);
   std::iota(order.begin(), order.end(), 0);
 
+  // Depth first, left before right, so that nodes are appended in preorder. A right subtree is
+  // appended after the whole left one; `parent` is the node whose link must point at it.
   struct Task {
-    std::int32_t node, begin, end;
+    std::int32_t begin, end, parent;
   };
   std::vector<Task> tasks;
   tasks.reserve(128);
-  tasks.push_back({0, 0, n_facets_});
+  tasks.push_back({0, n_facets_, -1});
   while (!tasks.empty()) {
     const Task t = tasks.back();
     tasks.pop_back();
+    const std::int32_t me = static_cast<std::int32_t>(nodes.size());
+    nodes.emplace_back();
+    if (t.parent >= 0) nodes[t.parent].link.first = me;
     if (t.end - t.begin <= leaf_size_) {
-      links[t.node] = {t.begin, -(t.end - t.begin)};
+      nodes[me].link = {t.begin, -(t.end - t.begin)};
       continue;
     }
     float lo[Dim], hi[Dim];
@@ -129,15 +128,11 @@ template <int Dim, int NS> void Bvh<Dim, NS>::build_topology() {
                          [&](local_index a, local_index b) { return key(a) < key(b); });
     }
     // All centres equal (e.g. every facet in one point): any balanced split will do.
-    const std::int32_t left = static_cast<std::int32_t>(links.size());
-    links.push_back({0, 0});
-    links.push_back({0, 0});
-    links[t.node] = {left, t.end - t.begin};
-    tasks.push_back({left + 1, mid, t.end});
-    tasks.push_back({left, t.begin, mid});
+    nodes[me].link = {-1, t.end - t.begin}; // first is set when the right child is appended
+    tasks.push_back({mid, t.end, me});
+    tasks.push_back({t.begin, mid, -1});
   }
-  bounds.resize(links.size());
-  cones.resize(facet_cones.empty() ? 0 : links.size());
+  cones.resize(facet_cones.empty() ? 0 : nodes.size());
 
   // Put the facets, their connectivity, volumes and cones into the new slot order.
   Array<local_index> facet(n_facets_), new_offsets(n_facets_ + 1), new_conn(conn.size());
@@ -160,32 +155,44 @@ template <int Dim, int NS> void Bvh<Dim, NS>::build_topology() {
   facet_cones.swap(facet_normals);
 }
 
-template <int Dim, int NS> void Bvh<Dim, NS>::merge_upwards() {
-  // Children follow their parent, so one backward sweep sees every child before its parent.
+template <int Dim, int NS>
+void Bvh<Dim, NS>::merge_upwards(std::span<const double> coords, std::span<const double> old_coords,
+                                 bool refit_facets) {
+  // Children follow their parent, so one backward sweep sees every child before its parent. A
+  // refit recomputes each leaf's facet volumes right where the leaf is merged: the volumes are
+  // still in cache when they are merged, instead of being written in one pass over all facets
+  // and read back in a second.
   const bool with_cones = has_normal_cones();
-  double nodes = 0.0, facets = 0.0;
+  double node_margins = 0.0, facet_margins = 0.0;
   for (std::int32_t i = n_tree_nodes() - 1; i >= 0; --i) {
-    const Link l = links[i];
+    Node<NS>& node = nodes[i];
+    const Link l = node.link;
     if (is_leaf(l)) {
+      const std::int32_t end = l.first - l.count;
+      if (refit_facets)
+        for (std::int32_t s = l.first; s < end; ++s) {
+          facet_bounds[s] = facet_volume(s, coords, old_coords);
+          if (with_cones) facet_cones[s] = facet_normal_cone(Dim, coords, slot_nodes(s));
+        }
       Volume v = facet_bounds[l.first];
-      facets += margin<Dim>(v);
-      for (std::int32_t s = l.first + 1; s < l.first - l.count; ++s) {
+      facet_margins += margin<Dim>(v);
+      for (std::int32_t s = l.first + 1; s < end; ++s) {
         v = merge(v, facet_bounds[s]);
-        facets += margin<Dim>(facet_bounds[s]);
+        facet_margins += margin<Dim>(facet_bounds[s]);
       }
-      bounds[i] = v;
+      node.bounds = v;
       if (with_cones) {
         NormalCone c = facet_cones[l.first];
-        for (std::int32_t s = l.first + 1; s < l.first - l.count; ++s) c = merge(c, facet_cones[s]);
+        for (std::int32_t s = l.first + 1; s < end; ++s) c = merge(c, facet_cones[s]);
         cones[i] = c;
       }
     } else {
-      bounds[i] = merge(bounds[l.first], bounds[l.first + 1]);
-      if (with_cones) cones[i] = merge(cones[l.first], cones[l.first + 1]);
+      node.bounds = merge(nodes[i + 1].bounds, nodes[l.first].bounds);
+      if (with_cones) cones[i] = merge(cones[i + 1], cones[l.first]);
     }
-    nodes += margin<Dim>(bounds[i]);
+    node_margins += margin<Dim>(node.bounds);
   }
-  quality_ = facets > 0.0 ? nodes / facets : 0.0;
+  quality_ = facet_margins > 0.0 ? node_margins / facet_margins : 0.0;
 }
 
 template class Bvh<2, 2>;

@@ -1,14 +1,16 @@
 #pragma once
 // The bounding volume hierarchy behind seam::search::Tree (internal; use tree.hpp).
 //
-// Flat arrays, no per-node allocation: node i has a Link and a Kdop (and, for self contact, a
-// NormalCone) at index i. The tree is built top-down (ALGORITHMS.md Sect. 6: split the longest
-// extent at its midpoint); children are stored as adjacent pairs and always after their parent,
-// so a refit is one backward sweep over the arrays, O(n). Facets are renumbered in tree order
-// ("slots"): a leaf holds a contiguous run of slots, and facet volumes, cones and connectivity
-// are stored in slot order, so a refit and the leaf-leaf tests read memory sequentially.
-// Leaves of a few facets (leaf_size, default 4) make the tree about four times smaller, which
-// matters once the trees no longer fit in cache.
+// Flat arrays, no per-node allocation. The tree is built top-down (ALGORITHMS.md Sect. 6: split
+// the longest extent at its midpoint) and stored in depth-first preorder: the left child of node
+// i is node i + 1, so every subtree is one contiguous run of the node array, and a node's
+// volume and topology sit together in one record. A traversal that descends the tree therefore
+// walks forward through memory, and a refit is one backward sweep, O(n), that sees every child
+// before its parent. Facets are renumbered in tree order ("slots"): a leaf holds a contiguous
+// run of slots, and facet volumes, cones and connectivity are stored in slot order, so leaves
+// that are neighbours in the tree are neighbours in memory. Leaves of a few facets (leaf_size,
+// default 4) make the tree about four times smaller, which matters once the trees no longer
+// fit in cache.
 #include "seam/common/types.hpp"
 #include "seam/search/facets.hpp"
 #include "seam/search/huge_page_allocator.hpp"
@@ -21,12 +23,18 @@
 
 namespace seam::search::detail {
 
-/// Topology of a node. An inner node has first = index of its left child (the right child is
-/// first + 1) and count = the number of facets below it (>= 2). A leaf holds the facet slots
+/// Topology of a node. An inner node i has its left child at i + 1, first = index of its right
+/// child and count = the number of facets below it (>= 2). A leaf holds the facet slots
 /// first .. first + n - 1 and stores count = -n.
 struct Link {
   std::int32_t first;
   std::int32_t count;
+};
+
+/// One tree node: its volume and its topology, read together by every node visit.
+template <int NS> struct Node {
+  Kdop<NS> bounds;
+  Link link;
 };
 
 inline bool is_leaf(Link l) {
@@ -56,7 +64,7 @@ public:
   void rebuild_from_leaves();
 
   local_index n_facets() const { return n_facets_; }
-  std::int32_t n_tree_nodes() const { return static_cast<std::int32_t>(links.size()); }
+  std::int32_t n_tree_nodes() const { return static_cast<std::int32_t>(nodes.size()); }
   std::size_t n_coords() const { return n_coords_; }
   double inflation() const { return inflation_; }
   bool has_normal_cones() const { return !cones.empty(); }
@@ -70,8 +78,7 @@ public:
     return {conn.data() + offsets[s], static_cast<std::size_t>(offsets[s + 1] - offsets[s])};
   }
 
-  Array<Link> links;                ///< per tree node
-  Array<Volume> bounds;             ///< per tree node
+  Array<Node<NS>> nodes;            ///< the tree in depth-first preorder; node 0 is the root
   Array<NormalCone> cones;          ///< per tree node; empty unless built with cones
   Array<Volume> facet_bounds;       ///< per facet slot (tree order)
   Array<NormalCone> facet_cones;    ///< per facet slot; empty unless built with cones
@@ -82,7 +89,10 @@ private:
   Volume facet_volume(local_index slot, std::span<const double> coords,
                       std::span<const double> old_coords) const;
   void build_topology();
-  void merge_upwards();
+  /// Recomputes the node volumes (and cones) bottom-up; with refit_facets it first recomputes
+  /// the facet volumes of each leaf from `coords` (and `old_coords`), in the same sweep.
+  void merge_upwards(std::span<const double> coords = {}, std::span<const double> old_coords = {},
+                     bool refit_facets = false);
 
   local_index n_facets_ = 0;
   int leaf_size_ = 1;
