@@ -110,6 +110,35 @@ def patch_3d_rigid_plane(kind, h, rtol=1e-8):
     H.cleanup(work, out)
 
 
+def test_patch_2d_rigid_plane_quadratic():
+    """quad9 cells, line3 slave faces: the quadratic dual basis needs no modification (every
+    integral of a line3 shape function is positive); the pressure is uniform at corner and
+    mid-side nodes alike."""
+    E, d, ly = 100.0, 0.01, 1.0
+    yaml = patch_yaml(2, ["{region: left, type: dirichlet, components: [x], value: [0]}",
+                          "{region: top, type: dirichlet, components: [y], value: ['-%r*t']}" % d],
+                      [("m", E, 0.0)], [("body", "m")],
+                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
+                      "rigid_plane: {point: [0, 0], normal: [0, 1]}}")
+    work, out = run_case(G.rectangle("quad", 0.3, order=2, lx=2.0, ly=ly), yaml)
+    check_uniform_pressure(out, E * d / ly, 2.0, "top", 1)
+    H.cleanup(work, out)
+
+
+def test_patch_3d_rigid_plane_quadratic():
+    """hex27 cells, quad9 slave faces on a rigid plane."""
+    E, d, lz = 100.0, 0.01, 1.0
+    yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
+                          "{region: front, type: dirichlet, components: [y], value: [0]}",
+                          "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
+                      [("m", E, 0.0)], [("body", "m")],
+                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
+                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
+    work, out = run_case(G.box("hex_structured", 0.5, order=2, lx=1.0, ly=1.0, lz=lz), yaml)
+    check_uniform_pressure(out, E * d / lz, 1.0, "top", 2)
+    H.cleanup(work, out)
+
+
 def test_patch_3d_rigid_plane():
     """Structured hexahedra: parallelogram slave faces."""
     patch_3d_rigid_plane("hex_structured", 0.2)
@@ -439,7 +468,8 @@ def cleanup_runs():
 
 if __name__ == "__main__":
     try:
-        H.main([test_patch_2d_rigid_plane, test_patch_3d_rigid_plane,
+        H.main([test_patch_2d_rigid_plane, test_patch_2d_rigid_plane_quadratic,
+                test_patch_3d_rigid_plane_quadratic, test_patch_3d_rigid_plane,
                 test_patch_3d_rigid_plane_distorted_hex,
                 test_patch_3d_rigid_plane_poisson, test_patch_2d_two_blocks_slave_finer,
                 test_patch_2d_two_blocks_slave_coarser, test_patch_3d_two_blocks_tet,
