@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace seam::problem {
 
@@ -309,6 +310,21 @@ int ContactConstraint::n_active() const {
   for (const auto& s : sides_)
     n += static_cast<int>(std::count(s.active.begin(), s.active.end(), 1));
   return n;
+}
+
+std::vector<std::string> ContactConstraint::describe() const {
+  std::vector<std::string> out;
+  for (const auto& s : sides_) {
+    char line[256];
+    std::snprintf(
+        line, sizeof line, "interface %s: contact, %d slave facets against %s, c_n = %.4g",
+        s.itf.name().c_str(), static_cast<int>(s.itf.slave().n_facets()),
+        s.itf.rigid() ? "a rigid plane"
+                      : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
+        s.c_n);
+    out.emplace_back(line);
+  }
+  return out;
 }
 
 std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {

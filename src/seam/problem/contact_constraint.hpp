@@ -26,6 +26,7 @@
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 
+#include <string>
 #include <vector>
 
 namespace seam::problem {
@@ -60,6 +61,8 @@ public:
   void restore();
 
   int n_active() const;
+  /// One line per interface for `seam check`.
+  std::vector<std::string> describe() const;
   /// Per interface, the state for the output files (replicated).
   std::vector<ContactReport> reports(const la::Vector& u) const;
 

@@ -175,6 +175,7 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
                 "slave nodes moved by at most %.3g\n",
                 t.name.c_str(), t.slave.n_facets(), t.master.n_facets(),
                 t.operators.n_integration_cells, t.max_relocation);
+  for (const auto& line : contact.describe()) std::printf("  %s\n", line.c_str());
   return 0;
 }
 
