@@ -25,25 +25,12 @@ modelled part's reaction to the full load: 2 for a half cylinder, 4 for a quarte
 `--reaction REGION` names the loaded Dirichlet region, `top` by default; `--mesh` the mesh the
 run used, or its .geo, which is meshed again here by gmsh).
 """
-import csv
 import math
 import os
 import sys
 
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    out = []
-    for r in rows:
-        conv = {}
-        for k, v in r.items():
-            try:
-                conv[k] = float(v)
-            except (TypeError, ValueError):
-                conv[k] = v
-        out.append(conv)
-    return out
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import read_csv  # noqa: E402  (shared with the other verification tests)
 
 
 def is_active(row):

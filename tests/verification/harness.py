@@ -65,7 +65,7 @@ def read_csv(path):
         for k, v in r.items():
             try:
                 conv[k] = float(v)
-            except ValueError:
+            except (TypeError, ValueError):
                 conv[k] = v
         out.append(conv)
     return out
