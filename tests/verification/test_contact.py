@@ -139,6 +139,23 @@ def test_patch_3d_rigid_plane_quadratic():
     H.cleanup(work, out)
 
 
+def test_patch_3d_rigid_plane_modified_basis():
+    """hex20 (quad8 faces) and tet10 (tri6 faces): dual multipliers need the modified slave
+    basis d = T d~ of Popp et al. 2012; the slave forces are T^-T D lambda n."""
+    E, d, lz = 100.0, 0.01, 1.0
+    yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
+                          "{region: front, type: dirichlet, components: [y], value: [0]}",
+                          "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
+                      [("m", E, 0.0)], [("body", "m")],
+                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
+                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
+    for geo in (G.box("hex_structured", 0.5, order=2, serendipity=True, lx=1.0, ly=1.0, lz=lz),
+                G.box("tet", 0.5, order=2, lx=1.0, ly=1.0, lz=lz)):
+        work, out = run_case(geo, yaml)
+        check_uniform_pressure(out, E * d / lz, 1.0, "top", 2)
+        H.cleanup(work, out)
+
+
 def test_patch_3d_rigid_plane():
     """Structured hexahedra: parallelogram slave faces."""
     patch_3d_rigid_plane("hex_structured", 0.2)
@@ -206,6 +223,12 @@ def test_patch_2d_two_blocks_slave_coarser():
 
 def test_patch_3d_two_blocks_tet():
     two_block_case(3, G.tied_boxes(0.35, 0.25, kind="tet"), "upper_bottom", "lower_top")
+
+
+def test_patch_3d_two_blocks_tet10_np3():
+    """tri6 slave faces (modified dual basis) on tri6 master faces, non-matching, 3 ranks."""
+    two_block_case(3, G.tied_boxes(0.5, 0.35, order=2, kind="tet"), "upper_bottom", "lower_top",
+                   np=3)
 
 
 def test_patch_3d_two_blocks_hex_np3():
@@ -469,11 +492,12 @@ def cleanup_runs():
 if __name__ == "__main__":
     try:
         H.main([test_patch_2d_rigid_plane, test_patch_2d_rigid_plane_quadratic,
-                test_patch_3d_rigid_plane_quadratic, test_patch_3d_rigid_plane,
+                test_patch_3d_rigid_plane_quadratic, test_patch_3d_rigid_plane_modified_basis,
+                test_patch_3d_rigid_plane,
                 test_patch_3d_rigid_plane_distorted_hex,
                 test_patch_3d_rigid_plane_poisson, test_patch_2d_two_blocks_slave_finer,
                 test_patch_2d_two_blocks_slave_coarser, test_patch_3d_two_blocks_tet,
-                test_patch_3d_two_blocks_hex_np3,
+                test_patch_3d_two_blocks_hex_np3, test_patch_3d_two_blocks_tet10_np3,
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,

@@ -143,6 +143,8 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     if (!affine) options_.pair.cell_quadrature_degree = 8;
   }
   slave_adjacency_ = mortar::node_facets(slave_.facet_set());
+  transformation_ =
+      mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
   // Candidates up to about one slave element away, so that approaching parts are integrated
   // (and get their weighted gaps) before they touch.
   search::SearchOptions so;

@@ -89,6 +89,11 @@ public:
   /// candidate pairs; recomputes the averaged nodal normals.
   void update(std::span<const double> u, double t);
 
+  /// The nodal transformation d = T d~ of a modified slave basis (dual multipliers on tri6 /
+  /// quad8 facets; mortar::MortarOperators::T), side-local; empty when T = I. D, M and g~
+  /// then refer to the modified basis and the slave contact force is T^-T (D lambda n).
+  const std::vector<mortar::Triplet>& transformation() const { return transformation_; }
+
   /// Averaged unit nodal normals of the slave side at the last update (dim per slave node).
   const std::vector<double>& normals() const { return normals_; }
   /// Candidate pairs of the last update (after the facing test).
@@ -126,6 +131,7 @@ private:
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<double> normals_;
+  std::vector<mortar::Triplet> transformation_;
 };
 
 } // namespace seam::contact

@@ -32,11 +32,18 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       io::fail_at(itf.mark, "interface '" + itf.name +
                                 "': contact condenses the multipliers and needs multiplier: dual");
     Side s(contact::ContactInterface(itf, disc.mesh()));
-    for (const auto type : s.itf.slave().types)
-      if (type == fem::CellType::tri6 || type == fem::CellType::quad8)
-        io::fail_at(itf.mark, "interface '" + itf.name +
-                                  "': contact on tri6/quad8 facets is not available in this "
-                                  "version of seam (line2, line3, tri3, quad4 and quad9 are)");
+    // T^-1 of the modified basis: vertex rows of T are unit rows, an edge node e has
+    // d_e = T_ee d~_e + sum_v T_ev d_v, so d~_e = (d_e - sum_v T_ev d_v) / T_ee.
+    {
+      const auto& T = s.itf.transformation();
+      for (const auto& e : T) {
+        if (e.row != e.col) continue;
+        s.T_inverse.push_back({e.row, e.row, 1.0 / e.value});
+        for (const auto& o : T)
+          if (o.row == e.row && o.col != e.row)
+            s.T_inverse.push_back({e.row, o.col, -o.value / e.value});
+      }
+    }
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain.
     s.c_n = itf.c_n ? *itf.c_n : young / s.itf.slave_mesh_size();
     const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
@@ -162,6 +169,26 @@ void ContactConstraint::add_force(la::Vector& r) const {
   for (const auto& s : sides_) {
     std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
     s.itf.add_force(s.part, s.lambda, f);
+    if (!s.T_inverse.empty()) {
+      // Slave forces of the modified basis: f_S = T^-T (D lambda n).
+      const auto& nodes = s.itf.slave().mesh_nodes;
+      std::vector<double> y(nodes.size() * dim), fs(nodes.size() * dim, 0.0);
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        for (int c = 0; c < dim; ++c)
+          y[j * dim + c] = f[static_cast<std::size_t>(nodes[j]) * dim + c];
+      std::vector<char> has_row(nodes.size(), 0);
+      for (const auto& e : s.T_inverse) has_row[static_cast<std::size_t>(e.row)] = 1;
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        if (!has_row[j])
+          for (int c = 0; c < dim; ++c) fs[j * dim + c] = y[j * dim + c];
+      for (const auto& e : s.T_inverse)
+        for (int c = 0; c < dim; ++c)
+          fs[static_cast<std::size_t>(e.col) * dim + c] +=
+              e.value * y[static_cast<std::size_t>(e.row) * dim + c];
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        for (int c = 0; c < dim; ++c)
+          f[static_cast<std::size_t>(nodes[j]) * dim + c] = fs[j * dim + c];
+    }
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (f[i] == 0.0) continue;
       rows.push_back(
@@ -263,21 +290,35 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   Kc_ = la::Matrix::from_triplets(mpi, n_owned, ki, kj, kv);
   const auto L = la::Matrix::from_triplets(mpi, n_owned, li, lj, lv);
   const auto G = la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv);
-  Ksys = la::Matrix::multiply(L, K);
+  if (transformed()) {
+    if (!P_.get()) P_ = transformation_rows();
+    const auto LP = la::Matrix::multiply(L, P_);
+    Ksys = la::Matrix::multiply(LP, K);
+    la::Vector Pr = disc_.make_vector();
+    P_.mult(r, Pr);
+    L.mult(Pr, rsys);
+  } else {
+    Ksys = la::Matrix::multiply(L, K);
+    L.mult(r, rsys);
+  }
   Ksys.axpy_any_pattern(1.0, la::Matrix::multiply(L, Kc_));
   Ksys.axpy_any_pattern(1.0, G);
-  L.mult(r, rsys);
   rsys.set_values(gap_rows, gap_values);
   rsys.assemble();
 }
 
 void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const la::Vector& dd) {
   const int dim = disc_.dim();
+  // The slave rows (combined by T^T with a modified basis) at the new state: K~ dd + r.
   la::Vector y = disc_.make_vector(), yc = disc_.make_vector();
   K.mult(dd, y);
+  y.axpy(1.0, r);
+  if (transformed()) {
+    P_.mult(y, yc);
+    y.copy_from(yc);
+  }
   Kc_.mult(dd, yc);
   y.axpy(1.0, yc);
-  y.axpy(1.0, r);
   la::Vector::LocalView view(y, false);
   const auto values = view.values();
   const PetscInt first = disc_.first_owned_dof();
@@ -295,6 +336,45 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
     disc_.comm().sum_in_place(lambda);
     s.lambda = std::move(lambda);
   }
+}
+
+bool ContactConstraint::transformed() const {
+  for (const auto& s : sides_)
+    if (!s.T_inverse.empty()) return true;
+  return false;
+}
+
+la::Matrix ContactConstraint::transformation_rows() const {
+  // Row (j, c) of P: sum_k T_kj (row (k, c)), for the slave nodes this rank owns; prescribed
+  // rows are left out (their equations hold reactions, and they are replaced anyway).
+  const int dim = disc_.dim();
+  const PetscInt first = disc_.first_owned_dof();
+  const PetscInt n_owned = disc_.n_owned_dofs();
+  std::vector<char> has_row(static_cast<std::size_t>(n_owned), 0);
+  std::vector<PetscInt> pi, pj;
+  std::vector<double> pv;
+  for (const auto& s : sides_) {
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    for (const auto& e : s.itf.transformation()) {
+      const auto j = static_cast<std::size_t>(e.col), k = static_cast<std::size_t>(e.row);
+      if (!disc_.owns_node(nodes[j])) continue;
+      for (int c = 0; c < dim; ++c) {
+        if (k != j && s.dirichlet[k * dim + c]) continue;
+        const PetscInt row = disc_.global_dof(nodes[j], c);
+        has_row[static_cast<std::size_t>(row - first)] = 1;
+        pi.push_back(row);
+        pj.push_back(disc_.global_dof(nodes[k], c));
+        pv.push_back(e.value);
+      }
+    }
+  }
+  for (PetscInt i = 0; i < n_owned; ++i)
+    if (!has_row[static_cast<std::size_t>(i)]) {
+      pi.push_back(first + i);
+      pj.push_back(first + i);
+      pv.push_back(1.0);
+    }
+  return la::Matrix::from_triplets(disc_.comm().get(), n_owned, pi, pj, pv);
 }
 
 void ContactConstraint::save() {

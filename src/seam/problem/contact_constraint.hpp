@@ -18,6 +18,9 @@
 // orthogonal to w, which carry no multiplier. In matrix form
 //   (L K~ + G) dd = -L r  (with c_n g~_j in the gap rows),
 // with L the identity on every other row. No saddle point, no tangent derivatives.
+// With the modified slave basis of tri6/quad8 facets (d = T d~, Popp et al. 2012) the slave
+// force is T^-T D lambda n; the slave rows are first combined by T^T (matrix P), which leaves
+// D_jj lambda_j alone in row j: Ksys = L P (K + Kc~) with Kc~ the derivative of D lambda n.
 #include "seam/common/timer.hpp"
 #include "seam/contact/contact_interface.hpp"
 #include "seam/io/config.hpp"
@@ -77,6 +80,8 @@ private:
     std::vector<char> active, active_previous, active_before;
     std::vector<char> dirichlet; ///< per slave node and component
     contact::Linearization lin;
+    /// Modified slave basis (tri6/quad8): T^-1 as triplets (side-local), empty when T = I.
+    std::vector<mortar::Triplet> T_inverse;
     double area = 0.0;
     bool frozen = false; ///< active set frozen after cycling was detected in this step
   };
@@ -93,9 +98,14 @@ private:
   NodeFrame frame(const Side& s, std::size_t j) const;
   std::vector<double> gather_mesh_displacement(const la::Vector& u) const;
 
+  /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
+  /// every other row): T^T r_S + D lambda, in which each multiplier stands alone.
+  bool transformed() const;
+  la::Matrix transformation_rows() const;
+
   const Discretization& disc_;
   std::vector<Side> sides_;
-  la::Matrix Kc_;
+  la::Matrix Kc_, P_;
 };
 
 } // namespace seam::problem
