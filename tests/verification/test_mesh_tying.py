@@ -154,6 +154,154 @@ def test_3d_hex20_dual_condensed(): tied_3d("hex", (0.5, 0.34), 2, "upper_bottom
 def test_2d_tri_flat(): tied_2d(geometry.tied_rectangles(0.3, 0.2), 1, "upper_bottom", "lower_top")
 def test_2d_quad_flat_np3(): tied_2d(geometry.tied_rectangles(0.2, 0.3, 1, "quad"), 1, "lower_top", "upper_bottom", np=3)
 def test_2d_tri6_flat(): tied_2d(geometry.tied_rectangles(0.3, 0.2, 2), 2, "upper_bottom", "lower_top", plane="strain")
+# Tied interfaces that reach a clamped boundary. The slave nodes on the clamped face carry no
+# multiplier; the boundary modification of the dual basis (Wohlmuth 2001; Popp et al. 2013)
+# hands their share to the neighbouring slave nodes, so the multipliers still reproduce a
+# constant traction there. Loads: u = x (a, b, c) with the left face x = 0 clamped, a uniform
+# stress with a normal and a tangential traction on the interface z = 1 (y = 1 in 2D).
+LAME = E * NU / ((1 + NU) * (1 - 2 * NU))
+MU = E / (2 * (1 + NU))
+GRAD = (0.01, 0.004, 0.006)
+
+
+def clamped_3d(kind, h, order, slave, master, np=1, multiplier="dual", strategy="condensed",
+               serendipity=False):
+    a, b, c = GRAD
+    sxx, syy, sxy, sxz = (LAME + 2 * MU) * a, LAME * a, MU * b, MU * c
+    vec = lambda v: "[%.17g, %.17g, %.17g]" % tuple(v)  # noqa: E731
+    yaml = "\n".join([
+        "dimension: 3",
+        "mesh: {geo: body.geo}",
+        "materials: {m: {model: linear_elastic, young: %g, poisson: %g}}" % (E, NU),
+        "bodies: [{region: lower, material: m}, {region: upper, material: m}]",
+        "boundary_conditions:",
+        "  - {region: left, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}",
+        "  - {region: right, type: traction, value: %s}" % vec((sxx, sxy, sxz)),
+        "  - {region: front, type: traction, value: %s}" % vec((-sxy, -syy, 0)),
+        "  - {region: back, type: traction, value: %s}" % vec((sxy, syy, 0)),
+        "  - {region: bottom, type: traction, value: %s}" % vec((-sxz, 0, -syy)),
+        "  - {region: top, type: traction, value: %s}" % vec((sxz, 0, syy)),
+        "interfaces:",
+        interface_line(slave, master, multiplier, strategy),
+        "time: {integrator: static, end: 1, steps: 1}",
+        "output: {probes: [[0.3, 0.4, 0.5], [0.7, 0.2, 1.5], [0.05, 0.5, 0.97], "
+        "[0.05, 0.3, 1.03], [0.02, 0.9, 1.0], [0.9, 0.9, 1.9]]}",
+    ]) + "\n"
+    work, out = run_case(geometry.tied_boxes(h[0], h[1], order, kind, serendipity), yaml, np)
+    what = "clamped %s order %d %s %s np=%d" % (kind, order, multiplier, strategy, np)
+    try:
+        check_shear_field(out, GRAD, a, what)
+        check_interface_traction(out, -syy, what)
+    finally:
+        H.cleanup(work, out)
+
+
+def clamped_2d(kind, h, order, slave, master, np=1, multiplier="dual", strategy="condensed"):
+    a, c = GRAD[0], GRAD[2]
+    sxx, syy, sxy = (LAME + 2 * MU) * a, LAME * a, MU * c
+    yaml = "\n".join([
+        "dimension: 2",
+        "mesh: {geo: body.geo}",
+        "materials: {m: {model: linear_elastic, young: %g, poisson: %g}}" % (E, NU),
+        "bodies: [{region: lower, material: m}, {region: upper, material: m}]",
+        "boundary_conditions:",
+        "  - {region: left, type: dirichlet, components: [x, y], value: [0, 0]}",
+        "  - {region: right, type: traction, value: [%.17g, %.17g]}" % (sxx, sxy),
+        "  - {region: bottom, type: traction, value: [%.17g, %.17g]}" % (-sxy, -syy),
+        "  - {region: top, type: traction, value: [%.17g, %.17g]}" % (sxy, syy),
+        "interfaces:",
+        interface_line(slave, master, multiplier, strategy),
+        "time: {integrator: static, end: 1, steps: 1}",
+        "output: {probes: [[0.3, 0.4], [0.7, 1.5], [0.04, 0.97], [0.04, 1.03], [0.01, 1.0]]}",
+    ]) + "\n"
+    work, out = run_case(geometry.tied_rectangles(h[0], h[1], order, kind), yaml, np)
+    what = "clamped 2D %s order %d %s %s np=%d" % (kind, order, multiplier, strategy, np)
+    try:
+        check_shear_field(out, (a, c, 0), a, what)
+        check_interface_traction(out, -syy, what)
+    finally:
+        H.cleanup(work, out)
+
+
+def check_shear_field(out, grad, scale, what):
+    """Probe displacements against u = x * grad."""
+    for p in H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv"))):
+        for i, comp in enumerate(("ux", "uy", "uz")):
+            H.assert_close(p[comp], grad[i] * p["x"], atol=1e-10 * scale,
+                           what="%s probe %d %s" % (what, int(p["probe"]), comp))
+
+
+def check_interface_traction(out, expected, what):
+    """The multiplier's normal part is minus the normal stress at every tied slave node."""
+    nodes = H.read_csv(os.path.join(out, "interface_tie.csv"))
+    tied = [n for n in nodes if n["status"] == "tied"]
+    if not tied:
+        raise AssertionError("%s: no tied slave node" % what)
+    for n in tied:
+        H.assert_close(n["normal_traction"], expected, rtol=1e-8,
+                       what="%s multiplier at node %d" % (what, int(n["node"])))
+
+
+def test_clamped_3d_tet(): clamped_3d("tet", (0.34, 0.26), 1, "upper_bottom", "lower_top")
+def test_clamped_3d_tet_np3(): clamped_3d("tet", (0.26, 0.34), 1, "upper_bottom", "lower_top", np=3)
+def test_clamped_3d_hex(): clamped_3d("hex", (0.34, 0.26), 1, "lower_top", "upper_bottom")
+def test_clamped_3d_hex_np3(): clamped_3d("hex", (0.26, 0.34), 1, "upper_bottom", "lower_top", np=3)
+def test_clamped_3d_tet10(): clamped_3d("tet", (0.5, 0.4), 2, "upper_bottom", "lower_top")
+def test_clamped_3d_hex20_np3(): clamped_3d("hex", (0.5, 0.34), 2, "upper_bottom", "lower_top", np=3, serendipity=True)
+def test_clamped_3d_saddle_dual_np3(): clamped_3d("tet", (0.34, 0.26), 1, "upper_bottom", "lower_top", np=3, strategy="saddle_point")
+def test_clamped_3d_saddle_standard(): clamped_3d("hex", (0.34, 0.26), 1, "lower_top", "upper_bottom", multiplier="standard", strategy="saddle_point")
+def test_clamped_2d_tri(): clamped_2d("tri", (0.3, 0.2), 1, "lower_top", "upper_bottom")
+def test_clamped_2d_quad_np3(): clamped_2d("quad", (0.2, 0.3), 1, "upper_bottom", "lower_top", np=3)
+def test_clamped_2d_tri6(): clamped_2d("tri", (0.3, 0.2), 2, "lower_top", "upper_bottom")
+def test_clamped_2d_saddle_standard_np3(): clamped_2d("tri", (0.3, 0.2), 1, "lower_top", "upper_bottom", np=3, multiplier="standard", strategy="saddle_point")
+
+
+# Dual multipliers on tri6/quad8 slave faces (modified basis, d_S = T d~_S) as a saddle
+# point, B = [D T^{-1}, -M], against the condensed strategy under a non-uniform load (a
+# bending traction, no closed form): the two must give the same displacements and multipliers
+# to solver tolerance.
+def strategies_agree(kind, h, serendipity, np=1):
+    def run(strategy):
+        yaml = "\n".join([
+            "dimension: 3",
+            "mesh: {geo: body.geo}",
+            "materials: {m: {model: linear_elastic, young: %g, poisson: %g}}" % (E, NU),
+            "bodies: [{region: lower, material: m}, {region: upper, material: m}]",
+            "boundary_conditions:",
+            "  - {region: left, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}",
+            "  - {region: top, type: traction, value: [0.3, 0, '-0.5*x*y']}",
+            "  - {region: right, type: traction, value: [0, '0.2*z', 0]}",
+            "interfaces:",
+            interface_line("upper_bottom", "lower_top", "dual", strategy),
+            "time: {integrator: static, end: 1, steps: 1}",
+            "solver: {newton: {tolerance: 1.0e-12}}",
+            "output: {probes: [[0.3, 0.4, 0.5], [0.7, 0.2, 1.5], [0.5, 0.5, 1.0], [0.95, 0.9, 1.9]]}",
+        ]) + "\n"
+        work, out = run_case(geometry.tied_boxes(h[0], h[1], 2, kind, serendipity), yaml, np)
+        probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
+        nodes = H.read_csv(os.path.join(out, "interface_tie.csv"))
+        H.cleanup(work, out)
+        return probes, nodes
+    (pc, nc), (ps, ns) = run("condensed"), run("saddle_point")
+    scale = max(abs(p[c]) for p in pc for c in ("ux", "uy", "uz"))
+    what = "%s order 2 dual saddle vs condensed" % ("hex20" if serendipity else kind)
+    for a, b in zip(pc, ps):
+        for c in ("ux", "uy", "uz"):
+            H.assert_close(b[c], a[c], atol=1e-9 * scale, what="%s probe %d %s" % (what, int(a["probe"]), c))
+    lscale = max(abs(n["normal_traction"]) for n in nc)
+    for a, b in zip(nc, ns):
+        for c in ("ux", "uy", "uz"):
+            H.assert_close(b[c], a[c], atol=1e-9 * scale, what="%s node %d %s" % (what, int(a["node"]), c))
+        H.assert_close(b["normal_traction"], a["normal_traction"], atol=1e-7 * lscale,
+                       what="%s node %d multiplier" % (what, int(a["node"])))
+
+
+def test_3d_tet10_saddle_dual(): strategies_agree("tet", (0.5, 0.4), False)
+def test_3d_hex20_saddle_dual_np3(): strategies_agree("hex", (0.5, 0.34), True, np=3)
+def test_3d_tet10_saddle_dual_patch(): tied_3d("tet", (0.5, 0.4), 2, "upper_bottom", "lower_top", "z", strategy="saddle_point")
+def test_3d_hex20_saddle_dual_patch_np3(): tied_3d("hex", (0.5, 0.34), 2, "lower_top", "upper_bottom", "x", np=3, strategy="saddle_point", serendipity=True)
+
+
 def curved_study(order, slave, master, expected_rate, np=1):
     errors = []
     for h in (0.2, 0.1, 0.05):
@@ -208,4 +356,11 @@ if __name__ == "__main__":
             test_3d_tet_normal, test_3d_tet_normal_np3, test_3d_tet_tangential_swapped,
             test_3d_hex_normal, test_3d_hex27_tangential_np3, test_2d_tri_flat,
             test_2d_quad_flat_np3, test_2d_tri6_flat, test_2d_curved_linear,
-            test_2d_curved_quadratic, test_2d_curved_np3, test_neo_hooke_stretch])
+            test_2d_curved_quadratic, test_2d_curved_np3, test_neo_hooke_stretch,
+            test_clamped_3d_tet, test_clamped_3d_tet_np3, test_clamped_3d_hex,
+            test_clamped_3d_hex_np3, test_clamped_3d_tet10, test_clamped_3d_hex20_np3,
+            test_clamped_3d_saddle_dual_np3, test_clamped_3d_saddle_standard,
+            test_clamped_2d_tri, test_clamped_2d_quad_np3, test_clamped_2d_tri6,
+            test_clamped_2d_saddle_standard_np3, test_3d_tet10_saddle_dual,
+            test_3d_hex20_saddle_dual_np3, test_3d_tet10_saddle_dual_patch,
+            test_3d_hex20_saddle_dual_patch_np3])

@@ -1,6 +1,7 @@
 #include "seam/contact/contact_interface.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/meshtying/tied_interface.hpp"
 #include "seam/mortar/normals.hpp"
 
 #include <algorithm>
@@ -10,14 +11,6 @@
 namespace seam::contact {
 
 namespace {
-
-const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref) {
-  const auto* r = mesh.find_region(ref.name, mesh.dim - 1);
-  if (!r)
-    io::fail_at(ref.mark, "no boundary region '" + ref.name + "' of dimension " +
-                              std::to_string(mesh.dim - 1) + " in the mesh");
-  return *r;
-}
 
 /// A normal of facet f (any length), for the facing test of candidate pairs.
 std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_index f) {
@@ -64,7 +57,7 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value()) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
   const int dim = mesh.dim;
-  slave_ = meshtying::extract_side(mesh, side_region(mesh, config.slave));
+  slave_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
   if (slave_.n_facets() == 0)
     io::fail_at(config.slave.mark, "the slave region '" + config.slave.name + "' has no facets");
   mesh_size_ = mean_edge_length(slave_);
@@ -120,7 +113,7 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     master_.coordinates = plane_corners_;
     plane_motion_ = plane.motion;
   } else {
-    master_ = meshtying::extract_side(mesh, side_region(mesh, *config.master));
+    master_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, *config.master));
     std::vector<std::int32_t> shared;
     std::set_intersection(slave_.mesh_nodes.begin(), slave_.mesh_nodes.end(),
                           master_.mesh_nodes.begin(), master_.mesh_nodes.end(),

@@ -11,6 +11,44 @@ namespace seam::meshtying {
 
 namespace {
 
+// Slave nodes (side-local) whose displacement is known: every component prescribed by some
+// Dirichlet condition. On facets with a modified quadratic basis (d = T d~) an edge node's
+// d~_e = (d_e - a (d_v0 + d_v1)) / (1 - 2a) is known only if its two vertices are prescribed
+// as well; otherwise it keeps its multiplier.
+std::vector<char> bound_slave_nodes(const io::Config& config, const mesh::Mesh& mesh,
+                                    const InterfaceSide& slave, mortar::Multiplier multiplier) {
+  std::vector<unsigned char> prescribed(static_cast<std::size_t>(mesh.n_nodes()), 0);
+  for (const auto& bc : config.boundary_conditions) {
+    if (bc.type != io::BoundaryType::dirichlet) continue;
+    unsigned char components = 0;
+    for (int c : bc.components) components |= static_cast<unsigned char>(1U << c);
+    // The region a Dirichlet condition names is the first of that name (as for the model).
+    for (const auto& r : mesh.regions) {
+      if (r.name != bc.region.name) continue;
+      for (auto n : r.nodes) prescribed[static_cast<std::size_t>(n)] |= components;
+      break;
+    }
+  }
+  const unsigned all = (1U << mesh.dim) - 1U;
+  std::vector<char> bound(slave.mesh_nodes.size(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < bound.size(); ++i) {
+    bound[i] = prescribed[static_cast<std::size_t>(slave.mesh_nodes[i])] == all ? 1 : 0;
+    any = any || bound[i] != 0;
+  }
+  if (!any) return {};
+  for (local_index f = 0; f < slave.n_facets(); ++f) {
+    const auto type = slave.types[static_cast<std::size_t>(f)];
+    if (mortar::basis_modification(type, multiplier) == 0.0) continue;
+    const auto* nodes = slave.nodes.data() + slave.offsets[static_cast<std::size_t>(f)];
+    for (const auto& e : mortar::edge_nodes(type))
+      if (!bound[nodes[e.v0]] || !bound[nodes[e.v1]]) bound[nodes[e.node]] = 0;
+  }
+  return bound;
+}
+
+} // namespace
+
 const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref) {
   const auto* r = mesh.find_region(ref.name, mesh.dim - 1);
   if (!r)
@@ -18,8 +56,6 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
                               std::to_string(mesh.dim - 1) + " in the mesh");
   return *r;
 }
-
-} // namespace
 
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
                                             PhaseTimers& timers) {
@@ -53,8 +89,11 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh
       mortar::MortarOptions options;
       options.multiplier = itf.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
                                                                   : mortar::Multiplier::standard;
+      // Slave nodes with a fully prescribed displacement are treated like master nodes
+      // (boundary modification of the multiplier basis, mortar/dual_basis.hpp).
+      const auto bound = bound_slave_nodes(config, mesh, t.slave, options.multiplier);
       t.operators = mortar::assemble_mortar_operators(t.slave.facet_set(), t.master.facet_set(),
-                                                      candidates, options);
+                                                      candidates, options, bound);
       if (t.operators.n_pairs_integrated == 0)
         io::fail_at(itf.mark, "the sides '" + itf.slave.name + "' and '" + itf.master->name +
                                   "' do not overlap: no slave facet faces a master facet");

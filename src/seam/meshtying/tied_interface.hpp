@@ -23,6 +23,10 @@ struct TiedInterface {
   double max_relocation = 0.0;
 };
 
+/// The boundary region (dimension mesh.dim - 1) an interface side names; a located InputError
+/// if the mesh has none.
+const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref);
+
 /// Sets up every mesh-tying interface of the input: extracts both sides, searches candidate
 /// pairs (k-DOP trees), integrates D and M, relocates the slave nodes of the mesh so that the
 /// constraint holds exactly for the reference geometry. Throws InputError (located at the

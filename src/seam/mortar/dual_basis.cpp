@@ -99,6 +99,23 @@ template <int Dim> SlaveBasis make_slave_basis(const Facet<Dim>& facet, Multipli
   return basis;
 }
 
+SmallMatrix boundary_transformation(int n_nodes, unsigned bound_mask) {
+  SEAM_ASSERT(n_nodes > 0 && n_nodes <= max_facet_nodes);
+  SmallMatrix R = SmallMatrix::Zero(n_nodes, n_nodes);
+  int n_free = 0;
+  for (int i = 0; i < n_nodes; ++i) n_free += ((bound_mask >> i) & 1U) == 0 ? 1 : 0;
+  if (n_free == 0) return R;
+  const double share = 1.0 / n_free;
+  for (int i = 0; i < n_nodes; ++i) {
+    if (((bound_mask >> i) & 1U) != 0) continue;
+    R(i, i) = 1.0;
+    for (int b = 0; b < n_nodes; ++b) {
+      if (((bound_mask >> b) & 1U) != 0) R(i, b) = share;
+    }
+  }
+  return R;
+}
+
 template SmallMatrix dual_coefficients<2>(const Facet<2>&, double);
 template SmallMatrix dual_coefficients<3>(const Facet<3>&, double);
 template SlaveBasis make_slave_basis<2>(const Facet<2>&, Multiplier);

@@ -55,6 +55,18 @@ struct SlaveBasis {
 
 template <int Dim> SlaveBasis make_slave_basis(const Facet<Dim>& facet, Multiplier multiplier);
 
+/// Boundary modification of the multiplier basis for "bound" slave nodes: nodes whose
+/// displacement is known (every component prescribed, or a crosspoint) carry no multiplier
+/// (Wohlmuth 2000, 2001; Popp, Gitterle, Gee, Wall 2010, Sect. 3.3; 4C's "bound" nodes). Their
+/// multiplier function is handed to the n_free other nodes of the facet in equal parts,
+///     Phi^_j = Phi_j + (1 / n_free) sum_{b bound} Phi_b  (j free),   Phi^_b = 0,
+/// i.e. Phi^ = R Phi. Hence sum_j Phi^_j = sum_k Phi_k = 1 (constants are still reproduced:
+/// the patch test), and for free j, k: int Phi^_j N~_k = int Phi_j N~_k = delta_jk int N~_k
+/// (b != k), so D stays diagonal on the free nodes; the bound columns get
+/// D_jb = D_bb / n_free and move to the known side of the constraint with M.
+/// Bit i of `bound_mask` marks facet node i as bound. R is zero when every node is bound.
+SmallMatrix boundary_transformation(int n_nodes, unsigned bound_mask);
+
 /// Slave displacement functions N~ and multiplier functions Phi from the standard values N.
 inline void slave_functions(const SlaveBasis& basis, fem::CellType type, int n_nodes,
                             const NodalVector& N, NodalVector& N_tilde, NodalVector& Phi) {

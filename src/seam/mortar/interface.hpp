@@ -33,7 +33,9 @@ struct MortarOperators {
   Multiplier multiplier = Multiplier::dual;
   /// D (slave node, slave node) and M (slave node, master node) as triplets sorted by
   /// (row, col) without duplicates. Node indices are those of the slave / master FacetSet.
-  /// With dual multipliers D is diagonal.
+  /// Bound slave nodes have no row; their columns of D couple the known displacements of
+  /// the bound nodes into the constraint. With dual multipliers D is diagonal apart from
+  /// the bound columns.
   std::vector<Triplet> D;
   std::vector<Triplet> M;
   /// Weighted gap g~_j per slave node (zero off the interface).
@@ -45,6 +47,9 @@ struct MortarOperators {
   /// then refer to the modified basis, i.e. the constraint reads D d~_S = M d_M. One row per
   /// slave facet node; empty when no facet is modified (T = I).
   std::vector<Triplet> T;
+  /// Per slave node: nonzero if bound (a copy of the bound_slave_nodes argument); empty if
+  /// no node is bound.
+  std::vector<char> bound;
 
   local_index n_candidates = 0;
   local_index n_pairs_integrated = 0; ///< candidate pairs with a non-empty overlap
@@ -54,14 +59,25 @@ struct MortarOperators {
 };
 
 /// Assemble D, M and the weighted gap of one interface in the configuration given by the
-/// coordinates of the two facet sets. Throws InputError for inconsistent input (see validate),
-/// mismatched dimensions or candidate indices out of range.
+/// coordinates of the two facet sets. `bound_slave_nodes` (per slave node, or empty) marks
+/// "bound" nodes: their displacement is known (all components prescribed), so they carry no
+/// multiplier and the facets around them use the boundary-modified basis (see
+/// boundary_transformation in dual_basis.hpp). Throws InputError for inconsistent input (see
+/// validate), mismatched dimensions or candidate indices out of range.
 MortarOperators assemble_mortar_operators(const FacetSet& slave, const FacetSet& master,
                                           std::span<const CandidatePair> candidates,
-                                          const MortarOptions& options = {});
+                                          const MortarOptions& options = {},
+                                          std::span<const char> bound_slave_nodes = {});
 
 /// Sort triplets by (row, col) and sum duplicates.
 void compress(std::vector<Triplet>& triplets);
+/// The same for rows known to lie in [0, n_rows): bucketed by row in O(n).
+void compress(std::vector<Triplet>& triplets, local_index n_rows);
+
+/// T^{-1} for the nodal transformation T of a modified slave basis (same sparsity). Vertex
+/// rows of T are unit rows, so an edge row d_e = T_ee d~_e + sum_v T_ev d~_v inverts to
+/// d~_e = (d_e - sum_v T_ev d_v) / T_ee. Empty for an empty T (identity).
+std::vector<Triplet> inverse_transformation(std::span<const Triplet> T);
 
 /// Mesh initialization for exact angular momentum (ALGORITHMS.md §4; Puso 2004): the slave
 /// coordinates with every interface slave node moved so that D X_S = M X_M holds — dual:

@@ -31,10 +31,21 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
   }
   const int n = static_cast<int>(rows.size());
   if (n == 0) return result;
-  for (const Triplet& t : ops.D) {
-    SEAM_CHECK(position.count(t.col) == 1, InternalError, "mortar D has column ", t.col,
-               " without a row");
+
+  // Coordinates in the (possibly modified) basis of the nodes that stay where they are:
+  // X~ = T^{-1} X, read off the current slave coordinates.
+  const std::vector<Triplet> T_inverse = inverse_transformation(ops.T);
+  std::unordered_map<local_index, Eigen::Vector3d> kept_tilde;
+  for (const Triplet& t : T_inverse) {
+    auto& x = kept_tilde.try_emplace(t.row, Eigen::Vector3d::Zero()).first->second;
+    for (int a = 0; a < dim; ++a) x(a) += t.value * slave_x(t.col, a);
   }
+  const auto tilde_of_kept = [&](local_index node) {
+    if (const auto it = kept_tilde.find(node); it != kept_tilde.end()) return it->second;
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int a = 0; a < dim; ++a) x(a) = slave_x(node, a);
+    return x;
+  };
 
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, dim);
   for (const Triplet& t : ops.M) {
@@ -47,10 +58,24 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
           t.value * master_coordinates[base + static_cast<std::size_t>(a)];
     }
   }
+  // Columns of bound nodes (no row of their own): those nodes keep their place and join the
+  // known side, D_SS X~_S = M X_M - D_SB X~_B.
+  std::vector<Triplet> D_free;
+  D_free.reserve(ops.D.size());
+  for (const Triplet& t : ops.D) {
+    if (position.count(t.col) == 1) {
+      D_free.push_back(t);
+      continue;
+    }
+    SEAM_CHECK(static_cast<std::size_t>(t.col) < ops.bound.size() && ops.bound[t.col] != 0,
+               InternalError, "mortar D has column ", t.col, " without a row");
+    const Eigen::Vector3d x = tilde_of_kept(t.col);
+    for (int a = 0; a < dim; ++a) rhs(position.at(t.row), a) -= t.value * x(a);
+  }
 
   Eigen::MatrixXd modified(n, dim);
   if (ops.multiplier == Multiplier::dual) {
-    for (const Triplet& t : ops.D) {
+    for (const Triplet& t : D_free) {
       SEAM_CHECK(t.row == t.col, InternalError, "dual mortar D is not diagonal");
       SEAM_CHECK(t.value != 0.0, InputError, "mesh initialization: slave node ", t.row,
                  " has a zero mortar diagonal");
@@ -58,8 +83,8 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
     }
   } else {
     std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(ops.D.size());
-    for (const Triplet& t : ops.D)
+    entries.reserve(D_free.size());
+    for (const Triplet& t : D_free)
       entries.emplace_back(position.at(t.row), position.at(t.col), t.value);
     Eigen::SparseMatrix<double> D(n, n);
     D.setFromTriplets(entries.begin(), entries.end());
@@ -80,38 +105,25 @@ std::vector<double> initialize_slave_coordinates(const MortarOperators& ops,
     return result;
   }
 
-  // Modified quadratic basis: the solve gives X~ and X = T X~. Nodes outside D keep their
-  // position, i.e. their X~ = T^{-1} X: vertex rows of T are unit rows, so an edge row gives
-  // X~_e = (X_e - sum_{k != e} T_ek X_k) / T_ee. T is sorted by row, so rows are contiguous.
-  std::unordered_map<local_index, Eigen::Vector3d> tilde;
-  for (std::size_t begin = 0; begin < ops.T.size();) {
-    std::size_t end = begin;
-    while (end < ops.T.size() && ops.T[end].row == ops.T[begin].row) ++end;
-    const local_index node = ops.T[begin].row;
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  // Modified quadratic basis: the solve gives X~ of the interface nodes, every other node
+  // keeps its X~ = T^{-1} X; then X = T X~. T is sorted by row, so rows are contiguous.
+  const auto tilde = [&](local_index node) {
     if (const auto it = position.find(node); it != position.end()) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
       x.head(dim) = modified.row(it->second).transpose();
-    } else {
-      double diagonal = 0.0;
-      for (int a = 0; a < dim; ++a) x(a) = slave_x(node, a);
-      for (std::size_t e = begin; e < end; ++e) {
-        if (ops.T[e].col == node) {
-          diagonal = ops.T[e].value;
-        } else {
-          for (int a = 0; a < dim; ++a) x(a) -= ops.T[e].value * slave_x(ops.T[e].col, a);
-        }
-      }
-      x /= diagonal;
+      return x;
     }
-    tilde.emplace(node, x);
-    begin = end;
-  }
+    return tilde_of_kept(node);
+  };
   for (std::size_t begin = 0; begin < ops.T.size();) {
     const local_index node = ops.T[begin].row;
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    bool moved = false; // a node whose row of T involves no interface node stays exactly put
     for (; begin < ops.T.size() && ops.T[begin].row == node; ++begin) {
-      x += ops.T[begin].value * tilde.at(ops.T[begin].col);
+      x += ops.T[begin].value * tilde(ops.T[begin].col);
+      moved = moved || position.count(ops.T[begin].col) == 1;
     }
+    if (!moved) continue;
     for (int a = 0; a < dim; ++a) {
       result[static_cast<std::size_t>(node) * d + static_cast<std::size_t>(a)] = x(a);
     }

@@ -32,18 +32,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       io::fail_at(itf.mark, "interface '" + itf.name +
                                 "': contact condenses the multipliers and needs multiplier: dual");
     Side s(contact::ContactInterface(itf, disc.mesh()));
-    // T^-1 of the modified basis: vertex rows of T are unit rows, an edge node e has
-    // d_e = T_ee d~_e + sum_v T_ev d_v, so d~_e = (d_e - sum_v T_ev d_v) / T_ee.
-    {
-      const auto& T = s.itf.transformation();
-      for (const auto& e : T) {
-        if (e.row != e.col) continue;
-        s.T_inverse.push_back({e.row, e.row, 1.0 / e.value});
-        for (const auto& o : T)
-          if (o.row == e.row && o.col != e.row)
-            s.T_inverse.push_back({e.row, o.col, -o.value / e.value});
-      }
-    }
+    s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain.
     s.c_n = itf.c_n ? *itf.c_n : young / s.itf.slave_mesh_size();
     const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());

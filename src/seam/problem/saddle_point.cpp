@@ -4,6 +4,7 @@
 
 #include <petscmat.h>
 
+#include <algorithm>
 #include <map>
 
 namespace seam::problem {
@@ -23,10 +24,6 @@ SaddlePoint::SaddlePoint(const std::vector<meshtying::TiedInterface>& interfaces
     const auto& t = interfaces[k];
     if (t.strategy != io::Strategy::saddle_point) continue;
     active_ = true;
-    if (!t.operators.T.empty())
-      SEAM_THROW(InputError, "interface '", t.name,
-                 "': dual multipliers on tri6/quad8 slave faces (modified basis) are not "
-                 "available yet; use multiplier: standard, or quad9/tri3/quad4 slave faces");
     std::vector<char> has_row(t.slave.mesh_nodes.size(), 0);
     for (const auto& e : t.operators.D) has_row[e.row] = e.value != 0.0 ? 1 : has_row[e.row];
     for (std::size_t j = 0; j < has_row.size(); ++j) {
@@ -53,20 +50,48 @@ SaddlePoint::SaddlePoint(const std::vector<meshtying::TiedInterface>& interfaces
                      nullptr, 64, nullptr, &B_),
         "MatCreateAIJ");
   check(MatSetOption(B_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+  // B = [D T^{-1} on the slave dofs, -M on the master dofs]: the constraint holds for the
+  // coefficients of the slave basis, D d~_S = M d_M, and with a modified quadratic basis
+  // (dual multipliers on tri6/quad8) the unknowns are the nodal values d_S = T d~_S, so
+  // d~_S = T^{-1} d_S (T = I otherwise). Columns of bound slave nodes (boundary-modified
+  // basis) are prescribed dofs; the Dirichlet elimination moves them to the right-hand side.
+  std::vector<std::vector<std::vector<std::pair<local_index, double>>>> inverse(interfaces.size());
+  for (std::size_t k = 0; k < interfaces.size(); ++k) {
+    const auto& t = interfaces[k];
+    if (t.strategy != io::Strategy::saddle_point || t.operators.T.empty()) continue;
+    inverse[k].resize(t.slave.mesh_nodes.size());
+    for (const auto& e : mortar::inverse_transformation(t.operators.T))
+      inverse[k][e.row].emplace_back(e.col, e.value);
+  }
+  const auto row_range = [](const std::vector<mortar::Triplet>& a, std::size_t row) {
+    const auto less = [](const mortar::Triplet& x, local_index r) { return x.row < r; };
+    const auto begin = std::lower_bound(a.begin(), a.end(), static_cast<local_index>(row), less);
+    auto end = begin;
+    while (end != a.end() && end->row == static_cast<local_index>(row)) ++end;
+    return std::pair{begin, end};
+  };
   for (PetscInt i = 0; i < n_lm_; ++i) {
     const auto& lm = lm_dofs_[i];
     const auto& t = interfaces[lm.interface];
     const PetscInt row = first_lm_ + i;
-    for (const auto& e : t.operators.D)
-      if (static_cast<std::size_t>(e.row) == lm.slave_node) {
-        const PetscInt col = disc.global_dof(t.slave.mesh_nodes[e.col], lm.component);
-        check(MatSetValue(B_, row, col, e.value, ADD_VALUES), "MatSetValue");
+    const auto [d_begin, d_end] = row_range(t.operators.D, lm.slave_node);
+    for (auto e = d_begin; e != d_end; ++e) {
+      const auto& inv = inverse[lm.interface];
+      if (inv.empty() || inv[e->col].empty()) {
+        const PetscInt col = disc.global_dof(t.slave.mesh_nodes[e->col], lm.component);
+        check(MatSetValue(B_, row, col, e->value, ADD_VALUES), "MatSetValue");
+        continue;
       }
-    for (const auto& e : t.operators.M)
-      if (static_cast<std::size_t>(e.row) == lm.slave_node) {
-        const PetscInt col = disc.global_dof(t.master.mesh_nodes[e.col], lm.component);
-        check(MatSetValue(B_, row, col, -e.value, ADD_VALUES), "MatSetValue");
+      for (const auto& [node, v] : inv[e->col]) {
+        const PetscInt col = disc.global_dof(t.slave.mesh_nodes[node], lm.component);
+        check(MatSetValue(B_, row, col, e->value * v, ADD_VALUES), "MatSetValue");
       }
+    }
+    const auto [m_begin, m_end] = row_range(t.operators.M, lm.slave_node);
+    for (auto e = m_begin; e != m_end; ++e) {
+      const PetscInt col = disc.global_dof(t.master.mesh_nodes[e->col], lm.component);
+      check(MatSetValue(B_, row, col, -e->value, ADD_VALUES), "MatSetValue");
+    }
   }
   check(MatAssemblyBegin(B_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(B_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");

@@ -3,9 +3,11 @@
 // are unknowns next to the displacements,
 //     [ K   B^T ] [du]        [ r + B^T lambda ]
 //     [ B   0   ] [dlambda] = -[ B u            ],   B = [D on slave dofs, -M on master dofs],
-// for standard or dual multipliers. The augmented matrix is assembled as a nested matrix and
-// converted to AIJ for the direct solver; on every rank the rows are its displacement dofs
-// followed by its multiplier dofs (one per tied slave node and component, owned with the node).
+// for standard or dual multipliers. With dual multipliers on tri6/quad8 (modified slave basis,
+// d_S = T d~_S) the slave block of B is D T^{-1}. The augmented matrix is assembled as a nested
+// matrix and converted to AIJ for the direct solver; on every rank the rows are its displacement
+// dofs followed by its multiplier dofs (one per tied slave node and component, owned with the
+// node).
 #include "seam/la/petsc.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/discretization.hpp"

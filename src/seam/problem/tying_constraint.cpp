@@ -38,32 +38,64 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
     for (double v : diag) d_max = std::max(d_max, std::abs(v));
     for (auto& v : diag)
       if (v <= 1e-12 * d_max) v = 0.0;
-    // P = D^{-1} M, side-local: slave node -> (master node, value). With a modified slave basis
-    // (dual multipliers on tri6/quad8, ALGORITHMS.md §3) the constraint holds for the modified
-    // coefficients, D d~_S = M d_M, and the nodal displacements are d_S = T d~_S: P = T D^{-1} M.
-    std::vector<std::map<local_index, double>> P(diag.size());
-    std::vector<std::vector<std::pair<local_index, double>>> dm(diag.size());
+    // The constraint for the free slave nodes S, with the bound nodes B (every component
+    // prescribed; boundary-modified basis, mortar/dual_basis.hpp) on the known side:
+    //   D_SS d~_S = M d_M - D_SB d~_B,  d~_B = (T^{-1} d)_B,
+    // and d_S = T d~_S for a modified quadratic basis (dual multipliers on tri6/quad8,
+    // ALGORITHMS.md §3). Each eliminated slave displacement becomes a combination of master
+    // displacements and prescribed slave displacements: d = P [d_M; d_B].
+    const auto T_inverse = mortar::inverse_transformation(ops.T);
+    std::vector<std::vector<std::pair<local_index, double>>> inverse_row(diag.size());
+    for (const auto& e : T_inverse) inverse_row[e.row].emplace_back(e.col, e.value);
+    const auto known_tilde = [&](local_index b) {
+      return inverse_row[b].empty() ? std::vector<std::pair<local_index, double>>{{b, 1.0}}
+                                    : inverse_row[b];
+    };
+    // Column key: master node l -> l, slave node m -> -1 - m.
+    using Row = std::map<local_index, double>;
+    std::vector<Row> tilde(diag.size());
     for (const auto& e : ops.M)
-      if (diag[e.row] != 0.0) dm[e.row].emplace_back(e.col, e.value / diag[e.row]);
+      if (diag[e.row] != 0.0) tilde[e.row][e.col] += e.value / diag[e.row];
+    for (const auto& e : ops.D) {
+      if (e.row == e.col || diag[e.row] == 0.0) continue;
+      SEAM_ASSERT(!ops.bound.empty() && ops.bound[e.col] != 0);
+      for (const auto& [m, v] : known_tilde(e.col))
+        tilde[e.row][-1 - m] -= e.value / diag[e.row] * v;
+    }
+    std::vector<Row> P(diag.size());
+    std::vector<char> tied(diag.size(), 0);
+    const auto add_term = [&](local_index j, local_index node, double weight) {
+      if (diag[node] != 0.0) {
+        tied[j] = 1;
+        for (const auto& [col, v] : tilde[node]) P[j][col] += weight * v;
+      } else if (!ops.bound.empty() && ops.bound[node] != 0) {
+        for (const auto& [m, v] : known_tilde(node)) P[j][-1 - m] += weight * v;
+      }
+    };
     if (ops.T.empty()) {
       for (std::size_t j = 0; j < diag.size(); ++j)
-        for (const auto& [l, v] : dm[j]) P[j][l] += v;
+        add_term(static_cast<local_index>(j), static_cast<local_index>(j), 1.0);
     } else {
-      for (const auto& e : ops.T)
-        for (const auto& [l, v] : dm[e.col]) P[e.row][l] += e.value * v;
+      for (const auto& e : ops.T) add_term(e.row, e.col, e.value);
     }
     for (std::size_t j = 0; j < diag.size(); ++j) {
       const auto s = t.slave.mesh_nodes[j];
-      if (P[j].empty() || !disc.owns_node(s)) continue;
+      if (!tied[j] || !disc.owns_node(s)) continue;
       for (int c = 0; c < dim; ++c) {
         const PetscInt row = disc.global_dof(s, c);
-        if (dirichlet[row - first]) continue; // the prescribed value wins
+        // A partially prescribed node (a symmetry plane) keeps its multiplier; its prescribed
+        // components are not tied.
+        if (dirichlet[row - first]) continue;
         auto& entries = rows[row];
         if (!entries.empty())
           SEAM_THROW(InputError, "interface '", t.name, "': slave node ", s,
                      " is tied by two interfaces; slave sides must not share nodes");
-        for (const auto& [l, v] : P[j]) {
-          const auto master = t.master.mesh_nodes[l];
+        for (const auto& [key, v] : P[j]) {
+          if (key < 0) {
+            entries.emplace_back(disc.global_dof(t.slave.mesh_nodes[-1 - key], c), v);
+            continue;
+          }
+          const auto master = t.master.mesh_nodes[key];
           if (is_slave_node[master])
             SEAM_THROW(InputError, "interface '", t.name, "': master node ", master,
                        " is a slave node of another interface; chained tying is not supported");
@@ -86,6 +118,7 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
       continue;
     }
     for (const auto& [col, v] : it->second) (col >= first && col < last ? d_nnz[i] : o_nnz[i])++;
+    ++d_nnz[i]; // the explicit zero on the diagonal, see below
   }
   for (const auto& [row, entries] : rows) eliminated_.push_back(row);
   T_ = la::Matrix(disc.comm().get(), n_owned, d_nnz, o_nnz, 1);
@@ -98,12 +131,41 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
       continue;
     }
     for (const auto& [col, v] : it->second) T_.add_values({&row, 1}, {&col, 1}, {&v, 1});
+    // A structural zero T_jj puts the diagonal of the eliminated dof into the pattern of
+    // T^T K T, so that condense_matrix sets its unit diagonal in place; inserting it into
+    // the assembled product instead reallocates the matrix storage again and again (quadratic
+    // in the number of eliminated dofs).
+    const double zero = 0.0;
+    T_.add_values({&row, 1}, {&row, 1}, {&zero, 1});
   }
   T_.assemble();
 }
 
 void TyingConstraint::condense_matrix(const la::Matrix& K, la::Matrix& Kt) const {
-  Kt = la::Matrix::ptap(K, T_);
+  // The patterns of K and T never change: the symbolic product runs once, later calls only
+  // recompute the values. On one rank the "rap" algorithm (R = T^T formed explicitly, then
+  // R K T) is several times faster than PETSc's default PtAP for this T, the identity with a
+  // few dense-ish rows (docs/mortar_performance.md).
+  if (Kt.get() == nullptr || Kt.get() != last_product_ || K.get() != last_matrix_) {
+    Mat C = nullptr;
+    la::check(MatProductCreate(K.get(), T_.get(), nullptr, &C), "MatProductCreate");
+    Kt = la::Matrix::adopt(C);
+    la::check(MatProductSetType(C, MATPRODUCT_PtAP), "MatProductSetType");
+    la::check(MatProductSetAlgorithm(C, disc_.comm().size() == 1 ? MATPRODUCTALGORITHMRAP
+                                                                 : MATPRODUCTALGORITHMDEFAULT),
+              "MatProductSetAlgorithm");
+    la::check(MatProductSetFill(C, 2.0), "MatProductSetFill");
+    la::check(MatProductSetFromOptions(C), "MatProductSetFromOptions");
+    la::check(MatProductSymbolic(C), "MatProductSymbolic");
+    // Hold references, so that neither handle can be freed and its address reused by an
+    // unrelated matrix while it identifies the product to reuse.
+    release_product();
+    la::check(PetscObjectReference(reinterpret_cast<PetscObject>(C)), "PetscObjectReference");
+    la::check(PetscObjectReference(reinterpret_cast<PetscObject>(K.get())), "PetscObjectReference");
+    last_product_ = C;
+    last_matrix_ = K.get();
+  }
+  la::check(MatProductNumeric(Kt.get()), "MatProductNumeric");
   // The eliminated rows and columns of T^T K T are empty: a unit diagonal keeps it regular.
   la::Vector ones(disc_.comm().get(), disc_.n_owned_dofs());
   {
@@ -113,6 +175,15 @@ void TyingConstraint::condense_matrix(const la::Matrix& K, la::Matrix& Kt) const
     for (auto d : eliminated_) values[d - first] = 1.0;
   }
   Kt.add_diagonal(ones);
+}
+
+TyingConstraint::~TyingConstraint() {
+  release_product();
+}
+
+void TyingConstraint::release_product() const {
+  if (last_product_) MatDestroy(&last_product_);
+  if (last_matrix_) MatDestroy(&last_matrix_);
 }
 
 void TyingConstraint::condense_vector(const la::Vector& r, la::Vector& rt) const {

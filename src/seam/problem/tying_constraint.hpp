@@ -4,8 +4,11 @@
 // written as d = T d~ with T the identity except for the slave rows. The Newton system becomes
 // T^T K T d~ = -T^T r; the eliminated slave dofs get a unit diagonal and a zero right-hand
 // side, and the multiplier is recovered from the slave rows: lambda_j = -r_j / D_jj.
-// Slave dofs that carry a Dirichlet condition keep it and are not tied (the prescribed value
-// wins), component by component.
+// Slave nodes with every component prescribed ("bound") carry no multiplier: the mortar
+// operators use the boundary-modified basis and those known displacements enter the slave
+// rows of T next to the master ones, d_S = D^{-1} (M d_M - D_SB d_B). A partially prescribed
+// slave node keeps its multiplier; its prescribed components are not tied (on a symmetry
+// plane the traction component they drop vanishes).
 #include "seam/la/petsc.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/discretization.hpp"
@@ -20,9 +23,13 @@ class TyingConstraint {
 public:
   TyingConstraint(const std::vector<meshtying::TiedInterface>& interfaces,
                   const Discretization& disc, const Model& model);
+  ~TyingConstraint();
+  TyingConstraint(const TyingConstraint&) = delete;
+  TyingConstraint& operator=(const TyingConstraint&) = delete;
 
   bool active() const { return active_; }
-  /// Kt = T^T K T (a new matrix each call; the pattern of K is fixed, T's never changes).
+  /// Kt = T^T K T. When called again with the same K and the Kt it returned last time, only
+  /// the numeric product is recomputed (the patterns of K and T are fixed).
   void condense_matrix(const la::Matrix& K, la::Matrix& Kt) const;
   /// rt = T^T r.
   void condense_vector(const la::Vector& r, la::Vector& rt) const;
@@ -49,6 +56,9 @@ private:
   std::vector<PetscInt> eliminated_;
   std::vector<std::vector<double>> d_diag_;
   std::vector<std::vector<mortar::Triplet>> transforms_; ///< per interface: T of a modified basis
+  mutable Mat last_product_ = nullptr; ///< the Kt of the last condense_matrix call ...
+  mutable Mat last_matrix_ = nullptr;  ///< ... and its K (both referenced)
+  void release_product() const;
 };
 
 } // namespace seam::problem
