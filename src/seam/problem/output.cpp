@@ -140,10 +140,24 @@ Output::interface_states(const la::Vector& u,
     for (std::size_t j = 0; j < n_slave; ++j)
       for (int c = 0; c < dim; ++c)
         s.displacement[j * dim + c] = u_all[disc_.global_dof(t.slave.mesh_nodes[j], c)];
-    // Weighted constraint residual D u_S - M u_M, its part along the slave normal.
+    // Weighted constraint residual D u~_S - M u_M, its part along the slave normal; with a
+    // modified slave basis (tri6/quad8 dual) D acts on the coefficients u~_S = T^-1 u_S.
+    std::vector<double> us = s.displacement;
+    if (!t.operators.T.empty()) {
+      std::vector<char> has_row(n_slave, 0);
+      const auto T_inverse = mortar::inverse_transformation(t.operators.T);
+      for (const auto& e : T_inverse) has_row[static_cast<std::size_t>(e.row)] = 1;
+      for (std::size_t j = 0; j < n_slave; ++j)
+        if (has_row[j])
+          for (int c = 0; c < dim; ++c) us[j * dim + c] = 0.0;
+      for (const auto& e : T_inverse)
+        for (int c = 0; c < dim; ++c)
+          us[static_cast<std::size_t>(e.row) * dim + c] +=
+              e.value * s.displacement[static_cast<std::size_t>(e.col) * dim + c];
+    }
     std::vector<double> g(n_slave * dim, 0.0);
     for (const auto& e : t.operators.D)
-      for (int c = 0; c < dim; ++c) g[e.row * dim + c] += e.value * s.displacement[e.col * dim + c];
+      for (int c = 0; c < dim; ++c) g[e.row * dim + c] += e.value * us[e.col * dim + c];
     for (const auto& e : t.operators.M)
       for (int c = 0; c < dim; ++c)
         g[e.row * dim + c] -= e.value * u_all[disc_.global_dof(t.master.mesh_nodes[e.col], c)];
