@@ -110,7 +110,8 @@ def tied_rectangles(h_lower, h_upper, order=1, kind="tri"):
 
 
 def tied_boxes(h_lower, h_upper, order=1, kind="tet", serendipity=False):
-    """Two unit cubes stacked in z, meshed independently (non-matching at z = 1).
+    """Two unit cubes stacked in z, meshed independently (non-matching at z = 1); kind "tet",
+    "hex" (structured) or "hex_split" (tetrahedra split into hexahedra).
     Regions: lower, upper; bottom (z = 0), top (z = 2), left (x = 0), right (x = 1),
     front (y = 0), back (y = 1) over both cubes; lower_top, upper_bottom."""
     lines = ['SetFactory("OpenCASCADE");',
@@ -125,6 +126,8 @@ def tied_boxes(h_lower, h_upper, order=1, kind="tet", serendipity=False):
     else:
         lines += ["MeshSize{PointsOf{Volume{1};}} = %g;" % h_lower,
                   "MeshSize{PointsOf{Volume{2};}} = %g;" % h_upper]
+        if kind == "hex_split":  # tetrahedra split into hexahedra: non-parallelogram faces
+            lines += ["Mesh.SubdivisionAlgorithm = 2;"]
     lines += ['Physical Volume("lower") = {1};', 'Physical Volume("upper") = {2};',
               'Physical Surface("bottom") = {5};', 'Physical Surface("top") = {12};',
               'Physical Surface("left") = {1, 7};', 'Physical Surface("right") = {2, 8};',

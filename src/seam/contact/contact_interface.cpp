@@ -125,16 +125,8 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
                                    " nodes; self contact is not available in this version");
     master_mesh_nodes_ = master_.mesh_nodes;
   }
-  // Quad4 facets that are not parallelograms have non-polynomial integrands on the cells: the
-  // degree-8 cell rule takes the patch-test error from about 1e-4 to 1e-6 there. The rule is
-  // chosen once, so that it stays the same in every Newton iteration.
-  if (dim == 3) {
-    bool affine = true;
-    for (const auto* side : {&slave_, &master_})
-      for (local_index f = 0; f < side->n_facets(); ++f)
-        affine = affine && mortar::is_affine(mortar::gather_facet<3>(side->facet_set(), f));
-    if (!affine) options_.pair.cell_quadrature_degree = 8;
-  }
+  if (!mortar::all_affine(slave_.facet_set()) || !mortar::all_affine(master_.facet_set()))
+    options_.pair.cell_quadrature_degree = 8;
   slave_adjacency_ = mortar::node_facets(slave_.facet_set());
   transformation_ =
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;

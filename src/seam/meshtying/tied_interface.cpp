@@ -89,6 +89,8 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh
       mortar::MortarOptions options;
       options.multiplier = itf.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
                                                                   : mortar::Multiplier::standard;
+      if (!mortar::all_affine(t.slave.facet_set()) || !mortar::all_affine(t.master.facet_set()))
+        options.pair.cell_quadrature_degree = 8;
       // Slave nodes with a fully prescribed displacement are treated like master nodes
       // (boundary modification of the multiplier basis, mortar/dual_basis.hpp).
       const auto bound = bound_slave_nodes(config, mesh, t.slave, options.multiplier);

@@ -168,4 +168,13 @@ template Facet<3> gather_facet<3>(const FacetSet&, local_index);
 template FacetPoint<2> evaluate<2>(const Facet<2>&, const double*);
 template FacetPoint<3> evaluate<3>(const Facet<3>&, const double*);
 
+bool all_affine(const FacetSet& facets) {
+  if (facets.dim != 3) return true;
+  for (local_index f = 0; f < facets.n_facets(); ++f)
+    if (facets.types[static_cast<std::size_t>(f)] == fem::CellType::quad4 &&
+        !is_affine(gather_facet<3>(facets, f)))
+      return false;
+  return true;
+}
+
 } // namespace seam::mortar

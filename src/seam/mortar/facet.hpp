@@ -68,6 +68,12 @@ template <int Dim> bool is_affine(const Facet<Dim>& f) {
   return d <= 1e-12 * diagonal;
 }
 
+/// True if every quad4 facet of a 3D set is a parallelogram (is_affine). An interface with
+/// other quad4 facets is integrated with the degree-8 cell rule (PairOptions): the patch-test
+/// error drops from about 1e-4 to 1e-6 there. The choice is made once per interface, so that
+/// the rule stays the same in every Newton iteration.
+bool all_affine(const FacetSet& facets);
+
 /// Copy facet f of a set into fixed-size storage.
 template <int Dim> Facet<Dim> gather_facet(const FacetSet& facets, local_index f);
 
