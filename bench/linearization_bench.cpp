@@ -10,6 +10,7 @@
 // linear 3D pair, <= 5 us for a line2 pair.
 #include "allocation_counter.hpp"
 #include "registry.hpp"
+#include "surface.hpp"
 
 #include "seam/mortar/interface.hpp"
 #include "seam/mortar/linearization.hpp"
@@ -56,20 +57,7 @@ template <class F> double best_seconds(int repeat, F&& f) {
   return best;
 }
 
-struct Surface {
-  int dim = 3;
-  std::vector<double> coords;
-  std::vector<CellType> types;
-  std::vector<local_index> offsets{0};
-  std::vector<local_index> nodes;
-
-  mortar::FacetSet facets() const { return {dim, coords, types, offsets, nodes}; }
-  void add(CellType type, const std::vector<local_index>& facet_nodes) {
-    types.push_back(type);
-    nodes.insert(nodes.end(), facet_nodes.begin(), facet_nodes.end());
-    offsets.push_back(static_cast<local_index>(nodes.size()));
-  }
-};
+using seam::bench::Surface;
 
 double bump(double x, double y) {
   return 0.1 * std::sin(std::numbers::pi * x) * std::sin(std::numbers::pi * y);

@@ -11,6 +11,7 @@
 // seam-bench mortar-share is in mortar_share_bench.cpp.
 #include "allocation_counter.hpp"
 #include "registry.hpp"
+#include "surface.hpp"
 
 #include "seam/la/petsc.hpp"
 #include "seam/meshtying/tied_interface.hpp"
@@ -69,21 +70,7 @@ template <class F> Timing best_seconds(int repeat, F&& f) {
   return t;
 }
 
-struct Surface {
-  int dim = 3;
-  std::vector<double> coords;
-  std::vector<CellType> types;
-  std::vector<local_index> offsets{0};
-  std::vector<local_index> nodes;
-
-  mortar::FacetSet facets() const { return {dim, coords, types, offsets, nodes}; }
-  search::FacetSurface view() const { return {dim, coords, offsets, nodes}; }
-  void add(CellType type, std::initializer_list<local_index> facet_nodes) {
-    types.push_back(type);
-    nodes.insert(nodes.end(), facet_nodes);
-    offsets.push_back(static_cast<local_index>(nodes.size()));
-  }
-};
+using seam::bench::Surface;
 
 // The shared interface: a bump of height `amplitude` over the unit square / interval.
 double height(double amplitude, double x, double y) {
