@@ -170,10 +170,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     }
     const auto res = newton.solve(u, t_new, step + 1, evaluate);
     if (!res.converged) {
-      u.copy_from(u_n);
-      u.update_ghosts();
-      saddle.restore();
-      contact.restore();
+      newton.reject(u, u_n);
       control.fail(res, t_new, step, out, disc.comm());
       continue;
     }
@@ -220,8 +217,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     }
     const bool last = t_new >= tc.end * (1.0 - 1e-12);
     out.step(rec, u, &v, newton.reactions(), newton.multipliers(tied), last);
-    saddle.save();
-    contact.save();
+    newton.accept();
     control.accept(t_new);
   }
   out.finish(true, step);

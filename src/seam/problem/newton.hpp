@@ -86,6 +86,19 @@ public:
                                                  la::Vector& f_ext)>;
   NewtonResult solve(la::Vector& u, double t, int step, const Evaluator& evaluate);
 
+  /// A failed attempt: back to the last converged displacements u_old and multipliers.
+  void reject(la::Vector& u, const la::Vector& u_old) {
+    u.copy_from(u_old);
+    u.update_ghosts();
+    saddle_.restore();
+    contact_.restore();
+  }
+  /// A converged step: its multipliers are where the next failed attempt returns to.
+  void accept() {
+    saddle_.save();
+    contact_.save();
+  }
+
   /// Reaction force per reaction region (dim values each), summed over ranks: the full
   /// residual f_int - f_ext at the region's nodes.
   std::vector<double> reactions() const {

@@ -37,10 +37,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
                        return assemble(model, disc, state, t_new, r, &K, &f_ext);
                      });
     if (!res.converged) {
-      u.copy_from(u_saved);
-      u.update_ghosts();
-      saddle.restore();
-      contact.restore();
+      newton.reject(u, u_saved);
       control.fail(res, t_new, step, out, disc.comm());
       continue;
     }
@@ -64,8 +61,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     }
     const bool last = t_new >= end * (1.0 - 1e-12);
     out.step(rec, u, nullptr, reactions, newton.multipliers(tied), last);
-    saddle.save();
-    contact.save();
+    newton.accept();
     control.accept(t_new);
   }
   out.finish(true, step);
