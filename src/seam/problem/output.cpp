@@ -173,9 +173,11 @@ Output::interface_states(const la::Vector& u,
 void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
                               bool write_nodes) {
   const int dim = disc_.dim();
+  // Frictionless contact: every active node slides freely, so its status is "slip"
+  // (CONTRACT.md: inactive / stick / slip).
   for (const auto& c : contact_) {
-    interfaces_->add_row(
-        {r.step, r.time, c.name, c.normal_force, 0.0, c.active_nodes, 0, c.contact_area});
+    interfaces_->add_row({r.step, r.time, c.name, c.normal_force, 0.0, c.active_nodes,
+                          c.active_nodes, c.contact_area});
     if (!write_nodes) continue;
     io::CsvTable table(dir_ / ("interface_" + c.name + ".csv"),
                        columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
@@ -189,7 +191,7 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
         U[k] = c.displacement[j * dim + k];
       }
       table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j], c.lambda_n[j], 0.0,
-                     c.active[j] ? "active" : "inactive"});
+                     c.active[j] ? "slip" : "inactive"});
     }
   }
   for (std::size_t k = 0; k < tied_.size(); ++k) {
@@ -383,7 +385,7 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
       const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
       for (int k = 0; k < dim; ++k) lambda[i * 3 + k] = c.lambda_n[j] * c.normal[j * dim + k];
       gap[i] = c.weighted_gap[j];
-      status[i] = c.active[j] ? 1 : 0;
+      status[i] = c.active[j] ? 2 : 0; // frictionless: every active node slips
     }
   }
   if (!tied_.empty() || has_contact_) {
