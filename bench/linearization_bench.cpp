@@ -58,6 +58,7 @@ template <class F> double best_seconds(int repeat, F&& f) {
 }
 
 using seam::bench::Surface;
+using seam::bench::surface_2d;
 
 double bump(double x, double y) {
   return 0.1 * std::sin(std::numbers::pi * x) * std::sin(std::numbers::pi * y);
@@ -109,25 +110,6 @@ Surface surface_3d(CellType type, int n, double h, double angle, double origin, 
                           : std::vector<local_index>{a, d, cc, b, da, cd, bc, ab});
       }
     }
-  return s;
-}
-
-/// n segments of length h from x = origin on y = bump(x, 1/2) + lift; the slave runs right to
-/// left (normal up), the master left to right.
-Surface surface_2d(CellType type, int n, double h, double origin, double lift, bool slave) {
-  Surface s;
-  s.dim = 2;
-  const int order = type == CellType::line3 ? 2 : 1;
-  for (int i = 0; i <= order * n; ++i) {
-    const double x = origin + i * h / order;
-    s.coords.insert(s.coords.end(), {x, bump(x, 0.5) + lift});
-  }
-  for (int e = 0; e < n; ++e) {
-    const local_index a = order * e, b = order * (e + 1);
-    std::vector<local_index> f{slave ? b : a, slave ? a : b};
-    if (type == CellType::line3) f.push_back(a + 1);
-    s.add(type, f);
-  }
   return s;
 }
 
@@ -273,8 +255,10 @@ int run_linearization(int argc, char** argv) {
     const std::string name = c + "-" + c;
     if (c == "line2" || c == "line3") {
       const CellType type = c == "line2" ? CellType::line2 : CellType::line3;
-      const Surface s = surface_2d(type, 16, 1.0 / 16, 0.0, 0.0, true);
-      const Surface m = surface_2d(type, 15, 1.1 / 15, -0.04, 0.005, false);
+      const Surface s = surface_2d(
+          type, 16, 1.0 / 16, 0.0, [](double x) { return bump(x, 0.5); }, true);
+      const Surface m = surface_2d(
+          type, 15, 1.1 / 15, -0.04, [](double x) { return bump(x, 0.5) + 0.005; }, false);
       results.push_back(run_case<2>(name, s, m, multiplier, repeat));
     } else {
       CellType type;

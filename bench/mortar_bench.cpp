@@ -71,6 +71,7 @@ template <class F> Timing best_seconds(int repeat, F&& f) {
 }
 
 using seam::bench::Surface;
+using seam::bench::surface_2d;
 
 // The shared interface: a bump of height `amplitude` over the unit square / interval.
 double height(double amplitude, double x, double y) {
@@ -133,27 +134,6 @@ Surface surface_3d(CellType type, int n, double h, double angle, double origin, 
   return s;
 }
 
-/// n segments of length h starting at x = origin on the curve y = bump(x); the slave runs
-/// right to left (outward normal (t_y, -t_x) up), the master left to right (normal down).
-Surface surface_2d(CellType type, int n, double h, double origin, double amplitude, bool slave) {
-  Surface s;
-  s.dim = 2;
-  const int order = type == CellType::line3 ? 2 : 1;
-  for (int i = 0; i <= order * n; ++i) {
-    const double x = origin + i * h / order;
-    s.coords.insert(s.coords.end(), {x, height(amplitude, x, 0.5)});
-  }
-  for (int e = 0; e < n; ++e) {
-    const local_index a = order * e, b = order * (e + 1);
-    const local_index first = slave ? b : a, last = slave ? a : b;
-    if (type == CellType::line3)
-      s.add(type, {first, last, a + 1});
-    else
-      s.add(type, {first, last});
-  }
-  return s;
-}
-
 struct Interface {
   Surface slave, master;
   std::vector<mortar::CandidatePair> candidates; // grouped by slave facet
@@ -168,8 +148,9 @@ Interface make_interface(CellType type, int n, double amplitude) {
   const double h = 1.0 / n, hm = master_ratio * h;
   if (type == CellType::line2 || type == CellType::line3) {
     const int nm = static_cast<int>(std::ceil((1.0 + 2.0 * hm) / hm));
-    in.slave = surface_2d(type, n, h, 0.0, amplitude, true);
-    in.master = surface_2d(type, nm, hm, -0.63 * hm, amplitude, false);
+    const auto curve = [amplitude](double x) { return height(amplitude, x, 0.5); };
+    in.slave = surface_2d(type, n, h, 0.0, curve, true);
+    in.master = surface_2d(type, nm, hm, -0.63 * hm, curve, false);
   } else {
     // The rotated master lattice must cover the unit square: half its diagonal is 0.71.
     const int nm = static_cast<int>(std::ceil(1.5 / hm)) + 1;
