@@ -18,6 +18,7 @@
   np = 3 for the sphere, and examples/torus on a coarse mesh (energy and force balance,
   quadratic convergence, no step cut).
 """
+import functools
 import os
 import subprocess
 import sys
@@ -31,6 +32,17 @@ import harness as H  # noqa: E402
 EXAMPLES = os.path.join(H.HERE, "..", "..", "examples")
 FULL = os.environ.get("SEAM_FULL") == "1"
 _dirs = []  # temporary directories, removed at exit (also after a failure)
+
+
+def full_only(test):
+    """Runs `test` only with SEAM_FULL=1 (the fine meshes; too slow for CI)."""
+    @functools.wraps(test)
+    def run():
+        if not FULL:
+            print("   skipped (set SEAM_FULL=1)")
+            return
+        test()
+    return run
 
 # Hertz tolerances (relative). The coarse CI meshes resolve the contact zone with 6 (3D) to
 # 12 (2D) elements; the fine ones (SEAM_FULL=1) with 12 to 47 (BENCHMARKS.md asks for 2 %).
@@ -336,10 +348,8 @@ def test_hertz_2d_coarse():
     check_hertz(hertz_2d(COARSE_2D), 2, HERTZ_2D, COARSE_TOL)
 
 
+@full_only
 def test_hertz_2d_fine():
-    if not FULL:
-        print("   skipped (set SEAM_FULL=1)")
-        return
     check_hertz(hertz_2d(FINE_2D), 2, HERTZ_2D, FINE_TOL)
 
 
@@ -419,17 +429,13 @@ def test_hertz_3d_coarse():
     check_hertz(hertz_3d(COARSE_3D), 3, HERTZ_3D, COARSE_TOL)
 
 
+@full_only
 def test_hertz_3d_fine():
-    if not FULL:
-        print("   skipped (set SEAM_FULL=1)")
-        return
     check_hertz(hertz_3d(FINE_3D), 3, HERTZ_3D, FINE_TOL)
 
 
+@full_only
 def test_hertz_3d_parallel():
-    if not FULL:
-        print("   skipped (set SEAM_FULL=1)")
-        return
     a, _ = hertz_3d(COARSE_3D, np=1)
     b, _ = hertz_3d(COARSE_3D, np=3)
     H.assert_close(C.reaction(b, "top", 2), C.reaction(a, "top", 2), rtol=1e-8,
@@ -439,14 +445,12 @@ def test_hertz_3d_parallel():
     H.assert_close(pb, pa, rtol=1e-8, what="np = 3 vs np = 1: peak nodal pressure")
 
 
+@full_only
 def test_torus_coarse():
     """examples/torus on a coarse mesh (1536 cells, 25 steps): every step converges without a
     cut and quadratically at the end; the wall's work equals the strain energy and its force
     the support reaction (to the trapezoidal rule and the tilt of the averaged normals at the
     edge of the contact zone); the crown follows the wall."""
-    if not FULL:
-        print("   skipped (set SEAM_FULL=1)")
-        return
     work = tempfile.mkdtemp(prefix="seam_torus_")
     _dirs.append(work)
     with open(os.path.join(EXAMPLES, "torus", "torus.geo")) as f:
