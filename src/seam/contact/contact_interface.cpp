@@ -112,6 +112,9 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     }
     master_.coordinates = plane_corners_;
     plane_motion_ = plane.motion;
+    // The plane only translates: its normal, towards the body, is the contact normal of
+    // every slave node (the slave normal points out of the body, at the plane).
+    options_.fixed_normal = std::array<double, 3>{-n[0], -n[1], -n[2]};
   } else {
     master_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, *config.master));
     std::vector<std::int32_t> shared;
@@ -174,7 +177,10 @@ void ContactInterface::update(std::span<const double> u, double t) {
   for (const auto& p : found) {
     const auto& a = ns[p.slave];
     const auto& b = nm[p.master];
-    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) pairs_.push_back({p.slave, p.master});
+    // Against a rigid plane the gap is the distance to the plane for any facet orientation,
+    // so every facet near it takes part (no jump in D when a facet turns past 90 degrees).
+    if (rigid_ || a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
+      pairs_.push_back({p.slave, p.master});
   }
   std::sort(pairs_.begin(), pairs_.end(), [](const auto& x, const auto& y) {
     return x.slave != y.slave ? x.slave < y.slave : x.master < y.master;
@@ -183,7 +189,7 @@ void ContactInterface::update(std::span<const double> u, double t) {
   for (const auto& p : pairs_) ++pair_offsets_[static_cast<std::size_t>(p.slave) + 1];
   for (std::size_t f = 0; f < static_cast<std::size_t>(slave_.n_facets()); ++f)
     pair_offsets_[f + 1] += pair_offsets_[f];
-  normals_ = mortar::averaged_nodal_normals(slave_.facet_set());
+  normals_ = mortar::slave_normals(slave_.facet_set(), options_);
 }
 
 void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
