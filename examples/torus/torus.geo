@@ -2,13 +2,13 @@
 // thickness 4.5, standing as an arch in the plane y = 0 on its two end faces at z = 0.
 // Structured hexahedra: an annulus cross-section (nc elements per quarter of the tube's
 // circumference, nt through the wall) swept about the y axis in two quarter turns of na
-// layers each.
+// layers each. nc, nt and na may be set before this file is included (torus_hex20.geo).
 Ra = 76;               // major radius
 r = 24;                // minor (outer tube) radius
 w = 4.5;               // wall thickness
-nc = 12;               // elements per quarter of the tube's circumference
-nt = 2;                // elements through the wall
-na = 30;               // elements per quarter turn of the arch
+If (!Exists(nc)) nc = 12; EndIf  // elements per quarter of the tube's circumference
+If (!Exists(nt)) nt = 2; EndIf   // elements through the wall
+If (!Exists(na)) na = 30; EndIf  // elements per quarter turn of the arch
 
 ri = r - w;
 // Cross-section at the foot x = Ra, in the ground plane z = 0.

@@ -567,9 +567,31 @@ def test_contact_coulomb_not_available():
     expect_input_error(text, ["interface 'floor'", "Coulomb friction is not available"])
 
 
-def test_contact_standard_multiplier():
-    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    multiplier: standard", CONTACT)
-    expect_input_error(text, ["interface 'floor'", "needs multiplier: dual"])
+def test_contact_standard_multiplier_tri6():
+    """Standard multipliers weight the gaps with N_j, whose integral vanishes at the vertices
+    of a tri6 face: rejected with a pointer to the dual ones."""
+    geo = ('SetFactory("OpenCASCADE");\nBox(1) = {0, 0, 0, 1, 1, 1};\n'
+           'Mesh.MeshSizeMax = 0.6;\nPhysical Volume("body") = {1};\n'
+           'Physical Surface("bottom") = {5};\nPhysical Surface("top") = {6};\n')
+    text = """title: tet10 block on a plane
+dimension: 3
+mesh: {geo: box.geo, order: 2}
+materials:
+  steel: {model: linear_elastic, young: 200, poisson: 0.3}
+bodies:
+  - {region: body, material: steel}
+boundary_conditions:
+  - {region: top, type: dirichlet, components: [x, y, z], value: [0, 0, "-0.01*t"]}
+interfaces:
+  - name: floor
+    type: contact
+    slave: bottom
+    rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}
+    multiplier: standard
+time: {integrator: static, end: 1, steps: 1}
+"""
+    expect_input_error(text, ["interface 'floor'", "standard multipliers on tri6/quad8",
+                              "use multiplier: dual"], files=[("box.geo", geo)])
 
 
 def test_contact_c_n_negative():
@@ -618,7 +640,7 @@ if __name__ == "__main__":
         test_component_z_in_2d,
         test_output_directory_not_creatable, test_unknown_command_line_flag,
         test_version_and_help,
-        test_contact_coulomb_not_available, test_contact_standard_multiplier,
+        test_contact_coulomb_not_available, test_contact_standard_multiplier_tri6,
         test_contact_c_n_negative, test_contact_slave_region_missing,
         test_contact_rigid_plane_and_master,
         test_solver_gives_up_exit_2, test_bad_expression_on_3_ranks,

@@ -97,29 +97,45 @@ def check_uniform_pressure(out, expected, area, load_region, axis, rtol=1e-8, na
                    what="interfaces.csv normal_force")
 
 
-def test_patch_2d_rigid_plane():
+def patch_2d_rigid_plane(multiplier="dual", order=1, h=0.23):
     E, d, ly = 100.0, 0.01, 1.0
     yaml = patch_yaml(2, ["{region: left, type: dirichlet, components: [x], value: [0]}",
                           "{region: top, type: dirichlet, components: [y], value: ['-%r*t']}" % d],
                       [("m", E, 0.0)], [("body", "m")],
-                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
-                      "rigid_plane: {point: [0, 0], normal: [0, 1]}}")
-    work, out = run_case(G.rectangle("quad", 0.23, lx=2.0, ly=ly), yaml)
+                      "{name: contact, type: contact, slave: bottom, multiplier: %s, "
+                      "rigid_plane: {point: [0, 0], normal: [0, 1]}}" % multiplier)
+    work, out = run_case(G.rectangle("quad", h, order=order, lx=2.0, ly=ly), yaml)
     check_uniform_pressure(out, E * d / ly, 2.0, "top", 1)
     H.cleanup(work, out)
 
 
-def patch_3d_rigid_plane(kind, h, rtol=1e-8):
+def test_patch_2d_rigid_plane():
+    patch_2d_rigid_plane()
+
+
+def test_patch_2d_rigid_plane_standard():
+    """Standard multipliers (saddle point, D not diagonal), line2 and line3 faces."""
+    patch_2d_rigid_plane("standard")
+    patch_2d_rigid_plane("standard", order=2, h=0.3)
+
+
+def patch_3d_rigid_plane(kind, h, rtol=1e-8, multiplier="dual", order=1, np=1):
     E, d, lz = 100.0, 0.01, 1.0
     yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
                           "{region: front, type: dirichlet, components: [y], value: [0]}",
                           "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
                       [("m", E, 0.0)], [("body", "m")],
-                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
-                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
-    work, out = run_case(G.box(kind, h, lx=1.0, ly=1.0, lz=lz), yaml)
+                      "{name: contact, type: contact, slave: bottom, multiplier: %s, "
+                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}" % multiplier)
+    work, out = run_case(G.box(kind, h, order=order, lx=1.0, ly=1.0, lz=lz), yaml, np=np)
     check_uniform_pressure(out, E * d / lz, 1.0, "top", 2, rtol=rtol)
     H.cleanup(work, out)
+
+
+def test_patch_3d_rigid_plane_standard():
+    """Standard multipliers: quad4 faces on 3 ranks, tri3 faces."""
+    patch_3d_rigid_plane("hex_structured", 0.26, multiplier="standard", np=3)
+    patch_3d_rigid_plane("tet", 0.4, multiplier="standard")
 
 
 def test_patch_2d_rigid_plane_quadratic():
@@ -204,7 +220,7 @@ def test_patch_3d_rigid_plane_poisson():
     H.cleanup(work, out)
 
 
-def two_block_case(dimension, geo, slave, master, np=1):
+def two_block_case(dimension, geo, slave, master, np=1, multiplier="dual"):
     E_lower, E_upper, d = 100.0, 40.0, 0.02
     if dimension == 2:
         bcs = ["{region: bottom, type: dirichlet, components: [y], value: [0]}",
@@ -217,8 +233,8 @@ def two_block_case(dimension, geo, slave, master, np=1):
                "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d]
     yaml = patch_yaml(dimension, bcs, [("lo", E_lower, 0.0), ("up", E_upper, 0.0)],
                       [("lower", "lo"), ("upper", "up")],
-                      "{name: contact, type: contact, slave: %s, master: %s, multiplier: dual}"
-                      % (slave, master))
+                      "{name: contact, type: contact, slave: %s, master: %s, multiplier: %s}"
+                      % (slave, master, multiplier))
     work, out = run_case(geo, yaml, np=np)
     # Two unit-height blocks in series: sigma = d / (1/E_lower + 1/E_upper).
     check_uniform_pressure(out, d / (1.0 / E_lower + 1.0 / E_upper), 1.0, "top", dimension - 1)
@@ -241,6 +257,16 @@ def test_patch_3d_two_blocks_tet10_np3():
     """tri6 slave faces (modified dual basis) on tri6 master faces, non-matching, 3 ranks."""
     two_block_case(3, G.tied_boxes(0.5, 0.35, order=2, kind="tet"), "upper_bottom", "lower_top",
                    np=3)
+
+
+def test_patch_2d_two_blocks_standard():
+    two_block_case(2, G.tied_rectangles(0.26, 0.11, kind="quad"), "upper_bottom", "lower_top",
+                   multiplier="standard")
+
+
+def test_patch_3d_two_blocks_tet_standard_np3():
+    two_block_case(3, G.tied_boxes(0.35, 0.25, kind="tet"), "upper_bottom", "lower_top", np=3,
+                   multiplier="standard")
 
 
 def test_patch_3d_two_blocks_hex_np3():
@@ -305,7 +331,7 @@ def hertz_3d(refine, np=1):
     return example_run("hertz_3d", "hertz_3d.yaml", "sphere.geo", refine, np)
 
 
-def check_hertz(run, dimension, params, tol):
+def check_hertz(run, dimension, params, tol, penetration=1e-6):
     out, msh = run
     rows = H.read_csv(os.path.join(out, "interface_contact.csv"))
     facets, coords = C.slave_facets(C.read_msh(msh), "surface")
@@ -317,7 +343,7 @@ def check_hertz(run, dimension, params, tol):
     # a few 1e-8 R below the plane (the weighted gaps are 0 to round-off).
     axis = "xyz"[dimension - 1]
     lowest = min(r[axis] + r["u" + axis] for r in rows)
-    if lowest < -1e-6 * params["radius"]:
+    if lowest < -penetration * params["radius"]:
         raise AssertionError("slave node below the rigid plane: %s = %.3e" % (axis, lowest))
     tractions, total = C.reference_tractions(rows, facets)
     itf = H.last_step_rows(H.read_csv(os.path.join(out, "interfaces.csv")))[0]
@@ -425,6 +451,24 @@ def test_hertz_2d_newton_quadratic():
     check_quadratic(out)
 
 
+def test_hertz_2d_standard():
+    """Standard multipliers (saddle point): Hertz within the same tolerance, no node below the
+    plane, np = 3 equal to np = 1, and quadratic convergence on the Neo-Hooke variant."""
+    std = (("multiplier: dual", "multiplier: standard"),)
+    a = example_run("hertz_2d", "hertz_2d.yaml", "cylinder.geo", COARSE_2D, replace=std)
+    # Standard multipliers constrain int N_j g >= 0, a weaker condition than the dual
+    # int Phi_j g = D_jj g_j >= 0: between the active nodes and the first open one the
+    # interpolated surface may dip below the plane by a fraction of the element's sag.
+    check_hertz(a, 2, HERTZ_2D, COARSE_TOL, penetration=1e-4)
+    b = example_run("hertz_2d", "hertz_2d.yaml", "cylinder.geo", COARSE_2D, np=3, replace=std)
+    H.assert_close(C.reaction(b[0], "top", 1), C.reaction(a[0], "top", 1), rtol=1e-8,
+                   what="standard multipliers, np = 3 vs np = 1: top reaction")
+    out, _ = example_run("hertz_2d", "hertz_2d.yaml", "cylinder.geo", COARSE_2D,
+                         replace=std + (("model: linear_elastic", "model: neo_hooke"),
+                                        ('"-0.02*t"', '"-0.1*t"')))
+    check_quadratic(out)
+
+
 def test_hertz_3d_coarse():
     check_hertz(hertz_3d(COARSE_3D), 3, HERTZ_3D, COARSE_TOL)
 
@@ -502,6 +546,9 @@ if __name__ == "__main__":
                 test_patch_3d_rigid_plane_poisson, test_patch_2d_two_blocks_slave_finer,
                 test_patch_2d_two_blocks_slave_coarser, test_patch_3d_two_blocks_tet,
                 test_patch_3d_two_blocks_hex_np3, test_patch_3d_two_blocks_tet10_np3,
+                test_patch_2d_rigid_plane_standard, test_patch_3d_rigid_plane_standard,
+                test_patch_2d_two_blocks_standard, test_patch_3d_two_blocks_tet_standard_np3,
+                test_hertz_2d_standard,
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,

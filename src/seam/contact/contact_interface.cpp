@@ -197,6 +197,7 @@ void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
   out.D.assign(n_slave, 0.0);
   out.gap.assign(n_slave, 0.0);
   out.M.clear();
+  out.D_coupling.clear();
   out.area = 0.0;
   out.n_pairs = 0;
   out.n_cells = 0;
@@ -206,8 +207,12 @@ void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
   if (mine.empty()) return;
   const auto ops =
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), mine, options_);
-  for (const auto& e : ops.D)
-    if (e.row == e.col) out.D[static_cast<std::size_t>(e.row)] += e.value;
+  for (const auto& e : ops.D) {
+    if (e.row == e.col)
+      out.D[static_cast<std::size_t>(e.row)] += e.value;
+    else if (standard() && e.value != 0.0)
+      out.D_coupling.push_back(e);
+  }
   for (std::size_t j = 0; j < n_slave; ++j) out.gap[j] = ops.weighted_gap[j];
   if (!rigid_)
     for (const auto& e : ops.M)
@@ -224,6 +229,14 @@ void ContactInterface::add_force(const NodalValues& values, std::span<const doub
     const double s = values.D[j] * lambda_n[j];
     if (s == 0.0) continue;
     const auto row = static_cast<std::size_t>(slave_.mesh_nodes[j]) * dim;
+    for (int c = 0; c < dim; ++c) force[row + c] += s * normals_[j * dim + c];
+  }
+  for (const auto& e : values.D_coupling) {
+    const auto j = static_cast<std::size_t>(e.row);
+    const double s = e.value * lambda_n[j];
+    if (s == 0.0) continue;
+    const auto row =
+        static_cast<std::size_t>(slave_.mesh_nodes[static_cast<std::size_t>(e.col)]) * dim;
     for (int c = 0; c < dim; ++c) force[row + c] += s * normals_[j * dim + c];
   }
   for (const auto& e : values.M) {

@@ -49,6 +49,9 @@ struct NodalValues {
   std::vector<double> D;   ///< D_jj per slave node
   std::vector<double> gap; ///< g~_j per slave node
   std::vector<MortarEntry> M;
+  /// Standard multipliers only: the entries D_jk, j != k (row j, column k side-local); the
+  /// slave force of node k is sum_j D_jk lambda_n,j n_j.
+  std::vector<mortar::Triplet> D_coupling;
   double area = 0.0; ///< integrated area (length in 2D) of the slave/master overlap
   local_index n_pairs = 0;
   local_index n_cells = 0;
@@ -96,6 +99,8 @@ public:
 
   /// Averaged unit nodal normals of the slave side at the last update (dim per slave node).
   const std::vector<double>& normals() const { return normals_; }
+  /// Standard (not dual) multipliers: D is not diagonal.
+  bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
   /// Candidate pairs of the last update (after the facing test).
   local_index n_candidates() const { return static_cast<local_index>(pairs_.size()); }
 

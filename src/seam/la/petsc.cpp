@@ -221,10 +221,13 @@ Matrix Matrix::multiply(const Matrix& A, const Matrix& B) {
 }
 
 Matrix Matrix::from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
-                             std::span<const PetscInt> cols, std::span<const double> values) {
+                             std::span<const PetscInt> cols, std::span<const double> values,
+                             PetscInt n_owned_cols) {
   Matrix out;
   check(MatCreate(comm, &out.m_), "MatCreate");
-  check(MatSetSizes(out.m_, n_owned, n_owned, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetSizes(out.m_, n_owned, n_owned_cols < 0 ? n_owned : n_owned_cols, PETSC_DETERMINE,
+                    PETSC_DETERMINE),
+        "MatSetSizes");
   check(MatSetType(out.m_, MATAIJ), "MatSetType");
   // MatSetPreallocationCOO may reorder its index arrays: hand it copies.
   std::vector<PetscInt> i(rows.begin(), rows.end()), j(cols.begin(), cols.end());
@@ -232,6 +235,12 @@ Matrix Matrix::from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const Pe
         "MatSetPreallocationCOO");
   check(MatSetValuesCOO(out.m_, values.data(), INSERT_VALUES), "MatSetValuesCOO");
   return out;
+}
+
+Matrix Matrix::copy() const {
+  Mat m = nullptr;
+  check(MatDuplicate(m_, MAT_COPY_VALUES, &m), "MatDuplicate");
+  return adopt(m);
 }
 
 void Matrix::mult(const Vector& x, Vector& y) const {

@@ -103,10 +103,14 @@ public:
   static Matrix ptap(const Matrix& A, const Matrix& P);
   /// A B as a new matrix.
   static Matrix multiply(const Matrix& A, const Matrix& B);
-  /// A square matrix with n_owned local rows/cols from coordinate triplets in global indices
-  /// (any rank may give entries of any row; repeated entries are summed). Collective.
+  /// A matrix with n_owned local rows (and n_owned local columns, or n_owned_cols if given)
+  /// from coordinate triplets in global indices (any rank may give entries of any row;
+  /// repeated entries are summed). Collective.
   static Matrix from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
-                              std::span<const PetscInt> cols, std::span<const double> values);
+                              std::span<const PetscInt> cols, std::span<const double> values,
+                              PetscInt n_owned_cols = -1);
+  /// A copy of this matrix (pattern and values).
+  Matrix copy() const;
   /// y = this x, and y = this^T x.
   void mult(const Vector& x, Vector& y) const;
   void mult_transpose(const Vector& x, Vector& y) const;

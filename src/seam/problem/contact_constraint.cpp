@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 namespace seam::problem {
 
@@ -28,10 +29,17 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       io::fail_at(itf.mark, "interface '" + itf.name +
                                 "': Coulomb friction is not available in this version of seam "
                                 "(frictionless contact is)");
-    if (itf.multiplier != io::Multiplier::dual)
-      io::fail_at(itf.mark, "interface '" + itf.name +
-                                "': contact condenses the multipliers and needs multiplier: dual");
     Side s(contact::ContactInterface(itf, disc.mesh()));
+    if (s.itf.standard()) {
+      saddle_point_ = true;
+      // Standard multipliers weight the gaps with N_j, whose integral vanishes (tri6) or is
+      // negative (quad8) at the vertices: no sign condition can be put on such weighted gaps.
+      for (const auto type : s.itf.slave().types)
+        if (type == fem::CellType::tri6 || type == fem::CellType::quad8)
+          io::fail_at(itf.mark, "interface '" + itf.name +
+                                    "': standard multipliers on tri6/quad8 faces give weighted "
+                                    "gaps of no fixed sign at the vertices; use multiplier: dual");
+    }
     s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain.
     s.c_n = itf.c_n ? *itf.c_n : young / s.itf.slave_mesh_size();
@@ -55,6 +63,26 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     sides_.push_back(std::move(s));
+  }
+  if (!saddle_point_) return;
+  // One multiplier per slave node, owned with the node; numbered rank by rank.
+  const auto& comm = disc.comm();
+  for (const auto& s : sides_)
+    for (const auto node : s.itf.slave().mesh_nodes) n_lm_ += disc.owns_node(node) ? 1 : 0;
+  std::vector<double> counts(static_cast<std::size_t>(comm.size()), 0.0);
+  counts[static_cast<std::size_t>(comm.rank())] = static_cast<double>(n_lm_);
+  comm.sum_in_place(counts);
+  PetscInt next = 0;
+  for (int r = 0; r < comm.rank(); ++r)
+    next += static_cast<PetscInt>(counts[static_cast<std::size_t>(r)]);
+  first_lm_ = next;
+  for (auto& s : sides_) {
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    std::vector<double> index(nodes.size(), 0.0);
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (disc.owns_node(nodes[j])) index[j] = static_cast<double>(next++);
+    comm.sum_in_place(index);
+    s.lm_index.assign(index.begin(), index.end());
   }
 }
 
@@ -118,6 +146,8 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     ScopedTimer timer(timers, "mortar");
     s.itf.evaluate(comm.rank(), comm.size(), s.part);
     s.D = s.part.D;
+    // Standard multipliers: the nodal weight sum_k D_jk takes the place of D_jj.
+    for (const auto& e : s.part.D_coupling) s.D[static_cast<std::size_t>(e.row)] += e.value;
     s.gap = s.part.gap;
     comm.sum_in_place(s.D);
     comm.sum_in_place(s.gap);
@@ -205,10 +235,6 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   const int dim = disc_.dim();
   const PetscInt first = disc_.first_owned_dof();
   const PetscInt n_owned = disc_.n_owned_dofs();
-  const auto dof = [&](std::int64_t mesh_dof) {
-    return disc_.global_dof(static_cast<std::int32_t>(mesh_dof / dim),
-                            static_cast<int>(mesh_dof % dim));
-  };
   std::vector<PetscInt> ki, kj, li, lj, gi, gj;
   std::vector<double> kv, lv, gv;
   std::vector<char> replaced(static_cast<std::size_t>(n_owned), 0);
@@ -216,12 +242,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   std::vector<double> gap_values;
   for (auto& s : sides_) {
     ScopedTimer timer(timers, "mortar");
-    s.itf.linearize(comm.rank(), comm.size(), s.lambda, s.active, s.lin);
-    for (const auto& e : s.lin.force_tangent) {
-      ki.push_back(dof(e.row));
-      kj.push_back(dof(e.col));
-      kv.push_back(e.value);
-    }
+    linearize(s, ki, kj, kv);
     const auto& nodes = s.itf.slave().mesh_nodes;
     std::vector<NodeFrame> frames(nodes.size());
     for (std::size_t j = 0; j < nodes.size(); ++j)
@@ -229,7 +250,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
     for (const auto& e : s.lin.gap_gradient) {
       const auto j = static_cast<std::size_t>(e.row);
       gi.push_back(disc_.global_dof(nodes[j], frames[j].gap_component));
-      gj.push_back(dof(e.col));
+      gj.push_back(global_dof(e.col));
       gv.push_back(s.c_n * e.value);
     }
     // Master rows: (M_jl / (D_jj w.n_j)) n_j w^T applied to the rows of slave node j.
@@ -325,6 +346,127 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
     disc_.comm().sum_in_place(lambda);
     s.lambda = std::move(lambda);
   }
+}
+
+void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows,
+                                  std::vector<PetscInt>& cols, std::vector<double>& values) {
+  const auto& comm = disc_.comm();
+  s.itf.linearize(comm.rank(), comm.size(), s.lambda, s.active, s.lin);
+  for (const auto& e : s.lin.force_tangent) {
+    rows.push_back(global_dof(e.row));
+    cols.push_back(global_dof(e.col));
+    values.push_back(e.value);
+  }
+}
+
+PetscInt ContactConstraint::global_dof(std::int64_t mesh_dof) const {
+  const int dim = disc_.dim();
+  return disc_.global_dof(static_cast<std::int32_t>(mesh_dof / dim),
+                          static_cast<int>(mesh_dof % dim));
+}
+
+bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector& minus_r,
+                                           std::span<const PetscInt> dirichlet, const la::Vector* g,
+                                           la::LinearSolver& solver, la::Vector& dd,
+                                           PhaseTimers& timers) {
+  const auto& comm = disc_.comm();
+  const int dim = disc_.dim();
+  const PetscInt n_disp = disc_.n_owned_dofs();
+  std::vector<PetscInt> ki, kj, bi, bj, ci, cj, ei, ej;
+  std::vector<double> kv, bv, cv, ev, lm_rhs;
+  for (auto& s : sides_) {
+    {
+      ScopedTimer timer(timers, "mortar");
+      linearize(s, ki, kj, kv);
+    }
+    // B^T, this rank's part: column of multiplier j, rows D_jk n_j (slave k), -M_jl n_j.
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    const double* normals = s.itf.normals().data();
+    const auto add_column = [&](std::int32_t mesh_node, std::size_t j, double value) {
+      for (int a = 0; a < dim; ++a) {
+        const double v = value * normals[j * dim + static_cast<std::size_t>(a)];
+        if (v == 0.0) continue;
+        bi.push_back(disc_.global_dof(mesh_node, a));
+        bj.push_back(s.lm_index[j]);
+        bv.push_back(v);
+      }
+    };
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (s.part.D[j] != 0.0) add_column(nodes[j], j, s.part.D[j]);
+    for (const auto& e : s.part.D_coupling)
+      add_column(nodes[static_cast<std::size_t>(e.col)], static_cast<std::size_t>(e.row), e.value);
+    for (const auto& e : s.part.M)
+      add_column(e.master_node, static_cast<std::size_t>(e.slave), -e.value);
+    // Active rows: c_n dg~_j dd = -c_n g~_j; inactive rows: D_j lambda_j = 0.
+    for (const auto& e : s.lin.gap_gradient) {
+      ci.push_back(s.lm_index[static_cast<std::size_t>(e.row)]);
+      cj.push_back(global_dof(e.col));
+      cv.push_back(s.c_n * e.value);
+    }
+    double weight = 0.0;
+    int n_weights = 0;
+    for (const double d : s.D)
+      if (d > 0.0) weight += d, ++n_weights;
+    weight = n_weights > 0 ? weight / n_weights : 1.0;
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      if (!disc_.owns_node(nodes[j])) continue;
+      ei.push_back(s.lm_index[j]);
+      ej.push_back(s.lm_index[j]);
+      ev.push_back(s.active[j] ? 0.0 : (s.D[j] > 0.0 ? s.D[j] : weight));
+      lm_rhs.push_back(s.active[j] ? -s.c_n * s.gap[j] : 0.0);
+    }
+  }
+  auto assembly = std::make_unique<ScopedTimer>(timers, "condensation");
+  const MPI_Comm mpi = comm.get();
+  la::Matrix A11 = K.copy();
+  A11.axpy_any_pattern(1.0, la::Matrix::from_triplets(mpi, n_disp, ki, kj, kv));
+  const auto BT = la::Matrix::from_triplets(mpi, n_disp, bi, bj, bv, n_lm_);
+  const auto C = la::Matrix::from_triplets(mpi, n_lm_, ci, cj, cv, n_disp);
+  const auto E = la::Matrix::from_triplets(mpi, n_lm_, ei, ej, ev);
+  // [K~ B^T; C E] as AIJ, rows per rank: displacement dofs, then multipliers.
+  Mat blocks[4] = {A11.get(), BT.get(), C.get(), E.get()};
+  Mat nest = nullptr, aug = nullptr;
+  la::check(MatCreateNest(mpi, 2, nullptr, 2, nullptr, blocks, &nest), "MatCreateNest");
+  la::check(MatConvert(nest, MATAIJ, MAT_INITIAL_MATRIX, &aug), "MatConvert");
+  MatDestroy(&nest);
+  la::Matrix A = la::Matrix::adopt(aug);
+  la::Vector b(mpi, n_disp + n_lm_), x(mpi, n_disp + n_lm_), gx(mpi, n_disp + n_lm_);
+  {
+    la::Vector::LocalView bw(b, true), rv(minus_r, false);
+    auto bl = bw.values();
+    const auto rl = rv.values();
+    for (PetscInt i = 0; i < n_disp; ++i) bl[i] = rl[i];
+    for (PetscInt i = 0; i < n_lm_; ++i) bl[n_disp + i] = lm_rhs[static_cast<std::size_t>(i)];
+  }
+  // Augmented index of an owned displacement dof: shifted by the multipliers of lower ranks.
+  std::vector<PetscInt> rows(dirichlet.begin(), dirichlet.end());
+  for (auto& r : rows) r += first_lm_;
+  if (g) {
+    la::Vector::LocalView xw(gx, true), gv(*g, false);
+    auto xl = xw.values();
+    const auto gl = gv.values();
+    for (PetscInt i = 0; i < n_disp; ++i) xl[i] = gl[i];
+  }
+  A.zero_rows_columns(rows, g ? &gx : nullptr, g ? &b : nullptr);
+  assembly.reset();
+  {
+    ScopedTimer solve_timer(timers, "linear_solve");
+    if (!solver.solve(A, b, x)) return false;
+  }
+  la::Vector::LocalView xv(x, false), dw(dd, true);
+  const auto xl = xv.values();
+  auto dl = dw.values();
+  for (PetscInt i = 0; i < n_disp; ++i) dl[i] = xl[i];
+  PetscInt next = n_disp;
+  for (auto& s : sides_) {
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    std::vector<double> lambda(nodes.size(), 0.0);
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (disc_.owns_node(nodes[j])) lambda[j] = xl[next++];
+    comm.sum_in_place(lambda);
+    s.lambda = std::move(lambda);
+  }
+  return true;
 }
 
 bool ContactConstraint::transformed() const {

@@ -21,6 +21,13 @@
 // With the modified slave basis of tri6/quad8 facets (d = T d~, Popp et al. 2012) the slave
 // force is T^-T D lambda n; the slave rows are first combined by T^T (matrix P), which leaves
 // D_jj lambda_j alone in row j: Ksys = L P (K + Kc~) with Kc~ the derivative of D lambda n.
+//
+// With standard multipliers (`multiplier: standard`, any interface) D is not diagonal and the
+// multipliers stay unknowns: the same semi-smooth Newton step is solved as a saddle point,
+//   [ K~  B^T ] [ dd          ]   [ -r       ]      B^T = d(contact force)/d lambda:
+//   [ C   E   ] [ lambda^{k+1} ] = [ -c_n g~_A ],   slave k: D_jk n_j, master l: -M_jl n_j,
+// with C = c_n dg~_j/dd, E = 0 on the active rows and C = 0, E = (nodal weight) on the
+// inactive ones (lambda_j = 0); the nodal weight D_j = sum_k D_jk = int N_j replaces D_jj.
 #include "seam/common/timer.hpp"
 #include "seam/contact/contact_interface.hpp"
 #include "seam/io/config.hpp"
@@ -29,6 +36,7 @@
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +67,17 @@ public:
   /// The new multipliers from the solution dd of the condensed system. Collective.
   void recover(const la::Matrix& K, const la::Vector& r, const la::Vector& dd);
 
+  /// Standard multipliers on some interface: each Newton step is the saddle point above
+  /// instead of condense / recover.
+  bool saddle_point() const { return saddle_point_; }
+  /// Solves the saddle point at the last evaluate() for dd and the new multipliers. `minus_r`
+  /// is -r (bulk residual without contact, zero Dirichlet rows), `dirichlet` the fixed
+  /// displacement dofs and `g`, if given, their prescribed increments. Returns false if the
+  /// linear solver failed. Collective.
+  bool solve_saddle_point(const la::Matrix& K, const la::Vector& minus_r,
+                          std::span<const PetscInt> dirichlet, const la::Vector* g,
+                          la::LinearSolver& solver, la::Vector& dd, PhaseTimers& timers);
+
   /// Multipliers of the last converged step (save) are restored after a failed attempt.
   void save();
   void restore();
@@ -84,6 +103,8 @@ private:
     std::vector<mortar::Triplet> T_inverse;
     double area = 0.0;
     bool frozen = false; ///< active set frozen after cycling was detected in this step
+    /// Saddle point: global multiplier index of every slave node (replicated).
+    std::vector<PetscInt> lm_index;
   };
   /// Free-direction data of an active slave node: w, the row that carries the gap and the
   /// tangent rows.
@@ -96,6 +117,12 @@ private:
     double tangent[2][3] = {{0, 0, 0}, {0, 0, 0}};
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
+  /// Linearizes side s at its multipliers and active set (s.lin) and appends this rank's part
+  /// of the contact force tangent as global triplets.
+  void linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,
+                 std::vector<double>& values);
+  /// The global dof of a mesh dof (node * dim + component).
+  PetscInt global_dof(std::int64_t mesh_dof) const;
   std::vector<double> gather_mesh_displacement(const la::Vector& u) const;
 
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
@@ -106,6 +133,9 @@ private:
   const Discretization& disc_;
   std::vector<Side> sides_;
   la::Matrix Kc_, P_;
+  bool saddle_point_ = false;
+  PetscInt n_lm_ = 0;     ///< multipliers this rank owns (those of its slave nodes)
+  PetscInt first_lm_ = 0; ///< global index of the first of them
 };
 
 } // namespace seam::problem

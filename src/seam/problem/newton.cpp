@@ -115,6 +115,19 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       return res;
     }
     if (it == nc.max_iterations) break;
+    if (contact_.saddle_point()) {
+      // Standard multipliers: displacements and multipliers together (contact_constraint.hpp).
+      rt_.copy_from(r_);
+      zero_dirichlet_rows(model_, disc_, rt_);
+      rt_.scale(-1.0);
+      if (!contact_.solve_saddle_point(K_, rt_, dirichlet_rows_, predictor ? &g_ : nullptr, solver_,
+                                       du_, out_.timers())) {
+        res.failure = "the linear solver failed";
+        return res;
+      }
+      apply_increment(u, t, predictor);
+      continue;
+    }
     if (contact_.active()) {
       contact_.condense(K_, r_, Kt_, rt_, out_.timers());
       zero_dirichlet_rows(model_, disc_, rt_);
@@ -141,18 +154,22 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       res.failure = "the linear solver failed";
       return res;
     }
-    last_increment_ = du_.norm();
-    u.axpy(1.0, du_);
-    if (predictor) {
-      // The constrained rows of the solve return the prescribed increment up to round-off;
-      // make the prescribed values exact.
-      dirichlet_increment(model_, disc_, u, t, g_);
-      u.axpy(1.0, g_);
-    }
-    u.update_ghosts();
+    apply_increment(u, t, predictor);
   }
   res.failure = "Newton's method did not converge";
   return res;
+}
+
+void NewtonSolver::apply_increment(la::Vector& u, double t, bool predictor) {
+  last_increment_ = du_.norm();
+  u.axpy(1.0, du_);
+  if (predictor) {
+    // The constrained rows of the solve return the prescribed increment up to round-off;
+    // make the prescribed values exact.
+    dirichlet_increment(model_, disc_, u, t, g_);
+    u.axpy(1.0, g_);
+  }
+  u.update_ghosts();
 }
 
 double StepControl::next() const {

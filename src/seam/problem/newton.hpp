@@ -141,6 +141,9 @@ public:
   }
 
 private:
+  /// u += du_ (and the prescribed values made exact after a predictor); ghosts updated.
+  void apply_increment(la::Vector& u, double t, bool predictor);
+
   const io::Config& config_;
   const Model& model_;
   const Discretization& disc_;

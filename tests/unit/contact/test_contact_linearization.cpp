@@ -1,8 +1,9 @@
 // The contact linearization against central differences of the contact evaluation itself:
 // d(contact force)/d(displacement) at fixed normal multipliers and d g~_j/d(displacement), on
-// two non-matching meshes in 2D (line2) and 3D (quad4, tri3) pressed into each other with a
-// random perturbation, so that master edges cross the slave integration cells, some slave
-// nodes penetrate and others are open; and on a rigid plane. Every derivative the contact
+// two non-matching meshes in 2D (line2) and 3D (quad4, tri3), with dual and with standard
+// multipliers (D not diagonal), pressed into each other with a random perturbation, so that
+// master edges cross the slave integration cells, some slave nodes penetrate and others are
+// open; and on a rigid plane. Every derivative the contact
 // Newton uses goes through here: normals, projections, clip polygons, cell Jacobians, dual
 // coefficients, D, M and g~.
 #include "seam/contact/contact_interface.hpp"
@@ -63,8 +64,9 @@ Physical Curve("master") = {3}; Physical Curve("slave") = {5};
                          options);
 }
 
-io::Interface contact_config(bool rigid, int dim) {
+io::Interface contact_config(bool rigid, int dim, bool standard) {
   io::Interface c;
+  c.multiplier = standard ? io::Multiplier::standard : io::Multiplier::dual;
   c.name.assign("contact");
   c.type = io::InterfaceType::contact;
   c.slave.name.assign("slave");
@@ -82,9 +84,9 @@ io::Interface contact_config(bool rigid, int dim) {
 
 using Dense = std::map<std::pair<std::int64_t, std::int64_t>, double>;
 
-void check(int dim, bool tets, bool rigid) {
+void check(int dim, bool tets, bool rigid, bool standard = false) {
   const auto mesh = two_blocks(dim, tets);
-  ContactInterface itf(contact_config(rigid, dim), mesh);
+  ContactInterface itf(contact_config(rigid, dim, standard), mesh);
   // Press the upper block into the lower one, perturb every interface node.
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> perturb(-0.015, 0.015);
@@ -158,9 +160,14 @@ void check(int dim, bool tets, bool rigid) {
       g_err = std::max(g_err, std::abs(fd - an));
     }
   }
-  std::printf("  dim %d %s %s: %zu dofs, |dF/du| max %.3e err %.3e, |dg/du| max %.3e err %.3e\n",
+  std::printf("  dim %d %s %s %s: %zu dofs, |dF/du| max %.3e err %.3e, |dg/du| max %.3e err "
+              "%.3e\n",
               dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
-              rigid ? "rigid plane" : "two bodies", dofs.size(), k_max, k_err, g_max, g_err);
+              rigid ? "rigid plane" : "two bodies", standard ? "standard" : "dual", dofs.size(),
+              k_max, k_err, g_max, g_err);
+  if (standard) {
+    EXPECT_FALSE(values.D_coupling.empty()); // D is not diagonal
+  }
   EXPECT_GT(k_max, 0.1);
   EXPECT_GT(g_max, 1e-3);
   EXPECT_LT(k_err, 1e-6 * k_max);
@@ -175,6 +182,15 @@ TEST(ContactLinearization, TwoBodiesQuad4) {
 }
 TEST(ContactLinearization, TwoBodiesTri3) {
   check(3, true, false);
+}
+TEST(ContactLinearization, TwoBodies2DStandard) {
+  check(2, false, false, true);
+}
+TEST(ContactLinearization, TwoBodiesQuad4Standard) {
+  check(3, false, false, true);
+}
+TEST(ContactLinearization, TwoBodiesTri3Standard) {
+  check(3, true, false, true);
 }
 TEST(ContactLinearization, RigidPlane2D) {
   check(2, false, true);
