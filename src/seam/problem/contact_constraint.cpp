@@ -290,29 +290,33 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
     }
   }
   ScopedTimer timer(timers, "condensation");
+  // L = I + dL: only the rows of the active slave nodes and of their master nodes differ from
+  // the identity, so the products below touch those rows of K alone.
   for (PetscInt i = 0; i < n_owned; ++i)
-    if (!replaced[static_cast<std::size_t>(i)]) {
+    if (replaced[static_cast<std::size_t>(i)]) {
       li.push_back(first + i);
       lj.push_back(first + i);
-      lv.push_back(1.0);
+      lv.push_back(-1.0);
     }
   const MPI_Comm mpi = comm.get();
   Kc_ = la::Matrix::from_triplets(mpi, n_owned, ki, kj, kv);
-  const auto L = la::Matrix::from_triplets(mpi, n_owned, li, lj, lv);
-  const auto G = la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv);
+  const auto dL = la::Matrix::from_triplets(mpi, n_owned, li, lj, lv);
+  // Ksys = L P K + L Kc + G = K + dLP K + Kc + dL Kc + G with L P = I + dLP,
+  // dLP = dL + dP + dL dP (P = I + dP, dP = 0 without a modified slave basis).
+  la::Matrix dLP = dL.copy();
   if (transformed()) {
-    if (!P_.get()) P_ = transformation_rows();
-    const auto LP = la::Matrix::multiply(L, P_);
-    Ksys = la::Matrix::multiply(LP, K);
-    la::Vector Pr = disc_.make_vector();
-    P_.mult(r, Pr);
-    L.mult(Pr, rsys);
-  } else {
-    Ksys = la::Matrix::multiply(L, K);
-    L.mult(r, rsys);
+    if (!dP_.get()) dP_ = transformation_delta();
+    dLP.axpy_any_pattern(1.0, dP_);
+    dLP.axpy_any_pattern(1.0, la::Matrix::multiply(dL, dP_));
   }
-  Ksys.axpy_any_pattern(1.0, la::Matrix::multiply(L, Kc_));
-  Ksys.axpy_any_pattern(1.0, G);
+  auto S = la::Matrix::multiply(dLP, K);
+  S.axpy_any_pattern(1.0, la::Matrix::multiply(dL, Kc_));
+  S.axpy_any_pattern(1.0, Kc_);
+  S.axpy_any_pattern(1.0, la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv));
+  Ksys = K.copy();
+  Ksys.axpy_any_pattern(1.0, S);
+  dLP.mult(r, rsys);
+  rsys.axpy(1.0, r);
   rsys.set_values(gap_rows, gap_values);
   rsys.assemble();
 }
@@ -324,8 +328,8 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
   K.mult(dd, y);
   y.axpy(1.0, r);
   if (transformed()) {
-    P_.mult(y, yc);
-    y.copy_from(yc);
+    dP_.mult(y, yc); // y = P y = y + dP y
+    y.axpy(1.0, yc);
   }
   Kc_.mult(dd, yc);
   y.axpy(1.0, yc);
@@ -348,8 +352,8 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
   }
 }
 
-void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows,
-                                  std::vector<PetscInt>& cols, std::vector<double>& values) {
+void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,
+                                  std::vector<double>& values) {
   const auto& comm = disc_.comm();
   s.itf.linearize(comm.rank(), comm.size(), s.lambda, s.active, s.lin);
   for (const auto& e : s.lin.force_tangent) {
@@ -475,9 +479,9 @@ bool ContactConstraint::transformed() const {
   return false;
 }
 
-la::Matrix ContactConstraint::transformation_rows() const {
+la::Matrix ContactConstraint::transformation_delta() const {
   // Row (j, c) of P: sum_k T_kj (row (k, c)), for the slave nodes this rank owns; prescribed
-  // rows are left out (their equations hold reactions, and they are replaced anyway).
+  // rows are left out (their equations hold reactions, and they are replaced anyway). dP = P - I.
   const int dim = disc_.dim();
   const PetscInt first = disc_.first_owned_dof();
   const PetscInt n_owned = disc_.n_owned_dofs();
@@ -500,10 +504,10 @@ la::Matrix ContactConstraint::transformation_rows() const {
     }
   }
   for (PetscInt i = 0; i < n_owned; ++i)
-    if (!has_row[static_cast<std::size_t>(i)]) {
+    if (has_row[static_cast<std::size_t>(i)]) {
       pi.push_back(first + i);
       pj.push_back(first + i);
-      pv.push_back(1.0);
+      pv.push_back(-1.0);
     }
   return la::Matrix::from_triplets(disc_.comm().get(), n_owned, pi, pj, pv);
 }

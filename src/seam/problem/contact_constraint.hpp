@@ -17,7 +17,9 @@
 // the free rows of node j become the gap row and the equilibrium along the directions of V
 // orthogonal to w, which carry no multiplier. In matrix form
 //   (L K~ + G) dd = -L r  (with c_n g~_j in the gap rows),
-// with L the identity on every other row. No saddle point, no tangent derivatives.
+// with L the identity on every other row. No saddle point, no tangent derivatives. L = I + dL
+// is applied as K + dL K (dL has the rows of the active slave nodes and their master nodes
+// only), so the condensation costs in proportion to the contact zone, not to K.
 // With the modified slave basis of tri6/quad8 facets (d = T d~, Popp et al. 2012) the slave
 // force is T^-T D lambda n; the slave rows are first combined by T^T (matrix P), which leaves
 // D_jj lambda_j alone in row j: Ksys = L P (K + Kc~) with Kc~ the derivative of D lambda n.
@@ -128,11 +130,12 @@ private:
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
   /// every other row): T^T r_S + D lambda, in which each multiplier stands alone.
   bool transformed() const;
-  la::Matrix transformation_rows() const;
+  /// dP = P - I (nonzero on the slave rows only).
+  la::Matrix transformation_delta() const;
 
   const Discretization& disc_;
   std::vector<Side> sides_;
-  la::Matrix Kc_, P_;
+  la::Matrix Kc_, dP_;
   bool saddle_point_ = false;
   PetscInt n_lm_ = 0;     ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0; ///< global index of the first of them
