@@ -115,6 +115,7 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     // The plane only translates: its normal, towards the body, is the contact normal of
     // every slave node (the slave normal points out of the body, at the plane).
     options_.fixed_normal = std::array<double, 3>{-n[0], -n[1], -n[2]};
+    plane_normal_ = n;
   } else {
     master_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, *config.master));
     std::vector<std::int32_t> shared;
@@ -201,6 +202,10 @@ void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
   out.area = 0.0;
   out.n_pairs = 0;
   out.n_cells = 0;
+  if (rigid_) {
+    evaluate_rigid(part, n_parts, out);
+    return;
+  }
   std::vector<mortar::CandidatePair> mine;
   for (const auto& p : pairs_)
     if (p.slave % n_parts == part) mine.push_back(p);
@@ -248,11 +253,103 @@ void ContactInterface::add_force(const NodalValues& values, std::span<const doub
   }
 }
 
+void ContactInterface::rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const {
+  // The plane's current position: its first corner.
+  std::array<double, 3> point{};
+  for (int c = 0; c < dim(); ++c) point[static_cast<std::size_t>(c)] = master_.coordinates[c];
+  if (dim() == 2) {
+    rigid_plane_facet<2>(mortar::gather_facet<2>(slave_.facet_set(), f), plane_normal_, point,
+                         options_.multiplier, derivatives, out);
+  } else {
+    rigid_plane_facet<3>(mortar::gather_facet<3>(slave_.facet_set(), f), plane_normal_, point,
+                         options_.multiplier, derivatives, out);
+  }
+}
+
+void ContactInterface::evaluate_rigid(int part, int n_parts, NodalValues& out) const {
+  RigidPlaneFacet rf;
+  for (local_index f = part; f < slave_.n_facets(); f += n_parts) {
+    if (pair_offsets_[static_cast<std::size_t>(f)] ==
+        pair_offsets_[static_cast<std::size_t>(f) + 1])
+      continue;
+    rigid_facet(f, false, rf);
+    const auto nodes = slave_.facet_set().facet_nodes(f);
+    for (int j = 0; j < rf.n; ++j) {
+      const auto sj = nodes[static_cast<std::size_t>(j)];
+      out.D[static_cast<std::size_t>(sj)] += rf.D[static_cast<std::size_t>(j * rf.n + j)];
+      out.gap[static_cast<std::size_t>(sj)] += rf.gap[static_cast<std::size_t>(j)];
+      if (!standard()) continue;
+      for (int k = 0; k < rf.n; ++k) {
+        const double v = rf.D[static_cast<std::size_t>(j * rf.n + k)];
+        if (k != j && v != 0.0)
+          out.D_coupling.push_back({sj, nodes[static_cast<std::size_t>(k)], v});
+      }
+    }
+    out.area += rf.area;
+    ++out.n_pairs;
+    ++out.n_cells;
+  }
+}
+
+void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const double> lambda_n,
+                                       std::span<const char> want_gap, Linearization& out) const {
+  const int dim = this->dim();
+  RigidPlaneFacet rf;
+  std::vector<std::int64_t> column;
+  for (local_index f = part; f < slave_.n_facets(); f += n_parts) {
+    if (pair_offsets_[static_cast<std::size_t>(f)] ==
+        pair_offsets_[static_cast<std::size_t>(f) + 1])
+      continue;
+    const auto nodes = slave_.facet_set().facet_nodes(f);
+    bool needed = false;
+    for (const auto j : nodes) needed = needed || lambda_n[j] != 0.0 || want_gap[j];
+    if (!needed) continue;
+    rigid_facet(f, true, rf);
+    const int n = rf.n, nv = rf.n_variables;
+    column.resize(static_cast<std::size_t>(nv));
+    for (int i = 0; i < n; ++i)
+      for (int b = 0; b < dim; ++b)
+        column[static_cast<std::size_t>(dim * i + b)] =
+            static_cast<std::int64_t>(
+                slave_.mesh_nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(i)])]) *
+                dim +
+            b;
+    const auto push_row = [&](std::vector<DofTriplet>& to, std::int64_t row, const double* g,
+                              double scale) {
+      for (int v = 0; v < nv; ++v)
+        if (g[v] != 0.0) to.push_back({row, column[static_cast<std::size_t>(v)], scale * g[v]});
+    };
+    for (int j = 0; j < n; ++j) {
+      const auto sj = static_cast<std::size_t>(nodes[static_cast<std::size_t>(j)]);
+      if (want_gap[sj])
+        push_row(out.gap_gradient, static_cast<std::int64_t>(sj),
+                 rf.dgap.data() + static_cast<std::size_t>(j * nv), 1.0);
+      const double lambda = lambda_n[sj];
+      if (lambda == 0.0) continue;
+      // Slave node k: D_jk lambda_j n_j with the plane's constant normal (dual: k = j only).
+      for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k) {
+        const auto row0 =
+            static_cast<std::int64_t>(
+                slave_.mesh_nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)])]) *
+            dim;
+        for (int a = 0; a < dim; ++a)
+          push_row(out.force_tangent, row0 + a,
+                   rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv),
+                   lambda * normals_[sj * dim + static_cast<std::size_t>(a)]);
+      }
+    }
+  }
+}
+
 void ContactInterface::linearize(int part, int n_parts, std::span<const double> lambda_n,
                                  std::span<const char> want_gap, Linearization& out) const {
   const int dim = this->dim();
   out.force_tangent.clear();
   out.gap_gradient.clear();
+  if (rigid_) {
+    linearize_rigid(part, n_parts, lambda_n, want_gap, out);
+    return;
+  }
   mortar::SlaveFacetLinearization lin;
   std::vector<local_index> masters;
   std::vector<std::int64_t> column; // mesh dof of every variable, -1 for rigid ones

@@ -15,6 +15,9 @@
 //
 // A rigid plane is a single master facet (line2 / quad4) far larger than the slave surface,
 // moved by the prescribed motion; it has no dofs, so no derivative with respect to it is kept.
+// Its normal is the contact normal, and each candidate slave facet is integrated as a whole
+// (rigid_plane_facet.hpp) instead of being clipped against the master facet.
+#include "seam/contact/rigid_plane_facet.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
@@ -22,6 +25,7 @@
 #include "seam/mortar/linearization.hpp"
 #include "seam/search/interface_search.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -120,6 +124,12 @@ public:
 
 private:
   std::int64_t mesh_dof_of_master(local_index p) const; ///< -1 for rigid nodes
+  /// Rigid plane: D and g~ of slave facet f integrated over the whole facet, with their
+  /// derivatives if asked (rigid_plane_facet.hpp).
+  void rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const;
+  void evaluate_rigid(int part, int n_parts, NodalValues& out) const;
+  void linearize_rigid(int part, int n_parts, std::span<const double> lambda_n,
+                       std::span<const char> want_gap, Linearization& out) const;
 
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
@@ -129,6 +139,7 @@ private:
   // Rigid plane: reference corners and the motion.
   std::vector<double> plane_corners_;
   std::vector<io::Expression> plane_motion_;
+  std::array<double, 3> plane_normal_{}; ///< unit, towards the slave body
   double mesh_size_ = 0.0;
   mortar::MortarOptions options_;
   mortar::NodeFacets slave_adjacency_;

@@ -198,6 +198,12 @@ TEST(ContactLinearization, RigidPlane2D) {
 TEST(ContactLinearization, RigidPlane3D) {
   check(3, false, true);
 }
+TEST(ContactLinearization, RigidPlane3DStandard) {
+  check(3, false, true, true);
+}
+TEST(ContactLinearization, RigidPlaneTri3) {
+  check(3, true, true);
+}
 
 } // namespace
 } // namespace seam::contact

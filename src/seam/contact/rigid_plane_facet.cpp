@@ -1,0 +1,119 @@
+#include "seam/contact/rigid_plane_facet.hpp"
+
+#include "seam/mortar/linearization_kernels.hpp"
+
+namespace seam::contact {
+
+namespace {
+
+namespace ad = mortar::ad;
+
+template <class S, int Dim>
+void kernel(const ad::FacetT<S, Dim>& f, const std::array<double, 3>& normal,
+            const std::array<double, 3>& point, mortar::Multiplier multiplier,
+            ad::SmallMatrixT<S>& D, ad::NodalVectorT<S>& gap, double& area) {
+  const int n = f.n_nodes;
+  const double a = mortar::basis_modification(f.type, multiplier);
+  const bool dual = multiplier == mortar::Multiplier::dual;
+  ad::SmallMatrixT<S> A;
+  if (dual) A = ad::dual_coefficients_t(f, a);
+  // The rule of the dual coefficients (dual_coefficients_t): Phi_j N~_k J and Phi_j g J are
+  // polynomials of no higher degree than the mass matrix integrand N~_j N~_k J.
+  const auto rule = fem::quadrature(f.type, 4 * fem::order(f.type));
+  D = ad::SmallMatrixT<S>::Zero(n, n);
+  gap = ad::NodalVectorT<S>::Zero();
+  area = 0.0;
+  for (int q = 0; q < rule.n_points; ++q) {
+    const double* xi = rule.points.data() + q * (Dim - 1);
+    const S jw = ad::norm(ad::scaled_normal_t<S, Dim>(ad::tangents_t(f, xi))) *
+                 rule.weights[static_cast<std::size_t>(q)];
+    mortar::NodalVector N, Nt;
+    fem::shape_values(f.type, xi, N.data());
+    Nt = N;
+    if (a != 0.0) mortar::modify_basis(f.type, a, Nt.data());
+    S distance = 0.0;
+    for (int c = 0; c < Dim; ++c) {
+      S x = 0.0;
+      for (int k = 0; k < n; ++k) x += N(k) * f.x(c, k);
+      distance += normal[static_cast<std::size_t>(c)] * (x - point[static_cast<std::size_t>(c)]);
+    }
+    for (int j = 0; j < n; ++j) {
+      S phi = 0.0;
+      if (dual) {
+        for (int l = 0; l < n; ++l) phi += A(j, l) * Nt(l);
+      } else {
+        phi = Nt(j);
+      }
+      const S w = phi * jw;
+      for (int k = 0; k < n; ++k) D(j, k) += w * Nt(k);
+      gap(j) += w * distance;
+    }
+    area += value_of(jw);
+  }
+}
+
+template <int Dim, int K>
+void with_derivatives(const mortar::Facet<Dim>& facet, const std::array<double, 3>& normal,
+                      const std::array<double, 3>& point, mortar::Multiplier multiplier,
+                      RigidPlaneFacet& out) {
+  using S = Dual<K>;
+  ad::SmallMatrixT<S> D;
+  ad::NodalVectorT<S> gap;
+  kernel<S, Dim>(ad::seed<S, Dim>(facet, 0), normal, point, multiplier, D, gap, out.area);
+  const int n = facet.n_nodes;
+  const int nv = Dim * n;
+  out.n_variables = nv;
+  out.dD.assign(static_cast<std::size_t>(n * n * nv), 0.0);
+  out.dgap.assign(static_cast<std::size_t>(n * nv), 0.0);
+  for (int j = 0; j < n; ++j) {
+    for (int k = 0; k < n; ++k) {
+      out.D[static_cast<std::size_t>(j * n + k)] = D(j, k).value;
+      std::copy_n(D(j, k).gradient.begin(), nv,
+                  out.dD.begin() + static_cast<std::ptrdiff_t>((j * n + k) * nv));
+    }
+    out.gap[static_cast<std::size_t>(j)] = gap(j).value;
+    std::copy_n(gap(j).gradient.begin(), nv,
+                out.dgap.begin() + static_cast<std::ptrdiff_t>(j * nv));
+  }
+}
+
+} // namespace
+
+template <int Dim>
+void rigid_plane_facet(const mortar::Facet<Dim>& facet, const std::array<double, 3>& normal,
+                       const std::array<double, 3>& point, mortar::Multiplier multiplier,
+                       bool derivatives, RigidPlaneFacet& out) {
+  const int n = facet.n_nodes;
+  out.n = n;
+  if (!derivatives) {
+    out.n_variables = 0;
+    ad::SmallMatrixT<double> D;
+    ad::NodalVectorT<double> gap;
+    kernel<double, Dim>(ad::seed<double, Dim>(facet, 0), normal, point, multiplier, D, gap,
+                        out.area);
+    for (int j = 0; j < n; ++j) {
+      for (int k = 0; k < n; ++k) out.D[static_cast<std::size_t>(j * n + k)] = D(j, k);
+      out.gap[static_cast<std::size_t>(j)] = gap(j);
+    }
+    return;
+  }
+  const int nv = Dim * n;
+  if (nv <= 6) {
+    with_derivatives<Dim, 6>(facet, normal, point, multiplier, out);
+  } else if (nv <= 9) {
+    with_derivatives<Dim, 9>(facet, normal, point, multiplier, out);
+  } else if (nv <= 12) {
+    with_derivatives<Dim, 12>(facet, normal, point, multiplier, out);
+  } else {
+    with_derivatives<Dim, 3 * mortar::max_facet_nodes>(facet, normal, point, multiplier, out);
+  }
+}
+
+template void rigid_plane_facet(const mortar::Facet<2>&, const std::array<double, 3>&,
+                                const std::array<double, 3>&, mortar::Multiplier, bool,
+                                RigidPlaneFacet&);
+template void rigid_plane_facet(const mortar::Facet<3>&, const std::array<double, 3>&,
+                                const std::array<double, 3>&, mortar::Multiplier, bool,
+                                RigidPlaneFacet&);
+
+} // namespace seam::contact
