@@ -305,7 +305,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   // dLP = dL + dP + dL dP (P = I + dP, dP = 0 without a modified slave basis).
   la::Matrix dLP = dL.copy();
   if (transformed()) {
-    if (!dP_.get()) dP_ = transformation_delta();
+    dP_ = transformation_delta();
     dLP.axpy_any_pattern(1.0, dP_);
     dLP.axpy_any_pattern(1.0, la::Matrix::multiply(dL, dP_));
   }
@@ -482,6 +482,9 @@ bool ContactConstraint::transformed() const {
 la::Matrix ContactConstraint::transformation_delta() const {
   // Row (j, c) of P: sum_k T_kj (row (k, c)), for the slave nodes this rank owns; prescribed
   // rows are left out (their equations hold reactions, and they are replaced anyway). dP = P - I.
+  // Only the rows that carry multipliers need combining: those of the nodes of every facet with
+  // an active node or a nonzero multiplier (the slave force T^-T D lambda n reaches no further);
+  // P stays the identity elsewhere, which keeps the products with K to the contact zone.
   const int dim = disc_.dim();
   const PetscInt first = disc_.first_owned_dof();
   const PetscInt n_owned = disc_.n_owned_dofs();
@@ -490,9 +493,18 @@ la::Matrix ContactConstraint::transformation_delta() const {
   std::vector<double> pv;
   for (const auto& s : sides_) {
     const auto& nodes = s.itf.slave().mesh_nodes;
+    const auto& facets = s.itf.slave().facet_set();
+    std::vector<char> zone(nodes.size(), 0);
+    for (local_index f = 0; f < facets.n_facets(); ++f) {
+      const auto fn = facets.facet_nodes(f);
+      bool carries = false;
+      for (const auto j : fn) carries = carries || s.active[j] || s.lambda[j] != 0.0;
+      if (carries)
+        for (const auto j : fn) zone[static_cast<std::size_t>(j)] = 1;
+    }
     for (const auto& e : s.itf.transformation()) {
       const auto j = static_cast<std::size_t>(e.col), k = static_cast<std::size_t>(e.row);
-      if (!disc_.owns_node(nodes[j])) continue;
+      if (!zone[j] || !disc_.owns_node(nodes[j])) continue;
       for (int c = 0; c < dim; ++c) {
         if (k != j && s.dirichlet[k * dim + c]) continue;
         const PetscInt row = disc_.global_dof(nodes[j], c);

@@ -130,7 +130,8 @@ private:
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
   /// every other row): T^T r_S + D lambda, in which each multiplier stands alone.
   bool transformed() const;
-  /// dP = P - I (nonzero on the slave rows only).
+  /// dP = P - I at the current active set and multipliers (nonzero on the slave rows of the
+  /// contact zone only).
   la::Matrix transformation_delta() const;
 
   const Discretization& disc_;
