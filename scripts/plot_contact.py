@@ -10,9 +10,12 @@ load measured at the loaded region (tests/verification/contact_analysis.py has t
     /usr/bin/python3 scripts/plot_contact.py hertz hertz_3d_out --symmetry 4 \
         --mesh examples/hertz_3d/sphere.geo -o hertz_3d.png
 
-History (examples/torus): contact force, active nodes and Newton iterations per step.
+History (examples/torus): contact force, active nodes and Newton iterations per step, of one
+run or of several side by side (labels from --label, in order).
 
     /usr/bin/python3 scripts/plot_contact.py history torus_out -o torus.png
+    /usr/bin/python3 scripts/plot_contact.py history torus_out torus_hex20_out \
+        --label hex8 --label hex20 -o torus.png
 """
 import argparse
 import math
@@ -30,6 +33,7 @@ import contact_analysis as C  # noqa: E402
 
 
 def hertz(args):
+    args.out = args.out[0]
     name = [f for f in os.listdir(args.out) if f.startswith("interface_")][0]
     rows = C.read_csv(os.path.join(args.out, name))
     dim = 3 if any(abs(r["z"]) > 0 for r in rows) else 2
@@ -75,17 +79,23 @@ def hertz(args):
 
 
 def history(args):
-    itf = C.read_csv(os.path.join(args.out, "interfaces.csv"))
-    steps = C.read_csv(os.path.join(args.out, "steps.csv"))
+    labels = args.label or [os.path.basename(os.path.normpath(o)) for o in args.out]
     fig, ax = plt.subplots(3, 1, figsize=(6, 7), sharex=True)
-    ax[0].plot([r["time"] for r in itf], [r["normal_force"] for r in itf], "C0-")
+    for k, (out, label) in enumerate(zip(args.out, labels)):
+        itf = C.read_csv(os.path.join(out, "interfaces.csv"))
+        steps = C.read_csv(os.path.join(out, "steps.csv"))
+        color = "C%d" % k
+        ax[0].plot([r["time"] for r in itf], [r["normal_force"] for r in itf], "-", color=color,
+                   label=label)
+        ax[1].plot([r["time"] for r in itf], [r["active_nodes"] for r in itf], "-", color=color)
+        ax[2].step([r["time"] for r in steps], [r["newton_iterations"] for r in steps], "-",
+                   color=color, where="post")
     ax[0].set_ylabel("contact force")
-    ax[1].plot([r["time"] for r in itf], [r["active_nodes"] for r in itf], "C1-")
     ax[1].set_ylabel("active nodes")
-    ax[2].step([r["time"] for r in steps], [r["newton_iterations"] for r in steps], "C2-",
-               where="post")
     ax[2].set_ylabel("Newton iterations")
     ax[2].set_xlabel("t")
+    if len(args.out) > 1:
+        ax[0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(args.output, dpi=130)
 
@@ -93,7 +103,8 @@ def history(args):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("kind", choices=["hertz", "history"])
-    p.add_argument("out", help="seam output directory")
+    p.add_argument("out", nargs="+", help="seam output directory (history: one or more)")
+    p.add_argument("--label", action="append", help="history: a label per output directory")
     p.add_argument("-o", "--output", default="contact.png")
     p.add_argument("--radius", type=float, default=1.0)
     p.add_argument("--young", type=float, default=1.0)

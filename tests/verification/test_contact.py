@@ -17,7 +17,7 @@
 - examples/torus with 20-node hexahedra on a coarse mesh through the tube's collapse: energy
   and force balance, quadratic convergence, no step cut.
 - SEAM_FULL=1 adds the fine meshes, where half-width and peak pressure must be within 2 %,
-  np = 3 for the sphere, and the hex8 torus on a coarse mesh.
+  np = 3 for the sphere, the hex8 torus on a coarse mesh and the hex20 one on 3 ranks.
 """
 import functools
 import os
@@ -491,7 +491,7 @@ def test_hertz_3d_parallel():
     H.assert_close(pb, pa, rtol=1e-8, what="np = 3 vs np = 1: peak nodal pressure")
 
 
-def torus_case(yaml_name, params, steps):
+def torus_case(yaml_name, params, steps, np=1):
     """examples/torus/<yaml_name> with the mesh parameters `params` (nc, nt, na of torus.geo)
     and `steps` load steps: every step converges without a cut and quadratically at the end;
     the wall's work equals the strain energy (to the trapezoidal rule) and its force the
@@ -511,7 +511,7 @@ def torus_case(yaml_name, params, steps):
     yaml = yaml.replace("steps: 50}", "steps: %d}" % steps).replace("geo: " + geo_name,
                                                                     "geo: mesh.geo")
     path = H.write_case(work, "torus.yaml", yaml)
-    out = H.solve(path)
+    out = H.solve(path, np=np)
     _dirs.append(out)
     rows = H.read_csv(os.path.join(out, "steps.csv"))
     if len(rows) != steps:
@@ -533,6 +533,7 @@ def torus_case(yaml_name, params, steps):
              if r["probe"] == 0 and r["step"] == len(rows)][0]
     H.assert_close(crown["uz"], -50.0, atol=0.05, what="crown displacement")
     check_quadratic(out)
+    return out
 
 
 @full_only
@@ -541,12 +542,30 @@ def test_torus_coarse():
     torus_case("torus.yaml", {"nc": 8, "na": 12}, 25)
 
 
+TORUS_HEX20_COARSE = {"nc": 8, "nt": 2, "na": 12}
+_torus = {}
+
+
 def test_torus_hex20_coarse():
     """hex20 (quad8 slave faces, modified dual basis), 1536 cells, 26112 dofs, 25 steps: the
     tube's cross-section collapses under the wall at t = 0.8. With the wall's normal as the
     contact normal every step converges (measured along the averaged normals of the turning
     tube the gaps blew up and the active set cycled from t = 0.36 on)."""
-    torus_case("torus_hex20.yaml", {"nc": 8, "nt": 2, "na": 12}, 25)
+    _torus[1] = torus_case("torus_hex20.yaml", TORUS_HEX20_COARSE, 25)
+
+
+@full_only
+def test_torus_hex20_parallel():
+    """The same on 3 ranks: wall force, active set and crown as on one rank."""
+    one = _torus.get(1) or torus_case("torus_hex20.yaml", TORUS_HEX20_COARSE, 25)
+    three = torus_case("torus_hex20.yaml", TORUS_HEX20_COARSE, 25, np=3)
+    a, b = (H.last_step_rows(H.read_csv(os.path.join(o, "interfaces.csv")))[0]
+            for o in (one, three))
+    H.assert_close(b["normal_force"], a["normal_force"], rtol=1e-8,
+                   what="np = 3 vs np = 1: wall force")
+    if a["active_nodes"] != b["active_nodes"]:
+        raise AssertionError("active nodes differ: np = 1 %d, np = 3 %d"
+                             % (a["active_nodes"], b["active_nodes"]))
 
 
 def cleanup_runs():
@@ -568,6 +587,6 @@ if __name__ == "__main__":
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
-                test_torus_coarse, test_torus_hex20_coarse])
+                test_torus_coarse, test_torus_hex20_coarse, test_torus_hex20_parallel])
     finally:
         cleanup_runs()
