@@ -120,7 +120,8 @@ def test_patch_2d_rigid_plane_standard():
     patch_2d_rigid_plane("standard", order=2, h=0.3)
 
 
-def patch_3d_rigid_plane(kind, h, rtol=1e-8, multiplier="dual", order=1, np=1):
+def patch_3d_rigid_plane(kind, h, rtol=1e-8, multiplier="dual", order=1, np=1,
+                         serendipity=False):
     E, d, lz = 100.0, 0.01, 1.0
     yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
                           "{region: front, type: dirichlet, components: [y], value: [0]}",
@@ -128,7 +129,8 @@ def patch_3d_rigid_plane(kind, h, rtol=1e-8, multiplier="dual", order=1, np=1):
                       [("m", E, 0.0)], [("body", "m")],
                       "{name: contact, type: contact, slave: bottom, multiplier: %s, "
                       "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}" % multiplier)
-    work, out = run_case(G.box(kind, h, order=order, lx=1.0, ly=1.0, lz=lz), yaml, np=np)
+    work, out = run_case(G.box(kind, h, order=order, serendipity=serendipity, lx=1.0, ly=1.0,
+                               lz=lz), yaml, np=np)
     check_uniform_pressure(out, E * d / lz, 1.0, "top", 2, rtol=rtol)
     H.cleanup(work, out)
 
@@ -143,46 +145,19 @@ def test_patch_2d_rigid_plane_quadratic():
     """quad9 cells, line3 slave faces: the quadratic dual basis needs no modification (every
     integral of a line3 shape function is positive); the pressure is uniform at corner and
     mid-side nodes alike."""
-    E, d, ly = 100.0, 0.01, 1.0
-    yaml = patch_yaml(2, ["{region: left, type: dirichlet, components: [x], value: [0]}",
-                          "{region: top, type: dirichlet, components: [y], value: ['-%r*t']}" % d],
-                      [("m", E, 0.0)], [("body", "m")],
-                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
-                      "rigid_plane: {point: [0, 0], normal: [0, 1]}}")
-    work, out = run_case(G.rectangle("quad", 0.3, order=2, lx=2.0, ly=ly), yaml)
-    check_uniform_pressure(out, E * d / ly, 2.0, "top", 1)
-    H.cleanup(work, out)
+    patch_2d_rigid_plane(order=2, h=0.3)
 
 
 def test_patch_3d_rigid_plane_quadratic():
     """hex27 cells, quad9 slave faces on a rigid plane."""
-    E, d, lz = 100.0, 0.01, 1.0
-    yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
-                          "{region: front, type: dirichlet, components: [y], value: [0]}",
-                          "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
-                      [("m", E, 0.0)], [("body", "m")],
-                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
-                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
-    work, out = run_case(G.box("hex_structured", 0.5, order=2, lx=1.0, ly=1.0, lz=lz), yaml)
-    check_uniform_pressure(out, E * d / lz, 1.0, "top", 2)
-    H.cleanup(work, out)
+    patch_3d_rigid_plane("hex_structured", 0.5, order=2)
 
 
 def test_patch_3d_rigid_plane_modified_basis():
     """hex20 (quad8 faces) and tet10 (tri6 faces): dual multipliers need the modified slave
     basis d = T d~ of Popp et al. 2012; the slave forces are T^-T D lambda n."""
-    E, d, lz = 100.0, 0.01, 1.0
-    yaml = patch_yaml(3, ["{region: left, type: dirichlet, components: [x], value: [0]}",
-                          "{region: front, type: dirichlet, components: [y], value: [0]}",
-                          "{region: top, type: dirichlet, components: [z], value: ['-%r*t']}" % d],
-                      [("m", E, 0.0)], [("body", "m")],
-                      "{name: contact, type: contact, slave: bottom, multiplier: dual, "
-                      "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}")
-    for geo in (G.box("hex_structured", 0.5, order=2, serendipity=True, lx=1.0, ly=1.0, lz=lz),
-                G.box("tet", 0.5, order=2, lx=1.0, ly=1.0, lz=lz)):
-        work, out = run_case(geo, yaml)
-        check_uniform_pressure(out, E * d / lz, 1.0, "top", 2)
-        H.cleanup(work, out)
+    patch_3d_rigid_plane("hex_structured", 0.5, order=2, serendipity=True)
+    patch_3d_rigid_plane("tet", 0.5, order=2)
 
 
 def test_patch_3d_rigid_plane():

@@ -548,8 +548,7 @@ std::vector<std::string> ContactConstraint::describe() const {
         s.itf.name().c_str(), static_cast<int>(s.itf.slave().n_facets()),
         s.itf.rigid() ? "a rigid plane"
                       : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
-        s.itf.standard() ? "standard multipliers (saddle point)"
-                         : "dual multipliers (condensed)",
+        s.itf.standard() ? "standard multipliers (saddle point)" : "dual multipliers (condensed)",
         s.c_n);
     out.emplace_back(line);
   }
