@@ -14,6 +14,9 @@
   load, within 3 %; no slave node below the plane; the rebuilt nodal forces sum to the
   interface force, which balances the support; np = 1 and np = 3 agree to 1e-8; Newton
   converges quadratically once the active set has settled (Neo-Hooke variant).
+- A block dropped on a rigid plane (2D, dynamics): free flight conserves energy and momentum
+  before and after the impact, the block rebounds, the energy-momentum scheme never gains
+  energy through the contact, generalized-alpha with dual and standard multipliers, np = 3.
 - examples/torus with 20-node hexahedra on a coarse mesh through the tube's collapse: energy
   and force balance, quadratic convergence, no step cut.
 - SEAM_FULL=1 adds the fine meshes, where half-width and peak pressure must be within 2 %,
@@ -249,6 +252,83 @@ def test_patch_3d_two_blocks_tet_standard_np3():
 def test_patch_3d_two_blocks_hex_np3():
     two_block_case(3, G.tied_boxes(1.0 / 3.0, 0.25, kind="hex"), "upper_bottom", "lower_top",
                    np=3)
+
+
+# ---------------------------------------------------------------------------------------------
+# Dynamics: a block dropped on a rigid plane
+
+
+DROP_YAML = """dimension: 2
+mesh: {geo: case.geo}
+materials:
+  m: {model: neo_hooke, young: 100, poisson: 0.3, density: 1}
+bodies:
+  - {region: body, material: m}
+initial_conditions:
+  - {region: body, velocity: ["0", "-1"]}
+interfaces:
+  - {name: floor, type: contact, slave: bottom, multiplier: MULTIPLIER,
+     rigid_plane: {point: [0, -0.05], normal: [0, 1]}}
+time: {integrator: INTEGRATOR, end: 0.3, steps: 150}
+solver: {newton: {tolerance: 1.0e-10, max_iterations: 30}}
+output: {every: 50}
+"""
+
+
+def drop(integrator, multiplier="dual", np=1):
+    """A 1 x 0.5 Neo-Hooke block flies at speed 1 onto a rigid plane 0.05 below it, stays in
+    contact for about 0.08 and flies off. Returns the rows of steps.csv."""
+    yaml = DROP_YAML.replace("INTEGRATOR", integrator).replace("MULTIPLIER", multiplier)
+    work, out = run_case(G.rectangle("quad", 0.1, lx=1.0, ly=0.5), yaml, np=np)
+    rows = H.read_csv(os.path.join(out, "steps.csv"))
+    H.cleanup(work, out)
+    if len(rows) != 150:
+        raise AssertionError("%d steps instead of 150: step cuts" % len(rows))
+    e0, p0 = 0.25, -0.5  # kinetic energy and momentum of the unit-density block at speed 1
+    touched = [k for k, r in enumerate(rows) if r["active_nodes"] > 0]
+    if not touched or touched[-1] == len(rows) - 1:
+        raise AssertionError("the block never touched the plane, or never left it")
+    before, after = rows[:touched[0]], rows[touched[-1] + 1:]
+    for r in before:  # free flight: nothing acts on the block
+        H.assert_close(r["total_energy"], e0, rtol=1e-12, what="energy before the impact")
+        H.assert_close(r["momentum_y"], p0, rtol=1e-12, what="momentum before the impact")
+    # Generalized-alpha carries the acceleration of the contact phase into the following
+    # steps (alpha_m weighting, halved every step at rho_inf = 0.8): its momentum settles
+    # after about 35 steps; the energy-momentum scheme's at once.
+    settle = 1 if integrator == "energy_momentum" else 40
+    for r in after[settle:]:
+        H.assert_close(r["momentum_y"], after[settle]["momentum_y"], rtol=1e-10,
+                       what="momentum in free flight after the impact")
+    energies = [r["total_energy"] for r in rows]
+    rise = max(b - a for a, b in zip(energies, energies[1:]))
+    print("   %s, %s multipliers, np %d: contact from t = %.3f to %.3f, rebound momentum %.6f "
+          "(incoming %.1f), energy %.6f -> %.6f, largest rise in a step %.2e"
+          % (integrator, multiplier, np, rows[touched[0]]["time"], rows[touched[-1]]["time"],
+             rows[-1]["momentum_y"], p0, e0, energies[-1], rise))
+    if rows[-1]["momentum_y"] < 0.7 * abs(p0):
+        raise AssertionError("no rebound: final momentum %.4f" % rows[-1]["momentum_y"])
+    if not 0.9 * e0 < energies[-1] < e0:
+        raise AssertionError("energy after the impact %.6f not in (0.9, 1) x %.2f"
+                             % (energies[-1], e0))
+    return rows, rise
+
+
+def test_drop_energy_momentum():
+    """Energy-momentum scheme: the contact never adds energy (no step raises the total by
+    more than round-off); less than 5 % is lost in the impact."""
+    rows, rise = drop("energy_momentum")
+    if rise > 1e-10:
+        raise AssertionError("a step raised the energy by %.3e" % rise)
+    H.assert_close(rows[-1]["total_energy"], 0.25, rtol=0.05, what="energy after the impact")
+
+
+def test_drop_generalized_alpha():
+    """Generalized-alpha (rho_inf = 0.8), dual and standard multipliers, np = 3 = np = 1."""
+    one, _ = drop("generalized_alpha")
+    drop("generalized_alpha", multiplier="standard")
+    three, _ = drop("generalized_alpha", np=3)
+    for key in ("momentum_y", "total_energy"):
+        H.assert_close(three[-1][key], one[-1][key], rtol=1e-8, what="np = 3 vs np = 1: " + key)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -558,7 +638,7 @@ if __name__ == "__main__":
                 test_patch_3d_two_blocks_hex_np3, test_patch_3d_two_blocks_tet10_np3,
                 test_patch_2d_rigid_plane_standard, test_patch_3d_rigid_plane_standard,
                 test_patch_2d_two_blocks_standard, test_patch_3d_two_blocks_tet_standard_np3,
-                test_hertz_2d_standard,
+                test_hertz_2d_standard, test_drop_energy_momentum, test_drop_generalized_alpha,
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
