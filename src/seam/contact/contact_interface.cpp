@@ -114,7 +114,6 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     plane_motion_ = plane.motion;
     // The plane only translates: its normal, towards the body, is the contact normal of
     // every slave node (the slave normal points out of the body, at the plane).
-    options_.fixed_normal = std::array<double, 3>{-n[0], -n[1], -n[2]};
     plane_normal_ = n;
   } else {
     master_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, *config.master));
@@ -190,7 +189,13 @@ void ContactInterface::update(std::span<const double> u, double t) {
   for (const auto& p : pairs_) ++pair_offsets_[static_cast<std::size_t>(p.slave) + 1];
   for (std::size_t f = 0; f < static_cast<std::size_t>(slave_.n_facets()); ++f)
     pair_offsets_[f + 1] += pair_offsets_[f];
-  normals_ = mortar::slave_normals(slave_.facet_set(), options_);
+  if (rigid_) {
+    // The plane's normal, reversed (out of the slave body), at every slave node.
+    for (std::size_t i = 0; i < normals_.size(); ++i)
+      normals_[i] = -plane_normal_[i % static_cast<std::size_t>(dim)];
+  } else {
+    normals_ = mortar::averaged_nodal_normals(slave_.facet_set());
+  }
 }
 
 void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {

@@ -193,14 +193,6 @@ void compress(std::vector<Triplet>& triplets) {
   compress(triplets, n_rows);
 }
 
-std::vector<double> slave_normals(const FacetSet& slave, const MortarOptions& options) {
-  if (!options.fixed_normal) return averaged_nodal_normals(slave);
-  const auto dim = static_cast<std::size_t>(slave.dim);
-  std::vector<double> out(static_cast<std::size_t>(slave.n_nodes()) * dim);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*options.fixed_normal)[i % dim];
-  return out;
-}
-
 MortarOperators assemble_mortar_operators(const FacetSet& slave, const FacetSet& master,
                                           std::span<const CandidatePair> candidates,
                                           const MortarOptions& options,
@@ -224,7 +216,7 @@ MortarOperators assemble_mortar_operators(const FacetSet& slave, const FacetSet&
   ops.dim = slave.dim;
   ops.multiplier = options.multiplier;
   ops.n_candidates = static_cast<local_index>(candidates.size());
-  ops.nodal_normals = slave_normals(slave, options);
+  ops.nodal_normals = averaged_nodal_normals(slave);
   ops.weighted_gap.assign(static_cast<std::size_t>(slave.n_nodes()), 0.0);
   if (slave.dim == 2) {
     assemble<2>(slave, master, candidates, options, bound_slave_nodes, ops);

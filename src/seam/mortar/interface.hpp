@@ -4,8 +4,6 @@
 // into node-indexed triplets. No PETSc: the strategy layer (mesh tying, contact) moves the
 // triplets into distributed matrices, expanding each scalar entry by the ndim identity block
 // of the seed paper, eqs. (15)-(16).
-#include <array>
-#include <optional>
 #include <span>
 #include <vector>
 
@@ -28,16 +26,7 @@ struct CandidatePair {
 struct MortarOptions {
   Multiplier multiplier = Multiplier::dual;
   PairOptions pair;
-  /// A unit normal (dim entries used) that replaces the averaged nodal normals at every slave
-  /// node: against a flat rigid master the contact normal is the plane's own, and the gap is
-  /// then the distance to the plane wherever the slave surface turns (the averaged normals of a
-  /// curved slave surface meet the plane at grazing angles there). Constant: no derivative.
-  std::optional<std::array<double, 3>> fixed_normal;
 };
-
-/// The slave nodal normals the options prescribe: the fixed normal at every node, or the
-/// averaged nodal normals of the facets.
-std::vector<double> slave_normals(const FacetSet& slave, const MortarOptions& options);
 
 struct MortarOperators {
   int dim = 0;

@@ -300,14 +300,6 @@ void linearize_slave_facet_impl(const FacetSet& slave, const FacetSet& master,
   for (int k = 0; k < ns; ++k) {
     const local_index node = facet_nodes[static_cast<std::size_t>(k)];
     NodalNormalLinearization& nl = out.normals[static_cast<std::size_t>(k)];
-    if (options.fixed_normal) {
-      // A prescribed normal depends on no coordinate.
-      nl.dim = Dim;
-      nl.normal = *options.fixed_normal;
-      nl.nodes.clear();
-      nl.jacobian.clear();
-      continue;
-    }
     linearize_nodal_normal(slave, node, adjacency.of(node), nl);
     for (const local_index other : nl.nodes) {
       if (std::find(facet_nodes.begin(), facet_nodes.end(), other) == facet_nodes.end())

@@ -50,8 +50,7 @@ TEST(Interface2D, StraightNonMatchingLinearAndQuadratic) {
     const Surface m = straight(5, type, 0.0, false);
     const auto pairs = test::all_pairs(s, m);
     for (const Multiplier mult : {Multiplier::standard, Multiplier::dual}) {
-      const MortarOperators ops =
-          assemble_mortar_operators(s.view(), m.view(), pairs, {mult, {}, {}});
+      const MortarOperators ops = assemble_mortar_operators(s.view(), m.view(), pairs, {mult, {}});
       expect_row_sums(ops, s, m);
       EXPECT_EQ(ops.n_projection_failures, 0);
       EXPECT_NEAR(ops.integrated_area, 1.0, 1e-14);
@@ -79,7 +78,7 @@ TEST(Interface2D, WeightedGapOfParallelLines) {
   const Surface m = straight(4, CellType::line2, 0.0, false);
   for (const Multiplier mult : {Multiplier::standard, Multiplier::dual}) {
     const MortarOperators ops =
-        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
     for (local_index j = 0; j <= n; ++j) {
       const double integral = (j == 0 || j == n) ? 0.5 / n : 1.0 / n;
       EXPECT_NEAR(ops.weighted_gap[static_cast<std::size_t>(j)], h * integral, 1e-15);
@@ -93,7 +92,7 @@ TEST(Interface2D, CurvedInterfaceRowSums) {
     const Surface m = arc(5, type, 1.0, false);
     for (const Multiplier mult : {Multiplier::standard, Multiplier::dual}) {
       const MortarOperators ops =
-          assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+          assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
       expect_row_sums(ops, s, m);
       EXPECT_EQ(ops.n_projection_failures, 0);
       // The covered length approximates the quarter circle.
@@ -110,7 +109,7 @@ TEST(Interface2D, MeshInitializationMovesSlaveOntoMaster) {
     const Surface s = straight(7, CellType::line2, -0.1, true);
     const Surface m = straight(4, CellType::line2, 0.0, false);
     const MortarOperators ops =
-        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
     const auto x = initialize_slave_coordinates(ops, s.coordinates, m.coordinates);
     for (local_index i = 0; i < s.n_nodes(); ++i) {
       EXPECT_NEAR(x[static_cast<std::size_t>(2 * i)],

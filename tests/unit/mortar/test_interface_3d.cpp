@@ -87,8 +87,7 @@ TEST(Interface3D, PlanarNonMatchingQuadAgainstTri) {
   const Surface m = plane(4, 5, CellType::tri3, 0.0, false);
   const auto pairs = test::all_pairs(s, m);
   for (const Multiplier mult : {Multiplier::standard, Multiplier::dual}) {
-    const MortarOperators ops =
-        assemble_mortar_operators(s.view(), m.view(), pairs, {mult, {}, {}});
+    const MortarOperators ops = assemble_mortar_operators(s.view(), m.view(), pairs, {mult, {}});
     expect_row_sums(ops, s, m);
     EXPECT_EQ(ops.n_projection_failures, 0);
     EXPECT_NEAR(ops.integrated_area, 2.0, 1e-13);
@@ -116,7 +115,7 @@ TEST(Interface3D, WeightedGapOfParallelPlanes) {
   const Surface m = plane(4, 5, CellType::tri3, 0.0, false);
   for (const Multiplier mult : {Multiplier::standard, Multiplier::dual}) {
     const MortarOperators ops =
-        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
     for (local_index node : s.nodes) {
       const int I = node % 7, J = node / 7; // lattice indices (2 * 3 + 1 per row)
       const int boundary = (I == 0 || I == 6) + (J == 0 || J == 6);
@@ -142,7 +141,7 @@ TEST(Interface3D, QuadraticFacets) {
                    std::string(seam::fem::name(c.master)) +
                    (mult == Multiplier::dual ? " dual" : " standard"));
       const MortarOperators ops =
-          assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+          assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
       expect_row_sums(ops, s, m);
       EXPECT_EQ(ops.n_projection_failures, 0);
       EXPECT_NEAR(ops.integrated_area, 2.0, 1e-13);
@@ -163,8 +162,8 @@ TEST(Interface3D, QuadraticFacets) {
       const Eigen::VectorXd fm = (0.7 * m.coordinate(0) - 1.3 * m.coordinate(1)).array() + 0.4;
       EXPECT_LE((o.D * fs - o.M * fm).cwiseAbs().maxCoeff(), 1e-13);
       // Weighted gap of parallel planes: g~_j = h int Phi_j = h int N~_j.
-      const MortarOperators up = assemble_mortar_operators(
-          s.view(), m_up.view(), test::all_pairs(s, m_up), {mult, {}, {}});
+      const MortarOperators up =
+          assemble_mortar_operators(s.view(), m_up.view(), test::all_pairs(s, m_up), {mult, {}});
       const Eigen::VectorXd integrals = slave_integrals(s, mult);
       for (local_index node : s.nodes) {
         EXPECT_NEAR(up.weighted_gap[static_cast<std::size_t>(node)], h * integrals(node), 1e-15);
@@ -189,7 +188,7 @@ TEST(Interface3D, CylindricalInterfaceRowSums) {
       SCOPED_TRACE(std::string(seam::fem::name(c.slave)) +
                    (mult == Multiplier::dual ? " dual" : " standard"));
       const MortarOperators ops =
-          assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+          assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
       expect_row_sums(ops, s, m);
       EXPECT_EQ(ops.n_projection_failures, 0);
       // Covered area close to the half cylinder's pi * r * 1.5 (facets are chords).
@@ -210,7 +209,7 @@ TEST(Interface3D, MeshInitialization) {
       for (const double h : {0.0, 0.05}) {
         const Surface s = plane(3, 3, type, -h, true);
         const MortarOperators ops =
-            assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+            assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
         const auto x = initialize_slave_coordinates(ops, s.coordinates, m.coordinates);
         for (local_index node : s.nodes) {
           const auto i = static_cast<std::size_t>(node);
@@ -242,7 +241,7 @@ TEST(Interface3D, PlanarInterfaceInGeneralPosition) {
   const Surface m = placed(0.0, false, 4, 5, CellType::tri3);
   for (const Multiplier mult : {Multiplier::standard, Multiplier::dual}) {
     const MortarOperators ops =
-        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}, {}});
+        assemble_mortar_operators(s.view(), m.view(), test::all_pairs(s, m), {mult, {}});
     expect_row_sums(ops, s, m);
     EXPECT_NEAR(ops.integrated_area, 2.0, 1e-11);
     const Dense o = dense(ops, s, m);
