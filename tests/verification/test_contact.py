@@ -9,7 +9,7 @@
   slave node to 1e-8 relative and balances the top reaction. With nu = 0.3 (tetrahedra) the
   slave nodes slide outwards and the pressure must still be uniform.
 - Hertz, examples/hertz_2d (cylinder on a rigid plane, plane strain) and examples/hertz_3d
-  (quarter sphere) on coarse meshes: half-width and peak pressure fitted to the traction per
+  (quarter sphere on a rigid plane, and on an elastic block: two bodies) on coarse meshes: half-width and peak pressure fitted to the traction per
   reference area (contact_analysis.py) against Johnson's formulas evaluated with the measured
   load, within 3 %; no slave node below the plane; the rebuilt nodal forces sum to the
   interface force, which balances the support; np = 1 and np = 3 agree to 1e-8; Newton
@@ -535,6 +535,37 @@ def test_hertz_3d_fine():
     check_hertz(hertz_3d(FINE_3D), 3, HERTZ_3D, FINE_TOL)
 
 
+def test_hertz_3d_sphere_on_block():
+    """examples/hertz_3d/sphere_block.yaml: two elastic bodies, non-matching tetrahedral
+    meshes (two-body mortar contact). Johnson with E* of both bodies, 1/E* = 2 (1 - nu^2)/E;
+    the contact force balances the block's support; no slave node inside the block."""
+    out, msh = example_run("hertz_3d", "sphere_block.yaml", "sphere_block.geo", COARSE_3D)
+    rows = H.read_csv(os.path.join(out, "interface_contact.csv"))
+    facets, _ = C.slave_facets(C.read_msh(msh), "surface")
+    tractions, _ = C.reference_tractions(rows, facets)
+    force = abs(C.reaction(out, "top", 2)) * 4.0
+    support = abs(C.reaction(out, "bottom", 2)) * 4.0
+    H.assert_close(support, force, rtol=1e-8, what="block support = load on the sphere")
+    itf = H.last_step_rows(H.read_csv(os.path.join(out, "interfaces.csv")))[0]
+    # normal_force sums the tractions along the averaged slave normals, which lean outwards by
+    # up to a/R = 0.18 at the edge of the contact zone: its vertical part is the load.
+    H.assert_close(4.0 * itf["normal_force"], force, rtol=0.01, what="contact force = load")
+    smallest = min(r["gap"] for r in rows)
+    if smallest < -1e-9:
+        raise AssertionError("slave node inside the block: nodal gap %.3e" % smallest)
+    estar = 1.0 / (2.0 * (1.0 - 0.3 ** 2))
+    a_ref, p_ref = C.hertz_3d(force, 1.0, estar)
+    p0, a = C.fitted_hertz(rows, 3, current=False, tractions=tractions)
+    ea, ep = (a - a_ref) / a_ref, (p0 - p_ref) / p_ref
+    print("   F = %.6g: a = %.6g (Hertz %.6g, %+.2f %%), p0 = %.6g (Hertz %.6g, %+.2f %%), "
+          "%d active nodes, smallest gap %.2e" % (force, a, a_ref, 100 * ea, p0, p_ref, 100 * ep,
+                                                  sum(1 for r in rows if C.is_active(r)),
+                                                  smallest))
+    if abs(ea) > COARSE_TOL or abs(ep) > COARSE_TOL:
+        raise AssertionError("Hertz (two bodies): contact radius error %.2f %%, peak pressure "
+                             "error %.2f %%" % (100 * ea, 100 * ep))
+
+
 @full_only
 def test_hertz_3d_parallel():
     a, _ = hertz_3d(COARSE_3D, np=1)
@@ -642,6 +673,7 @@ if __name__ == "__main__":
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
+                test_hertz_3d_sphere_on_block,
                 test_torus_coarse, test_torus_hex20_coarse, test_torus_hex20_parallel])
     finally:
         cleanup_runs()
