@@ -343,7 +343,7 @@ def example_run(name, yaml_name, geo_name, refine, np=1, replace=()):
     """Runs an example with `refine = R;` set in its geometry; cached per configuration.
     The geometry is meshed here by the gmsh executable (the same library seam meshes .geo
     files with), so that the slave facets are known; returns (output dir, mesh path)."""
-    key = (name, refine, np, tuple(replace))
+    key = (name, yaml_name, refine, np, tuple(replace))
     if key in _runs:
         return _runs[key]
     work = tempfile.mkdtemp(prefix="seam_%s_" % name)
