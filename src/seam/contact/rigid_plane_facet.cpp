@@ -31,12 +31,10 @@ void kernel(const ad::FacetT<S, Dim>& f, const std::array<double, 3>& normal,
     fem::shape_values(f.type, xi, N.data());
     Nt = N;
     if (a != 0.0) mortar::modify_basis(f.type, a, Nt.data());
+    const Eigen::Matrix<S, Dim, 1> x = ad::times<S, Dim, 1>(f.x, N, n);
     S distance = 0.0;
-    for (int c = 0; c < Dim; ++c) {
-      S x = 0.0;
-      for (int k = 0; k < n; ++k) x += N(k) * f.x(c, k);
-      distance += normal[static_cast<std::size_t>(c)] * (x - point[static_cast<std::size_t>(c)]);
-    }
+    for (int c = 0; c < Dim; ++c)
+      distance += normal[static_cast<std::size_t>(c)] * (x(c) - point[static_cast<std::size_t>(c)]);
     for (int j = 0; j < n; ++j) {
       S phi = 0.0;
       if (dual) {
@@ -97,16 +95,8 @@ void rigid_plane_facet(const mortar::Facet<Dim>& facet, const std::array<double,
     }
     return;
   }
-  const int nv = Dim * n;
-  if (nv <= 6) {
-    with_derivatives<Dim, 6>(facet, normal, point, multiplier, out);
-  } else if (nv <= 9) {
-    with_derivatives<Dim, 9>(facet, normal, point, multiplier, out);
-  } else if (nv <= 12) {
-    with_derivatives<Dim, 12>(facet, normal, point, multiplier, out);
-  } else {
-    with_derivatives<Dim, 3 * mortar::max_facet_nodes>(facet, normal, point, multiplier, out);
-  }
+  ad::with_facet_width(
+      Dim * n, [&]<int K>() { with_derivatives<Dim, K>(facet, normal, point, multiplier, out); });
 }
 
 template void rigid_plane_facet(const mortar::Facet<2>&, const std::array<double, 3>&,

@@ -151,16 +151,8 @@ namespace ad {
 template <int Dim>
 void linearize_coefficients(const Facet<Dim>& facet, double modification,
                             CoefficientLinearization& out) {
-  const int n_variables = Dim * facet.n_nodes;
-  if (n_variables <= 6) {
-    coefficients_with<6>(facet, modification, out);
-  } else if (n_variables <= 9) {
-    coefficients_with<9>(facet, modification, out);
-  } else if (n_variables <= 12) {
-    coefficients_with<12>(facet, modification, out);
-  } else {
-    coefficients_with<3 * max_facet_nodes>(facet, modification, out);
-  }
+  with_facet_width(Dim * facet.n_nodes,
+                   [&]<int K>() { coefficients_with<K>(facet, modification, out); });
 }
 template void linearize_coefficients(const Facet<2>&, double, CoefficientLinearization&);
 template void linearize_coefficients(const Facet<3>&, double, CoefficientLinearization&);
@@ -213,25 +205,14 @@ void add_facet_normal_with(const Facet<Dim>& facet, std::span<const local_index>
   for (int a = 0; a < Dim; ++a) sum[static_cast<std::size_t>(a)] += u(a).value;
 }
 
-// A dual number just wide enough for the facet's coordinates (linear facets are the common
-// case).
 template <int Dim>
 void add_facet_normal(const FacetSet& facets, local_index f, local_index node,
                       NodalNormalLinearization& out, std::array<double, 3>& sum) {
   const Facet<Dim> facet = gather_facet<Dim>(facets, f);
   const auto nodes = facets.facet_nodes(f);
-  const int n_variables = Dim * facet.n_nodes;
-  if (n_variables <= 4) {
-    add_facet_normal_with<Dim, 4>(facet, nodes, node, out, sum);
-  } else if (n_variables <= 6) {
-    add_facet_normal_with<Dim, 6>(facet, nodes, node, out, sum);
-  } else if (n_variables <= 9) {
-    add_facet_normal_with<Dim, 9>(facet, nodes, node, out, sum);
-  } else if (n_variables <= 12) {
-    add_facet_normal_with<Dim, 12>(facet, nodes, node, out, sum);
-  } else {
-    add_facet_normal_with<Dim, Dim * max_facet_nodes>(facet, nodes, node, out, sum);
-  }
+  ad::with_facet_width(Dim * facet.n_nodes, [&]<int K>() {
+    add_facet_normal_with<Dim, K>(facet, nodes, node, out, sum);
+  });
 }
 
 } // namespace

@@ -124,6 +124,23 @@ Vector<S, Dim> scaled_normal_t(const Eigen::Matrix<S, Dim, Dim - 1>& t) {
   }
 }
 
+/// Calls f.template operator()<K>() with the smallest K of 4, 6, 9, 12 that holds n_variables
+/// (else 3 * max_facet_nodes): a dual number just wide enough for one facet's coordinates
+/// (linear facets are the common case).
+template <class F> void with_facet_width(int n_variables, F&& f) {
+  if (n_variables <= 4) {
+    f.template operator()<4>();
+  } else if (n_variables <= 6) {
+    f.template operator()<6>();
+  } else if (n_variables <= 9) {
+    f.template operator()<9>();
+  } else if (n_variables <= 12) {
+    f.template operator()<12>();
+  } else {
+    f.template operator()<3 * max_facet_nodes>();
+  }
+}
+
 /// Shape values and gradients at a plain reference point.
 struct ShapeAt {
   NodalVector N = NodalVector::Zero();

@@ -407,10 +407,14 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
       cj.push_back(global_dof(e.col));
       cv.push_back(s.c_n * e.value);
     }
+    // Inactive nodes outside the contact zone (D_j = 0) get the mean nodal weight.
     double weight = 0.0;
     int n_weights = 0;
-    for (const double d : s.D)
-      if (d > 0.0) weight += d, ++n_weights;
+    for (const double d : s.D) {
+      if (d <= 0.0) continue;
+      weight += d;
+      ++n_weights;
+    }
     weight = n_weights > 0 ? weight / n_weights : 1.0;
     for (std::size_t j = 0; j < nodes.size(); ++j) {
       if (!disc_.owns_node(nodes[j])) continue;
