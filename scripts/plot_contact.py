@@ -10,6 +10,12 @@ load measured at the loaded region (tests/verification/contact_analysis.py has t
     /usr/bin/python3 scripts/plot_contact.py hertz hertz_3d_out --symmetry 4 \
         --mesh examples/hertz_3d/sphere.geo -o hertz_3d.png
 
+Cattaneo-Mindlin (examples/cattaneo_mindlin): normal and tangential tractions of the last step
+along the contact, the stick and slip nodes, beside Hertz's pressure and Cattaneo's
+tangential traction for the measured P and Q (equal elastic bodies, plane strain).
+
+    /usr/bin/python3 scripts/plot_contact.py cattaneo cattaneo_out --mu 0.3 -o cattaneo.png
+
 History (examples/torus): contact force, active nodes and Newton iterations per step, of one
 run or of several side by side (labels from --label, in order).
 
@@ -78,6 +84,43 @@ def hertz(args):
     fig.savefig(args.output, dpi=130)
 
 
+def cattaneo(args):
+    out = args.out[0]
+    rows = C.read_csv(os.path.join(out, "interface_contact.csv"))
+    fx, fy = C.reaction(out, args.reaction, 0), C.reaction(out, args.reaction, 1)
+    P, Q, mu = abs(fy), abs(fx), args.mu
+    estar = args.young / (2.0 * (1.0 - args.poisson ** 2))  # two equal bodies
+    a = math.sqrt(4.0 * P * args.radius / (math.pi * estar))
+    c = a * math.sqrt(1.0 - Q / (mu * P))
+    p0 = 2.0 * P / (math.pi * a)
+    active = [r for r in rows if r["status"] != "inactive"]
+    xs = [r["x"] + r["ux"] for r in active]
+    centre = 0.5 * (min(xs) + max(xs))
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    grid = [-1.2 * a + 2.4 * a * k / 600 for k in range(601)]
+    ax.plot([x / a for x in grid], [math.sqrt(max(0.0, 1 - (x / a) ** 2)) for x in grid], "k-",
+            label="Hertz pressure p / p0")
+    q = [mu * (math.sqrt(max(0.0, 1 - (x / a) ** 2)) -
+               (c / a) * math.sqrt(max(0.0, 1 - (x / c) ** 2))) for x in grid]
+    ax.plot([x / a for x in grid], q, "C0-",
+            label="Cattaneo traction q / p0, c/a = %.3f" % (c / a))
+    for status, marker, color in (("stick", "o", "C2"), ("slip", "s", "C3")):
+        sel = [r for r in active if r["status"] == status]
+        ax.plot([(r["x"] + r["ux"] - centre) / a for r in sel],
+                [r["tangential_traction"] / p0 for r in sel], marker, ms=4, color=color,
+                mfc="none", label="seam q / p0, %s (%d nodes)" % (status, len(sel)))
+    ax.plot([(r["x"] + r["ux"] - centre) / a for r in active],
+            [r["normal_traction"] / p0 for r in active], "x", ms=3, color="0.5",
+            label="seam p / p0")
+    ax.axvspan(-c / a, c / a, color="C2", alpha=0.08)
+    ax.set_xlabel("x / a (current configuration, from the centre of contact)")
+    ax.set_ylabel("traction / p0")
+    ax.set_title("Cattaneo-Mindlin, Q / (mu P) = %.3f" % (Q / (mu * P)))
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=130)
+
+
 def history(args):
     labels = args.label or [os.path.basename(os.path.normpath(o)) for o in args.out]
     fig, ax = plt.subplots(3, 1, figsize=(6, 7), sharex=True)
@@ -102,7 +145,7 @@ def history(args):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("kind", choices=["hertz", "history"])
+    p.add_argument("kind", choices=["hertz", "cattaneo", "history"])
     p.add_argument("out", nargs="+", help="seam output directory (history: one or more)")
     p.add_argument("--label", action="append", help="history: a label per output directory")
     p.add_argument("-o", "--output", default="contact.png")
@@ -110,11 +153,12 @@ def main():
     p.add_argument("--young", type=float, default=1.0)
     p.add_argument("--poisson", type=float, default=0.3)
     p.add_argument("--symmetry", type=float, default=1.0)
+    p.add_argument("--mu", type=float, default=0.3, help="cattaneo: friction coefficient")
     p.add_argument("--reaction", default="top")
     p.add_argument("--mesh", help="the run's .msh or .geo: adds the traction per reference area")
     p.add_argument("--slave", default="surface", help="slave region (with --mesh)")
     args = p.parse_args()
-    (hertz if args.kind == "hertz" else history)(args)
+    {"hertz": hertz, "cattaneo": cattaneo, "history": history}[args.kind](args)
 
 
 if __name__ == "__main__":

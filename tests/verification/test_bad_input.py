@@ -561,10 +561,56 @@ time:
 """, 1)
 
 
-def test_contact_coulomb_not_available():
-    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    friction: {model: coulomb, coefficient: 0.3}",
-                  CONTACT)
-    expect_input_error(text, ["interface 'floor'", "Coulomb friction is not available"])
+def with_friction(friction):
+    return mutate("normal: [0, 1]}", "normal: [0, 1]}\n    friction: " + friction, CONTACT)
+
+
+def test_friction_coefficient_negative():
+    text = with_friction("{model: coulomb, coefficient: -0.3}")
+    expect_input_error(text, ["interfaces[0].friction.coefficient", "must be >= 0, got -0.3"],
+                       at=position(text, "friction:", "-0.3"))
+
+
+def test_friction_coefficient_not_a_number():
+    text = with_friction("{model: coulomb, coefficient: rough}")
+    expect_input_error(text, ["interfaces[0].friction.coefficient", "rough"],
+                       at=position(text, "friction:", "rough"))
+
+
+def test_friction_unknown_model():
+    text = with_friction("{model: viscous, coefficient: 0.3}")
+    expect_input_error(text, ["interfaces[0].friction.model", "viscous", "coulomb", "tresca"],
+                       at=position(text, "friction:", "viscous"))
+
+
+def test_friction_tresca_without_bound():
+    text = with_friction("{model: tresca}")
+    expect_input_error(text, ["interfaces[0].friction", "bound"])
+
+
+def test_friction_tresca_bound_negative():
+    text = with_friction("{model: tresca, bound: -1}")
+    expect_input_error(text, ["interfaces[0].friction.bound", "must be >= 0"],
+                       at=position(text, "friction:", "-1"))
+
+
+def test_friction_coefficient_with_tresca():
+    text = with_friction("{model: tresca, bound: 1, coefficient: 0.3}")
+    expect_input_error(text, ["interfaces[0].friction.coefficient", "coulomb"])
+
+
+def test_friction_on_mesh_tying():
+    text = mutate("normal: [0, 1]}", "normal: [0, 1]}", CONTACT).replace(
+        "    type: contact\n    slave: bottom\n    rigid_plane: {point: [0, 0], normal: [0, 1]}",
+        "    type: mesh_tying\n    slave: bottom\n    master: top\n"
+        "    friction: {model: coulomb, coefficient: 0.3}")
+    expect_input_error(text, ["interfaces[0].friction", "applies only to type 'contact'"],
+                       at=position(text, "friction:", "{model"))
+
+
+def test_friction_c_t_without_friction():
+    text = mutate("normal: [0, 1]}", "normal: [0, 1]}\n    c_t: 5", CONTACT)
+    expect_input_error(text, ["interfaces[0].c_t", "friction"], at=position(text, "c_t:", "5"))
 
 
 def test_contact_standard_multiplier_tri6():
@@ -640,7 +686,11 @@ if __name__ == "__main__":
         test_component_z_in_2d,
         test_output_directory_not_creatable, test_unknown_command_line_flag,
         test_version_and_help,
-        test_contact_coulomb_not_available, test_contact_standard_multiplier_tri6,
+        test_friction_coefficient_negative, test_friction_coefficient_not_a_number,
+        test_friction_unknown_model, test_friction_tresca_without_bound,
+        test_friction_tresca_bound_negative, test_friction_coefficient_with_tresca,
+        test_friction_on_mesh_tying, test_friction_c_t_without_friction,
+        test_contact_standard_multiplier_tri6,
         test_contact_c_n_negative, test_contact_slave_region_missing,
         test_contact_rigid_plane_and_master,
         test_solver_gives_up_exit_2, test_bad_expression_on_3_ranks,

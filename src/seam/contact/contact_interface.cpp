@@ -54,7 +54,8 @@ double mean_edge_length(const meshtying::InterfaceSide& side) {
 } // namespace
 
 ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
-    : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value()) {
+    : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value()),
+      frictional_(config.friction.model != io::FrictionModel::frictionless) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
   const int dim = mesh.dim;
   slave_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
@@ -232,30 +233,50 @@ void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
   out.n_cells = ops.n_integration_cells;
 }
 
-void ContactInterface::add_force(const NodalValues& values, std::span<const double> lambda_n,
+void ContactInterface::add_force(const NodalValues& values, std::span<const double> lambda,
                                  std::span<double> force) const {
   const int dim = this->dim();
-  for (std::size_t j = 0; j < slave_.mesh_nodes.size(); ++j) {
-    const double s = values.D[j] * lambda_n[j];
-    if (s == 0.0) continue;
-    const auto row = static_cast<std::size_t>(slave_.mesh_nodes[j]) * dim;
-    for (int c = 0; c < dim; ++c) force[row + c] += s * normals_[j * dim + c];
-  }
-  for (const auto& e : values.D_coupling) {
-    const auto j = static_cast<std::size_t>(e.row);
-    const double s = e.value * lambda_n[j];
-    if (s == 0.0) continue;
-    const auto row =
-        static_cast<std::size_t>(slave_.mesh_nodes[static_cast<std::size_t>(e.col)]) * dim;
-    for (int c = 0; c < dim; ++c) force[row + c] += s * normals_[j * dim + c];
-  }
-  for (const auto& e : values.M) {
-    const auto j = static_cast<std::size_t>(e.slave);
-    const double s = e.value * lambda_n[j];
-    if (s == 0.0) continue;
-    const auto row = static_cast<std::size_t>(e.master_node) * dim;
-    for (int c = 0; c < dim; ++c) force[row + c] -= s * normals_[j * dim + c];
-  }
+  // The multiplier vector of slave node j: lambda_n,j n_j, or the Cartesian one.
+  const auto add = [&](std::size_t row, double scale, std::size_t j) {
+    if (scale == 0.0) return;
+    for (int c = 0; c < dim; ++c)
+      force[row + c] +=
+          frictional_ ? scale * lambda[j * dim + c] : scale * lambda[j] * normals_[j * dim + c];
+  };
+  for (std::size_t j = 0; j < slave_.mesh_nodes.size(); ++j)
+    add(static_cast<std::size_t>(slave_.mesh_nodes[j]) * dim, values.D[j], j);
+  for (const auto& e : values.D_coupling)
+    add(static_cast<std::size_t>(slave_.mesh_nodes[static_cast<std::size_t>(e.col)]) * dim, e.value,
+        static_cast<std::size_t>(e.row));
+  for (const auto& e : values.M)
+    add(static_cast<std::size_t>(e.master_node) * dim, -e.value, static_cast<std::size_t>(e.slave));
+}
+
+std::array<double, 3> ContactInterface::plane_displacement() const {
+  std::array<double, 3> d{};
+  if (rigid_)
+    for (int c = 0; c < dim(); ++c) d[c] = master_.coordinates[c] - plane_corners_[c];
+  return d;
+}
+
+void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& out) const {
+  if (rigid_) return;
+  const int dim = this->dim();
+  mortar::NodalNormalLinearization lin;
+  mortar::linearize_nodal_normal(slave_.facet_set(), j, slave_adjacency_.of(j), lin);
+  const auto n = lin.nodes.size();
+  for (int a = 0; a < dim; ++a)
+    for (std::size_t i = 0; i < n; ++i)
+      for (int b = 0; b < dim; ++b) {
+        const double v = lin.jacobian[static_cast<std::size_t>(a * dim) * n + dim * i + b];
+        if (v != 0.0)
+          out.push_back({a,
+                         static_cast<std::int64_t>(
+                             slave_.mesh_nodes[static_cast<std::size_t>(lin.nodes[i])]) *
+                                 dim +
+                             b,
+                         v});
+      }
 }
 
 void ContactInterface::rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const {
@@ -296,7 +317,19 @@ void ContactInterface::evaluate_rigid(int part, int n_parts, NodalValues& out) c
   }
 }
 
-void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const double> lambda_n,
+bool ContactInterface::carries_multiplier(std::span<const double> lambda, local_index j) const {
+  if (!frictional_) return lambda[static_cast<std::size_t>(j)] != 0.0;
+  for (int c = 0; c < dim(); ++c)
+    if (lambda[static_cast<std::size_t>(j) * dim() + c] != 0.0) return true;
+  return false;
+}
+
+double ContactInterface::multiplier(std::span<const double> lambda, std::size_t j, int c) const {
+  const auto d = static_cast<std::size_t>(dim());
+  return frictional_ ? lambda[j * d + c] : lambda[j] * normals_[j * d + c];
+}
+
+void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const double> lambda,
                                        std::span<const char> want_gap, Linearization& out) const {
   const int dim = this->dim();
   RigidPlaneFacet rf;
@@ -307,7 +340,7 @@ void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const do
       continue;
     const auto nodes = slave_.facet_set().facet_nodes(f);
     bool needed = false;
-    for (const auto j : nodes) needed = needed || lambda_n[j] != 0.0 || want_gap[j];
+    for (const auto j : nodes) needed = needed || carries_multiplier(lambda, j) || want_gap[j];
     if (!needed) continue;
     rigid_facet(f, true, rf);
     const int n = rf.n, nv = rf.n_variables;
@@ -326,12 +359,15 @@ void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const do
     };
     for (int j = 0; j < n; ++j) {
       const auto sj = static_cast<std::size_t>(nodes[static_cast<std::size_t>(j)]);
-      if (want_gap[sj])
+      if (want_gap[sj]) {
         push_row(out.gap_gradient, static_cast<std::int64_t>(sj),
                  rf.dgap.data() + static_cast<std::size_t>(j * nv), 1.0);
-      const double lambda = lambda_n[sj];
-      if (lambda == 0.0) continue;
-      // Slave node k: D_jk lambda_j n_j with the plane's constant normal (dual: k = j only).
+        if (frictional_)
+          push_row(out.D_gradient, static_cast<std::int64_t>(sj),
+                   rf.dD.data() + static_cast<std::size_t>((j * n + j) * nv), 1.0);
+      }
+      if (!carries_multiplier(lambda, static_cast<local_index>(sj))) continue;
+      // Slave node k: D_jk lambda_j with the plane's constant normal (dual: k = j only).
       for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k) {
         const auto row0 =
             static_cast<std::int64_t>(
@@ -340,19 +376,21 @@ void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const do
         for (int a = 0; a < dim; ++a)
           push_row(out.force_tangent, row0 + a,
                    rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv),
-                   lambda * normals_[sj * dim + static_cast<std::size_t>(a)]);
+                   multiplier(lambda, sj, a));
       }
     }
   }
 }
 
-void ContactInterface::linearize(int part, int n_parts, std::span<const double> lambda_n,
+void ContactInterface::linearize(int part, int n_parts, std::span<const double> lambda,
                                  std::span<const char> want_gap, Linearization& out) const {
   const int dim = this->dim();
   out.force_tangent.clear();
   out.gap_gradient.clear();
+  out.D_gradient.clear();
+  out.operator_gradient.clear();
   if (rigid_) {
-    linearize_rigid(part, n_parts, lambda_n, want_gap, out);
+    linearize_rigid(part, n_parts, lambda, want_gap, out);
     return;
   }
   mortar::SlaveFacetLinearization lin;
@@ -364,7 +402,7 @@ void ContactInterface::linearize(int part, int n_parts, std::span<const double> 
     if (begin == end) continue;
     const auto nodes = slave_.facet_set().facet_nodes(f);
     bool needed = false;
-    for (const auto j : nodes) needed = needed || lambda_n[j] != 0.0 || want_gap[j];
+    for (const auto j : nodes) needed = needed || carries_multiplier(lambda, j) || want_gap[j];
     if (!needed) continue;
     masters.clear();
     for (auto i = begin; i < end; ++i)
@@ -387,46 +425,58 @@ void ContactInterface::linearize(int part, int n_parts, std::span<const double> 
         column[(n_sv + static_cast<std::size_t>(p)) * dim + b] = d < 0 ? -1 : d + b;
     }
     const int ns = lin.n_slave;
-    const auto add_row = [&](std::int64_t row, std::span<const double> a, double sa,
-                             const double* b, double sb) {
+    // to += sa a + sb b over the variables that are mesh dofs (b optional).
+    const auto add_row = [&](std::vector<DofTriplet>& to, std::int64_t row,
+                             std::span<const double> a, double sa, const double* b, double sb) {
       for (int v = 0; v < nv; ++v) {
         const double value = sa * a[static_cast<std::size_t>(v)] + (b ? sb * b[v] : 0.0);
         if (value != 0.0 && column[static_cast<std::size_t>(v)] >= 0)
-          out.force_tangent.push_back({row, column[static_cast<std::size_t>(v)], value});
+          to.push_back({row, column[static_cast<std::size_t>(v)], value});
       }
     };
     for (int j = 0; j < ns; ++j) {
       const auto sj = static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(j)]);
       if (want_gap[sj]) {
-        const auto g = lin.dgap(j);
-        for (int v = 0; v < nv; ++v)
-          if (g[static_cast<std::size_t>(v)] != 0.0 && column[static_cast<std::size_t>(v)] >= 0)
-            out.gap_gradient.push_back({static_cast<std::int64_t>(sj),
-                                        column[static_cast<std::size_t>(v)],
-                                        g[static_cast<std::size_t>(v)]});
+        add_row(out.gap_gradient, static_cast<std::int64_t>(sj), lin.dgap(j), 1.0, nullptr, 0.0);
+        if (frictional_) {
+          add_row(out.D_gradient, static_cast<std::int64_t>(sj), lin.dD(j, j), 1.0, nullptr, 0.0);
+          // d(sum_p M_jp x_p - D_jj x_j) at fixed x, component by component.
+          for (int a = 0; a < dim; ++a) {
+            const auto row = static_cast<std::int64_t>(sj * dim) + a;
+            add_row(out.operator_gradient, row, lin.dD(j, j),
+                    -slave_.coordinates[sj * dim + static_cast<std::size_t>(a)], nullptr, 0.0);
+            for (int p = 0; p < lin.n_master_nodes(); ++p) {
+              const auto mp =
+                  static_cast<std::size_t>(lin.master_nodes[static_cast<std::size_t>(p)]);
+              add_row(out.operator_gradient, row, lin.dM(j, p),
+                      master_.coordinates[mp * dim + static_cast<std::size_t>(a)], nullptr, 0.0);
+            }
+          }
+        }
       }
-      const double lambda = lambda_n[sj];
-      if (lambda == 0.0) continue;
-      const double* n = &normals_[sj * dim];
-      // Slave node k: D_jk lambda_j n_j; derivative lambda_j (n_j dD_jk + D_jk dn_j).
+      if (!carries_multiplier(lambda, static_cast<local_index>(sj))) continue;
+      // Frictionless: the multiplier vector lambda_n,j n_j moves with the normal, whose
+      // derivative enters; a frictional (Cartesian) multiplier is fixed.
+      const double lambda_n = frictional_ ? 0.0 : lambda[sj];
+      // Slave node k: D_jk lambda_j; derivative dD_jk lambda_j (+ D_jk lambda_n,j dn_j).
       for (int k = 0; k < ns; ++k) {
         const double Djk = lin.D[static_cast<std::size_t>(j * ns + k)];
         const auto sk = static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(k)]);
         const auto row0 = static_cast<std::int64_t>(slave_.mesh_nodes[sk]) * dim;
         for (int a = 0; a < dim; ++a)
-          add_row(row0 + a, lin.dD(j, k), lambda * n[a],
+          add_row(out.force_tangent, row0 + a, lin.dD(j, k), multiplier(lambda, sj, a),
                   lin.normal_jacobian.data() + static_cast<std::size_t>(j * dim + a) * nv,
-                  lambda * Djk);
+                  lambda_n * Djk);
       }
-      // Master node p: -M_jp lambda_j n_j.
+      // Master node p: -M_jp lambda_j.
       for (int p = 0; p < lin.n_master_nodes(); ++p) {
         const auto row0 = mesh_dof_of_master(lin.master_nodes[static_cast<std::size_t>(p)]);
         if (row0 < 0) continue;
         const double Mjp = lin.M[static_cast<std::size_t>(j * lin.n_master_nodes() + p)];
         for (int a = 0; a < dim; ++a)
-          add_row(row0 + a, lin.dM(j, p), -lambda * n[a],
+          add_row(out.force_tangent, row0 + a, lin.dM(j, p), -multiplier(lambda, sj, a),
                   lin.normal_jacobian.data() + static_cast<std::size_t>(j * dim + a) * nv,
-                  -lambda * Mjp);
+                  -lambda_n * Mjp);
       }
     }
   }

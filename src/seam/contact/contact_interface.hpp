@@ -68,6 +68,11 @@ struct Linearization {
   /// d g~_j / d(displacement) of the requested slave nodes: row = j (side-local), column =
   /// mesh dof.
   std::vector<DofTriplet> gap_gradient;
+  /// Frictional interfaces, for the requested slave nodes: d D_jj / d(displacement) (row j) and
+  /// the derivative of sum_l M_jl x_l - D_jj x_j at fixed nodal positions x, i.e. of the
+  /// operators only (row j * dim + component); two bodies only.
+  std::vector<DofTriplet> D_gradient;
+  std::vector<DofTriplet> operator_gradient;
 };
 
 class ContactInterface {
@@ -86,6 +91,15 @@ public:
   /// Mesh nodes of the master side (empty for a rigid plane).
   std::span<const std::int32_t> master_nodes() const;
   bool rigid() const { return rigid_; }
+  /// Contact with friction: multipliers are Cartesian vectors (dim per slave node) in
+  /// add_force and linearize instead of normal multipliers.
+  bool frictional() const { return frictional_; }
+  /// The rigid plane's displacement at the last update (dim entries; zero for two bodies).
+  std::array<double, 3> plane_displacement() const;
+  /// Current positions of the slave nodes (dim per slave node) and of the master nodes (dim
+  /// per master node; the plane's corners for a rigid plane) at the last update.
+  std::span<const double> slave_positions() const { return slave_.coordinates; }
+  std::span<const double> master_positions() const { return master_.coordinates; }
   local_index n_master_facets() const { return master_.n_facets(); }
   /// Mean edge length of the slave facets in the reference configuration.
   double slave_mesh_size() const { return mesh_size_; }
@@ -111,8 +125,9 @@ public:
   /// D_jj, g~_j and M over the slave facets f with f % n_parts == part.
   void evaluate(int part, int n_parts, NodalValues& out) const;
 
-  /// This part's contact force of the normal multipliers `lambda_n` (one per slave node) added
-  /// to `force` (mesh dofs), from this part's `values`.
+  /// This part's contact force of the normal multipliers `lambda_n` (one per slave node; on a
+  /// frictional interface the Cartesian multipliers, dim per slave node) added to `force`
+  /// (mesh dofs), from this part's `values`.
   void add_force(const NodalValues& values, std::span<const double> lambda_n,
                  std::span<double> force) const;
 
@@ -122,8 +137,17 @@ public:
   void linearize(int part, int n_parts, std::span<const double> lambda_n,
                  std::span<const char> want_gap, Linearization& out) const;
 
+  /// d n_j / d(displacement) of the averaged normal of slave node j at the last update: row =
+  /// component, column = mesh dof, appended to `out`. Nothing for a rigid plane (its normal is
+  /// fixed).
+  void normal_jacobian(local_index j, std::vector<DofTriplet>& out) const;
+
 private:
   std::int64_t mesh_dof_of_master(local_index p) const; ///< -1 for rigid nodes
+  /// Slave node j has a nonzero multiplier (normal or Cartesian, see frictional()).
+  bool carries_multiplier(std::span<const double> lambda, local_index j) const;
+  /// Component c of the multiplier vector of slave node j.
+  double multiplier(std::span<const double> lambda, std::size_t j, int c) const;
   /// Rigid plane: D and g~ of slave facet f integrated over the whole facet, with their
   /// derivatives if asked (rigid_plane_facet.hpp).
   void rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const;
@@ -134,6 +158,7 @@ private:
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
   bool rigid_ = false;
+  bool frictional_ = false;
   meshtying::InterfaceSide slave_, master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid plane: reference corners and the motion.

@@ -39,7 +39,7 @@ enum class BoundaryType { dirichlet, pressure, traction, body_force };
 enum class InterfaceType { mesh_tying, contact };
 enum class Multiplier { dual, standard };
 enum class Strategy { condensed, saddle_point };
-enum class FrictionModel { frictionless, coulomb };
+enum class FrictionModel { frictionless, coulomb, tresca };
 /// `static` in the input: a sequence of equilibrium states, t is a load parameter.
 enum class Integrator { quasi_static, generalized_alpha, energy_momentum };
 enum class LinearSolverKind { direct, iterative };
@@ -110,7 +110,8 @@ struct RigidPlane {
 
 struct Friction {
   FrictionModel model = FrictionModel::frictionless;
-  double coefficient = 0.0; ///< Coulomb coefficient, >= 0
+  double coefficient = 0.0; ///< Coulomb coefficient mu, >= 0
+  double bound = 0.0;       ///< Tresca: the slip bound of the tangential traction, >= 0
 };
 
 struct Interface {
@@ -127,6 +128,9 @@ struct Interface {
   /// Contact only: the complementarity parameter of C = lambda_n - max(0, lambda_n - c_n g)
   /// (pressure per length); unset = chosen from the stiffness and the mesh size.
   std::optional<double> c_n;
+  /// Contact with friction only: the complementarity parameter of the stick/slip condition
+  /// (same units as c_n); unset = c_n.
+  std::optional<double> c_t;
   Mark mark;
 };
 

@@ -100,17 +100,19 @@ RigidPlane read_rigid_plane(const Node& node, int dimension) {
 }
 
 Friction read_friction(const Node& node) {
-  const Map map(node, {"model", "coefficient"});
+  const Map map(node, {"model", "coefficient", "bound"});
   Friction friction;
   friction.model = map.required("model").choice(friction_names);
-  map.forbid("coefficient", friction.model == FrictionModel::frictionless,
+  map.forbid("coefficient", friction.model != FrictionModel::coulomb,
              "applies only to model 'coulomb'");
-  if (friction.model == FrictionModel::coulomb) {
-    const Node coefficient = map.required("coefficient");
-    friction.coefficient = coefficient.number();
-    if (friction.coefficient < 0.0)
-      coefficient.fail(concat("must be >= 0, got ", format_number(friction.coefficient)));
-  }
+  map.forbid("bound", friction.model != FrictionModel::tresca, "applies only to model 'tresca'");
+  const auto non_negative = [](const Node& value, double& to) {
+    to = value.number();
+    if (!(to >= 0.0)) value.fail(concat("must be >= 0, got ", format_number(to)));
+  };
+  if (friction.model == FrictionModel::coulomb)
+    non_negative(map.required("coefficient"), friction.coefficient);
+  if (friction.model == FrictionModel::tresca) non_negative(map.required("bound"), friction.bound);
   return friction;
 }
 
@@ -125,7 +127,7 @@ void check_name(const Node& node, const std::string& name) {
 
 Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
   const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "multiplier", "strategy",
-                       "friction", "c_n"});
+                       "friction", "c_n", "c_t"});
   Interface interface;
   interface.mark = node.mark();
   const Node name = map.required("name");
@@ -178,6 +180,13 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
     interface.c_n = c_n->number();
     if (!(*interface.c_n > 0.0))
       c_n->fail(concat("must be > 0, got ", format_number(*interface.c_n)));
+  }
+  if (const auto c_t = map.get("c_t")) {
+    if (interface.friction.model == FrictionModel::frictionless)
+      c_t->fail("applies only to a contact interface with friction");
+    interface.c_t = c_t->number();
+    if (!(*interface.c_t > 0.0))
+      c_t->fail(concat("must be > 0, got ", format_number(*interface.c_t)));
   }
   return interface;
 }

@@ -126,8 +126,10 @@ inline constexpr std::array<std::pair<std::string_view, Multiplier>, 2> multipli
     {{"dual", Multiplier::dual}, {"standard", Multiplier::standard}}};
 inline constexpr std::array<std::pair<std::string_view, Strategy>, 2> strategy_names{
     {{"condensed", Strategy::condensed}, {"saddle_point", Strategy::saddle_point}}};
-inline constexpr std::array<std::pair<std::string_view, FrictionModel>, 2> friction_names{
-    {{"frictionless", FrictionModel::frictionless}, {"coulomb", FrictionModel::coulomb}}};
+inline constexpr std::array<std::pair<std::string_view, FrictionModel>, 3> friction_names{
+    {{"frictionless", FrictionModel::frictionless},
+     {"coulomb", FrictionModel::coulomb},
+     {"tresca", FrictionModel::tresca}}};
 inline constexpr std::array<std::pair<std::string_view, Integrator>, 3> integrator_names{
     {{"static", Integrator::quasi_static},
      {"generalized_alpha", Integrator::generalized_alpha},

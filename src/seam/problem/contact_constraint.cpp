@@ -25,10 +25,6 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   for (const auto& m : model.materials) young = std::max(young, m.young);
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::contact) continue;
-    if (itf.friction.model != io::FrictionModel::frictionless)
-      io::fail_at(itf.mark, "interface '" + itf.name +
-                                "': Coulomb friction is not available in this version of seam "
-                                "(frictionless contact is)");
     Side s(contact::ContactInterface(itf, disc.mesh()));
     if (s.itf.standard()) {
       saddle_point_ = true;
@@ -62,9 +58,17 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     disc.comm().sum_in_place(fixed);
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
+    if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     sides_.push_back(std::move(s));
   }
   if (!saddle_point_) return;
+  for (const auto& itf : config.interfaces)
+    if (itf.type == io::InterfaceType::contact &&
+        itf.friction.model != io::FrictionModel::frictionless)
+      io::fail_at(itf.mark,
+                  "interface '" + itf.name +
+                      "': friction cannot be combined with standard multipliers on another "
+                      "contact interface in this version");
   // One multiplier per slave node, owned with the node; numbered rank by rank.
   const auto& comm = disc.comm();
   for (const auto& s : sides_)
@@ -155,6 +159,10 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     double d_max = 0.0;
     for (double d : s.D) d_max = std::max(d_max, d);
     const double touching = 1e-9 * s.itf.slave_mesh_size();
+    if (s.friction) {
+      changes += evaluate_friction(s, u_mesh, first);
+      continue;
+    }
     if (first) s.frozen = false;
     s.active_before = s.active_previous;
     s.active_previous = s.active;
@@ -221,11 +229,16 @@ void ContactConstraint::add_force(la::Vector& r) const {
 
 double ContactConstraint::complementarity_norm() const {
   double sum = 0.0;
-  for (const auto& s : sides_)
+  for (const auto& s : sides_) {
+    if (s.friction) {
+      sum += s.ncp_norm2;
+      continue;
+    }
     for (std::size_t j = 0; j < s.active.size(); ++j) {
       const double c = s.active[j] ? s.c_n * s.gap[j] : s.D[j] * s.lambda[j];
       sum += c * c;
     }
+  }
   return std::sqrt(sum);
 }
 
@@ -238,8 +251,8 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   std::vector<PetscInt> ki, kj, li, lj, gi, gj;
   std::vector<double> kv, lv, gv;
   std::vector<char> replaced(static_cast<std::size_t>(n_owned), 0);
-  std::vector<PetscInt> gap_rows;
-  std::vector<double> gap_values;
+  std::vector<PetscInt> gap_rows, friction_rows;
+  std::vector<double> gap_values, friction_values;
   for (auto& s : sides_) {
     ScopedTimer timer(timers, "mortar");
     linearize(s, ki, kj, kv);
@@ -252,6 +265,11 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
       gi.push_back(disc_.global_dof(nodes[j], frames[j].gap_component));
       gj.push_back(global_dof(e.col));
       gv.push_back(s.c_n * e.value);
+    }
+    if (s.friction) {
+      condense_friction(s, replaced, li, lj, lv, gi, gj, gv, gap_rows, gap_values, friction_rows,
+                        friction_values);
+      continue;
     }
     // Master rows: (M_jl / (D_jj w.n_j)) n_j w^T applied to the rows of slave node j.
     const double* normals = s.itf.normals().data();
@@ -319,6 +337,10 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   rsys.axpy(1.0, r);
   rsys.set_values(gap_rows, gap_values);
   rsys.assemble();
+  if (comm.any(!friction_rows.empty())) {
+    rsys.add_values(friction_rows, friction_values);
+    rsys.assemble();
+  }
 }
 
 void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const la::Vector& dd) {
@@ -338,6 +360,20 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
   const PetscInt first = disc_.first_owned_dof();
   for (auto& s : sides_) {
     const auto& nodes = s.itf.slave().mesh_nodes;
+    if (s.friction) {
+      // lambda_j = -P_V y_j / D_jj: the Cartesian multiplier in the free directions.
+      std::vector<double> lambda(nodes.size() * dim, 0.0);
+      for (std::size_t j = 0; j < nodes.size(); ++j) {
+        if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+        for (int b = 0; b < dim; ++b)
+          if (!s.dirichlet[j * dim + b])
+            lambda[j * dim + b] =
+                -values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)] / s.D[j];
+      }
+      disc_.comm().sum_in_place(lambda);
+      s.lambda = std::move(lambda);
+      continue;
+    }
     std::vector<double> lambda(nodes.size(), 0.0);
     for (std::size_t j = 0; j < nodes.size(); ++j) {
       if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
@@ -529,7 +565,10 @@ la::Matrix ContactConstraint::transformation_delta() const {
 }
 
 void ContactConstraint::save() {
-  for (auto& s : sides_) s.lambda_saved = s.lambda;
+  for (auto& s : sides_) {
+    s.lambda_saved = s.lambda;
+    if (s.friction) save_friction(s);
+  }
 }
 
 void ContactConstraint::restore() {
@@ -554,7 +593,15 @@ std::vector<std::string> ContactConstraint::describe() const {
                       : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
         s.itf.standard() ? "standard multipliers (saddle point)" : "dual multipliers (condensed)",
         s.c_n);
-    out.emplace_back(line);
+    std::string text = line;
+    if (s.friction) {
+      std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
+                    s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",
+                    s.law.model == io::FrictionModel::coulomb ? "mu" : "bound",
+                    s.law.model == io::FrictionModel::coulomb ? s.law.mu : s.law.bound, s.law.c_t);
+      text += line;
+    }
+    out.push_back(std::move(text));
   }
   return out;
 }
@@ -574,25 +621,57 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
         rep.displacement[j * dim + c] =
             u_mesh[static_cast<std::size_t>(rep.slave_nodes[j]) * dim + c];
     rep.normal = s.itf.normals();
-    rep.lambda_n = s.lambda;
+    // The multiplier vector: lambda_n n without friction, the Cartesian one with it.
+    rep.lambda.assign(n * dim, 0.0);
+    rep.lambda_n.assign(n, 0.0);
+    rep.lambda_t.assign(n, 0.0);
+    rep.status.assign(n, 0);
+    std::array<double, 3> ft{};
+    for (std::size_t j = 0; j < n; ++j) {
+      const double* nj = &rep.normal[j * dim];
+      for (int c = 0; c < dim; ++c)
+        rep.lambda[j * dim + c] = s.friction ? s.lambda[j * dim + c] : s.lambda[j] * nj[c];
+      for (int c = 0; c < dim; ++c) rep.lambda_n[j] += rep.lambda[j * dim + c] * nj[c];
+      double lt2 = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        const double lt = rep.lambda[j * dim + c] - rep.lambda_n[j] * nj[c];
+        lt2 += lt * lt;
+        ft[c] += s.D[j] * lt;
+      }
+      rep.lambda_t[j] = std::sqrt(lt2);
+      // Without friction every active node slides freely: status slip.
+      rep.status[j] = s.friction ? s.status[j] : (s.active[j] ? 2 : 0);
+    }
+    rep.tangential_force = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
     rep.weighted_gap = s.gap;
     rep.gap.assign(n, 0.0);
     for (std::size_t j = 0; j < n; ++j)
       if (s.D[j] > 0.0) rep.gap[j] = s.gap[j] / s.D[j];
     rep.active = s.active;
     for (std::size_t j = 0; j < n; ++j) {
-      rep.normal_force += s.D[j] * s.lambda[j];
+      rep.normal_force += s.D[j] * rep.lambda_n[j];
       if (s.active[j]) {
         rep.contact_area += s.D[j];
         ++rep.active_nodes;
       }
+      rep.slip_nodes += rep.status[j] == 2;
     }
+    // The frictional work including this step (save() adds it once the step is accepted).
+    rep.frictional_dissipation = s.friction ? s.dissipation + dissipation_increment(s) : 0.0;
     rep.slave_elements = s.itf.slave().n_facets();
     rep.master_elements = s.itf.n_master_facets();
     rep.candidate_pairs = s.itf.n_candidates();
     out.push_back(std::move(rep));
   }
   return out;
+}
+
+int ContactConstraint::n_slip() const {
+  int n = 0;
+  for (const auto& s : sides_)
+    for (std::size_t j = 0; j < s.active.size(); ++j)
+      n += s.friction ? s.status[j] == 2 : s.active[j] != 0;
+  return n;
 }
 
 } // namespace seam::problem

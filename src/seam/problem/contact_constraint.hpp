@@ -30,8 +30,19 @@
 //   [ C   E   ] [ lambda^{k+1} ] = [ -c_n g~_A ],   slave k: D_jk n_j, master l: -M_jl n_j,
 // with C = c_n dg~_j/dd, E = 0 on the active rows and C = 0, E = (nodal weight) on the
 // inactive ones (lambda_j = 0); the nodal weight D_j = sum_k D_jk = int N_j replaces D_jj.
+//
+// With friction (contact_friction.cpp) the multiplier of a slave node is a Cartesian vector
+// lambda_j in the span V of its free directions, recovered from all its free slave rows,
+//   lambda_j^{k+1} = -P_V (K~_j dd + r_j) / D_jj,
+// and passed to the master rows by M_jl / D_jj. The free rows of an active node become the gap
+// row and one row per tangent t_i of the linearized frictional condition (contact/friction.hpp)
+//   alpha . (lambda^{k+1} - lambda^k) + beta . dd = -C_i,
+// multiplied by -D_jj so that alpha . lambda^{k+1} turns into rows of K~ and r (through L) and
+// beta, the chained derivatives of n_j, the slip increment u~_j, D_jj and g~_j, into G.
+// Every stick/slip decision is taken in each Newton iteration together with the normal one.
 #include "seam/common/timer.hpp"
 #include "seam/contact/contact_interface.hpp"
+#include "seam/contact/friction.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/problem/discretization.hpp"
@@ -89,6 +100,8 @@ public:
   std::vector<std::string> describe() const;
   /// Per interface, the state for the output files (replicated).
   std::vector<ContactReport> reports(const la::Vector& u) const;
+  /// Active nodes in stick (friction) and in slip (every active node without friction).
+  int n_slip() const;
 
 private:
   struct Side {
@@ -107,6 +120,22 @@ private:
     bool frozen = false; ///< active set frozen after cycling was detected in this step
     /// Saddle point: global multiplier index of every slave node (replicated).
     std::vector<PetscInt> lm_index;
+    double ncp_norm2 = 0.0; ///< complementarity residual squared (force units)
+
+    // Friction: lambda holds dim values per slave node (Cartesian), status the
+    // contact::NodeStatus of every node (active mirrors it).
+    bool friction = false;
+    contact::FrictionLaw law;
+    std::vector<char> status, status_previous, status_before;
+    std::vector<double> slip;  ///< weighted slip increment u~ of the step, dim per node
+    std::vector<double> x;     ///< current slave node positions, dim per node
+    std::vector<double> x_old; ///< slave node positions at the last converged step
+    std::vector<double> D_old; ///< D_jj at the last converged step
+    std::vector<contact::MortarEntry> M_old; ///< this rank's part of M then
+    std::vector<double> master_x;            ///< current positions of all mesh nodes (two bodies)
+    std::array<double, 3> plane_old{};       ///< rigid plane displacement then
+    double dissipation = 0.0;                ///< frictional work up to the last converged step
+    bool has_old = false;                    ///< D_old and M_old are set
   };
   /// Free-direction data of an active slave node: w, the row that carries the gap and the
   /// tangent rows.
@@ -119,6 +148,22 @@ private:
     double tangent[2][3] = {{0, 0, 0}, {0, 0, 0}};
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
+  // Friction (contact_friction.cpp).
+  void init_friction(Side& s, const io::Interface& config, double c_n);
+  /// Slip increments, stick/slip/inactive status with the cycling guard, complementarity
+  /// residual. Returns the number of status changes.
+  int evaluate_friction(Side& s, std::span<const double> u_mesh, bool first);
+  contact::FrictionNode friction_node(const Side& s, std::size_t j) const;
+  /// This rank's rows of a frictional side in the condensed system (see the header comment).
+  void condense_friction(Side& s, std::vector<char>& replaced, std::vector<PetscInt>& li,
+                         std::vector<PetscInt>& lj, std::vector<double>& lv,
+                         std::vector<PetscInt>& gi, std::vector<PetscInt>& gj,
+                         std::vector<double>& gv, std::vector<PetscInt>& set_rows,
+                         std::vector<double>& set_values, std::vector<PetscInt>& add_rows,
+                         std::vector<double>& add_values) const;
+  /// The frictional work of the current step (replicated).
+  double dissipation_increment(const Side& s) const;
+  void save_friction(Side& s);
   /// Linearizes side s at its multipliers and active set (s.lin) and appends this rank's part
   /// of the contact force tangent as global triplets.
   void linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,

@@ -213,7 +213,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     auto rec = record(step, t_new, res, internal, external_work);
     if (contact.active()) {
       rec.active_nodes = contact.n_active();
-      rec.slip_nodes = rec.active_nodes; // frictionless: every active node slips
+      rec.slip_nodes = contact.n_slip();
       out.contact_state(contact.reports(u));
     }
     const bool last = t_new >= tc.end * (1.0 - 1e-12);

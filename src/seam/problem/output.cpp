@@ -76,7 +76,7 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     interfaces_ = std::make_unique<io::CsvTable>(
         dir_ / "interfaces.csv",
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
-                 "slip_nodes", "contact_area"}));
+                 "slip_nodes", "contact_area", "frictional_dissipation"}));
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
     if (!config.output.exact_displacement.empty())
       errors_ = std::make_unique<io::CsvTable>(
@@ -173,11 +173,11 @@ Output::interface_states(const la::Vector& u,
 void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
                               bool write_nodes) {
   const int dim = disc_.dim();
-  // Frictionless contact: every active node slides freely, so its status is "slip"
-  // (CONTRACT.md: inactive / stick / slip).
+  // Status per CONTRACT.md: inactive / stick / slip (without friction every active node slips).
+  static constexpr const char* status_names[] = {"inactive", "stick", "slip"};
   for (const auto& c : contact_) {
-    interfaces_->add_row({r.step, r.time, c.name, c.normal_force, 0.0, c.active_nodes,
-                          c.active_nodes, c.contact_area});
+    interfaces_->add_row({r.step, r.time, c.name, c.normal_force, c.tangential_force,
+                          c.active_nodes, c.slip_nodes, c.contact_area, c.frictional_dissipation});
     if (!write_nodes) continue;
     io::CsvTable table(dir_ / ("interface_" + c.name + ".csv"),
                        columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
@@ -190,8 +190,8 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
         X[k] = mesh.x[static_cast<std::size_t>(node) * dim + k];
         U[k] = c.displacement[j * dim + k];
       }
-      table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j], c.lambda_n[j], 0.0,
-                     c.active[j] ? "slip" : "inactive"});
+      table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j], c.lambda_n[j],
+                     c.lambda_t[j], status_names[static_cast<int>(c.status[j])]});
     }
   }
   for (std::size_t k = 0; k < tied_.size(); ++k) {
@@ -215,7 +215,7 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
     }
     const double ft_norm = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
     interfaces_->add_row(
-        {r.step, r.time, t.name, fn, ft_norm, tied, 0, t.operators.integrated_area});
+        {r.step, r.time, t.name, fn, ft_norm, tied, 0, t.operators.integrated_area, 0.0});
     if (!write_nodes) continue;
     io::CsvTable table(dir_ / ("interface_" + t.name + ".csv"),
                        columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
@@ -383,9 +383,9 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
       const auto node = c.slave_nodes[j];
       if (!disc_.has_node(node)) continue;
       const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
-      for (int k = 0; k < dim; ++k) lambda[i * 3 + k] = c.lambda_n[j] * c.normal[j * dim + k];
+      for (int k = 0; k < dim; ++k) lambda[i * 3 + k] = c.lambda[j * dim + k];
       gap[i] = c.weighted_gap[j];
-      status[i] = c.active[j] ? 2 : 0; // frictionless: every active node slips
+      status[i] = c.status[j];
     }
   }
   if (!tied_.empty() || has_contact_) {

@@ -48,13 +48,19 @@ struct ContactReport {
   std::vector<std::int32_t> slave_nodes; ///< mesh nodes
   std::vector<double> displacement;      ///< dim per slave node
   std::vector<double> normal;            ///< dim per slave node, current averaged normal
+  std::vector<double> lambda;            ///< multiplier vector, dim per slave node
   std::vector<double> lambda_n;          ///< normal traction per slave node (> 0 pressure)
+  std::vector<double> lambda_t;          ///< magnitude of the tangential traction per node
+  std::vector<char> status;              ///< contact::NodeStatus: 0 inactive, 1 stick, 2 slip
   std::vector<double> gap;               ///< nodal gap g~_j / D_jj (0 off the overlap)
   std::vector<double> weighted_gap;      ///< g~_j
   std::vector<char> active;
-  double normal_force = 0.0; ///< sum_j D_jj lambda_n,j
-  double contact_area = 0.0; ///< sum of D_jj over the active nodes
+  double normal_force = 0.0;           ///< sum_j D_jj lambda_n,j
+  double contact_area = 0.0;           ///< sum of D_jj over the active nodes
+  double tangential_force = 0.0;       ///< |sum_j D_jj lambda_t,j|
+  double frictional_dissipation = 0.0; ///< cumulative frictional work up to this step
   int active_nodes = 0;
+  int slip_nodes = 0;
   int slave_elements = 0, master_elements = 0, candidate_pairs = 0;
 };
 

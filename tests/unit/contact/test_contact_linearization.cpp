@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -64,8 +65,12 @@ Physical Curve("master") = {3}; Physical Curve("slave") = {5};
                          options);
 }
 
-io::Interface contact_config(bool rigid, int dim, bool standard) {
+io::Interface contact_config(bool rigid, int dim, bool standard, bool friction = false) {
   io::Interface c;
+  if (friction) {
+    c.friction.model = io::FrictionModel::coulomb;
+    c.friction.coefficient = 0.3;
+  }
   c.multiplier = standard ? io::Multiplier::standard : io::Multiplier::dual;
   c.name.assign("contact");
   c.type = io::InterfaceType::contact;
@@ -172,6 +177,122 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
   EXPECT_GT(g_max, 1e-3);
   EXPECT_LT(k_err, 1e-6 * k_max);
   EXPECT_LT(g_err, 1e-6 * g_max);
+}
+
+// Friction: Cartesian multipliers. The force tangent at fixed multipliers, dD_jj, the
+// derivative of the operators in the slip increment, sum_l M_jl x_l - D_jj x_j at fixed x, and
+// the normals' Jacobian, against central differences.
+void check_friction(int dim, bool tets, bool rigid) {
+  const auto mesh = two_blocks(dim, tets);
+  ContactInterface itf(contact_config(rigid, dim, false, true), mesh);
+  ASSERT_TRUE(itf.frictional());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> perturb(-0.015, 0.015), unit(-1.0, 1.0);
+  std::vector<double> u(mesh.x.size(), 0.0);
+  std::vector<std::int64_t> dofs;
+  const auto add_side = [&](std::span<const std::int32_t> nodes, double push) {
+    for (const auto n : nodes)
+      for (int c = 0; c < dim; ++c) {
+        u[static_cast<std::size_t>(n) * dim + c] = perturb(rng) + (c == dim - 1 ? push : 0.0);
+        dofs.push_back(static_cast<std::int64_t>(n) * dim + c);
+      }
+  };
+  add_side(itf.slave().mesh_nodes, -0.01);
+  add_side(itf.master_nodes(), 0.0);
+  const auto n_slave = static_cast<std::size_t>(itf.n_slave_nodes());
+  std::vector<double> lambda(n_slave * dim);
+  for (auto& l : lambda) l = unit(rng);
+  itf.update(u, 0.0);
+  const std::vector<double> x0(itf.slave_positions().begin(), itf.slave_positions().end());
+  const std::vector<double> xm0(itf.master_positions().begin(), itf.master_positions().end());
+  const std::vector<char> want(n_slave, 1);
+  Linearization lin;
+  itf.linearize(0, 1, lambda, want, lin);
+  Dense K, DD, W, N;
+  for (const auto& e : lin.force_tangent) K[{e.row, e.col}] += e.value;
+  for (const auto& e : lin.D_gradient) DD[{e.row, e.col}] += e.value;
+  for (const auto& e : lin.operator_gradient) W[{e.row, e.col}] += e.value;
+  std::vector<DofTriplet> dn;
+  for (std::size_t j = 0; j < n_slave; ++j) {
+    dn.clear();
+    itf.normal_jacobian(static_cast<local_index>(j), dn);
+    for (const auto& e : dn) N[{static_cast<std::int64_t>(j) * dim + e.row, e.col}] += e.value;
+  }
+  // force, D, the operators' part of the slip at the base positions, normals.
+  const auto state = [&](std::vector<double>& f, std::vector<double>& d, std::vector<double>& w,
+                         std::vector<double>& n) {
+    itf.update(u, 0.0);
+    NodalValues v;
+    itf.evaluate(0, 1, v);
+    f.assign(u.size(), 0.0);
+    itf.add_force(v, lambda, f);
+    d = v.D;
+    w.assign(n_slave * dim, 0.0);
+    for (std::size_t j = 0; j < n_slave; ++j)
+      for (int c = 0; c < dim; ++c) w[j * dim + c] -= v.D[j] * x0[j * dim + c];
+    // M columns are mesh nodes: the master positions at the base state.
+    const auto& masters = itf.master_nodes();
+    for (const auto& e : v.M) {
+      const auto p = static_cast<std::size_t>(
+          std::lower_bound(masters.begin(), masters.end(), e.master_node) - masters.begin());
+      for (int c = 0; c < dim; ++c)
+        w[static_cast<std::size_t>(e.slave) * dim + c] += e.value * xm0[p * dim + c];
+    }
+    n = itf.normals();
+  };
+  const double h = 1e-6;
+  double err[4] = {0, 0, 0, 0}, big[4] = {0, 0, 0, 0};
+  std::vector<double> a[4], b[4];
+  const Dense* an[4] = {&K, &DD, &W, &N};
+  for (const auto d : dofs) {
+    const auto i = static_cast<std::size_t>(d);
+    const double u0 = u[i];
+    u[i] = u0 + h;
+    state(a[0], a[1], a[2], a[3]);
+    u[i] = u0 - h;
+    state(b[0], b[1], b[2], b[3]);
+    u[i] = u0;
+    for (int k = 0; k < 4; ++k)
+      for (std::size_t r = 0; r < a[k].size(); ++r) {
+        const double fd = (a[k][r] - b[k][r]) / (2 * h);
+        const auto it = an[k]->find({static_cast<std::int64_t>(r), d});
+        const double value = it == an[k]->end() ? 0.0 : it->second;
+        big[k] = std::max(big[k], std::abs(fd));
+        err[k] = std::max(err[k], std::abs(fd - value));
+      }
+  }
+  std::printf("  friction dim %d %s %s: |dF| %.2e err %.2e, |dD| %.2e err %.2e, |dW| %.2e err "
+              "%.2e, |dn| %.2e err %.2e\n",
+              dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
+              rigid ? "rigid plane" : "two bodies", big[0], err[0], big[1], err[1], big[2], err[2],
+              big[3], err[3]);
+  EXPECT_GT(big[0], 0.05);
+  EXPECT_GT(big[1], 1e-3);
+  // A rigid plane has no M: its slip increment is built from the nodal positions alone.
+  for (int k = 0; k < 4; ++k)
+    if (!rigid || k != 2) {
+      EXPECT_LE(err[k], 1e-6 * std::max(big[k], 1e-3));
+    }
+  if (!rigid) {
+    EXPECT_GT(big[2], 1e-3);
+    EXPECT_GT(big[3], 1e-2);
+  }
+}
+
+TEST(ContactLinearization, Friction2D) {
+  check_friction(2, false, false);
+}
+TEST(ContactLinearization, FrictionQuad4) {
+  check_friction(3, false, false);
+}
+TEST(ContactLinearization, FrictionTri3) {
+  check_friction(3, true, false);
+}
+TEST(ContactLinearization, FrictionRigidPlane2D) {
+  check_friction(2, false, true);
+}
+TEST(ContactLinearization, FrictionRigidPlane3D) {
+  check_friction(3, false, true);
 }
 
 TEST(ContactLinearization, TwoBodies2D) {

@@ -1,0 +1,340 @@
+// Frictional contact in the condensed semi-smooth Newton method (contact_constraint.hpp,
+// contact/friction.hpp).
+#include "seam/problem/contact_constraint.hpp"
+
+#include "seam/common/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace seam::problem {
+
+namespace {
+
+/// A node whose prescribed components leave less than this share of its normal free cannot
+/// move towards the other side (as in contact_constraint.cpp).
+constexpr double min_free_normal = 0.1;
+
+} // namespace
+
+void ContactConstraint::init_friction(Side& s, const io::Interface& config, double c_n) {
+  const int dim = disc_.dim();
+  s.friction = true;
+  s.law.model = config.friction.model;
+  s.law.mu = config.friction.coefficient;
+  s.law.bound = config.friction.bound;
+  s.law.c_n = c_n;
+  // c_t of the size of c_n keeps both parts of z = lambda_t + c_t s of one scale; converged
+  // results do not depend on it.
+  s.law.c_t = config.c_t ? *config.c_t : c_n;
+  s.law.touching = 1e-9 * s.itf.slave_mesh_size();
+  if (s.itf.standard())
+    io::fail_at(config.mark, "interface '" + config.name +
+                                 "': friction with standard multipliers is not available in this "
+                                 "version; use multiplier: dual");
+  if (!s.itf.transformation().empty())
+    io::fail_at(config.mark, "interface '" + config.name +
+                                 "': friction on tri6/quad8 slave faces (modified dual basis) is "
+                                 "not available in this version; use linear or quad9 faces");
+  const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
+  s.lambda.assign(n * dim, 0.0);
+  s.lambda_saved = s.lambda;
+  s.status.assign(n, 0);
+  s.status_previous = s.status;
+  s.status_before = s.status;
+  s.slip.assign(n * dim, 0.0);
+  s.D_old.assign(n, 0.0);
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  s.x_old.resize(n * dim);
+  for (std::size_t j = 0; j < n; ++j)
+    for (int c = 0; c < dim; ++c)
+      s.x_old[j * dim + c] = disc_.mesh().x[static_cast<std::size_t>(nodes[j]) * dim + c];
+  s.x = s.x_old;
+}
+
+contact::FrictionNode ContactConstraint::friction_node(const Side& s, std::size_t j) const {
+  const int dim = disc_.dim();
+  contact::FrictionNode node;
+  node.dim = dim;
+  for (int c = 0; c < dim; ++c) {
+    node.lambda[c] = s.lambda[j * dim + c];
+    node.normal[c] = s.itf.normals()[j * dim + c];
+    node.slip[c] = s.slip[j * dim + c];
+  }
+  node.D = s.D[j];
+  node.weighted_gap = s.gap[j];
+  return node;
+}
+
+int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh, bool first) {
+  const int dim = disc_.dim();
+  const auto& comm = disc_.comm();
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const auto n = nodes.size();
+  const auto& X = disc_.mesh().x;
+  for (std::size_t j = 0; j < n; ++j)
+    for (int c = 0; c < dim; ++c) {
+      const auto i = static_cast<std::size_t>(nodes[j]) * dim + c;
+      s.x[j * dim + c] = X[i] + u_mesh[i];
+    }
+  // The weighted slip increment of the step (Gitterle et al. 2010, eq. 31, with the sign of
+  // the slave's motion relative to the master):
+  //   u~_j = sum_l (M_jl - M_jl^n) x_l - (D_jj - D_jj^n) x_j;
+  // against a translating rigid plane it reduces to D_jj P (x_j - x_j^n - (c - c^n)).
+  std::fill(s.slip.begin(), s.slip.end(), 0.0);
+  if (s.itf.rigid()) {
+    const auto plane = s.itf.plane_displacement();
+    const double* normals = s.itf.normals().data();
+    for (std::size_t j = 0; j < n; ++j) {
+      double d[3] = {0, 0, 0}, dn = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        d[c] = s.x[j * dim + c] - s.x_old[j * dim + c] - (plane[c] - s.plane_old[c]);
+        dn += d[c] * normals[j * dim + c];
+      }
+      for (int c = 0; c < dim; ++c)
+        s.slip[j * dim + c] = s.D[j] * (d[c] - dn * normals[j * dim + c]);
+    }
+  } else {
+    // The operators "of the last converged step" before the first one has converged: those of
+    // the start configuration (the first evaluation happens there). With D^n = M^n = 0 the
+    // increment would be the gap vector, which has no tangential part.
+    if (!s.has_old) {
+      s.D_old = s.D;
+      s.M_old = s.part.M;
+      s.has_old = true;
+    }
+    s.master_x.resize(X.size());
+    for (std::size_t i = 0; i < X.size(); ++i) s.master_x[i] = X[i] + u_mesh[i];
+    for (const auto& e : s.part.M)
+      for (int c = 0; c < dim; ++c)
+        s.slip[static_cast<std::size_t>(e.slave) * dim + c] +=
+            e.value * s.master_x[static_cast<std::size_t>(e.master_node) * dim + c];
+    for (const auto& e : s.M_old)
+      for (int c = 0; c < dim; ++c)
+        s.slip[static_cast<std::size_t>(e.slave) * dim + c] -=
+            e.value * s.master_x[static_cast<std::size_t>(e.master_node) * dim + c];
+    comm.sum_in_place(s.slip);
+    for (std::size_t j = 0; j < n; ++j)
+      for (int c = 0; c < dim; ++c) s.slip[j * dim + c] -= (s.D[j] - s.D_old[j]) * s.x[j * dim + c];
+  }
+
+  if (first) s.frozen = false;
+  s.status_before = s.status_previous;
+  s.status_previous = s.status;
+  double d_max = 0.0;
+  for (double d : s.D) d_max = std::max(d_max, d);
+  const double touching = 1e-9 * s.itf.slave_mesh_size();
+  if (!s.frozen) {
+    std::vector<char> next(n, 0);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (s.D[j] <= 1e-12 * d_max) continue;
+      if (frame(s, j).wn < min_free_normal) continue;
+      const auto node = friction_node(s, j);
+      double lambda_n = 0.0;
+      for (int c = 0; c < dim; ++c) lambda_n += node.lambda[c] * node.normal[c];
+      if (lambda_n - s.c_n * (s.gap[j] / s.D[j] - touching) <= 0.0) continue;
+      next[j] = static_cast<char>(contact::stick_or_slip(s.law, node));
+    }
+    // Cycling guard as for the normal set: a status vector that returns to the one of two
+    // iterations ago takes the larger of the last two statuses (inactive < stick < slip) and
+    // is kept for the rest of the step.
+    if (!first && next == s.status_before && next != s.status_previous) {
+      for (std::size_t j = 0; j < n; ++j) next[j] = std::max(next[j], s.status_previous[j]);
+      s.frozen = true;
+    }
+    s.status = std::move(next);
+  }
+  int changes = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    changes += s.status[j] != s.status_previous[j];
+    s.active[j] = s.status[j] != 0;
+  }
+  // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
+  // others.
+  s.ncp_norm2 = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!s.active[j]) {
+      for (int c = 0; c < dim; ++c) s.ncp_norm2 += std::pow(s.D[j] * s.lambda[j * dim + c], 2);
+      continue;
+    }
+    s.ncp_norm2 += std::pow(s.c_n * s.gap[j], 2);
+    const NodeFrame f = frame(s, j);
+    const auto node = friction_node(s, j);
+    const auto status = static_cast<contact::NodeStatus>(s.status[j]);
+    for (int i = 0; i < f.n_tangents; ++i) {
+      const std::array<double, 3> t{f.tangent[i][0], f.tangent[i][1], f.tangent[i][2]};
+      s.ncp_norm2 += std::pow(s.D[j] * contact::friction_row(s.law, node, status, t).value, 2);
+    }
+  }
+  return changes;
+}
+
+void ContactConstraint::condense_friction(
+    Side& s, std::vector<char>& replaced, std::vector<PetscInt>& li, std::vector<PetscInt>& lj,
+    std::vector<double>& lv, std::vector<PetscInt>& gi, std::vector<PetscInt>& gj,
+    std::vector<double>& gv, std::vector<PetscInt>& set_rows, std::vector<double>& set_values,
+    std::vector<PetscInt>& add_rows, std::vector<double>& add_values) const {
+  const int dim = disc_.dim();
+  const PetscInt first = disc_.first_owned_dof();
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const auto n = nodes.size();
+  // The rows of every active node (replicated data, so that each rank can weight its own
+  // parts of the gradients).
+  std::vector<NodeFrame> frames(n);
+  std::vector<std::array<contact::FrictionRow, 2>> rows(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!s.active[j]) continue;
+    frames[j] = frame(s, j);
+    const auto node = friction_node(s, j);
+    const auto status = static_cast<contact::NodeStatus>(s.status[j]);
+    for (int i = 0; i < frames[j].n_tangents; ++i) {
+      const auto& ti = frames[j].tangent[i];
+      rows[j][static_cast<std::size_t>(i)] =
+          contact::friction_row(s.law, node, status, {ti[0], ti[1], ti[2]});
+    }
+  }
+  const auto tangent_row = [&](std::size_t j, int i) {
+    return disc_.global_dof(nodes[j], frames[j].tangent_component[i]);
+  };
+  // G += -D_jj coefficient * gradient, for each tangent row of node j.
+  const auto add_gradient = [&](std::size_t j, PetscInt column,
+                                double (*coefficient)(const contact::FrictionRow&, int), int a,
+                                double value) {
+    for (int i = 0; i < frames[j].n_tangents; ++i) {
+      const double v = -s.D[j] * coefficient(rows[j][static_cast<std::size_t>(i)], a) * value;
+      if (v == 0.0) continue;
+      gi.push_back(tangent_row(j, i));
+      gj.push_back(column);
+      gv.push_back(v);
+    }
+  };
+  const auto coef_u = [](const contact::FrictionRow& r, int a) { return r.a_u[a]; };
+  const auto coef_n = [](const contact::FrictionRow& r, int a) { return r.a_n[a]; };
+  const auto coef_g = [](const contact::FrictionRow& r, int) { return r.a_g; };
+  const bool rigid = s.itf.rigid();
+  // Against a rigid plane u~ = D s with s = P (x - x^n - (c - c^n)): dD enters through u~ too.
+  std::vector<double> s_nodal(n * dim, 0.0);
+  for (std::size_t j = 0; j < n; ++j)
+    if (s.active[j] && rigid)
+      for (int c = 0; c < dim; ++c) s_nodal[j * dim + c] = s.slip[j * dim + c] / s.D[j];
+  const auto coef_D = [&](std::size_t j, int i) {
+    const auto& r = rows[j][static_cast<std::size_t>(i)];
+    double v = r.a_D;
+    if (rigid)
+      for (int c = 0; c < dim; ++c) v += r.a_u[c] * s_nodal[j * dim + c];
+    return v;
+  };
+  // This rank's parts of the gradients of g~_j, D_jj and of the operators in u~.
+  for (const auto& e : s.lin.gap_gradient) {
+    const auto j = static_cast<std::size_t>(e.row);
+    if (s.active[j]) add_gradient(j, global_dof(e.col), coef_g, 0, e.value);
+  }
+  for (const auto& e : s.lin.D_gradient) {
+    const auto j = static_cast<std::size_t>(e.row);
+    if (!s.active[j]) continue;
+    for (int i = 0; i < frames[j].n_tangents; ++i) {
+      const double v = -s.D[j] * coef_D(j, i) * e.value;
+      if (v == 0.0) continue;
+      gi.push_back(tangent_row(j, i));
+      gj.push_back(global_dof(e.col));
+      gv.push_back(v);
+    }
+  }
+  for (const auto& e : s.lin.operator_gradient) {
+    const auto j = static_cast<std::size_t>(e.row / dim);
+    if (s.active[j])
+      add_gradient(j, global_dof(e.col), coef_u, static_cast<int>(e.row % dim), e.value);
+  }
+  if (!rigid) {
+    // u~ at fixed operators: sum_l (M_jl - M_jl^n) dx_l (this rank's parts of M and M^n).
+    for (const auto& e : s.part.M) {
+      const auto j = static_cast<std::size_t>(e.slave);
+      if (!s.active[j]) continue;
+      for (int a = 0; a < dim; ++a)
+        add_gradient(j, disc_.global_dof(e.master_node, a), coef_u, a, e.value);
+    }
+    for (const auto& e : s.M_old) {
+      const auto j = static_cast<std::size_t>(e.slave);
+      if (!s.active[j]) continue;
+      for (int a = 0; a < dim; ++a)
+        add_gradient(j, disc_.global_dof(e.master_node, a), coef_u, a, -e.value);
+    }
+  }
+  // Master rows: sum_j (M_jl / D_jj) P_V (K~_j dd + r_j).
+  for (const auto& e : s.part.M) {
+    const auto j = static_cast<std::size_t>(e.slave);
+    if (!s.active[j]) continue;
+    for (int a = 0; a < dim; ++a) {
+      if (s.dirichlet[j * dim + a]) continue;
+      li.push_back(disc_.global_dof(e.master_node, a));
+      lj.push_back(disc_.global_dof(nodes[j], a));
+      lv.push_back(e.value / s.D[j]);
+    }
+  }
+  std::vector<contact::DofTriplet> dn;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+    const NodeFrame& f = frames[j];
+    const PetscInt gap_row = disc_.global_dof(nodes[j], f.gap_component);
+    replaced[static_cast<std::size_t>(gap_row - first)] = 1;
+    set_rows.push_back(gap_row);
+    set_values.push_back(s.c_n * s.gap[j]);
+    // The normal's derivative; the slip increment at fixed operators on the slave node:
+    // -(D_jj - D_jj^n) dx_j (two bodies) or D_jj P dx_j (rigid plane).
+    dn.clear();
+    s.itf.normal_jacobian(static_cast<local_index>(j), dn);
+    for (const auto& e : dn)
+      add_gradient(j, global_dof(e.col), coef_n, static_cast<int>(e.row), e.value);
+    const double* normal = &s.itf.normals()[j * dim];
+    for (int a = 0; a < dim; ++a)
+      for (int b = 0; b < dim; ++b) {
+        double v = 0.0;
+        if (rigid)
+          v = s.D[j] * ((a == b ? 1.0 : 0.0) - normal[a] * normal[b]);
+        else if (a == b)
+          v = -(s.D[j] - s.D_old[j]);
+        if (v != 0.0) add_gradient(j, disc_.global_dof(nodes[j], b), coef_u, a, v);
+      }
+    for (int i = 0; i < f.n_tangents; ++i) {
+      const auto& r = rows[j][static_cast<std::size_t>(i)];
+      const PetscInt row = tangent_row(j, i);
+      replaced[static_cast<std::size_t>(row - first)] = 1;
+      // -D_jj (alpha . lambda^{k+1}) = alpha . P_V (K~_j dd + r_j): through L.
+      double alpha_lambda = 0.0;
+      for (int b = 0; b < dim; ++b) {
+        alpha_lambda += r.alpha[b] * s.lambda[j * dim + b];
+        if (s.dirichlet[j * dim + b] || r.alpha[b] == 0.0) continue;
+        li.push_back(row);
+        lj.push_back(disc_.global_dof(nodes[j], b));
+        lv.push_back(r.alpha[b]);
+      }
+      add_rows.push_back(row);
+      add_values.push_back(-s.D[j] * (r.value - alpha_lambda));
+    }
+  }
+}
+
+double ContactConstraint::dissipation_increment(const Side& s) const {
+  // Work of the frictional tractions on the slip of the step: sum_j lambda_t,j . u~_j >= 0.
+  const int dim = disc_.dim();
+  double w = 0.0;
+  for (std::size_t j = 0; j < s.active.size(); ++j) {
+    if (!s.active[j]) continue;
+    const double* n = &s.itf.normals()[j * dim];
+    double ln = 0.0;
+    for (int c = 0; c < dim; ++c) ln += s.lambda[j * dim + c] * n[c];
+    for (int c = 0; c < dim; ++c) w += (s.lambda[j * dim + c] - ln * n[c]) * s.slip[j * dim + c];
+  }
+  return w;
+}
+
+void ContactConstraint::save_friction(Side& s) {
+  s.dissipation += dissipation_increment(s);
+  s.D_old = s.D;
+  s.M_old = s.part.M;
+  s.x_old = s.x;
+  s.plane_old = s.itf.plane_displacement();
+  s.has_old = true;
+}
+
+} // namespace seam::problem
