@@ -103,12 +103,12 @@ SLIDE = 0.1    # total tangential travel of the top
 
 
 def drag_2d(np=1, friction="{model: coulomb, coefficient: %r}" % MU, kind="quad", steps=12,
-            order=1):
+            order=1, extra=""):
     # Press in the first 2 steps, then drag: t in [0, 1] press, [1, 3] slide.
     bcs = ["{region: top, type: dirichlet, components: [x, y], "
            "value: ['%r*max(t-1,0)', '-%r*min(t,1)']}" % (SLIDE / 2, PRESS)]
-    itf = ("{name: floor, type: contact, slave: bottom, friction: %s, "
-           "rigid_plane: {point: [0, 0], normal: [0, 1]}}" % friction)
+    itf = ("{name: floor, type: contact, slave: bottom, friction: %s, %s"
+           "rigid_plane: {point: [0, 0], normal: [0, 1]}}" % (friction, extra))
     return run_case(G.rectangle(kind, 0.125, order=order, lx=1.0, ly=0.25),
                     case_yaml(2, bcs, itf, steps, 3.0), np=np)
 
@@ -169,6 +169,35 @@ def test_drag_2d_tresca():
         raise AssertionError("not every node slides at the end")
     H.assert_close(last["tangential_force"], bound * last["contact_area"], rtol=1e-8,
                    what="Tresca: tangential force = bound x contact area")
+    H.cleanup(*_dirs)
+
+
+def test_independent_of_c_t():
+    """The converged history (stick, partial slip, sliding) does not depend on c_t: the
+    default (c_t = c_n = 400) against 40 and 4000."""
+    runs = [drag_2d(steps=24)] + [drag_2d(steps=24, extra="c_t: %r, " % c) for c in (40.0, 4000.0)]
+    tables = [rows_of(out, "interfaces.csv") for out in runs]
+    worst = 0.0
+    for rows in tables[1:]:
+        # At the times both runs reached (a run may have cut a step).
+        by_time = {round(r["time"], 9): r for r in rows}
+        pairs = [(ra, by_time[round(ra["time"], 9)]) for ra in tables[0]
+                 if round(ra["time"], 9) in by_time]
+        if len(pairs) < len(tables[0]) - 2:
+            raise AssertionError("runs with other c_t miss steps")
+        for ra, rb in pairs:
+            if ra["slip_nodes"] != rb["slip_nodes"]:
+                raise AssertionError("c_t changes the slip set at step %d" % ra["step"])
+            # (Not the dissipation: a run that cut a step integrates it over other substeps.)
+            for key in ("normal_force", "tangential_force", "contact_area"):
+                worst = max(worst, abs(ra[key] - rb[key]) / max(abs(ra["normal_force"]), 1e-300))
+    partial = sum(1 for r in tables[0] if 0 < r["slip_nodes"] < r["active_nodes"])
+    print("   %d steps (%d with partial slip): c_t = 40, 400, 4000 agree to %.2e"
+          % (len(tables[0]), partial, worst))
+    if partial == 0:
+        raise AssertionError("no step with partial slip: the case does not test c_t")
+    if worst > 1e-8:
+        raise AssertionError("results depend on c_t: %.3e" % worst)
     H.cleanup(*_dirs)
 
 
@@ -547,7 +576,8 @@ def test_cattaneo_mindlin_3d():
 
 
 if __name__ == "__main__":
-    H.main([test_drag_2d_coulomb, test_drag_2d_quadratic, test_drag_2d_tresca, test_stick_2d, test_drag_2d_parallel,
+    H.main([test_drag_2d_coulomb, test_drag_2d_quadratic, test_drag_2d_tresca,
+            test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
             test_drag_3d_coulomb, test_drag_3d_quadratic_np3, test_drag_2d_two_bodies, test_frame_indifference,
             test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
             test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d])

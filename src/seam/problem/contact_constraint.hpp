@@ -127,6 +127,7 @@ private:
     bool friction = false;
     contact::FrictionLaw law;
     std::vector<char> status, status_previous, status_before;
+    std::vector<char> frozen_nodes; ///< nodes whose status the cycling guard fixed in this step
     std::vector<double> slip;  ///< weighted slip increment u~ of the step, dim per node
     std::vector<double> x;     ///< current slave node positions, dim per node
     std::vector<double> x_old; ///< slave node positions at the last converged step

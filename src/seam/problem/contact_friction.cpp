@@ -42,6 +42,7 @@ void ContactConstraint::init_friction(Side& s, const io::Interface& config, doub
   s.status.assign(n, 0);
   s.status_previous = s.status;
   s.status_before = s.status;
+  s.frozen_nodes = s.status;
   s.slip.assign(n * dim, 0.0);
   s.D_old.assign(n, 0.0);
   const auto& nodes = s.itf.slave().mesh_nodes;
@@ -118,35 +119,47 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       for (int c = 0; c < dim; ++c) s.slip[j * dim + c] -= (s.D[j] - s.D_old[j]) * s.x[j * dim + c];
   }
 
-  if (first) s.frozen = false;
+  if (first) s.frozen_nodes.assign(n, 0);
   s.status_before = s.status_previous;
   s.status_previous = s.status;
   double d_max = 0.0;
   for (double d : s.D) d_max = std::max(d_max, d);
   const double touching = 1e-9 * s.itf.slave_mesh_size();
-  if (!s.frozen) {
-    std::vector<char> next(n, 0);
-    for (std::size_t j = 0; j < n; ++j) {
-      if (s.D[j] <= 1e-12 * d_max) continue;
-      if (frame(s, j).wn < min_free_normal) continue;
-      const auto node = friction_node(s, j);
-      double lambda_n = 0.0;
-      for (int c = 0; c < dim; ++c) lambda_n += node.lambda[c] * node.normal[c];
-      if (lambda_n - s.c_n * (s.gap[j] / s.D[j] - touching) <= 0.0) continue;
-      next[j] = static_cast<char>(contact::stick_or_slip(s.law, node));
-    }
-    // Cycling guard as for the normal set: a status vector that returns to the one of two
-    // iterations ago takes the larger of the last two statuses (inactive < stick < slip) and
-    // is kept for the rest of the step.
-    if (!first && next == s.status_before && next != s.status_previous) {
-      for (std::size_t j = 0; j < n; ++j) next[j] = std::max(next[j], s.status_previous[j]);
-      s.frozen = true;
-    }
-    s.status = std::move(next);
+  // The status each node's condition asks for at this iterate.
+  std::vector<char> next(n, 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (s.D[j] <= 1e-12 * d_max) continue;
+    if (frame(s, j).wn < min_free_normal) continue;
+    const auto node = friction_node(s, j);
+    double lambda_n = 0.0;
+    for (int c = 0; c < dim; ++c) lambda_n += node.lambda[c] * node.normal[c];
+    if (lambda_n - s.c_n * (s.gap[j] / s.D[j] - touching) <= 0.0) continue;
+    next[j] = static_cast<char>(contact::stick_or_slip(s.law, node));
   }
+  // Cycling guard: when the statuses return to those of two iterations ago, the nodes that
+  // alternate keep the larger of their last two statuses (inactive < stick < slip) for the
+  // rest of the step; the others go on being decided. A frozen node whose condition asks for
+  // another status counts as a change, so that an inconsistent state (say, a stuck node whose
+  // traction has left the cone) is never accepted: the step is cut instead.
+  const auto decided = [&](const std::vector<char>& wanted) {
+    std::vector<char> out = wanted;
+    for (std::size_t j = 0; j < n; ++j)
+      if (s.frozen_nodes[j]) out[j] = s.status_previous[j];
+    return out;
+  };
+  std::vector<char> status = decided(next);
+  if (!first && status == s.status_before && status != s.status_previous) {
+    for (std::size_t j = 0; j < n; ++j)
+      if (status[j] != s.status_previous[j]) {
+        status[j] = std::max(status[j], s.status_previous[j]);
+        s.frozen_nodes[j] = 1;
+      }
+  }
+  s.status = std::move(status);
   int changes = 0;
   for (std::size_t j = 0; j < n; ++j) {
     changes += s.status[j] != s.status_previous[j];
+    changes += s.frozen_nodes[j] && s.status[j] != next[j] && s.status[j] == s.status_previous[j];
     s.active[j] = s.status[j] != 0;
   }
   // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
