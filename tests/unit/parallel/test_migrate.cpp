@@ -1,5 +1,6 @@
 // Migration of facets to new owners: every facet arrives once, with its nodes and coordinates.
 #include "parallel_test_support.hpp"
+#include "seam/common/error.hpp"
 #include "seam/parallel/surface_part.hpp"
 
 #include <gtest/gtest.h>
@@ -50,6 +51,16 @@ TEST(Migrate, FacetsArriveWithTheirNodesAndCoordinates) {
       EXPECT_EQ(stats.bytes_sent, 0);
     }
   }
+}
+
+TEST(Migrate, ABadDestinationOnOneRankThrowsOnEveryRank) {
+  const Mesh mesh = search::test::wavy_surface(4, 4, 0.0, 0.0, 0.0);
+  const SurfacePart part = round_robin_part(mesh);
+  std::vector<int> dest(part.n_facets(), rank());
+  if (rank() == size() - 1 && !dest.empty()) dest[0] = size(); // no such rank
+  EXPECT_THROW(migrate(world(), part, dest), InputError);
+  dest.assign(part.n_facets(), 0);
+  EXPECT_EQ(migrate(world(), part, dest).n_facets(), rank() == 0 ? 32 : 0);
 }
 
 TEST(Migrate, CentroidsAreTheMeanOfTheNodes) {
