@@ -230,7 +230,9 @@ int run(int argc, char** argv) {
                   r.ghost_bytes.max_over_mean(), r.ranks_with_pairs, size, r.ghosts.mean * size, mb,
                   tg, ts);
     }
-    std::printf("candidate pairs %.0f\n", rows[0].pairs.mean * size);
+    std::printf("candidate pairs %.0f; histogram rounds: rcb %d, proximity %d + %d\n",
+                rows[0].pairs.mean * size, rcb.n_rounds(), split.close().n_rounds(),
+                split.far().n_rounds());
   }
   if (!initialized) MPI_Finalize();
   return 0;

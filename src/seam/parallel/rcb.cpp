@@ -123,6 +123,7 @@ void Rcb::run(MPI_Comm comm, std::span<const double> points, std::span<const dou
   MPI_Allreduce(MPI_IN_PLACE, id_range, 2, MPI_INT64_T, MPI_MIN, comm);
 
   const int n_bins = options_.n_bins;
+  n_rounds_ = 0;
   std::vector<int> node_of(n, 0);
   std::vector<int> level{0};
   std::vector<double> box;
@@ -184,6 +185,7 @@ void Rcb::run(MPI_Comm comm, std::span<const double> points, std::span<const dou
       return static_cast<std::int64_t>(options_.tolerance * static_cast<double>(c.total));
     };
     while (std::any_of(search.begin(), search.end(), [](const auto& c) { return c.phase; })) {
+      ++n_rounds_;
       hist.assign(static_cast<std::size_t>(n_active) * n_bins, 0);
       // Per bin the least and (negated) greatest coordinate: a heavy bin narrows to its own
       // points, and a bin whose points share one coordinate is recognized at once.

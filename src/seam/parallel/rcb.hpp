@@ -67,6 +67,8 @@ public:
   bool has_cuts() const { return n_parts_ > 0; }
   /// The cuts, one per inner node of the tree, in the order they were made (level by level).
   std::vector<RcbCut> cuts() const;
+  /// Histogram rounds (Allreduce pairs) the last call took, over all levels.
+  int n_rounds() const { return n_rounds_; }
 
 private:
   struct Node {
@@ -82,6 +84,7 @@ private:
   int dim_;
   RcbOptions options_;
   int n_parts_ = 0;
+  int n_rounds_ = 0;
   std::vector<Node> nodes_;
 };
 
