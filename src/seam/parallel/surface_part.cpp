@@ -69,8 +69,12 @@ SurfacePart send_facets(MPI_Comm comm, const SurfacePart& part,
   MPI_Comm_rank(comm, &rank);
   int dim = part.dim;
   MPI_Allreduce(MPI_IN_PLACE, &dim, 1, MPI_INT, MPI_MAX, comm);
-  check_collectively(comm, part.n_facets() > 0 && part.dim != dim,
-                     "parallel: ranks disagree on the dimension of a surface");
+  bool bad = send_offsets.size() != static_cast<std::size_t>(size) + 1 || send_offsets[0] != 0 ||
+             send_offsets[size] != static_cast<std::int64_t>(send_facets.size());
+  for (const local_index f : send_facets) bad |= f < 0 || f >= part.n_facets();
+  check_collectively(comm, bad || (part.n_facets() > 0 && part.dim != dim),
+                     "parallel: send_facets needs size + 1 offsets over valid facets, and one "
+                     "dimension on all ranks");
   const int words_per_node = 1 + dim;
 
   std::vector<std::int64_t> word_offsets(size + 1, 0);
