@@ -109,8 +109,7 @@ SurfacePart ghost_overlapping(MPI_Comm comm, std::span<const Box> region, const 
   MPI_Comm_size(comm, &size);
   std::vector<std::int64_t> box_offsets;
   const std::vector<Box> all = allgatherv<Box>(comm, region, box_offsets);
-  int dim = master.dim;
-  MPI_Allreduce(MPI_IN_PLACE, &dim, 1, MPI_INT, MPI_MAX, comm);
+  const int dim = master.dim; // only used where this rank has master facets
   std::vector<Box> rank_box(size);
   for (int r = 0; r < size; ++r)
     rank_box[r] =

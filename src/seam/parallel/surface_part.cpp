@@ -67,14 +67,18 @@ SurfacePart send_facets(MPI_Comm comm, const SurfacePart& part,
   int size = 1, rank = 0;
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
-  int dim = part.dim;
-  MPI_Allreduce(MPI_IN_PLACE, &dim, 1, MPI_INT, MPI_MAX, comm);
   bool bad = send_offsets.size() != static_cast<std::size_t>(size) + 1 || send_offsets[0] != 0 ||
              send_offsets[size] != static_cast<std::int64_t>(send_facets.size());
   for (const local_index f : send_facets) bad |= f < 0 || f >= part.n_facets();
-  check_collectively(comm, bad || (part.n_facets() > 0 && part.dim != dim),
-                     "parallel: send_facets needs size + 1 offsets over valid facets, and one "
-                     "dimension on all ranks");
+  // One Allreduce for the check and the dimension (max and -min over the ranks with facets).
+  const bool has = part.n_facets() > 0;
+  int v[3] = {bad ? 1 : 0, has ? part.dim : 0, has ? -part.dim : -4};
+  MPI_Allreduce(MPI_IN_PLACE, v, 3, MPI_INT, MPI_MAX, comm);
+  SEAM_CHECK(!v[0] && (v[1] == 0 || v[1] == -v[2]), InputError,
+             "parallel: send_facets needs size + 1 offsets over valid facets, and one dimension "
+             "on all ranks",
+             v[0] && !bad ? " (on another rank)" : "");
+  const int dim = v[1] > 0 ? v[1] : part.dim;
   const int words_per_node = 1 + dim;
 
   std::vector<std::int64_t> word_offsets(size + 1, 0);

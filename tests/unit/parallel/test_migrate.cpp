@@ -63,6 +63,18 @@ TEST(Migrate, ABadDestinationOnOneRankThrowsOnEveryRank) {
   EXPECT_EQ(migrate(world(), part, dest).n_facets(), rank() == 0 ? 32 : 0);
 }
 
+TEST(Migrate, AnEmptyPartTakesTheDimensionOfTheOthers) {
+  // Rank 0 holds a default (3D, empty) part; the others hold segments of a 2D polyline.
+  const Mesh mesh = search::test::wavy_polyline(12, 0.0, 0.1, 0.0);
+  const SurfacePart part = rank() == 0 ? SurfacePart{} : round_robin_part(mesh);
+  const SurfacePart got = migrate(world(), part, std::vector<int>(part.n_facets(), 0));
+  if (rank() == 0 && size() > 1) {
+    EXPECT_EQ(got.dim, 2);
+    EXPECT_EQ(got.n_facets(), 12 - (12 + size() - 1) / size());
+    EXPECT_EQ(got.coords.size(), 2 * got.node_ids.size());
+  }
+}
+
 TEST(Migrate, CentroidsAreTheMeanOfTheNodes) {
   const Mesh mesh = search::test::wavy_polyline(10, 1.0, 0.0, 0.0);
   const SurfacePart part =
