@@ -15,16 +15,30 @@ function(seam_module name)
   endif()
 endfunction()
 
-# seam_unit_test(MODULE DEPS ...): tests/unit/MODULE/*.cpp -> one GoogleTest executable unit_MODULE.
+# seam_unit_test(MODULE DEPS ... [MPI_RANKS n ...]): tests/unit/MODULE/*.cpp -> one GoogleTest
+# executable unit_MODULE. With MPI_RANKS the test directory brings its own main() (which
+# initializes MPI) and the executable also runs under mpiexec on each number of ranks given.
 function(seam_unit_test name)
-  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;MPI_RANKS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/unit/${name}/*.cpp)
   if(NOT sources)
     return()
   endif()
   add_executable(unit_${name} ${sources})
-  target_link_libraries(unit_${name} PRIVATE seam_${name} ${ARG_DEPS} GTest::gtest GTest::gtest_main seam_warnings)
+  if(ARG_MPI_RANKS)
+    target_link_libraries(unit_${name} PRIVATE seam_${name} ${ARG_DEPS} GTest::gtest seam_warnings)
+  else()
+    target_link_libraries(unit_${name} PRIVATE seam_${name} ${ARG_DEPS} GTest::gtest GTest::gtest_main seam_warnings)
+  endif()
   target_include_directories(unit_${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   add_test(NAME unit_${name} COMMAND unit_${name} --gtest_brief=1 WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}/tests)
   set_tests_properties(unit_${name} PROPERTIES LABELS unit)
+  foreach(np ${ARG_MPI_RANKS})
+    add_test(NAME unit_${name}_np${np}
+             COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} --oversubscribe
+                     $<TARGET_FILE:unit_${name}> --gtest_brief=1
+             WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}/tests)
+    set_tests_properties(unit_${name}_np${np} PROPERTIES LABELS "unit;mpi" PROCESSORS ${np} TIMEOUT 300
+      ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+  endforeach()
 endfunction()

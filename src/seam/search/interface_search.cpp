@@ -23,6 +23,10 @@ TreeOptions tree_options(const FacetSurface& slave, const FacetSurface& master,
   TreeOptions t;
   t.volume = options.volume;
   t.rebuild_factor = options.rebuild_factor;
+  if (options.inflation >= 0.0) {
+    t.inflation = options.inflation;
+    return t;
+  }
   double l_min = 0.0;
   const double ls = min_edge_length(slave), lm = min_edge_length(master);
   if (ls > 0.0 && lm > 0.0)

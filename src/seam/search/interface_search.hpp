@@ -15,6 +15,10 @@ struct SearchOptions {
   BoundingVolume volume = BoundingVolume::kdop;
   /// Inflation = inflation_factor * the shortest edge of both surfaces (ALGORITHMS.md Sect. 6).
   double inflation_factor = 0.3;
+  /// Absolute inflation; when >= 0 it replaces inflation_factor * l_min. A search over one
+  /// rank's part of a distributed interface passes the value of the whole interface here, so
+  /// that every rank widens the volumes alike.
+  double inflation = -1.0;
   double rebuild_factor = 1.5; ///< see TreeOptions::rebuild_factor
 };
 

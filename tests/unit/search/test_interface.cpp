@@ -10,6 +10,21 @@
 using namespace seam::search;
 using seam::search::test::Mesh;
 
+TEST(InterfaceSearch, AnAbsoluteInflationReplacesTheFactor) {
+  // A rank's part of a distributed interface passes the inflation of the whole surfaces.
+  const Mesh slave = test::wavy_surface(10, 10, 0.0, 0.0, 0.0);
+  const Mesh master = test::wavy_surface(7, 9, 0.07, 0.0, 0.013);
+  SearchOptions opt;
+  opt.inflation = 0.04; // the factor alone would give 0.03: no pair across the gap 0.07
+  InterfaceSearch s(slave.view(), master.view(), opt);
+  EXPECT_EQ(s.inflation(), 0.04);
+  EXPECT_GT(s.find_pairs().size(), 0u);
+  opt.inflation = -1.0;
+  InterfaceSearch f(slave.view(), master.view(), opt);
+  EXPECT_NEAR(f.inflation(), 0.03, 1e-15);
+  EXPECT_EQ(f.find_pairs().size(), 0u);
+}
+
 TEST(InterfaceSearch, FlatPlatesPairIffTheGapIsBelowTwiceTheInflation) {
   // Slave: z = 0, 10 x 10 cells; master z = gap, 7 x 9 cells. Shortest edge 1/10, so with
   // factor 0.3 the inflation is 0.03 and the volumes meet across the gap iff gap <= 0.06.

@@ -1,0 +1,58 @@
+#pragma once
+// Master ghosting by bounding boxes (4C's "binning" strategy, without the bins): each rank
+// publishes a few boxes covering its slave facets' search volumes, and every master facet is
+// sent to exactly the ranks whose boxes its own volume overlaps. No rank receives the whole
+// master surface, and no pair is lost: the search's k-DOP of a facet lies inside the facet's
+// box (the axis slabs of the k-DOP are the box, rounded to float the same way), so a slave
+// and a master facet whose volumes overlap have overlapping boxes.
+#include "seam/common/types.hpp"
+#include "seam/parallel/surface_part.hpp"
+#include "seam/search/facets.hpp"
+
+#include <mpi.h>
+
+#include <array>
+#include <span>
+#include <vector>
+
+namespace seam::parallel {
+
+/// An axis-aligned box in float (components past dim unused); closed, like the k-DOP test.
+struct Box {
+  std::array<float, 3> lo{};
+  std::array<float, 3> hi{};
+};
+
+inline bool overlap(const Box& a, const Box& b, int dim) {
+  bool separated = false;
+  for (int d = 0; d < dim; ++d) separated |= (a.lo[d] > b.hi[d]) | (b.lo[d] > a.hi[d]);
+  return !separated;
+}
+
+/// The box of every facet's search volume widened by `inflation` (the axis slabs of the k-DOP
+/// that search::Tree builds, bit for bit; with old_coords also over the step-start positions).
+void facet_boxes(const search::FacetSurface& surface, double inflation, std::vector<Box>& out,
+                 std::span<const double> old_coords = {});
+
+/// At most max_boxes boxes that together cover `boxes`: a recursive median split of the boxes'
+/// centres along the longest extent, each cluster replaced by its bounding box.
+std::vector<Box> cluster_boxes(int dim, std::span<const Box> boxes, int max_boxes);
+
+struct GhostingOptions {
+  int boxes_per_rank = 32; ///< boxes each rank publishes for its slave part (>= 1)
+};
+
+/// Collective. Every rank passes the boxes of its region (e.g. cluster_boxes of its slave
+/// facets) and the master facets it holds; returns the master facets, from all ranks, whose
+/// box (facet_boxes with `inflation`) overlaps a box of this rank's region. The region boxes
+/// are exchanged with one Allgatherv, the facets with one Alltoallv.
+SurfacePart ghost_overlapping(MPI_Comm comm, std::span<const Box> region, const SurfacePart& master,
+                              double inflation, ExchangeStats* stats = nullptr);
+
+/// Collective. ghost_overlapping with the region = the clustered boxes of this rank's slave
+/// facets (widened by the same inflation).
+SurfacePart ghost_masters(MPI_Comm comm, const SurfacePart& slave, const SurfacePart& master,
+                          double inflation, const GhostingOptions& options = {},
+                          ExchangeStats* stats = nullptr);
+
+} // namespace seam::parallel

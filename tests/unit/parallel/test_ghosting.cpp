@@ -1,0 +1,102 @@
+// Master ghosting: each rank gets exactly the masters whose boxes meet its published region,
+// which covers every master that any of its slave facets can pair with.
+#include "parallel_test_support.hpp"
+#include "seam/parallel/ghosting.hpp"
+#include "seam/parallel/rcb.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace seam::parallel::test {
+namespace {
+
+TEST(Ghosting, FacetBoxesAreTheAxisSlabsOfTheSearchVolumes) {
+  for (int dim : {2, 3}) {
+    const Mesh mesh = search::test::random_facets(dim, 200, 0.05, 3u);
+    search::TreeOptions o;
+    o.inflation = 0.01;
+    const search::Tree tree(mesh.view(), o);
+    std::vector<float> lo, hi;
+    tree.facet_boxes(lo, hi);
+    std::vector<Box> boxes;
+    facet_boxes(mesh.view(), o.inflation, boxes);
+    ASSERT_EQ(boxes.size() * dim, lo.size());
+    for (std::size_t f = 0; f < boxes.size(); ++f)
+      for (int d = 0; d < dim; ++d) {
+        EXPECT_EQ(boxes[f].lo[d], lo[f * dim + d]);
+        EXPECT_EQ(boxes[f].hi[d], hi[f * dim + d]);
+      }
+  }
+}
+
+TEST(Ghosting, ClustersCoverTheirBoxes) {
+  const Mesh mesh = search::test::random_facets(3, 500, 0.02, 4u);
+  std::vector<Box> boxes;
+  facet_boxes(mesh.view(), 0.0, boxes);
+  const std::vector<Box> clusters = cluster_boxes(3, boxes, 16);
+  EXPECT_EQ(clusters.size(), 16u);
+  for (const Box& b : boxes) {
+    bool covered = false;
+    for (const Box& c : clusters) {
+      bool inside = true;
+      for (int d = 0; d < 3; ++d) inside &= c.lo[d] <= b.lo[d] && b.hi[d] <= c.hi[d];
+      covered |= inside;
+    }
+    EXPECT_TRUE(covered);
+  }
+  EXPECT_EQ(cluster_boxes(3, std::span(boxes).first(5), 16).size(), 5u);
+}
+
+// The slave part of this rank after an RCB of the round-robin input.
+SurfacePart rcb_part(const Mesh& mesh) {
+  const SurfacePart input = round_robin_part(mesh);
+  Points pts(input);
+  Rcb rcb(mesh.dim);
+  rcb.partition(world(), pts.x, {}, input.facet_ids, pts.parts);
+  return migrate(world(), input, pts.parts);
+}
+
+TEST(Ghosting, EachRankGetsExactlyTheMastersMeetingItsRegion) {
+  for (int dim : {2, 3}) {
+    const Mesh slave_mesh = search::test::random_facets(dim, 600, 0.03, 21u);
+    const Mesh master_mesh = search::test::random_facets(dim, 700, 0.03, 22u);
+    const SurfacePart slave = rcb_part(slave_mesh);
+    const SurfacePart master = block_part(master_mesh);
+    const double inflation = 0.004;
+
+    std::vector<Box> boxes;
+    facet_boxes(slave.view(), inflation, boxes);
+    const std::vector<Box> region = cluster_boxes(dim, boxes, 8);
+    ExchangeStats stats;
+    const SurfacePart ghosts = ghost_overlapping(world(), region, master, inflation, &stats);
+
+    // Reference from the whole master surface.
+    std::vector<Box> all;
+    facet_boxes(master_mesh.view(), inflation, all);
+    std::vector<global_index> expected;
+    for (std::size_t m = 0; m < all.size(); ++m)
+      for (const Box& r : region)
+        if (overlap(all[m], r, dim)) {
+          expected.push_back(static_cast<global_index>(m));
+          break;
+        }
+    EXPECT_EQ(ghosts.facet_ids, expected) << dim << "D";
+
+    // Every master that a local slave pairs with (brute force on the whole surfaces) is here.
+    const std::set<global_index> have(ghosts.facet_ids.begin(), ghosts.facet_ids.end());
+    const std::set<global_index> mine(slave.facet_ids.begin(), slave.facet_ids.end());
+    for (const auto& p : brute_force_pairs(slave_mesh, master_mesh, inflation))
+      if (mine.count(p.slave)) {
+        EXPECT_TRUE(have.count(p.master)) << p.slave << " " << p.master;
+      }
+    // Not the whole master surface once the slave surface is split.
+    if (size() > 1) {
+      EXPECT_LT(ghosts.n_facets(), static_cast<local_index>(all.size()));
+    }
+    EXPECT_EQ(stats.facets_received, ghosts.n_facets());
+  }
+}
+
+} // namespace
+} // namespace seam::parallel::test

@@ -1,0 +1,104 @@
+// Eq. (21)'s monitor and the proximity split of the contact zone.
+#include "parallel_test_support.hpp"
+#include "seam/common/error.hpp"
+#include "seam/parallel/load_balance.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace seam::parallel::test {
+namespace {
+
+TEST(LoadMonitor, StatisticsAndTheDecisionOfEquation21) {
+  const std::vector<double> t{2.0, 1.0, 3.0, 2.0};
+  const WorkStats s = work_stats(t);
+  EXPECT_EQ(s.min, 1.0);
+  EXPECT_EQ(s.max, 3.0);
+  EXPECT_EQ(s.mean, 2.0);
+  EXPECT_EQ(s.imbalance(), 3.0);
+  EXPECT_EQ(s.max_over_mean(), 1.5);
+
+  const LoadMonitor monitor; // eps = 1.2
+  EXPECT_EQ(monitor.tolerance(), 1.2);
+  EXPECT_TRUE(monitor.needs_rebalance(s));
+  EXPECT_FALSE(monitor.needs_rebalance(work_stats(std::vector<double>{1.0, 1.19, 1.1})));
+  EXPECT_TRUE(monitor.needs_rebalance(work_stats(std::vector<double>{1.0, 1.21})));
+  // An idle rank forces a rebalance; an idle interface does not.
+  EXPECT_TRUE(monitor.needs_rebalance(work_stats(std::vector<double>{0.0, 1.0})));
+  EXPECT_EQ(work_stats(std::vector<double>{0.0, 1.0}).imbalance(),
+            std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(monitor.needs_rebalance(work_stats(std::vector<double>{0.0, 0.0})));
+  EXPECT_EQ(work_stats(std::vector<double>{0.0, 0.0}).imbalance(), 1.0);
+  EXPECT_FALSE(LoadMonitor(2.0).needs_rebalance(work_stats(std::vector<double>{1.0, 2.0})));
+  EXPECT_THROW(LoadMonitor(0.9), InputError);
+}
+
+TEST(LoadMonitor, EvaluateGathersTheSameDecisionOnEveryRank) {
+  RankWork mine;
+  mine.seconds = 1.0 + 0.1 * rank(); // T_max / T_min = 1 + 0.1 (size - 1)
+  mine.pairs = 10 * (rank() + 1);
+  mine.integration_cells = 100;
+  const BalanceDecision d = LoadMonitor(1.2).evaluate(world(), mine);
+  EXPECT_DOUBLE_EQ(d.time.min, 1.0);
+  EXPECT_DOUBLE_EQ(d.time.max, 1.0 + 0.1 * (size() - 1));
+  EXPECT_DOUBLE_EQ(d.pairs.mean, 5.0 * (size() + 1));
+  EXPECT_DOUBLE_EQ(d.integration_cells.imbalance(), 1.0);
+  EXPECT_EQ(d.rebalance, size() >= 4); // 1.3 > 1.2 at np = 4; 1.2 is not > 1.2 at np = 3
+  int decided = d.rebalance ? 1 : 0, all = 0;
+  MPI_Allreduce(&decided, &all, 1, MPI_INT, MPI_SUM, world());
+  EXPECT_TRUE(all == 0 || all == size());
+}
+
+TEST(LoadMonitor, PairsPerFacet) {
+  const std::vector<search::CandidatePair> p{{0, 3}, {2, 1}, {0, 4}};
+  EXPECT_EQ(pairs_per_facet(p, 3), (std::vector<double>{2.0, 0.0, 1.0}));
+}
+
+TEST(ProximityPartition, ContactZoneAndRestAreBalancedSeparately) {
+  // 3000 points per rank on the unit square; those within 0.15 of (0.2, 0.7) have work (pairs).
+  std::mt19937 gen(31u + rank());
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> x, work;
+  std::vector<global_index> id;
+  for (int k = 0; k < 3000; ++k) {
+    const double a = u(gen), b = u(gen);
+    x.insert(x.end(), {a, b});
+    const double r = std::hypot(a - 0.2, b - 0.7);
+    work.push_back(r < 0.15 ? std::floor(1.0 + 8.0 * (0.15 - r) / 0.15) : 0.0);
+    id.push_back(rank() + static_cast<global_index>(k) * size());
+  }
+  std::vector<int> parts(id.size());
+  ProximityPartition split(2);
+  split.partition(world(), x, work, id, parts);
+
+  std::vector<double> close_w, far_w;
+  std::vector<int> close_p, far_p;
+  for (std::size_t i = 0; i < id.size(); ++i) {
+    (work[i] > 0 ? close_w : far_w).push_back(work[i] > 0 ? work[i] : 1.0);
+    (work[i] > 0 ? close_p : far_p).push_back(parts[i]);
+  }
+  // Pair work and facets without pairs are each balanced to 5 %.
+  EXPECT_LE(part_imbalance(world(), close_w, close_p, size()), 1.05);
+  EXPECT_LE(part_imbalance(world(), far_w, far_p, size()), 1.05);
+  // A single RCB of unit weights leaves the contact work concentrated at np >= 4.
+  Rcb plain(2);
+  std::vector<int> plain_parts(id.size());
+  plain.partition(world(), x, {}, id, plain_parts);
+  std::vector<int> plain_close;
+  for (std::size_t i = 0; i < id.size(); ++i)
+    if (work[i] > 0) plain_close.push_back(plain_parts[i]);
+  if (size() >= 4) {
+    EXPECT_GT(part_imbalance(world(), close_w, plain_close, size()), 1.5);
+  }
+
+  // Repartition with the same input keeps every facet where it is.
+  std::vector<int> again(id.size());
+  split.repartition(world(), x, work, id, again);
+  EXPECT_EQ(again, parts);
+}
+
+} // namespace
+} // namespace seam::parallel::test
