@@ -16,6 +16,12 @@ tangential traction for the measured P and Q (equal elastic bodies, plane strain
 
     /usr/bin/python3 scripts/plot_contact.py cattaneo cattaneo_out --mu 0.3 -o cattaneo.png
 
+Forces (examples/ironing): the reaction of a region (--reaction) against t, of one run or of
+several side by side.
+
+    /usr/bin/python3 scripts/plot_contact.py forces ironing_2d_out ironing_2d_mu0_out \
+        --label "mu = 0.3" --label "mu = 0" --reaction die_ends -o ironing_2d.png
+
 History (examples/torus): contact force, active nodes and Newton iterations per step, of one
 run or of several side by side (labels from --label, in order).
 
@@ -121,6 +127,26 @@ def cattaneo(args):
     fig.savefig(args.output, dpi=130)
 
 
+def forces(args):
+    labels = args.label or [os.path.basename(os.path.normpath(o)) for o in args.out]
+    fig, ax = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
+    for k, (out, label) in enumerate(zip(args.out, labels)):
+        rows = [r for r in C.read_csv(os.path.join(out, "reactions.csv"))
+                if r["region"] == args.reaction]
+        t = [r["time"] for r in rows]
+        ax[0].plot(t, [r["fx"] for r in rows], "-", color="C%d" % k, label=label + ": F_x")
+        ax[0].plot(t, [-r["fy"] for r in rows], "--", color="C%d" % k, label=label + ": -F_y")
+        ax[1].plot(t, [abs(r["fx"] / r["fy"]) if r["fy"] else 0.0 for r in rows], "-",
+                   color="C%d" % k, label=label)
+    ax[0].set_ylabel("reaction at %s" % args.reaction)
+    ax[1].set_ylabel("|F_x| / |F_y|")
+    ax[1].set_xlabel("t (press for t <= 1, then slide)")
+    ax[0].legend(fontsize=8)
+    ax[1].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=130)
+
+
 def history(args):
     labels = args.label or [os.path.basename(os.path.normpath(o)) for o in args.out]
     fig, ax = plt.subplots(3, 1, figsize=(6, 7), sharex=True)
@@ -145,7 +171,7 @@ def history(args):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("kind", choices=["hertz", "cattaneo", "history"])
+    p.add_argument("kind", choices=["hertz", "cattaneo", "forces", "history"])
     p.add_argument("out", nargs="+", help="seam output directory (history: one or more)")
     p.add_argument("--label", action="append", help="history: a label per output directory")
     p.add_argument("-o", "--output", default="contact.png")
@@ -158,7 +184,7 @@ def main():
     p.add_argument("--mesh", help="the run's .msh or .geo: adds the traction per reference area")
     p.add_argument("--slave", default="surface", help="slave region (with --mesh)")
     args = p.parse_args()
-    {"hertz": hertz, "cattaneo": cattaneo, "history": history}[args.kind](args)
+    {"hertz": hertz, "cattaneo": cattaneo, "forces": forces, "history": history}[args.kind](args)
 
 
 if __name__ == "__main__":

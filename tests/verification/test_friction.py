@@ -575,9 +575,34 @@ def test_cattaneo_mindlin_3d():
     H.cleanup(*_dirs)
 
 
+def test_ironing_2d():
+    """The 2D ironing example (Yang, Laursen & Meng 2005): die pressed 1.4 into the slab, then
+    slid 4 with mu = 0.3. Over the sliding window (die centre from 4.2 to 5.8): F_y varies by
+    less than 5 %, |F_x / F_y| >= mu (friction plus ploughing), Newton's median <= 8."""
+    out = run_example("ironing", "ironing_2d.yaml", ["ironing_2d.geo"])
+    rows = [r for r in rows_of(out, "reactions.csv") if r["region"] == "die_ends"]
+    window = [r for r in rows if 1.3 <= r["time"] <= 1.7]
+    fy = [r["fy"] for r in window]
+    ratio = [abs(r["fx"] / r["fy"]) for r in window]
+    variation = (max(fy) - min(fy)) / abs(sum(fy) / len(fy))
+    iterations = sorted(r["newton_iterations"] for r in rows_of(out, "steps.csv"))
+    median = iterations[len(iterations) // 2]
+    print("   %d steps; sliding window: F_y varies by %.2f %%, |F_x/F_y| %.4f .. %.4f; Newton "
+          "median %d, max %d" % (len(iterations), 100 * variation, min(ratio), max(ratio),
+                                 median, iterations[-1]))
+    if variation > 0.05:
+        raise AssertionError("F_y varies by %.1f %% while sliding" % (100 * variation))
+    if min(ratio) < MU:
+        raise AssertionError("|F_x / F_y| = %.4f below mu while sliding" % min(ratio))
+    if median > 8:
+        raise AssertionError("median Newton iterations %d > 8" % median)
+    H.cleanup(*_dirs)
+
+
 if __name__ == "__main__":
     H.main([test_drag_2d_coulomb, test_drag_2d_quadratic, test_drag_2d_tresca,
             test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
             test_drag_3d_coulomb, test_drag_3d_quadratic_np3, test_drag_2d_two_bodies, test_frame_indifference,
             test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
-            test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d])
+            test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
+            test_ironing_2d])

@@ -50,6 +50,13 @@ NodeStatus stick_or_slip(const FrictionLaw& law, const FrictionNode& node) {
   return k.z_norm < k.decision_bound ? NodeStatus::stick : NodeStatus::slip;
 }
 
+bool admissible(const FrictionLaw& law, const FrictionNode& node, NodeStatus status,
+                double tolerance) {
+  const Kinematics k = kinematics(law, node);
+  if (status == NodeStatus::stick) return k.z_norm <= k.decision_bound + tolerance;
+  return k.z_norm >= k.decision_bound - tolerance;
+}
+
 FrictionRow friction_row(const FrictionLaw& law, const FrictionNode& node, NodeStatus status,
                          const std::array<double, 3>& t) {
   const int dim = node.dim;

@@ -57,6 +57,11 @@ double slip_bound(const FrictionLaw& law, const FrictionNode& node);
 /// Stick or slip for an active node.
 NodeStatus stick_or_slip(const FrictionLaw& law, const FrictionNode& node);
 
+/// Whether `status` (stick or slip) satisfies the stick/slip decision up to `tolerance` (in
+/// traction units): a node on the boundary of the cone may be either.
+bool admissible(const FrictionLaw& law, const FrictionNode& node, NodeStatus status,
+                double tolerance);
+
 /// t . C_t and its derivative coefficients for an active node in status `status`.
 struct FrictionRow {
   double value = 0.0;

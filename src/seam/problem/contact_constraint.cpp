@@ -15,6 +15,24 @@ namespace {
 /// move towards the other side: it is kept out of the active set.
 constexpr double min_free_normal = 0.1;
 
+/// The largest Young's modulus of the cells that touch one of `nodes` (mesh nodes, sorted):
+/// the stiffness of the body a contact side belongs to.
+double side_young(const mesh::Mesh& mesh, const Model& model, std::span<const std::int32_t> nodes) {
+  std::vector<char> on_side(static_cast<std::size_t>(mesh.n_nodes()), 0);
+  for (const auto n : nodes) on_side[static_cast<std::size_t>(n)] = 1;
+  double young = 0.0;
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const int m = model.cell_material[static_cast<std::size_t>(c)];
+    if (m < 0) continue;
+    for (const auto n : mesh.cell(c))
+      if (on_side[static_cast<std::size_t>(n)]) {
+        young = std::max(young, model.materials[static_cast<std::size_t>(m)].young);
+        break;
+      }
+  }
+  return young;
+}
+
 } // namespace
 
 ContactConstraint::ContactConstraint(const io::Config& config, const Discretization& disc,
@@ -37,8 +55,14 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                                     "gaps of no fixed sign at the vertices; use multiplier: dual");
     }
     s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
-    // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain.
-    s.c_n = itf.c_n ? *itf.c_n : young / s.itf.slave_mesh_size();
+    // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain;
+    // E of the softer body in contact, whose strain sets the pressure a penetration stands
+    // for (a stiff die on a soft slab with the die's E makes every set decision a gap test,
+    // and the sets then jump as the die slides).
+    double e = side_young(disc.mesh(), model, s.itf.slave().mesh_nodes);
+    if (!s.itf.rigid()) e = std::min(e, side_young(disc.mesh(), model, s.itf.master_nodes()));
+    if (!(e > 0.0)) e = young;
+    s.c_n = itf.c_n ? *itf.c_n : e / s.itf.slave_mesh_size();
     const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
     s.lambda.assign(n, 0.0);
     s.lambda_saved = s.lambda;

@@ -156,10 +156,22 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       }
   }
   s.status = std::move(status);
+  // A frozen node is consistent if its stick/slip condition holds up to a small tolerance (a
+  // node on the cone may be either). Its normal status is kept as the frictionless guard keeps
+  // it: a node that alternates between penetrating and pulling stays active, in slip (its
+  // bound is zero then; in stick it could hold a traction outside the cone).
+  double scale = 0.0;
+  for (const double l : s.lambda) scale = std::max(scale, std::abs(l));
+  const double tolerance = 1e-8 * scale;
+  const auto consistent = [&](std::size_t j) {
+    if (s.status[j] == next[j]) return true;
+    return contact::admissible(s.law, friction_node(s, j),
+                               static_cast<contact::NodeStatus>(s.status[j]), tolerance);
+  };
   int changes = 0;
   for (std::size_t j = 0; j < n; ++j) {
     changes += s.status[j] != s.status_previous[j];
-    changes += s.frozen_nodes[j] && s.status[j] != next[j] && s.status[j] == s.status_previous[j];
+    changes += s.frozen_nodes[j] && s.status[j] == s.status_previous[j] && !consistent(j);
     s.active[j] = s.status[j] != 0;
   }
   // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
