@@ -101,6 +101,11 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
 
 Output::~Output() = default;
 
+void Output::warning(const std::string& message) const {
+  if (disc_.comm().is_root() && !quiet_)
+    std::fprintf(stderr, "seam: warning: %s\n", message.c_str());
+}
+
 void Output::newton(const NewtonRecord& r) {
   if (!disc_.comm().is_root()) return;
   newton_->add_row({r.step, r.iteration, r.residual, r.increment, r.active_set_changes});

@@ -74,6 +74,8 @@ public:
   PhaseTimers& timers() { return timers_; }
   const std::filesystem::path& directory() const { return dir_; }
 
+  /// "seam: warning: MESSAGE" on the terminal (stderr of rank 0) when it is not quiet.
+  void warning(const std::string& message) const;
   /// One Newton iteration (newton.csv; the terminal table when it is not quiet).
   void newton(const NewtonRecord& r);
   /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due
