@@ -118,6 +118,8 @@ private:
   bool quiet_;
   PhaseTimers timers_;
   double start_wall_;
+  // Wall clock and simulated time where the stepping began (the estimate of the time left).
+  double progress_wall_ = 0.0, progress_time_ = 0.0;
   std::vector<LocatedProbe> probes_;
   std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_;
   std::vector<double> last_errors_; // l2, h1 of the last step, with an exact solution
