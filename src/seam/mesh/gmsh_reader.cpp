@@ -3,6 +3,7 @@
 #include "seam/common/error.hpp"
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
+#include "seam/mesh/msh_check.hpp"
 
 #include <gmsh.h>
 
@@ -14,7 +15,6 @@
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -182,35 +182,6 @@ void check_file(const std::filesystem::path& path, const std::string& file) {
   SEAM_CHECK(std::filesystem::is_regular_file(path, ec), InputError, "mesh file '", file,
              "' is not a regular file");
   SEAM_CHECK(std::ifstream(path).good(), InputError, "mesh file '", file, "' cannot be opened");
-}
-
-// Gmsh 4.8 reads a negative node tag in an element of an ASCII .msh 4 file without a word and
-// then dereferences a node that does not exist; the elements of such files are checked first.
-// Every token of the $Elements section is an unsigned integer in both ASCII formats.
-void check_element_tags(const std::filesystem::path& path, const std::string& file) {
-  std::ifstream in(path);
-  std::string line;
-  int number = 0;
-  bool ascii = false, in_elements = false;
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line == "$MeshFormat") {
-      std::string version, type;
-      if (!std::getline(in, line)) return;
-      ++number;
-      std::istringstream(line) >> version >> type;
-      ascii = type == "0";
-    } else if (line == "$Elements") {
-      in_elements = ascii;
-    } else if (line == "$EndElements") {
-      in_elements = false;
-    } else if (in_elements && line.find('-') != std::string::npos) {
-      SEAM_THROW(InputError, "mesh '", file, "': line ", number,
-                 ": a negative number in $Elements (element and node tags are positive): '",
-                 line.substr(0, 80), "'");
-    }
-  }
 }
 
 // What the element kernels cannot integrate: a node with a non-finite coordinate, or a cell
@@ -452,7 +423,7 @@ Mesh read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
   SEAM_CHECK(geometry || ext == ".msh", InputError, "mesh '", file, "': unknown extension '", ext,
              "' (expected .msh, or a geometry file such as .geo)");
 
-  if (!geometry) check_element_tags(path, file);
+  if (!geometry) detail::check_msh_structure(path, file);
   const std::lock_guard lock(gmsh_mutex());
   GmshSession g(file);
   g.run("reading", [&] { gmsh::open(file); });

@@ -99,9 +99,30 @@ TEST(ReadErrors, NegativeNodeTagInAnElement) {
   const auto message = read_error(file);
   EXPECT_MESSAGE_HAS(message, "negative.msh");
   EXPECT_MESSAGE_HAS(message, "line 19");
-  EXPECT_MESSAGE_HAS(message, "negative number in $Elements");
+  EXPECT_MESSAGE_HAS(message, "$Elements: a node tag -1 is out of range [1, 4]");
   // The same quad with its nodes in order reads.
   EXPECT_EQ(read_mesh(dir.write("good.msh", one_quad_msh41("1 1 2 3 4"))).n_cells(), 1);
+}
+
+TEST(ReadErrors, Msh41CountsAndNamesThatGmshTrusts) {
+  test::ScratchDir dir;
+  // Each of these made Gmsh 4.8 crash (heap corruption, segfault) instead of reporting.
+  auto text = one_quad_msh41("1 1 2 3 4");
+  auto message =
+      read_error(dir.write("count.msh", text.replace(text.find("1 4 1 4"), 7, "1 0 1 4")));
+  EXPECT_MESSAGE_HAS(message, "count.msh");
+  EXPECT_MESSAGE_HAS(message, "line 6: $Nodes: the number of nodes in the block 4 is out of range");
+  text = one_quad_msh41("1 1 2 3 4");
+  text.insert(text.find("$Nodes"), "$PhysicalNames\n1\n-1\n$EndPhysicalNames\n");
+  message = read_error(dir.write("names.msh", text));
+  EXPECT_MESSAGE_HAS(message, "line 6: $PhysicalNames: a dimension -1 is out of range [0, 3]");
+  text = one_quad_msh41("1 1 2 3 4");
+  text.insert(text.find("$Nodes"), "$PhysicalNames\n1\n2 1 \"body\n$EndPhysicalNames\n");
+  message = read_error(dir.write("quote.msh", text));
+  EXPECT_MESSAGE_HAS(message, "expected DIM TAG \"NAME\"");
+  text = one_quad_msh41("1 1 2 3 4");
+  message = read_error(dir.write("short.msh", text.replace(text.find("2 1 3 1"), 7, "2 1 3 2")));
+  EXPECT_MESSAGE_HAS(message, "$Elements: the number of elements in the block 2 is out of range");
 }
 
 TEST(ReadErrors, InvertedDegenerateOrNonFiniteCell) {
