@@ -18,6 +18,15 @@ namespace {
 constexpr std::array<int, 20> nodes_per_type{0, 2,  3,  4,  4,  8, 6, 5,  3,  6,
                                              9, 10, 27, 18, 14, 1, 8, 20, 15, 13};
 
+// Text of the file quoted in a message: at most 60 characters, bytes that are not printable
+// ASCII (a binary or corrupted file) as '?'.
+std::string printable(std::string_view text) {
+  std::string out(text.substr(0, 60));
+  for (auto& c : out)
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  return out;
+}
+
 // The tokens of one section with their line numbers.
 class Tokens {
 public:
@@ -36,7 +45,7 @@ public:
     long long value = 0;
     const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || end != word.data() + word.size())
-      fail(line, "expected ", what, " (an integer), got '", word.substr(0, 40), "'");
+      fail(line, "expected ", what, " (an integer), got '", printable(word), "'");
     if (value < low || value > high)
       fail(line, what, " ", value, " is out of range [", low, ", ", high, "]");
     return value;
@@ -124,7 +133,7 @@ void check_physical_names(const std::vector<std::pair<std::string, int>>& lines,
     t.integer("a dimension", 0, 3);
     t.integer("a physical tag", 1, max_count);
     if (quote == std::string::npos || line.find('"', quote + 1) == std::string::npos)
-      t.fail(number, "expected DIM TAG \"NAME\", got '", line.substr(0, 60), "'");
+      t.fail(number, "expected DIM TAG \"NAME\", got '", printable(line), "'");
   }
 }
 
