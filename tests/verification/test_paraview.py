@@ -46,9 +46,11 @@ def pvpython():
 
 def probe(pvd, png, color):
     """Runs paraview_probe.py under pvpython: in a virtual X server (Debian's ParaView has no
-    offscreen rendering: --force-offscreen-rendering crashes it), once more if that fails
-    (xvfb-run -a can race for a display number), else offscreen (other ParaView builds)."""
-    attempts = [["xvfb-run", "-a", pvpython(), PROBE, pvd, png, color]] * 2
+    offscreen rendering: --force-offscreen-rendering crashes it) with a 24-bit screen (the
+    default 8-bit one has no OpenGL visual), up to three times (on a loaded machine pvpython
+    may try the display before Xvfb is up), else offscreen (other ParaView builds)."""
+    xvfb = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -nolisten tcp"]
+    attempts = [xvfb + [pvpython(), PROBE, pvd, png, color]] * 3
     if not shutil.which("xvfb-run"):
         attempts = []
     attempts.append([pvpython(), "--force-offscreen-rendering", PROBE, pvd, png, color])
