@@ -3,7 +3,14 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 EXAMPLE ?= examples/neo_hooke_block/block.yaml
 
-.PHONY: all deps configure build run test bench format clean
+SANITIZE_BUILD ?= build-sanitize
+# What `make sanitize` runs: the unit tests and the verification cases that are small enough
+# to run instrumented (a finding fails the test: the sanitizers stop the program with exit 86).
+SANITIZE_TESTS ?= unit_|verify_(patch|bad_input|fuzz|progress)$$
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=0:exitcode=86:strict_string_checks=1:detect_stack_use_after_return=1 \
+  UBSAN_OPTIONS=halt_on_error=1:exitcode=86:print_stacktrace=1
+
+.PHONY: all deps configure build run test bench format clean sanitize
 
 all: build
 
@@ -23,6 +30,16 @@ run: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# AddressSanitizer + UndefinedBehaviorSanitizer, RelWithDebInfo, in its own build folder (ccache
+# keys on the flags, so the two builds share its cache without conflicts). Leak detection is
+# off: MPI and PETSc keep their allocations to the end of the process.
+sanitize: deps
+	@if [ ! -f $(SANITIZE_BUILD)/build.ninja ]; then \
+	  cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DSEAM_SANITIZE=ON -DSEAM_BUILD_BENCH=OFF; fi
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS) -R '$(SANITIZE_TESTS)'
 
 bench: build
 	$(BUILD)/bin/seam-bench --help

@@ -8,6 +8,7 @@ packages=(
   libcli11-dev libspdlog-dev libcgal-dev
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
+  python3-paraview xvfb
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -6,11 +6,16 @@
    while the bodies deform; 2D and 3D, condensed and saddle point, np = 1 and 3.
 2. Generalized-alpha (rho_inf = 0.8) on a vibrating tied pair: the energy never grows and
    decays overall.
-3. Order of accuracy in time: a bar vibrating in its first mode; the differences of the probe
+3. Newton at the round-off floor: the same free flight with the Newton tolerance at 1e-14 and
+   1e-16, below what round-off allows once the displacements have grown, converges every step
+   without a step cut (the step is accepted with a warning that states the attained residual)
+   and conserves energy and momenta as before.
+4. Order of accuracy in time: a bar vibrating in its first mode; the differences of the probe
    displacement between runs with dt, dt/2, dt/4 shrink by 4 (second order) for both schemes.
 """
 import math
 import os
+import re
 import sys
 import tempfile
 
@@ -88,6 +93,66 @@ def test_emm_3d_condensed_np3():
     check_conservation(rows, 3)
 
 
+def roundoff_flight(tol, steps=100, end=1.0):
+    """The 2D free flight with Newton tolerance `tol`, not quiet: (steps.csv, stdout, stderr)."""
+    work = tempfile.mkdtemp(prefix="seam_roundoff_")
+    H.write_case(work, "body.geo", geometry.tied_rectangles(0.3, 0.2))
+    yaml = H.write_case(work, "case.yaml",
+                        flight_yaml(2, "energy_momentum", "condensed", steps, end, tol))
+    out = os.path.join(work, "out")
+    code, stdout, stderr = H.run(["run", yaml, "-o", out], check=False)
+    rows = H.read_csv(os.path.join(out, "steps.csv")) if os.path.exists(
+        os.path.join(out, "steps.csv")) else []
+    H.cleanup(work)
+    if code != 0:
+        raise AssertionError("tolerance %g: exit code %d after %d of %d steps\n%s"
+                             % (tol, code, len(rows), steps, (stdout + stderr)[-3000:]))
+    return rows, stdout, stderr
+
+
+def check_roundoff_run(tol, rows, stdout, stderr, steps=100, end=1.0):
+    if "cutting the step" in stdout + stderr:
+        raise AssertionError("tolerance %g: a step was cut" % tol)
+    times = [r["time"] for r in rows]
+    expected = [end * (k + 1) / steps for k in range(steps)]
+    if len(times) != steps or max(abs(a - b) for a, b in zip(times, expected)) > 1e-12:
+        raise AssertionError("tolerance %g: %d steps at other times than k dt" % (tol, len(times)))
+    # Each warning names its step and the relative residual it reached; that residual is the
+    # one steps.csv records for the step, and it lies above the tolerance (else no warning).
+    warned = re.findall(r"seam: warning: step (\d+) at t = \S+: .*?relative residual "
+                        r"([0-9.e+-]+)", stderr)
+    by_step = {int(r["step"]): r["residual"] for r in rows}
+    for step, residual in warned:
+        attained = by_step[int(step)]
+        H.assert_close(float(residual), attained, rtol=1e-3,
+                       what="tolerance %g, step %s: warned residual vs steps.csv" % (tol, step))
+        if attained <= tol:
+            raise AssertionError("step %s warned although its residual %.3e meets %g"
+                                 % (step, attained, tol))
+    above = sum(1 for r in rows if r["residual"] > tol)
+    if above != len(warned):
+        raise AssertionError("tolerance %g: %d steps above the tolerance but %d warnings"
+                             % (tol, above, len(warned)))
+    print("   tolerance %g: %d steps, %d accepted at the round-off floor, largest residual %.2e, "
+          "iterations %d..%d" % (tol, len(rows), len(warned), max(r["residual"] for r in rows),
+                                 min(r["newton_iterations"] for r in rows),
+                                 max(r["newton_iterations"] for r in rows)))
+    return len(warned)
+
+
+def test_roundoff_floor_1e14():
+    rows, stdout, stderr = roundoff_flight(1e-14)
+    check_roundoff_run(1e-14, rows, stdout, stderr)
+    check_conservation(rows, 2, tol=1e-12)
+
+
+def test_roundoff_floor_1e16():
+    rows, stdout, stderr = roundoff_flight(1e-16)
+    if check_roundoff_run(1e-16, rows, stdout, stderr) == 0:
+        raise AssertionError("no step reported the round-off floor at tolerance 1e-16")
+    check_conservation(rows, 2, tol=1e-12)
+
+
 def test_generalized_alpha_dissipates():
     yaml = flight_yaml(2, "generalized_alpha", "condensed", 100, 1.0).replace(
         "-3*(y-1) + 1 + 0.5*(x-0.5)", "2*(x-0.5)").replace("3*(x-0.5) + 0.5", "-1*(y-1)")
@@ -151,5 +216,6 @@ def test_order_generalized_alpha(): order_study("generalized_alpha")
 
 if __name__ == "__main__":
     H.main([test_emm_2d_condensed, test_emm_2d_saddle_point_np3, test_emm_3d_condensed_np3,
+            test_roundoff_floor_1e14, test_roundoff_floor_1e16,
             test_generalized_alpha_dissipates, test_order_energy_momentum,
             test_order_generalized_alpha])

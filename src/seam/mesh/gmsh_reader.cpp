@@ -1,7 +1,9 @@
 #include "seam/mesh/gmsh_reader.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
+#include "seam/mesh/msh_check.hpp"
 
 #include <gmsh.h>
 
@@ -180,6 +182,30 @@ void check_file(const std::filesystem::path& path, const std::string& file) {
   SEAM_CHECK(std::filesystem::is_regular_file(path, ec), InputError, "mesh file '", file,
              "' is not a regular file");
   SEAM_CHECK(std::ifstream(path).good(), InputError, "mesh file '", file, "' cannot be opened");
+}
+
+// What the element kernels cannot integrate: a node with a non-finite coordinate, or a cell
+// whose reference map folds over or collapses (det dX/dxi <= 0 at a point of the kernels'
+// quadrature rule: misordered, coincident or misplaced nodes). Such a cell would otherwise end
+// the run as an inverted element after all its step cuts.
+void check_geometry(const GmshSession& g, const Mesh& mesh, std::span<const std::size_t> node_tags,
+                    std::span<const std::size_t> cell_tags) {
+  const auto dim = static_cast<std::size_t>(mesh.dim);
+  for (std::size_t i = 0; i < mesh.x.size(); ++i)
+    SEAM_CHECK(std::isfinite(mesh.x[i]), InputError, "mesh '", g.file(), "': node ",
+               node_tags[i / dim], " has a coordinate that is not a finite number");
+  std::array<double, 9> J{};
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const auto type = mesh.cell_type[c];
+    const auto rule = fem::quadrature(type, fem::default_quadrature_degree(type));
+    for (int q = 0; q < rule.n_points; ++q) {
+      const double det = jacobian(mesh, c, &rule.points[q * rule.dim], J);
+      SEAM_CHECK(det > 0.0, InputError, "mesh '", g.file(), "': element ",
+                 cell_tags[static_cast<std::size_t>(c)], " (", fem::name(type),
+                 ") is inverted or degenerate: det(dX/dxi) = ", det,
+                 " <= 0 inside it (misordered, coincident or misplaced nodes)");
+    }
+  }
 }
 
 // Cells: the elements of the top dimension, ordered by element tag so that the result does not
@@ -378,6 +404,7 @@ Mesh extract_mesh(GmshSession& g, const ReadOptions& options) {
   for (std::size_t c = 0; c < cells.size(); ++c) cell_tags[c] = cells[c].tag;
   SEAM_CHECK(std::adjacent_find(cell_tags.begin(), cell_tags.end()) == cell_tags.end(), InputError,
              "mesh '", g.file(), "': two elements share a tag");
+  check_geometry(g, mesh, used, cell_tags);
 
   const TagMap mesh_node(used);
   const FacetIndex facets(mesh);
@@ -396,6 +423,7 @@ Mesh read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
   SEAM_CHECK(geometry || ext == ".msh", InputError, "mesh '", file, "': unknown extension '", ext,
              "' (expected .msh, or a geometry file such as .geo)");
 
+  if (!geometry) detail::check_msh_structure(path, file);
   const std::lock_guard lock(gmsh_mutex());
   GmshSession g(file);
   g.run("reading", [&] { gmsh::open(file); });

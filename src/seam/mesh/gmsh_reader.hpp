@@ -32,7 +32,9 @@ struct ReadOptions {
 /// no elements of dimension 2 or 3, a dimension other than options.dim, an element type
 /// seam does not support, a 2D mesh with z != 0, a boundary element that is not a facet of
 /// any cell (naming the region), a region node that belongs to no cell, two physical groups
-/// with the same name and dimension.
+/// with the same name and dimension, a negative tag in an ASCII $Elements section (naming the
+/// line), a node coordinate that is not finite, a cell with det(dX/dxi) <= 0 at a point of
+/// the element kernels' quadrature rule (naming its Gmsh element tag).
 ///
 /// Gmsh is a process-wide singleton: read_mesh serialises calls with a mutex and runs each
 /// read in its own Gmsh session (initialize ... finalize, no configuration files, nothing

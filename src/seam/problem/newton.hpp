@@ -73,8 +73,9 @@ public:
     if (tying.active())
       fixed_rows_.insert(fixed_rows_.end(), tying.eliminated_dofs().begin(),
                          tying.eliminated_dofs().end());
-    if (config.solver.linear == io::LinearSolverKind::iterative)
-      K_.set_near_null_space(disc.coordinates_vector());
+    const auto X = disc.coordinates_vector();
+    reference_coordinates_ = X.norm();
+    if (config.solver.linear == io::LinearSolverKind::iterative) K_.set_near_null_space(X);
   }
 
   /// Newton iterations at time t from the last converged u. The first iteration is the
@@ -157,6 +158,8 @@ private:
   la::LinearSolver solver_;
   std::vector<PetscInt> dirichlet_rows_;
   double last_increment_ = 0.0;
+  double last_norm_ = 0.0;             // residual norm of the previous iteration
+  double reference_coordinates_ = 0.0; // |X|, the scale of round-off in X + u
 };
 
 } // namespace seam::problem

@@ -19,13 +19,28 @@ std::vector<std::string> columns(std::initializer_list<const char*> names) {
   return {names.begin(), names.end()};
 }
 
+/// A duration for the terminal, to the precision a user plans with: "42 s", "3 min 05 s",
+/// "2 h 07 min"; "?" before there is anything to estimate from.
+std::string duration_text(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0.0) return "?";
+  char buf[32];
+  const auto s = static_cast<long long>(std::llround(seconds));
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%lld s", s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%lld min %02lld s", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lld h %02lld min", s / 3600, (s % 3600) / 60);
+  return buf;
+}
+
 } // namespace
 
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
                const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
                bool quiet)
     : config_(config), disc_(disc), model_(model), tied_(tied), dir_(std::move(dir)), quiet_(quiet),
-      start_wall_(wall_seconds()) {
+      start_wall_(wall_seconds()), progress_wall_(start_wall_) {
   for (const auto& itf : config.interfaces)
     has_contact_ = has_contact_ || itf.type == io::InterfaceType::contact;
   const auto& comm = disc.comm();
@@ -101,6 +116,11 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
 
 Output::~Output() = default;
 
+void Output::warning(const std::string& message) const {
+  if (disc_.comm().is_root() && !quiet_)
+    std::fprintf(stderr, "seam: warning: %s\n", message.c_str());
+}
+
 void Output::newton(const NewtonRecord& r) {
   if (!disc_.comm().is_root()) return;
   newton_->add_row({r.step, r.iteration, r.residual, r.increment, r.active_set_changes});
@@ -122,6 +142,8 @@ void Output::initial(const la::Vector& u) {
                  std::vector<double>(n, 0.0)};
   }
   write_fields(0, 0.0, u, nullptr, states);
+  progress_wall_ = wall_seconds();
+  progress_time_ = 0.0;
 }
 
 std::vector<Output::InterfaceState>
@@ -289,9 +311,15 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
       errors_->add_row({r.step, r.time, errors->l2, errors->h1_semi, errors->l2_exact});
       last_errors_ = {errors->l2, errors->h1_semi};
     }
-    if (!quiet_)
-      std::printf("step %5d  t = %-12.6g newton %3d  residual %9.3e  wall %8.2f s\n", r.step,
-                  r.time, r.newton_iterations, r.residual, wall);
+    if (!quiet_) {
+      // Time left from the mean wall time per unit of simulated time since the first step.
+      const double elapsed = wall_seconds() - progress_wall_, simulated = r.time - progress_time_;
+      const double left =
+          simulated > 0.0 ? elapsed / simulated * std::max(config_.time.end - r.time, 0.0) : -1.0;
+      std::printf("step %5d  t = %-12.6g newton %3d  residual %9.3e  wall %8.2f s  left %s\n",
+                  r.step, r.time, r.newton_iterations, r.residual, wall,
+                  duration_text(left).c_str());
+    }
     std::fflush(stdout);
   }
   const bool fields = force_fields || r.step % config_.output.every == 0;

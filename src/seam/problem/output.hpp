@@ -80,6 +80,8 @@ public:
   PhaseTimers& timers() { return timers_; }
   const std::filesystem::path& directory() const { return dir_; }
 
+  /// "seam: warning: MESSAGE" on the terminal (stderr of rank 0) when it is not quiet.
+  void warning(const std::string& message) const;
   /// One Newton iteration (newton.csv; the terminal table when it is not quiet).
   void newton(const NewtonRecord& r);
   /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due
@@ -122,6 +124,8 @@ private:
   bool quiet_;
   PhaseTimers timers_;
   double start_wall_;
+  // Wall clock and simulated time where the stepping began (the estimate of the time left).
+  double progress_wall_ = 0.0, progress_time_ = 0.0;
   std::vector<LocatedProbe> probes_;
   std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_;
   std::vector<double> last_errors_; // l2, h1 of the last step, with an exact solution

@@ -84,6 +84,65 @@ $Elements
   EXPECT_MESSAGE_HAS(read_error(file), "truncated.msh");
 }
 
+// One quad4 [0,1]^2 in msh 4.1 with the element line given: for hand-broken variants.
+std::string one_quad_msh41(const std::string& element, const std::string& node_3 = "1 1 0") {
+  return "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n"
+         "0 0 0\n1 0 0\n" +
+         node_3 + "\n0 1 0\n$EndNodes\n$Elements\n1 1 1 1\n2 1 3 1\n" + element +
+         "\n$EndElements\n";
+}
+
+TEST(ReadErrors, NegativeNodeTagInAnElement) {
+  test::ScratchDir dir;
+  // Gmsh itself accepts the -1 and then crashes on the missing node; seam stops first.
+  const auto file = dir.write("negative.msh", one_quad_msh41("1 1 2 -1 4"));
+  const auto message = read_error(file);
+  EXPECT_MESSAGE_HAS(message, "negative.msh");
+  EXPECT_MESSAGE_HAS(message, "line 19");
+  EXPECT_MESSAGE_HAS(message, "$Elements: a node tag -1 is out of range [1, 4]");
+  // The same quad with its nodes in order reads.
+  EXPECT_EQ(read_mesh(dir.write("good.msh", one_quad_msh41("1 1 2 3 4"))).n_cells(), 1);
+}
+
+TEST(ReadErrors, Msh41CountsAndNamesThatGmshTrusts) {
+  test::ScratchDir dir;
+  // Each of these made Gmsh 4.8 crash (heap corruption, segfault) instead of reporting.
+  auto text = one_quad_msh41("1 1 2 3 4");
+  auto message =
+      read_error(dir.write("count.msh", text.replace(text.find("1 4 1 4"), 7, "1 0 1 4")));
+  EXPECT_MESSAGE_HAS(message, "count.msh");
+  EXPECT_MESSAGE_HAS(message, "line 6: $Nodes: the number of nodes in the block 4 is out of range");
+  text = one_quad_msh41("1 1 2 3 4");
+  text.insert(text.find("$Nodes"), "$PhysicalNames\n1\n-1\n$EndPhysicalNames\n");
+  message = read_error(dir.write("names.msh", text));
+  EXPECT_MESSAGE_HAS(message, "line 6: $PhysicalNames: a dimension -1 is out of range [0, 3]");
+  text = one_quad_msh41("1 1 2 3 4");
+  text.insert(text.find("$Nodes"), "$PhysicalNames\n1\n2 1 \"body\n$EndPhysicalNames\n");
+  message = read_error(dir.write("quote.msh", text));
+  EXPECT_MESSAGE_HAS(message, "expected DIM TAG \"NAME\"");
+  text = one_quad_msh41("1 1 2 3 4");
+  message = read_error(dir.write("short.msh", text.replace(text.find("2 1 3 1"), 7, "2 1 3 2")));
+  EXPECT_MESSAGE_HAS(message, "$Elements: the number of elements in the block 2 is out of range");
+}
+
+TEST(ReadErrors, InvertedDegenerateOrNonFiniteCell) {
+  test::ScratchDir dir;
+  // Clockwise: det dX/dxi = -1/4 everywhere.
+  auto message = read_error(dir.write("clockwise.msh", one_quad_msh41("1 1 4 3 2")));
+  EXPECT_MESSAGE_HAS(message, "clockwise.msh");
+  EXPECT_MESSAGE_HAS(message, "element 1 (quad4) is inverted or degenerate");
+  EXPECT_MESSAGE_HAS(message, "det(dX/dxi) = -0.25");
+  // Node 3 moved across the diagonal 2-4: the quad folds over at the quadrature points near 3.
+  message = read_error(dir.write("folded.msh", one_quad_msh41("1 1 2 3 4", "0.2 0.2 0")));
+  EXPECT_MESSAGE_HAS(message, "is inverted or degenerate");
+  // Node 3 on node 1: the quad collapses onto a triangle traversed back and forth.
+  message = read_error(dir.write("collapsed.msh", one_quad_msh41("1 1 2 3 4", "0 0 0")));
+  EXPECT_MESSAGE_HAS(message, "is inverted or degenerate");
+  message = read_error(dir.write("nan.msh", one_quad_msh41("1 1 2 3 4", "nan 1 0")));
+  EXPECT_MESSAGE_HAS(message, "nan.msh");
+  EXPECT_MESSAGE_HAS(message, "node 3 has a coordinate that is not a finite number");
+}
+
 TEST(ReadErrors, UnsupportedElementType) {
   test::ScratchDir dir;
   // Extruding triangles with layers gives prisms (Gmsh type 6), which seam does not support.
