@@ -1,7 +1,7 @@
 # seam: `make run` builds and runs the flagship example; `make test` builds and runs the tests.
 BUILD ?= build
 JOBS ?= $(shell nproc)
-EXAMPLE ?= examples/neo_hooke_block/block.yaml
+EXAMPLE ?= examples/cattaneo_mindlin/cattaneo.yaml
 
 SANITIZE_BUILD ?= build-sanitize
 # What `make sanitize` runs: the unit tests and the verification cases that are small enough
@@ -24,8 +24,15 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# The flagship: a cylinder pressed on a block of the same material (non-matching meshes) and
+# pulled sideways with Coulomb friction; the comparison with Hertz and Cattaneo-Mindlin is
+# printed and drawn into $(BUILD)/run/cattaneo.png.
 run: build
 	cd examples && ../$(BUILD)/bin/seam run $(abspath $(EXAMPLE)) -o $(abspath $(BUILD)/run)
+	@if [ "$(EXAMPLE)" = "examples/cattaneo_mindlin/cattaneo.yaml" ]; then \
+	  /usr/bin/python3 scripts/plot_contact.py cattaneo $(BUILD)/run --mu 0.3 \
+	    -o $(BUILD)/run/cattaneo.png && \
+	  echo "seam: the tractions against Cattaneo-Mindlin are drawn in $(BUILD)/run/cattaneo.png"; fi
 	@echo "seam: results written to $(BUILD)/run (open results.pvd in ParaView)"
 
 test: build

@@ -102,6 +102,19 @@ def cattaneo(args):
     active = [r for r in rows if r["status"] != "inactive"]
     xs = [r["x"] + r["ux"] for r in active]
     centre = 0.5 * (min(xs) + max(xs))
+    stick = [r["x"] + r["ux"] - centre for r in active if r["status"] == "stick"]
+    half = 0.5 * (max(xs) - min(xs))
+    peak = max(r["normal_traction"] for r in active)
+    print("Cattaneo-Mindlin, two equal elastic bodies in plane strain, mu = %g:" % mu)
+    print("  normal load P = %.6g, tangential load Q = %.6g, Q / (mu P) = %.3f" % (P, Q, Q / (mu * P)))
+    print("  %-34s %10s %10s %8s" % ("", "theory", "seam", "error"))
+    for what, ref, val in (("contact half-width a (Hertz)", a, half),
+                           ("peak pressure p0 (Hertz)", p0, peak),
+                           ("stick half-width c (Cattaneo)", c,
+                            0.5 * (max(stick) - min(stick)) if stick else 0.0)):
+        print("  %-34s %10.5f %10.5f %+7.2f %%" % (what, ref, val, 100.0 * (val - ref) / ref))
+    print("  %d nodes in contact: %d stick, %d slip" % (len(active), len(stick),
+                                                       len(active) - len(stick)))
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     grid = [-1.2 * a + 2.4 * a * k / 600 for k in range(601)]
     ax.plot([x / a for x in grid], [math.sqrt(max(0.0, 1 - (x / a) ** 2)) for x in grid], "k-",
