@@ -117,6 +117,29 @@ def test_drag_2d_coulomb():
     check_drag_2d(drag_2d())
 
 
+def test_moving_plane_2d():
+    """The plane moves along x under the pressed block, whose top is held: the same sliding
+    state as dragging the block over a fixed plane, with the friction force reversed (the slip
+    is measured relative to the plane's motion)."""
+    bcs = ["{region: top, type: dirichlet, components: [x, y], value: [0, '-%r*min(t,1)']}"
+           % PRESS]
+    itf = ("{name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
+           "coefficient: %r}, rigid_plane: {point: [0, 0], normal: [0, 1], "
+           "motion: ['%r*max(t-1,0)', '0']}}" % (MU, SLIDE / 2))
+    out = run_case(G.rectangle("quad", 0.125, lx=1.0, ly=0.25), case_yaml(2, bcs, itf, 12, 3.0))
+    react = reactions_by_step(out, "top")
+    last = react[max(react)]
+    itf_rows = {int(r["step"]): r for r in rows_of(out, "interfaces.csv")}
+    if itf_rows[max(itf_rows)]["slip_nodes"] != itf_rows[max(itf_rows)]["active_nodes"]:
+        raise AssertionError("the block does not slide on the moving plane")
+    ratio = last["fx"] / abs(last["fy"])
+    print("   moving plane: F_x / |F_y| at the held top = %.15f (mu = %g)" % (ratio, MU))
+    # The plane drags the bottom along +x; the held top's support pulls the body back with
+    # mu |F_y| (reactions.csv gives the force the support exerts on the body).
+    H.assert_close(ratio, -MU, rtol=1e-8, what="F_x / |F_y| = -mu")
+    H.cleanup(*_dirs)
+
+
 def test_drag_2d_quadratic():
     """quad9 cells: line3 slave faces."""
     check_drag_2d(drag_2d(order=2))
@@ -657,7 +680,7 @@ def test_ironing_2d():
 
 
 if __name__ == "__main__":
-    H.main([test_drag_2d_coulomb, test_drag_2d_quadratic, test_drag_2d_tresca,
+    H.main([test_drag_2d_coulomb, test_moving_plane_2d, test_drag_2d_quadratic, test_drag_2d_tresca,
             test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
             test_drag_3d_coulomb, test_drag_3d_quadratic_np3, test_drag_2d_two_bodies, test_frame_indifference,
             test_energy_balance_energy_momentum,
