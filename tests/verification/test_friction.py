@@ -679,6 +679,25 @@ def test_ironing_2d():
     H.cleanup(*_dirs)
 
 
+@full_only
+def test_ironing_2d_parallel():
+    """np = 3 equals np = 1 on the 2D ironing: reactions to 1e-8, the same contact sets."""
+    one = run_example("ironing", "ironing_2d.yaml", ["ironing_2d.geo"])
+    three = run_example("ironing", "ironing_2d.yaml", ["ironing_2d.geo"], np=3)
+    ra = [r for r in rows_of(one, "reactions.csv") if r["region"] == "die_ends"]
+    rb = [r for r in rows_of(three, "reactions.csv") if r["region"] == "die_ends"]
+    if len(ra) != len(rb):
+        raise AssertionError("%d steps on 1 rank, %d on 3" % (len(ra), len(rb)))
+    scale = max(abs(r["fy"]) for r in ra)
+    worst = max(abs(a[k] - b[k]) / scale for a, b in zip(ra, rb) for k in ("fx", "fy"))
+    sets = sum(1 for a, b in zip(rows_of(one, "interfaces.csv"), rows_of(three, "interfaces.csv"))
+               if a["slip_nodes"] != b["slip_nodes"] or a["active_nodes"] != b["active_nodes"])
+    print("   %d steps: reactions differ by %.2e, %d steps with other sets" % (len(ra), worst, sets))
+    if worst > 1e-8 or sets:
+        raise AssertionError("np = 3 differs from np = 1")
+    H.cleanup(*_dirs)
+
+
 if __name__ == "__main__":
     H.main([test_drag_2d_coulomb, test_moving_plane_2d, test_drag_2d_quadratic, test_drag_2d_tresca,
             test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
@@ -686,4 +705,4 @@ if __name__ == "__main__":
             test_energy_balance_energy_momentum,
             test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
             test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
-            test_ironing_2d])
+            test_ironing_2d, test_ironing_2d_parallel])
