@@ -140,10 +140,15 @@ def cattaneo(args):
     fig.savefig(args.output, dpi=130)
 
 
-def forces(args):
+def labelled_runs(args):
+    """(output directory, label) of every run given, labels from --label in order."""
     labels = args.label or [os.path.basename(os.path.normpath(o)) for o in args.out]
+    return list(zip(args.out, labels))
+
+
+def forces(args):
     fig, ax = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
-    for k, (out, label) in enumerate(zip(args.out, labels)):
+    for k, (out, label) in enumerate(labelled_runs(args)):
         rows = [r for r in C.read_csv(os.path.join(out, "reactions.csv"))
                 if r["region"] == args.reaction]
         t = [r["time"] for r in rows]
@@ -161,9 +166,8 @@ def forces(args):
 
 
 def history(args):
-    labels = args.label or [os.path.basename(os.path.normpath(o)) for o in args.out]
     fig, ax = plt.subplots(3, 1, figsize=(6, 7), sharex=True)
-    for k, (out, label) in enumerate(zip(args.out, labels)):
+    for k, (out, label) in enumerate(labelled_runs(args)):
         itf = C.read_csv(os.path.join(out, "interfaces.csv"))
         steps = C.read_csv(os.path.join(out, "steps.csv"))
         color = "C%d" % k

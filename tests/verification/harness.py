@@ -5,6 +5,7 @@ Every case computes its reference values from formulas, never from an earlier se
 Environment: SEAM (path of the seam executable), MPIEXEC (path of mpirun).
 """
 import csv
+import functools
 import json
 import math
 import os
@@ -14,6 +15,7 @@ import sys
 import tempfile
 
 SEAM = os.environ.get("SEAM", "seam")
+FULL = os.environ.get("SEAM_FULL") == "1"
 MPIEXEC = os.environ.get("MPIEXEC", "mpirun")
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -114,3 +116,14 @@ def main(tests):
     print("%d passed, %d failed" % (len(tests) - failed, failed))
     sys.stdout.flush()
     sys.exit(1 if failed else 0)
+
+
+def full_only(test):
+    """Runs `test` only with SEAM_FULL=1 (cases too slow for CI)."""
+    @functools.wraps(test)
+    def run():
+        if not FULL:
+            print("   skipped (set SEAM_FULL=1)")
+            return
+        test()
+    return run

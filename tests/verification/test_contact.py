@@ -22,7 +22,6 @@
 - SEAM_FULL=1 adds the fine meshes, where half-width and peak pressure must be within 2 %,
   np = 3 for the sphere, the hex8 torus on a coarse mesh and the hex20 one on 3 ranks.
 """
-import functools
 import os
 import subprocess
 import sys
@@ -34,19 +33,8 @@ import geometry as G  # noqa: E402
 import harness as H  # noqa: E402
 
 EXAMPLES = os.path.join(H.HERE, "..", "..", "examples")
-FULL = os.environ.get("SEAM_FULL") == "1"
 _dirs = []  # temporary directories, removed at exit (also after a failure)
-
-
-def full_only(test):
-    """Runs `test` only with SEAM_FULL=1 (the fine meshes; too slow for CI)."""
-    @functools.wraps(test)
-    def run():
-        if not FULL:
-            print("   skipped (set SEAM_FULL=1)")
-            return
-        test()
-    return run
+full_only = H.full_only
 
 # Hertz tolerances (relative). The coarse CI meshes resolve the contact zone with 6 (3D) to
 # 12 (2D) elements; the fine ones (SEAM_FULL=1) with 12 to 47 (BENCHMARKS.md asks for 2 %).

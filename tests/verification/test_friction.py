@@ -11,7 +11,6 @@
 - np = 3 equals np = 1.
 Every reference value is computed here from the data of the case.
 """
-import functools
 import math
 import os
 import sys
@@ -23,18 +22,7 @@ import geometry as G  # noqa: E402
 import harness as H  # noqa: E402
 
 _dirs = []
-FULL = os.environ.get("SEAM_FULL") == "1"
-
-
-def full_only(test):
-    """Runs `test` only with SEAM_FULL=1 (too slow for CI)."""
-    @functools.wraps(test)
-    def run():
-        if not FULL:
-            print("   skipped (set SEAM_FULL=1)")
-            return
-        test()
-    return run
+full_only = H.full_only
 
 
 def case_yaml(dimension, bcs, interface, steps, end, materials=(("m", 100.0, 0.0),),

@@ -128,10 +128,10 @@ private:
     contact::FrictionLaw law;
     std::vector<char> status, status_previous, status_before;
     std::vector<char> frozen_nodes; ///< nodes whose status the cycling guard fixed in this step
-    std::vector<double> slip;  ///< weighted slip increment u~ of the step, dim per node
-    std::vector<double> x;     ///< current slave node positions, dim per node
-    std::vector<double> x_old; ///< slave node positions at the last converged step
-    std::vector<double> D_old; ///< D_jj at the last converged step
+    std::vector<double> slip;       ///< weighted slip increment u~ of the step, dim per node
+    std::vector<double> x;          ///< current slave node positions, dim per node
+    std::vector<double> x_old;      ///< slave node positions at the last converged step
+    std::vector<double> D_old;      ///< D_jj at the last converged step
     std::vector<contact::MortarEntry> M_old; ///< this rank's part of M then
     std::vector<double> master_x;            ///< current positions of all mesh nodes (two bodies)
     std::array<double, 3> plane_old{};       ///< rigid plane displacement then
