@@ -98,6 +98,25 @@ def slope(h, e):
     return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
 
 
+def copy_example(name, yaml, replace=()):
+    """A copy of examples/NAME in a new temporary folder, with text replacements (each must
+    be found) in its input YAML; returns (folder, path of the YAML)."""
+    work = tempfile.mkdtemp(prefix="seam_ex_")
+    src = os.path.join(HERE, "..", "..", "examples", name)
+    for f in os.listdir(src):
+        shutil.copy(os.path.join(src, f), work)
+    path = os.path.join(work, yaml)
+    with open(path) as f:
+        text = f.read()
+    for a, b in replace:
+        if a not in text:
+            raise AssertionError("%s: '%s' not found" % (yaml, a))
+        text = text.replace(a, b)
+    with open(path, "w") as f:
+        f.write(text)
+    return work, path
+
+
 def cleanup(*dirs):
     for d in dirs:
         shutil.rmtree(d, ignore_errors=True)

@@ -668,6 +668,18 @@ def test_solver_gives_up_exit_2_on_3_ranks():
     expect_solver_gave_up(3)
 
 
+def test_parallel_tolerance_below_one():
+    text = BASE + "parallel: {rebalance_tolerance: 0.8}\n"
+    expect_input_error(text, ["parallel.rebalance_tolerance", "must be >= 1", "0.8"],
+                       at=position(text, "rebalance_tolerance", "0.8"))
+
+
+def test_parallel_unknown_distribution():
+    text = BASE + "parallel: {interface_distribution: bluk}\n"
+    expect_input_error(text, ["parallel.interface_distribution", "bluk", "independent", "bulk"],
+                       at=position(text, "interface_distribution", "bluk"))
+
+
 if __name__ == "__main__":
     H.main([
         test_unknown_top_level_key, test_unknown_nested_key, test_wrong_type,
@@ -693,6 +705,7 @@ if __name__ == "__main__":
         test_contact_standard_multiplier_tri6,
         test_contact_c_n_negative, test_contact_slave_region_missing,
         test_contact_rigid_plane_and_master,
+        test_parallel_tolerance_below_one, test_parallel_unknown_distribution,
         test_solver_gives_up_exit_2, test_bad_expression_on_3_ranks,
         test_solver_gives_up_exit_2_on_3_ranks,
     ])

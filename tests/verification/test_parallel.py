@@ -4,28 +4,14 @@ reactions at np = 1 and np = 3 (1e-8 relative), and the iterative solver (GMRES 
 rigid-body near-null space) at np = 3 agrees with the direct one.
 """
 import os
-import shutil
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
 
-EXAMPLES = os.path.join(H.HERE, "..", "..", "examples")
-
 
 def run_example(name, yaml, np, replace=()):
-    work = tempfile.mkdtemp(prefix="seam_par_")
-    src = os.path.join(EXAMPLES, name)
-    for f in os.listdir(src):
-        shutil.copy(os.path.join(src, f), work)
-    path = os.path.join(work, yaml)
-    with open(path) as f:
-        text = f.read()
-    for a, b in replace:
-        text = text.replace(a, b)
-    with open(path, "w") as f:
-        f.write(text)
+    work, path = H.copy_example(name, yaml, replace)
     out = H.solve(path, np=np)
     probes = H.read_csv(os.path.join(out, "probes.csv"))
     reactions = H.read_csv(os.path.join(out, "reactions.csv"))

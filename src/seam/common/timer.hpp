@@ -1,6 +1,7 @@
 #pragma once
 // Wall-clock phase timers for summary.json (assembly, mortar, search, linear_solve, output).
 #include <chrono>
+#include <ctime>
 #include <map>
 #include <string>
 
@@ -10,6 +11,14 @@ inline double wall_seconds() {
   using clock = std::chrono::steady_clock;
   static const auto start = clock::now();
   return std::chrono::duration<double>(clock::now() - start).count();
+}
+
+/// CPU time of the calling thread: the work a rank did, unaffected by other processes that
+/// share its core.
+inline double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 class PhaseTimers {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 
 namespace seam::contact {
 
@@ -140,6 +141,27 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   so.inflation_factor = 0.75;
   search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(), so);
   normals_.assign(slave_.coordinates.size(), 0.0);
+  pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
+  owned_.resize(static_cast<std::size_t>(slave_.n_facets()));
+  std::iota(owned_.begin(), owned_.end(), local_index{0});
+}
+
+void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
+  std::sort(facets.begin(), facets.end());
+  facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+  SEAM_CHECK(facets.empty() || (facets.front() >= 0 && facets.back() < slave_.n_facets()),
+             InputError, "interface '", name_, "': owned slave facet out of range");
+  owned_ = std::move(facets);
+}
+
+std::array<double, 3> ContactInterface::slave_centroid(local_index f) const {
+  std::array<double, 3> c{};
+  const auto nodes = slave_.facet_set().facet_nodes(f);
+  for (const auto j : nodes)
+    for (int a = 0; a < dim(); ++a)
+      c[static_cast<std::size_t>(a)] += slave_.coordinates[static_cast<std::size_t>(j) * dim() + a];
+  for (auto& v : c) v /= static_cast<double>(nodes.size());
+  return c;
 }
 
 ContactInterface::~ContactInterface() = default;
@@ -199,7 +221,7 @@ void ContactInterface::update(std::span<const double> u, double t) {
   }
 }
 
-void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
+void ContactInterface::evaluate(NodalValues& out) const {
   const auto n_slave = static_cast<std::size_t>(n_slave_nodes());
   out.D.assign(n_slave, 0.0);
   out.gap.assign(n_slave, 0.0);
@@ -208,13 +230,16 @@ void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
   out.area = 0.0;
   out.n_pairs = 0;
   out.n_cells = 0;
+  out.facet_cells.assign(static_cast<std::size_t>(slave_.n_facets()), 0);
   if (rigid_) {
-    evaluate_rigid(part, n_parts, out);
+    evaluate_rigid(out);
     return;
   }
   std::vector<mortar::CandidatePair> mine;
-  for (const auto& p : pairs_)
-    if (p.slave % n_parts == part) mine.push_back(p);
+  for (const auto f : owned_)
+    for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
+         i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i)
+      mine.push_back(pairs_[static_cast<std::size_t>(i)]);
   if (mine.empty()) return;
   const auto ops =
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), mine, options_);
@@ -229,6 +254,7 @@ void ContactInterface::evaluate(int part, int n_parts, NodalValues& out) const {
     for (const auto& e : ops.M)
       out.M.push_back({e.row, master_mesh_nodes_[static_cast<std::size_t>(e.col)], e.value});
   out.area = ops.integrated_area;
+  out.facet_cells = ops.slave_facet_cells;
   out.n_pairs = ops.n_pairs_integrated;
   out.n_cells = ops.n_integration_cells;
 }
@@ -292,9 +318,9 @@ void ContactInterface::rigid_facet(local_index f, bool derivatives, RigidPlaneFa
   }
 }
 
-void ContactInterface::evaluate_rigid(int part, int n_parts, NodalValues& out) const {
+void ContactInterface::evaluate_rigid(NodalValues& out) const {
   RigidPlaneFacet rf;
-  for (local_index f = part; f < slave_.n_facets(); f += n_parts) {
+  for (const auto f : owned_) {
     if (pair_offsets_[static_cast<std::size_t>(f)] ==
         pair_offsets_[static_cast<std::size_t>(f) + 1])
       continue;
@@ -314,6 +340,7 @@ void ContactInterface::evaluate_rigid(int part, int n_parts, NodalValues& out) c
     out.area += rf.area;
     ++out.n_pairs;
     ++out.n_cells;
+    out.facet_cells[static_cast<std::size_t>(f)] = 1;
   }
 }
 
@@ -329,12 +356,12 @@ double ContactInterface::multiplier(std::span<const double> lambda, std::size_t 
   return frictional_ ? lambda[j * d + c] : lambda[j] * normals_[j * d + c];
 }
 
-void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const double> lambda,
+void ContactInterface::linearize_rigid(std::span<const double> lambda,
                                        std::span<const char> want_gap, Linearization& out) const {
   const int dim = this->dim();
   RigidPlaneFacet rf;
   std::vector<std::int64_t> column;
-  for (local_index f = part; f < slave_.n_facets(); f += n_parts) {
+  for (const auto f : owned_) {
     if (pair_offsets_[static_cast<std::size_t>(f)] ==
         pair_offsets_[static_cast<std::size_t>(f) + 1])
       continue;
@@ -382,21 +409,21 @@ void ContactInterface::linearize_rigid(int part, int n_parts, std::span<const do
   }
 }
 
-void ContactInterface::linearize(int part, int n_parts, std::span<const double> lambda,
-                                 std::span<const char> want_gap, Linearization& out) const {
+void ContactInterface::linearize(std::span<const double> lambda, std::span<const char> want_gap,
+                                 Linearization& out) const {
   const int dim = this->dim();
   out.force_tangent.clear();
   out.gap_gradient.clear();
   out.D_gradient.clear();
   out.operator_gradient.clear();
   if (rigid_) {
-    linearize_rigid(part, n_parts, lambda, want_gap, out);
+    linearize_rigid(lambda, want_gap, out);
     return;
   }
   mortar::SlaveFacetLinearization lin;
   std::vector<local_index> masters;
   std::vector<std::int64_t> column; // mesh dof of every variable, -1 for rigid ones
-  for (local_index f = part; f < slave_.n_facets(); f += n_parts) {
+  for (const auto f : owned_) {
     const auto begin = pair_offsets_[static_cast<std::size_t>(f)];
     const auto end = pair_offsets_[static_cast<std::size_t>(f) + 1];
     if (begin == end) continue;

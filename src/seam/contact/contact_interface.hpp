@@ -9,9 +9,9 @@
 // the weighted gaps (mortar::linearize_slave_facet: normals, projections, clip polygons,
 // integration cells, dual coefficients, D, M and g~).
 //
-// No PETSc and no MPI: a caller that distributes the work evaluates the slave facets
-// f with f % n_parts == part on each rank and sums the partial results; the indices it gets
-// are mesh dofs, node * dim + component.
+// No PETSc and no MPI: a caller that distributes the work gives each rank its slave facets
+// (set_owned_facets; all of them by default), evaluates them there and sums the partial
+// results; the indices it gets are mesh dofs, node * dim + component.
 //
 // A rigid plane is a single master facet (line2 / quad4) far larger than the slave surface,
 // moved by the prescribed motion; it has no dofs, so no derivative with respect to it is kept.
@@ -57,6 +57,8 @@ struct NodalValues {
   /// slave force of node k is sum_j D_jk lambda_n,j n_j.
   std::vector<mortar::Triplet> D_coupling;
   double area = 0.0; ///< integrated area (length in 2D) of the slave/master overlap
+  /// Integration cells per slave facet (all facets; nonzero at this part's only).
+  std::vector<local_index> facet_cells;
   local_index n_pairs = 0;
   local_index n_cells = 0;
 };
@@ -122,8 +124,25 @@ public:
   /// Candidate pairs of the last update (after the facing test).
   local_index n_candidates() const { return static_cast<local_index>(pairs_.size()); }
 
-  /// D_jj, g~_j and M over the slave facets f with f % n_parts == part.
-  void evaluate(int part, int n_parts, NodalValues& out) const;
+  /// The slave facets evaluate() and linearize() integrate (sorted, unique; all by default).
+  void set_owned_facets(std::vector<local_index> facets);
+  std::span<const local_index> owned_facets() const { return owned_; }
+  /// Candidate pairs of slave facet f at the last update.
+  local_index n_pairs_of(local_index f) const {
+    return pair_offsets_[static_cast<std::size_t>(f) + 1] -
+           pair_offsets_[static_cast<std::size_t>(f)];
+  }
+  /// Candidate pairs of slave facet f at the last update.
+  std::span<const mortar::CandidatePair> pairs_of(local_index f) const {
+    return std::span<const mortar::CandidatePair>(pairs_).subspan(
+        static_cast<std::size_t>(pair_offsets_[static_cast<std::size_t>(f)]),
+        static_cast<std::size_t>(n_pairs_of(f)));
+  }
+  /// Centroid of slave facet f (its nodes' mean) at the last update, dim values.
+  std::array<double, 3> slave_centroid(local_index f) const;
+
+  /// D_jj, g~_j and M over the owned slave facets.
+  void evaluate(NodalValues& out) const;
 
   /// This part's contact force of the normal multipliers `lambda_n` (one per slave node; on a
   /// frictional interface the Cartesian multipliers, dim per slave node) added to `force`
@@ -134,8 +153,8 @@ public:
   /// The derivatives of this part's contact force at fixed `lambda_n` and of the weighted gaps
   /// of the slave nodes with `want_gap[j]` != 0. Only slave facets with a node that has a
   /// nonzero multiplier or a wanted gap are linearized.
-  void linearize(int part, int n_parts, std::span<const double> lambda_n,
-                 std::span<const char> want_gap, Linearization& out) const;
+  void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
+                 Linearization& out) const;
 
   /// d n_j / d(displacement) of the averaged normal of slave node j at the last update: row =
   /// component, column = mesh dof, appended to `out`. Nothing for a rigid plane (its normal is
@@ -151,9 +170,9 @@ private:
   /// Rigid plane: D and g~ of slave facet f integrated over the whole facet, with their
   /// derivatives if asked (rigid_plane_facet.hpp).
   void rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const;
-  void evaluate_rigid(int part, int n_parts, NodalValues& out) const;
-  void linearize_rigid(int part, int n_parts, std::span<const double> lambda_n,
-                       std::span<const char> want_gap, Linearization& out) const;
+  void evaluate_rigid(NodalValues& out) const;
+  void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
+                       Linearization& out) const;
 
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
@@ -171,6 +190,7 @@ private:
   std::unique_ptr<search::InterfaceSearch> search_;
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
+  std::vector<local_index> owned_;           ///< slave facets this part evaluates
   std::vector<double> normals_;
   std::vector<mortar::Triplet> transformation_;
 };

@@ -210,6 +210,21 @@ SolverConfig read_solver(const Node& node) {
   return solver;
 }
 
+ParallelConfig read_parallel(const Node& node) {
+  const Map map(node, {"interface_distribution", "rebalance_tolerance", "work"});
+  ParallelConfig parallel;
+  if (const auto d = map.get("interface_distribution"))
+    parallel.interface_distribution = d->choice(detail::distribution_names);
+  if (const auto tolerance = map.get("rebalance_tolerance")) {
+    parallel.rebalance_tolerance = tolerance->number();
+    if (!(parallel.rebalance_tolerance >= 1.0))
+      tolerance->fail(concat("must be >= 1 (a ratio max/min of per-rank work), got ",
+                             format_number(parallel.rebalance_tolerance)));
+  }
+  if (const auto work = map.get("work")) parallel.work = work->choice(detail::work_names);
+  return parallel;
+}
+
 OutputConfig read_output(const Node& node, int dimension) {
   const Map map(node, {"every", "probes", "exact_displacement"});
   OutputConfig output;
@@ -277,6 +292,12 @@ std::string_view to_string(Integrator value) {
 std::string_view to_string(LinearSolverKind value) {
   return name_of(value, detail::linear_names);
 }
+std::string_view to_string(InterfaceDistribution value) {
+  return name_of(value, detail::distribution_names);
+}
+std::string_view to_string(WorkMeasure value) {
+  return name_of(value, detail::work_names);
+}
 
 Config load_config(const std::filesystem::path& yaml) {
   const std::string file = yaml.string();
@@ -301,7 +322,7 @@ Config load_config(const std::filesystem::path& yaml) {
                "'materials', 'bodies' and 'time'");
   const Map map(top, {"title", "dimension", "plane", "mesh", "materials", "bodies",
                       "boundary_conditions", "initial_conditions", "interfaces", "time", "solver",
-                      "output"});
+                      "output", "parallel"});
 
   Config config;
   config.source = fs::absolute(yaml).lexically_normal();
@@ -330,6 +351,7 @@ Config load_config(const std::filesystem::path& yaml) {
     config.interfaces = detail::read_interfaces(*interfaces, config.dimension);
   if (const auto solver = map.get("solver")) config.solver = read_solver(*solver);
   if (const auto output = map.get("output")) config.output = read_output(*output, config.dimension);
+  if (const auto parallel = map.get("parallel")) config.parallel = read_parallel(*parallel);
   check_densities(config, time);
   return config;
 }

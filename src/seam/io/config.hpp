@@ -43,6 +43,10 @@ enum class FrictionModel { frictionless, coulomb, tresca };
 /// `static` in the input: a sequence of equilibrium states, t is a load parameter.
 enum class Integrator { quasi_static, generalized_alpha, energy_momentum };
 enum class LinearSolverKind { direct, iterative };
+/// How the slave elements of an interface are spread over the ranks.
+enum class InterfaceDistribution { independent, bulk };
+/// What the dynamic load balance measures per rank.
+enum class WorkMeasure { time, integration_cells };
 
 /// The spelling used in the input file.
 std::string_view to_string(PlaneMode value);
@@ -54,6 +58,8 @@ std::string_view to_string(Strategy value);
 std::string_view to_string(FrictionModel value);
 std::string_view to_string(Integrator value);
 std::string_view to_string(LinearSolverKind value);
+std::string_view to_string(InterfaceDistribution value);
+std::string_view to_string(WorkMeasure value);
 
 struct MeshConfig {
   std::filesystem::path file; ///< absolute; a .msh file, or empty if `geo` is given
@@ -161,6 +167,16 @@ struct SolverConfig {
   LinearSolverKind linear = LinearSolverKind::direct;
 };
 
+/// `parallel:` (CONTRACT.md, "Parallel runs").
+struct ParallelConfig {
+  InterfaceDistribution interface_distribution = InterfaceDistribution::independent;
+  /// A contact interface is redistributed when max/min of its per-rank work exceeds this.
+  double rebalance_tolerance = 1.2;
+  /// time: the CPU time of each rank's interface evaluation (the seed's eq. 21);
+  /// integration_cells: the count of integration cells, deterministic (shared machines).
+  WorkMeasure work = WorkMeasure::time;
+};
+
 struct Probe {
   std::array<double, 3> point{}; ///< reference coordinates, z = 0 in 2D
   Mark mark;
@@ -188,6 +204,7 @@ struct Config {
   TimeConfig time;
   SolverConfig solver;
   OutputConfig output;
+  ParallelConfig parallel;
 };
 
 /// Reads and validates an input file. Paths inside it become absolute, relative to the

@@ -136,6 +136,11 @@ inline constexpr std::array<std::pair<std::string_view, Integrator>, 3> integrat
      {"energy_momentum", Integrator::energy_momentum}}};
 inline constexpr std::array<std::pair<std::string_view, LinearSolverKind>, 2> linear_names{
     {{"direct", LinearSolverKind::direct}, {"iterative", LinearSolverKind::iterative}}};
+inline constexpr std::array<std::pair<std::string_view, InterfaceDistribution>, 2>
+    distribution_names{{{"independent", InterfaceDistribution::independent},
+                        {"bulk", InterfaceDistribution::bulk}}};
+inline constexpr std::array<std::pair<std::string_view, WorkMeasure>, 2> work_names{
+    {{"time", WorkMeasure::time}, {"integration_cells", WorkMeasure::integration_cells}}};
 
 /// Sections read in config_conditions.cpp (they need the dimension and the time settings).
 std::vector<BoundaryCondition> read_boundary_conditions(const Node& node, int dimension);

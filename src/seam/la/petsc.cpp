@@ -147,21 +147,49 @@ PetscInt Vector::owned_begin() const {
   return lo;
 }
 
-std::vector<double> Vector::gather_all() const {
-  VecScatter scatter = nullptr;
-  Vec all = nullptr;
-  check(VecScatterCreateToAll(v_, &scatter, &all), "VecScatterCreateToAll");
-  check(VecScatterBegin(scatter, v_, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(scatter, v_, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  PetscInt n = 0;
-  check(VecGetSize(all, &n), "VecGetSize");
+Gather::Gather(const Vector& layout, std::span<const PetscInt> indices) : n_(indices.size()) {
+  IS from = nullptr;
+  check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(indices.size()), indices.data(),
+                        PETSC_COPY_VALUES, &from),
+        "ISCreateGeneral");
+  check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(indices.size()), &local_),
+        "VecCreateSeq");
+  check(VecScatterCreate(layout.get(), from, local_, nullptr, &scatter_), "VecScatterCreate");
+  ISDestroy(&from);
+}
+
+Gather::~Gather() {
+  if (scatter_) VecScatterDestroy(&scatter_);
+  if (local_) VecDestroy(&local_);
+}
+
+Gather::Gather(Gather&& o) noexcept : scatter_(o.scatter_), local_(o.local_), n_(o.n_) {
+  o.scatter_ = nullptr;
+  o.local_ = nullptr;
+  o.n_ = 0;
+}
+
+Gather& Gather::operator=(Gather&& o) noexcept {
+  if (this != &o) {
+    this->~Gather();
+    scatter_ = o.scatter_;
+    local_ = o.local_;
+    n_ = o.n_;
+    o.scatter_ = nullptr;
+    o.local_ = nullptr;
+    o.n_ = 0;
+  }
+  return *this;
+}
+
+void Gather::operator()(const Vector& v, std::vector<double>& out) const {
+  check(VecScatterBegin(scatter_, v.get(), local_, INSERT_VALUES, SCATTER_FORWARD),
+        "VecScatterBegin");
+  check(VecScatterEnd(scatter_, v.get(), local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
   const double* a = nullptr;
-  check(VecGetArrayRead(all, &a), "VecGetArrayRead");
-  std::vector<double> out(a, a + n);
-  VecRestoreArrayRead(all, &a);
-  VecScatterDestroy(&scatter);
-  VecDestroy(&all);
-  return out;
+  check(VecGetArrayRead(local_, &a), "VecGetArrayRead");
+  out.assign(a, a + n_);
+  VecRestoreArrayRead(local_, &a);
 }
 
 Vector::LocalView::LocalView(const Vector& v, bool write) : owner_(v.v_), write_(write) {

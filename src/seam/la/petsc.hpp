@@ -54,8 +54,6 @@ public:
   PetscInt owned_size() const;
   PetscInt global_size() const;
   PetscInt owned_begin() const;
-  /// The whole vector on every rank, in global numbering (collective; for output only).
-  std::vector<double> gather_all() const;
 
   /// Read access to the local form: owned entries first, then ghosts.
   class LocalView {
@@ -76,6 +74,31 @@ public:
 
 private:
   Vec v_ = nullptr;
+};
+
+/// Chosen entries of a distributed vector (global indices, the same or different on every
+/// rank), brought to each rank that asks for them by one VecScatter: the rank receives only
+/// its entries, not the whole vector.
+class Gather {
+public:
+  Gather() = default;
+  /// Collective. `indices`: the global entries this rank wants, in the order it wants them,
+  /// from vectors laid out like `layout`.
+  Gather(const Vector& layout, std::span<const PetscInt> indices);
+  ~Gather();
+  Gather(Gather&& o) noexcept;
+  Gather& operator=(Gather&& o) noexcept;
+  Gather(const Gather&) = delete;
+  Gather& operator=(const Gather&) = delete;
+
+  /// Collective. The wanted entries of `v` (the layout given at construction), in order.
+  void operator()(const Vector& v, std::vector<double>& out) const;
+  std::size_t size() const { return n_; }
+
+private:
+  VecScatter scatter_ = nullptr;
+  Vec local_ = nullptr;
+  std::size_t n_ = 0;
 };
 
 /// A distributed AIJ matrix with exact preallocation.

@@ -70,6 +70,7 @@ void assemble(const FacetSet& slave, const FacetSet& master,
     }
     ++ops.n_pairs_integrated;
     ops.n_integration_cells += c.n_cells;
+    ops.slave_facet_cells[static_cast<std::size_t>(pair.slave)] += c.n_cells;
     ops.integrated_area += c.area;
     const auto s_nodes = slave.facet_nodes(pair.slave);
     const auto m_nodes = master.facet_nodes(pair.master);
@@ -216,6 +217,7 @@ MortarOperators assemble_mortar_operators(const FacetSet& slave, const FacetSet&
   ops.dim = slave.dim;
   ops.multiplier = options.multiplier;
   ops.n_candidates = static_cast<local_index>(candidates.size());
+  ops.slave_facet_cells.assign(static_cast<std::size_t>(slave.n_facets()), 0);
   ops.nodal_normals = averaged_nodal_normals(slave);
   ops.weighted_gap.assign(static_cast<std::size_t>(slave.n_nodes()), 0.0);
   if (slave.dim == 2) {

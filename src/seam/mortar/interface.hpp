@@ -51,6 +51,8 @@ struct MortarOperators {
   /// no node is bound.
   std::vector<char> bound;
 
+  /// Integration cells per slave facet (the work each facet took; zero without candidates).
+  std::vector<local_index> slave_facet_cells;
   local_index n_candidates = 0;
   local_index n_pairs_integrated = 0; ///< candidate pairs with a non-empty overlap
   local_index n_integration_cells = 0;

@@ -1,6 +1,7 @@
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/meshtying/tied_interface.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,7 @@ double side_young(const mesh::Mesh& mesh, const Model& model, std::span<const st
 
 ContactConstraint::ContactConstraint(const io::Config& config, const Discretization& disc,
                                      const Model& model)
-    : disc_(disc) {
+    : disc_(disc), parallel_(config.parallel) {
   const int dim = disc.dim();
   double young = 0.0;
   for (const auto& m : model.materials) young = std::max(young, m.young);
@@ -83,8 +84,31 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
+    // The slave facets start with the bulk partition (the facets of this rank's cells).
+    const auto& region = meshtying::side_region(disc.mesh(), itf.slave);
+    for (std::int32_t f = 0; f < region.n_facets(); ++f)
+      if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
+        s.bulk_facets.push_back(f);
+    if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
+        disc.comm().size() > 1)
+      s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
     sides_.push_back(std::move(s));
   }
+  for (const auto& s : sides_) {
+    const auto& slave = s.itf.slave().mesh_nodes;
+    interface_nodes_.insert(interface_nodes_.end(), slave.begin(), slave.end());
+    const auto master = s.itf.master_nodes();
+    interface_nodes_.insert(interface_nodes_.end(), master.begin(), master.end());
+  }
+  std::sort(interface_nodes_.begin(), interface_nodes_.end());
+  interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
+                         interface_nodes_.end());
+  std::vector<PetscInt> dofs;
+  dofs.reserve(interface_nodes_.size() * static_cast<std::size_t>(dim));
+  for (const auto node : interface_nodes_)
+    for (int c = 0; c < dim; ++c) dofs.push_back(disc.global_dof(node, c));
+  gather_ = la::Gather(disc.make_vector(), dofs);
+  u_mesh_.assign(static_cast<std::size_t>(disc.mesh().n_nodes()) * dim, 0.0);
   if (!saddle_point_) return;
   for (const auto& itf : config.interfaces)
     if (itf.type == io::InterfaceType::contact &&
@@ -114,16 +138,14 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   }
 }
 
-std::vector<double> ContactConstraint::gather_mesh_displacement(const la::Vector& u) const {
+std::span<const double> ContactConstraint::interface_displacement(const la::Vector& u) const {
   const int dim = disc_.dim();
-  const auto all = u.gather_all();
-  const auto n = static_cast<std::size_t>(disc_.mesh().n_nodes());
-  std::vector<double> out(n * dim);
-  for (std::size_t i = 0; i < n; ++i)
+  std::vector<double> values;
+  gather_(u, values);
+  for (std::size_t k = 0; k < interface_nodes_.size(); ++k)
     for (int c = 0; c < dim; ++c)
-      out[i * dim + c] =
-          all[static_cast<std::size_t>(disc_.global_dof(static_cast<std::int32_t>(i), c))];
-  return out;
+      u_mesh_[static_cast<std::size_t>(interface_nodes_[k]) * dim + c] = values[k * dim + c];
+  return u_mesh_;
 }
 
 ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t j) const {
@@ -164,15 +186,18 @@ ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t
 
 int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers) {
   const auto& comm = disc_.comm();
-  const auto u_mesh = gather_mesh_displacement(u);
+  const auto u_mesh = interface_displacement(u);
   int changes = 0;
   for (auto& s : sides_) {
     {
       ScopedTimer timer(timers, "search");
       s.itf.update(u_mesh, t);
     }
+    if (!s.distributed) distribute(s);
     ScopedTimer timer(timers, "mortar");
-    s.itf.evaluate(comm.rank(), comm.size(), s.part);
+    const double cpu = cpu_seconds();
+    s.itf.evaluate(s.part);
+    s.work_seconds += cpu_seconds() - cpu;
     s.D = s.part.D;
     // Standard multipliers: the nodal weight sum_k D_jk takes the place of D_jj.
     for (const auto& e : s.part.D_coupling) s.D[static_cast<std::size_t>(e.row)] += e.value;
@@ -414,8 +439,9 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
 
 void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,
                                   std::vector<double>& values) {
-  const auto& comm = disc_.comm();
-  s.itf.linearize(comm.rank(), comm.size(), s.lambda, s.active, s.lin);
+  const double cpu = cpu_seconds();
+  s.itf.linearize(s.lambda, s.active, s.lin);
+  s.work_seconds += cpu_seconds() - cpu;
   for (const auto& e : s.lin.force_tangent) {
     rows.push_back(global_dof(e.row));
     cols.push_back(global_dof(e.col));
@@ -588,6 +614,53 @@ la::Matrix ContactConstraint::transformation_delta() const {
   return la::Matrix::from_triplets(disc_.comm().get(), n_owned, pi, pj, pv);
 }
 
+void ContactConstraint::distribute(Side& s) {
+  if (!s.distribution) {
+    // One rank, or `interface_distribution: bulk`: the facets stay with their cells.
+    if (!s.distributed) s.itf.set_owned_facets(s.bulk_facets);
+    s.distributed = true;
+    return;
+  }
+  const int dim = disc_.dim();
+  const auto n = static_cast<std::size_t>(s.itf.slave().n_facets());
+  std::vector<double> centroids(n * static_cast<std::size_t>(dim)), work(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    const auto c = s.itf.slave_centroid(static_cast<local_index>(f));
+    for (int a = 0; a < dim; ++a) centroids[f * dim + a] = c[static_cast<std::size_t>(a)];
+    // The work of a facet: its candidate pairs (each one a projection and a clip) and its
+    // integration cells at the last evaluation (known once it has been evaluated).
+    work[f] = static_cast<double>(s.itf.n_pairs_of(static_cast<local_index>(f)));
+    if (s.distributed) work[f] += static_cast<double>(s.part.facet_cells[f]);
+  }
+  const auto owned = s.itf.owned_facets();
+  const std::vector<local_index> held =
+      s.distributed ? std::vector<local_index>(owned.begin(), owned.end()) : s.bulk_facets;
+  s.itf.set_owned_facets(s.distribution->distribute(held, centroids, work));
+  s.distributed = true;
+}
+
+void ContactConstraint::balance() {
+  const auto& comm = disc_.comm();
+  // Timing differences below this are noise, not imbalance.
+  constexpr double noise_seconds = 1e-3;
+  for (auto& s : sides_) {
+    parallel::RankWork mine;
+    mine.pairs = s.part.n_pairs;
+    mine.integration_cells = s.part.n_cells;
+    mine.seconds = parallel_.work == io::WorkMeasure::time ? s.work_seconds
+                                                           : static_cast<double>(s.part.n_cells);
+    s.balance = parallel::LoadMonitor(parallel_.rebalance_tolerance).evaluate(comm.get(), mine);
+    s.work_seconds = 0.0;
+    s.redistributed = false;
+    if (!s.distribution || !s.balance.rebalance) continue;
+    if (parallel_.work == io::WorkMeasure::time &&
+        s.balance.time.max - s.balance.time.min < noise_seconds)
+      continue;
+    distribute(s);
+    s.redistributed = true;
+  }
+}
+
 void ContactConstraint::save() {
   for (auto& s : sides_) {
     s.lambda_saved = s.lambda;
@@ -632,7 +705,7 @@ std::vector<std::string> ContactConstraint::describe() const {
 
 std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {
   const int dim = disc_.dim();
-  const auto u_mesh = gather_mesh_displacement(u);
+  const auto u_mesh = interface_displacement(u);
   std::vector<ContactReport> out;
   for (const auto& s : sides_) {
     ContactReport rep;
@@ -685,6 +758,19 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.slave_elements = s.itf.slave().n_facets();
     rep.master_elements = s.itf.n_master_facets();
     rep.candidate_pairs = s.itf.n_candidates();
+    rep.work_min = s.balance.time.min;
+    rep.work_mean = s.balance.time.mean;
+    rep.work_max = s.balance.time.max;
+    rep.redistributed = s.redistributed;
+    rep.local_slave_elements = static_cast<int>(s.itf.owned_facets().size());
+    std::vector<local_index> masters;
+    for (const auto f : s.itf.owned_facets())
+      for (const auto& p : s.itf.pairs_of(f)) masters.push_back(p.master);
+    std::sort(masters.begin(), masters.end());
+    rep.local_master_ghosts =
+        static_cast<int>(std::unique(masters.begin(), masters.end()) - masters.begin());
+    rep.local_pairs = s.part.n_pairs;
+    rep.local_integration_cells = s.part.n_cells;
     out.push_back(std::move(rep));
   }
   return out;

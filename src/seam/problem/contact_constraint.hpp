@@ -45,10 +45,12 @@
 #include "seam/contact/friction.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/parallel/facet_distribution.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -91,6 +93,12 @@ public:
                           std::span<const PetscInt> dirichlet, const la::Vector* g,
                           la::LinearSolver& solver, la::Vector& dd, PhaseTimers& timers);
 
+  /// After a converged step, before reports(): each interface's per-rank work of the step
+  /// (CPU time of its mortar evaluation and linearization, or its integration cells) against
+  /// parallel.rebalance_tolerance (the seed's eq. 21); an independently distributed interface
+  /// whose max/min exceeds it is redistributed for the next step. Collective.
+  void balance();
+
   /// Multipliers of the last converged step (save) are restored after a failed attempt.
   void save();
   void restore();
@@ -122,6 +130,14 @@ private:
     std::vector<PetscInt> lm_index;
     double ncp_norm2 = 0.0; ///< complementarity residual squared (force units)
 
+    // Distribution of the slave facets over the ranks.
+    std::vector<local_index> bulk_facets; ///< slave facets whose cell this rank assembles
+    std::unique_ptr<parallel::FacetDistribution> distribution; ///< independent only
+    bool distributed = false;                                  ///< the first distribution is done
+    double work_seconds = 0.0; ///< CPU time of this rank's evaluation in the current step
+    parallel::BalanceDecision balance;
+    bool redistributed = false; ///< in the last balance()
+
     // Friction: lambda holds dim values per slave node (Cartesian), status the
     // contact::NodeStatus of every node (active mirrors it).
     bool friction = false;
@@ -133,7 +149,6 @@ private:
     std::vector<double> x_old;      ///< slave node positions at the last converged step
     std::vector<double> D_old;      ///< D_jj at the last converged step
     std::vector<contact::MortarEntry> M_old; ///< this rank's part of M then
-    std::vector<double> master_x;            ///< current positions of all mesh nodes (two bodies)
     std::array<double, 3> plane_old{};       ///< rigid plane displacement then
     double dissipation = 0.0;                ///< frictional work up to the last converged step
     bool has_old = false;                    ///< D_old and M_old are set
@@ -171,7 +186,10 @@ private:
                  std::vector<double>& values);
   /// The global dof of a mesh dof (node * dim + component).
   PetscInt global_dof(std::int64_t mesh_dof) const;
-  std::vector<double> gather_mesh_displacement(const la::Vector& u) const;
+  /// The displacement of the interface nodes (slave and master of every side) placed in
+  /// u_mesh_ (dim per mesh node; the other entries stay zero): one scatter of those dofs,
+  /// not the whole vector. Collective.
+  std::span<const double> interface_displacement(const la::Vector& u) const;
 
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
   /// every other row): T^T r_S + D lambda, in which each multiplier stands alone.
@@ -180,7 +198,15 @@ private:
   /// contact zone only).
   la::Matrix transformation_delta() const;
 
+  /// The first distribution of side s (at its first evaluation, when its candidate pairs are
+  /// known), or a redistribution with the current pairs.
+  void distribute(Side& s);
+
   const Discretization& disc_;
+  io::ParallelConfig parallel_;
+  std::vector<std::int32_t> interface_nodes_; ///< mesh nodes of all sides, sorted
+  la::Gather gather_;                         ///< their dofs, node-major
+  mutable std::vector<double> u_mesh_;
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;

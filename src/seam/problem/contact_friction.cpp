@@ -104,16 +104,17 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       s.M_old = s.part.M;
       s.has_old = true;
     }
-    s.master_x.resize(X.size());
-    for (std::size_t i = 0; i < X.size(); ++i) s.master_x[i] = X[i] + u_mesh[i];
+    // Current position of a master node (u_mesh holds the interface nodes).
+    const auto x_of = [&](std::int32_t node, int c) {
+      const auto i = static_cast<std::size_t>(node) * dim + c;
+      return X[i] + u_mesh[i];
+    };
     for (const auto& e : s.part.M)
       for (int c = 0; c < dim; ++c)
-        s.slip[static_cast<std::size_t>(e.slave) * dim + c] +=
-            e.value * s.master_x[static_cast<std::size_t>(e.master_node) * dim + c];
+        s.slip[static_cast<std::size_t>(e.slave) * dim + c] += e.value * x_of(e.master_node, c);
     for (const auto& e : s.M_old)
       for (int c = 0; c < dim; ++c)
-        s.slip[static_cast<std::size_t>(e.slave) * dim + c] -=
-            e.value * s.master_x[static_cast<std::size_t>(e.master_node) * dim + c];
+        s.slip[static_cast<std::size_t>(e.slave) * dim + c] -= e.value * x_of(e.master_node, c);
     comm.sum_in_place(s.slip);
     for (std::size_t j = 0; j < n; ++j)
       for (int c = 0; c < dim; ++c) s.slip[j * dim + c] -= (s.D[j] - s.D_old[j]) * s.x[j * dim + c];

@@ -214,6 +214,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     if (contact.active()) {
       rec.active_nodes = contact.n_active();
       rec.slip_nodes = contact.n_slip();
+      contact.balance();
       out.contact_state(contact.reports(u));
     }
     const bool last = t_new >= tc.end * (1.0 - 1e-12);

@@ -4,12 +4,15 @@
 #include "seam/fem/cell.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
+#include "seam/parallel/load_balance.hpp"
 #include "seam/problem/error_norms.hpp"
 #include "seam/solid/element.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+
+#include <sys/resource.h>
 
 namespace seam::problem {
 
@@ -92,12 +95,24 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
         dir_ / "interfaces.csv",
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
                  "slip_nodes", "contact_area", "frictional_dissipation"}));
+    if (has_contact_)
+      parallel_ = std::make_unique<io::CsvTable>(
+          dir_ / "parallel.csv", columns({"step", "time", "interface", "ranks", "min_work",
+                                          "mean_work", "max_work", "imbalance", "redistributed"}));
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
     if (!config.output.exact_displacement.empty())
       errors_ = std::make_unique<io::CsvTable>(
           dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}));
   }
   comm.barrier(); // the directory exists before any rank writes a piece
+
+  for (const auto& t : tied) {
+    std::vector<PetscInt> dofs;
+    for (const auto* side : {&t.slave, &t.master})
+      for (const auto node : side->mesh_nodes)
+        for (int c = 0; c < disc.dim(); ++c) dofs.push_back(disc.global_dof(node, c));
+    tied_gather_.emplace_back(disc.make_vector(), dofs);
+  }
 
   // The VTU topology of this rank's piece: its local cells over its local nodes.
   for (auto c : disc.local_cells()) {
@@ -152,16 +167,17 @@ Output::interface_states(const la::Vector& u,
   std::vector<InterfaceState> states;
   if (tied_.empty()) return states;
   const int dim = disc_.dim();
-  const auto u_all = u.gather_all(); // global numbering
+  std::vector<double> values;
   for (std::size_t k = 0; k < tied_.size(); ++k) {
     const auto& t = tied_[k];
     InterfaceState s;
     s.lambda = multipliers[k];
     const auto n_slave = t.slave.mesh_nodes.size();
-    s.displacement.assign(n_slave * dim, 0.0);
-    for (std::size_t j = 0; j < n_slave; ++j)
-      for (int c = 0; c < dim; ++c)
-        s.displacement[j * dim + c] = u_all[disc_.global_dof(t.slave.mesh_nodes[j], c)];
+    // The slave nodes' displacements, then the master nodes'.
+    tied_gather_[k](u, values);
+    s.displacement.assign(values.begin(),
+                          values.begin() + static_cast<std::ptrdiff_t>(n_slave * dim));
+    const double* u_master = values.data() + n_slave * dim;
     // Weighted constraint residual D u~_S - M u_M, its part along the slave normal; with a
     // modified slave basis (tri6/quad8 dual) D acts on the coefficients u~_S = T^-1 u_S.
     std::vector<double> us = s.displacement;
@@ -182,7 +198,7 @@ Output::interface_states(const la::Vector& u,
       for (int c = 0; c < dim; ++c) g[e.row * dim + c] += e.value * us[e.col * dim + c];
     for (const auto& e : t.operators.M)
       for (int c = 0; c < dim; ++c)
-        g[e.row * dim + c] -= e.value * u_all[disc_.global_dof(t.master.mesh_nodes[e.col], c)];
+        g[e.row * dim + c] -= e.value * u_master[static_cast<std::size_t>(e.col) * dim + c];
     s.gap.assign(n_slave, 0.0);
     for (std::size_t j = 0; j < n_slave; ++j)
       for (int c = 0; c < dim; ++c)
@@ -200,6 +216,9 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
   for (const auto& c : contact_) {
     interfaces_->add_row({r.step, r.time, c.name, c.normal_force, c.tangential_force,
                           c.active_nodes, c.slip_nodes, c.contact_area, c.frictional_dissipation});
+    const parallel::WorkStats work{c.work_min, c.work_mean, c.work_max};
+    parallel_->add_row({r.step, r.time, c.name, disc_.comm().size(), c.work_min, c.work_mean,
+                        c.work_max, work.imbalance(), c.redistributed ? 1 : 0});
     if (!write_nodes) continue;
     io::CsvTable table(dir_ / ("interface_" + c.name + ".csv"),
                        columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
@@ -453,6 +472,25 @@ void Output::finish(bool converged, int n_steps) {
   std::vector<double> phases;
   const char* names[] = {"assembly", "mortar", "search", "linear_solve", "output", "condensation"};
   for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
+  // Every rank's share (CONTRACT.md, ranks_detail). The mesh is still held whole on every
+  // rank: the cells a rank does not assemble count as its ghost cells.
+  constexpr std::size_t n_detail = 7;
+  std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
+  {
+    double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
+    mine[0] = static_cast<double>(disc_.local_cells().size());
+    mine[1] = static_cast<double>(disc_.mesh().n_cells()) - mine[0];
+    for (const auto& c : contact_) {
+      mine[2] += c.local_slave_elements;
+      mine[3] += c.local_master_ghosts;
+      mine[4] += static_cast<double>(c.local_pairs);
+      mine[5] += static_cast<double>(c.local_integration_cells);
+    }
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    mine[6] = static_cast<double>(usage.ru_maxrss) / 1024.0; // kB on Linux
+  }
+  comm.sum_in_place(detail);
   if (!comm.is_root()) return;
   io::Json j = io::Json::object();
   j["status"] = converged ? "converged" : "failed";
@@ -491,6 +529,21 @@ void Output::finish(bool converged, int n_steps) {
     e["normal_force"] = c.normal_force;
     e["contact_area"] = c.contact_area;
     itfs.push_back(std::move(e));
+  }
+  auto& ranks = j["ranks_detail"];
+  ranks = io::Json::array();
+  for (int r = 0; r < comm.size(); ++r) {
+    const double* d = &detail[static_cast<std::size_t>(r) * n_detail];
+    io::Json e = io::Json::object();
+    e["rank"] = r;
+    e["cells"] = static_cast<std::int64_t>(d[0]);
+    e["ghost_cells"] = static_cast<std::int64_t>(d[1]);
+    e["slave_elements"] = static_cast<std::int64_t>(d[2]);
+    e["master_ghosts"] = static_cast<std::int64_t>(d[3]);
+    e["pairs"] = static_cast<std::int64_t>(d[4]);
+    e["integration_cells"] = static_cast<std::int64_t>(d[5]);
+    e["peak_rss_mb"] = d[6];
+    ranks.push_back(std::move(e));
   }
   if (last_errors_.size() == 2) {
     j["errors"]["l2"] = last_errors_[0];

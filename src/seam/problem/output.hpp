@@ -62,6 +62,15 @@ struct ContactReport {
   int active_nodes = 0;
   int slip_nodes = 0;
   int slave_elements = 0, master_elements = 0, candidate_pairs = 0;
+
+  // The distribution of the slave elements over the ranks in this step (parallel.csv).
+  double work_min = 0.0, work_mean = 0.0, work_max = 0.0; ///< per-rank work of the step
+  bool redistributed = false; ///< the slave elements were redistributed after this step
+  // This rank's share (different on every rank; summary.json ranks_detail).
+  int local_slave_elements = 0;
+  int local_master_ghosts = 0; ///< distinct master facets its candidate pairs reach
+  std::int64_t local_pairs = 0;
+  std::int64_t local_integration_cells = 0;
 };
 
 /// A probe located in the mesh: the cell that contains it and its reference coordinates.
@@ -117,6 +126,7 @@ private:
   const Discretization& disc_;
   const Model& model_;
   const std::vector<meshtying::TiedInterface>& tied_;
+  std::vector<la::Gather> tied_gather_; ///< per tied interface: its slave, then master dofs
   std::vector<ContactReport> contact_;
   bool has_contact_ = false;
   std::vector<std::vector<char>> tied_rows_; // per interface and slave node: has a row of D
@@ -127,7 +137,8 @@ private:
   // Wall clock and simulated time where the stepping began (the estimate of the time left).
   double progress_wall_ = 0.0, progress_time_ = 0.0;
   std::vector<LocatedProbe> probes_;
-  std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_;
+  std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_,
+      parallel_;
   std::vector<double> last_errors_; // l2, h1 of the last step, with an exact solution
   std::unique_ptr<io::PvdCollection> pvd_;
   int last_field_step_ = -1;

@@ -58,6 +58,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     if (contact.active()) {
       rec.active_nodes = contact.n_active();
       rec.slip_nodes = contact.n_slip();
+      contact.balance();
       out.contact_state(contact.reports(u));
     }
     const bool last = t_new >= end * (1.0 - 1e-12);

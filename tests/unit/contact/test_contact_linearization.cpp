@@ -111,7 +111,7 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
   add_side(itf.master_nodes(), 0.0);
   itf.update(u, 0.0);
   NodalValues values;
-  itf.evaluate(0, 1, values);
+  itf.evaluate(values);
   const auto n_slave = static_cast<std::size_t>(itf.n_slave_nodes());
   std::vector<double> lambda(n_slave);
   std::uniform_real_distribution<double> pressure(0.5, 2.0);
@@ -126,7 +126,7 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
   }
   const std::vector<char> want(n_slave, 1);
   Linearization lin;
-  itf.linearize(0, 1, lambda, want, lin);
+  itf.linearize(lambda, want, lin);
   Dense K, G;
   for (const auto& e : lin.force_tangent) K[{e.row, e.col}] += e.value;
   for (const auto& e : lin.gap_gradient) G[{e.row, e.col}] += e.value;
@@ -134,7 +134,7 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
   const auto state = [&](std::vector<double>& force, std::vector<double>& gap) {
     itf.update(u, 0.0);
     NodalValues v;
-    itf.evaluate(0, 1, v);
+    itf.evaluate(v);
     force.assign(u.size(), 0.0);
     itf.add_force(v, lambda, force);
     gap = v.gap;
@@ -207,7 +207,7 @@ void check_friction(int dim, bool tets, bool rigid) {
   const std::vector<double> xm0(itf.master_positions().begin(), itf.master_positions().end());
   const std::vector<char> want(n_slave, 1);
   Linearization lin;
-  itf.linearize(0, 1, lambda, want, lin);
+  itf.linearize(lambda, want, lin);
   Dense K, DD, W, N;
   for (const auto& e : lin.force_tangent) K[{e.row, e.col}] += e.value;
   for (const auto& e : lin.D_gradient) DD[{e.row, e.col}] += e.value;
@@ -223,7 +223,7 @@ void check_friction(int dim, bool tets, bool rigid) {
                          std::vector<double>& n) {
     itf.update(u, 0.0);
     NodalValues v;
-    itf.evaluate(0, 1, v);
+    itf.evaluate(v);
     f.assign(u.size(), 0.0);
     itf.add_force(v, lambda, f);
     d = v.D;

@@ -61,7 +61,7 @@ void check(int dim) {
   }
   itf.update(u, 0.0);
   NodalValues values;
-  itf.evaluate(0, 1, values);
+  itf.evaluate(values);
   const auto& nodes = itf.slave().mesh_nodes;
   int checked = 0, steep = 0;
   double err = 0.0;

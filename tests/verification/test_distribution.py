@@ -1,0 +1,183 @@
+"""The contact interface distributed over the ranks on its own (CONTRACT.md "Parallel runs";
+the seed paper's Sect. 3.1): the slave elements of a contact interface are partitioned
+independently of the bulk by weighted recursive coordinate bisection (the facets near contact
+separately from the rest), and redistributed after a step whose per-rank work max/min exceeds
+parallel.rebalance_tolerance (eq. 21).
+
+Each test can fail:
+- results at np = 4 equal np = 1 (reactions 1e-10 relative, the same active sets), with the
+  independent and with the bulk distribution;
+- every slave element is evaluated on exactly one rank: the pairs and integration cells of
+  the ranks (summary.json ranks_detail) add up to the np = 1 counts, and so do the slave
+  elements;
+- Hertz sphere on a block at np = 4, held at a fixed load so that a redistribution is judged
+  on the configuration it was made for: integration cells per rank max/mean <= 1.1 with the
+  independent distribution; with `interface_distribution: bulk` the contact zone lies on two
+  of the four ranks (max/mean >= 2, min 0): the imbalance of the seed's Fig. 5;
+- 2D ironing at np = 4 (the die slides over the slave slab, the contact zone moves across its
+  elements): redistributions happen while sliding, and the step after each one is back under
+  the tolerance;
+- with the default measure (CPU time of the interface evaluation) parallel.csv reports
+  positive per-rank times and a consistent imbalance column.
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness as H  # noqa: E402
+
+_dirs = []
+
+
+def run_example(name, yaml, np, replace=()):
+    """Runs a copy of an example with text replacements; returns the output directory."""
+    work, path = H.copy_example(name, yaml, replace)
+    _dirs.append(work)
+    out = H.solve(path, np=np)
+    _dirs.append(out)
+    return out
+
+
+def rows_of(out, name):
+    return H.read_csv(os.path.join(out, name))
+
+
+def compare_reactions(a, b, rtol, what):
+    ra, rb = rows_of(a, "reactions.csv"), rows_of(b, "reactions.csv")
+    if len(ra) != len(rb):
+        raise AssertionError("%s: %d reaction rows against %d" % (what, len(ra), len(rb)))
+    scale = max(abs(r[k]) for r in ra for k in ("fx", "fy", "fz")) or 1.0
+    worst = max(abs(x[k] - y[k]) / scale for x, y in zip(ra, rb) for k in ("fx", "fy", "fz"))
+    print("   %s: reactions differ by %.2e (relative to %.3g)" % (what, worst, scale))
+    if worst > rtol:
+        raise AssertionError("%s: reactions differ by %.3e" % (what, worst))
+    sa = [r["active_nodes"] for r in rows_of(a, "steps.csv")]
+    sb = [r["active_nodes"] for r in rows_of(b, "steps.csv")]
+    if sa != sb:
+        raise AssertionError("%s: active nodes per step differ: %s vs %s" % (what, sa, sb))
+
+
+def ranks_detail(out):
+    return H.read_json(os.path.join(out, "summary.json"))["ranks_detail"]
+
+
+def check_counts_add_up(one, many, what):
+    """Every slave element on exactly one rank: the ranks' counts add up to the serial ones."""
+    d1, dn = ranks_detail(one), ranks_detail(many)
+    for key in ("slave_elements", "pairs", "integration_cells", "cells"):
+        total = sum(r[key] for r in dn)
+        if total != d1[0][key]:
+            raise AssertionError("%s: %s summed over %d ranks = %d, one rank: %d"
+                                 % (what, key, len(dn), total, d1[0][key]))
+    for r in dn:
+        if r["cells"] + r["ghost_cells"] != d1[0]["cells"] or r["peak_rss_mb"] <= 0.0:
+            raise AssertionError("%s: ranks_detail of rank %d: %s" % (what, r["rank"], r))
+
+
+HOLD = (("-0.03*t", "-0.03*min(t,0.6)"), ("steps: 5", "steps: 6"))
+
+
+def hertz(np, distribution, tolerance=1.0):
+    """The sphere on a block, pressed to 0.6 of the example's stroke by step 4 and held there
+    for steps 5 and 6; the balance counts integration cells (deterministic)."""
+    return run_example("hertz_3d", "sphere_block.yaml", np, HOLD + (
+        ("solver:", "parallel: {interface_distribution: %s, work: integration_cells, "
+                    "rebalance_tolerance: %g}\nsolver:" % (distribution, tolerance)),))
+
+
+def test_hertz_independent_against_bulk_np4():
+    one = hertz(1, "independent")
+    independent = hertz(4, "independent")
+    bulk = hertz(4, "bulk")
+    compare_reactions(one, independent, 1e-10, "np 4 independent vs np 1")
+    compare_reactions(one, bulk, 1e-10, "np 4 bulk vs np 1")
+    check_counts_add_up(one, independent, "independent")
+    check_counts_add_up(one, bulk, "bulk")
+    rows_i, rows_b = rows_of(independent, "parallel.csv"), rows_of(bulk, "parallel.csv")
+    for r in rows_i:
+        print("   independent step %d: integration cells per rank min %g mean %g max %g, "
+              "max/mean %.3f, redistributed %d" % (r["step"], r["min_work"], r["mean_work"],
+                                                   r["max_work"], r["max_work"] / r["mean_work"],
+                                                   r["redistributed"]))
+    last_b = rows_b[-1]
+    print("   bulk step %d: min %g mean %g max %g, max/mean %.3f, redistributed %s"
+          % (last_b["step"], last_b["min_work"], last_b["mean_work"], last_b["max_work"],
+             last_b["max_work"] / last_b["mean_work"], sorted({r["redistributed"] for r in rows_b})))
+    # Steps 5 and 6 see the configuration their partition was made for (held load).
+    for r in rows_i[-2:]:
+        if r["max_work"] / r["mean_work"] > 1.1:
+            raise AssertionError("independent: max/mean %.3f > 1.1 at step %d"
+                                 % (r["max_work"] / r["mean_work"], r["step"]))
+    if rows_i[0]["redistributed"] != 1:
+        raise AssertionError("independent: no redistribution after step 1 at tolerance 1")
+    if any(r["redistributed"] for r in rows_b):
+        raise AssertionError("bulk: the interface was redistributed")
+    if last_b["min_work"] != 0 or last_b["max_work"] / last_b["mean_work"] < 2.0:
+        raise AssertionError("bulk: expected the contact zone on at most two of four ranks")
+    H.cleanup(*_dirs)
+
+
+def test_hertz_held_never_redistributes():
+    """At the default tolerance 1.2, a redistribution is made while the contact zone grows;
+    once the load is held, the partition it left stays under the tolerance: no more moves."""
+    out = hertz(3, "independent", tolerance=1.2)
+    rows = rows_of(out, "parallel.csv")
+    print("   np 3: imbalance per step %s, redistributed %s"
+          % (["%.3f" % r["imbalance"] for r in rows], [r["redistributed"] for r in rows]))
+    for r in rows:
+        if (r["imbalance"] > 1.2) != (r["redistributed"] == 1):
+            raise AssertionError("step %d: imbalance %.3f and redistributed %d disagree"
+                                 % (r["step"], r["imbalance"], r["redistributed"]))
+    if any(r["redistributed"] for r in rows if r["step"] >= 5):
+        raise AssertionError("redistributed under a held load")
+    H.cleanup(*_dirs)
+
+
+IRONING = (("time: {integrator: static, end: 2, steps: 140}",
+            "time: {integrator: static, end: 1.3, steps: 52}\n"
+            "parallel: {work: integration_cells}"), ("every: 10", "every: 1000"))
+
+
+def test_ironing_rebalances_np4():
+    """The die presses into the slab for t <= 1 and slides from then on: the contact zone moves
+    across the slave elements, and the balance follows it."""
+    one = run_example("ironing", "ironing_2d.yaml", 1, IRONING)
+    four = run_example("ironing", "ironing_2d.yaml", 4, IRONING)
+    compare_reactions(one, four, 1e-8, "ironing np 4 vs np 1")
+    check_counts_add_up(one, four, "ironing")
+    rows = rows_of(four, "parallel.csv")
+    sliding = [r for r in rows if r["time"] > 1.05]
+    moves = [r["step"] for r in sliding if r["redistributed"]]
+    print("   sliding steps %d..%d: redistributed after steps %s; imbalance %s"
+          % (sliding[0]["step"], sliding[-1]["step"], moves,
+             " ".join("%.2f" % r["imbalance"] for r in sliding)))
+    if not moves:
+        raise AssertionError("no redistribution while the die slides")
+    by_step = {r["step"]: r for r in rows}
+    for s in moves:
+        after = by_step.get(s + 1)
+        if after and after["imbalance"] > 1.2:
+            raise AssertionError("step %d after the redistribution: imbalance %.3f > 1.2"
+                                 % (s + 1, after["imbalance"]))
+    H.cleanup(*_dirs)
+
+
+def test_time_measure_np2():
+    """The default measure: each rank's CPU time of the interface evaluation in the step."""
+    out = run_example("hertz_3d", "sphere_block.yaml", 2)
+    rows = rows_of(out, "parallel.csv")
+    for r in rows:
+        if not (0.0 < r["min_work"] <= r["mean_work"] <= r["max_work"]):
+            raise AssertionError("step %d: per-rank times %s" % (r["step"], r))
+        H.assert_close(r["imbalance"], r["max_work"] / r["min_work"], rtol=1e-12,
+                       what="imbalance = max/min")
+        if r["ranks"] != 2:
+            raise AssertionError("ranks column %s" % r["ranks"])
+    print("   np 2: interface CPU seconds per step (max) %s"
+          % " ".join("%.3f" % r["max_work"] for r in rows))
+    H.cleanup(*_dirs)
+
+
+if __name__ == "__main__":
+    H.main([test_hertz_independent_against_bulk_np4, test_hertz_held_never_redistributes,
+            test_ironing_rebalances_np4, test_time_measure_np2])
