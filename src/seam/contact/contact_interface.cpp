@@ -137,13 +137,16 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
   // Candidates up to about one slave element away, so that approaching parts are integrated
   // (and get their weighted gaps) before they touch.
-  search::SearchOptions so;
-  so.inflation_factor = 0.75;
-  search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(), so);
+  search_options_.inflation_factor = 0.75;
+  search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(),
+                                                      search_options_);
+  search_options_.inflation = search_->inflation();
   normals_.assign(slave_.coordinates.size(), 0.0);
   pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
   owned_.resize(static_cast<std::size_t>(slave_.n_facets()));
   std::iota(owned_.begin(), owned_.end(), local_index{0});
+  owned_offsets_ = slave_.offsets;
+  owned_nodes_ = slave_.nodes;
 }
 
 void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
@@ -152,6 +155,20 @@ void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
   SEAM_CHECK(facets.empty() || (facets.front() >= 0 && facets.back() < slave_.n_facets()),
              InputError, "interface '", name_, "': owned slave facet out of range");
   owned_ = std::move(facets);
+  owned_offsets_.assign(1, 0);
+  owned_nodes_.clear();
+  for (const auto f : owned_) {
+    const auto nodes = slave_.facet_set().facet_nodes(f);
+    owned_nodes_.insert(owned_nodes_.end(), nodes.begin(), nodes.end());
+    owned_offsets_.push_back(static_cast<local_index>(owned_nodes_.size()));
+  }
+  search_.reset();
+  if (!owned_.empty())
+    search_ = std::make_unique<search::InterfaceSearch>(
+        search::FacetSurface{dim(), slave_.coordinates, owned_offsets_, owned_nodes_},
+        master_.surface(), search_options_);
+  pairs_.clear();
+  pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
 }
 
 std::array<double, 3> ContactInterface::slave_centroid(local_index f) const {
@@ -189,21 +206,24 @@ void ContactInterface::update(std::span<const double> u, double t) {
   } else {
     master_.update_coordinates(*mesh_, u);
   }
-  search_->update(slave_.coordinates, master_.coordinates);
-  const auto& found = search_->find_pairs();
-  // Only facets that face each other can come into contact.
-  std::vector<std::array<double, 3>> ns(static_cast<std::size_t>(slave_.n_facets()));
-  std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
-  for (local_index f = 0; f < slave_.n_facets(); ++f) ns[f] = facet_normal(slave_, f);
-  for (local_index f = 0; f < master_.n_facets(); ++f) nm[f] = facet_normal(master_, f);
   pairs_.clear();
-  for (const auto& p : found) {
-    const auto& a = ns[p.slave];
-    const auto& b = nm[p.master];
-    // Against a rigid plane the gap is the distance to the plane for any facet orientation,
-    // so every facet near it takes part (no jump in D when a facet turns past 90 degrees).
-    if (rigid_ || a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
-      pairs_.push_back({p.slave, p.master});
+  if (search_) {
+    search_->update(slave_.coordinates, master_.coordinates);
+    // Only facets that face each other can come into contact.
+    std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
+    std::vector<char> has_normal(static_cast<std::size_t>(master_.n_facets()), 0);
+    for (const auto& p : search_->find_pairs()) {
+      const local_index f = owned_[static_cast<std::size_t>(p.slave)]; // owned -> slave facet
+      const auto a = facet_normal(slave_, f);
+      if (!has_normal[p.master]) {
+        nm[p.master] = facet_normal(master_, p.master);
+        has_normal[p.master] = 1;
+      }
+      const auto& b = nm[p.master];
+      // Against a rigid plane the gap is the distance to the plane for any facet orientation,
+      // so every facet near it takes part (no jump in D when a facet turns past 90 degrees).
+      if (rigid_ || a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) pairs_.push_back({f, p.master});
+    }
   }
   std::sort(pairs_.begin(), pairs_.end(), [](const auto& x, const auto& y) {
     return x.slave != y.slave ? x.slave < y.slave : x.master < y.master;

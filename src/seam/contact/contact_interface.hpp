@@ -121,7 +121,7 @@ public:
   const std::vector<double>& normals() const { return normals_; }
   /// Standard (not dual) multipliers: D is not diagonal.
   bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
-  /// Candidate pairs of the last update (after the facing test).
+  /// Candidate pairs of the owned slave facets at the last update (after the facing test).
   local_index n_candidates() const { return static_cast<local_index>(pairs_.size()); }
 
   /// The slave facets evaluate() and linearize() integrate (sorted, unique; all by default).
@@ -191,6 +191,10 @@ private:
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<local_index> owned_;           ///< slave facets this part evaluates
+  // The search runs on the owned slave facets only (their offsets and nodes), with the
+  // inflation of the whole interface so that every part finds the pairs a whole search would.
+  std::vector<local_index> owned_offsets_, owned_nodes_;
+  search::SearchOptions search_options_;
   std::vector<double> normals_;
   std::vector<mortar::Triplet> transformation_;
 };

@@ -193,7 +193,13 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       ScopedTimer timer(timers, "search");
       s.itf.update(u_mesh, t);
     }
-    if (!s.distributed) distribute(s);
+    if (!s.distributed) {
+      // The first distribution needs the candidate pairs of the whole interface; the search
+      // then runs on this rank's slave elements only.
+      distribute(s);
+      ScopedTimer timer(timers, "search");
+      s.itf.update(u_mesh, t);
+    }
     ScopedTimer timer(timers, "mortar");
     const double cpu = cpu_seconds();
     s.itf.evaluate(s.part);
@@ -650,6 +656,16 @@ void ContactConstraint::balance() {
     mine.seconds = parallel_.work == io::WorkMeasure::time ? s.work_seconds
                                                            : static_cast<double>(s.part.n_cells);
     s.balance = parallel::LoadMonitor(parallel_.rebalance_tolerance).evaluate(comm.get(), mine);
+    // This rank's share in the step, before a redistribution changes it.
+    s.share.slave_elements = static_cast<int>(s.itf.owned_facets().size());
+    std::vector<local_index> masters;
+    for (const auto f : s.itf.owned_facets())
+      for (const auto& p : s.itf.pairs_of(f)) masters.push_back(p.master);
+    std::sort(masters.begin(), masters.end());
+    s.share.master_ghosts =
+        static_cast<int>(std::unique(masters.begin(), masters.end()) - masters.begin());
+    s.share.candidates =
+        static_cast<std::int64_t>(comm.sum(static_cast<double>(s.itf.n_candidates())));
     s.work_seconds = 0.0;
     s.redistributed = false;
     if (!s.distribution || !s.balance.rebalance) continue;
@@ -757,18 +773,13 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.frictional_dissipation = s.friction ? s.dissipation + dissipation_increment(s) : 0.0;
     rep.slave_elements = s.itf.slave().n_facets();
     rep.master_elements = s.itf.n_master_facets();
-    rep.candidate_pairs = s.itf.n_candidates();
+    rep.candidate_pairs = static_cast<int>(s.share.candidates);
     rep.work_min = s.balance.time.min;
     rep.work_mean = s.balance.time.mean;
     rep.work_max = s.balance.time.max;
     rep.redistributed = s.redistributed;
-    rep.local_slave_elements = static_cast<int>(s.itf.owned_facets().size());
-    std::vector<local_index> masters;
-    for (const auto f : s.itf.owned_facets())
-      for (const auto& p : s.itf.pairs_of(f)) masters.push_back(p.master);
-    std::sort(masters.begin(), masters.end());
-    rep.local_master_ghosts =
-        static_cast<int>(std::unique(masters.begin(), masters.end()) - masters.begin());
+    rep.local_slave_elements = s.share.slave_elements;
+    rep.local_master_ghosts = s.share.master_ghosts;
     rep.local_pairs = s.part.n_pairs;
     rep.local_integration_cells = s.part.n_cells;
     out.push_back(std::move(rep));

@@ -106,7 +106,7 @@ public:
   int n_active() const;
   /// One line per interface for `seam check`.
   std::vector<std::string> describe() const;
-  /// Per interface, the state for the output files (replicated).
+  /// Per interface, the state for the output files (replicated), after balance().
   std::vector<ContactReport> reports(const la::Vector& u) const;
   /// Active nodes in stick (friction) and in slip (every active node without friction).
   int n_slip() const;
@@ -137,6 +137,11 @@ private:
     double work_seconds = 0.0; ///< CPU time of this rank's evaluation in the current step
     parallel::BalanceDecision balance;
     bool redistributed = false; ///< in the last balance()
+    struct {
+      int slave_elements = 0;      ///< this rank's, in the last balanced step
+      int master_ghosts = 0;       ///< distinct master facets of its pairs
+      std::int64_t candidates = 0; ///< candidate pairs of all ranks
+    } share;
 
     // Friction: lambda holds dim values per slave node (Cartesian), status the
     // contact::NodeStatus of every node (active mirrors it).

@@ -326,5 +326,93 @@ TEST(ContactLinearization, RigidPlaneTri3) {
   check(3, true, true);
 }
 
+/// The slave facets split into parts (as the ranks hold them): each part searches and
+/// integrates its own facets only, and the parts' sums equal the whole interface's D, g~, M,
+/// pairs, integration cells and force tangent.
+void check_parts(int dim, bool tets, bool rigid) {
+  const auto mesh = two_blocks(dim, tets);
+  ContactInterface whole(contact_config(rigid, dim, false), mesh);
+  std::vector<double> u(mesh.x.size(), 0.0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> perturb(-0.01, 0.01);
+  for (const auto n : whole.slave().mesh_nodes)
+    for (int c = 0; c < dim; ++c)
+      u[static_cast<std::size_t>(n) * dim + c] = perturb(rng) + (c == dim - 1 ? -0.01 : 0.0);
+  whole.update(u, 0.0);
+  NodalValues all;
+  whole.evaluate(all);
+  const auto n_slave = static_cast<std::size_t>(whole.n_slave_nodes());
+  const std::vector<double> lambda(n_slave, 1.0);
+  const std::vector<char> want(n_slave, 1);
+  Linearization lin;
+  whole.linearize(lambda, want, lin);
+  Dense K, M;
+  for (const auto& e : lin.force_tangent) K[{e.row, e.col}] += e.value;
+  for (const auto& e : all.M) M[{e.slave, e.master_node}] += e.value;
+  ASSERT_GT(all.n_pairs, 0);
+
+  const local_index n_facets = whole.slave().n_facets();
+  constexpr int n_parts = 3;
+  std::vector<double> D(n_slave, 0.0), gap(n_slave, 0.0);
+  Dense K_parts, M_parts;
+  local_index pairs = 0, cells = 0, candidates = 0;
+  for (int part = 0; part < n_parts; ++part) {
+    ContactInterface itf(contact_config(rigid, dim, false), mesh);
+    std::vector<local_index> mine; // contiguous blocks: parts with and without contact
+    for (local_index f = part * n_facets / n_parts; f < (part + 1) * n_facets / n_parts; ++f)
+      mine.push_back(f);
+    itf.set_owned_facets(mine);
+    itf.update(u, 0.0);
+    for (local_index f = 0; f < n_facets; ++f)
+      if (!std::binary_search(mine.begin(), mine.end(), f)) {
+        EXPECT_EQ(itf.n_pairs_of(f), 0);
+      }
+    NodalValues v;
+    itf.evaluate(v);
+    for (std::size_t j = 0; j < n_slave; ++j) {
+      D[j] += v.D[j];
+      gap[j] += v.gap[j];
+    }
+    for (const auto& e : v.M) M_parts[{e.slave, e.master_node}] += e.value;
+    pairs += v.n_pairs;
+    cells += v.n_cells;
+    candidates += itf.n_candidates();
+    itf.linearize(lambda, want, lin);
+    for (const auto& e : lin.force_tangent) K_parts[{e.row, e.col}] += e.value;
+  }
+  EXPECT_EQ(pairs, all.n_pairs);
+  EXPECT_EQ(cells, all.n_cells);
+  EXPECT_EQ(candidates, whole.n_candidates());
+  for (std::size_t j = 0; j < n_slave; ++j) {
+    EXPECT_NEAR(D[j], all.D[j], 1e-14);
+    EXPECT_NEAR(gap[j], all.gap[j], 1e-14);
+  }
+  const auto same = [](const Dense& a, const Dense& b) {
+    double worst = 0.0;
+    for (const auto& [k, v] : a) {
+      const auto it = b.find(k);
+      worst = std::max(worst, std::abs(v - (it == b.end() ? 0.0 : it->second)));
+    }
+    for (const auto& [k, v] : b)
+      if (!a.count(k)) worst = std::max(worst, std::abs(v));
+    return worst;
+  };
+  EXPECT_LT(same(M, M_parts), 1e-14);
+  EXPECT_LT(same(K, K_parts), 1e-12);
+}
+
+TEST(ContactParts, TwoBodies2D) {
+  check_parts(2, false, false);
+}
+TEST(ContactParts, TwoBodiesQuad4) {
+  check_parts(3, false, false);
+}
+TEST(ContactParts, TwoBodiesTri3) {
+  check_parts(3, true, false);
+}
+TEST(ContactParts, RigidPlane3D) {
+  check_parts(3, false, true);
+}
+
 } // namespace
 } // namespace seam::contact

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Peak memory per rank of a tied 3D problem (examples/tied_blocks refined: hexahedra below,
+tetrahedra above, non-matching at z = 1, dual mortar condensed), solved with the iterative
+solver (GMRES + GAMG) at np = 1, 2, 4, from summary.json ranks_detail (peak_rss_mb).
+
+Printed: dofs, per-rank peak RSS (max and min over the ranks), the ratio of the largest rank
+to the np = 1 run, and the cells each rank assembles and holds.
+
+Usage: /usr/bin/python3 bench/memory_per_rank.py [--seam build/bin/seam] [--divisions 30]
+       [--size 0.04] [--ranks 1 2 4]
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLE = os.path.join(HERE, "..", "examples", "tied_blocks")
+
+
+def run(seam, np, divisions, size):
+    folder = tempfile.mkdtemp(prefix="seam_bench_mem_")
+    for f in ("blocks.yaml", "blocks.geo"):
+        shutil.copy(os.path.join(EXAMPLE, f), folder)
+    geo = os.path.join(folder, "blocks.geo")
+    with open(geo) as f:
+        text = f.read()
+    text = text.replace("Transfinite Curve{1:12} = 6;", "Transfinite Curve{1:12} = %d;"
+                        % (divisions + 1)).replace("= 0.15;", "= %g;" % size)
+    with open(geo, "w") as f:
+        f.write(text)
+    yaml = os.path.join(folder, "blocks.yaml")
+    with open(yaml) as f:
+        text = f.read().replace("steps: 5}", "steps: 1}\nsolver: {linear: iterative}")
+    with open(yaml, "w") as f:
+        f.write(text)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    out = os.path.join(folder, "out")
+    subprocess.run(["mpirun", "--oversubscribe", "-np", str(np), seam, "run", yaml, "-o", out,
+                    "--quiet"], check=True, env=env)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    shutil.rmtree(folder, ignore_errors=True)
+    return summary
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--seam", default=os.path.join(HERE, "..", "build", "bin", "seam"))
+    parser.add_argument("--divisions", type=int, default=30)
+    parser.add_argument("--size", type=float, default=0.04)
+    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
+    args = parser.parse_args()
+    base = None
+    print("%3s %9s %12s %12s %14s %18s %8s" % ("np", "dofs", "max RSS MB", "min RSS MB",
+                                               "max / np=1", "cells (own/held)", "wall s"))
+    for np in args.ranks:
+        s = run(args.seam, np, args.divisions, args.size)
+        rss = [r["peak_rss_mb"] for r in s["ranks_detail"]]
+        if base is None:
+            base = max(rss)
+        own = max(r["cells"] for r in s["ranks_detail"])
+        held = max(r["cells"] + r["ghost_cells"] for r in s["ranks_detail"])
+        print("%3d %9d %12.1f %12.1f %14.3f %11d/%-7d %8.1f" % (
+            np, s["dofs"], max(rss), min(rss), max(rss) / base, own, held, s["wall_seconds"]))
+
+
+if __name__ == "__main__":
+    main()
