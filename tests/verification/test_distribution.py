@@ -17,11 +17,14 @@ Each test can fail:
 - 2D ironing at np = 4 (the die slides over the slave slab, the contact zone moves across its
   elements): redistributions happen while sliding, and the step after each one is back under
   the tolerance;
+- one master surface shared by two slave interfaces (two blocks tied side by side onto one
+  block, non-matching) at np = 3: the patch test (uniform uniaxial stress) stays exact;
 - with the default measure (CPU time of the interface evaluation) parallel.csv reports
   positive per-rank times and a consistent imbalance column.
 """
 import os
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
@@ -178,6 +181,80 @@ def test_time_measure_np2():
     H.cleanup(*_dirs)
 
 
+SHARED_GEO = """Geometry.AutoCoherence = 0;
+Point(1) = {0, 0, 0, 0.23}; Point(2) = {2, 0, 0, 0.23}; Point(3) = {2, 1, 0, 0.23};
+Point(4) = {0, 1, 0, 0.23};
+Point(5) = {0, 1, 0, 0.17}; Point(6) = {1, 1, 0, 0.17}; Point(7) = {1, 2, 0, 0.17};
+Point(8) = {0, 2, 0, 0.17};
+Point(9) = {1, 1, 0, 0.29}; Point(10) = {2, 1, 0, 0.29}; Point(11) = {2, 2, 0, 0.29};
+Point(12) = {1, 2, 0, 0.29};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Line(9) = {9, 10}; Line(10) = {10, 11}; Line(11) = {11, 12}; Line(12) = {12, 9};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Curve Loop(3) = {9, 10, 11, 12}; Plane Surface(3) = {3};
+Recombine Surface{2};
+Physical Surface("lower") = {1}; Physical Surface("upper_left") = {2};
+Physical Surface("upper_right") = {3};
+Physical Curve("bottom") = {1}; Physical Curve("top") = {7, 11}; Physical Curve("left") = {4, 8};
+Physical Curve("lower_top") = {3}; Physical Curve("left_bottom") = {5};
+Physical Curve("right_bottom") = {9};
+"""
+
+E, NU, T = 200.0, 0.3, 1.5
+SHARED_PROBES = [[0.37, 0.61], [1.6, 0.3], [0.5, 1.5], [0.2, 1.9], [1.7, 1.8], [1.3, 1.1]]
+
+
+def shared_yaml(multiplier):
+    return """dimension: 2
+mesh: {geo: shared.geo}
+materials:
+  steel: {model: linear_elastic, young: %g, poisson: %g}
+bodies:
+  - {region: lower, material: steel}
+  - {region: upper_left, material: steel}
+  - {region: upper_right, material: steel}
+boundary_conditions:
+  - {region: bottom, type: dirichlet, components: [y], value: [0]}
+  - {region: left, type: dirichlet, components: [x], value: [0]}
+  - {region: top, type: traction, value: [0, %g]}
+interfaces:
+  - {name: tie_left, type: mesh_tying, slave: left_bottom, master: lower_top, multiplier: %s}
+  - {name: tie_right, type: mesh_tying, slave: right_bottom, master: lower_top, multiplier: %s}
+time: {integrator: static, end: 1, steps: 1}
+output: {probes: %s}
+""" % (E, NU, T, multiplier, multiplier, SHARED_PROBES)
+
+
+def test_shared_master_patch_np3():
+    """Two blocks side by side (their own nodes at x = 1, not connected) tied onto one lower
+    block through one master surface; pulled by a uniform traction T on their tops. Plane
+    strain: u_x = -nu (1 + nu) T / E x, u_y = (1 - nu^2) T / E y in all three bodies."""
+    exx, eyy = -NU * (1 + NU) * T / E, (1 - NU ** 2) * T / E
+    for multiplier in ("dual", "standard"):
+        for np in (1, 3):
+            work = tempfile.mkdtemp(prefix="seam_shared_")
+            _dirs.append(work)
+            H.write_case(work, "shared.geo", SHARED_GEO)
+            path = H.write_case(work, "shared.yaml", shared_yaml(multiplier))
+            out = H.solve(path, np=np)
+            _dirs.append(out)
+            worst = 0.0
+            for p in H.last_step_rows(rows_of(out, "probes.csv")):
+                exact = (exx * p["x"], eyy * p["y"])
+                worst = max(worst, abs(p["ux"] - exact[0]) / abs(eyy * 2),
+                            abs(p["uy"] - exact[1]) / abs(eyy * 2))
+            reaction = sum(r["fy"] for r in H.last_step_rows(rows_of(out, "reactions.csv"))
+                           if r["region"] == "bottom")
+            print("   %s multipliers, np %d: probes off the exact field by %.2e (relative), "
+                  "bottom reaction %.12g (exact %g)" % (multiplier, np, worst, reaction, -2 * T))
+            if worst > 1e-10:
+                raise AssertionError("patch test not exact: %.3e" % worst)
+            H.assert_close(reaction, -2 * T, rtol=1e-10, what="bottom reaction")
+    H.cleanup(*_dirs)
+
+
 if __name__ == "__main__":
     H.main([test_hertz_independent_against_bulk_np4, test_hertz_held_never_redistributes,
-            test_ironing_rebalances_np4, test_time_measure_np2])
+            test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])
