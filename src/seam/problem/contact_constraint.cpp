@@ -103,12 +103,6 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   std::sort(interface_nodes_.begin(), interface_nodes_.end());
   interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
                          interface_nodes_.end());
-  std::vector<PetscInt> dofs;
-  dofs.reserve(interface_nodes_.size() * static_cast<std::size_t>(dim));
-  for (const auto node : interface_nodes_)
-    for (int c = 0; c < dim; ++c) dofs.push_back(disc.global_dof(node, c));
-  gather_ = la::Gather(disc.make_vector(), dofs);
-  u_mesh_.assign(static_cast<std::size_t>(disc.mesh().n_nodes()) * dim, 0.0);
   if (!saddle_point_) return;
   for (const auto& itf : config.interfaces)
     if (itf.type == io::InterfaceType::contact &&
@@ -140,6 +134,15 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
 
 std::span<const double> ContactConstraint::interface_displacement(const la::Vector& u) const {
   const int dim = disc_.dim();
+  if (gather_.size() == 0 && !interface_nodes_.empty()) {
+    // Made at the first use: `seam check` builds the constraint without PETSc.
+    std::vector<PetscInt> dofs;
+    dofs.reserve(interface_nodes_.size() * static_cast<std::size_t>(dim));
+    for (const auto node : interface_nodes_)
+      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
+    gather_ = la::Gather(u, dofs);
+    u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+  }
   std::vector<double> values;
   gather_(u, values);
   for (std::size_t k = 0; k < interface_nodes_.size(); ++k)

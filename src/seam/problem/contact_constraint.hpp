@@ -210,7 +210,7 @@ private:
   const Discretization& disc_;
   io::ParallelConfig parallel_;
   std::vector<std::int32_t> interface_nodes_; ///< mesh nodes of all sides, sorted
-  la::Gather gather_;                         ///< their dofs, node-major
+  mutable la::Gather gather_;                 ///< their dofs, node-major
   mutable std::vector<double> u_mesh_;
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;
