@@ -25,6 +25,8 @@ def mpi_env():
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     env.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+    # Ranks waiting in a collective give their core away (several ranks share each core).
+    env.setdefault("OMPI_MCA_mpi_yield_when_idle", "1")
     # A single-node run needs no network transports; keeps start-up fast and quiet.
     env.setdefault("OMPI_MCA_btl", "self,vader")
     env.setdefault("OMPI_MCA_btl_vader_single_copy_mechanism", "none")

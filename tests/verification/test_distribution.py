@@ -16,7 +16,7 @@ Each test can fail:
   of the four ranks (max/mean >= 2, min 0): the imbalance of the seed's Fig. 5;
 - 2D ironing at np = 4 (the die slides over the slave slab, the contact zone moves across its
   elements): redistributions happen while sliding, and the step after each one is back under
-  the tolerance;
+  the tolerance; with SEAM_FULL=1 also equal to np = 1;
 - one master surface shared by two slave interfaces (two blocks tied side by side onto one
   block, non-matching) at np = 3: the patch test (uniform uniaxial stress) stays exact;
 - with the default measure (CPU time of the interface evaluation) parallel.csv reports
@@ -144,10 +144,11 @@ IRONING = (("time: {integrator: static, end: 2, steps: 140}",
 def test_ironing_rebalances_np4():
     """The die presses into the slab for t <= 1 and slides from then on: the contact zone moves
     across the slave elements, and the balance follows it."""
-    one = run_example("ironing", "ironing_2d.yaml", 1, IRONING)
     four = run_example("ironing", "ironing_2d.yaml", 4, IRONING)
-    compare_reactions(one, four, 1e-8, "ironing np 4 vs np 1")
-    check_counts_add_up(one, four, "ironing")
+    if H.FULL:  # np = 4 against np = 1 is also checked on the Hertz case above
+        one = run_example("ironing", "ironing_2d.yaml", 1, IRONING)
+        compare_reactions(one, four, 1e-8, "ironing np 4 vs np 1")
+        check_counts_add_up(one, four, "ironing")
     rows = rows_of(four, "parallel.csv")
     sliding = [r for r in rows if r["time"] > 1.05]
     moves = [r["step"] for r in sliding if r["redistributed"]]
