@@ -1,0 +1,218 @@
+"""Incompressible Navier-Stokes on fixed meshes (issue 14, first phase): Taylor-Hood P2/P1 and
+Q2/Q1 elements, steady Newton solves, forces from the discrete residual.
+
+  * Poiseuille flow in the channel [0, 2] x [0, 1] (inflow u = 4 y (1 - y), no-slip walls,
+    do-nothing outflow, mu = 0.1): the quadratic velocity and the linear pressure
+    p = 8 mu (2 - x) lie in the Taylor-Hood spaces, so the discrete solution is exact to
+    round-off on quad9 and on unstructured tri6 meshes (L2 errors < 1e-10). The wall force
+    from the residual is the wall shear 2 * 2 * mu * 4 = 1.6 minus what the inflow pressure
+    puts on the two inflow corner nodes (their shape functions' integral h/6 along the inflow
+    edge times p(0) = 1.6 each): corner nodes shared by two conditions split the reaction.
+  * Kovasznay flow (1948) at Re = 40 on [-0.5, 1] x [-0.5, 1.5] (shifted to [0, 1.5] x [0, 2])
+    with the exact velocity on the whole boundary (enclosed: seam fixes the pressure constant):
+    L2 error slopes ~3 (velocity) and ~2 (pressure) on Q2/Q1 under uniform refinement.
+  * DFG 2D-1 (Schaefer & Turek 1996, Re = 20): c_D within 0.5 % of 5.57954 and c_L within
+    5 % of 0.010619 (reference values of John & Matthies 2001 on fine meshes); the same
+    forces on 3 ranks as on 1.
+  * Bad input for fluids: exit 1 with a located message.
+"""
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import geometry  # noqa: E402
+import harness as H  # noqa: E402
+
+EXAMPLE = os.path.join(H.HERE, "..", "..", "examples", "dfg_cylinder")
+MU = 0.1
+
+
+def poiseuille_yaml(geo):
+    return """\
+dimension: 2
+mesh: {geo: %s, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: %g}}
+bodies: [{region: body, material: oil}]
+boundary_conditions:
+  - {region: left, type: velocity, value: ["4*y*(1-y)", 0]}
+  - {region: top, type: velocity, value: [0, 0]}
+  - {region: bottom, type: velocity, value: [0, 0]}
+time: {integrator: static, end: 1, steps: 2}
+output:
+  forces: [{name: walls, regions: [top, bottom]}]
+  exact_velocity: ["4*y*(1-y)", 0]
+  exact_pressure: "%.17g*(2-x)"
+""" % (geo, MU, 8 * MU)
+
+
+def poiseuille(kind, h):
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    H.write_case(work, "body.geo", geometry.rectangle(kind, h, 2))
+    out = H.solve(H.write_case(work, "case.yaml", poiseuille_yaml("body.geo")))
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    forces = H.read_csv(os.path.join(out, "forces.csv"))
+    H.cleanup(work, out)
+    print("   %s: velocity L2 %.2e, pressure L2 %.2e" % (kind, err["velocity_l2_error"],
+                                                       err["pressure_l2_error"]))
+    if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+        raise AssertionError("Poiseuille flow is not exact on %s: %s" % (kind, err))
+    return forces[-1]
+
+
+def test_poiseuille_exact_quad9():
+    h = 0.25
+    f = poiseuille("quad_structured", h)
+    p_in = 8 * MU * 2
+    H.assert_close(f["fx"], 2 * 2 * MU * 4 - 2 * p_in * h / 6, atol=1e-10, what="wall force x")
+    H.assert_close(f["fy"], 0.0, atol=1e-10, what="wall force y")
+
+
+def test_poiseuille_exact_tri6():
+    poiseuille("tri", 0.3)
+
+
+def kovasznay(re):
+    lam = re / 2 - math.sqrt(re * re / 4 + 4 * math.pi ** 2)
+    e = "exp(%.17g*(x-0.5))" % lam
+    u = ["1-%s*cos(2*_pi*(y-0.5))" % e, "%.17g*%s*sin(2*_pi*(y-0.5))" % (lam / (2 * math.pi), e)]
+    p = "0.5*(1-exp(%.17g*(x-0.5)))" % (2 * lam)
+    return u, p
+
+
+def test_kovasznay_rates():
+    u, p = kovasznay(40.0)
+    q = lambda v: "[" + ", ".join("'%s'" % s for s in v) + "]"  # noqa: E731
+    hs, eu, ep = [], [], []
+    for h in (0.25, 0.125, 0.0625):
+        work = tempfile.mkdtemp(prefix="seam_fluid_")
+        H.write_case(work, "body.geo",
+                     geometry.rectangle("quad_structured", h, 2, lx=1.5, ly=2.0))
+        lines = ["dimension: 2", "mesh: {geo: body.geo, order: 2}",
+                 "materials: {f: {model: newtonian_fluid, density: 1, viscosity: 0.025}}",
+                 "bodies: [{region: body, material: f}]", "boundary_conditions:"]
+        lines += ["  - {region: %s, type: velocity, value: %s}" % (r, q(u))
+                  for r in ("left", "right", "bottom", "top")]
+        lines += ["time: {integrator: static, end: 1, steps: 1}",
+                  "output: {exact_velocity: %s, exact_pressure: '%s'}" % (q(u), p)]
+        out = H.solve(H.write_case(work, "case.yaml", "\n".join(lines) + "\n"))
+        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+        H.cleanup(work, out)
+        hs.append(h)
+        eu.append(err["velocity_l2_error"])
+        ep.append(err["pressure_l2_error"])
+    su, sp = H.slope(hs, eu), H.slope(hs, ep)
+    print("   h = %s" % hs)
+    print("   velocity L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in eu), su))
+    print("   pressure L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in ep), sp))
+    if abs(su - 3) > 0.3 or abs(sp - 2) > 0.3:
+        raise AssertionError("slopes velocity %.3f (expected 3), pressure %.3f (expected 2)"
+                             % (su, sp))
+
+
+CD_REF, CL_REF = 5.57954, 0.010619
+
+
+def dfg(h, hc, np=1):
+    """c_D, c_L of DFG 2D-1 on the example's geometry with cell sizes h (far) and hc."""
+    work = tempfile.mkdtemp(prefix="seam_dfg_")
+    with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
+        geo = f.read()
+    geo = geo.replace("DefineNumber[0.04,", "DefineNumber[%g," % h)
+    geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % hc)
+    H.write_case(work, "dfg.geo", geo)
+    with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
+        H.write_case(work, "case.yaml", f.read())
+    out = H.solve(os.path.join(work, "case.yaml"), np=np)
+    f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
+    dofs = H.read_json(os.path.join(out, "summary.json"))["dofs"]
+    H.cleanup(work, out)
+    # c = 2 F / (rho U_mean^2 D), U_mean = 2/3 * 0.3, D = 0.1
+    scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
+    cd, cl = scale * f["fx"], scale * f["fy"]
+    print("   h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), c_L = %.6f (%+.3f %%)"
+          % (h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl, 100 * (cl / CL_REF - 1)))
+    return cd, cl
+
+
+def test_dfg_2d1():
+    cd, cl = dfg(0.04, 0.006)
+    H.assert_close(cd, CD_REF, rtol=5e-3, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=5e-2, what="c_L")
+
+
+def test_dfg_2d1_three_ranks():
+    one = dfg(0.08, 0.012)
+    three = dfg(0.08, 0.012, np=3)
+    H.assert_close(three[0], one[0], rtol=1e-8, what="c_D on 3 ranks")
+    H.assert_close(three[1], one[1], rtol=1e-6, atol=1e-10, what="c_L on 3 ranks")
+
+
+@H.full_only
+def test_dfg_2d1_fine():
+    cd, cl = dfg(0.02, 0.003)
+    H.assert_close(cd, CD_REF, rtol=1e-3, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=1e-2, what="c_L")
+
+
+BAD_BASE = """\
+dimension: 2
+mesh: {geo: body.geo, order: %(order)d}
+materials:
+  oil: %(material)s
+bodies: [{region: body, material: oil}]
+boundary_conditions:
+  - {region: left, type: %(left)s, value: [1, 0]}
+time: {integrator: %(integrator)s, end: 1, steps: 1}
+%(extra)s"""
+
+
+def expect_bad(what, must, order=2, material="{model: newtonian_fluid, density: 1, viscosity: 1}",
+               left="velocity", integrator="static", extra="", line=None):
+    work = tempfile.mkdtemp(prefix="seam_fluid_bad_")
+    H.write_case(work, "body.geo", geometry.rectangle("quad_structured", 0.5, 1))
+    text = BAD_BASE % dict(order=order, material=material, left=left, integrator=integrator,
+                           extra=extra)
+    H.write_case(work, "case.yaml", text)
+    try:
+        for cmd in (["check", "case.yaml"], ["run", "case.yaml", "-o", "out", "--quiet"]):
+            code, out, err = H.run(cmd, cwd=work, check=False, timeout=120)
+            if code != 1:
+                raise AssertionError("%s: %s: exit %d, expected 1\n%s%s"
+                                     % (what, cmd[0], code, out[-1500:], err[-1500:]))
+            prefix = "seam: input error: case.yaml:" + ("%d:" % line if line else "")
+            if prefix not in err:
+                raise AssertionError("%s: no located message %r:\n%s" % (what, prefix, err))
+            for piece in must:
+                if piece not in err:
+                    raise AssertionError("%s: message lacks %r:\n%s" % (what, piece, err))
+    finally:
+        H.cleanup(work)
+
+
+def test_bad_input():
+    expect_bad("fluid without viscosity", ["missing required key 'viscosity'"],
+               material="{model: newtonian_fluid, density: 1}", line=4)
+    expect_bad("fluid without density", ["missing required key 'density'"],
+               material="{model: newtonian_fluid, viscosity: 1}", line=4)
+    expect_bad("fluid with young", ["young", "applies only to solid materials"],
+               material="{model: newtonian_fluid, density: 1, viscosity: 1, young: 3}", line=4)
+    expect_bad("dirichlet on a fluid", ["type 'dirichlet'", "fluid body", "type 'velocity'"],
+               left="dirichlet", line=7)
+    expect_bad("velocity on a solid", ["type 'velocity'", "no fluid body"],
+               material="{model: linear_elastic, young: 1, poisson: 0.3}", order=1, line=7)
+    expect_bad("linear fluid mesh", ["quad4", "Taylor-Hood", "not available yet"], order=1,
+               line=5)
+    expect_bad("fluid with mesh tying",
+               ["mesh_tying", "not available yet"],
+               extra="interfaces: [{name: t, type: mesh_tying, slave: top, master: bottom}]\n")
+    expect_bad("unsteady fluid", ["generalized_alpha", "not available yet"],
+               integrator="generalized_alpha", line=8)
+    expect_bad("force group on an unknown region", ["no region 'nowhere'"],
+               extra="output: {forces: [{name: f, regions: [nowhere]}]}\n", line=9)
+
+
+if __name__ == "__main__":
+    H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_kovasznay_rates,
+            test_dfg_2d1, test_dfg_2d1_three_ranks, test_dfg_2d1_fine, test_bad_input])
