@@ -73,6 +73,33 @@ def test_poiseuille_exact_tri6():
     poiseuille("tri", 0.3)
 
 
+def poiseuille_3d(kind):
+    """The plane Poiseuille flow in the box [0, 2] x [0, 1] x [0, 1]: no-slip at y = 0 and 1,
+    slip walls (u_z = 0 only, `components: [z]`) at z = 0 and 1."""
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    H.write_case(work, "body.geo", geometry.box(kind, 0.5, 2))
+    text = poiseuille_yaml("body.geo").replace("dimension: 2", "dimension: 3")
+    text = text.replace('["4*y*(1-y)", 0]', '["4*y*(1-y)", 0, 0]').replace("[0, 0]", "[0, 0, 0]")
+    text = text.replace("region: top,", "region: front,").replace("region: bottom,",
+                                                                   "region: back,")
+    text = text.replace("regions: [top, bottom]", "regions: [front, back]")
+    text = text.replace("boundary_conditions:\n", "boundary_conditions:\n"
+                        "  - {region: top, type: velocity, components: [z], value: [0]}\n"
+                        "  - {region: bottom, type: velocity, components: [z], value: [0]}\n")
+    out = H.solve(H.write_case(work, "case.yaml", text))
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    H.cleanup(work, out)
+    print("   %s: velocity L2 %.2e, pressure L2 %.2e" % (kind, err["velocity_l2_error"],
+                                                       err["pressure_l2_error"]))
+    if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+        raise AssertionError("Poiseuille flow is not exact on %s: %s" % (kind, err))
+
+
+def test_poiseuille_exact_3d():
+    poiseuille_3d("hex_structured")
+    poiseuille_3d("tet")
+
+
 def kovasznay(re):
     lam = re / 2 - math.sqrt(re * re / 4 + 4 * math.pi ** 2)
     e = "exp(%.17g*(x-0.5))" % lam
@@ -81,34 +108,70 @@ def kovasznay(re):
     return u, p
 
 
-def test_kovasznay_rates():
+def kovasznay_errors(dim, h, np=1):
+    """L2 errors of Kovasznay flow on Q2/Q1 (structured quad9 or hex27 cells). In 3D the flow
+    is extruded over the depth 0.5 with slip walls (u_z = 0) at z = 0 and z = 0.5."""
     u, p = kovasznay(40.0)
+    faces = ["left", "right", "bottom", "top"]
+    if dim == 3:
+        u = u + ["0"]
+        faces = ["left", "right", "front", "back"]
     q = lambda v: "[" + ", ".join("'%s'" % s for s in v) + "]"  # noqa: E731
-    hs, eu, ep = [], [], []
-    for h in (0.25, 0.125, 0.0625):
-        work = tempfile.mkdtemp(prefix="seam_fluid_")
-        H.write_case(work, "body.geo",
-                     geometry.rectangle("quad_structured", h, 2, lx=1.5, ly=2.0))
-        lines = ["dimension: 2", "mesh: {geo: body.geo, order: 2}",
-                 "materials: {f: {model: newtonian_fluid, density: 1, viscosity: 0.025}}",
-                 "bodies: [{region: body, material: f}]", "boundary_conditions:"]
-        lines += ["  - {region: %s, type: velocity, value: %s}" % (r, q(u))
-                  for r in ("left", "right", "bottom", "top")]
-        lines += ["time: {integrator: static, end: 1, steps: 1}",
-                  "output: {exact_velocity: %s, exact_pressure: '%s'}" % (q(u), p)]
-        out = H.solve(H.write_case(work, "case.yaml", "\n".join(lines) + "\n"))
-        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
-        H.cleanup(work, out)
-        hs.append(h)
-        eu.append(err["velocity_l2_error"])
-        ep.append(err["pressure_l2_error"])
-    su, sp = H.slope(hs, eu), H.slope(hs, ep)
-    print("   h = %s" % hs)
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    geo = (geometry.rectangle("quad_structured", h, 2, lx=1.5, ly=2.0) if dim == 2
+           else geometry.box("hex_structured", h, 2, lx=1.5, ly=2.0, lz=0.5))
+    H.write_case(work, "body.geo", geo)
+    lines = ["dimension: %d" % dim, "mesh: {geo: body.geo, order: 2}",
+             "materials: {f: {model: newtonian_fluid, density: 1, viscosity: 0.025}}",
+             "bodies: [{region: body, material: f}]", "boundary_conditions:"]
+    if dim == 3:
+        lines += ["  - {region: %s, type: velocity, components: [z], value: [0]}" % r
+                  for r in ("bottom", "top")]
+    lines += ["  - {region: %s, type: velocity, value: %s}" % (r, q(u)) for r in faces]
+    lines += ["time: {integrator: static, end: 1, steps: 1}",
+              "output: {exact_velocity: %s, exact_pressure: '%s'}" % (q(u), p)]
+    out = H.solve(H.write_case(work, "case.yaml", "\n".join(lines) + "\n"), np=np)
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    H.cleanup(work, out)
+    return err["velocity_l2_error"], err["pressure_l2_error"]
+
+
+def rates(dim, sizes):
+    eu, ep = zip(*[kovasznay_errors(dim, h) for h in sizes])
+    su, sp = H.slope(sizes, eu), H.slope(sizes, ep)
+    print("   %dD, h = %s" % (dim, list(sizes)))
     print("   velocity L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in eu), su))
     print("   pressure L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in ep), sp))
     if abs(su - 3) > 0.3 or abs(sp - 2) > 0.3:
         raise AssertionError("slopes velocity %.3f (expected 3), pressure %.3f (expected 2)"
                              % (su, sp))
+
+
+def test_kovasznay_rates():
+    rates(2, (0.25, 0.125, 0.0625, 0.03125))
+
+
+def test_kovasznay_3d_extruded():
+    """The extruded flow does not depend on z, and neither does the discrete one on the
+    extruded mesh: the 3D errors are the 2D ones times sqrt(depth), on two meshes; the
+    velocity converges at order 3 in 3D too."""
+    sizes = (0.25, 0.125)
+    e3 = [kovasznay_errors(3, h) for h in sizes]
+    for h, e in zip(sizes, e3):
+        e2 = kovasznay_errors(2, h)
+        print("   h = %g: 3D L2 velocity %.6e, pressure %.6e" % (h, e[0], e[1]))
+        for a, b, what in zip(e2, e, ("velocity", "pressure")):
+            H.assert_close(b, a * math.sqrt(0.5), rtol=1e-8, what="3D %s error, h = %g" % (what, h))
+    su = H.slope(sizes, [e[0] for e in e3])
+    if abs(su - 3) > 0.3:
+        raise AssertionError("3D velocity slope %.3f, expected 3" % su)
+
+
+def test_kovasznay_3d_three_ranks():
+    one = kovasznay_errors(3, 0.25)
+    three = kovasznay_errors(3, 0.25, np=3)
+    for a, b, what in zip(one, three, ("velocity", "pressure")):
+        H.assert_close(b, a, rtol=1e-8, what="%s L2 error on 3 ranks" % what)
 
 
 CD_REF, CL_REF = 5.57954, 0.010619
@@ -214,5 +277,6 @@ def test_bad_input():
 
 
 if __name__ == "__main__":
-    H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_kovasznay_rates,
+    H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_poiseuille_exact_3d,
+            test_kovasznay_rates, test_kovasznay_3d_extruded, test_kovasznay_3d_three_ranks,
             test_dfg_2d1, test_dfg_2d1_three_ranks, test_dfg_2d1_fine, test_bad_input])

@@ -1,8 +1,10 @@
 #include "seam/problem/fluid_model.hpp"
 
+#include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -117,7 +119,7 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
   // Velocity conditions (and, for the pinning rule below, which nodes have all components).
   const auto is_local = [&](std::int32_t c) { return layout.is_local_cell(c); };
   std::vector<FluidDirichletDof> dirichlet;
-  std::vector<int> n_prescribed(mesh.n_nodes(), 0);
+  std::vector<unsigned> prescribed(mesh.n_nodes(), 0); // bit i: component i prescribed
   bool loaded_boundary = false;
   for (const auto& bc : config.boundary_conditions) {
     switch (bc.type) {
@@ -130,8 +132,8 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
           if (layout.owns_node(n))
             dirichlet.push_back({layout.global_dof(n, bc.components[k]), n, expr});
       }
-      if (static_cast<int>(bc.components.size()) == dim)
-        for (auto n : region.nodes) n_prescribed[n] = dim;
+      for (int component : bc.components)
+        for (auto n : region.nodes) prescribed[n] |= 1u << component;
       break;
     }
     case io::BoundaryType::pressure:
@@ -147,13 +149,23 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
     }
   }
 
-  // An enclosed flow determines its pressure up to a constant: fix it at the first vertex.
+  // A flow whose normal velocity is prescribed on the whole boundary determines its pressure
+  // up to a constant: fix it at the first vertex. A facet is closed where every node has the
+  // component along the facet's normal prescribed (its largest normal component: slip walls
+  // are given per axis).
   bool open = loaded_boundary;
   const auto exterior = mesh::exterior_facets(mesh);
   for (std::int32_t f = 0; f < exterior.size() && !open; ++f) {
-    const auto cell = mesh.cell(exterior.cell[f]);
-    for (int k : fem::facet_nodes(mesh.cell_type[exterior.cell[f]], exterior.local[f]))
-      if (n_prescribed[cell[k]] < dim) open = true;
+    const auto c = exterior.cell[f];
+    const auto type = mesh.cell_type[c];
+    const auto centre = mesh::reference_centre(fem::facet_type(type, exterior.local[f]));
+    const auto normal = mesh::facet_normal(mesh, c, exterior.local[f], centre.data());
+    int axis = 0;
+    for (int i = 1; i < dim; ++i)
+      if (std::abs(normal[i]) > std::abs(normal[axis])) axis = i;
+    const auto cell = mesh.cell(c);
+    for (int k : fem::facet_nodes(type, exterior.local[f]))
+      if (!(prescribed[cell[k]] & (1u << axis))) open = true;
   }
   if (!open) {
     std::int32_t first = -1;

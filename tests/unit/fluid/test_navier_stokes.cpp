@@ -1,0 +1,120 @@
+// The Navier-Stokes kernel: the Jacobian against central differences of the residual on
+// distorted Taylor-Hood cells of every type, the Stokes part symmetric, and consistency:
+// a state that interpolates an exact solution of the equations (a uniform flow with a
+// constant pressure) leaves no residual in the cell's interior dofs.
+#include "seam/fluid/navier_stokes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+using namespace seam;
+using fem::CellType;
+
+namespace {
+
+struct Cell {
+  CellType type;
+  std::vector<double> x, w; // coordinates; state: velocity then vertex pressure
+};
+
+// The reference cell, stretched, sheared and perturbed, with a random smooth state.
+Cell make_cell(CellType type, unsigned seed) {
+  const int dim = fem::dimension(type);
+  const int n = fem::n_nodes(type);
+  const auto ref = fem::reference_nodes(type);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05), value(-1.0, 1.0);
+  Cell c{type, std::vector<double>(n * dim), {}};
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < dim; ++i) {
+      double v = ref[a * dim + i] * (1.0 + 0.3 * i);
+      if (i == 0) v += 0.2 * ref[a * dim + 1];
+      c.x[a * dim + i] = v + jitter(rng);
+    }
+  c.w.resize(fluid::n_element_dofs(type));
+  for (auto& v : c.w) v = value(rng);
+  return c;
+}
+
+fluid::FluidElementInput input(const Cell& c, const std::vector<double>& w) {
+  const int dim = fem::dimension(c.type);
+  const auto nu = static_cast<std::size_t>(fem::n_nodes(c.type) * dim);
+  return {c.type,
+          dim,
+          {2.0, 0.3},
+          c.x,
+          std::span<const double>(w.data(), nu),
+          std::span<const double>(w.data() + nu, w.size() - nu),
+          nullptr};
+}
+
+class NavierStokes : public ::testing::TestWithParam<CellType> {};
+
+TEST_P(NavierStokes, JacobianMatchesCentralDifferences) {
+  const auto c = make_cell(GetParam(), 7);
+  const auto nd = c.w.size();
+  std::vector<double> r(nd), K(nd * nd), rp(nd), rm(nd);
+  ASSERT_TRUE(fluid::navier_stokes(input(c, c.w), r, K));
+  const double h = 1e-6;
+  double scale = 0.0, worst = 0.0;
+  for (double v : K) scale = std::max(scale, std::abs(v));
+  for (std::size_t j = 0; j < nd; ++j) {
+    auto wp = c.w, wm = c.w;
+    wp[j] += h;
+    wm[j] -= h;
+    ASSERT_TRUE(fluid::navier_stokes(input(c, wp), rp, {}));
+    ASSERT_TRUE(fluid::navier_stokes(input(c, wm), rm, {}));
+    for (std::size_t i = 0; i < nd; ++i)
+      worst = std::max(worst, std::abs((rp[i] - rm[i]) / (2 * h) - K[i * nd + j]));
+  }
+  EXPECT_LT(worst, 1e-7 * scale) << fem::name(GetParam());
+}
+
+TEST_P(NavierStokes, StokesPartIsSymmetric) {
+  auto c = make_cell(GetParam(), 3);
+  const auto nd = c.w.size();
+  const auto nu = static_cast<std::size_t>(fem::n_nodes(c.type) * fem::dimension(c.type));
+  std::fill(c.w.begin(), c.w.begin() + nu, 0.0); // no flow: no convection
+  std::vector<double> r(nd), K(nd * nd);
+  ASSERT_TRUE(fluid::navier_stokes(input(c, c.w), r, K));
+  for (std::size_t i = 0; i < nd; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_NEAR(K[i * nd + j], K[j * nd + i], 1e-12 * (1 + std::abs(K[i * nd + j])));
+}
+
+TEST_P(NavierStokes, UniformFlowHasNoResidual) {
+  auto c = make_cell(GetParam(), 5);
+  const int dim = fem::dimension(c.type);
+  const int n = fem::n_nodes(c.type);
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < dim; ++i) c.w[a * dim + i] = 1.0 + 0.5 * i;
+  for (std::size_t k = n * dim; k < c.w.size(); ++k) c.w[k] = 3.0;
+  std::vector<double> r(c.w.size());
+  ASSERT_TRUE(fluid::navier_stokes(input(c, c.w), r, {}));
+  // The pressure rows vanish (div u = 0); the momentum rows hold only the boundary term of the
+  // constant pressure, int p dN_a/dx_i, whose sum over the nodes is zero.
+  for (std::size_t k = n * dim; k < r.size(); ++k) EXPECT_NEAR(r[k], 0.0, 1e-12);
+  for (int i = 0; i < dim; ++i) {
+    double sum = 0.0;
+    for (int a = 0; a < n; ++a) sum += r[a * dim + i];
+    EXPECT_NEAR(sum, 0.0, 1e-12);
+  }
+}
+
+TEST(NavierStokesCells, PressureCellsAndRejection) {
+  EXPECT_EQ(fluid::pressure_cell(CellType::quad9), CellType::quad4);
+  EXPECT_EQ(fluid::pressure_cell(CellType::tet10), CellType::tet4);
+  EXPECT_FALSE(fluid::is_taylor_hood(CellType::quad8));
+  EXPECT_THROW(fluid::pressure_cell(CellType::quad4), std::exception);
+  EXPECT_EQ(fluid::n_element_dofs(CellType::tri6), 6 * 2 + 3);
+}
+
+INSTANTIATE_TEST_SUITE_P(TaylorHood, NavierStokes,
+                         ::testing::Values(CellType::tri6, CellType::quad9, CellType::tet10,
+                                           CellType::hex27),
+                         [](const auto& info) { return std::string(fem::name(info.param)); });
+
+} // namespace
