@@ -11,9 +11,10 @@ Q2/Q1 elements, steady Newton solves, forces from the discrete residual.
   * Kovasznay flow (1948) at Re = 40 on [-0.5, 1] x [-0.5, 1.5] (shifted to [0, 1.5] x [0, 2])
     with the exact velocity on the whole boundary (enclosed: seam fixes the pressure constant):
     L2 error slopes ~3 (velocity) and ~2 (pressure) on Q2/Q1 under uniform refinement.
-  * DFG 2D-1 (Schaefer & Turek 1996, Re = 20): c_D within 0.5 % of 5.57954 and c_L within
-    5 % of 0.010619 (reference values of John & Matthies 2001 on fine meshes); the same
-    forces on 3 ranks as on 1.
+  * DFG 2D-1 (Schaefer & Turek 1996, Re = 20): c_D within 0.5 % of 5.57954, c_L within
+    5 % of 0.010619 and the pressure difference p(0.15, 0.2) - p(0.25, 0.2) (probes) within
+    0.5 % of 0.11752 (the benchmark's reference values on fine meshes); the same on 3 ranks
+    as on 1.
   * Bad input for fluids: exit 1 with a located message.
 """
 import math
@@ -174,7 +175,7 @@ def test_kovasznay_3d_three_ranks():
         H.assert_close(b, a, rtol=1e-8, what="%s L2 error on 3 ranks" % what)
 
 
-CD_REF, CL_REF = 5.57954, 0.010619
+CD_REF, CL_REF, DP_REF = 5.57954, 0.010619, 0.11752
 
 
 def dfg(h, hc, np=1):
@@ -189,20 +190,35 @@ def dfg(h, hc, np=1):
         H.write_case(work, "case.yaml", f.read())
     out = H.solve(os.path.join(work, "case.yaml"), np=np)
     f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
+    probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
+    dp = probes[0]["pressure"] - probes[1]["pressure"]
     dofs = H.read_json(os.path.join(out, "summary.json"))["dofs"]
     H.cleanup(work, out)
     # c = 2 F / (rho U_mean^2 D), U_mean = 2/3 * 0.3, D = 0.1
     scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
     cd, cl = scale * f["fx"], scale * f["fy"]
-    print("   h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), c_L = %.6f (%+.3f %%)"
-          % (h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl, 100 * (cl / CL_REF - 1)))
-    return cd, cl
+    print("   h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), c_L = %.6f (%+.3f %%), "
+          "dp = %.6f (%+.3f %%)" % (h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl,
+                                   100 * (cl / CL_REF - 1), dp, 100 * (dp / DP_REF - 1)))
+    return cd, cl, dp
 
 
 def test_dfg_2d1():
-    cd, cl = dfg(0.04, 0.006)
+    """Three meshes, each halving the cell sizes: the benchmark's tolerances on the middle
+    one, ten times tighter ones (c_D, dp) on the finest, and the c_D and c_L errors falling."""
+    levels = [dfg(0.08 / 2 ** k, 0.012 / 2 ** k) for k in range(3)]
+    cd, cl, dp = levels[1]
     H.assert_close(cd, CD_REF, rtol=5e-3, what="c_D")
     H.assert_close(cl, CL_REF, rtol=5e-2, what="c_L")
+    H.assert_close(dp, DP_REF, rtol=5e-3, what="pressure difference")
+    cd, cl, dp = levels[2]
+    H.assert_close(cd, CD_REF, rtol=5e-4, what="c_D on the finest mesh")
+    H.assert_close(cl, CL_REF, rtol=5e-3, what="c_L on the finest mesh")
+    H.assert_close(dp, DP_REF, rtol=5e-4, what="pressure difference on the finest mesh")
+    for k, (ref, what) in enumerate(((CD_REF, "c_D"), (CL_REF, "c_L"))):
+        errors = [abs(level[k] - ref) for level in levels]
+        if not errors[0] > errors[1] > errors[2]:
+            raise AssertionError("%s errors do not fall under refinement: %s" % (what, errors))
 
 
 def test_dfg_2d1_three_ranks():
@@ -210,13 +226,14 @@ def test_dfg_2d1_three_ranks():
     three = dfg(0.08, 0.012, np=3)
     H.assert_close(three[0], one[0], rtol=1e-8, what="c_D on 3 ranks")
     H.assert_close(three[1], one[1], rtol=1e-6, atol=1e-10, what="c_L on 3 ranks")
+    H.assert_close(three[2], one[2], rtol=1e-8, what="pressure difference on 3 ranks")
 
 
 @H.full_only
-def test_dfg_2d1_fine():
-    cd, cl = dfg(0.02, 0.003)
-    H.assert_close(cd, CD_REF, rtol=1e-3, what="c_D")
-    H.assert_close(cl, CL_REF, rtol=1e-2, what="c_L")
+def test_dfg_2d1_finer():
+    cd, cl, dp = dfg(0.01, 0.0015)
+    H.assert_close(cd, CD_REF, rtol=1e-4, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=2e-3, what="c_L")
 
 
 BAD_BASE = """\
@@ -279,4 +296,4 @@ def test_bad_input():
 if __name__ == "__main__":
     H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_poiseuille_exact_3d,
             test_kovasznay_rates, test_kovasznay_3d_extruded, test_kovasznay_3d_three_ranks,
-            test_dfg_2d1, test_dfg_2d1_three_ranks, test_dfg_2d1_fine, test_bad_input])
+            test_dfg_2d1, test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input])

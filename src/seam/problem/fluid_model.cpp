@@ -31,9 +31,6 @@ void check_supported(const io::Config& config) {
                 "time.integrator '" + std::string(io::to_string(config.time.integrator)) +
                     "' with fluid bodies: unsteady flow is not available yet in this version of "
                     "seam; use 'static' (each step solves the steady flow at its t)");
-  if (!config.output.probes.empty())
-    io::fail_at(config.output.probes.front().mark,
-                "probes in a fluid are not available yet in this version of seam");
   if (!config.output.exact_displacement.empty()) {
     io::Mark mark;
     mark.file = config.source.string();

@@ -2,6 +2,7 @@
 
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/json.hpp"
+#include "seam/mesh/locate.hpp"
 
 #include <cstdio>
 
@@ -30,6 +31,9 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
       errors_ = std::make_unique<io::CsvTable>(
           dir_ / "errors.csv",
           std::vector<std::string>{"step", "time", "velocity_l2_error", "pressure_l2_error"});
+    probes_ = std::make_unique<io::CsvTable>(
+        dir_ / "probes.csv", std::vector<std::string>{"step", "time", "probe", "x", "y", "z", "ux",
+                                                      "uy", "uz", "vx", "vy", "vz", "pressure"});
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
     const auto& mesh = layout.mesh();
     for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
@@ -40,9 +44,41 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
       types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
     }
   }
+  const auto& mesh = layout.mesh();
+  if (!config.output.probes.empty()) {
+    const mesh::PointLocator locator(mesh);
+    for (const auto& p : config.output.probes) {
+      const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim));
+      if (!loc) io::fail_at(p.mark, "probe lies outside the fluid mesh");
+      located_.push_back({p.point, loc->cell, loc->xi});
+    }
+  }
 }
 
 FluidOutput::~FluidOutput() = default;
+
+namespace {
+
+// Velocity (3 values) and pressure at reference point xi of cell c from the global vector.
+std::array<double, 4> evaluate_at(const FluidLayout& layout, std::span<const double> all,
+                                  std::int32_t c, const double* xi) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  const auto type = mesh.cell_type[c];
+  const auto nodes = mesh.cell(c);
+  std::array<double, fem::max_cell_nodes> N{};
+  std::array<double, 8> M{};
+  fem::shape_values(type, xi, N.data());
+  fem::shape_values(fluid::pressure_cell(type), xi, M.data());
+  std::array<double, 4> out{};
+  for (std::size_t a = 0; a < nodes.size(); ++a)
+    for (int i = 0; i < dim; ++i) out[i] += N[a] * all[layout.global_dof(nodes[a], i)];
+  for (int k = 0; k < fem::n_vertices(type); ++k)
+    out[3] += M[k] * all[layout.global_dof(nodes[k], dim)];
+  return out;
+}
+
+} // namespace
 
 void FluidOutput::newton(int step, int iteration, double residual, double increment) {
   if (!layout_.comm().is_root()) return;
@@ -52,7 +88,9 @@ void FluidOutput::newton(int step, int iteration, double residual, double increm
 void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force_fields) {
   ScopedTimer timer(timers_, "output");
   const bool due = force_fields || r.step % config_.output.every == 0;
-  if (due) write_fields(r.step, r.time, w);
+  std::vector<double> all;
+  if (due || !located_.empty()) all = w.gather_all(); // collective
+  if (due) write_fields(r.step, r.time, all);
   last_errors_ = r.errors;
   last_forces_ = r.forces;
   if (!layout_.comm().is_root()) return;
@@ -62,6 +100,12 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force
   for (std::size_t k = 0; k < r.forces.size(); ++k)
     forces_->add_row(
         {r.step, r.time, model_.forces[k].name, r.forces[k][0], r.forces[k][1], r.forces[k][2]});
+  for (std::size_t k = 0; k < located_.size(); ++k) {
+    const auto& pr = located_[k];
+    const auto v = evaluate_at(layout_, all, pr.cell, pr.xi.data());
+    probes_->add_row({r.step, r.time, static_cast<int>(k), pr.point[0], pr.point[1], pr.point[2],
+                      0.0, 0.0, 0.0, v[0], v[1], v[2], v[3]});
+  }
   if (errors_ && r.errors)
     errors_->add_row({r.step, r.time, r.errors->velocity_l2, r.errors->pressure_l2});
   if (!quiet_)
@@ -69,32 +113,29 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force
                 r.newton_iterations, r.residual);
 }
 
-void FluidOutput::write_fields(int step, double time, const la::Vector& w) {
-  const auto all = w.gather_all(); // collective
-  if (!layout_.comm().is_root()) return;
+std::vector<double> FluidOutput::nodal_pressure(std::span<const double> all) const {
   const auto& mesh = layout_.mesh();
-  const int dim = mesh.dim;
-  const auto n_nodes = static_cast<std::size_t>(mesh.n_nodes());
-  std::vector<double> velocity(n_nodes * 3, 0.0), pressure(n_nodes, 0.0);
-  for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
-    for (int i = 0; i < dim; ++i) velocity[n * 3 + i] = all[layout_.global_dof(n, i)];
+  std::vector<double> pressure(mesh.n_nodes(), 0.0);
   // The pressure is linear on each cell: its value at a node that is not a vertex is that of
   // the linear interpolant of the cell's vertices there.
-  std::array<double, 8> M{};
   for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
     const auto type = mesh.cell_type[c];
     const auto nodes = mesh.cell(c);
-    const auto pc = fluid::pressure_cell(type);
-    const int nv = fem::n_vertices(type);
     const auto xi = fem::reference_nodes(type);
-    for (int a = nv; a < fem::n_nodes(type); ++a) {
-      fem::shape_values(pc, &xi[a * dim], M.data());
-      double p = 0.0;
-      for (int k = 0; k < nv; ++k) p += M[k] * all[layout_.global_dof(nodes[k], dim)];
-      pressure[nodes[a]] = p;
-    }
-    for (int k = 0; k < nv; ++k) pressure[nodes[k]] = all[layout_.global_dof(nodes[k], dim)];
+    for (int a = 0; a < fem::n_nodes(type); ++a)
+      pressure[nodes[a]] = evaluate_at(layout_, all, c, &xi[a * mesh.dim])[3];
   }
+  return pressure;
+}
+
+void FluidOutput::write_fields(int step, double time, std::span<const double> all) {
+  if (!layout_.comm().is_root()) return;
+  const auto& mesh = layout_.mesh();
+  const int dim = mesh.dim;
+  std::vector<double> velocity(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
+  for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+    for (int i = 0; i < dim; ++i) velocity[n * 3 + i] = all[layout_.global_dof(n, i)];
+  const auto pressure = nodal_pressure(all);
   io::VtuPiece piece;
   piece.point_dim = dim;
   piece.points = mesh.x;

@@ -2,7 +2,8 @@
 // What a fluid run writes (CONTRACT.md, "Fluids"): the VTU fields `velocity` and `pressure`
 // with the PVD collection, steps.csv and newton.csv with the solid's columns, forces.csv,
 // errors.csv against an exact solution, summary.json. Rank 0 writes everything; the fields
-// are gathered there (one piece per step).
+// are gathered there (one piece per step). probes.csv has the solid's columns and the
+// fluid's velocity and pressure last (the mesh displacement ux..uz is 0 on a fixed mesh).
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
 #include "seam/io/table.hpp"
@@ -49,7 +50,9 @@ public:
   void finish(bool converged, int n_steps);
 
 private:
-  void write_fields(int step, double time, const la::Vector& w);
+  void write_fields(int step, double time, std::span<const double> all);
+  /// The pressure at every node from the global vector (linear on each cell).
+  std::vector<double> nodal_pressure(std::span<const double> all) const;
 
   const io::Config& config_;
   const FluidLayout& layout_;
@@ -58,7 +61,13 @@ private:
   bool quiet_;
   PhaseTimers timers_;
   double start_wall_;
-  std::unique_ptr<io::CsvTable> steps_, newton_, forces_, errors_;
+  std::unique_ptr<io::CsvTable> steps_, newton_, forces_, errors_, probes_;
+  struct Probe {
+    std::array<double, 3> point;
+    std::int32_t cell;
+    std::array<double, 3> xi;
+  };
+  std::vector<Probe> located_;
   std::unique_ptr<io::PvdCollection> pvd_;
   std::vector<std::int32_t> connectivity_, offsets_;
   std::vector<std::uint8_t> types_;
