@@ -128,7 +128,7 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
   // N_a u grad u is of degree 3 order (per direction on tensor cells, total on simplices).
   const auto rule = fem::quadrature(in.cell, 3 * fem::order(in.cell));
   Point q;
-  std::array<double, 3> u{}, f{}, conv{};
+  std::array<double, 3> u{}, f{}, material{};
   std::array<double, 9> grad_u{};
   std::array<double, max_nodes> u_dot_G{};
   double p = 0.0;
@@ -140,16 +140,19 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
     double div = 0.0;
     for (int i = 0; i < dim; ++i) {
       div += grad_u[i * dim + i];
-      conv[i] = 0.0;
-      for (int j = 0; j < dim; ++j) conv[i] += u[j] * grad_u[i * dim + j];
+      material[i] = 0.0;
+      for (int j = 0; j < dim; ++j) material[i] += u[j] * grad_u[i * dim + j];
     }
+    if (!in.u_dot.empty())
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i) material[i] += q.N[a] * in.u_dot[a * dim + i];
     const double w = q.weight;
     for (int a = 0; a < n; ++a) {
       const double* Ga = &q.G[a * dim];
       for (int i = 0; i < dim; ++i) {
         double visc = 0.0;
         for (int j = 0; j < dim; ++j) visc += Ga[j] * grad_u[i * dim + j];
-        r[a * dim + i] += w * (rho * q.N[a] * conv[i] + mu * visc - p * Ga[i] - q.N[a] * f[i]);
+        r[a * dim + i] += w * (rho * q.N[a] * material[i] + mu * visc - p * Ga[i] - q.N[a] * f[i]);
       }
     }
     for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div;
@@ -159,6 +162,8 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
       for (int j = 0; j < dim; ++j) s += u[j] * q.G[b * dim + j];
       u_dot_G[b] = s;
     }
+    // material = Du/Dt. Every column carries state_weight, the velocity block the mass term.
+    const double cw = in.state_weight;
     for (int a = 0; a < n; ++a) {
       const double* Ga = &q.G[a * dim];
       const double rNa = rho * q.N[a] * w;
@@ -166,18 +171,18 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
         const double* Gb = &q.G[b * dim];
         double GaGb = 0.0;
         for (int j = 0; j < dim; ++j) GaGb += Ga[j] * Gb[j];
-        const double diag = w * mu * GaGb + rNa * u_dot_G[b];
+        const double diag = cw * (w * mu * GaGb + rNa * u_dot_G[b]) + in.mass_weight * rNa * q.N[b];
         for (int i = 0; i < dim; ++i) {
           double* row = &K[(a * dim + i) * nd + b * dim];
-          for (int j = 0; j < dim; ++j) row[j] += rNa * q.N[b] * grad_u[i * dim + j];
+          for (int j = 0; j < dim; ++j) row[j] += cw * rNa * q.N[b] * grad_u[i * dim + j];
           row[i] += diag;
         }
       }
       for (int k = 0; k < nv; ++k) {
         const double wM = w * q.M[k];
         for (int i = 0; i < dim; ++i) {
-          K[(a * dim + i) * nd + nu + k] -= wM * Ga[i];
-          K[(nu + k) * nd + a * dim + i] -= wM * Ga[i];
+          K[(a * dim + i) * nd + nu + k] -= cw * wM * Ga[i];
+          K[(nu + k) * nd + a * dim + i] -= cw * wM * Ga[i];
         }
       }
     }

@@ -14,7 +14,9 @@
 //
 // Layout of the element vector: the velocity node-major (a * dim + i) for all n nodes, then
 // the pressure of the n_p vertices; matrices row-major, K[row * n_dofs + col].
-// Residual convention of seam: r = f_int - f_ext.
+// Residual convention of seam: r = f_int - f_ext. With time integration the residual gains
+// int rho N_a du_i/dt (Jansen, Whiting & Hulbert 2000: velocity and pressure at n + alpha_f,
+// the velocity's rate at n + alpha_m; the weights of the Jacobian come in with the input).
 #include "seam/fem/cell.hpp"
 
 #include <array>
@@ -45,6 +47,14 @@ struct FluidElementInput {
   std::span<const double> u;             ///< nodal velocity, n_nodes * dim
   std::span<const double> p;             ///< vertex pressure, n_vertices
   const BodyForce* body_force = nullptr; ///< optional
+  /// Unsteady flow (time integration): the nodal time derivative of the velocity, n_nodes *
+  /// dim, adding int rho N_a du_i/dt to r_{a i}; empty for steady flow.
+  std::span<const double> u_dot;
+  /// The derivative of the state (u, p) and of u_dot by the unknowns: K is
+  /// d r/d(u, p) * state_weight, plus M * mass_weight in the velocity block with M_ab =
+  /// int rho N_a N_b (generalized-alpha: alpha_f and alpha_m / (gamma dt)).
+  double state_weight = 1.0;
+  double mass_weight = 0.0;
 };
 
 /// Number of element dofs: n_nodes * dim + n_vertices.

@@ -26,11 +26,10 @@ void check_supported(const io::Config& config) {
                               "' in a run with fluid bodies: interfaces between fluids (mesh "
                               "tying) and fluid contact are not available yet in this version "
                               "of seam");
-  if (config.time.is_dynamic())
+  if (config.time.integrator == io::Integrator::energy_momentum)
     io::fail_at(config.time.mark,
-                "time.integrator '" + std::string(io::to_string(config.time.integrator)) +
-                    "' with fluid bodies: unsteady flow is not available yet in this version of "
-                    "seam; use 'static' (each step solves the steady flow at its t)");
+                "time.integrator 'energy_momentum' is a scheme for solids; a fluid is integrated "
+                "with 'generalized_alpha' (or solved steady with 'static')");
   if (!config.output.exact_displacement.empty()) {
     io::Mark mark;
     mark.file = config.source.string();

@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
 
 namespace seam::problem {
 
@@ -20,7 +22,8 @@ constexpr int max_cell_dofs = fem::max_cell_nodes * 4;
 // One cell's coordinates, velocity, pressure and dofs, gathered from the local vector form.
 struct CellData {
   int n_dofs = 0;
-  std::array<double, fem::max_cell_nodes * 3> x{}, u{};
+  std::array<double, fem::max_cell_nodes * 3> x{}, u{}, u_dot{};
+  bool unsteady = false;
   std::array<double, 8> p{};
   std::array<PetscInt, max_cell_dofs> dofs{};
   std::array<std::int32_t, max_cell_dofs> local{};
@@ -28,7 +31,18 @@ struct CellData {
   std::array<double, max_cell_dofs * max_cell_dofs> K{};
 };
 
-void gather(const FluidLayout& layout, std::span<const double> w, std::int32_t c, CellData& d) {
+// The state an assembly evaluates: the velocity from `u` (and its rate from `u_dot`, if
+// given), the pressure from `p`; the weights of the Jacobian (fluid::FluidElementInput).
+struct EvaluationState {
+  const la::Vector* u;
+  const la::Vector* p;
+  const la::Vector* u_dot = nullptr;
+  double state_weight = 1.0;
+  double mass_weight = 0.0;
+};
+
+void gather(const FluidLayout& layout, std::span<const double> u, std::span<const double> p,
+            std::span<const double> u_dot, std::int32_t c, CellData& d) {
   const auto& mesh = layout.mesh();
   const int dim = mesh.dim;
   const auto nodes = mesh.cell(c);
@@ -37,8 +51,11 @@ void gather(const FluidLayout& layout, std::span<const double> w, std::int32_t c
   const int nu = static_cast<int>(nodes.size()) * dim;
   for (std::size_t a = 0; a < nodes.size(); ++a)
     for (int i = 0; i < dim; ++i) d.x[a * dim + i] = mesh.x[nodes[a] * dim + i];
-  for (int k = 0; k < nu; ++k) d.u[k] = w[d.local[k]];
-  for (int k = nu; k < d.n_dofs; ++k) d.p[k - nu] = w[d.local[k]];
+  for (int k = 0; k < nu; ++k) d.u[k] = u[d.local[k]];
+  d.unsteady = !u_dot.empty();
+  if (d.unsteady)
+    for (int k = 0; k < nu; ++k) d.u_dot[k] = u_dot[d.local[k]];
+  for (int k = nu; k < d.n_dofs; ++k) d.p[k - nu] = p[d.local[k]];
 }
 
 fluid::FluidElementInput element_input(const FluidModel& model, const FluidLayout& layout,
@@ -46,32 +63,38 @@ fluid::FluidElementInput element_input(const FluidModel& model, const FluidLayou
   const auto type = layout.mesh().cell_type[c];
   const int dim = layout.dim();
   const auto n = static_cast<std::size_t>(fem::n_nodes(type) * dim);
-  return {type,
-          dim,
-          model.fluids[model.cell_fluid[c]],
-          std::span<const double>(d.x.data(), n),
-          std::span<const double>(d.u.data(), n),
-          std::span<const double>(d.p.data(), fem::n_vertices(type)),
-          nullptr};
+  fluid::FluidElementInput in;
+  in.cell = type;
+  in.dim = dim;
+  in.fluid = model.fluids[model.cell_fluid[c]];
+  in.x = std::span<const double>(d.x.data(), n);
+  in.u = std::span<const double>(d.u.data(), n);
+  in.p = std::span<const double>(d.p.data(), fem::n_vertices(type));
+  if (d.unsteady) in.u_dot = std::span<const double>(d.u_dot.data(), n);
+  return in;
 }
 
-// r (and K) at the state w (ghosts up to date) and time t; both assembled on return.
+// r (and K) at the state (ghosts up to date) and time t; both assembled on return.
 // Returns whether a cell of this rank is inverted.
-bool assemble(const FluidModel& model, const FluidLayout& layout, const la::Vector& w, double t,
-              la::Vector& r, la::Matrix* K) {
+bool assemble(const FluidModel& model, const FluidLayout& layout, const EvaluationState& state,
+              double t, la::Vector& r, la::Matrix* K) {
   const auto& mesh = layout.mesh();
   const int dim = mesh.dim;
   r.zero();
   if (K) K->zero();
   bool inverted = false;
   CellData d;
-  la::Vector::LocalView view(w, false);
-  const auto wl = view.values();
+  la::Vector::LocalView u_view(*state.u, false), p_view(*state.p, false);
+  std::optional<la::Vector::LocalView> u_dot_view;
+  if (state.u_dot) u_dot_view.emplace(*state.u_dot, false);
+  const auto u_dot = u_dot_view ? u_dot_view->values() : std::span<double>();
   // Body forces per cell: the sum of every body_force condition on it.
   std::vector<const BodyLoad*> cell_loads;
   for (auto c : layout.local_cells()) {
-    gather(layout, wl, c, d);
+    gather(layout, u_view.values(), p_view.values(), u_dot, c, d);
     auto in = element_input(model, layout, c, d);
+    in.state_weight = state.state_weight;
+    in.mass_weight = state.mass_weight;
     cell_loads.clear();
     for (const auto& load : model.body_loads)
       if (std::binary_search(load.cells.begin(), load.cells.end(), c)) cell_loads.push_back(&load);
@@ -187,7 +210,7 @@ FluidErrors errors(const io::Config& config, const FluidModel& model, const Flui
     CellData d;
     la::Vector::LocalView view(w, false);
     for (auto c : layout.local_cells()) {
-      gather(layout, view.values(), c, d);
+      gather(layout, view.values(), view.values(), {}, c, d);
       const auto e = fluid::error_integrals(element_input(model, layout, c, d), u_exact, p_exact);
       for (int k = 0; k < 4; ++k) sum[k] += e[k];
     }
@@ -198,6 +221,26 @@ FluidErrors errors(const io::Config& config, const FluidModel& model, const Flui
   const double p2 = model.pressure_pinned ? sum[1] - sum[2] * sum[2] / sum[3] : sum[1];
   out.pressure_l2 = std::sqrt(std::max(0.0, p2));
   return out;
+}
+
+// `initial_conditions`: the velocity at t = 0 on the nodes of their regions (zero elsewhere).
+void set_initial_velocity(const io::Config& config, const FluidLayout& layout, la::Vector& w) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  {
+    la::Vector::LocalView view(w, true);
+    auto v = view.values();
+    for (const auto& ic : config.initial_conditions) {
+      const auto& region = find_region(mesh, ic.region, {0, 1, 2, 3}, "an initial condition");
+      for (auto n : region.nodes) {
+        if (!layout.owns_node(n)) continue;
+        const double* x = &mesh.x[static_cast<std::size_t>(n) * dim];
+        for (int i = 0; i < dim; ++i)
+          v[layout.local_dof(n, i)] = ic.velocity[i](0.0, x[0], x[1], dim == 3 ? x[2] : 0.0);
+      }
+    }
+  }
+  w.update_ghosts();
 }
 
 struct NewtonOutcome {
@@ -219,7 +262,10 @@ public:
     for (const auto& d : model.dirichlet) fixed_.push_back(d.dof);
   }
 
-  NewtonOutcome solve(la::Vector& w, double t, int step) {
+  /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
+  using Evaluator = std::function<bool(const la::Vector& w, la::Vector& r, la::Matrix& K)>;
+
+  NewtonOutcome solve(la::Vector& w, double t, int step, const Evaluator& evaluate) {
     NewtonOutcome res;
     const auto& nc = config_.solver.newton;
     impose(model_, layout_, t, w);
@@ -228,7 +274,7 @@ public:
       bool inverted;
       {
         ScopedTimer timer(out_.timers(), "assembly");
-        inverted = assemble(model_, layout_, w, t, r_, &K_);
+        inverted = evaluate(w, r_, K_);
       }
       if (layout_.comm().any(inverted)) {
         res.failure = "a fluid cell is inverted (det J <= 0)";
@@ -307,19 +353,62 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
                 config.title.empty() ? config.source.c_str() : config.title.c_str(), mesh.n_nodes(),
                 mesh.n_cells(), info.n_dofs, comm.size(), dir.c_str());
   FluidNewton newton(config, model, layout, out);
-  la::Vector w = layout.make_vector(), w_saved = layout.make_vector();
+  la::Vector w = layout.make_vector(), w_old = layout.make_vector();
+  set_initial_velocity(config, layout, w);
+  impose(model, layout, 0.0, w);
   const bool exact = !config.output.exact_velocity.empty() || !config.output.exact_pressure.empty();
   const auto& tc = config.time;
+  // Generalized-alpha for first-order systems (Jansen, Whiting & Hulbert 2000, eqs. 17-19 and
+  // 26-27): second order and unconditionally stable for alpha_m >= alpha_f >= 1/2, with the
+  // high-frequency damping set by rho_inf.
+  const bool unsteady = tc.integrator == io::Integrator::generalized_alpha;
+  const double alpha_m = 0.5 * (3.0 - tc.rho_inf) / (1.0 + tc.rho_inf);
+  const double alpha_f = 1.0 / (1.0 + tc.rho_inf);
+  const double gamma = 0.5 + alpha_m - alpha_f;
+  la::Vector u_dot = layout.make_vector(), u_dot_new = layout.make_vector();
+  la::Vector u_dot_m = layout.make_vector(), w_f = layout.make_vector();
+  // The residual of the step holds the forces at t_{n+alpha_f}; they are reported at t_{n+1},
+  // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f, from the initial state's forces.
+  std::vector<std::array<double, 3>> last_forces;
+  if (unsteady) {
+    la::Vector r0 = layout.make_vector();
+    assemble(model, layout, {&w, &w}, 0.0, r0, nullptr);
+    last_forces = forces(model, layout, r0);
+  }
   double t = 0.0, dt = tc.dt;
   int step = 0, cuts = 0;
   while (t < tc.end * (1.0 - 1e-12)) {
     double t_new = std::min(t + dt, tc.end);
     const double k = std::round(t_new / tc.dt);
     if (std::abs(t_new - k * tc.dt) < 1e-9 * tc.dt) t_new = tc.time_at(static_cast<int>(k));
-    w_saved.copy_from(w);
-    const auto res = newton.solve(w, t_new, step + 1);
+    w_old.copy_from(w);
+    w_old.update_ghosts();
+    const double h = t_new - t;
+    const FluidNewton::Evaluator steady = [&](const la::Vector& wk, la::Vector& r, la::Matrix& K) {
+      return assemble(model, layout, {&wk, &wk}, t_new, r, &K);
+    };
+    // u_dot_{n+1} = (u_{n+1} - u_n) / (gamma h) - (1 - gamma) / gamma u_dot_n, and the
+    // intermediate states u_{n+alpha_f}, u_dot_{n+alpha_m}; loads at t_{n+alpha_f}.
+    const FluidNewton::Evaluator generalized_alpha = [&](const la::Vector& wk, la::Vector& r,
+                                                         la::Matrix& K) {
+      u_dot_new.copy_from(wk);
+      u_dot_new.axpy(-1.0, w_old);
+      u_dot_new.scale(1.0 / (gamma * h));
+      u_dot_new.axpy(-(1.0 - gamma) / gamma, u_dot);
+      u_dot_m.copy_from(u_dot);
+      u_dot_m.scale(1.0 - alpha_m);
+      u_dot_m.axpy(alpha_m, u_dot_new);
+      u_dot_m.update_ghosts();
+      w_f.copy_from(w_old);
+      w_f.scale(1.0 - alpha_f);
+      w_f.axpy(alpha_f, wk);
+      w_f.update_ghosts();
+      return assemble(model, layout, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h)},
+                      t + alpha_f * h, r, &K);
+    };
+    const auto res = newton.solve(w, t_new, step + 1, unsteady ? generalized_alpha : steady);
     if (!res.converged) {
-      w.copy_from(w_saved);
+      w.copy_from(w_old);
       w.update_ghosts();
       if (cuts >= tc.max_step_cuts) {
         out.finish(false, step);
@@ -332,6 +421,10 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
         std::printf("seam: %s at t = %g; cutting the step to dt = %g\n", res.failure, t_new, dt);
       continue;
     }
+    if (unsteady) {
+      u_dot.copy_from(u_dot_new); // of the converged state: its last evaluation
+      u_dot.update_ghosts();
+    }
     ++step;
     t = t_new;
     if (cuts > 0) dt = std::min(2.0 * dt, tc.dt);
@@ -341,6 +434,12 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
     rec.newton_iterations = res.iterations;
     rec.residual = res.residual;
     rec.forces = forces(model, layout, newton.full_residual());
+    if (unsteady) {
+      for (std::size_t g = 0; g < rec.forces.size(); ++g)
+        for (int i = 0; i < 3; ++i)
+          rec.forces[g][i] = (rec.forces[g][i] - (1.0 - alpha_f) * last_forces[g][i]) / alpha_f;
+      last_forces = rec.forces;
+    }
     if (exact) rec.errors = errors(config, model, layout, w, t);
     out.step(rec, w, t >= tc.end * (1.0 - 1e-12));
   }
