@@ -1,5 +1,6 @@
 """Incompressible Navier-Stokes on fixed meshes (issue 14, first phase): Taylor-Hood P2/P1 and
-Q2/Q1 elements, steady Newton solves, forces from the discrete residual.
+Q2/Q1 elements on quadratic meshes, equal-order stabilized (PSPG/SUPG/LSIC) elements on linear
+ones, steady Newton solves and generalized-alpha, forces from the discrete residual.
 
   * Poiseuille flow in the channel [0, 2] x [0, 1] (inflow u = 4 y (1 - y), no-slip walls,
     do-nothing outflow, mu = 0.1): the quadratic velocity and the linear pressure
@@ -15,6 +16,8 @@ Q2/Q1 elements, steady Newton solves, forces from the discrete residual.
     5 % of 0.010619 and the pressure difference p(0.15, 0.2) - p(0.25, 0.2) (probes) within
     0.5 % of 0.11752 (the benchmark's reference values on fine meshes); the same on 3 ranks
     as on 1.
+  * Stabilized linear cells: Kovasznay rates ~2 (velocity) and >= 1.5 (pressure) on quad4
+    and tri3; DFG 2D-1 on tri3 within the same tolerances.
   * Generalized-alpha (Jansen, Whiting & Hulbert 2000): a pulsating Poiseuille flow, exact in
     space, converges at second order in time in velocity and pressure.
   * Bad input for fluids: exit 1 with a located message.
@@ -159,7 +162,7 @@ def kovasznay(re):
     return u, p
 
 
-def kovasznay_errors(dim, h, np=1):
+def kovasznay_errors(dim, h, np=1, order=2, kind="quad_structured"):
     """L2 errors of Kovasznay flow on Q2/Q1 (structured quad9 or hex27 cells). In 3D the flow
     is extruded over the depth 0.5 with slip walls (u_z = 0) at z = 0 and z = 0.5."""
     u, p = kovasznay(40.0)
@@ -169,10 +172,10 @@ def kovasznay_errors(dim, h, np=1):
         faces = ["left", "right", "front", "back"]
     q = lambda v: "[" + ", ".join("'%s'" % s for s in v) + "]"  # noqa: E731
     work = tempfile.mkdtemp(prefix="seam_fluid_")
-    geo = (geometry.rectangle("quad_structured", h, 2, lx=1.5, ly=2.0) if dim == 2
-           else geometry.box("hex_structured", h, 2, lx=1.5, ly=2.0, lz=0.5))
+    geo = (geometry.rectangle(kind, h, order, lx=1.5, ly=2.0) if dim == 2
+           else geometry.box("hex_structured", h, order, lx=1.5, ly=2.0, lz=0.5))
     H.write_case(work, "body.geo", geo)
-    lines = ["dimension: %d" % dim, "mesh: {geo: body.geo, order: 2}",
+    lines = ["dimension: %d" % dim, "mesh: {geo: body.geo, order: %d}" % order,
              "materials: {f: {model: newtonian_fluid, density: 1, viscosity: 0.025}}",
              "bodies: [{region: body, material: f}]", "boundary_conditions:"]
     if dim == 3:
@@ -202,6 +205,21 @@ def test_kovasznay_rates():
     rates(2, (0.25, 0.125, 0.0625, 0.03125))
 
 
+def test_kovasznay_rates_stabilized():
+    """Equal-order linear cells with PSPG/SUPG/LSIC: second order in the velocity, and
+    (better than the 1.5 of the theory on these meshes) nearly so in the pressure."""
+    for kind in ("quad_structured", "tri"):
+        sizes = (0.1, 0.05, 0.025)
+        eu, ep = zip(*[kovasznay_errors(2, h, order=1, kind=kind) for h in sizes])
+        su, sp = H.slope(sizes, eu), H.slope(sizes, ep)
+        print("   %s, h = %s" % ("quad4" if kind != "tri" else "tri3", list(sizes)))
+        print("   velocity L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in eu), su))
+        print("   pressure L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in ep), sp))
+        if abs(su - 2) > 0.3 or sp < 1.5:
+            raise AssertionError("slopes velocity %.3f (expected 2), pressure %.3f (expected "
+                                 ">= 1.5)" % (su, sp))
+
+
 def test_kovasznay_3d_extruded():
     """The extruded flow does not depend on z, and neither does the discrete one on the
     extruded mesh: the 3D errors are the 2D ones times sqrt(depth), on two meshes; the
@@ -228,8 +246,9 @@ def test_kovasznay_3d_three_ranks():
 CD_REF, CL_REF, DP_REF = 5.57954, 0.010619, 0.11752
 
 
-def dfg(h, hc, np=1):
-    """c_D, c_L of DFG 2D-1 on the example's geometry with cell sizes h (far) and hc."""
+def dfg(h, hc, np=1, order=2):
+    """c_D, c_L and the pressure difference of DFG 2D-1 on the example's geometry with cell
+    sizes h (far) and hc, Taylor-Hood (order 2) or stabilized linear cells (order 1)."""
     work = tempfile.mkdtemp(prefix="seam_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -237,7 +256,7 @@ def dfg(h, hc, np=1):
     geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % hc)
     H.write_case(work, "dfg.geo", geo)
     with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
-        H.write_case(work, "case.yaml", f.read())
+        H.write_case(work, "case.yaml", f.read().replace("order: 2", "order: %d" % order))
     out = H.solve(os.path.join(work, "case.yaml"), np=np)
     f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
     probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
@@ -247,8 +266,8 @@ def dfg(h, hc, np=1):
     # c = 2 F / (rho U_mean^2 D), U_mean = 2/3 * 0.3, D = 0.1
     scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
     cd, cl = scale * f["fx"], scale * f["fy"]
-    print("   h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), c_L = %.6f (%+.3f %%), "
-          "dp = %.6f (%+.3f %%)" % (h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl,
+    print("   order %d, h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), c_L = %.6f (%+.3f %%), "
+          "dp = %.6f (%+.3f %%)" % (order, h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl,
                                    100 * (cl / CL_REF - 1), dp, 100 * (dp / DP_REF - 1)))
     return cd, cl, dp
 
@@ -271,6 +290,15 @@ def test_dfg_2d1():
             raise AssertionError("%s errors do not fall under refinement: %s" % (what, errors))
 
 
+def test_dfg_2d1_stabilized():
+    """Linear tri3 cells with stabilization, at the cell sizes that give about as many nodes
+    as the Taylor-Hood mesh of test_dfg_2d1's middle level."""
+    cd, cl, dp = dfg(0.02, 0.003, order=1)
+    H.assert_close(cd, CD_REF, rtol=5e-3, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=5e-2, what="c_L")
+    H.assert_close(dp, DP_REF, rtol=5e-3, what="pressure difference")
+
+
 def test_dfg_2d1_three_ranks():
     one = dfg(0.08, 0.012)
     three = dfg(0.08, 0.012, np=3)
@@ -288,7 +316,7 @@ def test_dfg_2d1_finer():
 
 BAD_BASE = """\
 dimension: 2
-mesh: {geo: body.geo, order: %(order)d}
+mesh: {geo: body.geo, order: %(order)s}
 materials:
   oil: %(material)s
 bodies: [{region: body, material: oil}]
@@ -332,8 +360,8 @@ def test_bad_input():
                left="dirichlet", line=7)
     expect_bad("velocity on a solid", ["type 'velocity'", "no fluid body"],
                material="{model: linear_elastic, young: 1, poisson: 0.3}", order=1, line=7)
-    expect_bad("linear fluid mesh", ["quad4", "Taylor-Hood", "not available yet"], order=1,
-               line=5)
+    expect_bad("serendipity fluid mesh", ["quad8", "serendipity cells are not fluid cells"],
+               order="2, serendipity: true", line=5)
     expect_bad("fluid with mesh tying",
                ["mesh_tying", "not available yet"],
                extra="interfaces: [{name: t, type: mesh_tying, slave: top, master: bottom}]\n")
@@ -345,5 +373,5 @@ def test_bad_input():
 
 if __name__ == "__main__":
     H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_poiseuille_exact_3d,
-            test_generalized_alpha_second_order, test_kovasznay_rates, test_kovasznay_3d_extruded, test_kovasznay_3d_three_ranks,
-            test_dfg_2d1, test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input])
+            test_generalized_alpha_second_order, test_kovasznay_rates, test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded, test_kovasznay_3d_three_ranks,
+            test_dfg_2d1, test_dfg_2d1_stabilized, test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input])

@@ -84,12 +84,109 @@ void interpolate(const FluidElementInput& in, const Point& q, double* u, double*
   for (int k = 0; k < fem::n_vertices(in.cell); ++k) p += q.M[k] * in.p[k];
 }
 
+// Residual-based stabilization of equal-order linear cells (PSPG, SUPG, LSIC; Tezduyar 1991,
+// Whiting & Jansen 2001), added at one quadrature point. The strong momentum residual
+// R = rho Du/Dt + grad p - f (the viscous term vanishes on linear cells up to their
+// bilinear part, neglected as usual) tests against tau_M (rho u . grad N_a) and -tau_M grad
+// M_k, div u against tau_C div N_a, with
+//   tau_M = ((2 rho / dt)^2 + (2 rho |u| / h)^2 + (12 mu / h^2)^2)^(-1/2),  tau_C = h^2 / (8 tau_M)
+// (dt = 0 for steady flow); the derivatives of tau by u are in K, so Newton stays exact.
+struct Stabilization {
+  double h = 0.0;  // cell size: diameter of the circle (sphere) of the cell's area (volume)
+  double dt = 0.0; // 0: steady
+};
+
+void add_stabilization(const FluidElementInput& in, const Stabilization& st, const Point& q,
+                       const double* u, const double* grad_u, const double* material,
+                       const double* f, std::span<double> r, std::span<double> K) {
+  const int dim = in.dim;
+  const int n = fem::n_nodes(in.cell);
+  const int nu = n * dim;
+  const int nd = nu + n;
+  const double rho = in.fluid.density, mu = in.fluid.viscosity, w = q.weight;
+  const double cw = in.state_weight;
+  std::array<double, 3> R{};
+  double uu = 0.0, div = 0.0;
+  for (int i = 0; i < dim; ++i) {
+    double grad_p = 0.0;
+    for (int k = 0; k < n; ++k) grad_p += in.p[k] * q.G[k * dim + i];
+    R[i] = rho * material[i] + grad_p - f[i];
+    uu += u[i] * u[i];
+    div += grad_u[i * dim + i];
+  }
+  const double A = st.dt > 0.0 ? std::pow(2.0 * rho / st.dt, 2) : 0.0;
+  const double B = std::pow(2.0 * rho / st.h, 2);
+  const double C = std::pow(12.0 * mu / (st.h * st.h), 2);
+  const double tau = 1.0 / std::sqrt(A + B * uu + C);
+  const double tau_c = st.h * st.h / (8.0 * tau);
+  std::array<double, max_nodes> uG{};
+  for (int a = 0; a < n; ++a)
+    for (int j = 0; j < dim; ++j) uG[a] += u[j] * q.G[a * dim + j];
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < dim; ++i)
+      r[a * dim + i] += w * (tau * rho * uG[a] * R[i] + tau_c * q.G[a * dim + i] * div);
+  for (int k = 0; k < n; ++k) {
+    double GR = 0.0;
+    for (int i = 0; i < dim; ++i) GR += q.G[k * dim + i] * R[i];
+    r[nu + k] -= w * tau * GR;
+  }
+  if (K.empty()) return;
+  // Derivatives by the unknown velocity u_{b j} and pressure p_l.
+  for (int b = 0; b < n; ++b) {
+    const double Nb = q.N[b];
+    const double* Gb = &q.G[b * dim];
+    for (int j = 0; j < dim; ++j) {
+      const double dtau = -cw * tau * tau * tau * B * u[j] * Nb;
+      const double dtau_c = -tau_c / tau * dtau;
+      // dR_i / du_{b j}
+      std::array<double, 3> dR{};
+      for (int i = 0; i < dim; ++i)
+        dR[i] = cw * rho * Nb * grad_u[i * dim + j] + (i == j ? cw * rho * uG[b] : 0.0) +
+                (i == j ? in.mass_weight * rho * Nb : 0.0);
+      const int col = b * dim + j;
+      for (int a = 0; a < n; ++a) {
+        const double* Ga = &q.G[a * dim];
+        const double duG = cw * Nb * Ga[j];
+        for (int i = 0; i < dim; ++i)
+          K[(a * dim + i) * nd + col] +=
+              w * (rho * (dtau * uG[a] * R[i] + tau * duG * R[i] + tau * uG[a] * dR[i]) +
+                   dtau_c * Ga[i] * div + tau_c * Ga[i] * cw * Gb[j]);
+      }
+      for (int k = 0; k < n; ++k) {
+        double GR = 0.0, GdR = 0.0;
+        for (int i = 0; i < dim; ++i) {
+          GR += q.G[k * dim + i] * R[i];
+          GdR += q.G[k * dim + i] * dR[i];
+        }
+        K[(nu + k) * nd + col] -= w * (dtau * GR + tau * GdR);
+      }
+    }
+  }
+  for (int l = 0; l < n; ++l) {
+    const double* Gl = &q.G[l * dim];
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < dim; ++i)
+        K[(a * dim + i) * nd + nu + l] += w * tau * rho * uG[a] * cw * Gl[i];
+    for (int k = 0; k < n; ++k) {
+      double GG = 0.0;
+      for (int i = 0; i < dim; ++i) GG += q.G[k * dim + i] * Gl[i];
+      K[(nu + k) * nd + nu + l] -= w * tau * cw * GG;
+    }
+  }
+}
+
 } // namespace
 
 bool is_taylor_hood(fem::CellType cell) {
   using fem::CellType;
   return cell == CellType::tri6 || cell == CellType::quad9 || cell == CellType::tet10 ||
          cell == CellType::hex27;
+}
+
+bool is_stabilized(fem::CellType cell) {
+  using fem::CellType;
+  return cell == CellType::tri3 || cell == CellType::quad4 || cell == CellType::tet4 ||
+         cell == CellType::hex8;
 }
 
 fem::CellType pressure_cell(fem::CellType velocity_cell) {
@@ -103,9 +200,15 @@ fem::CellType pressure_cell(fem::CellType velocity_cell) {
     return CellType::tet4;
   case CellType::hex27:
     return CellType::hex8;
+  case CellType::tri3:
+  case CellType::quad4:
+  case CellType::tet4:
+  case CellType::hex8:
+    return velocity_cell; // equal order
   default:
     SEAM_THROW(InputError, "cell type ", fem::name(velocity_cell),
-               " is not a Taylor-Hood velocity cell (tri6, quad9, tet10, hex27)");
+               " is not a fluid cell of seam (tri3, quad4, tet4, hex8 stabilized; tri6, quad9, "
+               "tet10, hex27 Taylor-Hood)");
   }
 }
 
@@ -128,6 +231,17 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
   // N_a u grad u is of degree 3 order (per direction on tensor cells, total on simplices).
   const auto rule = fem::quadrature(in.cell, 3 * fem::order(in.cell));
   Point q;
+  const bool stabilized = is_stabilized(in.cell);
+  Stabilization st;
+  if (stabilized) {
+    double volume = 0.0;
+    for (int iq = 0; iq < rule.n_points; ++iq) {
+      if (!evaluate(in, &rule.points[iq * dim], rule.weights[iq], q)) return false;
+      volume += q.weight;
+    }
+    st.h = dim == 2 ? 2.0 * std::sqrt(volume / M_PI) : std::cbrt(6.0 * volume / M_PI);
+    st.dt = in.time_step;
+  }
   std::array<double, 3> u{}, f{}, material{};
   std::array<double, 9> grad_u{};
   std::array<double, max_nodes> u_dot_G{};
@@ -156,6 +270,8 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
       }
     }
     for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div;
+    if (stabilized)
+      add_stabilization(in, st, q, u.data(), grad_u.data(), material.data(), f.data(), r, K);
     if (K.empty()) continue;
     for (int b = 0; b < n; ++b) {
       double s = 0.0;

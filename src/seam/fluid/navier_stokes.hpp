@@ -12,6 +12,9 @@
 // with N_a the velocity and M_k the pressure shape functions. The Stokes part of the
 // Jacobian is symmetric; the convective part is linearized in full (Newton).
 //
+// Linear cells (tri3, quad4, tet4, hex8) use equal-order velocity and pressure with the
+// residual-based PSPG/SUPG/LSIC stabilization of navier_stokes.cpp.
+//
 // Layout of the element vector: the velocity node-major (a * dim + i) for all n nodes, then
 // the pressure of the n_p vertices; matrices row-major, K[row * n_dofs + col].
 // Residual convention of seam: r = f_int - f_ext. With time integration the residual gains
@@ -30,11 +33,15 @@ struct Fluid {
   double viscosity = 1.0; ///< dynamic viscosity mu > 0
 };
 
-/// The linear cell of the pressure on a Taylor-Hood cell (tri6 -> tri3, quad9 -> quad4,
-/// tet10 -> tet4, hex27 -> hex8). Throws InputError for any other cell type, naming it.
+/// The cell of the pressure: the linear cell of a Taylor-Hood cell (tri6 -> tri3, quad9 ->
+/// quad4, tet10 -> tet4, hex27 -> hex8), a linear cell itself (equal order). Throws InputError
+/// for any other cell type, naming it.
 fem::CellType pressure_cell(fem::CellType velocity_cell);
-/// Whether `cell` is a velocity cell of seam's fluid discretization.
+/// Whether `cell` is a Taylor-Hood velocity cell (tri6, quad9, tet10, hex27).
 bool is_taylor_hood(fem::CellType cell);
+/// Whether `cell` is a linear cell with equal-order velocity and pressure and residual-based
+/// stabilization (tri3, quad4, tet4, hex8).
+bool is_stabilized(fem::CellType cell);
 
 /// Body force per unit volume at the physical point x (dim values written to `value`).
 using BodyForce = std::function<void(const double* x, double* value)>;
@@ -55,6 +62,8 @@ struct FluidElementInput {
   /// int rho N_a N_b (generalized-alpha: alpha_f and alpha_m / (gamma dt)).
   double state_weight = 1.0;
   double mass_weight = 0.0;
+  /// The time step, for the stabilization of linear cells (0: steady flow).
+  double time_step = 0.0;
 };
 
 /// Number of element dofs: n_nodes * dim + n_vertices.

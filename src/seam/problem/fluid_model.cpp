@@ -97,12 +97,13 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
     const auto& region = find_region(mesh, body.region, {dim}, "a body");
     for (auto c : region.cells) {
       const auto type = mesh.cell_type[c];
-      if (!fluid::is_taylor_hood(type))
+      if (!fluid::is_taylor_hood(type) && !fluid::is_stabilized(type))
         io::fail_at(body.mark,
                     "fluid body '" + body.region.name + "' has " + std::string(fem::name(type)) +
                         " cells; seam's fluids use Taylor-Hood elements on quadratic meshes "
-                        "(tri6, quad9, tet10, hex27: mesh with order 2, not serendipity); "
-                        "stabilized linear fluid cells are not available yet in this version");
+                        "(tri6, quad9, tet10, hex27) or stabilized equal-order elements on "
+                        "linear ones (tri3, quad4, tet4, hex8); serendipity cells are not "
+                        "fluid cells");
       model.cell_fluid[c] = fluid_index.at(body.material);
     }
   }

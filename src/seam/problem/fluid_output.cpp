@@ -168,7 +168,6 @@ void FluidOutput::finish(bool converged, int n_steps) {
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
   j["nodes"] = layout_.mesh().n_nodes();
   j["cells"] = layout_.mesh().n_cells();
-  j["discretization"] = "taylor_hood";
   auto& forces = j["forces"];
   forces = io::Json::array();
   for (std::size_t k = 0; k < last_forces_.size(); ++k) {

@@ -39,6 +39,7 @@ struct EvaluationState {
   const la::Vector* u_dot = nullptr;
   double state_weight = 1.0;
   double mass_weight = 0.0;
+  double time_step = 0.0; // 0: steady
 };
 
 void gather(const FluidLayout& layout, std::span<const double> u, std::span<const double> p,
@@ -95,6 +96,7 @@ bool assemble(const FluidModel& model, const FluidLayout& layout, const Evaluati
     auto in = element_input(model, layout, c, d);
     in.state_weight = state.state_weight;
     in.mass_weight = state.mass_weight;
+    in.time_step = state.time_step;
     cell_loads.clear();
     for (const auto& load : model.body_loads)
       if (std::binary_search(load.cells.begin(), load.cells.end(), c)) cell_loads.push_back(&load);
@@ -348,7 +350,7 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
   if (check_only) return info;
   FluidOutput out(config, layout, model, dir, quiet);
   if (comm.is_root() && !quiet)
-    std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs (Taylor-Hood), %d rank(s); "
+    std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s); "
                 "output in %s\n",
                 config.title.empty() ? config.source.c_str() : config.title.c_str(), mesh.n_nodes(),
                 mesh.n_cells(), info.n_dofs, comm.size(), dir.c_str());
@@ -403,7 +405,7 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
       w_f.scale(1.0 - alpha_f);
       w_f.axpy(alpha_f, wk);
       w_f.update_ghosts();
-      return assemble(model, layout, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h)},
+      return assemble(model, layout, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h), h},
                       t + alpha_f * h, r, &K);
     };
     const auto res = newton.solve(w, t_new, step + 1, unsteady ? generalized_alpha : steady);

@@ -158,8 +158,8 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   if (has_fluid(config)) {
     const auto info = run_fluid(config, mesh, comm, {}, true, true);
     if (comm.is_root())
-      std::printf("%s: ok\n  fluid, dimension %d, %d nodes, %d cells, %lld dofs (Taylor-Hood)\n",
-                  input.c_str(), mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
+      std::printf("%s: ok\n  fluid, dimension %d, %d nodes, %d cells, %lld dofs\n", input.c_str(),
+                  mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
     return 0;
   }
   const Discretization disc(mesh, comm);
