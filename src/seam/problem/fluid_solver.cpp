@@ -429,7 +429,10 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
     }
     ++step;
     t = t_new;
-    if (cuts > 0) dt = std::min(2.0 * dt, tc.dt);
+    if (cuts > 0) {
+      dt = std::min(2.0 * dt, tc.dt); // grow back after a successful cut step
+      if (dt >= tc.dt) cuts = 0;
+    }
     FluidStepRecord rec;
     rec.step = step;
     rec.time = t;
