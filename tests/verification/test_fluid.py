@@ -371,7 +371,33 @@ def test_bad_input():
                extra="output: {forces: [{name: f, regions: [nowhere]}]}\n", line=9)
 
 
+def test_gives_up_after_step_cuts():
+    """Newton limited to 2 iterations cannot reach the DFG 2D-1 flow from rest: the step is cut
+    twice, then the run ends with exit code 2 and a failed summary.json."""
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
+        H.write_case(work, "dfg.geo", f.read().replace("DefineNumber[0.04,", "DefineNumber[0.08,")
+                     .replace("DefineNumber[0.006,", "DefineNumber[0.012,"))
+    with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
+        text = f.read().replace("steps: 1}", "steps: 1, max_step_cuts: 2}\n"
+                                "solver: {newton: {max_iterations: 2}}")
+    H.write_case(work, "case.yaml", text)
+    try:
+        code, out, err = H.run(["run", "case.yaml", "-o", "out", "--quiet"], cwd=work,
+                               check=False, timeout=120)
+        if code != 2 or "after 2 step cuts" not in err:
+            raise AssertionError("exit %d, expected 2 after 2 step cuts:\n%s%s" % (code, out, err))
+        status = H.read_json(os.path.join(work, "out", "summary.json"))["status"]
+        if status != "failed":
+            raise AssertionError("summary.json status %r, expected 'failed'" % status)
+    finally:
+        H.cleanup(work)
+
+
 if __name__ == "__main__":
     H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_poiseuille_exact_3d,
-            test_generalized_alpha_second_order, test_kovasznay_rates, test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded, test_kovasznay_3d_three_ranks,
-            test_dfg_2d1, test_dfg_2d1_stabilized, test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input])
+            test_generalized_alpha_second_order, test_kovasznay_rates,
+            test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded,
+            test_kovasznay_3d_three_ranks, test_dfg_2d1, test_dfg_2d1_stabilized,
+            test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input,
+            test_gives_up_after_step_cuts])
