@@ -266,8 +266,8 @@ def dfg(h, hc, np=1, order=2):
     # c = 2 F / (rho U_mean^2 D), U_mean = 2/3 * 0.3, D = 0.1
     scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
     cd, cl = scale * f["fx"], scale * f["fy"]
-    print("   order %d, h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), c_L = %.6f (%+.3f %%), "
-          "dp = %.6f (%+.3f %%)" % (order, h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl,
+    print("   order %d, h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), "
+          "c_L = %.6f (%+.3f %%), dp = %.6f (%+.3f %%)" % (order, h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl,
                                    100 * (cl / CL_REF - 1), dp, 100 * (dp / DP_REF - 1)))
     return cd, cl, dp
 
