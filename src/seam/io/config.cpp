@@ -81,12 +81,32 @@ MeshConfig read_mesh(const Node& node, const fs::path& folder) {
   return mesh;
 }
 
+// An incompressible Newtonian fluid: density and dynamic viscosity, both required.
+Material read_fluid(const Map& map, Material material) {
+  map.forbid("young", true, "applies only to solid materials (a newtonian_fluid has 'viscosity')");
+  map.forbid("poisson", true,
+             "applies only to solid materials (a newtonian_fluid is incompressible)");
+  for (const char* key : {"density", "viscosity"}) {
+    const auto value = map.get(key);
+    if (!value)
+      map.node().fail(concat("missing required key '", key,
+                             "': a newtonian_fluid needs "
+                             "'density' (mass per volume) and 'viscosity' (dynamic viscosity)"));
+    const double number = value->number();
+    if (!(number > 0.0)) value->fail(concat("must be > 0, got ", format_number(number)));
+    (key[0] == 'd' ? material.density : material.viscosity) = number;
+  }
+  return material;
+}
+
 Material read_material(const std::string& name, const Node& node) {
-  const Map map(node, {"model", "young", "poisson", "density"});
+  const Map map(node, {"model", "young", "poisson", "density", "viscosity"});
   Material material;
   material.name = name;
   material.mark = node.mark();
   material.model = map.required("model").choice(detail::material_names);
+  if (material.is_fluid()) return read_fluid(map, std::move(material));
+  map.forbid("viscosity", true, "applies only to model 'newtonian_fluid'");
   // Positive definiteness of the isotropic elasticity tensor: mu > 0 and 3 lambda + 2 mu > 0,
   // i.e. young > 0 and -1 < poisson < 0.5 (0.5 is incompressible, needing a mixed method).
   const Node young = map.required("young");
@@ -225,8 +245,35 @@ ParallelConfig read_parallel(const Node& node) {
   return parallel;
 }
 
+// output.forces: [{name, regions: [...]}, ...]; names are unique (they are forces.csv keys).
+std::vector<ForceGroup> read_forces(const Node& node) {
+  std::vector<ForceGroup> groups;
+  for (const Node& item : node.sequence()) {
+    const Map map(item, {"name", "regions"});
+    ForceGroup group;
+    group.mark = item.mark();
+    const Node name = map.required("name");
+    group.name = name.string();
+    if (group.name.empty()) name.fail("expected a name, got ''");
+    for (const auto& other : groups)
+      if (other.name == group.name)
+        name.fail(concat("duplicate force name '", group.name, "' (first at line ", other.mark.line,
+                         ")"));
+    const Node regions = map.required("regions");
+    for (const Node& region : regions.sequence()) {
+      const std::string text = region.string();
+      if (text.empty()) region.fail("expected a region name (a Gmsh physical group), got ''");
+      group.regions.push_back(RegionRef{text, region.mark()});
+    }
+    if (group.regions.empty()) regions.fail("expected at least one boundary region");
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
 OutputConfig read_output(const Node& node, int dimension) {
-  const Map map(node, {"every", "probes", "exact_displacement"});
+  const Map map(node, {"every", "probes", "exact_displacement", "forces", "exact_velocity",
+                       "exact_pressure"});
   OutputConfig output;
   if (const auto every = map.get("every")) {
     output.every = every->integer();
@@ -238,6 +285,15 @@ OutputConfig read_output(const Node& node, int dimension) {
   }
   if (const auto exact = map.get("exact_displacement"))
     output.exact_displacement = exact->expressions(dimension);
+  if (const auto forces = map.get("forces")) output.forces = read_forces(*forces);
+  if (const auto exact = map.get("exact_velocity"))
+    output.exact_velocity = exact->expressions(dimension);
+  if (const auto exact = map.get("exact_pressure")) {
+    if (!exact->yaml().IsScalar())
+      exact->fail(
+          concat("expected one expression (a pressure is a scalar), got ", exact->describe()));
+    output.exact_pressure.push_back(exact->expression());
+  }
   return output;
 }
 

@@ -34,8 +34,8 @@ struct RegionRef {
 };
 
 enum class PlaneMode { strain, stress };
-enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hooke };
-enum class BoundaryType { dirichlet, pressure, traction, body_force };
+enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hooke, newtonian_fluid };
+enum class BoundaryType { dirichlet, pressure, traction, body_force, velocity };
 enum class InterfaceType { mesh_tying, contact };
 enum class Multiplier { dual, standard };
 enum class Strategy { condensed, saddle_point };
@@ -73,10 +73,13 @@ struct MeshConfig {
 struct Material {
   std::string name;
   MaterialModel model = MaterialModel::linear_elastic;
-  double young = 0.0;   ///< > 0
-  double poisson = 0.0; ///< in (-1, 0.5)
-  double density = 0.0; ///< >= 0; > 0 for every body in dynamics
+  double young = 0.0;     ///< > 0
+  double poisson = 0.0;   ///< in (-1, 0.5)
+  double density = 0.0;   ///< >= 0; > 0 for every body in dynamics and for every fluid
+  double viscosity = 0.0; ///< newtonian_fluid only: dynamic viscosity, > 0
   Mark mark;
+
+  [[nodiscard]] bool is_fluid() const { return model == MaterialModel::newtonian_fluid; }
 };
 
 struct Body {
@@ -92,7 +95,8 @@ struct Body {
 struct BoundaryCondition {
   RegionRef region;
   BoundaryType type = BoundaryType::dirichlet;
-  /// dirichlet: the listed components (0 = x, 1 = y, 2 = z), all if omitted;
+  /// dirichlet, velocity (a fluid's velocity): the listed components (0 = x, 1 = y, 2 = z),
+  /// all if omitted;
   /// traction, body_force: 0 .. dimension-1; pressure: empty.
   std::vector<int> components;
   /// one expression per entry of `components`; pressure: exactly one.
@@ -182,12 +186,25 @@ struct Probe {
   Mark mark;
 };
 
+/// One entry of `output.forces`: the force the fluid exerts on the union of `regions`.
+struct ForceGroup {
+  std::string name;
+  std::vector<RegionRef> regions; ///< fluid-side boundary groups
+  Mark mark;
+};
+
 struct OutputConfig {
   int every = 1; ///< write every n-th step
   std::vector<Probe> probes;
   /// Optional exact displacement (`dimension` expressions): the L2 and H1 errors of every
   /// written step go to errors.csv (method of manufactured solutions).
   std::vector<Expression> exact_displacement;
+  /// forces.csv (fluids).
+  std::vector<ForceGroup> forces;
+  /// Optional exact fluid velocity (`dimension` expressions) and pressure (one): their L2
+  /// errors go to errors.csv.
+  std::vector<Expression> exact_velocity;
+  std::vector<Expression> exact_pressure;
 };
 
 struct Config {

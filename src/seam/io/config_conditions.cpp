@@ -44,11 +44,13 @@ BoundaryCondition read_boundary_condition(const Node& node, int dimension) {
   condition.mark = node.mark();
   condition.region = region_of(map.required("region"));
   condition.type = map.required("type").choice(boundary_names);
-  map.forbid("components", condition.type != BoundaryType::dirichlet,
-             "applies only to type 'dirichlet'");
+  map.forbid("components",
+             condition.type != BoundaryType::dirichlet && condition.type != BoundaryType::velocity,
+             "applies only to type 'dirichlet' (and 'velocity' for a fluid)");
   const Node value = map.required("value");
   switch (condition.type) {
-  case BoundaryType::dirichlet: {
+  case BoundaryType::dirichlet:
+  case BoundaryType::velocity: {
     const auto listed = map.get("components");
     if (listed) {
       condition.components = read_components(*listed, dimension);

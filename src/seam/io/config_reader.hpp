@@ -111,15 +111,17 @@ private:
 /// The input's spelling of every enumerator, in one place for parsing and printing.
 inline constexpr std::array<std::pair<std::string_view, PlaneMode>, 2> plane_names{
     {{"strain", PlaneMode::strain}, {"stress", PlaneMode::stress}}};
-inline constexpr std::array<std::pair<std::string_view, MaterialModel>, 3> material_names{
+inline constexpr std::array<std::pair<std::string_view, MaterialModel>, 4> material_names{
     {{"linear_elastic", MaterialModel::linear_elastic},
      {"saint_venant_kirchhoff", MaterialModel::saint_venant_kirchhoff},
-     {"neo_hooke", MaterialModel::neo_hooke}}};
-inline constexpr std::array<std::pair<std::string_view, BoundaryType>, 4> boundary_names{
+     {"neo_hooke", MaterialModel::neo_hooke},
+     {"newtonian_fluid", MaterialModel::newtonian_fluid}}};
+inline constexpr std::array<std::pair<std::string_view, BoundaryType>, 5> boundary_names{
     {{"dirichlet", BoundaryType::dirichlet},
      {"pressure", BoundaryType::pressure},
      {"traction", BoundaryType::traction},
-     {"body_force", BoundaryType::body_force}}};
+     {"body_force", BoundaryType::body_force},
+     {"velocity", BoundaryType::velocity}}};
 inline constexpr std::array<std::pair<std::string_view, InterfaceType>, 2> interface_names{
     {{"mesh_tying", InterfaceType::mesh_tying}, {"contact", InterfaceType::contact}}};
 inline constexpr std::array<std::pair<std::string_view, Multiplier>, 2> multiplier_names{

@@ -1,5 +1,6 @@
 #include "seam/problem/discretization.hpp"
 
+#include "seam/mesh/node_cells.hpp"
 #include "seam/mesh/partition.hpp"
 
 #include <algorithm>
@@ -57,24 +58,15 @@ la::Matrix Discretization::make_matrix() const {
   // rows that other ranks add to are preallocated exactly as well).
   const auto& m = *mesh_;
   const std::int32_t n_nodes = m.n_nodes();
-  std::vector<std::int32_t> count(n_nodes + 1, 0);
-  for (std::int32_t c = 0; c < m.n_cells(); ++c)
-    for (auto n : m.cell(c)) ++count[n + 1];
-  for (std::int32_t n = 0; n < n_nodes; ++n) count[n + 1] += count[n];
-  std::vector<std::int32_t> node_cells(count[n_nodes]);
-  {
-    std::vector<std::int32_t> fill(count.begin(), count.end() - 1);
-    for (std::int32_t c = 0; c < m.n_cells(); ++c)
-      for (auto n : m.cell(c)) node_cells[fill[n]++] = c;
-  }
+  const auto around = mesh::node_cells(m);
   const int rank = comm_.rank();
   std::vector<PetscInt> d_nnz(n_owned_dofs(), 0), o_nnz(n_owned_dofs(), 0);
   std::vector<std::int32_t> mark(n_nodes, -1);
   for (std::int32_t i = 0; i < n_owned_nodes_; ++i) {
     const auto node = local_nodes_[i];
     PetscInt d = 0, o = 0;
-    for (auto k = count[node]; k < count[node + 1]; ++k)
-      for (auto nb : m.cell(node_cells[k])) {
+    for (auto c : around.of(node))
+      for (auto nb : m.cell(c)) {
         if (mark[nb] == node) continue;
         mark[nb] = node;
         (node_owner_[nb] == rank ? d : o) += dim_;

@@ -22,6 +22,8 @@ solid::MaterialModel to_solid(io::MaterialModel m) {
     return solid::MaterialModel::saint_venant_kirchhoff;
   case io::MaterialModel::neo_hooke:
     return solid::MaterialModel::neo_hooke;
+  case io::MaterialModel::newtonian_fluid:
+    break; // runs with fluids never build a solid model (problem/fluid_model.cpp)
   }
   return solid::MaterialModel::linear_elastic;
 }
@@ -79,6 +81,27 @@ const mesh::Region& find_region(const mesh::Mesh& mesh, const io::RegionRef& ref
   io::fail_at(ref.mark, msg.str());
 }
 
+SurfaceLoad surface_load(const mesh::Mesh& mesh, const io::BoundaryCondition& bc,
+                         const std::function<bool(std::int32_t)>& is_local_cell) {
+  const auto& region =
+      find_region(mesh, bc.region, {mesh.dim - 1},
+                  bc.type == io::BoundaryType::pressure ? "a pressure load" : "a traction load");
+  SurfaceLoad load{bc.type, {}, bc.components, bc.value};
+  for (std::int32_t f = 0; f < region.n_facets(); ++f)
+    if (is_local_cell(region.facet_cell[f]))
+      load.facets.push_back({region.facet_cell[f], region.facet_local[f]});
+  return load;
+}
+
+BodyLoad body_load(const mesh::Mesh& mesh, const io::BoundaryCondition& bc,
+                   const std::function<bool(std::int32_t)>& is_local_cell) {
+  const auto& region = find_region(mesh, bc.region, {mesh.dim}, "a body force");
+  BodyLoad load{{}, bc.components, bc.value};
+  for (auto c : region.cells)
+    if (is_local_cell(c)) load.cells.push_back(c);
+  return load;
+}
+
 Model build_model(const io::Config& config, const Discretization& disc) {
   const auto& mesh = disc.mesh();
   const int dim = mesh.dim;
@@ -121,6 +144,7 @@ Model build_model(const io::Config& config, const Discretization& disc) {
   }
 
   // Boundary conditions.
+  const auto is_local = [&](std::int32_t c) { return disc.is_local_cell(c); };
   std::vector<DirichletDof> dirichlet;
   for (const auto& bc : config.boundary_conditions) {
     switch (bc.type) {
@@ -141,25 +165,18 @@ Model build_model(const io::Config& config, const Discretization& disc) {
       break;
     }
     case io::BoundaryType::pressure:
-    case io::BoundaryType::traction: {
-      const auto& region = find_region(mesh, bc.region, {dim - 1},
-                                       bc.type == io::BoundaryType::pressure ? "a pressure load"
-                                                                             : "a traction load");
-      SurfaceLoad load{bc.type, {}, bc.components, bc.value};
-      for (std::int32_t f = 0; f < region.n_facets(); ++f)
-        if (disc.is_local_cell(region.facet_cell[f]))
-          load.facets.push_back({region.facet_cell[f], region.facet_local[f]});
-      model.surface_loads.push_back(std::move(load));
+    case io::BoundaryType::traction:
+      model.surface_loads.push_back(surface_load(mesh, bc, is_local));
       break;
-    }
-    case io::BoundaryType::body_force: {
-      const auto& region = find_region(mesh, bc.region, {dim}, "a body force");
-      BodyLoad load{{}, bc.components, bc.value};
-      for (auto c : region.cells)
-        if (disc.is_local_cell(c)) load.cells.push_back(c);
-      model.body_loads.push_back(std::move(load));
+    case io::BoundaryType::velocity:
+      find_region(mesh, bc.region, {0, 1, 2, 3}, "a velocity condition");
+      io::fail_at(bc.mark, "type 'velocity' prescribes a fluid's velocity, but region '" +
+                               bc.region.name +
+                               "' belongs to no fluid body (a solid's motion is prescribed "
+                               "with type 'dirichlet')");
+    case io::BoundaryType::body_force:
+      model.body_loads.push_back(body_load(mesh, bc, is_local));
       break;
-    }
     }
   }
   // A dof prescribed twice keeps the later condition.

@@ -7,6 +7,7 @@
 #include "seam/solid/material.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,14 @@ struct Model {
   std::vector<DirichletDof> dirichlet; ///< sorted by dof, unique (a later condition wins)
   std::vector<ReactionRegion> reaction_regions;
 };
+
+/// The load of a pressure or traction condition on the facets of its region (checked, located)
+/// that this rank assembles.
+SurfaceLoad surface_load(const mesh::Mesh& mesh, const io::BoundaryCondition& bc,
+                         const std::function<bool(std::int32_t)>& is_local_cell);
+/// The load of a body_force condition on the cells of its region that this rank assembles.
+BodyLoad body_load(const mesh::Mesh& mesh, const io::BoundaryCondition& bc,
+                   const std::function<bool(std::int32_t)>& is_local_cell);
 
 /// Checks the input's region references against the mesh (InputError, located in the YAML)
 /// and builds this rank's model.

@@ -9,6 +9,8 @@
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/dynamic_solver.hpp"
+#include "seam/problem/fluid_model.hpp"
+#include "seam/problem/fluid_solver.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/saddle_point.hpp"
@@ -115,6 +117,11 @@ int run(const RunOptions& options, int argc, char** argv) {
                ": restarting from a checkpoint is not available in this version of seam");
   const auto config = io::load_config(options.input);
   auto mesh = load_mesh(config, comm);
+  if (has_fluid(config)) {
+    make_output_directory(output_directory(options), comm);
+    run_fluid(config, mesh, comm, output_directory(options), options.quiet);
+    return 0;
+  }
   const Discretization disc(mesh, comm);
   const auto model = build_model(config, disc);
   PhaseTimers setup_timers;
@@ -148,6 +155,13 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   Comm comm;
   const auto config = io::load_config(input);
   auto mesh = load_mesh(config, comm);
+  if (has_fluid(config)) {
+    const auto info = run_fluid(config, mesh, comm, {}, true, true);
+    if (comm.is_root())
+      std::printf("%s: ok\n  fluid, dimension %d, %d nodes, %d cells, %lld dofs\n", input.c_str(),
+                  mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
+    return 0;
+  }
   const Discretization disc(mesh, comm);
   const auto model = build_model(config, disc);
   PhaseTimers timers;

@@ -1,0 +1,43 @@
+// DFG benchmark channel (Schaefer & Turek 1996): 2.2 x 0.41, cylinder of radius 0.05 at
+// (0.2, 0.2). `h` is the cell size far from the cylinder, `hc` on its surface; the cells grow
+// from hc to h through a distance field. Mesh with order 2 for seam's Taylor-Hood fluid.
+h = DefineNumber[0.04, Name "h"];
+hc = DefineNumber[0.006, Name "hc"];
+Point(1) = {0, 0, 0, h};
+Point(2) = {2.2, 0, 0, h};
+Point(3) = {2.2, 0.41, 0, h};
+Point(4) = {0, 0.41, 0, h};
+Point(5) = {0.2, 0.2, 0, hc};
+Point(6) = {0.25, 0.2, 0, hc};
+Point(7) = {0.2, 0.25, 0, hc};
+Point(8) = {0.15, 0.2, 0, hc};
+Point(9) = {0.2, 0.15, 0, hc};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Circle(5) = {6, 5, 7};
+Circle(6) = {7, 5, 8};
+Circle(7) = {8, 5, 9};
+Circle(8) = {9, 5, 6};
+Curve Loop(1) = {1, 2, 3, 4};
+Curve Loop(2) = {5, 6, 7, 8};
+Plane Surface(1) = {1, 2};
+Field[1] = Distance;
+Field[1].CurvesList = {5, 6, 7, 8};
+Field[1].NumPointsPerCurve = 200;
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = hc;
+Field[2].SizeMax = h;
+Field[2].DistMin = 0.0;
+Field[2].DistMax = 0.3;
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Physical Curve("inflow") = {4};
+Physical Curve("outflow") = {2};
+Physical Curve("walls") = {1, 3};
+Physical Curve("cylinder") = {5, 6, 7, 8};
+Physical Surface("fluid") = {1};

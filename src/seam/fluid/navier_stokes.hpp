@@ -1,0 +1,85 @@
+#pragma once
+// Element kernel of the steady incompressible Navier-Stokes equations for a Newtonian fluid on
+// a fixed mesh, in the Taylor-Hood discretization: the velocity on all nodes of a quadratic
+// cell (tri6, quad9, tet10, hex27), the pressure on its vertices, interpolated linearly
+// (P2/P1, Q2/Q1; inf-sup stable, Brezzi & Fortin 1991, sec. VI.6).
+//
+// Weak form (gradient, or "Laplace", form of the viscous term, which for constant viscosity
+// and div u = 0 equals the symmetric one in the interior and makes the boundary without a
+// condition a "do nothing" outflow, (mu grad u - p I) n = 0, Heywood, Rannacher & Turek 1996):
+//   r_{a i} = int rho N_a (u . grad) u_i + mu grad N_a . grad u_i - p dN_a/dx_i - N_a f_i dx
+//   r_k     = - int M_k div u dx
+// with N_a the velocity and M_k the pressure shape functions. The Stokes part of the
+// Jacobian is symmetric; the convective part is linearized in full (Newton).
+//
+// Linear cells (tri3, quad4, tet4, hex8) use equal-order velocity and pressure with the
+// residual-based PSPG/SUPG/LSIC stabilization of navier_stokes.cpp.
+//
+// Layout of the element vector: the velocity node-major (a * dim + i) for all n nodes, then
+// the pressure of the n_p vertices; matrices row-major, K[row * n_dofs + col].
+// Residual convention of seam: r = f_int - f_ext. With time integration the residual gains
+// int rho N_a du_i/dt (Jansen, Whiting & Hulbert 2000: velocity and pressure at n + alpha_f,
+// the velocity's rate at n + alpha_m; the weights of the Jacobian come in with the input).
+#include "seam/fem/cell.hpp"
+
+#include <array>
+#include <functional>
+#include <span>
+
+namespace seam::fluid {
+
+struct Fluid {
+  double density = 1.0;   ///< rho > 0
+  double viscosity = 1.0; ///< dynamic viscosity mu > 0
+};
+
+/// The cell of the pressure: the linear cell of a Taylor-Hood cell (tri6 -> tri3, quad9 ->
+/// quad4, tet10 -> tet4, hex27 -> hex8), a linear cell itself (equal order). Throws InputError
+/// for any other cell type, naming it.
+fem::CellType pressure_cell(fem::CellType velocity_cell);
+/// Whether `cell` is a Taylor-Hood velocity cell (tri6, quad9, tet10, hex27).
+bool is_taylor_hood(fem::CellType cell);
+/// Whether `cell` is a linear cell with equal-order velocity and pressure and residual-based
+/// stabilization (tri3, quad4, tet4, hex8).
+bool is_stabilized(fem::CellType cell);
+
+/// Body force per unit volume at the physical point x (dim values written to `value`).
+using BodyForce = std::function<void(const double* x, double* value)>;
+
+struct FluidElementInput {
+  fem::CellType cell = fem::CellType::quad9;
+  int dim = 2; ///< fem::dimension(cell)
+  Fluid fluid;
+  std::span<const double> x;             ///< node coordinates, n_nodes * dim
+  std::span<const double> u;             ///< nodal velocity, n_nodes * dim
+  std::span<const double> p;             ///< vertex pressure, n_vertices
+  const BodyForce* body_force = nullptr; ///< optional
+  /// Unsteady flow (time integration): the nodal time derivative of the velocity, n_nodes *
+  /// dim, adding int rho N_a du_i/dt to r_{a i}; empty for steady flow.
+  std::span<const double> u_dot;
+  /// The derivative of the state (u, p) and of u_dot by the unknowns: K is
+  /// d r/d(u, p) * state_weight, plus M * mass_weight in the velocity block with M_ab =
+  /// int rho N_a N_b (generalized-alpha: alpha_f and alpha_m / (gamma dt)).
+  double state_weight = 1.0;
+  double mass_weight = 0.0;
+  /// The time step, for the stabilization of linear cells (0: steady flow).
+  double time_step = 0.0;
+};
+
+/// Number of element dofs: n_nodes * dim + n_vertices.
+int n_element_dofs(fem::CellType cell);
+
+/// Residual (size n_element_dofs) and Jacobian (its square, or empty to skip). Returns false
+/// if the cell is inverted (det J <= 0 at a quadrature point); the outputs are then unusable.
+bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<double> K);
+
+/// Integrals over one cell for the L2 errors against exact fields, with a rule two degrees
+/// above the residual's: {int |u_h - u|^2, int (p_h - p)^2, int (p_h - p), |cell|}. The last
+/// two let a caller remove the constant by which an enclosed flow's pressure is undetermined:
+/// ||e - mean e||^2 = int e^2 - (int e)^2 / |domain|.
+using ExactVelocity = std::function<void(const double* x, double* value)>;
+using ExactPressure = std::function<double(const double* x)>;
+std::array<double, 4> error_integrals(const FluidElementInput& in, const ExactVelocity& u,
+                                      const ExactPressure& p);
+
+} // namespace seam::fluid

@@ -1,0 +1,123 @@
+#include "seam/problem/fluid_layout.hpp"
+
+#include "seam/mesh/node_cells.hpp"
+#include "seam/mesh/partition.hpp"
+
+#include <algorithm>
+
+namespace seam::problem {
+
+FluidLayout::FluidLayout(const mesh::Mesh& mesh, Comm comm)
+    : mesh_(&mesh), comm_(comm), dim_(mesh.dim) {
+  const int rank = comm_.rank();
+  // The same partition and node numbering as the solid's Discretization.
+  if (comm_.is_root()) cell_part_ = mesh::partition_cells(mesh, comm_.size());
+  comm_.broadcast(cell_part_);
+  const auto numbering = mesh::number_nodes(mesh, cell_part_, comm_.size());
+  node_owner_ = numbering.owner;
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    if (cell_part_[c] == rank) local_cells_.push_back(c);
+
+  const std::int32_t n_nodes = mesh.n_nodes();
+  has_pressure_.assign(n_nodes, 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const auto nodes = mesh.cell(c);
+    for (int k = 0; k < fem::n_vertices(mesh.cell_type[c]); ++k) has_pressure_[nodes[k]] = 1;
+  }
+  // Global numbering node after node in the order of the node numbering: each rank's owned
+  // nodes are consecutive there, so its dofs are too.
+  first_dof_.assign(n_nodes, 0);
+  PetscInt next = 0;
+  for (std::size_t g = 0; g < numbering.old_index.size(); ++g) {
+    const auto node = numbering.old_index[g];
+    if (static_cast<std::int64_t>(g) == numbering.offsets[rank]) first_owned_dof_ = next;
+    first_dof_[node] = next;
+    next += dim_ + has_pressure_[node];
+  }
+  n_global_dofs_ = next;
+  n_owned_dofs_ = 0;
+  for (std::int32_t n = 0; n < n_nodes; ++n)
+    if (node_owner_[n] == rank) n_owned_dofs_ += dim_ + has_pressure_[n];
+
+  local_first_.assign(n_nodes, -1);
+  for (std::int32_t n = 0; n < n_nodes; ++n)
+    if (node_owner_[n] == rank)
+      local_first_[n] = static_cast<std::int32_t>(first_dof_[n] - first_owned_dof_);
+  std::vector<std::int32_t> ghosts;
+  std::vector<char> seen(n_nodes, 0);
+  for (auto c : local_cells_)
+    for (auto n : mesh.cell(c))
+      if (node_owner_[n] != rank && !seen[n]) {
+        seen[n] = 1;
+        ghosts.push_back(n);
+      }
+  std::sort(ghosts.begin(), ghosts.end(),
+            [&](std::int32_t a, std::int32_t b) { return first_dof_[a] < first_dof_[b]; });
+  auto local = static_cast<std::int32_t>(n_owned_dofs_);
+  for (auto n : ghosts) {
+    local_first_[n] = local;
+    for (int c = 0; c < dim_ + has_pressure_[n]; ++c) ghost_dofs_.push_back(first_dof_[n] + c);
+    local += dim_ + has_pressure_[n];
+  }
+}
+
+int FluidLayout::cell_dofs(std::int32_t c, std::span<PetscInt> out) const {
+  const auto nodes = mesh_->cell(c);
+  int k = 0;
+  for (auto n : nodes)
+    for (int i = 0; i < dim_; ++i) out[k++] = first_dof_[n] + i;
+  for (int v = 0; v < fem::n_vertices(mesh_->cell_type[c]); ++v)
+    out[k++] = first_dof_[nodes[v]] + dim_;
+  return k;
+}
+
+int FluidLayout::cell_local_dofs(std::int32_t c, std::span<std::int32_t> out) const {
+  const auto nodes = mesh_->cell(c);
+  int k = 0;
+  for (auto n : nodes)
+    for (int i = 0; i < dim_; ++i) out[k++] = local_dof(n, i);
+  for (int v = 0; v < fem::n_vertices(mesh_->cell_type[c]); ++v)
+    out[k++] = local_dof(nodes[v], dim_);
+  return k;
+}
+
+la::Vector FluidLayout::make_vector() const {
+  return la::Vector(comm_.get(), n_owned_dofs_, ghost_dofs_);
+}
+
+la::Matrix FluidLayout::make_matrix() const {
+  // Every dof of a node couples with every dof of the nodes of the cells around it.
+  const auto& m = *mesh_;
+  const std::int32_t n_nodes = m.n_nodes();
+  const auto around = mesh::node_cells(m);
+  const int rank = comm_.rank();
+  std::vector<PetscInt> d_nnz(n_owned_dofs_, 0), o_nnz(n_owned_dofs_, 0);
+  std::vector<std::int32_t> mark(n_nodes, -1);
+  for (std::int32_t node = 0; node < n_nodes; ++node) {
+    if (node_owner_[node] != rank) continue;
+    PetscInt d = 0, o = 0;
+    for (auto c : around.of(node))
+      for (auto nb : m.cell(c)) {
+        if (mark[nb] == node) continue;
+        mark[nb] = node;
+        (node_owner_[nb] == rank ? d : o) += dim_ + has_pressure_[nb];
+      }
+    const auto first = first_dof_[node] - first_owned_dof_;
+    for (int c = 0; c < dim_ + has_pressure_[node]; ++c) {
+      d_nnz[first + c] = d;
+      o_nnz[first + c] = o;
+    }
+  }
+  la::Matrix A(comm_.get(), n_owned_dofs_, d_nnz, o_nnz, 1);
+  std::vector<PetscInt> dofs(fem::max_cell_nodes * 4);
+  std::vector<double> zeros;
+  for (auto c : local_cells_) {
+    const int n = cell_dofs(c, dofs);
+    zeros.assign(static_cast<std::size_t>(n) * n, 0.0);
+    A.add_values(std::span(dofs.data(), n), std::span(dofs.data(), n), zeros);
+  }
+  A.assemble();
+  return A;
+}
+
+} // namespace seam::problem

@@ -1,0 +1,65 @@
+#pragma once
+// The dof layout of a fluid field on a replicated mesh: every node carries the velocity (dim
+// dofs), every vertex of a Taylor-Hood cell the pressure as well, one dof after its
+// velocity. A node's dofs are contiguous, numbered in the order of the node numbering of
+// mesh::number_nodes, so that every rank owns one contiguous range (PETSc's layout). The
+// local (ghosted) vector form holds the owned dofs, then the ghost nodes' dofs node by node.
+#include "seam/common/mpi.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/mesh/mesh.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace seam::problem {
+
+class FluidLayout {
+public:
+  FluidLayout(const mesh::Mesh& mesh, Comm comm);
+
+  const mesh::Mesh& mesh() const { return *mesh_; }
+  Comm comm() const { return comm_; }
+  int dim() const { return dim_; }
+
+  std::span<const std::int32_t> local_cells() const { return local_cells_; }
+  bool is_local_cell(std::int32_t c) const { return cell_part_[c] == comm_.rank(); }
+  bool owns_node(std::int32_t node) const { return node_owner_[node] == comm_.rank(); }
+  bool has_pressure(std::int32_t node) const { return has_pressure_[node] != 0; }
+
+  PetscInt n_owned_dofs() const { return n_owned_dofs_; }
+  PetscInt n_global_dofs() const { return n_global_dofs_; }
+  PetscInt first_owned_dof() const { return first_owned_dof_; }
+
+  /// Global dof of velocity component c (< dim) of a node, or of its pressure (c = dim; the
+  /// node must be a vertex).
+  PetscInt global_dof(std::int32_t node, int c) const { return first_dof_[node] + c; }
+  /// The same in the local form; -1 if the node is neither owned nor a ghost here.
+  std::int32_t local_dof(std::int32_t node, int c) const {
+    return local_first_[node] < 0 ? -1 : local_first_[node] + c;
+  }
+  /// The global dofs of cell c in the layout of fluid::navier_stokes: the velocity of all
+  /// nodes node-major, then the pressure of the vertices. Returns their number.
+  int cell_dofs(std::int32_t c, std::span<PetscInt> out) const;
+  /// The same in the local form.
+  int cell_local_dofs(std::int32_t c, std::span<std::int32_t> out) const;
+
+  la::Vector make_vector() const;
+  /// The Jacobian with exact preallocation and its pattern fixed with explicit zeros.
+  la::Matrix make_matrix() const;
+
+private:
+  const mesh::Mesh* mesh_;
+  Comm comm_;
+  int dim_;
+  std::vector<int> cell_part_;
+  std::vector<std::int32_t> local_cells_;
+  std::vector<int> node_owner_;
+  std::vector<char> has_pressure_;
+  std::vector<PetscInt> first_dof_;       // mesh node -> its first global dof
+  std::vector<std::int32_t> local_first_; // mesh node -> its first local dof, or -1
+  std::vector<PetscInt> ghost_dofs_;
+  PetscInt n_owned_dofs_ = 0, n_global_dofs_ = 0, first_owned_dof_ = 0;
+};
+
+} // namespace seam::problem

@@ -1,0 +1,197 @@
+#include "seam/problem/fluid_output.hpp"
+
+#include "seam/fluid/navier_stokes.hpp"
+#include "seam/io/json.hpp"
+#include "seam/mesh/locate.hpp"
+
+#include <cstdio>
+
+namespace seam::problem {
+
+FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
+                         const FluidModel& model, std::filesystem::path dir, bool quiet)
+    : config_(config), layout_(layout), model_(model), dir_(std::move(dir)), quiet_(quiet),
+      start_wall_(wall_seconds()) {
+  if (layout.comm().is_root()) {
+    // steps.csv keeps the solid's columns (energies and momenta are those of a structure,
+    // none here).
+    steps_ = std::make_unique<io::CsvTable>(
+        dir_ / "steps.csv",
+        std::vector<std::string>{"step", "time", "newton_iterations", "residual", "active_nodes",
+                                 "slip_nodes", "kinetic_energy", "internal_energy", "external_work",
+                                 "total_energy", "momentum_x", "momentum_y", "momentum_z",
+                                 "angular_momentum_x", "angular_momentum_y", "angular_momentum_z",
+                                 "wall_seconds"});
+    newton_ = std::make_unique<io::CsvTable>(
+        dir_ / "newton.csv", std::vector<std::string>{"step", "iteration", "residual", "increment",
+                                                      "active_set_changes"});
+    forces_ = std::make_unique<io::CsvTable>(
+        dir_ / "forces.csv", std::vector<std::string>{"step", "time", "name", "fx", "fy", "fz"});
+    if (!config.output.exact_velocity.empty() || !config.output.exact_pressure.empty())
+      errors_ = std::make_unique<io::CsvTable>(
+          dir_ / "errors.csv",
+          std::vector<std::string>{"step", "time", "velocity_l2_error", "pressure_l2_error"});
+    probes_ = std::make_unique<io::CsvTable>(
+        dir_ / "probes.csv", std::vector<std::string>{"step", "time", "probe", "x", "y", "z", "ux",
+                                                      "uy", "uz", "vx", "vy", "vz", "pressure"});
+    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+    const auto& mesh = layout.mesh();
+    for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+      const auto type = mesh.cell_type[c];
+      const auto nodes = mesh.cell(c);
+      for (int k : fem::vtk_node_order(type)) connectivity_.push_back(nodes[k]);
+      offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
+      types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
+    }
+  }
+  const auto& mesh = layout.mesh();
+  if (!config.output.probes.empty()) {
+    const mesh::PointLocator locator(mesh);
+    for (const auto& p : config.output.probes) {
+      const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim));
+      if (!loc) io::fail_at(p.mark, "probe lies outside the fluid mesh");
+      located_.push_back({p.point, loc->cell, loc->xi});
+    }
+  }
+}
+
+FluidOutput::~FluidOutput() = default;
+
+namespace {
+
+// Velocity (3 values) and pressure at reference point xi of cell c from the global vector.
+std::array<double, 4> evaluate_at(const FluidLayout& layout, std::span<const double> all,
+                                  std::int32_t c, const double* xi) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  const auto type = mesh.cell_type[c];
+  const auto nodes = mesh.cell(c);
+  std::array<double, fem::max_cell_nodes> N{};
+  std::array<double, 8> M{};
+  fem::shape_values(type, xi, N.data());
+  fem::shape_values(fluid::pressure_cell(type), xi, M.data());
+  std::array<double, 4> out{};
+  for (std::size_t a = 0; a < nodes.size(); ++a)
+    for (int i = 0; i < dim; ++i) out[i] += N[a] * all[layout.global_dof(nodes[a], i)];
+  for (int k = 0; k < fem::n_vertices(type); ++k)
+    out[3] += M[k] * all[layout.global_dof(nodes[k], dim)];
+  return out;
+}
+
+} // namespace
+
+void FluidOutput::newton(int step, int iteration, double residual, double increment) {
+  if (!layout_.comm().is_root()) return;
+  newton_->add_row({step, iteration, residual, increment, 0});
+}
+
+void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force_fields) {
+  ScopedTimer timer(timers_, "output");
+  const bool due = force_fields || r.step % config_.output.every == 0;
+  std::vector<double> all;
+  if (due || !located_.empty()) {
+    if (!to_root_made_) {
+      std::vector<PetscInt> dofs(
+          layout_.comm().is_root() ? static_cast<std::size_t>(layout_.n_global_dofs()) : 0);
+      for (std::size_t i = 0; i < dofs.size(); ++i) dofs[i] = static_cast<PetscInt>(i);
+      to_root_ = la::Gather(w, dofs); // collective
+      to_root_made_ = true;
+    }
+    to_root_(w, all); // collective
+  }
+  if (due) write_fields(r.step, r.time, all);
+  last_errors_ = r.errors;
+  last_forces_ = r.forces;
+  if (!layout_.comm().is_root()) return;
+  const double wall = wall_seconds() - start_wall_;
+  steps_->add_row({r.step, r.time, r.newton_iterations, r.residual, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                   0.0, 0.0, 0.0, 0.0, 0.0, wall});
+  for (std::size_t k = 0; k < r.forces.size(); ++k)
+    forces_->add_row(
+        {r.step, r.time, model_.forces[k].name, r.forces[k][0], r.forces[k][1], r.forces[k][2]});
+  for (std::size_t k = 0; k < located_.size(); ++k) {
+    const auto& pr = located_[k];
+    const auto v = evaluate_at(layout_, all, pr.cell, pr.xi.data());
+    probes_->add_row({r.step, r.time, static_cast<int>(k), pr.point[0], pr.point[1], pr.point[2],
+                      0.0, 0.0, 0.0, v[0], v[1], v[2], v[3]});
+  }
+  if (errors_ && r.errors)
+    errors_->add_row({r.step, r.time, r.errors->velocity_l2, r.errors->pressure_l2});
+  if (!quiet_)
+    std::printf("  step %5d  t = %-10.4g  Newton iterations %2d  residual %9.3e\n", r.step, r.time,
+                r.newton_iterations, r.residual);
+}
+
+std::vector<double> FluidOutput::nodal_pressure(std::span<const double> all) const {
+  const auto& mesh = layout_.mesh();
+  std::vector<double> pressure(mesh.n_nodes(), 0.0);
+  // The pressure is linear on each cell: its value at a node that is not a vertex is that of
+  // the linear interpolant of the cell's vertices there.
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const auto type = mesh.cell_type[c];
+    const auto nodes = mesh.cell(c);
+    const auto xi = fem::reference_nodes(type);
+    for (int a = 0; a < fem::n_nodes(type); ++a)
+      pressure[nodes[a]] = evaluate_at(layout_, all, c, &xi[a * mesh.dim])[3];
+  }
+  return pressure;
+}
+
+void FluidOutput::write_fields(int step, double time, std::span<const double> all) {
+  if (!layout_.comm().is_root()) return;
+  const auto& mesh = layout_.mesh();
+  const int dim = mesh.dim;
+  std::vector<double> velocity(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
+  for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+    for (int i = 0; i < dim; ++i) velocity[n * 3 + i] = all[layout_.global_dof(n, i)];
+  const auto pressure = nodal_pressure(all);
+  io::VtuPiece piece;
+  piece.point_dim = dim;
+  piece.points = mesh.x;
+  piece.connectivity = connectivity_;
+  piece.offsets = offsets_;
+  piece.types = types_;
+  piece.point_data.emplace_back("velocity", 3, std::span<const double>(velocity));
+  piece.point_data.emplace_back("pressure", 1, std::span<const double>(pressure));
+  piece.time = time;
+  piece.cycle = step;
+  const auto file = io::step_file_name("results", step, ".vtu");
+  io::write_vtu(dir_ / file, piece);
+  pvd_->add(time, file);
+}
+
+void FluidOutput::finish(bool converged, int n_steps) {
+  const auto& comm = layout_.comm();
+  const double wall = comm.max(wall_seconds() - start_wall_);
+  std::vector<double> phases;
+  const char* names[] = {"assembly", "linear_solve", "output"};
+  for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
+  if (!comm.is_root()) return;
+  io::Json j = io::Json::object();
+  j["status"] = converged ? "converged" : "failed";
+  j["steps"] = n_steps;
+  j["dofs"] = static_cast<std::int64_t>(layout_.n_global_dofs());
+  j["ranks"] = comm.size();
+  j["wall_seconds"] = wall;
+  auto& t = j["timings"];
+  for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
+  j["nodes"] = layout_.mesh().n_nodes();
+  j["cells"] = layout_.mesh().n_cells();
+  auto& forces = j["forces"];
+  forces = io::Json::array();
+  for (std::size_t k = 0; k < last_forces_.size(); ++k) {
+    io::Json e = io::Json::object();
+    e["name"] = model_.forces[k].name;
+    e["fx"] = last_forces_[k][0];
+    e["fy"] = last_forces_[k][1];
+    e["fz"] = last_forces_[k][2];
+    forces.push_back(std::move(e));
+  }
+  if (last_errors_) {
+    j["errors"]["velocity_l2"] = last_errors_->velocity_l2;
+    j["errors"]["pressure_l2"] = last_errors_->pressure_l2;
+  }
+  io::write_json(dir_ / "summary.json", j);
+}
+
+} // namespace seam::problem

@@ -1,0 +1,81 @@
+#pragma once
+// What a fluid run writes (CONTRACT.md, "Fluids"): the VTU fields `velocity` and `pressure`
+// with the PVD collection, steps.csv and newton.csv with the solid's columns, forces.csv,
+// errors.csv against an exact solution, summary.json. Rank 0 writes everything; the fields
+// are gathered there (one piece per step). probes.csv has the solid's columns and the
+// fluid's velocity and pressure last (the mesh displacement ux..uz is 0 on a fixed mesh).
+#include "seam/common/timer.hpp"
+#include "seam/io/config.hpp"
+#include "seam/io/table.hpp"
+#include "seam/io/vtu.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/problem/fluid_layout.hpp"
+#include "seam/problem/fluid_model.hpp"
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace seam::problem {
+
+struct FluidErrors {
+  double velocity_l2 = 0.0;
+  double pressure_l2 = 0.0; ///< of p_h - p, less its mean for an enclosed flow
+};
+
+struct FluidStepRecord {
+  int step = 0;
+  double time = 0.0;
+  int newton_iterations = 0;
+  double residual = 0.0;
+  std::vector<std::array<double, 3>> forces; ///< per force group, summed over ranks
+  std::optional<FluidErrors> errors;
+};
+
+class FluidOutput {
+public:
+  FluidOutput(const io::Config& config, const FluidLayout& layout, const FluidModel& model,
+              std::filesystem::path dir, bool quiet);
+  ~FluidOutput();
+
+  PhaseTimers& timers() { return timers_; }
+  const std::filesystem::path& directory() const { return dir_; }
+  void newton(int step, int iteration, double residual, double increment);
+  /// A converged step: the tables, and the fields if due (every n-th, and `force_fields`).
+  /// `w` is ghosted and up to date. Collective.
+  void step(const FluidStepRecord& r, const la::Vector& w, bool force_fields);
+  /// summary.json. Collective.
+  void finish(bool converged, int n_steps);
+
+private:
+  void write_fields(int step, double time, std::span<const double> all);
+  /// The pressure at every node from the global vector (linear on each cell).
+  std::vector<double> nodal_pressure(std::span<const double> all) const;
+
+  const io::Config& config_;
+  const FluidLayout& layout_;
+  const FluidModel& model_;
+  std::filesystem::path dir_;
+  bool quiet_;
+  PhaseTimers timers_;
+  double start_wall_;
+  std::unique_ptr<io::CsvTable> steps_, newton_, forces_, errors_, probes_;
+  struct Probe {
+    std::array<double, 3> point;
+    std::int32_t cell;
+    std::array<double, 3> xi;
+  };
+  std::vector<Probe> located_;
+  /// The whole state on rank 0 (fields and probes are written there), nothing elsewhere.
+  la::Gather to_root_;
+  bool to_root_made_ = false;
+  std::unique_ptr<io::PvdCollection> pvd_;
+  std::vector<std::int32_t> connectivity_, offsets_;
+  std::vector<std::uint8_t> types_;
+  std::optional<FluidErrors> last_errors_;
+  std::vector<std::array<double, 3>> last_forces_;
+};
+
+} // namespace seam::problem

@@ -1,0 +1,455 @@
+#include "seam/problem/fluid_solver.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/fluid/navier_stokes.hpp"
+#include "seam/problem/fluid_layout.hpp"
+#include "seam/problem/fluid_model.hpp"
+#include "seam/problem/fluid_output.hpp"
+#include "seam/solid/loads.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <optional>
+
+namespace seam::problem {
+
+namespace {
+
+constexpr int max_cell_dofs = fem::max_cell_nodes * 4;
+
+// One cell's coordinates, velocity, pressure and dofs, gathered from the local vector form.
+struct CellData {
+  int n_dofs = 0;
+  std::array<double, fem::max_cell_nodes * 3> x{}, u{}, u_dot{};
+  bool unsteady = false;
+  std::array<double, 8> p{};
+  std::array<PetscInt, max_cell_dofs> dofs{};
+  std::array<std::int32_t, max_cell_dofs> local{};
+  std::array<double, max_cell_dofs> r{};
+  std::array<double, max_cell_dofs * max_cell_dofs> K{};
+};
+
+// The state an assembly evaluates: the velocity from `u` (and its rate from `u_dot`, if
+// given), the pressure from `p`; the weights of the Jacobian (fluid::FluidElementInput).
+struct EvaluationState {
+  const la::Vector* u;
+  const la::Vector* p;
+  const la::Vector* u_dot = nullptr;
+  double state_weight = 1.0;
+  double mass_weight = 0.0;
+  double time_step = 0.0; // 0: steady
+};
+
+void gather(const FluidLayout& layout, std::span<const double> u, std::span<const double> p,
+            std::span<const double> u_dot, std::int32_t c, CellData& d) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  const auto nodes = mesh.cell(c);
+  d.n_dofs = layout.cell_dofs(c, d.dofs);
+  layout.cell_local_dofs(c, d.local);
+  const int nu = static_cast<int>(nodes.size()) * dim;
+  for (std::size_t a = 0; a < nodes.size(); ++a)
+    for (int i = 0; i < dim; ++i) d.x[a * dim + i] = mesh.x[nodes[a] * dim + i];
+  for (int k = 0; k < nu; ++k) d.u[k] = u[d.local[k]];
+  d.unsteady = !u_dot.empty();
+  if (d.unsteady)
+    for (int k = 0; k < nu; ++k) d.u_dot[k] = u_dot[d.local[k]];
+  for (int k = nu; k < d.n_dofs; ++k) d.p[k - nu] = p[d.local[k]];
+}
+
+fluid::FluidElementInput element_input(const FluidModel& model, const FluidLayout& layout,
+                                       std::int32_t c, const CellData& d) {
+  const auto type = layout.mesh().cell_type[c];
+  const int dim = layout.dim();
+  const auto n = static_cast<std::size_t>(fem::n_nodes(type) * dim);
+  fluid::FluidElementInput in;
+  in.cell = type;
+  in.dim = dim;
+  in.fluid = model.fluids[model.cell_fluid[c]];
+  in.x = std::span<const double>(d.x.data(), n);
+  in.u = std::span<const double>(d.u.data(), n);
+  in.p = std::span<const double>(d.p.data(), fem::n_vertices(type));
+  if (d.unsteady) in.u_dot = std::span<const double>(d.u_dot.data(), n);
+  return in;
+}
+
+// r (and K) at the state (ghosts up to date) and time t; both assembled on return.
+// Returns whether a cell of this rank is inverted.
+bool assemble(const FluidModel& model, const FluidLayout& layout, const EvaluationState& state,
+              double t, la::Vector& r, la::Matrix* K) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  r.zero();
+  if (K) K->zero();
+  bool inverted = false;
+  CellData d;
+  la::Vector::LocalView u_view(*state.u, false), p_view(*state.p, false);
+  std::optional<la::Vector::LocalView> u_dot_view;
+  if (state.u_dot) u_dot_view.emplace(*state.u_dot, false);
+  const auto u_dot = u_dot_view ? u_dot_view->values() : std::span<double>();
+  // Body forces per cell: the sum of every body_force condition on it.
+  std::vector<const BodyLoad*> cell_loads;
+  for (auto c : layout.local_cells()) {
+    gather(layout, u_view.values(), p_view.values(), u_dot, c, d);
+    auto in = element_input(model, layout, c, d);
+    in.state_weight = state.state_weight;
+    in.mass_weight = state.mass_weight;
+    in.time_step = state.time_step;
+    cell_loads.clear();
+    for (const auto& load : model.body_loads)
+      if (std::binary_search(load.cells.begin(), load.cells.end(), c)) cell_loads.push_back(&load);
+    const fluid::BodyForce force = [&](const double* x, double* value) {
+      for (const auto* load : cell_loads)
+        for (std::size_t k = 0; k < load->components.size(); ++k)
+          value[load->components[k]] += load->value[k](t, x[0], x[1], dim == 3 ? x[2] : 0.0);
+    };
+    if (!cell_loads.empty()) in.body_force = &force;
+    const auto nd = static_cast<std::size_t>(d.n_dofs);
+    if (!fluid::navier_stokes(in, std::span(d.r.data(), nd),
+                              K ? std::span(d.K.data(), nd * nd) : std::span<double>())) {
+      inverted = true;
+      continue;
+    }
+    const std::span<const PetscInt> dofs(d.dofs.data(), nd);
+    r.add_values(dofs, std::span<const double>(d.r.data(), nd));
+    if (K) K->add_values(dofs, dofs, std::span<const double>(d.K.data(), nd * nd));
+  }
+  // Pressure (-p n) and traction loads on boundary facets: the velocity rows of their nodes.
+  std::array<double, fem::max_facet_nodes * 3> X{}, zero{}, rf{};
+  std::array<PetscInt, fem::max_facet_nodes * 3> fdofs{};
+  for (const auto& load : model.surface_loads)
+    for (const auto& f : load.facets) {
+      const auto type = mesh.cell_type[f.cell];
+      const auto local = fem::facet_nodes(type, f.local);
+      const auto nodes = mesh.cell(f.cell);
+      const auto nf = local.size() * dim;
+      for (std::size_t a = 0; a < local.size(); ++a)
+        for (int i = 0; i < dim; ++i) {
+          X[a * dim + i] = mesh.x[nodes[local[a]] * dim + i];
+          fdofs[a * dim + i] = layout.global_dof(nodes[local[a]], i);
+        }
+      const solid::FacetInput in{fem::facet_type(type, f.local), dim,
+                                 std::span<const double>(X.data(), nf),
+                                 std::span<const double>(zero.data(), nf), 0};
+      const auto at = [&](const io::Expression& e, const double* x) {
+        return e(t, x[0], x[1], dim == 3 ? x[2] : 0.0);
+      };
+      if (load.type == io::BoundaryType::pressure) {
+        solid::follower_pressure(in, [&](const double* x) { return at(load.value[0], x); },
+                                 std::span(rf.data(), nf), {});
+      } else {
+        solid::dead_traction(
+            in,
+            [&](const double* x, double* value) {
+              for (int i = 0; i < dim; ++i) value[i] = 0.0;
+              for (std::size_t k = 0; k < load.components.size(); ++k)
+                value[load.components[k]] = at(load.value[k], x);
+            },
+            std::span(rf.data(), nf));
+      }
+      r.add_values(std::span<const PetscInt>(fdofs.data(), nf),
+                   std::span<const double>(rf.data(), nf));
+    }
+  r.assemble();
+  if (K) K->assemble();
+  return inverted;
+}
+
+// The prescribed values at time t written into w (owned entries), ghosts updated.
+void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Vector& w) {
+  {
+    la::Vector::LocalView view(w, true);
+    auto v = view.values();
+    const auto& x = layout.mesh().x;
+    const int dim = layout.dim();
+    for (const auto& d : model.dirichlet) {
+      const double* p = &x[static_cast<std::size_t>(d.node) * dim];
+      v[d.dof - layout.first_owned_dof()] =
+          model.values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0);
+    }
+  }
+  w.update_ghosts();
+}
+
+// The force the fluid exerts on each force group: minus the momentum residual at its nodes
+// (the reaction of the wall; Giles, Larson, Levenstam & Suli 1997 show that this residual
+// form converges at the rate of the energy norm, faster than the stress at the wall).
+std::vector<std::array<double, 3>> forces(const FluidModel& model, const FluidLayout& layout,
+                                          const la::Vector& r_full) {
+  const int dim = layout.dim();
+  std::vector<double> sum(model.forces.size() * 3, 0.0);
+  {
+    la::Vector::LocalView view(r_full, false);
+    const auto r = view.values();
+    for (std::size_t k = 0; k < model.forces.size(); ++k)
+      for (auto n : model.forces[k].owned_nodes)
+        for (int i = 0; i < dim; ++i) sum[k * 3 + i] -= r[layout.local_dof(n, i)];
+  }
+  layout.comm().sum_in_place(sum);
+  std::vector<std::array<double, 3>> out(model.forces.size());
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k] = {sum[3 * k], sum[3 * k + 1], sum[3 * k + 2]};
+  return out;
+}
+
+FluidErrors errors(const io::Config& config, const FluidModel& model, const FluidLayout& layout,
+                   const la::Vector& w, double t) {
+  const int dim = layout.dim();
+  const auto& ue = config.output.exact_velocity;
+  const auto& pe = config.output.exact_pressure;
+  fluid::ExactVelocity u_exact;
+  fluid::ExactPressure p_exact;
+  if (!ue.empty())
+    u_exact = [&](const double* x, double* value) {
+      for (int i = 0; i < dim; ++i) value[i] = ue[i](t, x[0], x[1], dim == 3 ? x[2] : 0.0);
+    };
+  if (!pe.empty())
+    p_exact = [&](const double* x) { return pe[0](t, x[0], x[1], dim == 3 ? x[2] : 0.0); };
+  std::vector<double> sum(4, 0.0);
+  {
+    CellData d;
+    la::Vector::LocalView view(w, false);
+    for (auto c : layout.local_cells()) {
+      gather(layout, view.values(), view.values(), {}, c, d);
+      const auto e = fluid::error_integrals(element_input(model, layout, c, d), u_exact, p_exact);
+      for (int k = 0; k < 4; ++k) sum[k] += e[k];
+    }
+  }
+  layout.comm().sum_in_place(sum);
+  FluidErrors out;
+  out.velocity_l2 = std::sqrt(sum[0]);
+  const double p2 = model.pressure_pinned ? sum[1] - sum[2] * sum[2] / sum[3] : sum[1];
+  out.pressure_l2 = std::sqrt(std::max(0.0, p2));
+  return out;
+}
+
+// `initial_conditions`: the velocity at t = 0 on the nodes of their regions (zero elsewhere).
+void set_initial_velocity(const io::Config& config, const FluidLayout& layout, la::Vector& w) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  {
+    la::Vector::LocalView view(w, true);
+    auto v = view.values();
+    for (const auto& ic : config.initial_conditions) {
+      const auto& region = find_region(mesh, ic.region, {0, 1, 2, 3}, "an initial condition");
+      for (auto n : region.nodes) {
+        if (!layout.owns_node(n)) continue;
+        const double* x = &mesh.x[static_cast<std::size_t>(n) * dim];
+        for (int i = 0; i < dim; ++i)
+          v[layout.local_dof(n, i)] = ic.velocity[i](0.0, x[0], x[1], dim == 3 ? x[2] : 0.0);
+      }
+    }
+  }
+  w.update_ghosts();
+}
+
+struct NewtonOutcome {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;
+  const char* failure = "";
+};
+
+class FluidNewton {
+public:
+  FluidNewton(const io::Config& config, const FluidModel& model, const FluidLayout& layout,
+              FluidOutput& out)
+      : config_(config), model_(model), layout_(layout), out_(out), K_(layout.make_matrix()),
+        r_(layout.make_vector()), r_full_(layout.make_vector()), dw_(layout.make_vector()),
+        solver_(layout.comm().get(), config.solver.linear == io::LinearSolverKind::direct
+                                         ? la::SolverKind::direct
+                                         : la::SolverKind::iterative) {
+    for (const auto& d : model.dirichlet) fixed_.push_back(d.dof);
+  }
+
+  /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
+  using Evaluator = std::function<bool(const la::Vector& w, la::Vector& r, la::Matrix& K)>;
+
+  NewtonOutcome solve(la::Vector& w, double t, int step, const Evaluator& evaluate) {
+    NewtonOutcome res;
+    const auto& nc = config_.solver.newton;
+    impose(model_, layout_, t, w);
+    double last_increment = 0.0;
+    for (int it = 0; it <= nc.max_iterations; ++it) {
+      bool inverted;
+      {
+        ScopedTimer timer(out_.timers(), "assembly");
+        inverted = evaluate(w, r_, K_);
+      }
+      if (layout_.comm().any(inverted)) {
+        res.failure = "a fluid cell is inverted (det J <= 0)";
+        return res;
+      }
+      r_full_.copy_from(r_);
+      {
+        la::Vector::LocalView view(r_, true);
+        auto v = view.values();
+        for (auto dof : fixed_) v[dof - layout_.first_owned_dof()] = 0.0;
+      }
+      const double norm = r_.norm();
+      if (!std::isfinite(norm)) {
+        res.failure = "the residual is not finite";
+        return res;
+      }
+      // Relative to the largest first residual of the run: a later step whose boundary data
+      // barely changed is not asked to go below round-off of the flow it starts from.
+      if (it == 0) reference_ = std::max(reference_, norm);
+      out_.newton(step, it, norm, last_increment);
+      res.iterations = it;
+      res.residual = reference_ > 0.0 ? norm / reference_ : 0.0;
+      const bool stalled = it >= 2 && last_increment <= 1e-14 * w.norm();
+      if (norm <= nc.tolerance * reference_ || reference_ == 0.0 || stalled) {
+        res.converged = true;
+        return res;
+      }
+      if (it == nc.max_iterations) break;
+      K_.zero_rows_columns(fixed_);
+      r_.scale(-1.0);
+      dw_.zero();
+      bool solved;
+      {
+        ScopedTimer timer(out_.timers(), "linear_solve");
+        solved = solver_.solve(K_, r_, dw_);
+      }
+      if (!solved) {
+        res.failure = "the linear solver failed";
+        return res;
+      }
+      last_increment = dw_.norm();
+      w.axpy(1.0, dw_);
+      w.update_ghosts();
+    }
+    res.failure = "Newton's method did not converge";
+    return res;
+  }
+
+  /// The full residual (velocity-condition rows included) of the last evaluation.
+  const la::Vector& full_residual() const { return r_full_; }
+
+private:
+  const io::Config& config_;
+  const FluidModel& model_;
+  const FluidLayout& layout_;
+  FluidOutput& out_;
+  la::Matrix K_;
+  la::Vector r_, r_full_, dw_;
+  la::LinearSolver solver_;
+  std::vector<PetscInt> fixed_;
+  double reference_ = 0.0;
+};
+
+} // namespace
+
+FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
+                       const std::filesystem::path& dir, bool quiet, bool check_only) {
+  const FluidLayout layout(mesh, comm);
+  const auto model = build_fluid_model(config, layout);
+  FluidRunInfo info{static_cast<long long>(layout.n_global_dofs())};
+  if (check_only) return info;
+  FluidOutput out(config, layout, model, dir, quiet);
+  if (comm.is_root() && !quiet)
+    std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s); "
+                "output in %s\n",
+                config.title.empty() ? config.source.c_str() : config.title.c_str(), mesh.n_nodes(),
+                mesh.n_cells(), info.n_dofs, comm.size(), dir.c_str());
+  FluidNewton newton(config, model, layout, out);
+  la::Vector w = layout.make_vector(), w_old = layout.make_vector();
+  set_initial_velocity(config, layout, w);
+  impose(model, layout, 0.0, w);
+  const bool exact = !config.output.exact_velocity.empty() || !config.output.exact_pressure.empty();
+  const auto& tc = config.time;
+  // Generalized-alpha for first-order systems (Jansen, Whiting & Hulbert 2000, eqs. 17-19 and
+  // 26-27): second order and unconditionally stable for alpha_m >= alpha_f >= 1/2, with the
+  // high-frequency damping set by rho_inf.
+  const bool unsteady = tc.integrator == io::Integrator::generalized_alpha;
+  const double alpha_m = 0.5 * (3.0 - tc.rho_inf) / (1.0 + tc.rho_inf);
+  const double alpha_f = 1.0 / (1.0 + tc.rho_inf);
+  const double gamma = 0.5 + alpha_m - alpha_f;
+  la::Vector u_dot = layout.make_vector(), u_dot_new = layout.make_vector();
+  la::Vector u_dot_m = layout.make_vector(), w_f = layout.make_vector();
+  // The residual of the step holds the forces at t_{n+alpha_f}; they are reported at t_{n+1},
+  // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f, from the initial state's forces.
+  std::vector<std::array<double, 3>> last_forces;
+  if (unsteady) {
+    la::Vector r0 = layout.make_vector();
+    assemble(model, layout, {&w, &w}, 0.0, r0, nullptr);
+    last_forces = forces(model, layout, r0);
+  }
+  double t = 0.0, dt = tc.dt;
+  int step = 0, cuts = 0;
+  while (t < tc.end * (1.0 - 1e-12)) {
+    double t_new = std::min(t + dt, tc.end);
+    const double k = std::round(t_new / tc.dt);
+    if (std::abs(t_new - k * tc.dt) < 1e-9 * tc.dt) t_new = tc.time_at(static_cast<int>(k));
+    w_old.copy_from(w);
+    w_old.update_ghosts();
+    const double h = t_new - t;
+    const FluidNewton::Evaluator steady = [&](const la::Vector& wk, la::Vector& r, la::Matrix& K) {
+      return assemble(model, layout, {&wk, &wk}, t_new, r, &K);
+    };
+    // u_dot_{n+1} = (u_{n+1} - u_n) / (gamma h) - (1 - gamma) / gamma u_dot_n, and the
+    // intermediate states u_{n+alpha_f}, u_dot_{n+alpha_m}; loads at t_{n+alpha_f}.
+    const FluidNewton::Evaluator generalized_alpha = [&](const la::Vector& wk, la::Vector& r,
+                                                         la::Matrix& K) {
+      u_dot_new.copy_from(wk);
+      u_dot_new.axpy(-1.0, w_old);
+      u_dot_new.scale(1.0 / (gamma * h));
+      u_dot_new.axpy(-(1.0 - gamma) / gamma, u_dot);
+      u_dot_m.copy_from(u_dot);
+      u_dot_m.scale(1.0 - alpha_m);
+      u_dot_m.axpy(alpha_m, u_dot_new);
+      u_dot_m.update_ghosts();
+      w_f.copy_from(w_old);
+      w_f.scale(1.0 - alpha_f);
+      w_f.axpy(alpha_f, wk);
+      w_f.update_ghosts();
+      return assemble(model, layout, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h), h},
+                      t + alpha_f * h, r, &K);
+    };
+    const auto res = newton.solve(w, t_new, step + 1, unsteady ? generalized_alpha : steady);
+    if (!res.converged) {
+      w.copy_from(w_old);
+      w.update_ghosts();
+      if (cuts >= tc.max_step_cuts) {
+        out.finish(false, step);
+        SEAM_THROW(SolverError, res.failure, " at t = ", t_new, " after ", cuts, " step cuts; the ",
+                   step, " converged steps are written in ", dir.string());
+      }
+      ++cuts;
+      dt *= 0.5;
+      if (comm.is_root())
+        std::printf("seam: %s at t = %g; cutting the step to dt = %g\n", res.failure, t_new, dt);
+      continue;
+    }
+    if (unsteady) {
+      u_dot.copy_from(u_dot_new); // of the converged state: its last evaluation
+      u_dot.update_ghosts();
+    }
+    ++step;
+    t = t_new;
+    if (cuts > 0) {
+      dt = std::min(2.0 * dt, tc.dt); // grow back after a successful cut step
+      if (dt >= tc.dt) cuts = 0;
+    }
+    FluidStepRecord rec;
+    rec.step = step;
+    rec.time = t;
+    rec.newton_iterations = res.iterations;
+    rec.residual = res.residual;
+    rec.forces = forces(model, layout, newton.full_residual());
+    if (unsteady) {
+      for (std::size_t g = 0; g < rec.forces.size(); ++g)
+        for (int i = 0; i < 3; ++i)
+          rec.forces[g][i] = (rec.forces[g][i] - (1.0 - alpha_f) * last_forces[g][i]) / alpha_f;
+      last_forces = rec.forces;
+    }
+    if (exact) rec.errors = errors(config, model, layout, w, t);
+    out.step(rec, w, t >= tc.end * (1.0 - 1e-12));
+  }
+  out.finish(true, step);
+  return info;
+}
+
+} // namespace seam::problem

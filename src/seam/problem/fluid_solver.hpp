@@ -1,0 +1,23 @@
+#pragma once
+// A fluid run on a fixed mesh with `integrator: static`: every step solves the steady
+// incompressible Navier-Stokes equations at its t by Newton's method on the full Jacobian
+// (convection linearized exactly), starting from the last converged flow (continuation in
+// the load parameter t), with the step cutting of the solid drivers.
+#include "seam/common/mpi.hpp"
+#include "seam/io/config.hpp"
+#include "seam/mesh/mesh.hpp"
+
+#include <filesystem>
+
+namespace seam::problem {
+
+struct FluidRunInfo {
+  long long n_dofs = 0;
+};
+
+/// Checks the input for the fluid field, then runs all steps, writing into `dir` (which
+/// exists). `check_only` stops after the checks. Throws InputError or SolverError.
+FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
+                       const std::filesystem::path& dir, bool quiet, bool check_only = false);
+
+} // namespace seam::problem

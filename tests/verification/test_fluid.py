@@ -1,0 +1,403 @@
+"""Incompressible Navier-Stokes on fixed meshes (issue 14, first phase): Taylor-Hood P2/P1 and
+Q2/Q1 elements on quadratic meshes, equal-order stabilized (PSPG/SUPG/LSIC) elements on linear
+ones, steady Newton solves and generalized-alpha, forces from the discrete residual.
+
+  * Poiseuille flow in the channel [0, 2] x [0, 1] (inflow u = 4 y (1 - y), no-slip walls,
+    do-nothing outflow, mu = 0.1): the quadratic velocity and the linear pressure
+    p = 8 mu (2 - x) lie in the Taylor-Hood spaces, so the discrete solution is exact to
+    round-off on quad9 and on unstructured tri6 meshes (L2 errors < 1e-10). The wall force
+    from the residual is the wall shear 2 * 2 * mu * 4 = 1.6 minus what the inflow pressure
+    puts on the two inflow corner nodes (their shape functions' integral h/6 along the inflow
+    edge times p(0) = 1.6 each): corner nodes shared by two conditions split the reaction.
+  * Kovasznay flow (1948) at Re = 40 on [-0.5, 1] x [-0.5, 1.5] (shifted to [0, 1.5] x [0, 2])
+    with the exact velocity on the whole boundary (enclosed: seam fixes the pressure constant):
+    L2 error slopes ~3 (velocity) and ~2 (pressure) on Q2/Q1 under uniform refinement.
+  * DFG 2D-1 (Schaefer & Turek 1996, Re = 20): c_D within 0.5 % of 5.57954, c_L within
+    5 % of 0.010619 and the pressure difference p(0.15, 0.2) - p(0.25, 0.2) (probes) within
+    0.5 % of 0.11752 (the benchmark's reference values on fine meshes); the same on 3 ranks
+    as on 1.
+  * Stabilized linear cells: Kovasznay rates ~2 (velocity) and >= 1.5 (pressure) on quad4
+    and tri3; DFG 2D-1 on tri3 within the same tolerances.
+  * Generalized-alpha (Jansen, Whiting & Hulbert 2000): a pulsating Poiseuille flow, exact in
+    space, converges at second order in time in velocity and pressure.
+  * Bad input for fluids: exit 1 with a located message.
+"""
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import geometry  # noqa: E402
+import harness as H  # noqa: E402
+
+EXAMPLE = os.path.join(H.HERE, "..", "..", "examples", "dfg_cylinder")
+MU = 0.1
+
+
+def poiseuille_yaml(geo):
+    return """\
+dimension: 2
+mesh: {geo: %s, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: %g}}
+bodies: [{region: body, material: oil}]
+boundary_conditions:
+  - {region: left, type: velocity, value: ["4*y*(1-y)", 0]}
+  - {region: top, type: velocity, value: [0, 0]}
+  - {region: bottom, type: velocity, value: [0, 0]}
+time: {integrator: static, end: 1, steps: 2}
+output:
+  forces: [{name: walls, regions: [top, bottom]}]
+  exact_velocity: ["4*y*(1-y)", 0]
+  exact_pressure: "%.17g*(2-x)"
+""" % (geo, MU, 8 * MU)
+
+
+def poiseuille(kind, h):
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    H.write_case(work, "body.geo", geometry.rectangle(kind, h, 2))
+    out = H.solve(H.write_case(work, "case.yaml", poiseuille_yaml("body.geo")))
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    forces = H.read_csv(os.path.join(out, "forces.csv"))
+    H.cleanup(work, out)
+    print("   %s: velocity L2 %.2e, pressure L2 %.2e" % (kind, err["velocity_l2_error"],
+                                                       err["pressure_l2_error"]))
+    if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+        raise AssertionError("Poiseuille flow is not exact on %s: %s" % (kind, err))
+    return forces[-1]
+
+
+def test_poiseuille_exact_quad9():
+    h = 0.25
+    f = poiseuille("quad_structured", h)
+    p_in = 8 * MU * 2
+    H.assert_close(f["fx"], 2 * 2 * MU * 4 - 2 * p_in * h / 6, atol=1e-10, what="wall force x")
+    H.assert_close(f["fy"], 0.0, atol=1e-10, what="wall force y")
+
+
+def test_poiseuille_exact_tri6():
+    poiseuille("tri", 0.3)
+
+
+def poiseuille_3d(kind):
+    """The plane Poiseuille flow in the box [0, 2] x [0, 1] x [0, 1]: no-slip at y = 0 and 1,
+    slip walls (u_z = 0 only, `components: [z]`) at z = 0 and 1."""
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    H.write_case(work, "body.geo", geometry.box(kind, 0.5, 2))
+    text = poiseuille_yaml("body.geo").replace("dimension: 2", "dimension: 3")
+    text = text.replace('["4*y*(1-y)", 0]', '["4*y*(1-y)", 0, 0]').replace("[0, 0]", "[0, 0, 0]")
+    text = text.replace("region: top,", "region: front,").replace("region: bottom,",
+                                                                   "region: back,")
+    text = text.replace("regions: [top, bottom]", "regions: [front, back]")
+    text = text.replace("boundary_conditions:\n", "boundary_conditions:\n"
+                        "  - {region: top, type: velocity, components: [z], value: [0]}\n"
+                        "  - {region: bottom, type: velocity, components: [z], value: [0]}\n")
+    out = H.solve(H.write_case(work, "case.yaml", text))
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    H.cleanup(work, out)
+    print("   %s: velocity L2 %.2e, pressure L2 %.2e" % (kind, err["velocity_l2_error"],
+                                                       err["pressure_l2_error"]))
+    if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+        raise AssertionError("Poiseuille flow is not exact on %s: %s" % (kind, err))
+
+
+def test_poiseuille_exact_3d():
+    poiseuille_3d("hex_structured")
+    poiseuille_3d("tet")
+
+
+def pulsating_yaml(steps):
+    """Plane Poiseuille flow with the amplitude g(t) = 1 - cos t (g(0) = g'(0) = 0, so that the
+    flow starts from rest consistently) driven by the body force rho g'(t) 4 y (1 - y): the
+    velocity and pressure are exact in space, so the errors are those of the time
+    integration."""
+    g = "(1-cos(t))"
+    return """\
+dimension: 2
+mesh: {geo: body.geo, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: %g}}
+bodies: [{region: body, material: oil}]
+boundary_conditions:
+  - {region: left, type: velocity, value: ["4*y*(1-y)*%s", 0]}
+  - {region: top, type: velocity, value: [0, 0]}
+  - {region: bottom, type: velocity, value: [0, 0]}
+  - {region: body, type: body_force, value: ["4*y*(1-y)*sin(t)", 0]}
+time: {integrator: generalized_alpha, rho_inf: 0.5, end: 2, steps: %d}
+output:
+  every: 1000
+  forces: [{name: walls, regions: [top, bottom]}]
+  exact_velocity: ["4*y*(1-y)*%s", 0]
+  exact_pressure: "%.17g*(2-x)*%s"
+""" % (MU, g, steps, g, 8 * MU, g)
+
+
+def test_generalized_alpha_second_order():
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    H.write_case(work, "body.geo", geometry.rectangle("quad_structured", 0.25, 2))
+    steps, eu, ep, fx = (8, 16, 32), [], [], []
+    for n in steps:
+        out = H.solve(H.write_case(work, "case.yaml", pulsating_yaml(n)))
+        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+        fx.append(H.read_csv(os.path.join(out, "forces.csv"))[-1]["fx"])
+        H.cleanup(out)
+        eu.append(err["velocity_l2_error"])
+        ep.append(err["pressure_l2_error"])
+    H.cleanup(work)
+    dts = [2.0 / n for n in steps]
+    su, sp = H.slope(dts, eu), H.slope(dts, ep)
+    print("   dt = %s" % dts)
+    print("   velocity L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in eu), su))
+    print("   pressure L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in ep), sp))
+    print("   wall force x = %s" % " ".join("%.10f" % f for f in fx))
+    if su < 1.9 or sp < 1.9:
+        raise AssertionError("generalized-alpha is not second order: slopes %.3f, %.3f" % (su, sp))
+    H.assert_close(fx[1], fx[2], rtol=1e-5, what="wall force at t = 2, dt = 1/8 against 1/16")
+
+
+def kovasznay(re):
+    lam = re / 2 - math.sqrt(re * re / 4 + 4 * math.pi ** 2)
+    e = "exp(%.17g*(x-0.5))" % lam
+    u = ["1-%s*cos(2*_pi*(y-0.5))" % e, "%.17g*%s*sin(2*_pi*(y-0.5))" % (lam / (2 * math.pi), e)]
+    p = "0.5*(1-exp(%.17g*(x-0.5)))" % (2 * lam)
+    return u, p
+
+
+def kovasznay_errors(dim, h, np=1, order=2, kind="quad_structured"):
+    """L2 errors of Kovasznay flow on Q2/Q1 (structured quad9 or hex27 cells). In 3D the flow
+    is extruded over the depth 0.5 with slip walls (u_z = 0) at z = 0 and z = 0.5."""
+    u, p = kovasznay(40.0)
+    faces = ["left", "right", "bottom", "top"]
+    if dim == 3:
+        u = u + ["0"]
+        faces = ["left", "right", "front", "back"]
+    q = lambda v: "[" + ", ".join("'%s'" % s for s in v) + "]"  # noqa: E731
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    geo = (geometry.rectangle(kind, h, order, lx=1.5, ly=2.0) if dim == 2
+           else geometry.box("hex_structured", h, order, lx=1.5, ly=2.0, lz=0.5))
+    H.write_case(work, "body.geo", geo)
+    lines = ["dimension: %d" % dim, "mesh: {geo: body.geo, order: %d}" % order,
+             "materials: {f: {model: newtonian_fluid, density: 1, viscosity: 0.025}}",
+             "bodies: [{region: body, material: f}]", "boundary_conditions:"]
+    if dim == 3:
+        lines += ["  - {region: %s, type: velocity, components: [z], value: [0]}" % r
+                  for r in ("bottom", "top")]
+    lines += ["  - {region: %s, type: velocity, value: %s}" % (r, q(u)) for r in faces]
+    lines += ["time: {integrator: static, end: 1, steps: 1}",
+              "output: {exact_velocity: %s, exact_pressure: '%s'}" % (q(u), p)]
+    out = H.solve(H.write_case(work, "case.yaml", "\n".join(lines) + "\n"), np=np)
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    H.cleanup(work, out)
+    return err["velocity_l2_error"], err["pressure_l2_error"]
+
+
+def rates(dim, sizes):
+    eu, ep = zip(*[kovasznay_errors(dim, h) for h in sizes])
+    su, sp = H.slope(sizes, eu), H.slope(sizes, ep)
+    print("   %dD, h = %s" % (dim, list(sizes)))
+    print("   velocity L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in eu), su))
+    print("   pressure L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in ep), sp))
+    if abs(su - 3) > 0.3 or abs(sp - 2) > 0.3:
+        raise AssertionError("slopes velocity %.3f (expected 3), pressure %.3f (expected 2)"
+                             % (su, sp))
+
+
+def test_kovasznay_rates():
+    rates(2, (0.25, 0.125, 0.0625, 0.03125))
+
+
+def test_kovasznay_rates_stabilized():
+    """Equal-order linear cells with PSPG/SUPG/LSIC: second order in the velocity, and
+    (better than the 1.5 of the theory on these meshes) nearly so in the pressure."""
+    for kind in ("quad_structured", "tri"):
+        sizes = (0.1, 0.05, 0.025)
+        eu, ep = zip(*[kovasznay_errors(2, h, order=1, kind=kind) for h in sizes])
+        su, sp = H.slope(sizes, eu), H.slope(sizes, ep)
+        print("   %s, h = %s" % ("quad4" if kind != "tri" else "tri3", list(sizes)))
+        print("   velocity L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in eu), su))
+        print("   pressure L2 = %s  slope %.3f" % (" ".join("%.3e" % e for e in ep), sp))
+        if abs(su - 2) > 0.3 or sp < 1.5:
+            raise AssertionError("slopes velocity %.3f (expected 2), pressure %.3f (expected "
+                                 ">= 1.5)" % (su, sp))
+
+
+def test_kovasznay_3d_extruded():
+    """The extruded flow does not depend on z, and neither does the discrete one on the
+    extruded mesh: the 3D errors are the 2D ones times sqrt(depth), on two meshes; the
+    velocity converges at order 3 in 3D too."""
+    sizes = (0.25, 0.125)
+    e3 = [kovasznay_errors(3, h) for h in sizes]
+    for h, e in zip(sizes, e3):
+        e2 = kovasznay_errors(2, h)
+        print("   h = %g: 3D L2 velocity %.6e, pressure %.6e" % (h, e[0], e[1]))
+        for a, b, what in zip(e2, e, ("velocity", "pressure")):
+            H.assert_close(b, a * math.sqrt(0.5), rtol=1e-8, what="3D %s error, h = %g" % (what, h))
+    su = H.slope(sizes, [e[0] for e in e3])
+    if abs(su - 3) > 0.3:
+        raise AssertionError("3D velocity slope %.3f, expected 3" % su)
+
+
+def test_kovasznay_3d_three_ranks():
+    one = kovasznay_errors(3, 0.25)
+    three = kovasznay_errors(3, 0.25, np=3)
+    for a, b, what in zip(one, three, ("velocity", "pressure")):
+        H.assert_close(b, a, rtol=1e-8, what="%s L2 error on 3 ranks" % what)
+
+
+CD_REF, CL_REF, DP_REF = 5.57954, 0.010619, 0.11752
+
+
+def dfg(h, hc, np=1, order=2):
+    """c_D, c_L and the pressure difference of DFG 2D-1 on the example's geometry with cell
+    sizes h (far) and hc, Taylor-Hood (order 2) or stabilized linear cells (order 1)."""
+    work = tempfile.mkdtemp(prefix="seam_dfg_")
+    with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
+        geo = f.read()
+    geo = geo.replace("DefineNumber[0.04,", "DefineNumber[%g," % h)
+    geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % hc)
+    H.write_case(work, "dfg.geo", geo)
+    with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
+        H.write_case(work, "case.yaml", f.read().replace("order: 2", "order: %d" % order))
+    out = H.solve(os.path.join(work, "case.yaml"), np=np)
+    f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
+    probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
+    dp = probes[0]["pressure"] - probes[1]["pressure"]
+    dofs = H.read_json(os.path.join(out, "summary.json"))["dofs"]
+    H.cleanup(work, out)
+    # c = 2 F / (rho U_mean^2 D), U_mean = 2/3 * 0.3, D = 0.1
+    scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
+    cd, cl = scale * f["fx"], scale * f["fy"]
+    print("   order %d, h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f (%+.4f %%), "
+          "c_L = %.6f (%+.3f %%), dp = %.6f (%+.3f %%)" % (order, h, hc, np, dofs, cd, 100 * (cd / CD_REF - 1), cl,
+                                   100 * (cl / CL_REF - 1), dp, 100 * (dp / DP_REF - 1)))
+    return cd, cl, dp
+
+
+def test_dfg_2d1():
+    """Three meshes, each halving the cell sizes: the benchmark's tolerances on the middle
+    one, ten times tighter ones (c_D, dp) on the finest, and the c_D and c_L errors falling."""
+    levels = [dfg(0.08 / 2 ** k, 0.012 / 2 ** k) for k in range(3)]
+    cd, cl, dp = levels[1]
+    H.assert_close(cd, CD_REF, rtol=5e-3, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=5e-2, what="c_L")
+    H.assert_close(dp, DP_REF, rtol=5e-3, what="pressure difference")
+    cd, cl, dp = levels[2]
+    H.assert_close(cd, CD_REF, rtol=5e-4, what="c_D on the finest mesh")
+    H.assert_close(cl, CL_REF, rtol=5e-3, what="c_L on the finest mesh")
+    H.assert_close(dp, DP_REF, rtol=5e-4, what="pressure difference on the finest mesh")
+    for k, (ref, what) in enumerate(((CD_REF, "c_D"), (CL_REF, "c_L"))):
+        errors = [abs(level[k] - ref) for level in levels]
+        if not errors[0] > errors[1] > errors[2]:
+            raise AssertionError("%s errors do not fall under refinement: %s" % (what, errors))
+
+
+def test_dfg_2d1_stabilized():
+    """Linear tri3 cells with stabilization, at the cell sizes that give about as many nodes
+    as the Taylor-Hood mesh of test_dfg_2d1's middle level."""
+    cd, cl, dp = dfg(0.02, 0.003, order=1)
+    H.assert_close(cd, CD_REF, rtol=5e-3, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=5e-2, what="c_L")
+    H.assert_close(dp, DP_REF, rtol=5e-3, what="pressure difference")
+
+
+def test_dfg_2d1_three_ranks():
+    one = dfg(0.08, 0.012)
+    three = dfg(0.08, 0.012, np=3)
+    H.assert_close(three[0], one[0], rtol=1e-8, what="c_D on 3 ranks")
+    H.assert_close(three[1], one[1], rtol=1e-6, atol=1e-10, what="c_L on 3 ranks")
+    H.assert_close(three[2], one[2], rtol=1e-8, what="pressure difference on 3 ranks")
+
+
+@H.full_only
+def test_dfg_2d1_finer():
+    cd, cl, dp = dfg(0.01, 0.0015)
+    H.assert_close(cd, CD_REF, rtol=1e-4, what="c_D")
+    H.assert_close(cl, CL_REF, rtol=2e-3, what="c_L")
+
+
+BAD_BASE = """\
+dimension: 2
+mesh: {geo: body.geo, order: %(order)s}
+materials:
+  oil: %(material)s
+bodies: [{region: body, material: oil}]
+boundary_conditions:
+  - {region: left, type: %(left)s, value: [1, 0]}
+time: {integrator: %(integrator)s, end: 1, steps: 1}
+%(extra)s"""
+
+
+def expect_bad(what, must, order=2, material="{model: newtonian_fluid, density: 1, viscosity: 1}",
+               left="velocity", integrator="static", extra="", line=None):
+    work = tempfile.mkdtemp(prefix="seam_fluid_bad_")
+    H.write_case(work, "body.geo", geometry.rectangle("quad_structured", 0.5, 1))
+    text = BAD_BASE % dict(order=order, material=material, left=left, integrator=integrator,
+                           extra=extra)
+    H.write_case(work, "case.yaml", text)
+    try:
+        for cmd in (["check", "case.yaml"], ["run", "case.yaml", "-o", "out", "--quiet"]):
+            code, out, err = H.run(cmd, cwd=work, check=False, timeout=120)
+            if code != 1:
+                raise AssertionError("%s: %s: exit %d, expected 1\n%s%s"
+                                     % (what, cmd[0], code, out[-1500:], err[-1500:]))
+            prefix = "seam: input error: case.yaml:" + ("%d:" % line if line else "")
+            if prefix not in err:
+                raise AssertionError("%s: no located message %r:\n%s" % (what, prefix, err))
+            for piece in must:
+                if piece not in err:
+                    raise AssertionError("%s: message lacks %r:\n%s" % (what, piece, err))
+    finally:
+        H.cleanup(work)
+
+
+def test_bad_input():
+    expect_bad("fluid without viscosity", ["missing required key 'viscosity'"],
+               material="{model: newtonian_fluid, density: 1}", line=4)
+    expect_bad("fluid without density", ["missing required key 'density'"],
+               material="{model: newtonian_fluid, viscosity: 1}", line=4)
+    expect_bad("fluid with young", ["young", "applies only to solid materials"],
+               material="{model: newtonian_fluid, density: 1, viscosity: 1, young: 3}", line=4)
+    expect_bad("dirichlet on a fluid", ["type 'dirichlet'", "fluid body", "type 'velocity'"],
+               left="dirichlet", line=7)
+    expect_bad("velocity on a solid", ["type 'velocity'", "no fluid body"],
+               material="{model: linear_elastic, young: 1, poisson: 0.3}", order=1, line=7)
+    expect_bad("serendipity fluid mesh", ["quad8", "serendipity cells are not fluid cells"],
+               order="2, serendipity: true", line=5)
+    expect_bad("fluid with mesh tying",
+               ["mesh_tying", "not available yet"],
+               extra="interfaces: [{name: t, type: mesh_tying, slave: top, master: bottom}]\n")
+    expect_bad("energy-momentum for a fluid", ["energy_momentum", "generalized_alpha"],
+               integrator="energy_momentum", line=8)
+    expect_bad("force group on an unknown region", ["no region 'nowhere'"],
+               extra="output: {forces: [{name: f, regions: [nowhere]}]}\n", line=9)
+
+
+def test_gives_up_after_step_cuts():
+    """Newton limited to 2 iterations cannot reach the DFG 2D-1 flow from rest: the step is cut
+    twice, then the run ends with exit code 2 and a failed summary.json."""
+    work = tempfile.mkdtemp(prefix="seam_fluid_")
+    with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
+        H.write_case(work, "dfg.geo", f.read().replace("DefineNumber[0.04,", "DefineNumber[0.08,")
+                     .replace("DefineNumber[0.006,", "DefineNumber[0.012,"))
+    with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
+        text = f.read().replace("steps: 1}", "steps: 1, max_step_cuts: 2}\n"
+                                "solver: {newton: {max_iterations: 2}}")
+    H.write_case(work, "case.yaml", text)
+    try:
+        code, out, err = H.run(["run", "case.yaml", "-o", "out", "--quiet"], cwd=work,
+                               check=False, timeout=120)
+        if code != 2 or "after 2 step cuts" not in err:
+            raise AssertionError("exit %d, expected 2 after 2 step cuts:\n%s%s" % (code, out, err))
+        status = H.read_json(os.path.join(work, "out", "summary.json"))["status"]
+        if status != "failed":
+            raise AssertionError("summary.json status %r, expected 'failed'" % status)
+    finally:
+        H.cleanup(work)
+
+
+if __name__ == "__main__":
+    H.main([test_poiseuille_exact_quad9, test_poiseuille_exact_tri6, test_poiseuille_exact_3d,
+            test_generalized_alpha_second_order, test_kovasznay_rates,
+            test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded,
+            test_kovasznay_3d_three_ranks, test_dfg_2d1, test_dfg_2d1_stabilized,
+            test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input,
+            test_gives_up_after_step_cuts])
