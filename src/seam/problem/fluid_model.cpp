@@ -143,6 +143,8 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
       break;
     case io::BoundaryType::dirichlet:
       break; // refused above
+    case io::BoundaryType::mesh_displacement:
+      break; // the mesh's motion (FluidMeshMotion)
     }
   }
 
