@@ -362,8 +362,8 @@ def test_bad_input():
                material="{model: linear_elastic, young: 1, poisson: 0.3}", order=1, line=7)
     expect_bad("serendipity fluid mesh", ["quad8", "serendipity cells are not fluid cells"],
                order="2, serendipity: true", line=5)
-    expect_bad("fluid with mesh tying",
-               ["mesh_tying", "not available yet"],
+    expect_bad("fluid mesh tying of sides that do not face each other",
+               ["interfaces[0]", "do not overlap"],
                extra="interfaces: [{name: t, type: mesh_tying, slave: top, master: bottom}]\n")
     expect_bad("energy-momentum for a fluid", ["energy_momentum", "generalized_alpha"],
                integrator="energy_momentum", line=8)

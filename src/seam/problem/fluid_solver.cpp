@@ -7,6 +7,7 @@
 #include "seam/problem/fluid_mesh_motion.hpp"
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_output.hpp"
+#include "seam/problem/tying_constraint.hpp"
 #include "seam/solid/loads.hpp"
 
 #include <array>
@@ -269,10 +270,12 @@ struct NewtonOutcome {
 
 class FluidNewton {
 public:
+  /// `tying`: the condensed mesh tying of fluid subdomains, or null.
   FluidNewton(const io::Config& config, const FluidModel& model, const FluidLayout& layout,
-              FluidOutput& out)
-      : config_(config), model_(model), layout_(layout), out_(out), K_(layout.make_matrix()),
-        r_(layout.make_vector()), r_full_(layout.make_vector()), dw_(layout.make_vector()),
+              FluidOutput& out, const TyingConstraint* tying)
+      : config_(config), model_(model), layout_(layout), out_(out), tying_(tying),
+        K_(layout.make_matrix()), r_(layout.make_vector()), rt_(layout.make_vector()),
+        r_full_(layout.make_vector()), dw_(layout.make_vector()), dwt_(layout.make_vector()),
         solver_(layout.comm().get(), config.solver.linear == io::LinearSolverKind::direct
                                          ? la::SolverKind::direct
                                          : la::SolverKind::iterative) {
@@ -286,6 +289,13 @@ public:
     NewtonOutcome res;
     const auto& nc = config_.solver.newton;
     impose(model_, layout_, t, w);
+    if (tying_) {
+      // The tied slave velocities from the master ones (and the prescribed slave ones), so
+      // that the state satisfies the constraint; the increments d = T d~ keep it.
+      tying_->expand(w, dw_);
+      w.copy_from(dw_);
+      w.update_ghosts();
+    }
     double last_increment = 0.0;
     for (int it = 0; it <= nc.max_iterations; ++it) {
       bool inverted;
@@ -298,12 +308,23 @@ public:
         return res;
       }
       r_full_.copy_from(r_);
+      // The Newton system: condensed by T (T^T K T, T^T r) when fluid subdomains are tied.
+      la::Matrix* K_sys = &K_;
+      la::Vector* r_sys = &r_;
+      la::Vector* d_sys = &dw_;
+      if (tying_) {
+        tying_->condense_matrix(K_, Kt_);
+        tying_->condense_vector(r_, rt_);
+        K_sys = &Kt_;
+        r_sys = &rt_;
+        d_sys = &dwt_;
+      }
       {
-        la::Vector::LocalView view(r_, true);
+        la::Vector::LocalView view(*r_sys, true);
         auto v = view.values();
         for (auto dof : fixed_) v[dof - layout_.first_owned_dof()] = 0.0;
       }
-      const double norm = r_.norm();
+      const double norm = r_sys->norm();
       if (!std::isfinite(norm)) {
         res.failure = "the residual is not finite";
         return res;
@@ -320,14 +341,15 @@ public:
         return res;
       }
       if (it == nc.max_iterations) break;
-      K_.zero_rows_columns(fixed_);
-      r_.scale(-1.0);
-      dw_.zero();
+      K_sys->zero_rows_columns(fixed_);
+      r_sys->scale(-1.0);
+      d_sys->zero();
       bool solved;
       {
         ScopedTimer timer(out_.timers(), "linear_solve");
-        solved = solver_.solve(K_, r_, dw_);
+        solved = solver_.solve(*K_sys, *r_sys, *d_sys);
       }
+      if (solved && tying_) tying_->expand(dwt_, dw_);
       if (!solved) {
         res.failure = "the linear solver failed";
         return res;
@@ -348,8 +370,9 @@ private:
   const FluidModel& model_;
   const FluidLayout& layout_;
   FluidOutput& out_;
-  la::Matrix K_;
-  la::Vector r_, r_full_, dw_;
+  const TyingConstraint* tying_;
+  la::Matrix K_, Kt_;
+  la::Vector r_, rt_, r_full_, dw_, dwt_;
   la::LinearSolver solver_;
   std::vector<PetscInt> fixed_;
   double reference_ = 0.0;
@@ -388,13 +411,22 @@ struct MovingMesh {
 
 } // namespace
 
-FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
+FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        const std::filesystem::path& dir, bool quiet, bool check_only) {
   const FluidLayout layout(mesh, comm);
   const auto model = build_fluid_model(config, layout);
   FluidMeshMotion motion(config, layout);
+  // Tied fluid subdomains: the mortar operators, once (the mesh initialization moves slave
+  // nodes onto the master side before anything is integrated).
+  PhaseTimers setup_timers;
+  const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
   FluidRunInfo info{static_cast<long long>(layout.n_global_dofs())};
   if (check_only) return info;
+  std::optional<TyingConstraint> tying;
+  if (!tied.empty()) {
+    tying.emplace(tied, tied_dofs(layout, model)); // the velocity; the pressure is untied
+    if (!tying->active()) tying.reset();
+  }
   FluidOutput out(config, layout, model, dir, quiet);
   if (comm.is_root() && !quiet)
     std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s)%s; "
@@ -402,10 +434,15 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
                 config.title.empty() ? config.source.c_str() : config.title.c_str(), mesh.n_nodes(),
                 mesh.n_cells(), info.n_dofs, comm.size(), motion.moving() ? ", moving mesh" : "",
                 dir.c_str());
-  FluidNewton newton(config, model, layout, out);
+  FluidNewton newton(config, model, layout, out, tying ? &*tying : nullptr);
   la::Vector w = layout.make_vector(), w_old = layout.make_vector();
   set_initial_velocity(config, layout, w);
   impose(model, layout, 0.0, w);
+  if (tying) { // the initial state satisfies the tying constraint (slave velocities = P v_M)
+    tying->expand(w, w_old);
+    w.copy_from(w_old);
+    w.update_ghosts();
+  }
   const bool exact = !config.output.exact_velocity.empty() || !config.output.exact_pressure.empty();
   const auto& tc = config.time;
   // Generalized-alpha for first-order systems (Jansen, Whiting & Hulbert 2000, eqs. 17-19 and
