@@ -10,6 +10,8 @@ each side is its own (docs/fluid.md, "Mesh tying of fluid subdomains").
   * DFG 2D-1 on the channel cut at x = 0.6 into two meshes that do not match there (different
     numbers of cells on the two sides of the cut): c_D and c_L within 0.1 % of the uncut mesh
     of the same cell sizes, and the cut mesh's values on 3 ranks equal to 1 rank.
+  * 3D: the plane Poiseuille flow through two cubes tied non-matching, exact on tet10 and
+    hex27; stabilized linear cells tied keep a uniform flow uniform.
   * Bad input: contact between fluids, standard multipliers, tying with a moving mesh.
 """
 import os
@@ -60,6 +62,61 @@ def test_poiseuille_across_tied_interface():
     # what the inflow's pressure puts on the walls' corner nodes (as in test_fluid).
     tied_poiseuille("quad")
     tied_poiseuille("tri")
+
+
+TIED_POISEUILLE_3D = """\
+dimension: 3
+mesh: {geo: body.geo, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: 0.1}}
+bodies: [{region: lower, material: oil}, {region: upper, material: oil}]
+boundary_conditions:
+  - {region: bottom, type: velocity, value: [0, 0, "4*x*(1-x)"]}
+  - {region: left, type: velocity, value: [0, 0, 0]}
+  - {region: right, type: velocity, value: [0, 0, 0]}
+  - {region: front, type: velocity, components: [y], value: [0]}
+  - {region: back, type: velocity, components: [y], value: [0]}
+interfaces:
+  - {name: cut, type: mesh_tying, slave: upper_bottom, master: lower_top}
+time: {integrator: static, end: 1, steps: 1}
+output:
+  exact_velocity: [0, 0, "4*x*(1-x)"]
+  exact_pressure: "0.8*(2-z)"
+"""
+
+
+def test_poiseuille_across_tied_interface_3d():
+    """Plane Poiseuille flow along z through two cubes stacked in z and meshed independently
+    (no-slip at x = 0 and 1, slip walls at y = 0 and 1): exact on tet10 (whose tri6 slave
+    facets use the modified dual basis) and hex27."""
+    for kind, sizes in (("tet", (0.5, 0.4)), ("hex", (0.5, 0.34))):
+        work = tempfile.mkdtemp(prefix="seam_fluid_tied_")
+        H.write_case(work, "body.geo", geometry.tied_boxes(*sizes, order=2, kind=kind))
+        out = H.solve(H.write_case(work, "case.yaml", TIED_POISEUILLE_3D))
+        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+        H.cleanup(work, out)
+        print("   %s: velocity L2 %.2e, pressure L2 %.2e"
+              % (kind, err["velocity_l2_error"], err["pressure_l2_error"]))
+        if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+            raise AssertionError("3D Poiseuille across the tied interface is not exact: %s" % err)
+
+
+def test_uniform_flow_tied_stabilized():
+    """Stabilized linear cells (tri3, quad4) tied: a uniform flow entering at the bottom with a
+    tangential part, walls moving with it, leaves both meshes uniform (exact solution)."""
+    text = TIED_POISEUILLE.replace("order: 2", "order: 1")
+    for old, new in (('[0, "4*x*(1-x)"]', '[0.3, 1]'), ("[0, 0]", "[0.3, 1]"),
+                     ('"0.8*(2-y)"', '"0"')):
+        text = text.replace(old, new)
+    for kind in ("tri", "quad"):
+        work = tempfile.mkdtemp(prefix="seam_fluid_tied_")
+        H.write_case(work, "body.geo", geometry.tied_rectangles(0.25, 0.2, order=1, kind=kind))
+        out = H.solve(H.write_case(work, "case.yaml", text))
+        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+        H.cleanup(work, out)
+        print("   %s: velocity L2 %.2e, pressure L2 %.2e"
+              % (kind, err["velocity_l2_error"], err["pressure_l2_error"]))
+        if err["velocity_l2_error"] > 1e-12 or err["pressure_l2_error"] > 1e-12:
+            raise AssertionError("the uniform flow is not kept across the interface: %s" % err)
 
 
 def test_poiseuille_tied_three_ranks():
@@ -167,5 +224,6 @@ def test_bad_input():
 
 
 if __name__ == "__main__":
-    H.main([test_poiseuille_across_tied_interface, test_poiseuille_tied_three_ranks,
+    H.main([test_poiseuille_across_tied_interface, test_poiseuille_across_tied_interface_3d,
+            test_uniform_flow_tied_stabilized, test_poiseuille_tied_three_ranks,
             test_dfg_2d1_cut, test_bad_input])
