@@ -61,7 +61,12 @@ def run_case(work, text):
     out = H.solve(H.write_case(work, "case.yaml", text))
     errors = H.read_csv(os.path.join(out, "errors.csv"))
     probe = H.read_csv(os.path.join(out, "probes.csv"))[-1]
+    vtu = sorted(f for f in os.listdir(out) if f.endswith(".vtu"))
+    with open(os.path.join(out, vtu[-1]), "rb") as f:
+        has_field = b'Name="mesh_displacement"' in f.read()
     H.cleanup(work, out)
+    if not has_field:
+        raise AssertionError("%s has no point field mesh_displacement" % vtu[-1])
     return (errors, probe, max(e["velocity_l2_error"] for e in errors),
             max(e["pressure_l2_error"] for e in errors))
 
