@@ -13,6 +13,7 @@ generalized-alpha integrator, prescribed and pseudo-elastic mesh motion, inverte
     flow is exact to round-off at every step although the mesh velocity is not zero. (A
     pressure-driven flow would start from p = 0 too, and generalized-alpha's pressure at
     n + alpha_f carries (1 - alpha_f) p_n of that start for a few steps.)
+    The same on hex27 in a box, on 3 ranks.
   * A channel whose bottom wall bulges (a `mesh_displacement` condition and the wall's
     velocity on it; pseudo-elastic mesh with Jacobian stiffening on an unstructured tri6
     mesh): the same forces, probes and mesh displacement on 3 ranks as on 1.
