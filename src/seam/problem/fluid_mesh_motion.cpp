@@ -134,6 +134,10 @@ void FluidMeshMotion::build_solve() {
     if (disc_->owns_node(n) && source_[n].kind != Source::free)
       for (int i = 0; i < dim; ++i) fixed_.push_back(disc_->global_dof(n, i));
   std::sort(fixed_.begin(), fixed_.end());
+  // The system matrix with the prescribed rows and columns replaced by the identity, once:
+  // the same unchanged matrix every step lets PETSc keep its factorization.
+  K_system_.emplace(K_->copy());
+  K_system_->zero_rows_columns(fixed_);
   solver_ = std::make_unique<la::LinearSolver>(layout_.comm().get(), la::SolverKind::direct);
 }
 
@@ -158,8 +162,9 @@ bool FluidMeshMotion::displacement(double t, std::vector<double>& d) {
   d.assign(static_cast<std::size_t>(n_nodes) * dim, 0.0);
   if (!elastic_cells_.empty() && !disc_) build_solve();
   if (disc_) {
-    // K d = 0 in the interior, d given on the Dirichlet nodes (b and K set by
-    // zero_rows_columns); each owner writes its nodes, the sum replicates them.
+    // K d = 0 in the interior, d given on the Dirichlet nodes: the free rows get
+    // b = -K_free,prescribed d_prescribed, the prescribed rows their values (as
+    // zero_rows_columns sets them); each owner writes its nodes, the sum replicates them.
     la::Vector x = disc_->make_vector(), b = disc_->make_vector();
     {
       la::Vector::LocalView view(x, true);
@@ -168,9 +173,14 @@ bool FluidMeshMotion::displacement(double t, std::vector<double>& d) {
         if (disc_->owns_node(n) && source_[n].kind != Source::free)
           value_at(source_[n], t, n, &v[disc_->local_dof(n, 0)]);
     }
-    auto K = K_->copy();
-    K.zero_rows_columns(fixed_, &x, &b);
-    if (!solver_->solve(K, b, x)) return false;
+    K_->mult(x, b);
+    b.scale(-1.0);
+    {
+      la::Vector::LocalView bv(b, true), xv(x, false);
+      const PetscInt first = disc_->first_owned_dof();
+      for (auto dof : fixed_) bv.values()[dof - first] = xv.values()[dof - first];
+    }
+    if (!solver_->solve(*K_system_, b, x)) return false;
     la::Vector::LocalView view(x, false);
     const auto v = view.values();
     for (std::int32_t n = 0; n < n_nodes; ++n)

@@ -6,7 +6,8 @@
 // layout (a Discretization: dim dofs per node) and a stiffness assembled and kept once: each
 // time only the boundary data change. Its Dirichlet data: `mesh_displacement` conditions,
 // zero on the rest of the mesh's boundary, and the motion of the nodes it shares with bodies
-// that do not move pseudo-elastically (prescribed, or fixed). The displacement is returned on
+// that do not move pseudo-elastically (prescribed, or fixed). The system matrix is the same
+// every step, so its factorization is kept. The displacement is returned on
 // every node and every rank, like the mesh (replicated).
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
@@ -51,7 +52,8 @@ private:
   std::vector<std::int32_t> elastic_cells_; // sorted
   std::vector<int> cell_body_;           // per cell: the body whose mesh motion it follows, or -1
   std::unique_ptr<Discretization> disc_; // of the pseudo-elastic solve, if any
-  std::optional<la::Matrix> K_;
+  std::optional<la::Matrix> K_;          // the stiffness
+  std::optional<la::Matrix> K_system_;   // the same, prescribed rows and columns as identity
   std::unique_ptr<la::LinearSolver> solver_;
   std::vector<PetscInt> fixed_; // owned dofs of the solve with a given value
 };
