@@ -515,8 +515,7 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
           // place of D_jj and D_jj x~_j (dual: k = j only).
           const int k_begin = standard() ? 0 : j, k_end = standard() ? ns : j + 1;
           for (int k = k_begin; k < k_end; ++k)
-            add_row(out.D_gradient, static_cast<std::int64_t>(sj), lin.dD(j, k), 1.0, nullptr,
-                    0.0);
+            add_row(out.D_gradient, static_cast<std::int64_t>(sj), lin.dD(j, k), 1.0, nullptr, 0.0);
           // d(sum_p M_jp x_p - sum_k D_jk x~_k) at fixed x, component by component.
           for (int a = 0; a < dim; ++a) {
             const auto row = static_cast<std::int64_t>(sj * dim) + a;

@@ -53,7 +53,8 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
         if (type == fem::CellType::tri6 || type == fem::CellType::quad8)
           io::fail_at(itf.mark, "interface '" + itf.name +
                                     "': standard multipliers on tri6/quad8 faces give weighted "
-                                    "gaps of no fixed sign at the vertices; use multiplier: dual");
+                                    "gaps of no fixed sign at the vertices, with or without "
+                                    "friction; use multiplier: dual");
     }
     s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain;
@@ -487,7 +488,8 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     const double* normals = s.itf.normals().data();
     const auto add_column = [&](std::int32_t mesh_node, std::size_t j, double value) {
       for (int a = 0; a < dim; ++a) {
-        const double v = s.friction ? value : value * normals[j * dim + static_cast<std::size_t>(a)];
+        const double v =
+            s.friction ? value : value * normals[j * dim + static_cast<std::size_t>(a)];
         if (v == 0.0) continue;
         bi.push_back(disc_.global_dof(mesh_node, a));
         bj.push_back(s.lm_index[j] + (s.friction ? a : 0));

@@ -264,7 +264,7 @@ private:
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;
-  bool held_ = false; ///< hold_sets
+  bool held_ = false;     ///< hold_sets
   PetscInt n_lm_ = 0;     ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0; ///< global index of the first of them
 };

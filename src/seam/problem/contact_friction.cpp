@@ -5,8 +5,8 @@
 #include "seam/common/error.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 
 namespace seam::problem {
 
@@ -415,8 +415,8 @@ void ContactConstraint::saddle_friction(Side& s, std::vector<PetscInt>& ci,
     return s.lm_index[j] + static_cast<PetscInt>(c);
   };
   friction_gradients(
-      s, fr, [&](std::size_t j, int i) { return lm_row(j, frames[j].tangent_component[i]); },
-      1.0, ci, cj, cv);
+      s, fr, [&](std::size_t j, int i) { return lm_row(j, frames[j].tangent_component[i]); }, 1.0,
+      ci, cj, cv);
   for (const auto& e : s.lin.gap_gradient) {
     const auto j = static_cast<std::size_t>(e.row);
     if (!s.active[j]) continue;

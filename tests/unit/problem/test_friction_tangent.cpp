@@ -60,26 +60,26 @@ struct Case {
   std::string name;
   int dimension = 2;
   std::string geo;
-  std::string interface;           ///< the YAML of the interface
-  std::string top_x = "0.002";     ///< tangential travel of the top in the drag step
+  std::string interface;               ///< the YAML of the interface
+  std::string top_x = "0.002";         ///< tangential travel of the top in the drag step
   std::string tilt = "(-0.01+0.02*x)"; ///< normal displacement of the top in the press step
-  std::string fixed;               ///< extra boundary condition (two bodies: the base)
+  std::string fixed;                   ///< extra boundary condition (two bodies: the base)
   std::string bodies = "  - {region: body, material: m}\n";
 };
 
 std::string rectangle_geo(double h, int order, bool two_bodies) {
-  std::string g = "h = " + std::to_string(h) + ";\n" +
-                  "Point(1) = {0, 0, 0, h}; Point(2) = {1, 0, 0, h};\n"
-                  "Point(3) = {1, 0.25, 0, h}; Point(4) = {0, 0.25, 0, h};\n"
-                  "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n"
-                  "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
-                  "Transfinite Curve{1, 3} = " +
-                  std::to_string(static_cast<int>(std::lround(1.0 / h)) + 1) +
-                  "; Transfinite Curve{2, 4} = " +
-                  std::to_string(static_cast<int>(std::lround(0.25 / h)) + 1) +
-                  "; Transfinite Surface{1}; Recombine Surface{1};\n"
-                  "Physical Curve(\"bottom\") = {1}; Physical Curve(\"top\") = {3};\n"
-                  "Physical Surface(\"body\") = {1};\n";
+  std::string g =
+      "h = " + std::to_string(h) + ";\n" +
+      "Point(1) = {0, 0, 0, h}; Point(2) = {1, 0, 0, h};\n"
+      "Point(3) = {1, 0.25, 0, h}; Point(4) = {0, 0.25, 0, h};\n"
+      "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n"
+      "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
+      "Transfinite Curve{1, 3} = " +
+      std::to_string(static_cast<int>(std::lround(1.0 / h)) + 1) +
+      "; Transfinite Curve{2, 4} = " + std::to_string(static_cast<int>(std::lround(0.25 / h)) + 1) +
+      "; Transfinite Surface{1}; Recombine Surface{1};\n"
+      "Physical Curve(\"bottom\") = {1}; Physical Curve(\"top\") = {3};\n"
+      "Physical Surface(\"body\") = {1};\n";
   if (two_bodies)
     // A wider base below, meshed independently (non-matching, 0.7 h).
     g += "Point(11) = {-0.3, -0.25, 0, 0.7*h}; Point(12) = {1.3, -0.25, 0, 0.7*h};\n"
@@ -104,8 +104,8 @@ std::string box_geo(double h, int order, bool serendipity, bool tets) {
          ";\n  EndIf\nEndFor\nTransfinite Surface{:};\nRecombine Surface{:};\n"
          "Transfinite Volume{1};\n";
   else
-    g += "Mesh.MeshSizeMax = " + std::to_string(h) + ";\nMesh.MeshSizeMin = " +
-         std::to_string(0.5 * h) + ";\n";
+    g += "Mesh.MeshSizeMax = " + std::to_string(h) +
+         ";\nMesh.MeshSizeMin = " + std::to_string(0.5 * h) + ";\n";
   g += "Physical Surface(\"bottom\") = {5};\nPhysical Surface(\"top\") = {6};\n"
        "Physical Volume(\"body\") = {1};\n"
        "Mesh.ElementOrder = " +
@@ -135,8 +135,8 @@ Errors check(const Case& c, int n_directions) {
                      "boundary_conditions:\n"
                      "  - {region: top, type: dirichlet, components: " +
                      dims + ", value: ['" + c.top_x + "*max(t-1,0)', " +
-                     (c.dimension == 3 ? "'0', " : "") + "'" + c.tilt + "*min(t,1)']}\n" +
-                     c.fixed + "interfaces:\n  - " + c.interface +
+                     (c.dimension == 3 ? "'0', " : "") + "'" + c.tilt + "*min(t,1)']}\n" + c.fixed +
+                     "interfaces:\n  - " + c.interface +
                      "\ntime: {integrator: static, end: 2.0, steps: 2}\n"
                      "solver: {newton: {tolerance: 1e-11, max_iterations: 40}}\n";
   if (comm.is_root()) {
@@ -195,7 +195,8 @@ Errors check(const Case& c, int n_directions) {
   double lambda_scale = 0.0;
   for (const double l : lambda0) lambda_scale = std::max(lambda_scale, std::abs(l));
   for (std::size_t k = 0; k < lambda0.size(); ++k)
-    if (lambda0[k] != 0.0) lambda0[k] += 1e-4 * lambda_scale * noise(static_cast<std::int64_t>(k), 2);
+    if (lambda0[k] != 0.0)
+      lambda0[k] += 1e-4 * lambda_scale * noise(static_cast<std::int64_t>(k), 2);
   contact.set_multipliers(lambda0);
 
   la::Matrix K = disc.make_matrix(), Ksys;
@@ -318,9 +319,8 @@ constexpr const char* plane_2d =
 constexpr const char* plane_3d =
     "{name: floor, type: contact, slave: bottom, friction: {model: coulomb, coefficient: 0.3}, "
     "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}";
-constexpr const char* blocks_2d =
-    "{name: joint, type: contact, slave: bottom, master: base_top, "
-    "friction: {model: coulomb, coefficient: 0.3}";
+constexpr const char* blocks_2d = "{name: joint, type: contact, slave: bottom, master: base_top, "
+                                  "friction: {model: coulomb, coefficient: 0.3}";
 
 Case plane_case(std::string name, int dimension, std::string geo, const std::string& extra) {
   Case c;
