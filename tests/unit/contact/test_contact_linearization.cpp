@@ -267,7 +267,9 @@ void check_friction(int dim, bool tets, bool rigid, bool standard = false) {
         err[k] = std::max(err[k], std::abs(fd - value));
       }
   }
-  if (standard) ASSERT_FALSE(lin.D_gradient.empty());
+  if (standard) {
+    ASSERT_FALSE(lin.D_gradient.empty());
+  }
   std::printf("  friction%s dim %d %s %s: |dF| %.2e err %.2e, |dD| %.2e err %.2e, |dW| %.2e err "
               "%.2e, |dn| %.2e err %.2e\n",
               standard ? " standard" : "", dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
