@@ -54,9 +54,13 @@ def reactions_by_step(out, region):
     return {int(r["step"]): r for r in rows_of(out, "reactions.csv") if r["region"] == region}
 
 
-def check_quadratic(out, min_order=1.8, floor_rel=1e-14):
+def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=False):
     """Observed order of the last Newton iterations of every step with at least 3 iterations
-    after the sets settled (no active-set changes)."""
+    after the sets settled (no active-set changes). With `from_last_change` the sequence starts
+    at the iterate where the sets changed last: its residual is already that of the final sets
+    (they are decided before the residual is measured) and every later step uses them, so it
+    belongs to the settled Newton sequence; the saddle point's round-off floor lies higher
+    than the condensed one's and leaves only two settled iterates above it otherwise."""
     by_step = {}
     for r in rows_of(out, "newton.csv"):
         by_step.setdefault(int(r["step"]), []).append(r)
@@ -67,6 +71,8 @@ def check_quadratic(out, min_order=1.8, floor_rel=1e-14):
         if not settled:
             continue
         first = settled[0]
+        if from_last_change and first > 1 and all(i in settled for i in range(first, len(its))):
+            first -= 1
         # Above the round-off plateau: well over the converged residual of the step.
         tail = [v for v in res[first:] if v > max(100.0 * res[-1], floor_rel * max(res))]
         if len(tail) < 3:
@@ -133,7 +139,7 @@ def test_drag_2d_quadratic():
     check_drag_2d(drag_2d(order=2))
 
 
-def check_drag_2d(out):
+def check_drag_2d(out, from_last_change=False):
     react = reactions_by_step(out, "top")
     itf = {int(r["step"]): r for r in rows_of(out, "interfaces.csv")}
     steps = sorted(itf)
@@ -167,7 +173,7 @@ def check_drag_2d(out):
         expected = MU * itf[s]["normal_force"] * SLIDE / 2 * dt
         H.assert_close(inc, expected, rtol=1e-6, what="dissipation of step %d = mu N du" % s)
     # The top is dragged, the sliding bottom follows without friction transitions.
-    check_quadratic(out)
+    check_quadratic(out, from_last_change=from_last_change)
     H.cleanup(*_dirs)
 
 
@@ -260,7 +266,7 @@ def check_parallel(serial, parallel):
     H.cleanup(*_dirs)
 
 
-def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra=""):
+def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6):
     # A hex block pressed on a rigid plane, then dragged diagonally: |F_t| = mu |F_z|.
     bcs = ["{region: top, type: dirichlet, components: [x, y, z], "
            "value: ['%r*max(t-1,0)', '%r*max(t-1,0)', '-%r*min(t,1)']}"
@@ -271,7 +277,7 @@ def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra=""):
     h = 0.125 if order == 1 else 0.25
     return run_case(G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5,
                           lz=0.25),
-                    case_yaml(3, bcs, itf, 6, 3.0), np=np)
+                    case_yaml(3, bcs, itf, steps, 3.0), np=np)
 
 
 def check_sliding(out, region, what):
@@ -307,12 +313,12 @@ def test_drag_3d_quadratic_np3():
     check_drag_3d(drag_3d(np=3, order=2))
 
 
-def check_drag_3d(out):
+def check_drag_3d(out, from_last_change=False):
     itf = check_sliding(out, "top", "3D hex on a rigid plane")
     last = itf[max(itf)]
     if last["frictional_dissipation"] <= 0.0:
         raise AssertionError("no frictional dissipation while sliding")
-    check_quadratic(out)
+    check_quadratic(out, from_last_change=from_last_change)
     H.cleanup(*_dirs)
 
 
@@ -704,12 +710,12 @@ STANDARD = "multiplier: standard, "
 
 
 def test_drag_2d_standard():
-    check_drag_2d(drag_2d(extra=STANDARD))
+    check_drag_2d(drag_2d(extra=STANDARD), from_last_change=True)
 
 
 def test_drag_2d_standard_quadratic():
     """quad9 cells: line3 slave faces, standard multipliers."""
-    check_drag_2d(drag_2d(order=2, extra=STANDARD))
+    check_drag_2d(drag_2d(order=2, extra=STANDARD), from_last_change=True)
 
 
 def test_stick_2d_standard():
@@ -721,7 +727,9 @@ def test_drag_2d_standard_parallel():
 
 
 def test_drag_3d_standard():
-    check_drag_3d(drag_3d(extra=STANDARD))
+    # Steps of half the size: the saddle point's residual floor is higher than the condensed
+    # one's, and the settled iterates of the larger steps start before the asymptotic regime.
+    check_drag_3d(drag_3d(extra=STANDARD, steps=12))
 
 
 def test_drag_2d_two_bodies_standard():
