@@ -117,6 +117,23 @@ std::string box_geo(double h, int order, bool serendipity, bool tets) {
   return g;
 }
 
+/// The block of box_geo (hex8 or hex20) on a wider base box, meshed independently.
+std::string boxes_geo(double h, int order) {
+  return "SetFactory(\"OpenCASCADE\");\nBox(1) = {-0.25, -0.25, -0.25, 1.5, 1.0, 0.25};\n"
+         "Box(2) = {0, 0, 0, 1, 0.5, 0.25};\n"
+         "For c In {1:24}\n  bb() = BoundingBox Curve{c};\n"
+         "  l = Fabs(bb(3) - bb(0)) + Fabs(bb(4) - bb(1)) + Fabs(bb(5) - bb(2));\n"
+         "  Transfinite Curve{c} = (c <= 12 ? Round(l / " +
+         std::to_string(1.2 * h) + ") : Round(l / " + std::to_string(h) +
+         ")) + 1;\nEndFor\nTransfinite Surface{:};\nRecombine Surface{:};\n"
+         "Transfinite Volume{1, 2};\n"
+         "Physical Volume(\"base\") = {1}; Physical Volume(\"body\") = {2};\n"
+         "Physical Surface(\"base_bottom\") = {5}; Physical Surface(\"base_top\") = {6};\n"
+         "Physical Surface(\"bottom\") = {11}; Physical Surface(\"top\") = {12};\n"
+         "Mesh.ElementOrder = " +
+         std::to_string(order) + ";\nMesh.SecondOrderIncomplete = 1;\n";
+}
+
 struct Errors {
   double displacement = 0.0, constraint = 0.0;
   int inactive = 0, stick = 0, slip = 0;
@@ -347,6 +364,14 @@ Case blocks_case(std::string name, int order, const std::string& extra) {
 }
 
 constexpr double tolerance = 1e-6;
+
+TEST(FrictionTangent, TwoBodies3dQuad4Dual) {
+  Case c = blocks_case("blocks_3d_quad4_dual", 1, "");
+  c.dimension = 3;
+  c.geo = boxes_geo(0.125, 1);
+  c.fixed = "  - {region: base_bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}\n";
+  expect_mixed(check(c, 2), tolerance);
+}
 
 TEST(FrictionTangent, RigidPlane2dLine2Dual) {
   expect_mixed(check(plane_case("plane_2d_line2_dual", 2, rectangle_geo(0.0625, 1, false), ""), 3),
