@@ -35,7 +35,8 @@
 // unknowns per slave node, B^T: D_jk e_c, -M_jl e_c); its rows are the gap row, one row per
 // tangent of the linearized frictional condition (below, with the nodal weight D_j in place of
 // D_jj) and lambda_j,c = 0 in prescribed components; inactive nodes lambda_j = 0. The slip
-// increment then takes the full D: u~_j = sum_l (M_jl - M^n_jl) x_l - sum_k (D_jk - D^n_jk) x_k.
+// increment then takes the full D: u~_j = sum_l (M_jl - M^n_jl) x_l - sum_k (D_jk - D^n_jk) x_k
+// (against a rigid plane D_j P (x_j - x_j^n - (c - c^n))).
 //
 // With friction (contact_friction.cpp) the multiplier of a slave node is a Cartesian vector
 // lambda_j in the span V of its free directions, recovered from all its free slave rows,
