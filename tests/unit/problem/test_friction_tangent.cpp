@@ -401,6 +401,19 @@ TEST(FrictionTangent, RigidPlane3dQuad8Dual) {
                tolerance);
 }
 
+TEST(FrictionTangent, RigidPlane3dTri6Dual) {
+  expect_mixed(check(plane_case("plane_3d_tri6_dual", 3, box_geo(0.3, 2, false, true), ""), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies3dQuad4Standard) {
+  Case c = blocks_case("blocks_3d_quad4_standard", 1, ", multiplier: standard");
+  c.dimension = 3;
+  c.geo = boxes_geo(0.125, 1);
+  c.fixed = "  - {region: base_bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}\n";
+  expect_mixed(check(c, 2), tolerance);
+}
+
 TEST(FrictionTangent, RigidPlane2dLine2Standard) {
   expect_mixed(check(plane_case("plane_2d_line2_standard", 2, rectangle_geo(0.0625, 1, false),
                                 ", multiplier: standard"),
