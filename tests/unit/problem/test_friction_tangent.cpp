@@ -365,12 +365,17 @@ Case blocks_case(std::string name, int order, const std::string& extra) {
 
 constexpr double tolerance = 1e-6;
 
-TEST(FrictionTangent, TwoBodies3dQuad4Dual) {
-  Case c = blocks_case("blocks_3d_quad4_dual", 1, "");
+/// blocks_case in 3D: hex8 boxes, quad4 faces.
+Case boxes_case(std::string name, const std::string& extra) {
+  Case c = blocks_case(std::move(name), 1, extra);
   c.dimension = 3;
   c.geo = boxes_geo(0.125, 1);
   c.fixed = "  - {region: base_bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}\n";
-  expect_mixed(check(c, 2), tolerance);
+  return c;
+}
+
+TEST(FrictionTangent, TwoBodies3dQuad4Dual) {
+  expect_mixed(check(boxes_case("blocks_3d_quad4_dual", ""), 2), tolerance);
 }
 
 TEST(FrictionTangent, RigidPlane2dLine2Dual) {
@@ -407,11 +412,8 @@ TEST(FrictionTangent, RigidPlane3dTri6Dual) {
 }
 
 TEST(FrictionTangent, TwoBodies3dQuad4Standard) {
-  Case c = blocks_case("blocks_3d_quad4_standard", 1, ", multiplier: standard");
-  c.dimension = 3;
-  c.geo = boxes_geo(0.125, 1);
-  c.fixed = "  - {region: base_bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}\n";
-  expect_mixed(check(c, 2), tolerance);
+  expect_mixed(check(boxes_case("blocks_3d_quad4_standard", ", multiplier: standard"), 2),
+               tolerance);
 }
 
 TEST(FrictionTangent, RigidPlane2dLine2Standard) {
