@@ -613,7 +613,7 @@ def test_friction_c_t_without_friction():
     expect_input_error(text, ["interfaces[0].c_t", "friction"], at=position(text, "c_t:", "5"))
 
 
-def test_contact_standard_multiplier_tri6():
+def test_contact_standard_multiplier_tri6(friction=""):
     """Standard multipliers weight the gaps with N_j, whose integral vanishes at the vertices
     of a tri6 face: rejected with a pointer to the dual ones."""
     geo = ('SetFactory("OpenCASCADE");\nBox(1) = {0, 0, 0, 1, 1, 1};\n'
@@ -633,11 +633,16 @@ interfaces:
     type: contact
     slave: bottom
     rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}
-    multiplier: standard
+    multiplier: standard%s
 time: {integrator: static, end: 1, steps: 1}
-"""
+""" % friction
     expect_input_error(text, ["interface 'floor'", "standard multipliers on tri6/quad8",
                               "use multiplier: dual"], files=[("box.geo", geo)])
+
+
+def test_friction_standard_multiplier_tri6():
+    """Friction does not lift it: the frictional rows need the same weighted gaps."""
+    test_contact_standard_multiplier_tri6("\n    friction: {model: coulomb, coefficient: 0.3}")
 
 
 def test_contact_c_n_negative():
@@ -702,7 +707,7 @@ if __name__ == "__main__":
         test_friction_unknown_model, test_friction_tresca_without_bound,
         test_friction_tresca_bound_negative, test_friction_coefficient_with_tresca,
         test_friction_on_mesh_tying, test_friction_c_t_without_friction,
-        test_contact_standard_multiplier_tri6,
+        test_contact_standard_multiplier_tri6, test_friction_standard_multiplier_tri6,
         test_contact_c_n_negative, test_contact_slave_region_missing,
         test_contact_rigid_plane_and_master,
         test_parallel_tolerance_below_one, test_parallel_unknown_distribution,

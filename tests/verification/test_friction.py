@@ -54,9 +54,13 @@ def reactions_by_step(out, region):
     return {int(r["step"]): r for r in rows_of(out, "reactions.csv") if r["region"] == region}
 
 
-def check_quadratic(out, min_order=1.8, floor_rel=1e-14):
+def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=False):
     """Observed order of the last Newton iterations of every step with at least 3 iterations
-    after the sets settled (no active-set changes)."""
+    after the sets settled (no active-set changes). With `from_last_change` the sequence starts
+    at the iterate where the sets changed last: its residual is already that of the final sets
+    (they are decided before the residual is measured) and every later step uses them, so it
+    belongs to the settled Newton sequence; the saddle point's round-off floor lies higher
+    than the condensed one's and leaves only two settled iterates above it otherwise."""
     by_step = {}
     for r in rows_of(out, "newton.csv"):
         by_step.setdefault(int(r["step"]), []).append(r)
@@ -67,6 +71,8 @@ def check_quadratic(out, min_order=1.8, floor_rel=1e-14):
         if not settled:
             continue
         first = settled[0]
+        if from_last_change and first > 1 and all(i in settled for i in range(first, len(its))):
+            first -= 1
         # Above the round-off plateau: well over the converged residual of the step.
         tail = [v for v in res[first:] if v > max(100.0 * res[-1], floor_rel * max(res))]
         if len(tail) < 3:
@@ -133,7 +139,7 @@ def test_drag_2d_quadratic():
     check_drag_2d(drag_2d(order=2))
 
 
-def check_drag_2d(out):
+def check_drag_2d(out, from_last_change=False):
     react = reactions_by_step(out, "top")
     itf = {int(r["step"]): r for r in rows_of(out, "interfaces.csv")}
     steps = sorted(itf)
@@ -167,7 +173,7 @@ def check_drag_2d(out):
         expected = MU * itf[s]["normal_force"] * SLIDE / 2 * dt
         H.assert_close(inc, expected, rtol=1e-6, what="dissipation of step %d = mu N du" % s)
     # The top is dragged, the sliding bottom follows without friction transitions.
-    check_quadratic(out)
+    check_quadratic(out, from_last_change=from_last_change)
     H.cleanup(*_dirs)
 
 
@@ -212,19 +218,22 @@ def test_independent_of_c_t():
     H.cleanup(*_dirs)
 
 
-def stick_2d(np=1):
+def stick_2d(np=1, extra=""):
     # Pressure p on the top and a tangential traction q = 0.3 mu p: the block must stick.
     p = 0.5
     q = 0.3 * MU * p
     bcs = ["{region: top, type: traction, value: ['%r*t', '-%r*t']}" % (q, p)]
     itf = ("{name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
-           "coefficient: %r}, rigid_plane: {point: [0, 0], normal: [0, 1]}}" % MU)
+           "coefficient: %r}, %srigid_plane: {point: [0, 0], normal: [0, 1]}}" % (MU, extra))
     return run_case(G.rectangle("quad", 0.125, lx=1.0, ly=0.25),
                     case_yaml(2, bcs, itf, 4, 1.0), np=np)
 
 
 def test_stick_2d():
-    out = stick_2d()
+    check_stick_2d(stick_2d())
+
+
+def check_stick_2d(out):
     rows = rows_of(out, "interface_floor.csv")
     stuck = [r for r in rows if r["status"] == "stick"]
     if len(stuck) != len(rows):
@@ -242,8 +251,10 @@ def test_stick_2d():
 
 
 def test_drag_2d_parallel():
-    serial = drag_2d(np=1)
-    parallel = drag_2d(np=3)
+    check_parallel(drag_2d(np=1), drag_2d(np=3))
+
+
+def check_parallel(serial, parallel):
     a = rows_of(serial, "interfaces.csv")
     b = rows_of(parallel, "interfaces.csv")
     for ra, rb in zip(a, b):
@@ -255,16 +266,18 @@ def test_drag_2d_parallel():
     H.cleanup(*_dirs)
 
 
-def drag_3d(np=1, order=1):
+def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6):
     # A hex block pressed on a rigid plane, then dragged diagonally: |F_t| = mu |F_z|.
     bcs = ["{region: top, type: dirichlet, components: [x, y, z], "
            "value: ['%r*max(t-1,0)', '%r*max(t-1,0)', '-%r*min(t,1)']}"
            % (0.6 * SLIDE / 2, 0.8 * SLIDE / 2, PRESS)]
     itf = ("{name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
-           "coefficient: %r}, rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}" % MU)
+           "coefficient: %r}, %srigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}"
+           % (MU, extra))
     h = 0.125 if order == 1 else 0.25
-    return run_case(G.box("hex_structured", h, order=order, lx=0.5, ly=0.5, lz=0.25),
-                    case_yaml(3, bcs, itf, 6, 3.0), np=np)
+    return run_case(G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5,
+                          lz=0.25),
+                    case_yaml(3, bcs, itf, steps, 3.0), np=np)
 
 
 def check_sliding(out, region, what):
@@ -300,12 +313,12 @@ def test_drag_3d_quadratic_np3():
     check_drag_3d(drag_3d(np=3, order=2))
 
 
-def check_drag_3d(out):
+def check_drag_3d(out, from_last_change=False):
     itf = check_sliding(out, "top", "3D hex on a rigid plane")
     last = itf[max(itf)]
     if last["frictional_dissipation"] <= 0.0:
         raise AssertionError("no frictional dissipation while sliding")
-    check_quadratic(out)
+    check_quadratic(out, from_last_change=from_last_change)
     H.cleanup(*_dirs)
 
 
@@ -326,19 +339,22 @@ Physical Curve("slider_bottom") = {5}; Physical Curve("slider_top") = {7};
 """
 
 
-def drag_two_bodies(np=1):
+def drag_two_bodies(np=1, extra=""):
     bcs = ["{region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}",
            "{region: slider_top, type: dirichlet, components: [x, y], "
            "value: ['%r*max(t-1,0)', '-%r*min(t,1)']}" % (SLIDE, PRESS)]
     itf = ("{name: slide, type: contact, slave: slider_bottom, master: base_top, "
-           "friction: {model: coulomb, coefficient: %r}}" % MU)
+           "friction: {model: coulomb, coefficient: %r}%s}" % (MU, extra))
     return run_case(TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.1},
                     case_yaml(2, bcs, itf, 8, 3.0, bodies=(("base", "m"), ("slider", "m"))),
                     np=np)
 
 
 def test_drag_2d_two_bodies():
-    out = drag_two_bodies()
+    check_two_bodies(drag_two_bodies())
+
+
+def check_two_bodies(out, dim=2):
     # Locally Coulomb at every node of the sliding slave side: |lambda_t| = mu lambda_n.
     rows = rows_of(out, "interface_slide.csv")
     active = [r for r in rows if r["status"] != "inactive"]
@@ -355,15 +371,18 @@ def test_drag_2d_two_bodies():
     react = reactions_by_step(out, "slider_top")
     base = reactions_by_step(out, "base_bottom")
     last = max(react)
-    for c in ("fx", "fy"):
+    components = ("fx", "fy", "fz")[:dim]
+    for c in components:
         H.assert_close(base[last][c], -react[last][c], rtol=1e-8,
+                       atol=1e-10 * abs(react[last][components[-1]]),
                        what="base reaction %s = -slider reaction" % c)
     # Globally close to mu: the slave surface is slightly curved by the load, so the nodal
     # normals tilt against the sliding direction.
-    ratio = abs(react[last]["fx"]) / abs(react[last]["fy"])
-    print("   F_x / F_y = %.6f (mu = %g)" % (ratio, MU))
+    tangential = math.hypot(*[react[last][c] for c in components[:-1]])
+    ratio = tangential / abs(react[last][components[-1]])
+    print("   F_t / F_n = %.6f (mu = %g)" % (ratio, MU))
     if abs(ratio - MU) > 0.01 * MU:
-        raise AssertionError("F_x / F_y = %.4f far from mu = %g" % (ratio, MU))
+        raise AssertionError("F_t / F_n = %.4f far from mu = %g" % (ratio, MU))
     check_quadratic(out)
     H.cleanup(*_dirs)
 
@@ -793,6 +812,162 @@ def test_ironing_2d_parallel():
     H.cleanup(*_dirs)
 
 
+# Standard multipliers (saddle point): the same cases as with the condensed dual ones.
+STANDARD = "multiplier: standard, "
+
+
+def test_drag_2d_standard():
+    check_drag_2d(drag_2d(extra=STANDARD), from_last_change=True)
+
+
+def test_drag_2d_standard_quadratic():
+    """quad9 cells: line3 slave faces, standard multipliers."""
+    check_drag_2d(drag_2d(order=2, extra=STANDARD), from_last_change=True)
+
+
+def test_stick_2d_standard():
+    check_stick_2d(stick_2d(extra=STANDARD))
+
+
+def test_drag_2d_standard_parallel():
+    check_parallel(drag_2d(np=1, extra=STANDARD), drag_2d(np=3, extra=STANDARD))
+
+
+def test_drag_3d_standard():
+    # Steps of half the size: the saddle point's residual floor is higher than the condensed
+    # one's, and the settled iterates of the larger steps start before the asymptotic regime.
+    check_drag_3d(drag_3d(extra=STANDARD, steps=12))
+
+
+def test_drag_2d_two_bodies_standard():
+    check_two_bodies(drag_two_bodies(extra=", multiplier: standard"))
+
+
+# tri6/quad8 slave faces: the modified dual basis (d = T d~, Popp et al. 2012).
+def test_drag_3d_quad8():
+    """hex20 cells (quad8 slave faces) dragged on a rigid plane."""
+    check_drag_3d(drag_3d(order=2, serendipity=True))
+
+
+def test_drag_3d_quad8_parallel():
+    """hex20 cells on 3 ranks against 1: the same histories."""
+    check_parallel(drag_3d(np=1, order=2, serendipity=True),
+                   drag_3d(np=3, order=2, serendipity=True))
+
+
+def test_drag_3d_tri6():
+    """tet10 cells (tri6 slave faces) dragged on a rigid plane."""
+    check_drag_3d(drag_3d(order=2, kind="tet"))
+
+
+TWO_BOXES_GEO = """
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, -0.25, 1.5, 1.0, 0.25};
+Box(2) = {0.25, 0.25, 0, 1.0, 0.5, 0.25};
+%(mesh)s
+Physical Volume("base") = {1}; Physical Volume("slider") = {2};
+Physical Surface("base_bottom") = {5}; Physical Surface("base_top") = {6};
+Physical Surface("slider_bottom") = {11}; Physical Surface("slider_top") = {12};
+Mesh.ElementOrder = 2;
+Mesh.SecondOrderIncomplete = %(serendipity)d;
+"""
+# Structured hexahedra, non-matching at the interface: base 5 x 3 x 1, slider 4 x 2 x 1.
+HEX_MESH = """
+For c In {1:24}
+  bb() = BoundingBox Curve{c};
+  l = Fabs(bb(3) - bb(0)) + Fabs(bb(4) - bb(1)) + Fabs(bb(5) - bb(2));
+  Transfinite Curve{c} = (c <= 12 ? Round(l / 0.3) : Round(l / 0.25)) + 1;
+EndFor
+Transfinite Surface{:};
+Recombine Surface{:};
+Transfinite Volume{1, 2};
+"""
+TET_MESH = """
+MeshSize{ PointsOf{ Volume{1}; } } = 0.4;
+MeshSize{ PointsOf{ Volume{2}; } } = 0.3;
+"""
+
+
+# Two elastic boxes with tri6 faces (tet10). A stuck hex20 pair (quad8 faces on both sides)
+# stalls in Newton's method at a relative residual of about 2e-5, proportional to c_t (open);
+# hex27 pairs converge quadratically.
+NU_03 = (("m", 100.0, 0.3),)
+BOXES = (("base", "m"), ("slider", "m"))
+
+
+def two_boxes_geo(tets=False):
+    return TWO_BOXES_GEO % {"mesh": TET_MESH if tets else HEX_MESH, "serendipity": 0 if tets else 1}
+
+
+def drag_two_boxes(np=1, tets=False):
+    """Two elastic boxes (quad8 or tri6 faces on both sides), the slider pressed and dragged
+    along x."""
+    bcs = ["{region: base_bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}",
+           "{region: slider_top, type: dirichlet, components: [x, y, z], "
+           "value: ['%r*max(t-1,0)', '0', '-%r*min(t,1)']}" % (SLIDE, PRESS)]
+    itf = ("{name: slide, type: contact, slave: slider_bottom, master: base_top, "
+           "friction: {model: coulomb, coefficient: %r}}" % MU)
+    return run_case(two_boxes_geo(tets),
+                    case_yaml(3, bcs, itf, 6, 3.0, materials=NU_03, bodies=BOXES), np=np)
+
+
+def test_drag_3d_two_bodies_tri6():
+    check_two_bodies(drag_two_boxes(tets=True), dim=3)
+
+
+def rotation_3d(np=1, tets=False):
+    """The two boxes pressed together (t <= 0.2), then rotated rigidly by 90 degrees about the
+    y axis in 20 steps, both outer faces prescribed: stuck, the pair must show no slip."""
+    theta = "(_pi/4)*max(t-0.2,0)"
+    press = "0.003*min(t/0.2,1)"
+    rot = lambda dz: ("['cos(%s)*x-sin(%s)*(z%s)-x', '0', 'sin(%s)*x+cos(%s)*(z%s)-z']"
+                      % (theta, theta, dz, theta, theta, dz))
+    bcs = ["{region: base_bottom, type: dirichlet, components: [x, y, z], value: %s}" % rot(""),
+           "{region: slider_top, type: dirichlet, components: [x, y, z], value: %s}"
+           % rot("-" + press)]
+    itf = ("{name: slide, type: contact, slave: slider_bottom, master: base_top, "
+           "friction: {model: coulomb, coefficient: 2.0}}")
+    yaml = case_yaml(3, bcs, itf, 2 + ROTATION_STEPS, 2.2, materials=NU_03, bodies=BOXES)
+    yaml += ("output: {probes: [[0.5, 0.5, 0.0], [1.0, 0.3, 0.0], [0.75, 0.5, 0.1], "
+             "[0.75, 0.5, -0.2], [0.6, 0.4, -1e-9]]}\n")
+    return run_case(two_boxes_geo(tets), yaml, np=np)
+
+
+def check_rotation_3d(out):
+    itf = {int(r["step"]): r for r in rows_of(out, "interfaces.csv")}
+    pressed = 2
+    d0 = itf[pressed]["frictional_dissipation"]
+    d1 = itf[max(itf)]["frictional_dissipation"]
+    scale = itf[pressed]["normal_force"] * 0.003
+    print("   dissipation during the 90 degree rotation %.2e (normal force x press %.2e)"
+          % (d1 - d0, scale))
+    if abs(d1 - d0) > 1e-10 * scale:
+        raise AssertionError("rigid rotation dissipates %.3e" % (d1 - d0))
+    for s in itf:
+        if s > pressed and itf[s]["slip_nodes"] > itf[pressed]["slip_nodes"]:
+            raise AssertionError("nodes start to slip during the rigid rotation (step %d)" % s)
+    # The slip increments themselves: no stuck node moves relative to the master side, so
+    # the displacement of every slave node equals R x_pressed - x at the end.
+    probes = rows_of(out, "probes.csv")
+    at = lambda step: {int(r["probe"]): r for r in probes if int(r["step"]) == step}
+    a, b = at(pressed), at(max(itf))
+    worst = 0.0
+    for k in a:
+        xa = [a[k][c] + a[k]["u" + c] for c in "xyz"]
+        xb = [b[k][c] + b[k]["u" + c] for c in "xyz"]
+        # R (90 degrees about y): (x, y, z) -> (-z, y, x).
+        worst = max(worst, math.sqrt((xb[0] + xa[2]) ** 2 + (xb[1] - xa[1]) ** 2
+                                     + (xb[2] - xa[0]) ** 2))
+    print("   |x_end - R x_pressed| = %.2e at most over %d probes" % (worst, len(a)))
+    if worst > 1e-10:
+        raise AssertionError("the pair did not rotate rigidly: %.3e" % worst)
+    H.cleanup(*_dirs)
+
+
+def test_frame_indifference_tri6():
+    check_rotation_3d(rotation_3d(tets=True))
+
+
 if __name__ == "__main__":
     H.main([test_drag_2d_coulomb, test_moving_plane_2d, test_drag_2d_quadratic, test_drag_2d_tresca,
             test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
@@ -800,5 +975,9 @@ if __name__ == "__main__":
             test_energy_balance_energy_momentum,
             test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
             test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
-            test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_ironing_3d_press, test_ironing_3d,
-            test_ironing_2d_parallel])
+            test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_ironing_3d_press,
+            test_ironing_3d, test_ironing_2d_parallel,
+            test_drag_2d_standard, test_drag_2d_standard_quadratic, test_stick_2d_standard,
+            test_drag_2d_standard_parallel, test_drag_3d_standard,
+            test_drag_2d_two_bodies_standard, test_drag_3d_quad8, test_drag_3d_quad8_parallel,
+            test_drag_3d_tri6, test_drag_3d_two_bodies_tri6, test_frame_indifference_tri6])

@@ -135,6 +135,7 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   slave_adjacency_ = mortar::node_facets(slave_.facet_set());
   transformation_ =
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
+  transformation_inverse_ = mortar::inverse_transformation(transformation_);
   // Candidates up to about one slave element away, so that approaching parts are integrated
   // (and get their weighted gaps) before they touch.
   search_options_.inflation_factor = 0.75;
@@ -179,6 +180,25 @@ std::array<double, 3> ContactInterface::slave_centroid(local_index f) const {
       c[static_cast<std::size_t>(a)] += slave_.coordinates[static_cast<std::size_t>(j) * dim() + a];
   for (auto& v : c) v /= static_cast<double>(nodes.size());
   return c;
+}
+
+void apply_inverse_transformation(std::span<const mortar::Triplet> T_inverse, int dim,
+                                  std::span<const double> x, std::span<double> y) {
+  const auto n = x.size() / static_cast<std::size_t>(dim);
+  std::vector<char> has_row(n, 0);
+  for (const auto& e : T_inverse) has_row[static_cast<std::size_t>(e.row)] = 1;
+  for (std::size_t j = 0; j < n; ++j)
+    for (int c = 0; c < dim; ++c) y[j * dim + c] = has_row[j] ? 0.0 : x[j * dim + c];
+  for (const auto& e : T_inverse)
+    for (int c = 0; c < dim; ++c)
+      y[static_cast<std::size_t>(e.row) * dim + c] +=
+          e.value * x[static_cast<std::size_t>(e.col) * dim + c];
+}
+
+std::vector<double> ContactInterface::transformed_slave_positions() const {
+  std::vector<double> y(slave_.coordinates.size());
+  apply_inverse_transformation(transformation_inverse_, dim(), slave_.coordinates, y);
+  return y;
 }
 
 ContactInterface::~ContactInterface() = default;
@@ -409,9 +429,11 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
       if (want_gap[sj]) {
         push_row(out.gap_gradient, static_cast<std::int64_t>(sj),
                  rf.dgap.data() + static_cast<std::size_t>(j * nv), 1.0);
+        // The nodal weight sum_k D_jk with standard multipliers (D_jj with dual ones).
         if (frictional_)
-          push_row(out.D_gradient, static_cast<std::int64_t>(sj),
-                   rf.dD.data() + static_cast<std::size_t>((j * n + j) * nv), 1.0);
+          for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k)
+            push_row(out.D_gradient, static_cast<std::int64_t>(sj),
+                     rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv), 1.0);
       }
       if (!carries_multiplier(lambda, static_cast<local_index>(sj))) continue;
       // Slave node k: D_jk lambda_j with the plane's constant normal (dual: k = j only).
@@ -441,6 +463,9 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
     return;
   }
   mortar::SlaveFacetLinearization lin;
+  // D_jj multiplies the positions of the modified basis in the slip increment.
+  const std::vector<double> x_slave =
+      frictional_ ? transformed_slave_positions() : std::vector<double>{};
   std::vector<local_index> masters;
   std::vector<std::int64_t> column; // mesh dof of every variable, -1 for rigid ones
   for (const auto f : owned_) {
@@ -486,12 +511,20 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
       if (want_gap[sj]) {
         add_row(out.gap_gradient, static_cast<std::int64_t>(sj), lin.dgap(j), 1.0, nullptr, 0.0);
         if (frictional_) {
-          add_row(out.D_gradient, static_cast<std::int64_t>(sj), lin.dD(j, j), 1.0, nullptr, 0.0);
-          // d(sum_p M_jp x_p - D_jj x_j) at fixed x, component by component.
+          // Standard multipliers: the nodal weight sum_k D_jk and sum_k D_jk x_k take the
+          // place of D_jj and D_jj x~_j (dual: k = j only).
+          const int k_begin = standard() ? 0 : j, k_end = standard() ? ns : j + 1;
+          for (int k = k_begin; k < k_end; ++k)
+            add_row(out.D_gradient, static_cast<std::int64_t>(sj), lin.dD(j, k), 1.0, nullptr, 0.0);
+          // d(sum_p M_jp x_p - sum_k D_jk x~_k) at fixed x, component by component.
           for (int a = 0; a < dim; ++a) {
             const auto row = static_cast<std::int64_t>(sj * dim) + a;
-            add_row(out.operator_gradient, row, lin.dD(j, j),
-                    -slave_.coordinates[sj * dim + static_cast<std::size_t>(a)], nullptr, 0.0);
+            for (int k = k_begin; k < k_end; ++k) {
+              const auto sk =
+                  static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(k)]);
+              add_row(out.operator_gradient, row, lin.dD(j, k),
+                      -x_slave[sk * dim + static_cast<std::size_t>(a)], nullptr, 0.0);
+            }
             for (int p = 0; p < lin.n_master_nodes(); ++p) {
               const auto mp =
                   static_cast<std::size_t>(lin.master_nodes[static_cast<std::size_t>(p)]);

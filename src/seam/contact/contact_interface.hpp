@@ -71,11 +71,19 @@ struct Linearization {
   /// mesh dof.
   std::vector<DofTriplet> gap_gradient;
   /// Frictional interfaces, for the requested slave nodes: d D_jj / d(displacement) (row j) and
-  /// the derivative of sum_l M_jl x_l - D_jj x_j at fixed nodal positions x, i.e. of the
-  /// operators only (row j * dim + component); two bodies only.
+  /// the derivative of sum_l M_jl x_l - D_jj x~_j at fixed nodal positions x, i.e. of the
+  /// operators only (row j * dim + component; x~ = T^-1 x with a modified slave basis); two
+  /// bodies only.
   std::vector<DofTriplet> D_gradient;
   std::vector<DofTriplet> operator_gradient;
 };
+
+/// y = T^-1 x for the slave nodal vectors x (dim values per slave node) and the triplets of
+/// T^-1 (side-local; mortar::inverse_transformation); nodes without a row keep their values.
+/// With a modified slave basis (d = T d~) the positions that D multiplies in D x~_S = M x_M
+/// are x~_S = T^-1 x_S (Popp et al. 2012).
+void apply_inverse_transformation(std::span<const mortar::Triplet> T_inverse, int dim,
+                                  std::span<const double> x, std::span<double> y);
 
 class ContactInterface {
 public:
@@ -116,6 +124,10 @@ public:
   /// quad8 facets; mortar::MortarOperators::T), side-local; empty when T = I. D, M and g~
   /// then refer to the modified basis and the slave contact force is T^-T (D lambda n).
   const std::vector<mortar::Triplet>& transformation() const { return transformation_; }
+
+  /// The current slave positions in the modified basis, x~ = T^-1 x (dim per slave node;
+  /// x itself when T = I): the objective slip increment is built from them.
+  std::vector<double> transformed_slave_positions() const;
 
   /// Averaged unit nodal normals of the slave side at the last update (dim per slave node).
   const std::vector<double>& normals() const { return normals_; }
@@ -197,6 +209,7 @@ private:
   search::SearchOptions search_options_;
   std::vector<double> normals_;
   std::vector<mortar::Triplet> transformation_;
+  std::vector<mortar::Triplet> transformation_inverse_;
 };
 
 } // namespace seam::contact

@@ -41,7 +41,10 @@ Session::Session(int& argc, char**& argv, const std::vector<std::string>& petsc_
   char** pargv = &pargv0;
   check(PetscInitialize(&pargc, &pargv, nullptr, nullptr), "PetscInitialize");
   PetscPushErrorHandler(capture_error, nullptr);
-  std::string opts = "-no_signal_handler";
+  // MUMPS reserves 20 % over its analysis estimate for pivots it delays; saddle points with a
+  // zero multiplier block (frictional stick rows with standard multipliers) delay more and
+  // stopped with INFO(1) = -9 (workspace too small). User options below still override it.
+  std::string opts = "-no_signal_handler -mat_mumps_icntl_14 100";
   for (const auto& a : petsc_args) opts += " " + a;
   check(PetscOptionsInsertString(nullptr, opts.c_str()), "reading PETSc options");
 }

@@ -53,7 +53,8 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
         if (type == fem::CellType::tri6 || type == fem::CellType::quad8)
           io::fail_at(itf.mark, "interface '" + itf.name +
                                     "': standard multipliers on tri6/quad8 faces give weighted "
-                                    "gaps of no fixed sign at the vertices; use multiplier: dual");
+                                    "gaps of no fixed sign at the vertices, with or without "
+                                    "friction; use multiplier: dual");
     }
     s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain;
@@ -104,17 +105,12 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
                          interface_nodes_.end());
   if (!saddle_point_) return;
-  for (const auto& itf : config.interfaces)
-    if (itf.type == io::InterfaceType::contact &&
-        itf.friction.model != io::FrictionModel::frictionless)
-      io::fail_at(itf.mark,
-                  "interface '" + itf.name +
-                      "': friction cannot be combined with standard multipliers on another "
-                      "contact interface in this version");
-  // One multiplier per slave node, owned with the node; numbered rank by rank.
+  // One multiplier per slave node (dim with friction), owned with the node; numbered rank by
+  // rank.
   const auto& comm = disc.comm();
   for (const auto& s : sides_)
-    for (const auto node : s.itf.slave().mesh_nodes) n_lm_ += disc.owns_node(node) ? 1 : 0;
+    for (const auto node : s.itf.slave().mesh_nodes)
+      n_lm_ += disc.owns_node(node) ? (s.friction ? dim : 1) : 0;
   std::vector<double> counts(static_cast<std::size_t>(comm.size()), 0.0);
   counts[static_cast<std::size_t>(comm.rank())] = static_cast<double>(n_lm_);
   comm.sum_in_place(counts);
@@ -126,7 +122,10 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     const auto& nodes = s.itf.slave().mesh_nodes;
     std::vector<double> index(nodes.size(), 0.0);
     for (std::size_t j = 0; j < nodes.size(); ++j)
-      if (disc.owns_node(nodes[j])) index[j] = static_cast<double>(next++);
+      if (disc.owns_node(nodes[j])) {
+        index[j] = static_cast<double>(next);
+        next += s.friction ? dim : 1;
+      }
     comm.sum_in_place(index);
     s.lm_index.assign(index.begin(), index.end());
   }
@@ -152,6 +151,7 @@ std::span<const double> ContactConstraint::interface_displacement(const la::Vect
 }
 
 ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t j) const {
+  if (held_ && !s.held_frames.empty()) return s.held_frames[j];
   const int dim = disc_.dim();
   NodeFrame f;
   const double* n = &s.itf.normals()[j * dim];
@@ -211,6 +211,10 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     // Standard multipliers: the nodal weight sum_k D_jk takes the place of D_jj.
     for (const auto& e : s.part.D_coupling) s.D[static_cast<std::size_t>(e.row)] += e.value;
     s.gap = s.part.gap;
+    if (s.friction) {
+      s.D_diag = s.part.D;
+      comm.sum_in_place(s.D_diag);
+    }
     comm.sum_in_place(s.D);
     comm.sum_in_place(s.gap);
     s.area = comm.sum(s.part.area);
@@ -224,7 +228,7 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     if (first) s.frozen = false;
     s.active_before = s.active_previous;
     s.active_previous = s.active;
-    if (s.frozen) continue;
+    if (s.frozen || held_) continue;
     std::vector<char> next(s.active.size(), 0);
     for (std::size_t j = 0; j < next.size(); ++j) {
       if (s.D[j] <= 1e-12 * d_max) continue;
@@ -478,15 +482,17 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
       ScopedTimer timer(timers, "mortar");
       linearize(s, ki, kj, kv);
     }
-    // B^T, this rank's part: column of multiplier j, rows D_jk n_j (slave k), -M_jl n_j.
+    // B^T, this rank's part: column of multiplier j, rows D_jk n_j (slave k), -M_jl n_j; with
+    // friction columns (j, c), rows D_jk e_c and -M_jl e_c.
     const auto& nodes = s.itf.slave().mesh_nodes;
     const double* normals = s.itf.normals().data();
     const auto add_column = [&](std::int32_t mesh_node, std::size_t j, double value) {
       for (int a = 0; a < dim; ++a) {
-        const double v = value * normals[j * dim + static_cast<std::size_t>(a)];
+        const double v =
+            s.friction ? value : value * normals[j * dim + static_cast<std::size_t>(a)];
         if (v == 0.0) continue;
         bi.push_back(disc_.global_dof(mesh_node, a));
-        bj.push_back(s.lm_index[j]);
+        bj.push_back(s.lm_index[j] + (s.friction ? a : 0));
         bv.push_back(v);
       }
     };
@@ -496,6 +502,10 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
       add_column(nodes[static_cast<std::size_t>(e.col)], static_cast<std::size_t>(e.row), e.value);
     for (const auto& e : s.part.M)
       add_column(e.master_node, static_cast<std::size_t>(e.slave), -e.value);
+    if (s.friction) {
+      saddle_friction(s, ci, cj, cv, ei, ej, ev, lm_rhs);
+      continue;
+    }
     // Active rows: c_n dg~_j dd = -c_n g~_j; inactive rows: D_j lambda_j = 0.
     for (const auto& e : s.lin.gap_gradient) {
       ci.push_back(s.lm_index[static_cast<std::size_t>(e.row)]);
@@ -503,14 +513,7 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
       cv.push_back(s.c_n * e.value);
     }
     // Inactive nodes outside the contact zone (D_j = 0) get the mean nodal weight.
-    double weight = 0.0;
-    int n_weights = 0;
-    for (const double d : s.D) {
-      if (d <= 0.0) continue;
-      weight += d;
-      ++n_weights;
-    }
-    weight = n_weights > 0 ? weight / n_weights : 1.0;
+    const double weight = mean_weight(s);
     for (std::size_t j = 0; j < nodes.size(); ++j) {
       if (!disc_.owns_node(nodes[j])) continue;
       ei.push_back(s.lm_index[j]);
@@ -563,13 +566,72 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
   PetscInt next = n_disp;
   for (auto& s : sides_) {
     const auto& nodes = s.itf.slave().mesh_nodes;
-    std::vector<double> lambda(nodes.size(), 0.0);
+    const std::size_t per_node = s.friction ? static_cast<std::size_t>(dim) : 1;
+    std::vector<double> lambda(nodes.size() * per_node, 0.0);
     for (std::size_t j = 0; j < nodes.size(); ++j)
-      if (disc_.owns_node(nodes[j])) lambda[j] = xl[next++];
+      if (disc_.owns_node(nodes[j]))
+        for (std::size_t c = 0; c < per_node; ++c) lambda[j * per_node + c] = xl[next++];
     comm.sum_in_place(lambda);
     s.lambda = std::move(lambda);
   }
   return true;
+}
+
+double ContactConstraint::mean_weight(const Side& s) {
+  double weight = 0.0;
+  int n_weights = 0;
+  for (const double d : s.D) {
+    if (d <= 0.0) continue;
+    weight += d;
+    ++n_weights;
+  }
+  return n_weights > 0 ? weight / n_weights : 1.0;
+}
+
+void ContactConstraint::hold_sets(bool hold) {
+  held_ = false;
+  for (auto& s : sides_) {
+    s.held_frames.clear();
+    if (!hold) continue;
+    for (std::size_t j = 0; j < s.active.size(); ++j) s.held_frames.push_back(frame(s, j));
+  }
+  held_ = hold;
+}
+
+std::vector<double> ContactConstraint::multipliers() const {
+  std::vector<double> out;
+  for (const auto& s : sides_) out.insert(out.end(), s.lambda.begin(), s.lambda.end());
+  return out;
+}
+
+void ContactConstraint::set_multipliers(std::span<const double> lambda) {
+  std::size_t k = 0;
+  for (auto& s : sides_)
+    for (auto& l : s.lambda) l = lambda[k++];
+}
+
+std::vector<double> ContactConstraint::constraint_values() const {
+  const int dim = disc_.dim();
+  std::vector<double> out;
+  for (const auto& s : sides_) {
+    const auto n = s.active.size();
+    if (!s.friction) {
+      for (std::size_t j = 0; j < n; ++j) out.push_back(s.active[j] ? s.gap[j] : s.lambda[j]);
+      continue;
+    }
+    const FrictionRows fr = friction_rows(s);
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto offset = out.size();
+      out.insert(out.end(), &s.lambda[j * dim], &s.lambda[j * dim] + dim);
+      if (!s.active[j]) continue;
+      const NodeFrame& f = fr.frames[j];
+      out[offset + static_cast<std::size_t>(f.gap_component)] = s.gap[j];
+      for (int i = 0; i < f.n_tangents; ++i)
+        out[offset + static_cast<std::size_t>(f.tangent_component[i])] =
+            fr.rows[j][static_cast<std::size_t>(i)].value;
+    }
+  }
+  return out;
 }
 
 bool ContactConstraint::transformed() const {
@@ -597,7 +659,12 @@ la::Matrix ContactConstraint::transformation_delta() const {
     for (local_index f = 0; f < facets.n_facets(); ++f) {
       const auto fn = facets.facet_nodes(f);
       bool carries = false;
-      for (const auto j : fn) carries = carries || s.active[j] || s.lambda[j] != 0.0;
+      const int per_node = s.friction ? dim : 1; // Cartesian multipliers with friction
+      for (const auto j : fn) {
+        carries = carries || s.active[j];
+        for (int c = 0; c < per_node; ++c)
+          carries = carries || s.lambda[static_cast<std::size_t>(j) * per_node + c] != 0.0;
+      }
       if (carries)
         for (const auto j : fn) zone[static_cast<std::size_t>(j)] = 1;
     }

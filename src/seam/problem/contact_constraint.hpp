@@ -31,6 +31,13 @@
 // with C = c_n dg~_j/dd, E = 0 on the active rows and C = 0, E = (nodal weight) on the
 // inactive ones (lambda_j = 0); the nodal weight D_j = sum_k D_jk = int N_j replaces D_jj.
 //
+// With friction and standard multipliers the multiplier lambda_j is a Cartesian vector (dim
+// unknowns per slave node, B^T: D_jk e_c, -M_jl e_c); its rows are the gap row, one row per
+// tangent of the linearized frictional condition (below, with the nodal weight D_j in place of
+// D_jj) and lambda_j,c = 0 in prescribed components; inactive nodes lambda_j = 0. The slip
+// increment then takes the full D: u~_j = sum_l (M_jl - M^n_jl) x_l - sum_k (D_jk - D^n_jk) x_k
+// (against a rigid plane D_j P (x_j - x_j^n - (c - c^n))).
+//
 // With friction (contact_friction.cpp) the multiplier of a slave node is a Cartesian vector
 // lambda_j in the span V of its free directions, recovered from all its free slave rows,
 //   lambda_j^{k+1} = -P_V (K~_j dd + r_j) / D_jj,
@@ -50,6 +57,7 @@
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -114,7 +122,31 @@ public:
   /// the hysteresis band of their friction cone at the last evaluate() (contact_friction.cpp).
   int n_on_cone() const;
 
+  /// Diagnostics and tests of the linearization. While the sets are held, evaluate() keeps
+  /// every node's status (active, stick, slip) and tangent frame as they are, so that the
+  /// nonlinear system is a smooth function of the state whose derivative the Newton matrix is.
+  void hold_sets(bool hold);
+  /// The multipliers of all sides, concatenated (Cartesian, dim per slave node, on frictional
+  /// sides; one per slave node otherwise), and their replacement.
+  std::vector<double> multipliers() const;
+  void set_multipliers(std::span<const double> lambda);
+  /// The constraint functions the Newton step linearizes at the last evaluate(), laid out as
+  /// multipliers(): on a frictional side per node, inactive: lambda_j; active: g~_j in
+  /// component gap_component, t_i . C_t (contact/friction.hpp) in tangent_component[i] and
+  /// lambda_j,c in prescribed components c. Frictionless sides: lambda_j or g~_j.
+  std::vector<double> constraint_values() const;
+
 private:
+  /// Free-direction data of an active slave node: w, the row that carries the gap and the
+  /// tangent rows.
+  struct NodeFrame {
+    double w[3] = {0, 0, 0};
+    double wn = 0.0;
+    int gap_component = 0;
+    int n_tangents = 0;
+    int tangent_component[2] = {0, 0};
+    double tangent[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  };
   struct Side {
     explicit Side(contact::ContactInterface i) : itf(std::move(i)) {}
     contact::ContactInterface itf;
@@ -153,24 +185,21 @@ private:
     std::vector<char> status, status_previous, status_before;
     std::vector<char> frozen_nodes; ///< nodes whose status the cycling guard fixed in this step
     std::vector<double> slip;       ///< weighted slip increment u~ of the step, dim per node
-    std::vector<double> x;          ///< current slave node positions, dim per node
-    std::vector<double> x_old;      ///< slave node positions at the last converged step
-    std::vector<double> D_old;      ///< D_jj at the last converged step
+    /// Current slave node positions in the modified basis (x~ = T^-1 x; x without one), dim
+    /// per node, and the same at the last converged step.
+    std::vector<double> x;
+    std::vector<double> x_old;
+    std::vector<double> D_diag;     ///< D_jj, summed over ranks (= D without coupling)
+    std::vector<double> D_diag_old; ///< D_jj at the last converged step
+    /// Standard multipliers: this rank's part of the entries D_jk, j != k, then.
+    std::vector<mortar::Triplet> D_coupling_old;
     std::vector<contact::MortarEntry> M_old; ///< this rank's part of M then
     std::array<double, 3> plane_old{};       ///< rigid plane displacement then
     double dissipation = 0.0;                ///< frictional work up to the last converged step
     int on_cone = 0;      ///< frozen nodes accepted within the stick/slip band at the last evaluate
-    bool has_old = false; ///< D_old and M_old are set
-  };
-  /// Free-direction data of an active slave node: w, the row that carries the gap and the
-  /// tangent rows.
-  struct NodeFrame {
-    double w[3] = {0, 0, 0};
-    double wn = 0.0;
-    int gap_component = 0;
-    int n_tangents = 0;
-    int tangent_component[2] = {0, 0};
-    double tangent[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    bool has_old = false; ///< D_diag_old and M_old are set
+    /// hold_sets(true): the frames of every node, kept until hold_sets(false).
+    std::vector<NodeFrame> held_frames;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
   // Friction (contact_friction.cpp).
@@ -179,6 +208,27 @@ private:
   /// residual. Returns the number of status changes.
   int evaluate_friction(Side& s, std::span<const double> u_mesh, bool first);
   contact::FrictionNode friction_node(const Side& s, std::size_t j) const;
+  /// Frames and frictional rows (contact/friction.hpp) of the active nodes of side s.
+  struct FrictionRows {
+    std::vector<NodeFrame> frames;
+    std::vector<std::array<contact::FrictionRow, 2>> rows;
+  };
+  FrictionRows friction_rows(const Side& s) const;
+  /// This rank's part of the derivative of the tangent rows with respect to the displacements
+  /// (the chained derivatives of n_j, u~_j, D_j and g~_j), times sign * D_j, in the rows
+  /// row_of(j, i) (node j, tangent i).
+  void friction_gradients(const Side& s, const FrictionRows& fr,
+                          const std::function<PetscInt(std::size_t, int)>& row_of, double sign,
+                          std::vector<PetscInt>& gi, std::vector<PetscInt>& gj,
+                          std::vector<double>& gv) const;
+  /// This rank's multiplier rows of a frictional side in the saddle point: C (columns
+  /// displacements), E (columns multipliers) and the right-hand side of its owned rows.
+  void saddle_friction(Side& s, std::vector<PetscInt>& ci, std::vector<PetscInt>& cj,
+                       std::vector<double>& cv, std::vector<PetscInt>& ei,
+                       std::vector<PetscInt>& ej, std::vector<double>& ev,
+                       std::vector<double>& lm_rhs) const;
+  /// The mean nodal weight of side s: the weight of inactive rows outside the contact zone.
+  static double mean_weight(const Side& s);
   /// This rank's rows of a frictional side in the condensed system (see the header comment).
   void condense_friction(Side& s, std::vector<char>& replaced, std::vector<PetscInt>& li,
                          std::vector<PetscInt>& lj, std::vector<double>& lv,
@@ -219,6 +269,7 @@ private:
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;
+  bool held_ = false;     ///< hold_sets
   PetscInt n_lm_ = 0;     ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0; ///< global index of the first of them
 };

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace seam::problem {
 
@@ -32,14 +33,6 @@ void ContactConstraint::init_friction(Side& s, const io::Interface& config, doub
   // results do not depend on it.
   s.law.c_t = config.c_t ? *config.c_t : c_n;
   s.law.touching = 1e-9 * s.itf.slave_mesh_size();
-  if (s.itf.standard())
-    io::fail_at(config.mark, "interface '" + config.name +
-                                 "': friction with standard multipliers is not available in this "
-                                 "version; use multiplier: dual");
-  if (!s.itf.transformation().empty())
-    io::fail_at(config.mark, "interface '" + config.name +
-                                 "': friction on tri6/quad8 slave faces (modified dual basis) is "
-                                 "not available in this version; use linear or quad9 faces");
   const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
   s.lambda.assign(n * dim, 0.0);
   s.lambda_saved = s.lambda;
@@ -48,12 +41,14 @@ void ContactConstraint::init_friction(Side& s, const io::Interface& config, doub
   s.status_before = s.status;
   s.frozen_nodes = s.status;
   s.slip.assign(n * dim, 0.0);
-  s.D_old.assign(n, 0.0);
+  s.D_diag_old.assign(n, 0.0);
   const auto& nodes = s.itf.slave().mesh_nodes;
-  s.x_old.resize(n * dim);
+  s.x.resize(n * dim);
   for (std::size_t j = 0; j < n; ++j)
     for (int c = 0; c < dim; ++c)
-      s.x_old[j * dim + c] = disc_.mesh().x[static_cast<std::size_t>(nodes[j]) * dim + c];
+      s.x[j * dim + c] = disc_.mesh().x[static_cast<std::size_t>(nodes[j]) * dim + c];
+  s.x_old = s.x;
+  contact::apply_inverse_transformation(s.T_inverse, dim, s.x, s.x_old);
   s.x = s.x_old;
 }
 
@@ -77,15 +72,19 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   const auto& nodes = s.itf.slave().mesh_nodes;
   const auto n = nodes.size();
   const auto& X = disc_.mesh().x;
+  std::vector<double> x(n * dim);
   for (std::size_t j = 0; j < n; ++j)
     for (int c = 0; c < dim; ++c) {
       const auto i = static_cast<std::size_t>(nodes[j]) * dim + c;
-      s.x[j * dim + c] = X[i] + u_mesh[i];
+      x[j * dim + c] = X[i] + u_mesh[i];
     }
+  // With a modified slave basis (tri6/quad8, d = T d~) D multiplies x~ = T^-1 x: the slip
+  // increment below is objective only in these positions (sum_k D_jk x~_k = int Phi_j x dA).
+  contact::apply_inverse_transformation(s.T_inverse, dim, x, s.x);
   // The weighted slip increment of the step (Gitterle et al. 2010, eq. 31, with the sign of
   // the slave's motion relative to the master):
-  //   u~_j = sum_l (M_jl - M_jl^n) x_l - (D_jj - D_jj^n) x_j;
-  // against a translating rigid plane it reduces to D_jj P (x_j - x_j^n - (c - c^n)).
+  //   u~_j = sum_l (M_jl - M_jl^n) x_l - (D_jj - D_jj^n) x~_j;
+  // against a translating rigid plane it reduces to D_jj P (x~_j - x~_j^n - (c - c^n)).
   std::fill(s.slip.begin(), s.slip.end(), 0.0);
   if (s.itf.rigid()) {
     const auto plane = s.itf.plane_displacement();
@@ -104,7 +103,8 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     // the start configuration (the first evaluation happens there). With D^n = M^n = 0 the
     // increment would be the gap vector, which has no tangential part.
     if (!s.has_old) {
-      s.D_old = s.D;
+      s.D_diag_old = s.D_diag;
+      s.D_coupling_old = s.part.D_coupling;
       s.M_old = s.part.M;
       s.has_old = true;
     }
@@ -119,9 +119,19 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     for (const auto& e : s.M_old)
       for (int c = 0; c < dim; ++c)
         s.slip[static_cast<std::size_t>(e.slave) * dim + c] -= e.value * x_of(e.master_node, c);
+    // Standard multipliers: the off-diagonal part -sum_{k != j} (D_jk - D_jk^n) x~_k.
+    for (const auto& e : s.part.D_coupling)
+      for (int c = 0; c < dim; ++c)
+        s.slip[static_cast<std::size_t>(e.row) * dim + c] -=
+            e.value * s.x[static_cast<std::size_t>(e.col) * dim + c];
+    for (const auto& e : s.D_coupling_old)
+      for (int c = 0; c < dim; ++c)
+        s.slip[static_cast<std::size_t>(e.row) * dim + c] +=
+            e.value * s.x[static_cast<std::size_t>(e.col) * dim + c];
     comm.sum_in_place(s.slip);
     for (std::size_t j = 0; j < n; ++j)
-      for (int c = 0; c < dim; ++c) s.slip[j * dim + c] -= (s.D[j] - s.D_old[j]) * s.x[j * dim + c];
+      for (int c = 0; c < dim; ++c)
+        s.slip[j * dim + c] -= (s.D_diag[j] - s.D_diag_old[j]) * s.x[j * dim + c];
   }
 
   if (first) s.frozen_nodes.assign(n, 0);
@@ -152,8 +162,8 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       if (s.frozen_nodes[j]) out[j] = s.status_previous[j];
     return out;
   };
-  std::vector<char> status = decided(next);
-  if (!first && status == s.status_before && status != s.status_previous) {
+  std::vector<char> status = held_ ? s.status_previous : decided(next);
+  if (!held_ && !first && status == s.status_before && status != s.status_previous) {
     for (std::size_t j = 0; j < n; ++j)
       if (status[j] != s.status_previous[j]) {
         status[j] = std::max(status[j], s.status_previous[j]);
@@ -216,41 +226,46 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   return changes;
 }
 
-void ContactConstraint::condense_friction(
-    Side& s, std::vector<char>& replaced, std::vector<PetscInt>& li, std::vector<PetscInt>& lj,
-    std::vector<double>& lv, std::vector<PetscInt>& gi, std::vector<PetscInt>& gj,
-    std::vector<double>& gv, std::vector<PetscInt>& set_rows, std::vector<double>& set_values,
-    std::vector<PetscInt>& add_rows, std::vector<double>& add_values) const {
-  const int dim = disc_.dim();
-  const PetscInt first = disc_.first_owned_dof();
-  const auto& nodes = s.itf.slave().mesh_nodes;
-  const auto n = nodes.size();
+ContactConstraint::FrictionRows ContactConstraint::friction_rows(const Side& s) const {
   // The rows of every active node (replicated data, so that each rank can weight its own
   // parts of the gradients).
-  std::vector<NodeFrame> frames(n);
-  std::vector<std::array<contact::FrictionRow, 2>> rows(n);
+  const auto n = s.itf.slave().mesh_nodes.size();
+  FrictionRows out;
+  out.frames.resize(n);
+  out.rows.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
     if (!s.active[j]) continue;
-    frames[j] = frame(s, j);
+    out.frames[j] = frame(s, j);
     const auto node = friction_node(s, j);
     const auto status = static_cast<contact::NodeStatus>(s.status[j]);
-    for (int i = 0; i < frames[j].n_tangents; ++i) {
-      const auto& ti = frames[j].tangent[i];
-      rows[j][static_cast<std::size_t>(i)] =
+    for (int i = 0; i < out.frames[j].n_tangents; ++i) {
+      const auto& ti = out.frames[j].tangent[i];
+      out.rows[j][static_cast<std::size_t>(i)] =
           contact::friction_row(s.law, node, status, {ti[0], ti[1], ti[2]});
     }
   }
-  const auto tangent_row = [&](std::size_t j, int i) {
-    return disc_.global_dof(nodes[j], frames[j].tangent_component[i]);
-  };
-  // G += -D_jj coefficient * gradient, for each tangent row of node j.
+  return out;
+}
+
+void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr,
+                                           const std::function<PetscInt(std::size_t, int)>& row_of,
+                                           double sign, std::vector<PetscInt>& gi,
+                                           std::vector<PetscInt>& gj,
+                                           std::vector<double>& gv) const {
+  const int dim = disc_.dim();
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const auto n = nodes.size();
+  const auto& frames = fr.frames;
+  const auto& rows = fr.rows;
+  // += sign D_j coefficient * gradient, for each tangent row of node j (D_j = D_jj with dual
+  // multipliers, the nodal weight with standard ones).
   const auto add_gradient = [&](std::size_t j, PetscInt column,
                                 double (*coefficient)(const contact::FrictionRow&, int), int a,
                                 double value) {
     for (int i = 0; i < frames[j].n_tangents; ++i) {
-      const double v = -s.D[j] * coefficient(rows[j][static_cast<std::size_t>(i)], a) * value;
+      const double v = sign * s.D[j] * coefficient(rows[j][static_cast<std::size_t>(i)], a) * value;
       if (v == 0.0) continue;
-      gi.push_back(tangent_row(j, i));
+      gi.push_back(row_of(j, i));
       gj.push_back(column);
       gv.push_back(v);
     }
@@ -259,7 +274,7 @@ void ContactConstraint::condense_friction(
   const auto coef_n = [](const contact::FrictionRow& r, int a) { return r.a_n[a]; };
   const auto coef_g = [](const contact::FrictionRow& r, int) { return r.a_g; };
   const bool rigid = s.itf.rigid();
-  // Against a rigid plane u~ = D s with s = P (x - x^n - (c - c^n)): dD enters through u~ too.
+  // Against a rigid plane u~ = D s with s = P (x~ - x~^n - (c - c^n)): dD enters through u~ too.
   std::vector<double> s_nodal(n * dim, 0.0);
   for (std::size_t j = 0; j < n; ++j)
     if (s.active[j] && rigid)
@@ -271,7 +286,7 @@ void ContactConstraint::condense_friction(
       for (int c = 0; c < dim; ++c) v += r.a_u[c] * s_nodal[j * dim + c];
     return v;
   };
-  // This rank's parts of the gradients of g~_j, D_jj and of the operators in u~.
+  // This rank's parts of the gradients of g~_j, D_j and of the operators in u~.
   for (const auto& e : s.lin.gap_gradient) {
     const auto j = static_cast<std::size_t>(e.row);
     if (s.active[j]) add_gradient(j, global_dof(e.col), coef_g, 0, e.value);
@@ -280,9 +295,9 @@ void ContactConstraint::condense_friction(
     const auto j = static_cast<std::size_t>(e.row);
     if (!s.active[j]) continue;
     for (int i = 0; i < frames[j].n_tangents; ++i) {
-      const double v = -s.D[j] * coef_D(j, i) * e.value;
+      const double v = sign * s.D[j] * coef_D(j, i) * e.value;
       if (v == 0.0) continue;
-      gi.push_back(tangent_row(j, i));
+      gi.push_back(row_of(j, i));
       gj.push_back(global_dof(e.col));
       gv.push_back(v);
     }
@@ -292,8 +307,16 @@ void ContactConstraint::condense_friction(
     if (s.active[j])
       add_gradient(j, global_dof(e.col), coef_u, static_cast<int>(e.row % dim), e.value);
   }
+  // Row j of T^-1 (the unit row without a modified basis): dx~_j = sum_k T^-1_jk dx_k.
+  std::vector<std::vector<std::pair<std::size_t, double>>> inverse_row(n);
+  for (const auto& e : s.T_inverse)
+    inverse_row[static_cast<std::size_t>(e.row)].emplace_back(static_cast<std::size_t>(e.col),
+                                                              e.value);
+  for (std::size_t j = 0; j < n; ++j)
+    if (inverse_row[j].empty()) inverse_row[j].emplace_back(j, 1.0);
   if (!rigid) {
-    // u~ at fixed operators: sum_l (M_jl - M_jl^n) dx_l (this rank's parts of M and M^n).
+    // u~ at fixed operators: sum_l (M_jl - M_jl^n) dx_l (this rank's parts of M and M^n) and,
+    // with standard multipliers, -sum_{k != j} (D_jk - D_jk^n) dx_k.
     for (const auto& e : s.part.M) {
       const auto j = static_cast<std::size_t>(e.slave);
       if (!s.active[j]) continue;
@@ -306,7 +329,57 @@ void ContactConstraint::condense_friction(
       for (int a = 0; a < dim; ++a)
         add_gradient(j, disc_.global_dof(e.master_node, a), coef_u, a, -e.value);
     }
+    const auto coupling = [&](const std::vector<mortar::Triplet>& D, double scale) {
+      for (const auto& e : D) {
+        const auto j = static_cast<std::size_t>(e.row);
+        if (!s.active[j]) continue;
+        for (const auto& [k, tk] : inverse_row[static_cast<std::size_t>(e.col)])
+          for (int a = 0; a < dim; ++a)
+            add_gradient(j, disc_.global_dof(nodes[k], a), coef_u, a, scale * tk * e.value);
+      }
+    };
+    coupling(s.part.D_coupling, -1.0);
+    coupling(s.D_coupling_old, 1.0);
   }
+  std::vector<contact::DofTriplet> dn;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+    // The normal's derivative; the slip increment at fixed operators on the slave node:
+    // -(D_jj - D_jj^n) dx~_j (two bodies) or D_j P dx~_j (rigid plane), dx~ = T^-1 dx.
+    dn.clear();
+    s.itf.normal_jacobian(static_cast<local_index>(j), dn);
+    for (const auto& e : dn)
+      add_gradient(j, global_dof(e.col), coef_n, static_cast<int>(e.row), e.value);
+    const double* normal = &s.itf.normals()[j * dim];
+    for (const auto& [k, tk] : inverse_row[j])
+      for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) {
+          double v = 0.0;
+          if (rigid)
+            v = s.D[j] * ((a == b ? 1.0 : 0.0) - normal[a] * normal[b]);
+          else if (a == b)
+            v = -(s.D_diag[j] - s.D_diag_old[j]);
+          if (v != 0.0) add_gradient(j, disc_.global_dof(nodes[k], b), coef_u, a, tk * v);
+        }
+  }
+}
+
+void ContactConstraint::condense_friction(
+    Side& s, std::vector<char>& replaced, std::vector<PetscInt>& li, std::vector<PetscInt>& lj,
+    std::vector<double>& lv, std::vector<PetscInt>& gi, std::vector<PetscInt>& gj,
+    std::vector<double>& gv, std::vector<PetscInt>& set_rows, std::vector<double>& set_values,
+    std::vector<PetscInt>& add_rows, std::vector<double>& add_values) const {
+  const int dim = disc_.dim();
+  const PetscInt first = disc_.first_owned_dof();
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const auto n = nodes.size();
+  const FrictionRows fr = friction_rows(s);
+  const auto& frames = fr.frames;
+  const auto tangent_row = [&](std::size_t j, int i) {
+    return disc_.global_dof(nodes[j], frames[j].tangent_component[i]);
+  };
+  // G += -D_jj beta: the tangent rows multiplied by -D_jj (contact_constraint.hpp).
+  friction_gradients(s, fr, tangent_row, -1.0, gi, gj, gv);
   // Master rows: sum_j (M_jl / D_jj) P_V (K~_j dd + r_j).
   for (const auto& e : s.part.M) {
     const auto j = static_cast<std::size_t>(e.slave);
@@ -318,7 +391,6 @@ void ContactConstraint::condense_friction(
       lv.push_back(e.value / s.D[j]);
     }
   }
-  std::vector<contact::DofTriplet> dn;
   for (std::size_t j = 0; j < n; ++j) {
     if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
     const NodeFrame& f = frames[j];
@@ -326,24 +398,8 @@ void ContactConstraint::condense_friction(
     replaced[static_cast<std::size_t>(gap_row - first)] = 1;
     set_rows.push_back(gap_row);
     set_values.push_back(s.c_n * s.gap[j]);
-    // The normal's derivative; the slip increment at fixed operators on the slave node:
-    // -(D_jj - D_jj^n) dx_j (two bodies) or D_jj P dx_j (rigid plane).
-    dn.clear();
-    s.itf.normal_jacobian(static_cast<local_index>(j), dn);
-    for (const auto& e : dn)
-      add_gradient(j, global_dof(e.col), coef_n, static_cast<int>(e.row), e.value);
-    const double* normal = &s.itf.normals()[j * dim];
-    for (int a = 0; a < dim; ++a)
-      for (int b = 0; b < dim; ++b) {
-        double v = 0.0;
-        if (rigid)
-          v = s.D[j] * ((a == b ? 1.0 : 0.0) - normal[a] * normal[b]);
-        else if (a == b)
-          v = -(s.D[j] - s.D_old[j]);
-        if (v != 0.0) add_gradient(j, disc_.global_dof(nodes[j], b), coef_u, a, v);
-      }
     for (int i = 0; i < f.n_tangents; ++i) {
-      const auto& r = rows[j][static_cast<std::size_t>(i)];
+      const auto& r = fr.rows[j][static_cast<std::size_t>(i)];
       const PetscInt row = tangent_row(j, i);
       replaced[static_cast<std::size_t>(row - first)] = 1;
       // -D_jj (alpha . lambda^{k+1}) = alpha . P_V (K~_j dd + r_j): through L.
@@ -367,6 +423,70 @@ int ContactConstraint::n_on_cone() const {
   return n;
 }
 
+void ContactConstraint::saddle_friction(Side& s, std::vector<PetscInt>& ci,
+                                        std::vector<PetscInt>& cj, std::vector<double>& cv,
+                                        std::vector<PetscInt>& ei, std::vector<PetscInt>& ej,
+                                        std::vector<double>& ev,
+                                        std::vector<double>& lm_rhs) const {
+  // Rows of the multipliers lambda_j (dim per slave node, numbered from lm_index[j]), each
+  // multiplied by the nodal weight D_j: inactive nodes and prescribed components lambda = 0;
+  // active nodes the gap row c_n dg~_j dd = -c_n g~_j (component gap_component) and per
+  // tangent t_i (component tangent_component[i]) the linearized frictional condition
+  //   D_j alpha . lambda^{k+1} + D_j beta . dd = -D_j (C_i - alpha . lambda^k).
+  const int dim = disc_.dim();
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const auto n = nodes.size();
+  const FrictionRows fr = friction_rows(s);
+  const auto& frames = fr.frames;
+  const auto lm_row = [&](std::size_t j, int c) {
+    return s.lm_index[j] + static_cast<PetscInt>(c);
+  };
+  friction_gradients(
+      s, fr, [&](std::size_t j, int i) { return lm_row(j, frames[j].tangent_component[i]); }, 1.0,
+      ci, cj, cv);
+  for (const auto& e : s.lin.gap_gradient) {
+    const auto j = static_cast<std::size_t>(e.row);
+    if (!s.active[j]) continue;
+    ci.push_back(lm_row(j, frames[j].gap_component));
+    cj.push_back(global_dof(e.col));
+    cv.push_back(s.c_n * e.value);
+  }
+  const double weight = mean_weight(s);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!disc_.owns_node(nodes[j])) continue;
+    const double Dj = s.D[j] > 0.0 ? s.D[j] : weight;
+    std::vector<double> rhs(static_cast<std::size_t>(dim), 0.0);
+    std::vector<char> done(static_cast<std::size_t>(dim), 0);
+    if (s.active[j]) {
+      const NodeFrame& f = frames[j];
+      rhs[static_cast<std::size_t>(f.gap_component)] = -s.c_n * s.gap[j];
+      done[static_cast<std::size_t>(f.gap_component)] = 1;
+      for (int i = 0; i < f.n_tangents; ++i) {
+        const auto& r = fr.rows[j][static_cast<std::size_t>(i)];
+        const int c = f.tangent_component[i];
+        double alpha_lambda = 0.0;
+        for (int b = 0; b < dim; ++b) {
+          alpha_lambda += r.alpha[b] * s.lambda[j * dim + b];
+          if (r.alpha[b] == 0.0) continue;
+          ei.push_back(lm_row(j, c));
+          ej.push_back(lm_row(j, b));
+          ev.push_back(Dj * r.alpha[b]);
+        }
+        rhs[static_cast<std::size_t>(c)] = -Dj * (r.value - alpha_lambda);
+        done[static_cast<std::size_t>(c)] = 1;
+      }
+    }
+    for (int c = 0; c < dim; ++c) {
+      if (!done[static_cast<std::size_t>(c)]) {
+        ei.push_back(lm_row(j, c));
+        ej.push_back(lm_row(j, c));
+        ev.push_back(Dj);
+      }
+      lm_rhs.push_back(rhs[static_cast<std::size_t>(c)]);
+    }
+  }
+}
+
 double ContactConstraint::dissipation_increment(const Side& s) const {
   // Work of the frictional tractions on the slip of the step: sum_j lambda_t,j . u~_j >= 0.
   const int dim = disc_.dim();
@@ -383,7 +503,8 @@ double ContactConstraint::dissipation_increment(const Side& s) const {
 
 void ContactConstraint::save_friction(Side& s) {
   s.dissipation += dissipation_increment(s);
-  s.D_old = s.D;
+  s.D_diag_old = s.D_diag;
+  s.D_coupling_old = s.part.D_coupling;
   s.M_old = s.part.M;
   s.x_old = s.x;
   s.plane_old = s.itf.plane_displacement();

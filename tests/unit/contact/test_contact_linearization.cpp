@@ -181,10 +181,11 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
 
 // Friction: Cartesian multipliers. The force tangent at fixed multipliers, dD_jj, the
 // derivative of the operators in the slip increment, sum_l M_jl x_l - D_jj x_j at fixed x, and
-// the normals' Jacobian, against central differences.
-void check_friction(int dim, bool tets, bool rigid) {
+// the normals' Jacobian, against central differences. Standard multipliers: the nodal weight
+// sum_k D_jk and sum_l M_jl x_l - sum_k D_jk x_k instead.
+void check_friction(int dim, bool tets, bool rigid, bool standard = false) {
   const auto mesh = two_blocks(dim, tets);
-  ContactInterface itf(contact_config(rigid, dim, false, true), mesh);
+  ContactInterface itf(contact_config(rigid, dim, standard, true), mesh);
   ASSERT_TRUE(itf.frictional());
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> perturb(-0.015, 0.015), unit(-1.0, 1.0);
@@ -230,6 +231,11 @@ void check_friction(int dim, bool tets, bool rigid) {
     w.assign(n_slave * dim, 0.0);
     for (std::size_t j = 0; j < n_slave; ++j)
       for (int c = 0; c < dim; ++c) w[j * dim + c] -= v.D[j] * x0[j * dim + c];
+    for (const auto& e : v.D_coupling) {
+      const auto j = static_cast<std::size_t>(e.row), k = static_cast<std::size_t>(e.col);
+      d[j] += e.value;
+      for (int c = 0; c < dim; ++c) w[j * dim + c] -= e.value * x0[k * dim + c];
+    }
     // M columns are mesh nodes: the master positions at the base state.
     const auto& masters = itf.master_nodes();
     for (const auto& e : v.M) {
@@ -261,9 +267,12 @@ void check_friction(int dim, bool tets, bool rigid) {
         err[k] = std::max(err[k], std::abs(fd - value));
       }
   }
-  std::printf("  friction dim %d %s %s: |dF| %.2e err %.2e, |dD| %.2e err %.2e, |dW| %.2e err "
+  if (standard) {
+    ASSERT_FALSE(lin.D_gradient.empty());
+  }
+  std::printf("  friction%s dim %d %s %s: |dF| %.2e err %.2e, |dD| %.2e err %.2e, |dW| %.2e err "
               "%.2e, |dn| %.2e err %.2e\n",
-              dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
+              standard ? " standard" : "", dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
               rigid ? "rigid plane" : "two bodies", big[0], err[0], big[1], err[1], big[2], err[2],
               big[3], err[3]);
   EXPECT_GT(big[0], 0.05);
@@ -293,6 +302,15 @@ TEST(ContactLinearization, FrictionRigidPlane2D) {
 }
 TEST(ContactLinearization, FrictionRigidPlane3D) {
   check_friction(3, false, true);
+}
+TEST(ContactLinearization, FrictionStandard2D) {
+  check_friction(2, false, false, true);
+}
+TEST(ContactLinearization, FrictionStandardQuad4) {
+  check_friction(3, false, false, true);
+}
+TEST(ContactLinearization, FrictionStandardRigidPlane3D) {
+  check_friction(3, false, true, true);
 }
 
 TEST(ContactLinearization, TwoBodies2D) {

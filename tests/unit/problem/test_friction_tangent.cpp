@@ -1,0 +1,444 @@
+// The whole assembled frictional Newton system against central differences (issue 11, test 1).
+//
+// With the active, stick and slip sets held, frictional contact is the smooth nonlinear system
+//   F(d, lambda) = [ r(d) + B(d)^T lambda ;  C(d, lambda) ],
+// r the bulk residual, B^T lambda the contact force of the (Cartesian) multipliers and C the
+// constraint rows (ContactConstraint::constraint_values: g~_j and t_i . C_t on active nodes,
+// lambda_j on inactive ones). One Newton step solves J v = -F for v = (dd, dlambda); the code
+// never forms J: dual multipliers condense it (condense / recover), standard ones solve the
+// saddle point. Replacing the bulk residual r by an arbitrary vector r' turns the step into
+// the solution of
+//   J v = -[ r' + B^T lambda ; C ]
+// for another right-hand side, so v = (dd, lambda' - lambda) returned by the code for random r'
+// must satisfy it with J the derivative of F. Here J v is the (fourth-order) central difference
+// of F along v, and both sides are compared in every free displacement row
+// and every constraint row: a wrong entry anywhere in the condensed or saddle-point matrix (the
+// derivatives of D, M, g~, the normals, the slip increment, the stick/slip rows and the bound,
+// the condensation by L and by T^T) gives a different v and shows here.
+//
+// Each case presses a block onto a rigid plane or a second block with a tilted prescribed
+// displacement of its top (so part of the bottom lifts off) and then drags it a little (the
+// lightly pressed nodes slip, the others stick): the check state holds inactive, stick and
+// slip nodes at once. It is the converged state of the drag step before it is accepted (so the
+// slip increment of the step is not zero), perturbed at random.
+#include "seam/common/mpi.hpp"
+#include "seam/common/timer.hpp"
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/mesh/gmsh_reader.hpp"
+#include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/assembly.hpp"
+#include "seam/problem/contact_constraint.hpp"
+#include "seam/problem/discretization.hpp"
+#include "seam/problem/model.hpp"
+#include "seam/problem/newton.hpp"
+#include "seam/problem/output.hpp"
+#include "seam/problem/saddle_point.hpp"
+#include "seam/problem/tying_constraint.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace seam::problem {
+namespace {
+
+/// A deterministic pseudo-random number in [-1, 1] for index i and seed k (independent of the
+/// number of ranks when i is a mesh dof).
+const double fd_step = std::getenv("SEAM_FD_STEP") ? std::atof(std::getenv("SEAM_FD_STEP")) : 1e-6;
+
+double noise(std::int64_t i, int k) {
+  const double v = std::sin(12.9898 * static_cast<double>(i) + 78.233 * k) * 43758.5453;
+  return 2.0 * (v - std::floor(v)) - 1.0;
+}
+
+struct Case {
+  std::string name;
+  int dimension = 2;
+  std::string geo;
+  std::string interface;               ///< the YAML of the interface
+  std::string top_x = "0.002";         ///< tangential travel of the top in the drag step
+  std::string tilt = "(-0.01+0.02*x)"; ///< normal displacement of the top in the press step
+  std::string fixed;                   ///< extra boundary condition (two bodies: the base)
+  std::string bodies = "  - {region: body, material: m}\n";
+};
+
+std::string rectangle_geo(double h, int order, bool two_bodies) {
+  std::string g =
+      "h = " + std::to_string(h) + ";\n" +
+      "Point(1) = {0, 0, 0, h}; Point(2) = {1, 0, 0, h};\n"
+      "Point(3) = {1, 0.25, 0, h}; Point(4) = {0, 0.25, 0, h};\n"
+      "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n"
+      "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
+      "Transfinite Curve{1, 3} = " +
+      std::to_string(static_cast<int>(std::lround(1.0 / h)) + 1) +
+      "; Transfinite Curve{2, 4} = " + std::to_string(static_cast<int>(std::lround(0.25 / h)) + 1) +
+      "; Transfinite Surface{1}; Recombine Surface{1};\n"
+      "Physical Curve(\"bottom\") = {1}; Physical Curve(\"top\") = {3};\n"
+      "Physical Surface(\"body\") = {1};\n";
+  if (two_bodies)
+    // A wider base below, meshed independently (non-matching, 0.7 h).
+    g += "Point(11) = {-0.3, -0.25, 0, 0.7*h}; Point(12) = {1.3, -0.25, 0, 0.7*h};\n"
+         "Point(13) = {1.3, 0, 0, 0.7*h}; Point(14) = {-0.3, 0, 0, 0.7*h};\n"
+         "Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};\n"
+         "Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};\n"
+         "Recombine Surface{11};\n"
+         "Physical Curve(\"base_bottom\") = {11}; Physical Curve(\"base_top\") = {13};\n"
+         "Physical Surface(\"base\") = {11};\n";
+  g += "Mesh.ElementOrder = " + std::to_string(order) + ";\n";
+  return g;
+}
+
+std::string box_geo(double h, int order, bool serendipity, bool tets) {
+  const auto n = [&](double l) { return std::to_string(std::lround(l / h) + 1); };
+  std::string g = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 0.5, 0.25};\n";
+  if (!tets)
+    g += "For c In {1:12}\n  bb() = BoundingBox Curve{c};\n"
+         "  If (Fabs(bb(3) - bb(0)) > 1e-5)\n    Transfinite Curve{c} = " +
+         n(1.0) + ";\n  ElseIf (Fabs(bb(4) - bb(1)) > 1e-5)\n    Transfinite Curve{c} = " + n(0.5) +
+         ";\n  Else\n    Transfinite Curve{c} = " + n(0.25) +
+         ";\n  EndIf\nEndFor\nTransfinite Surface{:};\nRecombine Surface{:};\n"
+         "Transfinite Volume{1};\n";
+  else
+    g += "Mesh.MeshSizeMax = " + std::to_string(h) +
+         ";\nMesh.MeshSizeMin = " + std::to_string(0.5 * h) + ";\n";
+  g += "Physical Surface(\"bottom\") = {5};\nPhysical Surface(\"top\") = {6};\n"
+       "Physical Volume(\"body\") = {1};\n"
+       "Mesh.ElementOrder = " +
+       std::to_string(order) + ";\nMesh.SecondOrderIncomplete = " + (serendipity ? "1" : "0") +
+       ";\n";
+  return g;
+}
+
+/// The block of box_geo (hex8 or hex20) on a wider base box, meshed independently.
+std::string boxes_geo(double h, int order) {
+  return "SetFactory(\"OpenCASCADE\");\nBox(1) = {-0.25, -0.25, -0.25, 1.5, 1.0, 0.25};\n"
+         "Box(2) = {0, 0, 0, 1, 0.5, 0.25};\n"
+         "For c In {1:24}\n  bb() = BoundingBox Curve{c};\n"
+         "  l = Fabs(bb(3) - bb(0)) + Fabs(bb(4) - bb(1)) + Fabs(bb(5) - bb(2));\n"
+         "  Transfinite Curve{c} = (c <= 12 ? Round(l / " +
+         std::to_string(1.2 * h) + ") : Round(l / " + std::to_string(h) +
+         ")) + 1;\nEndFor\nTransfinite Surface{:};\nRecombine Surface{:};\n"
+         "Transfinite Volume{1, 2};\n"
+         "Physical Volume(\"base\") = {1}; Physical Volume(\"body\") = {2};\n"
+         "Physical Surface(\"base_bottom\") = {5}; Physical Surface(\"base_top\") = {6};\n"
+         "Physical Surface(\"bottom\") = {11}; Physical Surface(\"top\") = {12};\n"
+         "Mesh.ElementOrder = " +
+         std::to_string(order) + ";\nMesh.SecondOrderIncomplete = 1;\n";
+}
+
+struct Errors {
+  double displacement = 0.0, constraint = 0.0;
+  int inactive = 0, stick = 0, slip = 0;
+};
+
+/// The state of the case and the comparison of J v with the code's right-hand side for
+/// `n_directions` random r'.
+Errors check(const Case& c, int n_directions) {
+  Comm comm;
+  const auto folder = std::filesystem::temp_directory_path() /
+                      ("seam_fd_" + c.name + "_np" + std::to_string(comm.size()));
+  const std::string dims = c.dimension == 2 ? "[x, y]" : "[x, y, z]";
+  const std::string zero_normal = c.dimension == 2 ? "" : "0, ";
+  std::string yaml = "dimension: " + std::to_string(c.dimension) +
+                     "\nmesh: {geo: case.geo}\n"
+                     "materials:\n  m: {model: neo_hooke, young: 100.0, poisson: 0.3}\n"
+                     "bodies:\n" +
+                     c.bodies +
+                     "boundary_conditions:\n"
+                     "  - {region: top, type: dirichlet, components: " +
+                     dims + ", value: ['" + c.top_x + "*max(t-1,0)', " +
+                     (c.dimension == 3 ? "'0', " : "") + "'" + c.tilt + "*min(t,1)']}\n" + c.fixed +
+                     "interfaces:\n  - " + c.interface +
+                     "\ntime: {integrator: static, end: 2.0, steps: 2}\n"
+                     "solver: {newton: {tolerance: 1e-11, max_iterations: 40}}\n";
+  if (comm.is_root()) {
+    std::filesystem::remove_all(folder);
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "case.geo") << c.geo;
+    std::ofstream(folder / "case.yaml") << yaml;
+  }
+  comm.barrier();
+  const auto config = io::load_config(folder / "case.yaml");
+  mesh::ReadOptions opts;
+  opts.dim = config.dimension;
+  opts.order = config.mesh.order;
+  opts.serendipity = c.geo.find("SecondOrderIncomplete = 1") != std::string::npos;
+  auto mesh = mesh::read_mesh(folder / "case.geo", opts);
+  const Discretization disc(mesh, comm);
+  const auto model = build_model(config, disc);
+  PhaseTimers timers;
+  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers);
+  const TyingConstraint tying(tied, disc, model);
+  SaddlePoint saddle(tied, disc, model);
+  ContactConstraint contact(config, disc, model);
+  Output out(config, disc, model, tied, folder / "out", true);
+  NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
+  la::Vector u = disc.make_vector();
+  const auto evaluator = [&](double t) {
+    return [&, t](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
+      return assemble(model, disc, state, t, r, &K, &f_ext);
+    };
+  };
+  // Press (accepted), then drag: converged but not accepted.
+  EXPECT_TRUE(newton.solve(u, 1.0, 1, evaluator(1.0)).converged) << c.name << ": press";
+  newton.accept();
+  EXPECT_TRUE(newton.solve(u, 2.0, 2, evaluator(2.0)).converged) << c.name << ": drag";
+  const double t = 2.0;
+  Errors err;
+  for (const auto& rep : contact.reports(u))
+    for (const char st : rep.status) {
+      err.inactive += st == 0;
+      err.stick += st == 1;
+      err.slip += st == 2;
+    }
+
+  // The check state: the sets and frames held, d and lambda perturbed.
+  contact.hold_sets(true);
+  la::Vector w = disc.make_vector();
+  {
+    la::Vector::LocalView view(w, true);
+    auto values = view.values();
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = 1e-5 * noise(disc.first_owned_dof() + static_cast<std::int64_t>(i), 1);
+  }
+  u.axpy(1.0, w);
+  u.update_ghosts();
+  auto lambda0 = contact.multipliers();
+  double lambda_scale = 0.0;
+  for (const double l : lambda0) lambda_scale = std::max(lambda_scale, std::abs(l));
+  for (std::size_t k = 0; k < lambda0.size(); ++k)
+    if (lambda0[k] != 0.0)
+      lambda0[k] += 1e-4 * lambda_scale * noise(static_cast<std::int64_t>(k), 2);
+  contact.set_multipliers(lambda0);
+  // The tangents t_i of the rows are those of the linearization point (the code takes them
+  // from the current normals in every iteration; dt_i . C_t is not part of the Newton matrix):
+  // held again at the perturbed state, with the statuses still held.
+  contact.evaluate(u, t, false, timers);
+  contact.hold_sets(true);
+
+  la::Matrix K = disc.make_matrix(), Ksys;
+  la::Vector r = disc.make_vector(), f_ext = disc.make_vector(), rsys = disc.make_vector();
+  la::Vector fc0 = disc.make_vector(), dd = disc.make_vector();
+  // F at (u + h dd, lambda + h dlambda): displacement rows and constraint rows.
+  const auto F = [&](const la::Vector& state, const std::vector<double>& lambda, la::Vector& Fd,
+                     std::vector<double>& Fc) {
+    contact.set_multipliers(lambda);
+    contact.evaluate(state, t, false, timers);
+    assemble(model, disc, state, t, Fd, nullptr, nullptr);
+    contact.add_force(Fd);
+    zero_dirichlet_rows(model, disc, Fd);
+    Fc = contact.constraint_values();
+  };
+  std::vector<PetscInt> dirichlet;
+  for (const auto& d : model.dirichlet) dirichlet.push_back(d.dof);
+  la::LinearSolver solver(comm.get(), la::SolverKind::direct);
+  double worst_d = 0.0, worst_c = 0.0;
+  for (int k = 0; k < n_directions; ++k) {
+    contact.set_multipliers(lambda0);
+    contact.evaluate(u, t, false, timers);
+    assemble(model, disc, u, t, r, &K, &f_ext);
+    const auto C0 = contact.constraint_values();
+    fc0.zero();
+    contact.add_force(fc0);
+    // r': random, of the size of the contact forces.
+    la::Vector rp = disc.make_vector();
+    const double scale = fc0.norm() / std::sqrt(static_cast<double>(fc0.global_size()));
+    {
+      la::Vector::LocalView view(rp, true);
+      auto values = view.values();
+      for (std::size_t i = 0; i < values.size(); ++i)
+        values[i] = scale * noise(disc.first_owned_dof() + static_cast<std::int64_t>(i), 10 + k);
+    }
+    zero_dirichlet_rows(model, disc, rp);
+    if (contact.saddle_point()) {
+      la::Vector minus_r = disc.make_vector();
+      minus_r.copy_from(rp);
+      minus_r.scale(-1.0);
+      EXPECT_TRUE(contact.solve_saddle_point(K, minus_r, dirichlet, nullptr, solver, dd, timers));
+    } else {
+      contact.condense(K, rp, Ksys, rsys, timers);
+      zero_dirichlet_rows(model, disc, rsys);
+      rsys.scale(-1.0);
+      Ksys.zero_rows_columns(dirichlet, nullptr, nullptr);
+      dd.zero();
+      EXPECT_TRUE(solver.solve(Ksys, rsys, dd));
+      contact.recover(K, rp, dd);
+    }
+    const auto lambda1 = contact.multipliers();
+    std::vector<double> dl(lambda0.size());
+    for (std::size_t i = 0; i < dl.size(); ++i) dl[i] = lambda1[i] - lambda0[i];
+    // Step of about 1e-6 of the body size in the largest displacement.
+    double dd_max = 0.0;
+    {
+      la::Vector::LocalView view(dd, false);
+      for (const double v : view.values()) dd_max = std::max(dd_max, std::abs(v));
+    }
+    dd_max = comm.max(dd_max);
+    const double h = fd_step / std::max(dd_max, 1e-300);
+    // Fourth-order central difference, (8 (F(h) - F(-h)) - (F(2h) - F(-2h))) / 12h: the slip
+    // branch's z / |z| curves strongly near the cone, where a second-order one is off by h^2.
+    la::Vector res = disc.make_vector(), expected = disc.make_vector();
+    res.zero();
+    std::vector<double> jv_c(C0.size(), 0.0);
+    la::Vector up = disc.make_vector(), Fd = disc.make_vector();
+    std::vector<double> lp(dl.size()), Fc;
+    for (const auto& [a, weight] : {std::pair{1.0, 8.0}, {-1.0, -8.0}, {2.0, -1.0}, {-2.0, 1.0}}) {
+      up.copy_from(u);
+      up.axpy(a * h, dd);
+      up.update_ghosts();
+      for (std::size_t i = 0; i < dl.size(); ++i) lp[i] = lambda0[i] + a * h * dl[i];
+      F(up, lp, Fd, Fc);
+      res.axpy(weight / (12.0 * h), Fd);
+      for (std::size_t i = 0; i < Fc.size(); ++i) jv_c[i] += weight / (12.0 * h) * Fc[i];
+    }
+    // J v (displacement rows) + r' + B^T lambda = 0 on the free rows.
+    expected.copy_from(rp);
+    expected.axpy(1.0, fc0);
+    zero_dirichlet_rows(model, disc, expected);
+    res.axpy(1.0, expected);
+    worst_d = std::max(worst_d, res.norm() / expected.norm());
+    double num = 0.0, den = 0.0;
+    for (std::size_t i = 0; i < C0.size(); ++i) {
+      const double jv = jv_c[i];
+      num += (jv + C0[i]) * (jv + C0[i]);
+      den += C0[i] * C0[i];
+    }
+    worst_c = std::max(worst_c, std::sqrt(num / den));
+  }
+  contact.hold_sets(false);
+  err.displacement = worst_d;
+  err.constraint = worst_c;
+  if (comm.is_root()) {
+    std::printf("  %-28s inactive %3d stick %3d slip %3d  |Jv + F|/|F|: displacement rows %.2e, "
+                "constraint rows %.2e\n",
+                c.name.c_str(), err.inactive, err.stick, err.slip, err.displacement,
+                err.constraint);
+    std::filesystem::remove_all(folder);
+  }
+  comm.barrier();
+  return err;
+}
+
+void expect_mixed(const Errors& e, double tolerance) {
+  EXPECT_GT(e.inactive, 0);
+  EXPECT_GT(e.stick, 0);
+  EXPECT_GT(e.slip, 0);
+  EXPECT_LT(e.displacement, tolerance);
+  EXPECT_LT(e.constraint, tolerance);
+}
+
+constexpr const char* plane_2d =
+    "{name: floor, type: contact, slave: bottom, friction: {model: coulomb, coefficient: 0.3}, "
+    "rigid_plane: {point: [0, 0], normal: [0, 1]}";
+constexpr const char* plane_3d =
+    "{name: floor, type: contact, slave: bottom, friction: {model: coulomb, coefficient: 0.3}, "
+    "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}";
+constexpr const char* blocks_2d = "{name: joint, type: contact, slave: bottom, master: base_top, "
+                                  "friction: {model: coulomb, coefficient: 0.3}";
+
+Case plane_case(std::string name, int dimension, std::string geo, const std::string& extra) {
+  Case c;
+  c.name = std::move(name);
+  c.dimension = dimension;
+  c.geo = std::move(geo);
+  c.interface = std::string(dimension == 2 ? plane_2d : plane_3d) + extra + "}";
+  return c;
+}
+
+Case blocks_case(std::string name, int order, const std::string& extra) {
+  Case c;
+  c.name = std::move(name);
+  c.geo = rectangle_geo(0.0625, order, true);
+  c.interface = std::string(blocks_2d) + extra + "}";
+  c.fixed = "  - {region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}\n";
+  c.bodies += "  - {region: base, material: m}\n";
+  return c;
+}
+
+constexpr double tolerance = 1e-6;
+
+/// blocks_case in 3D: hex8 boxes, quad4 faces.
+Case boxes_case(std::string name, const std::string& extra) {
+  Case c = blocks_case(std::move(name), 1, extra);
+  c.dimension = 3;
+  c.geo = boxes_geo(0.125, 1);
+  c.fixed = "  - {region: base_bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}\n";
+  return c;
+}
+
+TEST(FrictionTangent, TwoBodies3dQuad4Dual) {
+  expect_mixed(check(boxes_case("blocks_3d_quad4_dual", ""), 2), tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane2dLine2Dual) {
+  expect_mixed(check(plane_case("plane_2d_line2_dual", 2, rectangle_geo(0.0625, 1, false), ""), 3),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane2dLine3Dual) {
+  expect_mixed(check(plane_case("plane_2d_line3_dual", 2, rectangle_geo(0.125, 2, false), ""), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies2dLine2Dual) {
+  expect_mixed(check(blocks_case("blocks_2d_line2_dual", 1, ""), 3), tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies2dLine3Dual) {
+  expect_mixed(check(blocks_case("blocks_2d_line3_dual", 2, ""), 2), tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane3dQuad4Dual) {
+  expect_mixed(check(plane_case("plane_3d_quad4_dual", 3, box_geo(0.125, 1, false, false), ""), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane3dQuad8Dual) {
+  expect_mixed(check(plane_case("plane_3d_quad8_dual", 3, box_geo(0.25, 2, true, false), ""), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane3dTri6Dual) {
+  expect_mixed(check(plane_case("plane_3d_tri6_dual", 3, box_geo(0.3, 2, false, true), ""), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies3dQuad4Standard) {
+  expect_mixed(check(boxes_case("blocks_3d_quad4_standard", ", multiplier: standard"), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane2dLine2Standard) {
+  expect_mixed(check(plane_case("plane_2d_line2_standard", 2, rectangle_geo(0.0625, 1, false),
+                                ", multiplier: standard"),
+                     3),
+               tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies2dLine2Standard) {
+  expect_mixed(check(blocks_case("blocks_2d_line2_standard", 1, ", multiplier: standard"), 3),
+               tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies2dLine3Standard) {
+  expect_mixed(check(blocks_case("blocks_2d_line3_standard", 2, ", multiplier: standard"), 2),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidPlane3dQuad4Standard) {
+  expect_mixed(check(plane_case("plane_3d_quad4_standard", 3, box_geo(0.125, 1, false, false),
+                                ", multiplier: standard"),
+                     2),
+               tolerance);
+}
+
+} // namespace
+} // namespace seam::problem
