@@ -80,7 +80,7 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
 }
 
 /// This rank's part of the mesh: its cells, one ghost layer and the cells of the interface
-/// sides (parallel/distribute_mesh.hpp); rank 0 frees the whole mesh once it is sent.
+/// sides (mesh/distribute.hpp); rank 0 frees the whole mesh once it is sent.
 mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm) {
   auto whole = read_on_root(config, comm);
   std::vector<std::string> sides;
