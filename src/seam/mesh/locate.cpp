@@ -101,16 +101,30 @@ std::optional<std::array<double, 3>> inverse_map(const Mesh& mesh, std::int32_t 
   return std::nullopt;
 }
 
-PointLocator::PointLocator(const Mesh& mesh) : mesh_(&mesh) {
-  boxes_.resize(6 * static_cast<std::size_t>(mesh.n_cells()));
+PointLocator::PointLocator(const Mesh& mesh)
+    : mesh_(&mesh), cells_(static_cast<std::size_t>(mesh.n_cells())) {
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) cells_[c] = c;
+  fill_boxes();
+}
+
+PointLocator::PointLocator(const Mesh& mesh, std::span<const std::int32_t> cells)
+    : mesh_(&mesh), cells_(cells.begin(), cells.end()) {
+  SEAM_ASSERT(std::is_sorted(cells_.begin(), cells_.end()));
+  fill_boxes();
+}
+
+void PointLocator::fill_boxes() {
+  const Mesh& mesh = *mesh_;
+  boxes_.resize(6 * cells_.size());
   std::array<double, 3 * fem::max_cell_nodes> xc{};
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+  for (std::size_t k = 0; k < cells_.size(); ++k) {
+    const auto c = cells_[k];
     const int n = cell_coordinates(mesh, c, xc);
     const double h = cell_extent(xc, n);
     // A quadratic cell's edges may bulge beyond its nodes' box; a quarter of its size is a
     // generous bound for any cell that is not inverted.
     const double margin = (fem::order(mesh.cell_type[c]) > 1 ? 0.25 : 1e-8) * h;
-    double* box = &boxes_[6 * static_cast<std::size_t>(c)];
+    double* box = &boxes_[6 * k];
     for (int a = 0; a < 3; ++a) {
       box[a] = std::numeric_limits<double>::max();
       box[3 + a] = std::numeric_limits<double>::lowest();
@@ -131,8 +145,9 @@ std::optional<PointLocation> PointLocator::locate(std::span<const double> point,
   SEAM_CHECK(tol >= 0.0, InputError, "point location tolerance must be >= 0");
   std::optional<PointLocation> best;
   double best_distance = std::numeric_limits<double>::max();
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
-    const double* box = &boxes_[6 * static_cast<std::size_t>(c)];
+  for (std::size_t k = 0; k < cells_.size(); ++k) {
+    const auto c = cells_[k];
+    const double* box = &boxes_[6 * k];
     // The box grows with tol (reference units, at most 2 per cell width) times the cell size.
     double size = 0.0;
     for (int a = 0; a < mesh.dim; ++a) size = std::max(size, box[3 + a] - box[a]);

@@ -30,6 +30,8 @@ double reference_distance(fem::CellType t, const double* xi);
 class PointLocator {
 public:
   explicit PointLocator(const Mesh& mesh);
+  /// Only among `cells` (sorted), e.g. the cells a rank assembles.
+  PointLocator(const Mesh& mesh, std::span<const std::int32_t> cells);
 
   /// The cell containing point (mesh.dim values) and its reference coordinates. A point on a
   /// facet shared by cells goes to the lowest-index cell. tol is in reference units: a point
@@ -38,8 +40,11 @@ public:
   std::optional<PointLocation> locate(std::span<const double> point, double tol = 1e-10) const;
 
 private:
+  void fill_boxes();
+
   const Mesh* mesh_;
-  std::vector<double> boxes_; // per cell: lower[3], upper[3]
+  std::vector<std::int32_t> cells_; // the cells searched, increasing
+  std::vector<double> boxes_;       // per searched cell: lower[3], upper[3]
 };
 
 /// One-off convenience: PointLocator(mesh).locate(point, tol).

@@ -1,6 +1,7 @@
 #pragma once
-// The replicated mesh: flat arrays that a caller can broadcast member by member. Every rank
-// holds the whole mesh; the partition (partition.hpp) decides what each rank assembles.
+// A mesh as flat arrays: the whole mesh as read (on rank 0, or on every rank for runs that keep
+// it replicated), or one rank's part of it in local numbering (distribute.hpp). The partition
+// (partition.hpp) decides what each rank assembles.
 #include "seam/fem/cell.hpp"
 
 #include <cstdint>

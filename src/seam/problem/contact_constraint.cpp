@@ -17,12 +17,15 @@ namespace {
 constexpr double min_free_normal = 0.1;
 
 /// The largest Young's modulus of the cells that touch one of `nodes` (mesh nodes, sorted):
-/// the stiffness of the body a contact side belongs to.
-double side_young(const mesh::Mesh& mesh, const Model& model, std::span<const std::int32_t> nodes) {
+/// the stiffness of the body a contact side belongs to. Collective: each rank looks at the
+/// cells it assembles (a rank may not hold every cell touching a side node).
+double side_young(const Discretization& disc, const Model& model,
+                  std::span<const std::int32_t> nodes) {
+  const auto& mesh = disc.mesh();
   std::vector<char> on_side(static_cast<std::size_t>(mesh.n_nodes()), 0);
   for (const auto n : nodes) on_side[static_cast<std::size_t>(n)] = 1;
   double young = 0.0;
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+  for (const auto c : disc.local_cells()) {
     const int m = model.cell_material[static_cast<std::size_t>(c)];
     if (m < 0) continue;
     for (const auto n : mesh.cell(c))
@@ -31,7 +34,7 @@ double side_young(const mesh::Mesh& mesh, const Model& model, std::span<const st
         break;
       }
   }
-  return young;
+  return disc.comm().max(young);
 }
 
 } // namespace
@@ -61,8 +64,8 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     // E of the softer body in contact, whose strain sets the pressure a penetration stands
     // for (a stiff die on a soft slab with the die's E makes every set decision a gap test,
     // and the sets then jump as the die slides).
-    double e = side_young(disc.mesh(), model, s.itf.slave().mesh_nodes);
-    if (!s.itf.rigid()) e = std::min(e, side_young(disc.mesh(), model, s.itf.master_nodes()));
+    double e = side_young(disc, model, s.itf.slave().mesh_nodes);
+    if (!s.itf.rigid()) e = std::min(e, side_young(disc, model, s.itf.master_nodes()));
     if (!(e > 0.0)) e = young;
     s.c_n = itf.c_n ? *itf.c_n : e / s.itf.slave_mesh_size();
     const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());

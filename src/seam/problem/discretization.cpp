@@ -1,5 +1,6 @@
 #include "seam/problem/discretization.hpp"
 
+#include "seam/common/error.hpp"
 #include "seam/mesh/node_cells.hpp"
 #include "seam/mesh/partition.hpp"
 
@@ -8,7 +9,8 @@
 namespace seam::problem {
 
 Discretization::Discretization(const mesh::Mesh& mesh, Comm comm)
-    : mesh_(&mesh), comm_(comm), dim_(mesh.dim) {
+    : mesh_(&mesh), comm_(comm), dim_(mesh.dim), n_global_nodes_(mesh.n_nodes()),
+      n_global_cells_(mesh.n_cells()) {
   const int n_ranks = comm_.size();
   const int rank = comm_.rank();
   // Every rank holds the same mesh and METIS is deterministic, so every rank computes the
@@ -20,17 +22,38 @@ Discretization::Discretization(const mesh::Mesh& mesh, Comm comm)
   node_owner_ = numbering.owner;
   first_owned_node_ = numbering.offsets[rank];
   n_owned_nodes_ = static_cast<std::int32_t>(numbering.offsets[rank + 1] - first_owned_node_);
+  number_local_nodes();
+}
 
+Discretization::Discretization(const mesh::DistributedMesh& part, Comm comm)
+    : mesh_(&part.mesh), comm_(comm), dim_(part.mesh.dim), distributed_(true),
+      n_global_nodes_(part.n_global_nodes), n_global_cells_(part.n_global_cells),
+      node_gid_(part.node_gid), cell_gid_(part.cell_gid), cell_part_(part.cell_owner),
+      new_index_(part.node_index), node_owner_(part.node_owner) {
+  SEAM_CHECK(part.node_offsets.size() == static_cast<std::size_t>(comm_.size()) + 1, InternalError,
+             "a mesh distributed over ", part.node_offsets.size() - 1, " ranks used on ",
+             comm_.size());
+  first_owned_node_ = part.node_offsets[comm_.rank()];
+  n_owned_nodes_ =
+      static_cast<std::int32_t>(part.node_offsets[comm_.rank() + 1] - first_owned_node_);
+  number_local_nodes();
+}
+
+void Discretization::number_local_nodes() {
+  const auto& mesh = *mesh_;
+  const int rank = comm_.rank();
   for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
     if (cell_part_[c] == rank) local_cells_.push_back(c);
 
   // Local nodes: owned ones in global order, then ghosts (nodes of local cells owned elsewhere)
-  // in global order.
+  // in global order. A distributed part holds every owned node (each lies on an own cell).
   const std::int32_t n_nodes = mesh.n_nodes();
   local_node_.assign(n_nodes, -1);
   std::vector<std::int32_t> owned, ghosts;
   for (std::int32_t n = 0; n < n_nodes; ++n)
     if (node_owner_[n] == rank) owned.push_back(n);
+  SEAM_CHECK(static_cast<std::int32_t>(owned.size()) == n_owned_nodes_, InternalError, "rank ",
+             rank, " holds ", owned.size(), " of its ", n_owned_nodes_, " owned nodes");
   std::vector<char> is_ghost(n_nodes, 0);
   for (auto c : local_cells_)
     for (auto n : mesh.cell(c))
@@ -54,8 +77,9 @@ la::Vector Discretization::make_vector() const {
 }
 
 la::Matrix Discretization::make_matrix() const {
-  // Node graph of the owned nodes over ALL cells touching them (the mesh is replicated, so
-  // rows that other ranks add to are preallocated exactly as well).
+  // Node graph of the owned nodes over ALL cells touching them (replicated mesh, or the ghost
+  // layer of a distributed one: both hold every cell around an owned node), so rows that other
+  // ranks add to are preallocated exactly as well.
   const auto& m = *mesh_;
   const std::int32_t n_nodes = m.n_nodes();
   const auto around = mesh::node_cells(m);

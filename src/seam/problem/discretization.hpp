@@ -1,9 +1,16 @@
 #pragma once
-// The distributed layout of a replicated mesh: which cells this rank assembles, which nodes
-// (and so dofs) it owns, its ghost nodes, and the local <-> global dof maps PETSc needs.
-// Global dof of node n, component c: dim * new_index[n] + c, contiguous per rank.
+// The distributed layout: which cells this rank assembles, which nodes (and so dofs) it owns,
+// its ghost nodes, and the local <-> global dof maps PETSc needs. Global dof of node n,
+// component c: dim * (global number of n) + c, contiguous per rank.
+//
+// Two sources: a replicated mesh (every rank holds all of it and partitions it the same way),
+// or this rank's part of a distributed mesh (mesh::distribute_mesh: owned cells, one ghost
+// layer, interface cells). "Mesh node" and "cell" below are indices into mesh(), i.e. local
+// indices of the part in the distributed case; node_gid / cell_gid give the ids of the mesh as
+// read, which are the same on every rank.
 #include "seam/common/mpi.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/mesh/mesh.hpp"
 
 #include <cstdint>
@@ -14,21 +21,33 @@ namespace seam::problem {
 
 class Discretization {
 public:
+  /// Replicated: every rank holds `mesh` whole.
   Discretization(const mesh::Mesh& mesh, Comm comm);
+  /// Distributed: `part` is this rank's part (kept by reference, as the mesh above).
+  Discretization(const mesh::DistributedMesh& part, Comm comm);
 
   const mesh::Mesh& mesh() const { return *mesh_; }
   Comm comm() const { return comm_; }
   int dim() const { return dim_; }
 
+  /// True if mesh() is this rank's part of a distributed mesh.
+  bool distributed() const { return distributed_; }
+  /// Counts of the whole mesh (the same on every rank).
+  std::int64_t n_global_nodes() const { return n_global_nodes_; }
+  std::int64_t n_global_cells() const { return n_global_cells_; }
+  /// Id in the mesh as read of mesh node n / cell c (n / c itself when replicated).
+  std::int64_t node_gid(std::int32_t node) const { return distributed_ ? node_gid_[node] : node; }
+  std::int64_t cell_gid(std::int32_t c) const { return distributed_ ? cell_gid_[c] : c; }
+
   /// Cells this rank assembles (all cells whose partition is this rank).
   std::span<const std::int32_t> local_cells() const { return local_cells_; }
-  /// Partition (rank) of every cell of the mesh.
+  /// Partition (rank) of every cell of mesh().
   std::span<const int> cell_part() const { return cell_part_; }
   bool is_local_cell(std::int32_t c) const { return cell_part_[c] == comm_.rank(); }
 
   /// Number of dofs owned by this rank and of all ranks.
   PetscInt n_owned_dofs() const { return n_owned_nodes_ * dim_; }
-  PetscInt n_global_dofs() const { return static_cast<PetscInt>(mesh_->n_nodes()) * dim_; }
+  PetscInt n_global_dofs() const { return static_cast<PetscInt>(n_global_nodes_) * dim_; }
   PetscInt first_owned_dof() const { return first_owned_node_ * dim_; }
 
   /// Global dof of mesh node n, component c.
@@ -55,9 +74,15 @@ public:
   la::Vector coordinates_vector() const;
 
 private:
+  void number_local_nodes();
+
   const mesh::Mesh* mesh_;
   Comm comm_;
   int dim_;
+  bool distributed_ = false;
+  std::int64_t n_global_nodes_ = 0;
+  std::int64_t n_global_cells_ = 0;
+  std::span<const std::int64_t> node_gid_, cell_gid_;
   std::vector<int> cell_part_;
   std::vector<std::int32_t> local_cells_;
   std::vector<std::int64_t> new_index_;

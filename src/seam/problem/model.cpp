@@ -37,18 +37,26 @@ std::string describe_regions(const mesh::Mesh& mesh) {
 
 // A probe outside the mesh is an input error (CONTRACT.md); found here so that `seam check`
 // reports it too, with the mesh's extent to show where the points may lie.
-void check_probes(const io::Config& config, const mesh::Mesh& mesh) {
+// Collective: each rank looks among the cells it assembles, which together are the mesh.
+void check_probes(const io::Config& config, const Discretization& disc) {
   if (config.output.probes.empty()) return;
-  const mesh::PointLocator locator(mesh);
+  const auto& mesh = disc.mesh();
+  const auto& comm = disc.comm();
+  const mesh::PointLocator locator(mesh, disc.local_cells());
   const auto dim = static_cast<std::size_t>(mesh.dim);
   for (const auto& probe : config.output.probes) {
-    if (locator.locate(std::span<const double>(probe.point.data(), dim))) continue;
+    const bool found = locator.locate(std::span<const double>(probe.point.data(), dim)).has_value();
+    if (comm.any(found)) continue;
     std::array<double, 3> lower, upper;
     lower.fill(std::numeric_limits<double>::infinity());
     upper.fill(-std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < mesh.x.size(); ++i) {
       lower[i % dim] = std::min(lower[i % dim], mesh.x[i]);
       upper[i % dim] = std::max(upper[i % dim], mesh.x[i]);
+    }
+    for (std::size_t a = 0; a < dim; ++a) {
+      lower[a] = comm.min(lower[a]);
+      upper[a] = comm.max(upper[a]);
     }
     std::ostringstream s;
     s << "probe (";
@@ -127,10 +135,13 @@ Model build_model(const io::Config& config, const Discretization& disc) {
     const int mat = material_index.at(body.material);
     for (auto c : region.cells) model.cell_material[c] = mat;
   }
-  const auto uncovered = std::count(model.cell_material.begin(), model.cell_material.end(), -1);
+  // Counted over the owned cells, so that every rank sees the whole mesh's count.
+  std::int64_t uncovered = 0;
+  for (auto c : disc.local_cells()) uncovered += model.cell_material[c] < 0 ? 1 : 0;
+  uncovered = disc.comm().sum(uncovered);
   if (uncovered > 0) {
     std::ostringstream s;
-    s << uncovered << " of " << mesh.n_cells()
+    s << uncovered << " of " << disc.n_global_cells()
       << " cells belong to no body (every cell needs a material); bodies cover the regions";
     for (const auto& b : config.bodies) s << " '" << b.region.name << "'";
     s << "; regions of dimension " << dim << " in the mesh:";
@@ -199,7 +210,7 @@ Model build_model(const io::Config& config, const Discretization& disc) {
     find_region(mesh, itf.slave, {dim - 1}, "an interface side");
     if (itf.master) find_region(mesh, *itf.master, {dim - 1}, "an interface side");
   }
-  check_probes(config, mesh);
+  check_probes(config, disc);
   return model;
 }
 

@@ -4,12 +4,15 @@
 #include "seam/fem/cell.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
+#include "seam/parallel/exchange.hpp"
 #include "seam/parallel/load_balance.hpp"
 #include "seam/problem/error_norms.hpp"
 #include "seam/solid/element.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include <sys/resource.h>
@@ -17,6 +20,21 @@
 namespace seam::problem {
 
 namespace {
+
+/// A rank's answer for one probe: how far outside its cell (0 inside, to round-off) and the
+/// cell's id; ordered as the whole-mesh search chooses.
+struct ProbeCandidate {
+  double distance;
+  std::int64_t gid;
+  bool operator<(const ProbeCandidate& o) const {
+    return distance < o.distance || (distance == o.distance && gid < o.gid);
+  }
+};
+
+double probe_distance(const mesh::Mesh& mesh, const mesh::PointLocation& loc) {
+  const double d = mesh::reference_distance(mesh.cell_type[loc.cell], loc.xi.data());
+  return d <= 1e-13 ? 0.0 : d; // PointLocator's "inside up to round-off"
+}
 
 std::vector<std::string> columns(std::initializer_list<const char*> names) {
   return {names.begin(), names.end()};
@@ -48,28 +66,46 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     has_contact_ = has_contact_ || itf.type == io::InterfaceType::contact;
   const auto& comm = disc.comm();
   const auto& mesh = disc.mesh();
-  // A slave node is tied if it has a row of D and not every component is prescribed.
-  std::vector<double> n_prescribed(mesh.n_nodes(), 0.0);
-  for (const auto& d : model.dirichlet) n_prescribed[d.node] += 1.0;
-  if (!tied_.empty()) comm.sum_in_place(n_prescribed);
+  // A slave node is tied if it has a row of D and not every component is prescribed. The
+  // owners of the slave nodes know their prescribed components; the sides are in the same
+  // order on every rank.
   for (const auto& t : tied_) {
-    auto& rows = tied_rows_.emplace_back(t.slave.mesh_nodes.size(), 0);
+    const auto& nodes = t.slave.mesh_nodes;
+    std::vector<double> n_prescribed(nodes.size(), 0.0);
+    for (const auto& d : model.dirichlet) {
+      const auto it = std::lower_bound(nodes.begin(), nodes.end(), d.node);
+      if (it != nodes.end() && *it == d.node) n_prescribed[it - nodes.begin()] += 1.0;
+    }
+    comm.sum_in_place(n_prescribed);
+    auto& rows = tied_rows_.emplace_back(nodes.size(), 0);
     for (const auto& e : t.operators.D)
-      if (e.value != 0.0 && n_prescribed[t.slave.mesh_nodes[e.row]] < mesh.dim) rows[e.row] = 1;
+      if (e.value != 0.0 && n_prescribed[e.row] < mesh.dim) rows[e.row] = 1;
   }
 
-  // Probes: every rank locates them in the (replicated) mesh; the owner of the cell evaluates.
+  // Probes: every rank looks among the cells it assembles, which together are the mesh; the
+  // cell the whole-mesh search would pick (inside, then lowest id; else the nearest within the
+  // tolerance) wins, and its rank evaluates the probe.
+  const mesh::PointLocator locator(mesh, disc.local_cells());
   for (const auto& p : config.output.probes) {
-    const auto loc =
-        mesh::locate_point(mesh, std::span<const double>(p.point.data(), mesh.dim), 1e-10);
-    if (!loc) {
+    const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim), 1e-10);
+    const ProbeCandidate mine =
+        loc ? ProbeCandidate{probe_distance(mesh, *loc), disc.cell_gid(loc->cell)}
+            : ProbeCandidate{std::numeric_limits<double>::infinity(), -1};
+    std::vector<std::int64_t> offsets;
+    const auto all = parallel::allgatherv<ProbeCandidate>(
+        comm.get(), std::span<const ProbeCandidate>(&mine, 1), offsets);
+    const auto best = std::min_element(all.begin(), all.end());
+    if (best->gid < 0) {
       std::ostringstream s;
       s << "probe (" << p.point[0] << ", " << p.point[1];
       if (mesh.dim == 3) s << ", " << p.point[2];
       s << ") lies outside the mesh";
       io::fail_at(p.mark, s.str());
     }
-    probes_.push_back({p.point, loc->cell, loc->xi});
+    if (best - all.begin() == comm.rank())
+      probes_.push_back({p.point, loc->cell, loc->xi});
+    else
+      probes_.push_back({p.point, -1, {}});
   }
 
   if (comm.is_root()) {
@@ -231,8 +267,8 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
         X[k] = mesh.x[static_cast<std::size_t>(node) * dim + k];
         U[k] = c.displacement[j * dim + k];
       }
-      table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j], c.lambda_n[j],
-                     c.lambda_t[j], status_names[static_cast<int>(c.status[j])]});
+      table.add_row({disc_.node_gid(node), X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j],
+                     c.lambda_n[j], c.lambda_t[j], status_names[static_cast<int>(c.status[j])]});
     }
   }
   for (std::size_t k = 0; k < tied_.size(); ++k) {
@@ -275,8 +311,8 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
         lt2 += lt * lt;
       }
       const bool is_tied = tied_rows_[k][j] != 0;
-      table.add_row({node, X[0], X[1], X[2], U[0], U[1], U[2], s.gap[j], ln, std::sqrt(lt2),
-                     is_tied ? "tied" : "inactive"});
+      table.add_row({disc_.node_gid(node), X[0], X[1], X[2], U[0], U[1], U[2], s.gap[j], ln,
+                     std::sqrt(lt2), is_tied ? "tied" : "inactive"});
     }
   }
 }
@@ -297,7 +333,7 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
     std::array<double, fem::max_cell_nodes> N{};
     for (std::size_t p = 0; p < probes_.size(); ++p) {
       const auto c = probes_[p].cell;
-      if (!disc_.is_local_cell(c)) continue;
+      if (c < 0) continue; // evaluated on another rank
       const auto type = disc_.mesh().cell_type[c];
       fem::shape_values(type, probes_[p].xi.data(), N.data());
       const auto nodes = disc_.mesh().cell(c);
@@ -472,8 +508,9 @@ void Output::finish(bool converged, int n_steps) {
   std::vector<double> phases;
   const char* names[] = {"assembly", "mortar", "search", "linear_solve", "output", "condensation"};
   for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
-  // Every rank's share (CONTRACT.md, ranks_detail). The mesh is still held whole on every
-  // rank: the cells a rank does not assemble count as its ghost cells.
+  // Every rank's share (CONTRACT.md, ranks_detail): the cells it assembles, and the cells it
+  // holds without assembling them (ghost layer and interface cells of a distributed mesh; all
+  // the others when the mesh is replicated).
   constexpr std::size_t n_detail = 7;
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -500,8 +537,8 @@ void Output::finish(bool converged, int n_steps) {
   j["wall_seconds"] = wall;
   auto& t = j["timings"];
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
-  j["nodes"] = disc_.mesh().n_nodes();
-  j["cells"] = disc_.mesh().n_cells();
+  j["nodes"] = disc_.n_global_nodes();
+  j["cells"] = disc_.n_global_cells();
   auto& itfs = j["interfaces"];
   itfs = io::Json::array();
   for (const auto& t : tied_) {

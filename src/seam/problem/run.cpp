@@ -4,7 +4,9 @@
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
+#include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
@@ -45,27 +47,8 @@ template <class F> void on_root_collectively(const Comm& comm, F&& f) {
   if (!error.empty()) throw InputError(error);
 }
 
-void broadcast_mesh(const Comm& comm, mesh::Mesh& m) {
-  comm.broadcast_value(m.dim);
-  comm.broadcast(m.x);
-  comm.broadcast(m.cell_type);
-  comm.broadcast(m.cell_offsets);
-  comm.broadcast(m.cell_nodes);
-  std::uint64_t n_regions = m.regions.size();
-  comm.broadcast_value(n_regions);
-  m.regions.resize(n_regions);
-  for (auto& r : m.regions) {
-    comm.broadcast(r.name);
-    comm.broadcast_value(r.dim);
-    comm.broadcast_value(r.tag);
-    comm.broadcast(r.cells);
-    comm.broadcast(r.facet_cell);
-    comm.broadcast(r.facet_local);
-    comm.broadcast(r.nodes);
-  }
-}
-
-mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
+/// Rank 0 reads (or meshes) the mesh; the other ranks get an empty one.
+mesh::Mesh read_on_root(const io::Config& config, const Comm& comm) {
   mesh::Mesh m;
   on_root_collectively(comm, [&] {
     mesh::ReadOptions opts;
@@ -86,8 +69,26 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
       io::fail_at(mark, e.what());
     }
   });
-  broadcast_mesh(comm, m);
   return m;
+}
+
+/// The whole mesh on every rank (fluid runs and `seam check`).
+mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
+  auto m = read_on_root(config, comm);
+  mesh::broadcast_mesh(comm.get(), m);
+  return m;
+}
+
+/// This rank's part of the mesh: its cells, one ghost layer and the cells of the interface
+/// sides (mesh/distribute.hpp); rank 0 frees the whole mesh once it is sent.
+mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm) {
+  auto whole = read_on_root(config, comm);
+  std::vector<std::string> sides;
+  for (const auto& itf : config.interfaces) {
+    sides.push_back(itf.slave.name);
+    if (itf.master) sides.push_back(itf.master->name);
+  }
+  return mesh::distribute_mesh(whole, comm.get(), sides);
 }
 
 std::filesystem::path output_directory(const RunOptions& options) {
@@ -116,13 +117,17 @@ int run(const RunOptions& options, int argc, char** argv) {
     SEAM_THROW(InputError, "--restart ", options.restart,
                ": restarting from a checkpoint is not available in this version of seam");
   const auto config = io::load_config(options.input);
-  auto mesh = load_mesh(config, comm);
   if (has_fluid(config)) {
+    auto mesh = load_mesh(config, comm);
+    if (comm.is_root() && comm.size() > 1)
+      std::printf("seam: fluid runs are not distributed yet: every rank holds the whole mesh\n");
     make_output_directory(output_directory(options), comm);
     run_fluid(config, mesh, comm, output_directory(options), options.quiet);
     return 0;
   }
-  const Discretization disc(mesh, comm);
+  auto part = load_distributed_mesh(config, comm);
+  auto& mesh = part.mesh;
+  const Discretization disc(part, comm);
   const auto model = build_model(config, disc);
   PhaseTimers setup_timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
@@ -142,8 +147,9 @@ int run(const RunOptions& options, int argc, char** argv) {
   if (comm.is_root() && !options.quiet)
     std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",
                 version(), config.title.empty() ? options.input.c_str() : config.title.c_str(),
-                mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
-                comm.size(), out.directory().string().c_str());
+                static_cast<int>(disc.n_global_nodes()), static_cast<int>(disc.n_global_cells()),
+                static_cast<long long>(disc.n_global_dofs()), comm.size(),
+                out.directory().string().c_str());
   if (config.time.is_dynamic())
     run_dynamic(config, model, disc, tied, tying, saddle, contact, out);
   else
