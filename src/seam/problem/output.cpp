@@ -1,5 +1,7 @@
 #include "seam/problem/output.hpp"
 
+#include "seam/problem/checkpoint.hpp"
+
 #include "seam/common/error.hpp"
 #include "seam/fem/cell.hpp"
 #include "seam/io/json.hpp"
@@ -41,7 +43,7 @@ std::string duration_text(double seconds) {
 
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
                const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
-               bool quiet)
+               bool quiet, const Checkpoints* restart)
     : config_(config), disc_(disc), model_(model), tied_(tied), dir_(std::move(dir)), quiet_(quiet),
       start_wall_(wall_seconds()), progress_wall_(start_wall_) {
   for (const auto& itf : config.interfaces)
@@ -78,33 +80,48 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     if (ec)
       SEAM_THROW(InputError, "cannot create the output directory ", dir_.string(), ": ",
                  ec.message());
+    auto mode = io::CsvTable::Mode::truncate;
+    if (restart) {
+      mode = io::CsvTable::Mode::append;
+      for (const char* f : {"steps.csv", "newton.csv", "reactions.csv", "probes.csv",
+                            "interfaces.csv", "parallel.csv", "errors.csv"})
+        drop_rows_after(dir_ / f, restart->restart_step());
+    }
     steps_ = std::make_unique<io::CsvTable>(
         dir_ / "steps.csv",
         columns({"step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
                  "kinetic_energy", "internal_energy", "external_work", "total_energy", "momentum_x",
                  "momentum_y", "momentum_z", "angular_momentum_x", "angular_momentum_y",
-                 "angular_momentum_z", "wall_seconds"}));
+                 "angular_momentum_z", "wall_seconds"}),
+        mode);
     newton_ = std::make_unique<io::CsvTable>(
         dir_ / "newton.csv",
-        columns({"step", "iteration", "residual", "increment", "active_set_changes"}));
+        columns({"step", "iteration", "residual", "increment", "active_set_changes"}), mode);
     reactions_ = std::make_unique<io::CsvTable>(
-        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}));
+        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}), mode);
     probes_table_ = std::make_unique<io::CsvTable>(
-        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}));
+        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}), mode);
     interfaces_ = std::make_unique<io::CsvTable>(
         dir_ / "interfaces.csv",
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
-                 "slip_nodes", "contact_area", "frictional_dissipation"}));
+                 "slip_nodes", "contact_area", "frictional_dissipation"}),
+        mode);
     if (has_contact_)
       parallel_ = std::make_unique<io::CsvTable>(
           dir_ / "parallel.csv", columns({"step", "time", "interface", "ranks", "min_work",
-                                          "mean_work", "max_work", "imbalance", "redistributed"}));
-    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+                                          "mean_work", "max_work", "imbalance", "redistributed"}),
+          mode);
+    if (restart) {
+      pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd", restart->pvd_entries());
+    } else {
+      pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+    }
     if (!config.output.exact_displacement.empty())
       errors_ = std::make_unique<io::CsvTable>(
-          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}));
+          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}), mode);
   }
   comm.barrier(); // the directory exists before any rank writes a piece
+  if (restart) progress_time_ = restart->restart_time();
 
   for (const auto& t : tied) {
     std::vector<PetscInt> dofs;
@@ -464,6 +481,18 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   }
   if (comm.is_root()) pvd_->add(time, file);
   last_field_step_ = step;
+}
+
+void Output::write_checkpoint(RecordWriter& out) const {
+  std::vector<double> times;
+  std::string files;
+  if (pvd_)
+    for (const auto& e : pvd_->entries()) {
+      times.push_back(e.time);
+      files += e.file + "\n";
+    }
+  out.put("output.pvd_times", times);
+  out.put("output.pvd_files", files);
 }
 
 void Output::finish(bool converged, int n_steps) {

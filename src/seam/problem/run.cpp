@@ -6,6 +6,7 @@
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/dynamic_solver.hpp"
@@ -92,6 +93,8 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
 
 std::filesystem::path output_directory(const RunOptions& options) {
   if (!options.output_dir.empty()) return options.output_dir;
+  // A restart continues the files of the run that wrote the checkpoint.
+  if (!options.restart.empty()) return restart_output_directory(options.restart);
   return std::filesystem::path(std::filesystem::path(options.input).stem().string() + "_out");
 }
 
@@ -112,12 +115,13 @@ void make_output_directory(const std::filesystem::path& dir, const Comm& comm) {
 int run(const RunOptions& options, int argc, char** argv) {
   Comm comm;
   la::Session petsc(argc, argv, options.petsc_args);
-  if (!options.restart.empty())
-    SEAM_THROW(InputError, "--restart ", options.restart,
-               ": restarting from a checkpoint is not available in this version of seam");
   const auto config = io::load_config(options.input);
   auto mesh = load_mesh(config, comm);
   if (has_fluid(config)) {
+    if (!options.restart.empty() || config.output.checkpoint_every > 0)
+      SEAM_THROW(InputError, options.input,
+                 ": checkpoints and --restart are not available for fluid runs in this version "
+                 "of seam (output.checkpoint_every, --restart)");
     make_output_directory(output_directory(options), comm);
     run_fluid(config, mesh, comm, output_directory(options), options.quiet);
     return 0;
@@ -136,18 +140,24 @@ int run(const RunOptions& options, int argc, char** argv) {
     SEAM_THROW(InputError, options.input,
                ": interfaces: contact and mesh tying in one run are not available in this "
                "version of seam");
+  const Checkpoints checkpoints(config, disc, options.input, output_directory(options),
+                                options.restart);
   make_output_directory(output_directory(options), comm);
-  Output out(config, disc, model, tied, output_directory(options), options.quiet);
+  Output out(config, disc, model, tied, output_directory(options), options.quiet,
+             checkpoints.restarting() ? &checkpoints : nullptr);
   for (const auto& [phase, seconds] : setup_timers.all()) out.timers().add(phase, seconds);
   if (comm.is_root() && !options.quiet)
     std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",
                 version(), config.title.empty() ? options.input.c_str() : config.title.c_str(),
                 mesh.n_nodes(), mesh.n_cells(), static_cast<long long>(disc.n_global_dofs()),
                 comm.size(), out.directory().string().c_str());
+  if (checkpoints.restarting() && comm.is_root() && !options.quiet)
+    std::printf("  restarting from %s: step %d, t = %.17g\n", options.restart.c_str(),
+                checkpoints.restart_step(), checkpoints.restart_time());
   if (config.time.is_dynamic())
-    run_dynamic(config, model, disc, tied, tying, saddle, contact, out);
+    run_dynamic(config, model, disc, tied, tying, saddle, contact, out, checkpoints);
   else
-    run_static(config, model, disc, tied, tying, saddle, contact, out);
+    run_static(config, model, disc, tied, tying, saddle, contact, out, checkpoints);
   return 0;
 }
 

@@ -1,0 +1,279 @@
+"""Checkpoints and restart (CONTRACT.md "Checkpoints").
+
+A run writes checkpoint_NNNNN/ every `output.checkpoint_every` converged steps; a copy of its
+output directory, whose rows after the checkpoint are overwritten with garbage (a run that died
+later), is continued with `--restart copy/checkpoint_NNNNN`. The continued tables must equal
+those of the uninterrupted run: bit for bit on one rank, and to 1e-12 relative (of each
+column's scale) on another number of ranks (1 -> 3 and 3 -> 1) or on 3 ranks (the contact
+interface is redistributed at a restart, which changes sums at round-off).
+- static frictional contact of two elastic blocks (the mortar operators of the last converged
+  step M^n, D^n enter the slip increment),
+- dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
+- free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
+  mesh tying).
+Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
+mesh, another dimension, no such directory) end with exit code 1 and a message.
+"""
+import os
+import shutil
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import geometry as G  # noqa: E402
+import harness as H  # noqa: E402
+
+_dirs = []
+TABLES = ["steps.csv", "reactions.csv", "interfaces.csv", "probes.csv"]
+# Columns that are not results: the wall clock, and the residual at convergence, which is
+# round-off when the summation order changes (compared bit for bit on the same ranks).
+SKIP = {"wall_seconds"}
+
+TWO_BLOCKS_GEO = """
+Geometry.AutoCoherence = 0;
+Point(1) = {0, -0.5, 0, 0.15}; Point(2) = {2, -0.5, 0, 0.15};
+Point(3) = {2, 0, 0, 0.15}; Point(4) = {0, 0, 0, 0.15};
+Point(5) = {0.5, 0, 0, 0.1}; Point(6) = {1.5, 0, 0, 0.1};
+Point(7) = {1.5, 0.25, 0, 0.1}; Point(8) = {0.5, 0.25, 0, 0.1};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Recombine Surface{1, 2};
+Physical Surface("base") = {1}; Physical Surface("slider") = {2};
+Physical Curve("base_bottom") = {1}; Physical Curve("base_top") = {3};
+Physical Curve("slider_bottom") = {5}; Physical Curve("slider_top") = {7};
+"""
+
+
+def two_blocks_yaml(every):
+    """Press the slider onto the base (t in [0, 1]), then drag it along (t in [1, 3])."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100.0, poisson: 0.0}}",
+        "bodies: [{region: base, material: m}, {region: slider, material: m}]",
+        "boundary_conditions:",
+        "  - {region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}",
+        "  - {region: slider_top, type: dirichlet, components: [x, y], "
+        "value: ['0.1*max(t-1,0)', '-0.01*min(t,1)']}",
+        "interfaces:",
+        "  - {name: slide, type: contact, slave: slider_bottom, master: base_top, "
+        "friction: {model: coulomb, coefficient: 0.3}}",
+        "time: {integrator: static, end: 3.0, steps: 8}",
+        "solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}",
+        "output: {checkpoint_every: %d, probes: [[1.0, 0.125]]}" % every]) + "\n"
+
+
+def sliding_block_yaml(every):
+    """A block under gravity on a rigid plane, pushed along by a growing body force: it sticks,
+    then slides (test_friction.py), with generalized-alpha."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 10000.0, poisson: 0.3, density: 1.0}}",
+        "bodies: [{region: body, material: m}]",
+        "boundary_conditions:",
+        "  - {region: body, type: body_force, value: ['6*t', '-10*min(t/0.2,1)']}",
+        "interfaces:",
+        "  - {name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
+        "coefficient: 0.3}, rigid_plane: {point: [0, 0], normal: [0, 1]}}",
+        "time: {integrator: generalized_alpha, rho_inf: 0.5, end: 1.0, steps: 20}",
+        "solver: {newton: {tolerance: 1.0e-10, max_iterations: 30}}",
+        "output: {every: 5, checkpoint_every: %d, probes: [[0.5, 0.125]]}" % every]) + "\n"
+
+
+def flight_yaml(strategy, every):
+    """Two tied Neo-Hookean bodies in free flight, rotating and stretching (test_dynamics.py)."""
+    v = "['-3*(y-1) + 1 + 0.5*(x-0.5)', '3*(x-0.5) + 0.5']"
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100, poisson: 0.3, density: 1}}",
+        "bodies: [{region: lower, material: m}, {region: upper, material: m}]",
+        "initial_conditions:",
+        "  - {region: lower, velocity: %s}" % v,
+        "  - {region: upper, velocity: %s}" % v,
+        "interfaces:",
+        "  - {name: tie, type: mesh_tying, slave: upper_bottom, master: lower_top, "
+        "strategy: %s}" % strategy,
+        "time: {integrator: energy_momentum, end: 0.3, steps: 30}",
+        "solver: {newton: {tolerance: 1.0e-12}}",
+        "output: {every: 10, checkpoint_every: %d}" % every]) + "\n"
+
+
+def make_case(geo, yaml):
+    work = tempfile.mkdtemp(prefix="seam_restart_")
+    _dirs.append(work)
+    H.write_case(work, "case.geo", geo)
+    return work, H.write_case(work, "case.yaml", yaml)
+
+
+def full_run(yaml, np):
+    out = tempfile.mkdtemp(prefix="seam_restart_out_")
+    _dirs.append(out)
+    H.run(["run", yaml, "-o", out, "--quiet"], np=np)
+    return out
+
+
+def spoil_rows_after(path, step):
+    """Overwrites the numbers of every row after `step` (as if the run had gone on
+    differently and died): a restart must drop them."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    out = [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        if int(cells[0]) > step:
+            cells = [cells[0]] + ["12345" if c.replace(".", "").replace("-", "").replace("e", "")
+                                  .isdigit() else c for c in cells[1:]]
+        out.append(",".join(cells))
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
+def restarted_run(yaml, full_out, step, np):
+    """A copy of the uninterrupted run's output with its later rows spoiled, continued from
+    checkpoint `step` on np ranks."""
+    copy = tempfile.mkdtemp(prefix="seam_restart_copy_")
+    _dirs.append(copy)
+    shutil.rmtree(copy)
+    shutil.copytree(full_out, copy)
+    for name in TABLES + ["newton.csv"]:
+        if os.path.exists(os.path.join(copy, name)):
+            spoil_rows_after(os.path.join(copy, name), step)
+    checkpoint = os.path.join(copy, "checkpoint_%05d" % step)
+    if not os.path.isdir(checkpoint):
+        raise AssertionError("no checkpoint_%05d in %s" % (step, full_out))
+    code, stdout, _ = H.run(["run", yaml, "--restart", checkpoint], np=np)
+    if "restarting from" not in stdout:
+        raise AssertionError("the restart does not say where it continues:\n" + stdout[-2000:])
+    return copy
+
+
+def compare(full, restarted, rtol, what):
+    """Every table row by row; rtol 0: bit for bit. Returns the largest relative difference."""
+    worst = 0.0
+    for name in TABLES + (["newton.csv"] if rtol == 0.0 else []):
+        a_path, b_path = os.path.join(full, name), os.path.join(restarted, name)
+        if not os.path.exists(a_path):
+            continue
+        a, b = H.read_csv(a_path), H.read_csv(b_path)
+        if len(a) != len(b):
+            raise AssertionError("%s %s: %d rows uninterrupted, %d restarted"
+                                 % (what, name, len(a), len(b)))
+        for col in a[0]:
+            if col in SKIP:
+                continue
+            va, vb = [r[col] for r in a], [r[col] for r in b]
+            if not isinstance(va[0], float):
+                if va != vb:
+                    raise AssertionError("%s %s column %s differs" % (what, name, col))
+                continue
+            if col == "residual" and rtol > 0.0:
+                continue
+            scale = max(max(abs(x) for x in va), 1e-300)
+            for i, (x, y) in enumerate(zip(va, vb)):
+                d = abs(x - y) / scale
+                worst = max(worst, d)
+                if (rtol == 0.0 and x != y) or d > rtol:
+                    raise AssertionError("%s %s row %d column %s: %r uninterrupted, %r restarted "
+                                         "(relative %.3e)" % (what, name, i + 1, col, x, y, d))
+    pvd_a = open(os.path.join(full, "results.pvd")).read().count("<DataSet")
+    pvd_b = open(os.path.join(restarted, "results.pvd")).read().count("<DataSet")
+    if pvd_a != pvd_b:
+        raise AssertionError("%s results.pvd: %d entries uninterrupted, %d restarted"
+                             % (what, pvd_a, pvd_b))
+    return worst
+
+
+def check_case(geo, yaml_of, step, what, cross_np=True):
+    _, yaml = make_case(geo, yaml_of(step))
+    one = full_run(yaml, 1)
+    same = compare(one, restarted_run(yaml, one, step, 1), 0.0, what + " 1 -> 1")
+    print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
+    if not cross_np:
+        return
+    three = full_run(yaml, 3)
+    d13 = compare(one, restarted_run(yaml, one, step, 3), 1e-12, what + " 1 -> 3")
+    d31 = compare(three, restarted_run(yaml, three, step, 1), 1e-12, what + " 3 -> 1")
+    d33 = compare(three, restarted_run(yaml, three, step, 3), 1e-12, what + " 3 -> 3")
+    print("   %s: largest relative difference 1 -> 3 %.2e, 3 -> 1 %.2e, 3 -> 3 %.2e"
+          % (what, d13, d31, d33))
+
+
+def test_static_friction_two_bodies():
+    check_case(TWO_BLOCKS_GEO, two_blocks_yaml, 3, "static friction, two bodies")
+
+
+def test_dynamic_friction_generalized_alpha():
+    check_case(G.rectangle("quad_structured", 0.125, lx=1.0, ly=0.25), sliding_block_yaml, 8,
+               "generalized-alpha friction")
+
+
+def test_energy_momentum_tied_condensed():
+    check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("condensed", e), 10,
+               "energy-momentum, condensed tying")
+
+
+def test_energy_momentum_tied_saddle_point():
+    check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("saddle_point", e), 10,
+               "energy-momentum, saddle-point tying", cross_np=False)
+
+
+def expect_input_error(args, words, what):
+    code, stdout, stderr = H.run(args, check=False)
+    text = stdout + stderr
+    if code != 1 or not all(w in text for w in words) or "PETSC ERROR" in text:
+        raise AssertionError("%s: exit %d (expected 1 with %s):\n%s" % (what, code, words,
+                                                                         text[-2000:]))
+    print("   %s: %s" % (what, text.strip().splitlines()[-1][:150]))
+
+
+def test_bad_checkpoints():
+    work, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(2))
+    out = full_run(yaml, 1)
+    good = os.path.join(out, "checkpoint_00002")
+    state = os.path.join(good, "state.bin")
+    with open(state, "rb") as f:
+        data = f.read()
+
+    def variant(name, content):
+        d = os.path.join(out, name)
+        os.makedirs(d)
+        if content is not None:
+            with open(os.path.join(d, "state.bin"), "wb") as f:
+                f.write(content)
+        return d
+
+    expect_input_error(["run", yaml, "--restart", variant("missing", None)],
+                       ["state.bin", "missing"], "missing file")
+    expect_input_error(["run", yaml, "--restart", variant("truncated", data[:len(data) // 2])],
+                       ["truncated"], "truncated file")
+    middle = len(data) // 2
+    flipped = data[:middle] + bytes([data[middle] ^ 0x40]) + data[middle + 1:]
+    expect_input_error(["run", yaml, "--restart", variant("flipped", flipped)],
+                       ["damaged"], "corrupted byte")
+    expect_input_error(["run", yaml, "--restart", os.path.join(out, "checkpoint_99999")],
+                       ["no such checkpoint"], "no such directory")
+    # Another input: the same case with another friction coefficient.
+    other = H.write_case(work, "other.yaml", open(yaml).read().replace("0.3}", "0.4}"))
+    expect_input_error(["run", other, "--restart", good], ["another input"], "another input")
+    # Another mesh: the same input next to a finer .geo.
+    work2, yaml2 = make_case(TWO_BLOCKS_GEO.replace("0.1}", "0.05}"), two_blocks_yaml(2))
+    expect_input_error(["run", yaml2, "--restart", good], ["mesh"], "another mesh")
+    # Another dimension: a 3D input restarted from the 2D checkpoint.
+    work3, yaml3 = make_case(G.box("hex", 0.5), "\n".join([
+        "dimension: 3", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100.0, poisson: 0.3}}",
+        "bodies: [{region: body, material: m}]",
+        "time: {integrator: static, end: 1.0, steps: 2}"]) + "\n")
+    expect_input_error(["run", yaml3, "--restart", good], ["dimension"], "another dimension")
+    expect_input_error(["run", yaml3, "--restart", good, "-o", os.path.join(work3, "o")],
+                       ["dimension 2"], "another dimension, -o")
+
+
+if __name__ == "__main__":
+    try:
+        H.main([test_static_friction_two_bodies, test_dynamic_friction_generalized_alpha,
+                test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
+                test_bad_checkpoints])
+    finally:
+        H.cleanup(*_dirs)
