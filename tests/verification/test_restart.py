@@ -22,28 +22,28 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import geometry as G  # noqa: E402
 import harness as H  # noqa: E402
+import test_friction as F  # noqa: E402
 
 _dirs = []
 TABLES = ["steps.csv", "reactions.csv", "interfaces.csv", "probes.csv"]
 # Columns that are not results: the wall clock, and the residual at convergence, which is
 # round-off when the summation order changes (compared bit for bit on the same ranks).
 SKIP = {"wall_seconds"}
+# Columns of one unit share a scale: a component or an energy that stays near zero (the
+# external work of a free flight, the strain energy of a rigid slide) is compared with the
+# size of its kind, not with its own round-off.
+GROUPS = [("kinetic_energy", "internal_energy", "external_work", "total_energy"),
+          ("momentum_x", "momentum_y", "momentum_z"),
+          ("angular_momentum_x", "angular_momentum_y", "angular_momentum_z"),
+          ("fx", "fy", "fz"), ("ux", "uy", "uz"), ("normal_force", "tangential_force")]
 
-TWO_BLOCKS_GEO = """
-Geometry.AutoCoherence = 0;
-Point(1) = {0, -0.5, 0, 0.15}; Point(2) = {2, -0.5, 0, 0.15};
-Point(3) = {2, 0, 0, 0.15}; Point(4) = {0, 0, 0, 0.15};
-Point(5) = {0.5, 0, 0, 0.1}; Point(6) = {1.5, 0, 0, 0.1};
-Point(7) = {1.5, 0.25, 0, 0.1}; Point(8) = {0.5, 0.25, 0, 0.1};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
-Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
-Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
-Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
-Recombine Surface{1, 2};
-Physical Surface("base") = {1}; Physical Surface("slider") = {2};
-Physical Curve("base_bottom") = {1}; Physical Curve("base_top") = {3};
-Physical Curve("slider_bottom") = {5}; Physical Curve("slider_top") = {7};
-"""
+
+def column_scale(rows, col):
+    group = next((g for g in GROUPS if col in g), (col,))
+    return max(max(abs(r[c]) for r in rows for c in group if c in r), 1e-300)
+
+# The two blocks of test_friction.py: base 2 x 0.5 (h = 0.15), slider 1 x 0.25 (h = 0.1) on it.
+TWO_BLOCKS_GEO = F.TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.1}
 
 
 def two_blocks_yaml(every):
@@ -106,11 +106,18 @@ def make_case(geo, yaml):
     return work, H.write_case(work, "case.yaml", yaml)
 
 
+_full_runs = {}
+
+
 def full_run(yaml, np):
-    out = tempfile.mkdtemp(prefix="seam_restart_out_")
-    _dirs.append(out)
-    H.run(["run", yaml, "-o", out, "--quiet"], np=np)
-    return out
+    """The uninterrupted run of `yaml` on np ranks (once per test session)."""
+    key = (open(yaml).read(), open(os.path.join(os.path.dirname(yaml), "case.geo")).read(), np)
+    if key not in _full_runs:
+        out = tempfile.mkdtemp(prefix="seam_restart_out_")
+        _dirs.append(out)
+        H.run(["run", yaml, "-o", out, "--quiet"], np=np)
+        _full_runs[key] = out
+    return _full_runs[key]
 
 
 def spoil_rows_after(path, step):
@@ -159,6 +166,8 @@ def compare(full, restarted, rtol, what):
         if len(a) != len(b):
             raise AssertionError("%s %s: %d rows uninterrupted, %d restarted"
                                  % (what, name, len(a), len(b)))
+        if not a:
+            continue
         for col in a[0]:
             if col in SKIP:
                 continue
@@ -169,7 +178,7 @@ def compare(full, restarted, rtol, what):
                 continue
             if col == "residual" and rtol > 0.0:
                 continue
-            scale = max(max(abs(x) for x in va), 1e-300)
+            scale = column_scale(a, col)
             for i, (x, y) in enumerate(zip(va, vb)):
                 d = abs(x - y) / scale
                 worst = max(worst, d)
@@ -191,12 +200,18 @@ def check_case(geo, yaml_of, step, what, cross_np=True):
     print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
     if not cross_np:
         return
-    three = full_run(yaml, 3)
     d13 = compare(one, restarted_run(yaml, one, step, 3), 1e-12, what + " 1 -> 3")
+    print("   %s: largest relative difference 1 -> 3 %.2e" % (what, d13))
+    if cross_np == "1 -> 3":
+        return
+    # On 3 ranks two uninterrupted runs differ at round-off already (the parallel direct
+    # solver's ordering), so 3 -> 3 is compared to 1e-12 as well.
+    three = full_run(yaml, 3)
     d31 = compare(three, restarted_run(yaml, three, step, 1), 1e-12, what + " 3 -> 1")
-    d33 = compare(three, restarted_run(yaml, three, step, 3), 1e-12, what + " 3 -> 3")
-    print("   %s: largest relative difference 1 -> 3 %.2e, 3 -> 1 %.2e, 3 -> 3 %.2e"
-          % (what, d13, d31, d33))
+    print("   %s: largest relative difference 3 -> 1 %.2e" % (what, d31))
+    if H.FULL:
+        d33 = compare(three, restarted_run(yaml, three, step, 3), 1e-12, what + " 3 -> 3")
+        print("   %s: largest relative difference 3 -> 3 %.2e" % (what, d33))
 
 
 def test_static_friction_two_bodies():
@@ -210,7 +225,7 @@ def test_dynamic_friction_generalized_alpha():
 
 def test_energy_momentum_tied_condensed():
     check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("condensed", e), 10,
-               "energy-momentum, condensed tying")
+               "energy-momentum, condensed tying", cross_np="1 -> 3")
 
 
 def test_energy_momentum_tied_saddle_point():
@@ -228,9 +243,9 @@ def expect_input_error(args, words, what):
 
 
 def test_bad_checkpoints():
-    work, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(2))
-    out = full_run(yaml, 1)
-    good = os.path.join(out, "checkpoint_00002")
+    work, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
+    out = full_run(yaml, 1)  # the static friction case's run
+    good = os.path.join(out, "checkpoint_00003")
     state = os.path.join(good, "state.bin")
     with open(state, "rb") as f:
         data = f.read()
@@ -257,8 +272,12 @@ def test_bad_checkpoints():
     other = H.write_case(work, "other.yaml", open(yaml).read().replace("0.3}", "0.4}"))
     expect_input_error(["run", other, "--restart", good], ["another input"], "another input")
     # Another mesh: the same input next to a finer .geo.
-    work2, yaml2 = make_case(TWO_BLOCKS_GEO.replace("0.1}", "0.05}"), two_blocks_yaml(2))
+    work2, yaml2 = make_case(F.TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.05}, two_blocks_yaml(3))
     expect_input_error(["run", yaml2, "--restart", good], ["mesh"], "another mesh")
+    # The same numbers of nodes and cells, one corner moved.
+    moved = TWO_BLOCKS_GEO.replace("Point(7) = {1.5, 0.25,", "Point(7) = {1.5, 0.26,")
+    work4, yaml4 = make_case(moved, two_blocks_yaml(3))
+    expect_input_error(["run", yaml4, "--restart", good], ["another mesh"], "moved mesh node")
     # Another dimension: a 3D input restarted from the 2D checkpoint.
     work3, yaml3 = make_case(G.box("hex", 0.5), "\n".join([
         "dimension: 3", "mesh: {geo: case.geo}",

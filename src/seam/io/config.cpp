@@ -282,8 +282,8 @@ OutputConfig read_output(const Node& node, int dimension) {
   if (const auto checkpoint = map.get("checkpoint_every")) {
     output.checkpoint_every = checkpoint->integer();
     if (output.checkpoint_every < 1)
-      checkpoint->fail(concat("must be >= 1 (omit the key for no checkpoints), got ",
-                              output.checkpoint_every));
+      checkpoint->fail(
+          concat("must be >= 1 (omit the key for no checkpoints), got ", output.checkpoint_every));
   }
   if (const auto probes = map.get("probes")) {
     for (const Node& probe : probes->sequence())

@@ -60,8 +60,7 @@ std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t hash) {
 
 // ---- RecordWriter -----------------------------------------------------------------------
 
-void RecordWriter::append(const std::string& name, char type, const void* data,
-                          std::size_t bytes) {
+void RecordWriter::append(const std::string& name, char type, const void* data, std::size_t bytes) {
   const auto n = static_cast<std::uint32_t>(name.size());
   const auto size = static_cast<std::uint64_t>(bytes);
   records_.append(reinterpret_cast<const char*>(&n), sizeof n);
@@ -182,8 +181,9 @@ Checkpoints::Checkpoints(const io::Config& config, const Discretization& disc,
                                   "; the input has dimension ", m.dim));
   if (r.integer("mesh_nodes") != m.n_nodes() || r.integer("mesh_cells") != m.n_cells())
     r.fail(::seam::detail::concat("was written for a mesh of ", r.integer("mesh_nodes"),
-                                  " nodes and ", r.integer("mesh_cells"), " cells; the input's has ",
-                                  m.n_nodes(), " nodes and ", m.n_cells(), " cells"));
+                                  " nodes and ", r.integer("mesh_cells"),
+                                  " cells; the input's has ", m.n_nodes(), " nodes and ",
+                                  m.n_cells(), " cells"));
   if (static_cast<std::uint64_t>(r.integer("mesh_hash")) != mesh_hash_)
     r.fail("was written for another mesh (same size, other coordinates or connectivity)");
   if (static_cast<std::uint64_t>(r.integer("input_hash")) != input_hash_)
@@ -256,8 +256,7 @@ void Checkpoints::put_vector(RecordWriter& writer, const std::string& name,
 
 void Checkpoints::get_vector(const std::string& name, la::Vector& v) const {
   const int dim = disc_.dim();
-  const auto values =
-      reader_.reals(name, static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim);
+  const auto values = reader_.reals(name, static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim);
   {
     la::Vector::LocalView view(v, true);
     auto vl = view.values();

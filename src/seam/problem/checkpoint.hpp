@@ -112,7 +112,8 @@ private:
 };
 
 /// FNV-1a 64-bit hash of bytes (checksums and the input/mesh identity of a checkpoint).
-std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t hash = 0xcbf29ce484222325ULL);
+std::uint64_t fnv1a(const void* data, std::size_t bytes,
+                    std::uint64_t hash = 0xcbf29ce484222325ULL);
 
 /// Keeps the header and the rows of the CSV file whose first column (the step) is at most
 /// `step`: a run that continued past the checkpoint left rows that the restart writes again.

@@ -28,8 +28,8 @@ template <class T> std::vector<T> gather_to_root(const Comm& comm, const std::ve
     total += counts[static_cast<std::size_t>(r)];
   }
   std::vector<T> out(comm.is_root() ? static_cast<std::size_t>(total) / sizeof(T) : 0);
-  MPI_Gatherv(local.data(), bytes, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE,
-              0, comm.get());
+  MPI_Gatherv(local.data(), bytes, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
+              comm.get());
   return out;
 }
 
@@ -112,8 +112,8 @@ void ContactConstraint::read_checkpoint(const RecordReader& in) {
         in.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
     s.M_old.clear();
     for (std::size_t i = total * r / np; i < total * (r + 1) / np; ++i)
-      s.M_old.push_back({static_cast<local_index>(slave[i]), static_cast<std::int32_t>(master[i]),
-                         value[i]});
+      s.M_old.push_back(
+          {static_cast<local_index>(slave[i]), static_cast<std::int32_t>(master[i]), value[i]});
   }
 }
 

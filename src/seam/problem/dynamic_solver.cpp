@@ -125,8 +125,9 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   const std::vector<std::pair<const char*, const la::Vector*>> state_out = {
       {"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}};
   if (checkpoints.restarting()) {
-    const auto state = read_checkpoint(checkpoints, control, contact, saddle, tied,
-                                       {{"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}});
+    const auto state =
+        read_checkpoint(checkpoints, control, contact, saddle, tied,
+                        {{"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}});
     step = state.step;
     external_work = state.external_work;
   } else {

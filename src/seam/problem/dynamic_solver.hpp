@@ -20,6 +20,6 @@ namespace seam::problem {
 void run_dynamic(const io::Config& config, const Model& model, const Discretization& disc,
                  const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
                  SaddlePoint& saddle, ContactConstraint& contact, Output& out,
-                const Checkpoints& checkpoints);
+                 const Checkpoints& checkpoints);
 
 } // namespace seam::problem

@@ -100,7 +100,8 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     reactions_ = std::make_unique<io::CsvTable>(
         dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}), mode);
     probes_table_ = std::make_unique<io::CsvTable>(
-        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}), mode);
+        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}),
+        mode);
     interfaces_ = std::make_unique<io::CsvTable>(
         dir_ / "interfaces.csv",
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
@@ -108,8 +109,9 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
         mode);
     if (has_contact_)
       parallel_ = std::make_unique<io::CsvTable>(
-          dir_ / "parallel.csv", columns({"step", "time", "interface", "ranks", "min_work",
-                                          "mean_work", "max_work", "imbalance", "redistributed"}),
+          dir_ / "parallel.csv",
+          columns({"step", "time", "interface", "ranks", "min_work", "mean_work", "max_work",
+                   "imbalance", "redistributed"}),
           mode);
     if (restart) {
       pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd", restart->pvd_entries());

@@ -32,8 +32,8 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   DriverState state;
   state.step = checkpoints.restart_step();
   state.external_work = r.real("external_work");
-  control.set_state(
-      {checkpoints.restart_time(), r.real("control.dt"), static_cast<int>(r.integer("control.cuts"))});
+  control.set_state({checkpoints.restart_time(), r.real("control.dt"),
+                     static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);
   if (contact.active()) contact.read_checkpoint(r);
   if (saddle.active()) {
