@@ -10,7 +10,9 @@ interface is redistributed at a restart, which changes sums at round-off).
   step M^n, D^n enter the slip increment),
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
-  mesh tying).
+  mesh tying),
+- pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
+  rates, the forces of the last step).
 Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
 mesh, another dimension, no such directory) end with exit code 1 and a message.
 """
@@ -23,9 +25,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import geometry as G  # noqa: E402
 import harness as H  # noqa: E402
 import test_friction as F  # noqa: E402
+import test_fluid as TF  # noqa: E402
 
 _dirs = []
-TABLES = ["steps.csv", "reactions.csv", "interfaces.csv", "probes.csv"]
+TABLES = ["steps.csv", "reactions.csv", "interfaces.csv", "probes.csv", "forces.csv",
+          "errors.csv"]
 # Columns that are not results: the wall clock, and the residual at convergence, which is
 # round-off when the summation order changes (compared bit for bit on the same ranks).
 SKIP = {"wall_seconds"}
@@ -35,7 +39,8 @@ SKIP = {"wall_seconds"}
 GROUPS = [("kinetic_energy", "internal_energy", "external_work", "total_energy"),
           ("momentum_x", "momentum_y", "momentum_z"),
           ("angular_momentum_x", "angular_momentum_y", "angular_momentum_z"),
-          ("fx", "fy", "fz"), ("ux", "uy", "uz"), ("normal_force", "tangential_force")]
+          ("fx", "fy", "fz"), ("ux", "uy", "uz"), ("vx", "vy", "vz"),
+          ("normal_force", "tangential_force")]
 
 
 def column_scale(rows, col):
@@ -97,6 +102,13 @@ def flight_yaml(strategy, every):
         "time: {integrator: energy_momentum, end: 0.3, steps: 30}",
         "solver: {newton: {tolerance: 1.0e-12}}",
         "output: {every: 10, checkpoint_every: %d}" % every]) + "\n"
+
+
+def pulsating_flow_yaml(every):
+    """Pulsating plane Poiseuille flow with generalized-alpha (test_fluid.py): the restart
+    needs the velocity, the pressure, their rates and the last step's forces."""
+    return (TF.pulsating_yaml(10).replace("body.geo", "case.geo")
+            + "  checkpoint_every: %d\n  probes: [[1.0, 0.3]]\n" % every)
 
 
 def make_case(geo, yaml):
@@ -233,6 +245,11 @@ def test_energy_momentum_tied_saddle_point():
                "energy-momentum, saddle-point tying", cross_np=False)
 
 
+def test_fluid_generalized_alpha():
+    check_case(G.rectangle("quad_structured", 0.25, 2), pulsating_flow_yaml, 4,
+               "fluid, generalized-alpha", cross_np="1 -> 3")
+
+
 def expect_input_error(args, words, what):
     code, stdout, stderr = H.run(args, check=False)
     text = stdout + stderr
@@ -293,6 +310,6 @@ if __name__ == "__main__":
     try:
         H.main([test_static_friction_two_bodies, test_dynamic_friction_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
-                test_bad_checkpoints])
+                test_fluid_generalized_alpha, test_bad_checkpoints])
     finally:
         H.cleanup(*_dirs)

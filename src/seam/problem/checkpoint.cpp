@@ -159,14 +159,31 @@ std::string RecordReader::text(const std::string& name) const {
 
 // ---- Checkpoints ------------------------------------------------------------------------
 
-Checkpoints::Checkpoints(const io::Config& config, const Discretization& disc,
-                         const std::string& input, std::filesystem::path output_dir,
-                         const std::string& restart)
-    : disc_(disc), every_(config.output.checkpoint_every), dir_(std::move(output_dir)) {
+CanonicalOrder nodal_order(const Discretization& disc) {
+  const int dim = disc.dim();
+  const auto n_nodes = static_cast<std::size_t>(disc.mesh().n_nodes());
+  CanonicalOrder order;
+  order.size = n_nodes * static_cast<std::size_t>(dim);
+  order.local.assign(order.size, -1);
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const auto node = static_cast<std::int32_t>(n);
+    for (int c = 0; c < dim; ++c) {
+      if (disc.comm().is_root()) order.global.push_back(disc.global_dof(node, c));
+      if (disc.has_node(node)) order.local[n * dim + c] = disc.local_dof(node, c);
+    }
+  }
+  return order;
+}
+
+Checkpoints::Checkpoints(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
+                         CanonicalOrder order, const std::string& input,
+                         std::filesystem::path output_dir, const std::string& restart)
+    : mesh_(mesh), comm_(comm), order_(std::move(order)), every_(config.output.checkpoint_every),
+      dir_(std::move(output_dir)) {
   bool ok = false;
   const std::string text = read_file(input, ok);
   input_hash_ = fnv1a(text.data(), text.size());
-  mesh_hash_ = mesh_hash(disc.mesh());
+  mesh_hash_ = mesh_hash(mesh);
   if (restart.empty()) return;
   restarting_ = true;
   const std::filesystem::path dir(restart);
@@ -175,7 +192,7 @@ Checkpoints::Checkpoints(const io::Config& config, const Discretization& disc,
                ": no such checkpoint directory (expected DIR/checkpoint_NNNNN)");
   reader_ = RecordReader(dir / "state.bin");
   const auto& r = reader_;
-  const auto& m = disc.mesh();
+  const auto& m = mesh;
   if (r.integer("dimension") != m.dim)
     r.fail(::seam::detail::concat("was written by a run in dimension ", r.integer("dimension"),
                                   "; the input has dimension ", m.dim));
@@ -203,20 +220,20 @@ Checkpoints::Checkpoints(const io::Config& config, const Discretization& disc,
 
 RecordWriter Checkpoints::begin(int step, double time) const {
   RecordWriter w;
-  const auto& m = disc_.mesh();
+  const auto& m = mesh_;
   w.put_integer("dimension", m.dim);
   w.put_integer("mesh_nodes", m.n_nodes());
   w.put_integer("mesh_cells", m.n_cells());
   w.put_integer("mesh_hash", static_cast<std::int64_t>(mesh_hash_));
   w.put_integer("input_hash", static_cast<std::int64_t>(input_hash_));
-  w.put_integer("ranks", disc_.comm().size());
+  w.put_integer("ranks", comm_.size());
   w.put_integer("step", step);
   w.put_real("time", time);
   return w;
 }
 
 void Checkpoints::commit(const RecordWriter& writer, int step) const {
-  const auto& comm = disc_.comm();
+  const auto& comm = comm_;
   std::string error;
   if (comm.is_root()) {
     char name[32];
@@ -240,32 +257,40 @@ void Checkpoints::commit(const RecordWriter& writer, int step) const {
 
 void Checkpoints::put_vector(RecordWriter& writer, const std::string& name,
                              const la::Vector& v) const {
-  // Rank 0 gathers every dof in mesh node order; the others ask for nothing.
-  const int dim = disc_.dim();
-  std::vector<PetscInt> dofs;
-  if (disc_.comm().is_root()) {
-    dofs.reserve(static_cast<std::size_t>(disc_.n_global_dofs()));
-    for (std::int32_t n = 0; n < disc_.mesh().n_nodes(); ++n)
-      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(n, c));
-  }
-  const la::Gather gather(v, dofs);
+  // Rank 0 gathers every entry in the canonical order; the others ask for nothing.
+  const la::Gather gather(v, order_.global);
   std::vector<double> values;
   gather(v, values);
   writer.put(name, values);
 }
 
 void Checkpoints::get_vector(const std::string& name, la::Vector& v) const {
-  const int dim = disc_.dim();
-  const auto values = reader_.reals(name, static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim);
+  const auto values = reader_.reals(name, order_.size);
   {
     la::Vector::LocalView view(v, true);
     auto vl = view.values();
-    const auto nodes = disc_.local_nodes();
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      for (int c = 0; c < dim; ++c)
-        vl[i * dim + c] = values[static_cast<std::size_t>(nodes[i]) * dim + c];
+    for (std::size_t i = 0; i < order_.size; ++i)
+      if (order_.local[i] >= 0) vl[static_cast<std::size_t>(order_.local[i])] = values[i];
   }
   v.update_ghosts();
+}
+
+io::CsvTable::Mode Checkpoints::table_mode(const std::filesystem::path& file) const {
+  if (!restarting_) return io::CsvTable::Mode::truncate;
+  drop_rows_after(file, restart_step_);
+  return io::CsvTable::Mode::append;
+}
+
+void put_pvd(RecordWriter& writer, const io::PvdCollection* pvd) {
+  std::vector<double> times;
+  std::string files;
+  if (pvd)
+    for (const auto& e : pvd->entries()) {
+      times.push_back(e.time);
+      files += e.file + "\n";
+    }
+  writer.put("output.pvd_times", times);
+  writer.put("output.pvd_files", files);
 }
 
 void drop_rows_after(const std::filesystem::path& file, int step) {

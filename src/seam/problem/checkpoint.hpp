@@ -9,6 +9,7 @@
 // The input file's and the mesh's hashes are stored with them: a checkpoint of another input
 // or mesh is an input error.
 #include "seam/io/config.hpp"
+#include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/problem/discretization.hpp"
@@ -70,14 +71,27 @@ private:
   std::map<std::string, Record> records_;
 };
 
+/// The rank-independent order in which a field's vectors are stored: per mesh node in node id
+/// order, its dofs in the field's order.
+struct CanonicalOrder {
+  /// The global index of every stored entry (rank 0 only: it gathers them).
+  std::vector<PetscInt> global;
+  /// The local (ghosted) index of every stored entry, -1 where this rank has none.
+  std::vector<std::int32_t> local;
+  std::size_t size = 0;
+};
+/// Solids: dim displacement dofs per node.
+CanonicalOrder nodal_order(const Discretization& disc);
+
 /// The checkpoints of one run: writing them every `output.checkpoint_every` converged steps,
 /// and the one it restarts from.
 class Checkpoints {
 public:
   /// `restart` empty: a fresh run. Otherwise the checkpoint directory is read and checked
   /// against the input file and the mesh (InputError on any mismatch). Collective.
-  Checkpoints(const io::Config& config, const Discretization& disc, const std::string& input,
-              std::filesystem::path output_dir, const std::string& restart);
+  Checkpoints(const io::Config& config, const mesh::Mesh& mesh, Comm comm, CanonicalOrder order,
+              const std::string& input, std::filesystem::path output_dir,
+              const std::string& restart);
 
   bool restarting() const { return restarting_; }
   /// The checkpoint restarted from (restarting() only).
@@ -94,13 +108,19 @@ public:
   /// Writes checkpoint_NNNNN/state.bin (rank 0). Collective.
   void commit(const RecordWriter& writer, int step) const;
 
-  /// v's values per mesh node (dim per node, node id order) as record `name`. Collective.
+  /// v's values in the canonical order as record `name`. Collective.
   void put_vector(RecordWriter& writer, const std::string& name, const la::Vector& v) const;
   /// Record `name` of the restart checkpoint into v (owned and ghost entries).
   void get_vector(const std::string& name, la::Vector& v) const;
 
+  /// The mode of an output table: a fresh file, or (restarting) the file continued after its
+  /// rows past the checkpoint's step are dropped. Rank 0.
+  io::CsvTable::Mode table_mode(const std::filesystem::path& file) const;
+
 private:
-  const Discretization& disc_;
+  const mesh::Mesh& mesh_;
+  Comm comm_;
+  CanonicalOrder order_;
   int every_ = 0;
   std::filesystem::path dir_;
   std::uint64_t input_hash_ = 0, mesh_hash_ = 0;
@@ -110,6 +130,10 @@ private:
   double restart_time_ = 0.0;
   std::vector<io::PvdCollection::Entry> pvd_;
 };
+
+/// The entries of results.pvd so far (null on ranks other than 0) as the output records
+/// a restart continues from.
+void put_pvd(RecordWriter& writer, const io::PvdCollection* pvd);
 
 /// FNV-1a 64-bit hash of bytes (checksums and the input/mesh identity of a checkpoint).
 std::uint64_t fnv1a(const void* data, std::size_t bytes,

@@ -2,6 +2,7 @@
 
 #include "seam/common/error.hpp"
 #include "seam/fluid/navier_stokes.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fluid_layout.hpp"
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_output.hpp"
@@ -252,6 +253,20 @@ struct NewtonOutcome {
   const char* failure = "";
 };
 
+/// The stored order of fluid vectors: per mesh node its velocity, then its pressure (on the
+/// vertices of Taylor-Hood cells and every node of equal-order ones), as the layout has them.
+CanonicalOrder fluid_order(const FluidLayout& layout) {
+  const int dim = layout.dim();
+  CanonicalOrder order;
+  for (std::int32_t n = 0; n < layout.mesh().n_nodes(); ++n)
+    for (int c = 0; c < dim + (layout.has_pressure(n) ? 1 : 0); ++c) {
+      if (layout.comm().is_root()) order.global.push_back(layout.global_dof(n, c));
+      order.local.push_back(layout.local_dof(n, c));
+    }
+  order.size = order.local.size();
+  return order;
+}
+
 class FluidNewton {
 public:
   FluidNewton(const io::Config& config, const FluidModel& model, const FluidLayout& layout,
@@ -263,6 +278,11 @@ public:
                                          : la::SolverKind::iterative) {
     for (const auto& d : model.dirichlet) fixed_.push_back(d.dof);
   }
+
+  /// The residual scale of the run so far (the largest first residual of a step): part of
+  /// the state a checkpoint keeps.
+  double reference() const { return reference_; }
+  void set_reference(double reference) { reference_ = reference; }
 
   /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
   using Evaluator = std::function<bool(const la::Vector& w, la::Vector& r, la::Matrix& K)>;
@@ -343,12 +363,16 @@ private:
 } // namespace
 
 FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
-                       const std::filesystem::path& dir, bool quiet, bool check_only) {
+                       const std::filesystem::path& dir, bool quiet, bool check_only,
+                       const FluidRestart& restart) {
   const FluidLayout layout(mesh, comm);
   const auto model = build_fluid_model(config, layout);
   FluidRunInfo info{static_cast<long long>(layout.n_global_dofs())};
   if (check_only) return info;
-  FluidOutput out(config, layout, model, dir, quiet);
+  const Checkpoints checkpoints(config, mesh, comm, fluid_order(layout), restart.input, dir,
+                                restart.checkpoint);
+  FluidOutput out(config, layout, model, dir, quiet,
+                  checkpoints.restarting() ? &checkpoints : nullptr);
   if (comm.is_root() && !quiet)
     std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s); "
                 "output in %s\n",
@@ -379,6 +403,24 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
   }
   double t = 0.0, dt = tc.dt;
   int step = 0, cuts = 0;
+  if (checkpoints.restarting()) {
+    const auto& r = checkpoints.restart();
+    step = checkpoints.restart_step();
+    t = checkpoints.restart_time();
+    dt = r.real("control.dt");
+    cuts = static_cast<int>(r.integer("control.cuts"));
+    newton.set_reference(r.real("newton.reference"));
+    checkpoints.get_vector("w", w);
+    if (unsteady) {
+      checkpoints.get_vector("u_dot", u_dot);
+      const auto f = r.reals("last_forces", last_forces.size() * 3);
+      for (std::size_t g = 0; g < last_forces.size(); ++g)
+        for (int i = 0; i < 3; ++i) last_forces[g][i] = f[g * 3 + i];
+    }
+    if (comm.is_root() && !quiet)
+      std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
+                  t);
+  }
   while (t < tc.end * (1.0 - 1e-12)) {
     double t_new = std::min(t + dt, tc.end);
     const double k = std::round(t_new / tc.dt);
@@ -447,6 +489,21 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
     }
     if (exact) rec.errors = errors(config, model, layout, w, t);
     out.step(rec, w, t >= tc.end * (1.0 - 1e-12));
+    if (checkpoints.due(step)) {
+      auto writer = checkpoints.begin(step, t);
+      writer.put_real("control.dt", dt);
+      writer.put_integer("control.cuts", cuts);
+      writer.put_real("newton.reference", newton.reference());
+      checkpoints.put_vector(writer, "w", w);
+      if (unsteady) {
+        checkpoints.put_vector(writer, "u_dot", u_dot);
+        std::vector<double> f;
+        for (const auto& g : last_forces) f.insert(f.end(), g.begin(), g.end());
+        writer.put("last_forces", f);
+      }
+      out.write_checkpoint(writer);
+      checkpoints.commit(writer, step);
+    }
   }
   out.finish(true, step);
   return info;

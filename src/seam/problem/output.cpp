@@ -80,47 +80,45 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     if (ec)
       SEAM_THROW(InputError, "cannot create the output directory ", dir_.string(), ": ",
                  ec.message());
-    auto mode = io::CsvTable::Mode::truncate;
-    if (restart) {
-      mode = io::CsvTable::Mode::append;
-      for (const char* f : {"steps.csv", "newton.csv", "reactions.csv", "probes.csv",
-                            "interfaces.csv", "parallel.csv", "errors.csv"})
-        drop_rows_after(dir_ / f, restart->restart_step());
-    }
+    // A restart continues the tables (rows after its step dropped).
+    const auto mode = [&](const char* file) {
+      return restart ? restart->table_mode(dir_ / file) : io::CsvTable::Mode::truncate;
+    };
     steps_ = std::make_unique<io::CsvTable>(
         dir_ / "steps.csv",
         columns({"step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
                  "kinetic_energy", "internal_energy", "external_work", "total_energy", "momentum_x",
                  "momentum_y", "momentum_z", "angular_momentum_x", "angular_momentum_y",
                  "angular_momentum_z", "wall_seconds"}),
-        mode);
+        mode("steps.csv"));
     newton_ = std::make_unique<io::CsvTable>(
         dir_ / "newton.csv",
-        columns({"step", "iteration", "residual", "increment", "active_set_changes"}), mode);
+        columns({"step", "iteration", "residual", "increment", "active_set_changes"}),
+        mode("newton.csv"));
     reactions_ = std::make_unique<io::CsvTable>(
-        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}), mode);
+        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}),
+        mode("reactions.csv"));
     probes_table_ = std::make_unique<io::CsvTable>(
         dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}),
-        mode);
+        mode("probes.csv"));
     interfaces_ = std::make_unique<io::CsvTable>(
         dir_ / "interfaces.csv",
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
                  "slip_nodes", "contact_area", "frictional_dissipation"}),
-        mode);
+        mode("interfaces.csv"));
     if (has_contact_)
       parallel_ = std::make_unique<io::CsvTable>(
           dir_ / "parallel.csv",
           columns({"step", "time", "interface", "ranks", "min_work", "mean_work", "max_work",
                    "imbalance", "redistributed"}),
-          mode);
-    if (restart) {
-      pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd", restart->pvd_entries());
-    } else {
-      pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
-    }
+          mode("parallel.csv"));
+    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd",
+                                               restart ? restart->pvd_entries()
+                                                       : std::vector<io::PvdCollection::Entry>{});
     if (!config.output.exact_displacement.empty())
       errors_ = std::make_unique<io::CsvTable>(
-          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}), mode);
+          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}),
+          mode("errors.csv"));
   }
   comm.barrier(); // the directory exists before any rank writes a piece
   if (restart) progress_time_ = restart->restart_time();
@@ -486,15 +484,7 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
 }
 
 void Output::write_checkpoint(RecordWriter& out) const {
-  std::vector<double> times;
-  std::string files;
-  if (pvd_)
-    for (const auto& e : pvd_->entries()) {
-      times.push_back(e.time);
-      files += e.file + "\n";
-    }
-  out.put("output.pvd_times", times);
-  out.put("output.pvd_files", files);
+  put_pvd(out, pvd_.get());
 }
 
 void Output::finish(bool converged, int n_steps) {

@@ -118,12 +118,9 @@ int run(const RunOptions& options, int argc, char** argv) {
   const auto config = io::load_config(options.input);
   auto mesh = load_mesh(config, comm);
   if (has_fluid(config)) {
-    if (!options.restart.empty() || config.output.checkpoint_every > 0)
-      SEAM_THROW(InputError, options.input,
-                 ": checkpoints and --restart are not available for fluid runs in this version "
-                 "of seam (output.checkpoint_every, --restart)");
     make_output_directory(output_directory(options), comm);
-    run_fluid(config, mesh, comm, output_directory(options), options.quiet);
+    run_fluid(config, mesh, comm, output_directory(options), options.quiet, false,
+              {options.input, options.restart});
     return 0;
   }
   const Discretization disc(mesh, comm);
@@ -140,8 +137,8 @@ int run(const RunOptions& options, int argc, char** argv) {
     SEAM_THROW(InputError, options.input,
                ": interfaces: contact and mesh tying in one run are not available in this "
                "version of seam");
-  const Checkpoints checkpoints(config, disc, options.input, output_directory(options),
-                                options.restart);
+  const Checkpoints checkpoints(config, mesh, comm, nodal_order(disc), options.input,
+                                output_directory(options), options.restart);
   make_output_directory(output_directory(options), comm);
   Output out(config, disc, model, tied, output_directory(options), options.quiet,
              checkpoints.restarting() ? &checkpoints : nullptr);
