@@ -7,7 +7,7 @@ those of the uninterrupted run: bit for bit on one rank, and to 1e-12 relative (
 column's scale) on another number of ranks (1 -> 3 and 3 -> 1) or on 3 ranks (the contact
 interface is redistributed at a restart, which changes sums at round-off).
 - static frictional contact of two elastic blocks (the mortar operators of the last converged
-  step M^n, D^n enter the slip increment),
+  step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
   mesh tying),
@@ -51,7 +51,7 @@ def column_scale(rows, col):
 TWO_BLOCKS_GEO = F.TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.1}
 
 
-def two_blocks_yaml(every):
+def two_blocks_yaml(every, contact="friction: {model: coulomb, coefficient: 0.3}"):
     """Press the slider onto the base (t in [0, 1]), then drag it along (t in [1, 3])."""
     return "\n".join([
         "dimension: 2", "mesh: {geo: case.geo}",
@@ -62,8 +62,7 @@ def two_blocks_yaml(every):
         "  - {region: slider_top, type: dirichlet, components: [x, y], "
         "value: ['0.1*max(t-1,0)', '-0.01*min(t,1)']}",
         "interfaces:",
-        "  - {name: slide, type: contact, slave: slider_bottom, master: base_top, "
-        "friction: {model: coulomb, coefficient: 0.3}}",
+        "  - {name: slide, type: contact, slave: slider_bottom, master: base_top, %s}" % contact,
         "time: {integrator: static, end: 3.0, steps: 8}",
         "solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}",
         "output: {checkpoint_every: %d, probes: [[1.0, 0.125]]}" % every]) + "\n"
@@ -208,6 +207,9 @@ def compare(full, restarted, rtol, what):
 def check_case(geo, yaml_of, step, what, cross_np=True):
     _, yaml = make_case(geo, yaml_of(step))
     one = full_run(yaml, 1)
+    rows = H.read_csv(os.path.join(one, "steps.csv"))
+    if "contact" in open(yaml).read() and not any(r["active_nodes"] > 0 for r in rows[step:]):
+        raise AssertionError("%s: no active contact node after the checkpoint" % what)
     same = compare(one, restarted_run(yaml, one, step, 1), 0.0, what + " 1 -> 1")
     print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
     if not cross_np:
@@ -228,6 +230,12 @@ def check_case(geo, yaml_of, step, what, cross_np=True):
 
 def test_static_friction_two_bodies():
     check_case(TWO_BLOCKS_GEO, two_blocks_yaml, 3, "static friction, two bodies")
+
+
+def test_static_standard_multipliers():
+    """Frictionless, standard multipliers: the multipliers are unknowns of the saddle point."""
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: standard"), 3,
+               "static contact, standard multipliers", cross_np="1 -> 3")
 
 
 def test_dynamic_friction_generalized_alpha():
@@ -308,7 +316,8 @@ def test_bad_checkpoints():
 
 if __name__ == "__main__":
     try:
-        H.main([test_static_friction_two_bodies, test_dynamic_friction_generalized_alpha,
+        H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
+                test_dynamic_friction_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
                 test_fluid_generalized_alpha, test_bad_checkpoints])
     finally:
