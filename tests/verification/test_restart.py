@@ -258,13 +258,14 @@ def test_fluid_generalized_alpha():
                "fluid, generalized-alpha", cross_np="1 -> 3")
 
 
-def expect_input_error(args, words, what):
-    code, stdout, stderr = H.run(args, check=False)
+def expect_input_error(args, words, what, np=1):
+    code, stdout, stderr = H.run(args, np=np, check=False, timeout=300)
     text = stdout + stderr
     if code != 1 or not all(w in text for w in words) or "PETSC ERROR" in text:
         raise AssertionError("%s: exit %d (expected 1 with %s):\n%s" % (what, code, words,
                                                                          text[-2000:]))
-    print("   %s: %s" % (what, text.strip().splitlines()[-1][:150]))
+    line = next((ln for ln in text.splitlines() if ln.startswith("seam:")), "")
+    print("   %s: %s" % (what, line[:150]))
 
 
 def test_bad_checkpoints():
@@ -312,6 +313,14 @@ def test_bad_checkpoints():
     expect_input_error(["run", yaml3, "--restart", good], ["dimension"], "another dimension")
     expect_input_error(["run", yaml3, "--restart", good, "-o", os.path.join(work3, "o")],
                        ["dimension 2"], "another dimension, -o")
+    # A table of the output directory that cannot be continued (another header): every rank
+    # stops with the message, none waits for rank 0.
+    other = os.path.join(work, "other_out")
+    os.makedirs(other)
+    with open(os.path.join(other, "steps.csv"), "w") as f:
+        f.write("a,b,c\n1,2,3\n")
+    expect_input_error(["run", yaml, "--restart", good, "-o", other], ["steps.csv", "header"],
+                       "foreign steps.csv on 3 ranks", np=3)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 #include "seam/problem/fluid_output.hpp"
 
+#include "seam/common/collective.hpp"
 #include "seam/problem/checkpoint.hpp"
 
 #include "seam/fluid/navier_stokes.hpp"
@@ -15,7 +16,8 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
                          const Checkpoints* restart)
     : config_(config), layout_(layout), model_(model), dir_(std::move(dir)), quiet_(quiet),
       start_wall_(wall_seconds()) {
-  if (layout.comm().is_root()) {
+  // A restart's tables may refuse to continue (another header): every rank stops.
+  on_root_collectively(layout.comm(), [&] {
     // A restart continues the tables (rows after its step dropped).
     const auto mode = [&](const char* file) {
       return restart ? restart->table_mode(dir_ / file) : io::CsvTable::Mode::truncate;
@@ -59,7 +61,7 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
       offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
       types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
     }
-  }
+  });
   const auto& mesh = layout.mesh();
   if (!config.output.probes.empty()) {
     const mesh::PointLocator locator(mesh);

@@ -1,5 +1,6 @@
 #include "seam/problem/output.hpp"
 
+#include "seam/common/collective.hpp"
 #include "seam/problem/checkpoint.hpp"
 
 #include "seam/common/error.hpp"
@@ -74,7 +75,8 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     probes_.push_back({p.point, loc->cell, loc->xi});
   }
 
-  if (comm.is_root()) {
+  // A restart's tables may refuse to continue (another header): every rank stops.
+  on_root_collectively(comm, [&] {
     std::error_code ec;
     std::filesystem::create_directories(dir_, ec);
     if (ec)
@@ -119,7 +121,7 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
       errors_ = std::make_unique<io::CsvTable>(
           dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}),
           mode("errors.csv"));
-  }
+  });
   comm.barrier(); // the directory exists before any rank writes a piece
   if (restart) progress_time_ = restart->restart_time();
 

@@ -1,5 +1,6 @@
 #include "seam/problem/run.hpp"
 
+#include "seam/common/collective.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
@@ -30,21 +31,6 @@ const char* version() {
 }
 
 namespace {
-
-/// Rank 0 runs `f`; an InputError there is re-thrown on every rank (no rank is left waiting
-/// in a collective).
-template <class F> void on_root_collectively(const Comm& comm, F&& f) {
-  std::string error;
-  if (comm.is_root()) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      error = e.what();
-    }
-  }
-  comm.broadcast(error);
-  if (!error.empty()) throw InputError(error);
-}
 
 void broadcast_mesh(const Comm& comm, mesh::Mesh& m) {
   comm.broadcast_value(m.dim);
