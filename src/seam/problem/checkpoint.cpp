@@ -207,6 +207,7 @@ Checkpoints::Checkpoints(const io::Config& config, const mesh::Mesh& mesh, Comm 
     r.fail("was written for another input file (hash " +
            hex(static_cast<std::uint64_t>(r.integer("input_hash"))) + ", " + input + " has " +
            hex(input_hash_) + "); restart with the input that wrote it");
+  restart_dir_ = restart_output_directory(restart);
   restart_step_ = static_cast<int>(r.integer("step"));
   restart_time_ = r.real("time");
   // Output counters (Output::write_checkpoint), read here so that every rank checks them.
@@ -216,6 +217,17 @@ Checkpoints::Checkpoints(const io::Config& config, const mesh::Mesh& mesh, Comm 
     if (!std::getline(files, file)) r.fail("record 'output.pvd_files' has fewer files than times");
     pvd_.push_back({t, file});
   }
+}
+
+std::vector<io::PvdCollection::Entry>
+Checkpoints::pvd_entries(const std::filesystem::path& output_dir) const {
+  auto entries = pvd_;
+  std::error_code ec;
+  const auto from = std::filesystem::weakly_canonical(restart_dir_, ec);
+  const auto to = std::filesystem::weakly_canonical(output_dir, ec);
+  if (!ec && from != to)
+    for (auto& e : entries) e.file = (from / e.file).lexically_relative(to).string();
+  return entries;
 }
 
 RecordWriter Checkpoints::begin(int step, double time) const {

@@ -98,8 +98,9 @@ public:
   const RecordReader& restart() const { return reader_; }
   int restart_step() const { return restart_step_; }
   double restart_time() const { return restart_time_; }
-  /// results.pvd's entries up to the restart step.
-  const std::vector<io::PvdCollection::Entry>& pvd_entries() const { return pvd_; }
+  /// results.pvd's entries up to the restart step, relative to `output_dir` (the files stay
+  /// where the run that wrote the checkpoint put them).
+  std::vector<io::PvdCollection::Entry> pvd_entries(const std::filesystem::path& output_dir) const;
 
   /// A checkpoint is due after converged step `step`.
   bool due(int step) const { return every_ > 0 && step % every_ == 0; }
@@ -129,6 +130,7 @@ private:
   int restart_step_ = 0;
   double restart_time_ = 0.0;
   std::vector<io::PvdCollection::Entry> pvd_;
+  std::filesystem::path restart_dir_; ///< where the checkpoint's run wrote its output
 };
 
 /// The entries of results.pvd so far (null on ranks other than 0) as the output records

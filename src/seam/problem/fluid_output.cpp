@@ -51,7 +51,7 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
                                                                       "vx", "vy", "vz", "pressure"},
                                              mode("probes.csv"));
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd",
-                                               restart ? restart->pvd_entries()
+                                               restart ? restart->pvd_entries(dir_)
                                                        : std::vector<io::PvdCollection::Entry>{});
     const auto& mesh = layout.mesh();
     for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {

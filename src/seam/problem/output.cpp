@@ -115,7 +115,7 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
                    "imbalance", "redistributed"}),
           mode("parallel.csv"));
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd",
-                                               restart ? restart->pvd_entries()
+                                               restart ? restart->pvd_entries(dir_)
                                                        : std::vector<io::PvdCollection::Entry>{});
     if (!config.output.exact_displacement.empty())
       errors_ = std::make_unique<io::CsvTable>(
