@@ -239,8 +239,9 @@ def test_static_standard_multipliers():
 
 
 def test_dynamic_friction_generalized_alpha():
+    # 3 -> 1 is the static case's in CI (the gather of the state from 3 ranks is the same).
     check_case(G.rectangle("quad_structured", 0.125, lx=1.0, ly=0.25), sliding_block_yaml, 8,
-               "generalized-alpha friction")
+               "generalized-alpha friction", cross_np=True if H.FULL else "1 -> 3")
 
 
 def test_energy_momentum_tied_condensed():
