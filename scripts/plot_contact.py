@@ -147,17 +147,19 @@ def labelled_runs(args):
 
 
 def forces(args):
+    n = "f" + args.normal  # the pressing direction: y in 2D, z in 3D
     fig, ax = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
     for k, (out, label) in enumerate(labelled_runs(args)):
         rows = [r for r in C.read_csv(os.path.join(out, "reactions.csv"))
                 if r["region"] == args.reaction]
         t = [r["time"] for r in rows]
         ax[0].plot(t, [r["fx"] for r in rows], "-", color="C%d" % k, label=label + ": F_x")
-        ax[0].plot(t, [-r["fy"] for r in rows], "--", color="C%d" % k, label=label + ": -F_y")
-        ax[1].plot(t, [abs(r["fx"] / r["fy"]) if r["fy"] else 0.0 for r in rows], "-",
+        ax[0].plot(t, [-r[n] for r in rows], "--", color="C%d" % k,
+                   label=label + ": -F_" + args.normal)
+        ax[1].plot(t, [abs(r["fx"] / r[n]) if r[n] else 0.0 for r in rows], "-",
                    color="C%d" % k, label=label)
     ax[0].set_ylabel("reaction at %s" % args.reaction)
-    ax[1].set_ylabel("|F_x| / |F_y|")
+    ax[1].set_ylabel("|F_x| / |F_%s|" % args.normal)
     ax[1].set_xlabel("t (press for t <= 1, then slide)")
     ax[0].legend(fontsize=8)
     ax[1].legend(fontsize=8)
@@ -198,6 +200,8 @@ def main():
     p.add_argument("--symmetry", type=float, default=1.0)
     p.add_argument("--mu", type=float, default=0.3, help="cattaneo: friction coefficient")
     p.add_argument("--reaction", default="top")
+    p.add_argument("--normal", default="y", choices=["y", "z"],
+                   help="forces: the pressing direction (y in 2D, z in 3D)")
     p.add_argument("--mesh", help="the run's .msh or .geo: adds the traction per reference area")
     p.add_argument("--slave", default="surface", help="slave region (with --mesh)")
     args = p.parse_args()

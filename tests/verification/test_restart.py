@@ -12,7 +12,7 @@ interface is redistributed at a restart, which changes sums at round-off).
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
   mesh tying),
 - pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
-  rates, the forces of the last step).
+  rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE).
 Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
 mesh, another dimension, no such directory) end with exit code 1 and a message.
 """
@@ -25,6 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import geometry as G  # noqa: E402
 import harness as H  # noqa: E402
 import test_friction as F  # noqa: E402
+import test_ale as TA  # noqa: E402
 import test_fluid as TF  # noqa: E402
 
 _dirs = []
@@ -259,6 +260,15 @@ def test_fluid_generalized_alpha():
                "fluid, generalized-alpha", cross_np="1 -> 3")
 
 
+def test_fluid_moving_mesh():
+    """ALE: a wall bulging in and out (test_ale.py); the mesh displacement and its rate are
+    part of the state."""
+    yaml = (TA.BULGE.replace("body.geo", "case.geo").replace("every: 6", "every: 2")
+            + "  checkpoint_every: 3\n")
+    check_case(G.rectangle("tri", 0.2, 2), lambda e: yaml, 3, "fluid, moving mesh",
+               cross_np="1 -> 3")
+
+
 def expect_input_error(args, words, what, np=1):
     code, stdout, stderr = H.run(args, np=np, check=False, timeout=300)
     text = stdout + stderr
@@ -329,6 +339,6 @@ if __name__ == "__main__":
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
-                test_fluid_generalized_alpha, test_bad_checkpoints])
+                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_bad_checkpoints])
     finally:
         H.cleanup(*_dirs)

@@ -96,6 +96,7 @@ struct Stabilization {
   double dt = 0.0; // 0: steady
 };
 
+// `u` is the convective velocity c = u - w (ALE): the SUPG direction and tau's |c|.
 void add_stabilization(const FluidElementInput& in, const Stabilization& st, const Point& q,
                        const double* u, const double* grad_u, const double* material,
                        const double* f, std::span<double> r, std::span<double> K) {
@@ -242,20 +243,25 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
     st.h = dim == 2 ? 2.0 * std::sqrt(volume / M_PI) : std::cbrt(6.0 * volume / M_PI);
     st.dt = in.time_step;
   }
-  std::array<double, 3> u{}, f{}, material{};
+  std::array<double, 3> u{}, c{}, f{}, material{};
   std::array<double, 9> grad_u{};
-  std::array<double, max_nodes> u_dot_G{};
+  std::array<double, max_nodes> c_G{};
   double p = 0.0;
   for (int iq = 0; iq < rule.n_points; ++iq) {
     if (!evaluate(in, &rule.points[iq * dim], rule.weights[iq], q)) return false;
     interpolate(in, q, u.data(), grad_u.data(), p);
+    // The convective velocity c = u - w (ALE; w = 0 on a fixed mesh).
+    c = u;
+    if (!in.mesh_velocity.empty())
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i) c[i] -= q.N[a] * in.mesh_velocity[a * dim + i];
     f = {0.0, 0.0, 0.0};
     if (in.body_force) (*in.body_force)(q.x.data(), f.data());
     double div = 0.0;
     for (int i = 0; i < dim; ++i) {
       div += grad_u[i * dim + i];
       material[i] = 0.0;
-      for (int j = 0; j < dim; ++j) material[i] += u[j] * grad_u[i * dim + j];
+      for (int j = 0; j < dim; ++j) material[i] += c[j] * grad_u[i * dim + j];
     }
     if (!in.u_dot.empty())
       for (int a = 0; a < n; ++a)
@@ -271,14 +277,15 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
     }
     for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div;
     if (stabilized)
-      add_stabilization(in, st, q, u.data(), grad_u.data(), material.data(), f.data(), r, K);
+      add_stabilization(in, st, q, c.data(), grad_u.data(), material.data(), f.data(), r, K);
     if (K.empty()) continue;
     for (int b = 0; b < n; ++b) {
       double s = 0.0;
-      for (int j = 0; j < dim; ++j) s += u[j] * q.G[b * dim + j];
-      u_dot_G[b] = s;
+      for (int j = 0; j < dim; ++j) s += c[j] * q.G[b * dim + j];
+      c_G[b] = s;
     }
-    // material = Du/Dt. Every column carries state_weight, the velocity block the mass term.
+    // material = Du/Dt with dc/du = du/du (w does not depend on u). Every column carries
+    // state_weight, the velocity block the mass term.
     const double cw = in.state_weight;
     for (int a = 0; a < n; ++a) {
       const double* Ga = &q.G[a * dim];
@@ -287,7 +294,7 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
         const double* Gb = &q.G[b * dim];
         double GaGb = 0.0;
         for (int j = 0; j < dim; ++j) GaGb += Ga[j] * Gb[j];
-        const double diag = cw * (w * mu * GaGb + rNa * u_dot_G[b]) + in.mass_weight * rNa * q.N[b];
+        const double diag = cw * (w * mu * GaGb + rNa * c_G[b]) + in.mass_weight * rNa * q.N[b];
         for (int i = 0; i < dim; ++i) {
           double* row = &K[(a * dim + i) * nd + b * dim];
           for (int j = 0; j < dim; ++j) row[j] += cw * rNa * q.N[b] * grad_u[i * dim + j];

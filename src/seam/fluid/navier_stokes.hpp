@@ -17,9 +17,16 @@
 //
 // Layout of the element vector: the velocity node-major (a * dim + i) for all n nodes, then
 // the pressure of the n_p vertices; matrices row-major, K[row * n_dofs + col].
-// Residual convention of seam: r = f_int - f_ext. With time integration the residual gains
-// int rho N_a du_i/dt (Jansen, Whiting & Hulbert 2000: velocity and pressure at n + alpha_f,
-// the velocity's rate at n + alpha_m; the weights of the Jacobian come in with the input).
+// On a moving mesh (ALE, arbitrary Lagrangian-Eulerian; Donea, Huerta, Ponthot &
+// Rodriguez-Ferran 2004, Encyclopedia of Computational Mechanics ch. 14; the convective form) `x`
+// is the current configuration, the time derivative is the one at a fixed mesh point and the
+// convective velocity is c = u - w with w the mesh velocity: (u . grad) u becomes (c . grad) u, in
+// the Galerkin term and in the stabilization (SUPG direction, tau). K is exact in (u, p) at the
+// given mesh motion; the derivatives by the mesh position (shape derivatives) are not here (they
+// come with the coupling to a structure). Residual convention of seam: r = f_int - f_ext. With time
+// integration the residual gains int rho N_a du_i/dt (Jansen, Whiting & Hulbert 2000: velocity and
+// pressure at n + alpha_f, the velocity's rate at n + alpha_m; the weights of the Jacobian come in
+// with the input).
 #include "seam/fem/cell.hpp"
 
 #include <array>
@@ -57,6 +64,8 @@ struct FluidElementInput {
   /// Unsteady flow (time integration): the nodal time derivative of the velocity, n_nodes *
   /// dim, adding int rho N_a du_i/dt to r_{a i}; empty for steady flow.
   std::span<const double> u_dot;
+  /// ALE: the nodal mesh velocity w, n_nodes * dim; empty for a fixed mesh (w = 0).
+  std::span<const double> mesh_velocity;
   /// The derivative of the state (u, p) and of u_dot by the unknowns: K is
   /// d r/d(u, p) * state_weight, plus M * mass_weight in the velocity block with M_ab =
   /// int rho N_a N_b (generalized-alpha: alpha_f and alpha_m / (gamma dt)).

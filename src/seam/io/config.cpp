@@ -134,7 +134,30 @@ std::map<std::string, Material> read_materials(const Node& node) {
   return materials;
 }
 
-std::vector<Body> read_bodies(const Node& node, const std::map<std::string, Material>& materials) {
+MeshMotion read_mesh_motion(const Node& node, int dimension) {
+  const Map map(node, {"model", "stiffening", "stiffening_power", "displacement"});
+  MeshMotion motion;
+  motion.mark = node.mark();
+  motion.model = map.required("model").choice(detail::mesh_motion_names);
+  const bool elastic = motion.model == MeshMotionModel::pseudo_elastic;
+  map.forbid("stiffening", !elastic, "applies only to model 'pseudo_elastic'");
+  map.forbid("stiffening_power", !elastic, "applies only to model 'pseudo_elastic'");
+  map.forbid("displacement", elastic,
+             "applies only to model 'prescribed' (a pseudo-elastic mesh is driven by "
+             "'mesh_displacement' boundary conditions)");
+  if (const auto stiffening = map.get("stiffening"))
+    motion.stiffening = stiffening->choice(detail::stiffening_names);
+  if (const auto power = map.get("stiffening_power")) {
+    motion.stiffening_power = power->number();
+    if (!(motion.stiffening_power >= 0.0))
+      power->fail(concat("must be >= 0, got ", format_number(motion.stiffening_power)));
+  }
+  if (!elastic) motion.displacement = map.required("displacement").expressions(dimension);
+  return motion;
+}
+
+std::vector<Body> read_bodies(const Node& node, const std::map<std::string, Material>& materials,
+                              int dimension) {
   const auto items = node.sequence();
   if (items.empty())
     node.fail("expected at least one body, e.g. '- {region: block, material: steel}'");
@@ -142,7 +165,7 @@ std::vector<Body> read_bodies(const Node& node, const std::map<std::string, Mate
   for (const auto& entry : materials) material_names.push_back(entry.first);
   std::vector<Body> bodies;
   for (const Node& item : items) {
-    const Map map(item, {"region", "material"});
+    const Map map(item, {"region", "material", "mesh_motion"});
     Body body;
     body.mark = item.mark();
     const Node region = map.required("region");
@@ -159,6 +182,11 @@ std::vector<Body> read_bodies(const Node& node, const std::map<std::string, Mate
                            detail::did_you_mean(body.material, material_names),
                            "; defined under 'materials': ", detail::quoted_list(material_names)));
     }
+    map.forbid("mesh_motion", !materials.at(body.material).is_fluid(),
+               "applies only to a body of a fluid material (the mesh of a solid moves with "
+               "the solid)");
+    if (const auto motion = map.get("mesh_motion"))
+      body.mesh_motion = read_mesh_motion(*motion, dimension);
     bodies.push_back(std::move(body));
   }
   return bodies;
@@ -336,6 +364,9 @@ std::string_view to_string(MaterialModel value) {
 std::string_view to_string(BoundaryType value) {
   return name_of(value, detail::boundary_names);
 }
+std::string_view to_string(MeshMotionModel value) {
+  return name_of(value, detail::mesh_motion_names);
+}
 std::string_view to_string(InterfaceType value) {
   return name_of(value, detail::interface_names);
 }
@@ -400,7 +431,7 @@ Config load_config(const std::filesystem::path& yaml) {
 
   config.mesh = read_mesh(map.required("mesh"), folder);
   config.materials = read_materials(map.required("materials"));
-  config.bodies = read_bodies(map.required("bodies"), config.materials);
+  config.bodies = read_bodies(map.required("bodies"), config.materials, config.dimension);
   const Node time = map.required("time");
   config.time = read_time(time);
   if (const auto conditions = map.get("boundary_conditions"))

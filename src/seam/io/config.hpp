@@ -35,7 +35,11 @@ struct RegionRef {
 
 enum class PlaneMode { strain, stress };
 enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hooke, newtonian_fluid };
-enum class BoundaryType { dirichlet, pressure, traction, body_force, velocity };
+enum class BoundaryType { dirichlet, pressure, traction, body_force, velocity, mesh_displacement };
+/// How a fluid body's mesh moves (ALE): by a pseudo-elastic solve driven by the boundary's
+/// `mesh_displacement` conditions, or by a displacement given everywhere.
+enum class MeshMotionModel { pseudo_elastic, prescribed };
+enum class Stiffening { jacobian, none };
 enum class InterfaceType { mesh_tying, contact };
 enum class Multiplier { dual, standard };
 enum class Strategy { condensed, saddle_point };
@@ -52,6 +56,7 @@ enum class WorkMeasure { time, integration_cells };
 std::string_view to_string(PlaneMode value);
 std::string_view to_string(MaterialModel value);
 std::string_view to_string(BoundaryType value);
+std::string_view to_string(MeshMotionModel value);
 std::string_view to_string(InterfaceType value);
 std::string_view to_string(Multiplier value);
 std::string_view to_string(Strategy value);
@@ -82,9 +87,22 @@ struct Material {
   [[nodiscard]] bool is_fluid() const { return model == MaterialModel::newtonian_fluid; }
 };
 
+/// `mesh_motion` of a fluid body (docs/fluid.md, "Moving meshes").
+struct MeshMotion {
+  MeshMotionModel model = MeshMotionModel::pseudo_elastic;
+  /// pseudo_elastic: jacobian = cells stiffer the smaller they are, E ~ (V_min / V)^power
+  /// (Stein, Tezduyar & Benney 2003); none = uniform.
+  Stiffening stiffening = Stiffening::jacobian;
+  double stiffening_power = 1.0; ///< chi >= 0
+  /// prescribed: `dimension` expressions in (t, x, y, z) of the reference coordinates.
+  std::vector<Expression> displacement;
+  Mark mark;
+};
+
 struct Body {
-  RegionRef region;     ///< physical group of the mesh's highest dimension
-  std::string material; ///< a key of Config::materials
+  RegionRef region;                      ///< physical group of the mesh's highest dimension
+  std::string material;                  ///< a key of Config::materials
+  std::optional<MeshMotion> mesh_motion; ///< fluid bodies only; unset = the mesh is fixed
   Mark mark;
 };
 
@@ -96,7 +114,7 @@ struct BoundaryCondition {
   RegionRef region;
   BoundaryType type = BoundaryType::dirichlet;
   /// dirichlet, velocity (a fluid's velocity): the listed components (0 = x, 1 = y, 2 = z),
-  /// all if omitted;
+  /// all if omitted; mesh_displacement (a fluid mesh's boundary motion): all;
   /// traction, body_force: 0 .. dimension-1; pressure: empty.
   std::vector<int> components;
   /// one expression per entry of `components`; pressure: exactly one.

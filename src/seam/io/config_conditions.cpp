@@ -76,6 +76,7 @@ BoundaryCondition read_boundary_condition(const Node& node, int dimension) {
     break;
   case BoundaryType::traction:
   case BoundaryType::body_force:
+  case BoundaryType::mesh_displacement:
     for (int i = 0; i < dimension; ++i) condition.components.push_back(i);
     condition.value = value.expressions(dimension);
     break;

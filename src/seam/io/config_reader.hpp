@@ -116,12 +116,18 @@ inline constexpr std::array<std::pair<std::string_view, MaterialModel>, 4> mater
      {"saint_venant_kirchhoff", MaterialModel::saint_venant_kirchhoff},
      {"neo_hooke", MaterialModel::neo_hooke},
      {"newtonian_fluid", MaterialModel::newtonian_fluid}}};
-inline constexpr std::array<std::pair<std::string_view, BoundaryType>, 5> boundary_names{
+inline constexpr std::array<std::pair<std::string_view, BoundaryType>, 6> boundary_names{
     {{"dirichlet", BoundaryType::dirichlet},
      {"pressure", BoundaryType::pressure},
      {"traction", BoundaryType::traction},
      {"body_force", BoundaryType::body_force},
-     {"velocity", BoundaryType::velocity}}};
+     {"velocity", BoundaryType::velocity},
+     {"mesh_displacement", BoundaryType::mesh_displacement}}};
+inline constexpr std::array<std::pair<std::string_view, MeshMotionModel>, 2> mesh_motion_names{
+    {{"pseudo_elastic", MeshMotionModel::pseudo_elastic},
+     {"prescribed", MeshMotionModel::prescribed}}};
+inline constexpr std::array<std::pair<std::string_view, Stiffening>, 2> stiffening_names{
+    {{"jacobian", Stiffening::jacobian}, {"none", Stiffening::none}}};
 inline constexpr std::array<std::pair<std::string_view, InterfaceType>, 2> interface_names{
     {{"mesh_tying", InterfaceType::mesh_tying}, {"contact", InterfaceType::contact}}};
 inline constexpr std::array<std::pair<std::string_view, Multiplier>, 2> multiplier_names{

@@ -11,15 +11,16 @@ namespace seam::meshtying {
 
 namespace {
 
-// Slave nodes (side-local) whose displacement is known: every component prescribed by some
-// Dirichlet condition. On facets with a modified quadratic basis (d = T d~) an edge node's
-// d~_e = (d_e - a (d_v0 + d_v1)) / (1 - 2a) is known only if its two vertices are prescribed
-// as well; otherwise it keeps its multiplier.
+// Slave nodes (side-local) whose displacement (a fluid's velocity) is known: every component
+// prescribed by some Dirichlet (velocity) condition. On facets with a modified quadratic basis (d =
+// T d~) an edge node's d~_e = (d_e - a (d_v0 + d_v1)) / (1 - 2a) is known only if its two vertices
+// are prescribed as well; otherwise it keeps its multiplier.
 std::vector<char> bound_slave_nodes(const io::Config& config, const mesh::Mesh& mesh,
                                     const InterfaceSide& slave, mortar::Multiplier multiplier) {
   std::vector<unsigned char> prescribed(static_cast<std::size_t>(mesh.n_nodes()), 0);
   for (const auto& bc : config.boundary_conditions) {
-    if (bc.type != io::BoundaryType::dirichlet) continue;
+    // A fluid's velocity conditions bind its tied slave nodes as a solid's displacements do.
+    if (bc.type != io::BoundaryType::dirichlet && bc.type != io::BoundaryType::velocity) continue;
     unsigned char components = 0;
     for (int c : bc.components) components |= static_cast<unsigned char>(1U << c);
     // The region a Dirichlet condition names is the first of that name (as for the model).

@@ -117,6 +117,9 @@ public:
   std::vector<ContactReport> reports(const la::Vector& u) const;
   /// Active nodes in stick (friction) and in slip (every active node without friction).
   int n_slip() const;
+  /// Nodes that the cycling guard froze between stick and slip and that were accepted within
+  /// the hysteresis band of their friction cone at the last evaluate() (contact_friction.cpp).
+  int n_on_cone() const;
 
 private:
   struct Side {
@@ -163,7 +166,8 @@ private:
     std::vector<contact::MortarEntry> M_old; ///< this rank's part of M then
     std::array<double, 3> plane_old{};       ///< rigid plane displacement then
     double dissipation = 0.0;                ///< frictional work up to the last converged step
-    bool has_old = false;                    ///< D_old and M_old are set
+    int on_cone = 0;      ///< frozen nodes accepted within the stick/slip band at the last evaluate
+    bool has_old = false; ///< D_old and M_old are set
   };
   /// Free-direction data of an active slave node: w, the row that carries the gap and the
   /// tangent rows.

@@ -20,12 +20,25 @@ void check_supported(const io::Config& config) {
                                  "' is a solid in a run with fluid bodies; fluid-structure "
                                  "interaction (an 'fsi' interface) is not available yet in this "
                                  "version of seam, so a run holds either solids or fluids");
-  for (const auto& itf : config.interfaces)
-    io::fail_at(itf.mark, "interface '" + itf.name + "' of type '" +
-                              std::string(io::to_string(itf.type)) +
-                              "' in a run with fluid bodies: interfaces between fluids (mesh "
-                              "tying) and fluid contact are not available yet in this version "
-                              "of seam");
+  const bool moving = std::any_of(config.bodies.begin(), config.bodies.end(),
+                                  [](const io::Body& b) { return b.mesh_motion.has_value(); });
+  for (const auto& itf : config.interfaces) {
+    if (itf.type != io::InterfaceType::mesh_tying)
+      io::fail_at(itf.mark, "interface '" + itf.name + "' of type '" +
+                                std::string(io::to_string(itf.type)) +
+                                "' in a run with fluid bodies: fluids are tied ('mesh_tying'); "
+                                "fluid contact is not available in this version of seam");
+    if (itf.strategy != io::Strategy::condensed)
+      io::fail_at(itf.mark, "interface '" + itf.name +
+                                "': fluid subdomains are tied with dual multipliers, condensed "
+                                "(multiplier 'dual', strategy 'condensed'); the saddle-point "
+                                "form is not available for fluids");
+    if (moving)
+      io::fail_at(itf.mark, "interface '" + itf.name +
+                                "': mesh tying of fluids whose mesh moves (mesh_motion) is not "
+                                "available yet in this version of seam (the mortar operators "
+                                "are integrated once, on the reference mesh)");
+  }
   if (config.time.integrator == io::Integrator::energy_momentum)
     io::fail_at(config.time.mark,
                 "time.integrator 'energy_momentum' is a scheme for solids; a fluid is integrated "
@@ -143,6 +156,8 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
       break;
     case io::BoundaryType::dirichlet:
       break; // refused above
+    case io::BoundaryType::mesh_displacement:
+      break; // the mesh's motion (FluidMeshMotion)
     }
   }
 
@@ -150,11 +165,20 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
   // up to a constant: fix it at the first vertex. A facet is closed where every node has the
   // component along the facet's normal prescribed (its largest normal component: slip walls
   // are given per axis).
+  // The sides of tied interfaces are inside the flow: they close nothing and open nothing.
   bool open = loaded_boundary;
+  std::vector<char> tied(mesh.n_nodes(), 0);
+  for (const auto& itf : config.interfaces)
+    for (const auto* side : {&itf.slave, itf.master ? &*itf.master : nullptr})
+      if (side)
+        for (auto n : find_region(mesh, *side, {dim - 1}, "an interface side").nodes) tied[n] = 1;
   const auto exterior = mesh::exterior_facets(mesh);
   for (std::int32_t f = 0; f < exterior.size() && !open; ++f) {
     const auto c = exterior.cell[f];
     const auto type = mesh.cell_type[c];
+    const auto facet = fem::facet_nodes(type, exterior.local[f]);
+    if (std::all_of(facet.begin(), facet.end(), [&](int k) { return tied[mesh.cell(c)[k]] != 0; }))
+      continue;
     const auto centre = mesh::reference_centre(fem::facet_type(type, exterior.local[f]));
     const auto normal = mesh::facet_normal(mesh, c, exterior.local[f], centre.data());
     int axis = 0;

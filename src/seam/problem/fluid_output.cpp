@@ -103,7 +103,8 @@ void FluidOutput::newton(int step, int iteration, double residual, double increm
   newton_->add_row({step, iteration, residual, increment, 0});
 }
 
-void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force_fields) {
+void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
+                       std::span<const double> mesh_displacement, bool force_fields) {
   ScopedTimer timer(timers_, "output");
   const bool due = force_fields || r.step % config_.output.every == 0;
   std::vector<double> all;
@@ -117,7 +118,7 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force
     }
     to_root_(w, all); // collective
   }
-  if (due) write_fields(r.step, r.time, all);
+  if (due) write_fields(r.step, r.time, all, mesh_displacement);
   last_errors_ = r.errors;
   last_forces_ = r.forces;
   if (!layout_.comm().is_root()) return;
@@ -130,8 +131,18 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w, bool force
   for (std::size_t k = 0; k < located_.size(); ++k) {
     const auto& pr = located_[k];
     const auto v = evaluate_at(layout_, all, pr.cell, pr.xi.data());
+    std::array<double, 3> d{};
+    if (!mesh_displacement.empty()) {
+      const auto& mesh = layout_.mesh();
+      const auto nodes = mesh.cell(pr.cell);
+      std::array<double, fem::max_cell_nodes> N{};
+      fem::shape_values(mesh.cell_type[pr.cell], pr.xi.data(), N.data());
+      for (std::size_t a = 0; a < nodes.size(); ++a)
+        for (int i = 0; i < mesh.dim; ++i)
+          d[i] += N[a] * mesh_displacement[nodes[a] * mesh.dim + i];
+    }
     probes_->add_row({r.step, r.time, static_cast<int>(k), pr.point[0], pr.point[1], pr.point[2],
-                      0.0, 0.0, 0.0, v[0], v[1], v[2], v[3]});
+                      d[0], d[1], d[2], v[0], v[1], v[2], v[3]});
   }
   if (errors_ && r.errors)
     errors_->add_row({r.step, r.time, r.errors->velocity_l2, r.errors->pressure_l2});
@@ -155,7 +166,8 @@ std::vector<double> FluidOutput::nodal_pressure(std::span<const double> all) con
   return pressure;
 }
 
-void FluidOutput::write_fields(int step, double time, std::span<const double> all) {
+void FluidOutput::write_fields(int step, double time, std::span<const double> all,
+                               std::span<const double> mesh_displacement) {
   if (!layout_.comm().is_root()) return;
   const auto& mesh = layout_.mesh();
   const int dim = mesh.dim;
@@ -163,6 +175,10 @@ void FluidOutput::write_fields(int step, double time, std::span<const double> al
   for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
     for (int i = 0; i < dim; ++i) velocity[n * 3 + i] = all[layout_.global_dof(n, i)];
   const auto pressure = nodal_pressure(all);
+  std::vector<double> displacement(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
+  if (!mesh_displacement.empty())
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+      for (int i = 0; i < dim; ++i) displacement[n * 3 + i] = mesh_displacement[n * dim + i];
   io::VtuPiece piece;
   piece.point_dim = dim;
   piece.points = mesh.x;
@@ -171,6 +187,7 @@ void FluidOutput::write_fields(int step, double time, std::span<const double> al
   piece.types = types_;
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(velocity));
   piece.point_data.emplace_back("pressure", 1, std::span<const double>(pressure));
+  piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(displacement));
   piece.time = time;
   piece.cycle = step;
   const auto file = io::step_file_name("results", step, ".vtu");

@@ -3,7 +3,9 @@
 // with the PVD collection, steps.csv and newton.csv with the solid's columns, forces.csv,
 // errors.csv against an exact solution, summary.json. Rank 0 writes everything; the fields
 // are gathered there (one piece per step). probes.csv has the solid's columns and the
-// fluid's velocity and pressure last (the mesh displacement ux..uz is 0 on a fixed mesh).
+// fluid's velocity and pressure last, and ux..uz the mesh displacement (ALE; 0 on a fixed
+// mesh) at the probe's point of the reference mesh, which moves with the mesh. The VTU holds
+// the reference mesh and the point field `mesh_displacement` (warp by it for the current).
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
 #include "seam/io/table.hpp"
@@ -48,15 +50,18 @@ public:
   const std::filesystem::path& directory() const { return dir_; }
   void newton(int step, int iteration, double residual, double increment);
   /// A converged step: the tables, and the fields if due (every n-th, and `force_fields`).
-  /// `w` is ghosted and up to date. Collective.
-  void step(const FluidStepRecord& r, const la::Vector& w, bool force_fields);
+  /// `w` is ghosted and up to date; `mesh_displacement` the displacement of every mesh node
+  /// (node-major, the same on every rank), or empty for a fixed mesh. Collective.
+  void step(const FluidStepRecord& r, const la::Vector& w,
+            std::span<const double> mesh_displacement, bool force_fields);
   /// summary.json. Collective.
   void finish(bool converged, int n_steps);
   /// The output counters in a checkpoint (results.pvd's entries so far).
   void write_checkpoint(RecordWriter& out) const;
 
 private:
-  void write_fields(int step, double time, std::span<const double> all);
+  void write_fields(int step, double time, std::span<const double> all,
+                    std::span<const double> mesh_displacement);
   /// The pressure at every node from the global vector (linear on each cell).
   std::vector<double> nodal_pressure(std::span<const double> all) const;
 

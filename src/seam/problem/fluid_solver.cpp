@@ -1,11 +1,14 @@
 #include "seam/problem/fluid_solver.hpp"
 
+#include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fluid_layout.hpp"
+#include "seam/problem/fluid_mesh_motion.hpp"
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_output.hpp"
+#include "seam/problem/tying_constraint.hpp"
 #include "seam/solid/loads.hpp"
 
 #include <array>
@@ -23,13 +26,21 @@ constexpr int max_cell_dofs = fem::max_cell_nodes * 4;
 // One cell's coordinates, velocity, pressure and dofs, gathered from the local vector form.
 struct CellData {
   int n_dofs = 0;
-  std::array<double, fem::max_cell_nodes * 3> x{}, u{}, u_dot{};
-  bool unsteady = false;
+  std::array<double, fem::max_cell_nodes * 3> x{}, u{}, u_dot{}, w{};
+  bool unsteady = false, moving = false;
   std::array<double, 8> p{};
   std::array<PetscInt, max_cell_dofs> dofs{};
   std::array<std::int32_t, max_cell_dofs> local{};
   std::array<double, max_cell_dofs> r{};
   std::array<double, max_cell_dofs * max_cell_dofs> K{};
+};
+
+// The mesh an assembly integrates on: the coordinates of every node (node-major, the
+// reference mesh's if the mesh is fixed) and, in ALE time integration, the mesh velocity of
+// every node (empty: at rest).
+struct MeshState {
+  std::span<const double> x;
+  std::span<const double> w;
 };
 
 // The state an assembly evaluates: the velocity from `u` (and its rate from `u_dot`, if
@@ -43,8 +54,8 @@ struct EvaluationState {
   double time_step = 0.0; // 0: steady
 };
 
-void gather(const FluidLayout& layout, std::span<const double> u, std::span<const double> p,
-            std::span<const double> u_dot, std::int32_t c, CellData& d) {
+void gather(const FluidLayout& layout, const MeshState& ms, std::span<const double> u,
+            std::span<const double> p, std::span<const double> u_dot, std::int32_t c, CellData& d) {
   const auto& mesh = layout.mesh();
   const int dim = mesh.dim;
   const auto nodes = mesh.cell(c);
@@ -52,7 +63,11 @@ void gather(const FluidLayout& layout, std::span<const double> u, std::span<cons
   layout.cell_local_dofs(c, d.local);
   const int nu = static_cast<int>(nodes.size()) * dim;
   for (std::size_t a = 0; a < nodes.size(); ++a)
-    for (int i = 0; i < dim; ++i) d.x[a * dim + i] = mesh.x[nodes[a] * dim + i];
+    for (int i = 0; i < dim; ++i) d.x[a * dim + i] = ms.x[nodes[a] * dim + i];
+  d.moving = !ms.w.empty();
+  if (d.moving)
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < dim; ++i) d.w[a * dim + i] = ms.w[nodes[a] * dim + i];
   for (int k = 0; k < nu; ++k) d.u[k] = u[d.local[k]];
   d.unsteady = !u_dot.empty();
   if (d.unsteady)
@@ -73,13 +88,14 @@ fluid::FluidElementInput element_input(const FluidModel& model, const FluidLayou
   in.u = std::span<const double>(d.u.data(), n);
   in.p = std::span<const double>(d.p.data(), fem::n_vertices(type));
   if (d.unsteady) in.u_dot = std::span<const double>(d.u_dot.data(), n);
+  if (d.moving) in.mesh_velocity = std::span<const double>(d.w.data(), n);
   return in;
 }
 
 // r (and K) at the state (ghosts up to date) and time t; both assembled on return.
 // Returns whether a cell of this rank is inverted.
-bool assemble(const FluidModel& model, const FluidLayout& layout, const EvaluationState& state,
-              double t, la::Vector& r, la::Matrix* K) {
+bool assemble(const FluidModel& model, const FluidLayout& layout, const MeshState& ms,
+              const EvaluationState& state, double t, la::Vector& r, la::Matrix* K) {
   const auto& mesh = layout.mesh();
   const int dim = mesh.dim;
   r.zero();
@@ -93,7 +109,7 @@ bool assemble(const FluidModel& model, const FluidLayout& layout, const Evaluati
   // Body forces per cell: the sum of every body_force condition on it.
   std::vector<const BodyLoad*> cell_loads;
   for (auto c : layout.local_cells()) {
-    gather(layout, u_view.values(), p_view.values(), u_dot, c, d);
+    gather(layout, ms, u_view.values(), p_view.values(), u_dot, c, d);
     auto in = element_input(model, layout, c, d);
     in.state_weight = state.state_weight;
     in.mass_weight = state.mass_weight;
@@ -128,7 +144,7 @@ bool assemble(const FluidModel& model, const FluidLayout& layout, const Evaluati
       const auto nf = local.size() * dim;
       for (std::size_t a = 0; a < local.size(); ++a)
         for (int i = 0; i < dim; ++i) {
-          X[a * dim + i] = mesh.x[nodes[local[a]] * dim + i];
+          X[a * dim + i] = ms.x[nodes[local[a]] * dim + i];
           fdofs[a * dim + i] = layout.global_dof(nodes[local[a]], i);
         }
       const solid::FacetInput in{fem::facet_type(type, f.local), dim,
@@ -196,7 +212,7 @@ std::vector<std::array<double, 3>> forces(const FluidModel& model, const FluidLa
 }
 
 FluidErrors errors(const io::Config& config, const FluidModel& model, const FluidLayout& layout,
-                   const la::Vector& w, double t) {
+                   const MeshState& ms, const la::Vector& w, double t) {
   const int dim = layout.dim();
   const auto& ue = config.output.exact_velocity;
   const auto& pe = config.output.exact_pressure;
@@ -213,7 +229,7 @@ FluidErrors errors(const io::Config& config, const FluidModel& model, const Flui
     CellData d;
     la::Vector::LocalView view(w, false);
     for (auto c : layout.local_cells()) {
-      gather(layout, view.values(), view.values(), {}, c, d);
+      gather(layout, ms, view.values(), view.values(), {}, c, d);
       const auto e = fluid::error_integrals(element_input(model, layout, c, d), u_exact, p_exact);
       for (int k = 0; k < 4; ++k) sum[k] += e[k];
     }
@@ -269,10 +285,12 @@ CanonicalOrder fluid_order(const FluidLayout& layout) {
 
 class FluidNewton {
 public:
+  /// `tying`: the condensed mesh tying of fluid subdomains, or null.
   FluidNewton(const io::Config& config, const FluidModel& model, const FluidLayout& layout,
-              FluidOutput& out)
-      : config_(config), model_(model), layout_(layout), out_(out), K_(layout.make_matrix()),
-        r_(layout.make_vector()), r_full_(layout.make_vector()), dw_(layout.make_vector()),
+              FluidOutput& out, const TyingConstraint* tying)
+      : config_(config), model_(model), layout_(layout), out_(out), tying_(tying),
+        K_(layout.make_matrix()), r_(layout.make_vector()), rt_(layout.make_vector()),
+        r_full_(layout.make_vector()), dw_(layout.make_vector()), dwt_(layout.make_vector()),
         solver_(layout.comm().get(), config.solver.linear == io::LinearSolverKind::direct
                                          ? la::SolverKind::direct
                                          : la::SolverKind::iterative) {
@@ -291,6 +309,13 @@ public:
     NewtonOutcome res;
     const auto& nc = config_.solver.newton;
     impose(model_, layout_, t, w);
+    if (tying_) {
+      // The tied slave velocities from the master ones (and the prescribed slave ones), so
+      // that the state satisfies the constraint; the increments d = T d~ keep it.
+      tying_->expand(w, dw_);
+      w.copy_from(dw_);
+      w.update_ghosts();
+    }
     double last_increment = 0.0;
     for (int it = 0; it <= nc.max_iterations; ++it) {
       bool inverted;
@@ -303,12 +328,23 @@ public:
         return res;
       }
       r_full_.copy_from(r_);
+      // The Newton system: condensed by T (T^T K T, T^T r) when fluid subdomains are tied.
+      la::Matrix* K_sys = &K_;
+      la::Vector* r_sys = &r_;
+      la::Vector* d_sys = &dw_;
+      if (tying_) {
+        tying_->condense_matrix(K_, Kt_);
+        tying_->condense_vector(r_, rt_);
+        K_sys = &Kt_;
+        r_sys = &rt_;
+        d_sys = &dwt_;
+      }
       {
-        la::Vector::LocalView view(r_, true);
+        la::Vector::LocalView view(*r_sys, true);
         auto v = view.values();
         for (auto dof : fixed_) v[dof - layout_.first_owned_dof()] = 0.0;
       }
-      const double norm = r_.norm();
+      const double norm = r_sys->norm();
       if (!std::isfinite(norm)) {
         res.failure = "the residual is not finite";
         return res;
@@ -325,14 +361,15 @@ public:
         return res;
       }
       if (it == nc.max_iterations) break;
-      K_.zero_rows_columns(fixed_);
-      r_.scale(-1.0);
-      dw_.zero();
+      K_sys->zero_rows_columns(fixed_);
+      r_sys->scale(-1.0);
+      d_sys->zero();
       bool solved;
       {
         ScopedTimer timer(out_.timers(), "linear_solve");
-        solved = solver_.solve(K_, r_, dw_);
+        solved = solver_.solve(*K_sys, *r_sys, *d_sys);
       }
+      if (solved && tying_) tying_->expand(dwt_, dw_);
       if (!solved) {
         res.failure = "the linear solver failed";
         return res;
@@ -353,52 +390,118 @@ private:
   const FluidModel& model_;
   const FluidLayout& layout_;
   FluidOutput& out_;
-  la::Matrix K_;
-  la::Vector r_, r_full_, dw_;
+  const TyingConstraint* tying_;
+  la::Matrix K_, Kt_;
+  la::Vector r_, rt_, r_full_, dw_, dwt_;
   la::LinearSolver solver_;
   std::vector<PetscInt> fixed_;
   double reference_ = 0.0;
 };
 
+// Whether some cell of this rank is inverted in the configuration x (all ranks agree).
+bool any_inverted(const FluidLayout& layout, std::span<const double> x) {
+  const auto& mesh = layout.mesh();
+  const int dim = mesh.dim;
+  std::array<double, fem::max_cell_nodes * 3> xc{};
+  bool inverted = false;
+  for (auto c : layout.local_cells()) {
+    const auto nodes = mesh.cell(c);
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < dim; ++i) xc[a * dim + i] = x[nodes[a] * dim + i];
+    if (ale::inverted(mesh.cell_type[c], std::span<const double>(xc.data(), nodes.size() * dim))) {
+      inverted = true;
+      break;
+    }
+  }
+  return layout.comm().any(inverted);
+}
+
+// The moving mesh over the steps (ALE): the mesh displacement d and its rate at the last
+// converged step, and the configuration and mesh velocity of the step being solved.
+struct MovingMesh {
+  std::vector<double> X, d, d_dot, d_new, d_dot_new, x, w;
+
+  explicit MovingMesh(const mesh::Mesh& mesh) : X(mesh.x), x(mesh.x) {}
+  /// The configuration X + d(t) itself (static runs, error norms).
+  std::span<const double> at(const std::vector<double>& disp) {
+    for (std::size_t k = 0; k < X.size(); ++k) x[k] = X[k] + disp[k];
+    return x;
+  }
+};
+
 } // namespace
 
-FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
+FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        const std::filesystem::path& dir, bool quiet, bool check_only,
                        const FluidRestart& restart) {
   const FluidLayout layout(mesh, comm);
   const auto model = build_fluid_model(config, layout);
+  FluidMeshMotion motion(config, layout);
+  // Tied fluid subdomains: the mortar operators, once (the mesh initialization moves slave
+  // nodes onto the master side before anything is integrated).
+  PhaseTimers setup_timers;
+  const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
   FluidRunInfo info{static_cast<long long>(layout.n_global_dofs())};
   if (check_only) return info;
+  std::optional<TyingConstraint> tying;
+  if (!tied.empty()) {
+    tying.emplace(tied, tied_dofs(layout, model)); // the velocity; the pressure is untied
+    if (!tying->active()) tying.reset();
+  }
   const Checkpoints checkpoints(config, mesh, comm, fluid_order(layout), restart.input, dir,
                                 restart.checkpoint);
   FluidOutput out(config, layout, model, dir, quiet,
                   checkpoints.restarting() ? &checkpoints : nullptr);
   if (comm.is_root() && !quiet)
-    std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s); "
+    std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s)%s; "
                 "output in %s\n",
                 config.title.empty() ? config.source.c_str() : config.title.c_str(), mesh.n_nodes(),
-                mesh.n_cells(), info.n_dofs, comm.size(), dir.c_str());
-  FluidNewton newton(config, model, layout, out);
+                mesh.n_cells(), info.n_dofs, comm.size(), motion.moving() ? ", moving mesh" : "",
+                dir.c_str());
+  FluidNewton newton(config, model, layout, out, tying ? &*tying : nullptr);
   la::Vector w = layout.make_vector(), w_old = layout.make_vector();
   set_initial_velocity(config, layout, w);
   impose(model, layout, 0.0, w);
+  if (tying) { // the initial state satisfies the tying constraint (slave velocities = P v_M)
+    tying->expand(w, w_old);
+    w.copy_from(w_old);
+    w.update_ghosts();
+  }
   const bool exact = !config.output.exact_velocity.empty() || !config.output.exact_pressure.empty();
   const auto& tc = config.time;
   // Generalized-alpha for first-order systems (Jansen, Whiting & Hulbert 2000, eqs. 17-19 and
   // 26-27): second order and unconditionally stable for alpha_m >= alpha_f >= 1/2, with the
   // high-frequency damping set by rho_inf.
   const bool unsteady = tc.integrator == io::Integrator::generalized_alpha;
-  const double alpha_m = 0.5 * (3.0 - tc.rho_inf) / (1.0 + tc.rho_inf);
-  const double alpha_f = 1.0 / (1.0 + tc.rho_inf);
-  const double gamma = 0.5 + alpha_m - alpha_f;
+  const auto ga = ale::GeneralizedAlpha::from_rho_inf(tc.rho_inf);
+  const double alpha_m = ga.alpha_m, alpha_f = ga.alpha_f, gamma = ga.gamma;
   la::Vector u_dot = layout.make_vector(), u_dot_new = layout.make_vector();
   la::Vector u_dot_m = layout.make_vector(), w_f = layout.make_vector();
+  // The mesh: fixed (the reference coordinates), or moving with its displacement at t = 0 and
+  // the rate of it there (central differences of the displacement in t; linear in the data).
+  MovingMesh mm(mesh);
+  MeshState ms{mesh.x, {}};
+  if (motion.moving()) {
+    std::vector<double> plus, minus;
+    const double delta = 1e-4 * tc.dt;
+    if (!motion.displacement(0.0, mm.d) || !motion.displacement(delta, plus) ||
+        !motion.displacement(-delta, minus))
+      SEAM_THROW(SolverError, "the linear solver of the pseudo-elastic mesh failed at t = 0");
+    mm.d_dot.resize(mm.d.size());
+    for (std::size_t k = 0; k < mm.d.size(); ++k)
+      mm.d_dot[k] = unsteady ? (plus[k] - minus[k]) / (2.0 * delta) : 0.0;
+    mm.w = unsteady ? mm.d_dot : std::vector<double>();
+    ms = {mm.at(mm.d), mm.w};
+    if (any_inverted(layout, ms.x))
+      SEAM_THROW(SolverError, "a fluid cell is inverted (det J <= 0) by the mesh displacement at "
+                              "t = 0");
+  }
   // The residual of the step holds the forces at t_{n+alpha_f}; they are reported at t_{n+1},
   // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f, from the initial state's forces.
   std::vector<std::array<double, 3>> last_forces;
   if (unsteady) {
     la::Vector r0 = layout.make_vector();
-    assemble(model, layout, {&w, &w}, 0.0, r0, nullptr);
+    assemble(model, layout, ms, {&w, &w}, 0.0, r0, nullptr);
     last_forces = forces(model, layout, r0);
   }
   double t = 0.0, dt = tc.dt;
@@ -417,6 +520,10 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
       for (std::size_t g = 0; g < last_forces.size(); ++g)
         for (int i = 0; i < 3; ++i) last_forces[g][i] = f[g * 3 + i];
     }
+    if (motion.moving()) {
+      mm.d = r.reals("mesh.d", mm.d.size());
+      mm.d_dot = r.reals("mesh.d_dot", mm.d_dot.size());
+    }
     if (comm.is_root() && !quiet)
       std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
                   t);
@@ -428,8 +535,25 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
     w_old.copy_from(w);
     w_old.update_ghosts();
     const double h = t_new - t;
+    // The mesh of the step: its displacement at t_new, checked for inverted cells, then the
+    // configuration and mesh velocity the equations are integrated with (steady: the mesh at
+    // t_new at rest; generalized-alpha: ale::step_mesh).
+    NewtonOutcome res;
+    if (motion.moving()) {
+      if (!motion.displacement(t_new, mm.d_new)) {
+        res.failure = "the linear solver of the pseudo-elastic mesh failed";
+      } else if (any_inverted(layout, mm.at(mm.d_new))) {
+        res.failure = "a fluid cell is inverted (det J <= 0) by the mesh motion";
+      } else if (unsteady) {
+        mm.d_dot_new.resize(mm.d.size());
+        ale::step_mesh(ga, h, mm.X, mm.d, mm.d_new, mm.d_dot, mm.x, mm.w, mm.d_dot_new);
+        ms = {mm.x, mm.w};
+      } else {
+        ms = {mm.x, {}};
+      }
+    }
     const FluidNewton::Evaluator steady = [&](const la::Vector& wk, la::Vector& r, la::Matrix& K) {
-      return assemble(model, layout, {&wk, &wk}, t_new, r, &K);
+      return assemble(model, layout, ms, {&wk, &wk}, t_new, r, &K);
     };
     // u_dot_{n+1} = (u_{n+1} - u_n) / (gamma h) - (1 - gamma) / gamma u_dot_n, and the
     // intermediate states u_{n+alpha_f}, u_dot_{n+alpha_m}; loads at t_{n+alpha_f}.
@@ -447,10 +571,11 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
       w_f.scale(1.0 - alpha_f);
       w_f.axpy(alpha_f, wk);
       w_f.update_ghosts();
-      return assemble(model, layout, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h), h},
+      return assemble(model, layout, ms, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h), h},
                       t + alpha_f * h, r, &K);
     };
-    const auto res = newton.solve(w, t_new, step + 1, unsteady ? generalized_alpha : steady);
+    if (*res.failure == '\0')
+      res = newton.solve(w, t_new, step + 1, unsteady ? generalized_alpha : steady);
     if (!res.converged) {
       w.copy_from(w_old);
       w.update_ghosts();
@@ -468,6 +593,10 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
     if (unsteady) {
       u_dot.copy_from(u_dot_new); // of the converged state: its last evaluation
       u_dot.update_ghosts();
+    }
+    if (motion.moving()) {
+      mm.d.swap(mm.d_new);
+      if (unsteady) mm.d_dot.swap(mm.d_dot_new);
     }
     ++step;
     t = t_new;
@@ -487,8 +616,11 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
           rec.forces[g][i] = (rec.forces[g][i] - (1.0 - alpha_f) * last_forces[g][i]) / alpha_f;
       last_forces = rec.forces;
     }
-    if (exact) rec.errors = errors(config, model, layout, w, t);
-    out.step(rec, w, t >= tc.end * (1.0 - 1e-12));
+    // Errors on the mesh at t_{n+1}.
+    const MeshState now{motion.moving() ? mm.at(mm.d) : std::span<const double>(mesh.x), {}};
+    if (exact) rec.errors = errors(config, model, layout, now, w, t);
+    out.step(rec, w, motion.moving() ? std::span<const double>(mm.d) : std::span<const double>(),
+             t >= tc.end * (1.0 - 1e-12));
     if (checkpoints.due(step)) {
       auto writer = checkpoints.begin(step, t);
       writer.put_real("control.dt", dt);
@@ -501,6 +633,9 @@ FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm co
         for (const auto& g : last_forces) f.insert(f.end(), g.begin(), g.end());
         writer.put("last_forces", f);
       }
+      // The moving mesh (replicated, dim per mesh node): its displacement and rate at t.
+      writer.put("mesh.d", mm.d);
+      writer.put("mesh.d_dot", mm.d_dot);
       out.write_checkpoint(writer);
       checkpoints.commit(writer, step);
     }

@@ -24,8 +24,9 @@ struct FluidRestart {
 };
 
 /// Checks the input for the fluid field, then runs all steps, writing into `dir` (which
-/// exists). `check_only` stops after the checks. Throws InputError or SolverError.
-FluidRunInfo run_fluid(const io::Config& config, const mesh::Mesh& mesh, Comm comm,
+/// exists). `check_only` stops after the checks. The mesh initialization of tied interfaces
+/// moves slave nodes of `mesh`. Throws InputError or SolverError.
+FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        const std::filesystem::path& dir, bool quiet, bool check_only = false,
                        const FluidRestart& restart = {});
 

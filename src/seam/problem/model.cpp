@@ -174,6 +174,13 @@ Model build_model(const io::Config& config, const Discretization& disc) {
                                bc.region.name +
                                "' belongs to no fluid body (a solid's motion is prescribed "
                                "with type 'dirichlet')");
+    case io::BoundaryType::mesh_displacement:
+      find_region(mesh, bc.region, {0, 1, 2, 3}, "a mesh displacement condition");
+      io::fail_at(bc.mark, "type 'mesh_displacement' moves the mesh of a fluid body (ALE), but "
+                           "region '" +
+                               bc.region.name +
+                               "' belongs to no fluid body (a solid's motion is prescribed "
+                               "with type 'dirichlet')");
     case io::BoundaryType::body_force:
       model.body_loads.push_back(body_load(mesh, bc, is_local));
       break;

@@ -135,6 +135,11 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
             "step ", step, " at t = ", t, ": relative residual ", res.residual,
             " stays above the tolerance ", nc.tolerance, " while the last increment is ",
             last_increment_ / solution, " of the solution (round-off floor); step accepted"));
+      if (const int on_cone = contact_.n_on_cone(); on_cone > 0)
+        out_.warning(::seam::detail::concat(
+            "step ", step, " at t = ", t, ": ", on_cone,
+            " frictional node(s) alternated between stick and slip and were accepted on their "
+            "friction cone within 0.1 % of the bound (stick/slip hysteresis band)"));
       res.converged = true;
       return res;
     }

@@ -8,17 +8,18 @@
 namespace seam::problem {
 
 TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& interfaces,
-                                 const Discretization& disc, const Model& model)
-    : interfaces_(interfaces), disc_(disc) {
-  const int dim = disc.dim();
-  const PetscInt first = disc.first_owned_dof();
-  const PetscInt n_owned = disc.n_owned_dofs();
+                                 TiedDofs dofs)
+    : interfaces_(interfaces), dofs_(std::move(dofs)) {
+  const auto& disc = dofs_;
+  const int dim = disc.dim;
+  const PetscInt first = disc.first_owned;
+  const PetscInt n_owned = disc.n_owned;
   std::vector<char> dirichlet(n_owned, 0);
-  for (const auto& d : model.dirichlet) dirichlet[d.dof - first] = 1;
+  for (auto dof : disc.prescribed) dirichlet[dof - first] = 1;
 
   // Rows of T owned here: global column -> value, for the eliminated dofs.
   std::map<PetscInt, std::vector<std::pair<PetscInt, double>>> rows;
-  std::vector<char> is_slave_node(disc.mesh().n_nodes(), 0);
+  std::vector<char> is_slave_node(disc.mesh->n_nodes(), 0);
   for (const auto& t : interfaces)
     for (auto n : t.slave.mesh_nodes) is_slave_node[n] = 1;
 
@@ -105,7 +106,7 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
     }
     if (!ops.T.empty()) transforms_[k] = ops.T;
   }
-  active_ = disc.comm().any(active_);
+  active_ = disc.comm.any(active_);
   if (!active_) return;
 
   // T: identity on the kept dofs, P on the eliminated ones (exact preallocation).
@@ -121,7 +122,7 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
     ++d_nnz[i]; // the explicit zero on the diagonal, see below
   }
   for (const auto& [row, entries] : rows) eliminated_.push_back(row);
-  T_ = la::Matrix(disc.comm().get(), n_owned, d_nnz, o_nnz, 1);
+  T_ = la::Matrix(disc.comm.get(), n_owned, d_nnz, o_nnz, 1);
   for (PetscInt i = 0; i < n_owned; ++i) {
     const PetscInt row = first + i;
     auto it = rows.find(row);
@@ -151,8 +152,8 @@ void TyingConstraint::condense_matrix(const la::Matrix& K, la::Matrix& Kt) const
     la::check(MatProductCreate(K.get(), T_.get(), nullptr, &C), "MatProductCreate");
     Kt = la::Matrix::adopt(C);
     la::check(MatProductSetType(C, MATPRODUCT_PtAP), "MatProductSetType");
-    la::check(MatProductSetAlgorithm(C, disc_.comm().size() == 1 ? MATPRODUCTALGORITHMRAP
-                                                                 : MATPRODUCTALGORITHMDEFAULT),
+    la::check(MatProductSetAlgorithm(C, dofs_.comm.size() == 1 ? MATPRODUCTALGORITHMRAP
+                                                               : MATPRODUCTALGORITHMDEFAULT),
               "MatProductSetAlgorithm");
     la::check(MatProductSetFill(C, 2.0), "MatProductSetFill");
     la::check(MatProductSetFromOptions(C), "MatProductSetFromOptions");
@@ -167,11 +168,11 @@ void TyingConstraint::condense_matrix(const la::Matrix& K, la::Matrix& Kt) const
   }
   la::check(MatProductNumeric(Kt.get()), "MatProductNumeric");
   // The eliminated rows and columns of T^T K T are empty: a unit diagonal keeps it regular.
-  la::Vector ones(disc_.comm().get(), disc_.n_owned_dofs());
+  la::Vector ones(dofs_.comm.get(), dofs_.n_owned);
   {
     la::Vector::LocalView v(ones, true);
     auto values = v.values();
-    const PetscInt first = disc_.first_owned_dof();
+    const PetscInt first = dofs_.first_owned;
     for (auto d : eliminated_) values[d - first] = 1.0;
   }
   Kt.add_diagonal(ones);
@@ -197,7 +198,7 @@ void TyingConstraint::expand(const la::Vector& dut, la::Vector& du) const {
 std::vector<double> TyingConstraint::multipliers(std::size_t interface,
                                                  std::span<const double> r_local) const {
   const auto& t = interfaces_[interface];
-  const int dim = disc_.dim();
+  const int dim = dofs_.dim;
   const auto n = t.slave.mesh_nodes.size();
   std::vector<double> lambda(n * dim, 0.0);
   if (d_diag_[interface].empty()) return lambda;
@@ -205,10 +206,10 @@ std::vector<double> TyingConstraint::multipliers(std::size_t interface,
   std::vector<double> r(n * dim, 0.0);
   for (std::size_t j = 0; j < n; ++j) {
     const auto s = t.slave.mesh_nodes[j];
-    if (!disc_.owns_node(s)) continue;
+    if (!dofs_.owns_node(s)) continue;
     for (int c = 0; c < dim; ++c)
-      if (std::binary_search(eliminated_.begin(), eliminated_.end(), disc_.global_dof(s, c)))
-        r[j * dim + c] = r_local[disc_.local_dof(s, c)];
+      if (std::binary_search(eliminated_.begin(), eliminated_.end(), dofs_.global_dof(s, c)))
+        r[j * dim + c] = r_local[dofs_.local_dof(s, c)];
   }
   // Slave rows of the equilibrium: T^T r_S + D lambda = 0 (T = I without modification).
   std::vector<double> tr(n * dim, 0.0);

@@ -14,15 +14,51 @@
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
 namespace seam::problem {
 
+/// The nodal dofs a tying constraint acts on: components 0 .. dim-1 of every node, in a
+/// layout with one contiguous owned range per rank, and those of them with a prescribed
+/// value. The solid's Discretization ties every dof of a node; a fluid's layout ties the
+/// velocity and leaves the pressure dof of a vertex untied (docs/fluid.md, "Mesh tying").
+struct TiedDofs {
+  const mesh::Mesh* mesh = nullptr;
+  Comm comm;
+  int dim = 0;
+  PetscInt first_owned = 0, n_owned = 0;
+  std::function<bool(std::int32_t)> owns_node;
+  std::function<PetscInt(std::int32_t, int)> global_dof;
+  std::function<std::int32_t(std::int32_t, int)> local_dof;
+  std::vector<PetscInt> prescribed; ///< owned dofs with a prescribed value
+};
+
+/// The dofs of a layout with the solid's interface (Discretization) or the fluid's
+/// (FluidLayout: its components 0 .. dim-1 are the velocity), and the prescribed ones of its
+/// model (`dirichlet`, entries with a global `dof`).
+template <class Layout, class Prescribed>
+TiedDofs tied_dofs(const Layout& layout, const Prescribed& model) {
+  TiedDofs dofs;
+  dofs.mesh = &layout.mesh();
+  dofs.comm = layout.comm();
+  dofs.dim = layout.dim();
+  dofs.first_owned = layout.first_owned_dof();
+  dofs.n_owned = layout.n_owned_dofs();
+  dofs.owns_node = [&layout](std::int32_t n) { return layout.owns_node(n); };
+  dofs.global_dof = [&layout](std::int32_t n, int c) { return layout.global_dof(n, c); };
+  dofs.local_dof = [&layout](std::int32_t n, int c) { return layout.local_dof(n, c); };
+  for (const auto& d : model.dirichlet) dofs.prescribed.push_back(d.dof);
+  return dofs;
+}
+
 class TyingConstraint {
 public:
+  TyingConstraint(const std::vector<meshtying::TiedInterface>& interfaces, TiedDofs dofs);
   TyingConstraint(const std::vector<meshtying::TiedInterface>& interfaces,
-                  const Discretization& disc, const Model& model);
+                  const Discretization& disc, const Model& model)
+      : TyingConstraint(interfaces, tied_dofs(disc, model)) {}
   ~TyingConstraint();
   TyingConstraint(const TyingConstraint&) = delete;
   TyingConstraint& operator=(const TyingConstraint&) = delete;
@@ -50,7 +86,7 @@ public:
 
 private:
   const std::vector<meshtying::TiedInterface>& interfaces_;
-  const Discretization& disc_;
+  TiedDofs dofs_;
   bool active_ = false;
   la::Matrix T_;
   std::vector<PetscInt> eliminated_;

@@ -1,5 +1,6 @@
 // The Navier-Stokes kernel: the Jacobian against central differences of the residual on
-// distorted cells of every type (Taylor-Hood and stabilized linear), the Stokes part symmetric, and
+// distorted cells of every type (Taylor-Hood and stabilized linear), on fixed and moving (ALE)
+// meshes, the Stokes part symmetric, and
 // consistency: a state that interpolates an exact solution of the equations (a uniform flow with a
 // constant pressure) leaves no residual in the cell's interior dofs.
 #include "seam/fluid/navier_stokes.hpp"
@@ -106,6 +107,82 @@ TEST_P(NavierStokes, TimeIntegrationJacobianMatchesCentralDifferences) {
     return fluid::navier_stokes(in, r, K);
   };
   EXPECT_LT(jacobian_error(residual, c.w), 1e-7) << fem::name(GetParam());
+}
+
+// ALE: the convective velocity u - w with a random mesh velocity w, in generalized-alpha; K
+// is the derivative by the unknown (u, p) at the given mesh motion.
+TEST_P(NavierStokes, AleJacobianMatchesCentralDifferences) {
+  const auto c = make_cell(GetParam(), 21);
+  const auto old = make_cell(GetParam(), 22).w;
+  const auto mesh_velocity = make_cell(GetParam(), 23).w;
+  const auto nd = c.w.size();
+  const auto nu = static_cast<std::size_t>(fem::n_nodes(c.type) * fem::dimension(c.type));
+  const double af = 0.7, m = 5.0;
+  std::vector<double> state(nd), rate(nu);
+  const auto residual = [&](const std::vector<double>& w, std::vector<double>& r,
+                            std::vector<double>& K) {
+    for (std::size_t k = 0; k < nd; ++k) state[k] = af * w[k] + (1 - af) * old[k];
+    for (std::size_t k = 0; k < nu; ++k) rate[k] = m * (w[k] - old[k]) - 0.2;
+    auto in = input(c, state);
+    in.u_dot = rate;
+    in.mesh_velocity = std::span<const double>(mesh_velocity.data(), nu);
+    in.state_weight = af;
+    in.mass_weight = m;
+    in.time_step = 0.05;
+    return fluid::navier_stokes(in, r, K);
+  };
+  EXPECT_LT(jacobian_error(residual, c.w), 1e-7) << fem::name(GetParam());
+  // The steady form as well (no rate, dt = 0).
+  const auto steady = [&](const std::vector<double>& w, std::vector<double>& r,
+                          std::vector<double>& K) {
+    auto in = input(c, w);
+    in.mesh_velocity = std::span<const double>(mesh_velocity.data(), nu);
+    return fluid::navier_stokes(in, r, K);
+  };
+  EXPECT_LT(jacobian_error(steady, c.w), 1e-7) << fem::name(GetParam());
+}
+
+// A mesh that moves with the flow (w = u) leaves no convection: the steady residual of the
+// Galerkin (Taylor-Hood) cells is that of the Stokes equations, the fluid's density set to 0.
+TEST_P(NavierStokes, MeshMovingWithTheFlowRemovesConvection) {
+  if (fluid::is_stabilized(GetParam())) GTEST_SKIP() << "tau depends on the density";
+  const auto c = make_cell(GetParam(), 31);
+  const auto nd = c.w.size();
+  const auto nu = static_cast<std::size_t>(fem::n_nodes(c.type) * fem::dimension(c.type));
+  std::vector<double> r_ale(nd), r_stokes(nd);
+  auto in = input(c, c.w);
+  in.mesh_velocity = std::span<const double>(c.w.data(), nu);
+  ASSERT_TRUE(fluid::navier_stokes(in, r_ale, {}));
+  auto creeping = input(c, c.w);
+  creeping.fluid.density = 0.0;
+  ASSERT_TRUE(fluid::navier_stokes(creeping, r_stokes, {}));
+  double scale = 0.0;
+  for (double v : r_stokes) scale = std::max(scale, std::abs(v));
+  for (std::size_t k = 0; k < nd; ++k) EXPECT_NEAR(r_ale[k], r_stokes[k], 1e-13 * scale) << k;
+}
+
+TEST_P(NavierStokes, UniformFlowOnMovingMeshHasNoResidual) {
+  // The element level of free-stream preservation: a uniform u, constant p, any mesh velocity.
+  auto c = make_cell(GetParam(), 41);
+  const auto mesh_velocity = make_cell(GetParam(), 42).w;
+  const int dim = fem::dimension(c.type);
+  const int n = fem::n_nodes(c.type);
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < dim; ++i) c.w[a * dim + i] = 1.0 - 0.7 * i;
+  for (std::size_t k = n * dim; k < c.w.size(); ++k) c.w[k] = -2.0;
+  std::vector<double> r(c.w.size()), zero_rate(static_cast<std::size_t>(n * dim), 0.0);
+  auto in = input(c, c.w);
+  in.mesh_velocity =
+      std::span<const double>(mesh_velocity.data(), static_cast<std::size_t>(n * dim));
+  in.u_dot = zero_rate;
+  in.time_step = 0.01;
+  ASSERT_TRUE(fluid::navier_stokes(in, r, {}));
+  for (std::size_t k = n * dim; k < r.size(); ++k) EXPECT_NEAR(r[k], 0.0, 1e-12);
+  for (int i = 0; i < dim; ++i) {
+    double sum = 0.0;
+    for (int a = 0; a < n; ++a) sum += r[a * dim + i];
+    EXPECT_NEAR(sum, 0.0, 1e-12);
+  }
 }
 
 TEST_P(NavierStokes, StokesPartIsSymmetric) {

@@ -1,0 +1,229 @@
+"""Mortar mesh tying of fluid subdomains (issue 14): the velocity of two fluid bodies tied
+across non-matching meshes with dual multipliers, condensed as for solids; the pressure of
+each side is its own (docs/fluid.md, "Mesh tying of fluid subdomains").
+
+  * Poiseuille flow crossing the tied interface: two unit squares stacked in y, meshed
+    independently (h 0.25 below, 0.2 above), flow u = (0, 4 x (1 - x)) upwards, walls at
+    x = 0 and 1, do-nothing outflow: the exact velocity is quadratic along the interface, in
+    the slave trace space, and the pressure 8 mu (2 - y) is linear, so the discrete solution
+    is exact (L2 errors < 1e-10) on quad9 and tri6, and equal on 3 ranks.
+  * DFG 2D-1 on the channel cut at x = 0.6 into two meshes that do not match there (different
+    numbers of cells on the two sides of the cut): c_D and c_L within 0.1 % of the uncut mesh
+    of the same cell sizes, and the cut mesh's values on 3 ranks equal to 1 rank.
+  * 3D: the plane Poiseuille flow through two cubes tied non-matching, exact on tet10 and
+    hex27; stabilized linear cells tied keep a uniform flow uniform.
+  * Bad input: contact between fluids, standard multipliers, tying with a moving mesh.
+"""
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import geometry  # noqa: E402
+import harness as H  # noqa: E402
+import test_fluid as F  # noqa: E402
+
+TIED_POISEUILLE = """\
+dimension: 2
+mesh: {geo: body.geo, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: 0.1}}
+bodies: [{region: lower, material: oil}, {region: upper, material: oil}]
+boundary_conditions:
+  - {region: bottom, type: velocity, value: [0, "4*x*(1-x)"]}
+  - {region: left, type: velocity, value: [0, 0]}
+  - {region: right, type: velocity, value: [0, 0]}
+interfaces:
+  - {name: cut, type: mesh_tying, slave: upper_bottom, master: lower_top}
+time: {integrator: static, end: 1, steps: 1}
+output:
+  probes: [[0.3, 1.0], [0.7, 1.5]]
+  forces: [{name: walls, regions: [left, right]}]
+  exact_velocity: [0, "4*x*(1-x)"]
+  exact_pressure: "0.8*(2-y)"
+"""
+
+
+def tied_poiseuille(kind, np=1):
+    work = tempfile.mkdtemp(prefix="seam_fluid_tied_")
+    H.write_case(work, "body.geo", geometry.tied_rectangles(0.25, 0.2, order=2, kind=kind))
+    out = H.solve(H.write_case(work, "case.yaml", TIED_POISEUILLE), np=np)
+    err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+    force = H.read_csv(os.path.join(out, "forces.csv"))[-1]
+    H.cleanup(work, out)
+    print("   %s, np %d: velocity L2 %.2e, pressure L2 %.2e, wall force y %.12f"
+          % (kind, np, err["velocity_l2_error"], err["pressure_l2_error"], force["fy"]))
+    if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+        raise AssertionError("Poiseuille flow across the tied interface is not exact: %s" % err)
+    return force
+
+
+def test_poiseuille_across_tied_interface():
+    # The wall shear: 2 walls x length 2 x mu |dU/dx| = 2 * 2 * 0.1 * 4 = 1.6 along +y, less
+    # what the inflow's pressure puts on the walls' corner nodes (as in test_fluid).
+    tied_poiseuille("quad")
+    tied_poiseuille("tri")
+
+
+TIED_POISEUILLE_3D = """\
+dimension: 3
+mesh: {geo: body.geo, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: 0.1}}
+bodies: [{region: lower, material: oil}, {region: upper, material: oil}]
+boundary_conditions:
+  - {region: bottom, type: velocity, value: [0, 0, "4*x*(1-x)"]}
+  - {region: left, type: velocity, value: [0, 0, 0]}
+  - {region: right, type: velocity, value: [0, 0, 0]}
+  - {region: front, type: velocity, components: [y], value: [0]}
+  - {region: back, type: velocity, components: [y], value: [0]}
+interfaces:
+  - {name: cut, type: mesh_tying, slave: upper_bottom, master: lower_top}
+time: {integrator: static, end: 1, steps: 1}
+output:
+  exact_velocity: [0, 0, "4*x*(1-x)"]
+  exact_pressure: "0.8*(2-z)"
+"""
+
+
+def test_poiseuille_across_tied_interface_3d():
+    """Plane Poiseuille flow along z through two cubes stacked in z and meshed independently
+    (no-slip at x = 0 and 1, slip walls at y = 0 and 1): exact on tet10 (whose tri6 slave
+    facets use the modified dual basis) and hex27."""
+    for kind, sizes in (("tet", (0.5, 0.4)), ("hex", (0.5, 0.34))):
+        work = tempfile.mkdtemp(prefix="seam_fluid_tied_")
+        H.write_case(work, "body.geo", geometry.tied_boxes(*sizes, order=2, kind=kind))
+        out = H.solve(H.write_case(work, "case.yaml", TIED_POISEUILLE_3D))
+        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+        H.cleanup(work, out)
+        print("   %s: velocity L2 %.2e, pressure L2 %.2e"
+              % (kind, err["velocity_l2_error"], err["pressure_l2_error"]))
+        if err["velocity_l2_error"] > 1e-10 or err["pressure_l2_error"] > 1e-10:
+            raise AssertionError("3D Poiseuille across the tied interface is not exact: %s" % err)
+
+
+def test_uniform_flow_tied_stabilized():
+    """Stabilized linear cells (tri3, quad4) tied: a uniform flow entering at the bottom with a
+    tangential part, walls moving with it, leaves both meshes uniform (exact solution)."""
+    text = TIED_POISEUILLE.replace("order: 2", "order: 1")
+    for old, new in (('[0, "4*x*(1-x)"]', '[0.3, 1]'), ("[0, 0]", "[0.3, 1]"),
+                     ('"0.8*(2-y)"', '"0"')):
+        text = text.replace(old, new)
+    for kind in ("tri", "quad"):
+        work = tempfile.mkdtemp(prefix="seam_fluid_tied_")
+        H.write_case(work, "body.geo", geometry.tied_rectangles(0.25, 0.2, order=1, kind=kind))
+        out = H.solve(H.write_case(work, "case.yaml", text))
+        err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
+        H.cleanup(work, out)
+        print("   %s: velocity L2 %.2e, pressure L2 %.2e"
+              % (kind, err["velocity_l2_error"], err["pressure_l2_error"]))
+        if err["velocity_l2_error"] > 1e-12 or err["pressure_l2_error"] > 1e-12:
+            raise AssertionError("the uniform flow is not kept across the interface: %s" % err)
+
+
+def test_poiseuille_tied_three_ranks():
+    one, three = tied_poiseuille("tri"), tied_poiseuille("tri", np=3)
+    H.assert_close(three["fy"], one["fy"], rtol=1e-10, what="wall force on 3 ranks")
+
+
+def split_dfg_geo(h, hc, xc=0.6, extra=3, conforming=False):
+    """The DFG channel cut at x = xc into two surfaces meshed independently; the cut has
+    `extra` more cells on its downstream side than upstream (non-matching). `conforming`: the
+    two surfaces share the cut (one mesh, the upstream part's cells the same)."""
+    n = max(2, round(0.41 / h))
+    if conforming:
+        downstream = ["Point(12) = {2.2, 0, 0, h}; Point(13) = {2.2, 0.41, 0, h};",
+                      "Line(11) = {2, 12}; Line(12) = {12, 13}; Line(13) = {13, 3};",
+                      "Curve Loop(3) = {11, 12, 13, -2}; Plane Surface(2) = {3};",
+                      "Transfinite Curve{2} = %d;" % (n + 1)]
+    else:
+        downstream = [
+            "Point(11) = {%g, 0, 0, h}; Point(12) = {2.2, 0, 0, h};" % xc,
+            "Point(13) = {2.2, 0.41, 0, h}; Point(14) = {%g, 0.41, 0, h};" % xc,
+            "Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14};",
+            "Line(14) = {14, 11};",
+            "Curve Loop(3) = {11, 12, 13, 14}; Plane Surface(2) = {3};",
+            "Transfinite Curve{2} = %d; Transfinite Curve{14} = %d;" % (n + 1, n + 1 + extra),
+            'Physical Curve("cut_left") = {2}; Physical Curve("cut_right") = {14};']
+    return "\n".join([
+        "h = %g; hc = %g;" % (h, hc),
+        "Geometry.AutoCoherence = %d;" % (1 if conforming else 0),
+        "Point(1) = {0, 0, 0, h}; Point(2) = {%g, 0, 0, h};" % xc,
+        "Point(3) = {%g, 0.41, 0, h}; Point(4) = {0, 0.41, 0, h};" % xc,
+        "Point(5) = {0.2, 0.2, 0, hc}; Point(6) = {0.25, 0.2, 0, hc};",
+        "Point(7) = {0.2, 0.25, 0, hc}; Point(8) = {0.15, 0.2, 0, hc};",
+        "Point(9) = {0.2, 0.15, 0, hc};",
+        "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};",
+        "Circle(5) = {6, 5, 7}; Circle(6) = {7, 5, 8}; Circle(7) = {8, 5, 9};",
+        "Circle(8) = {9, 5, 6};",
+        "Curve Loop(1) = {1, 2, 3, 4}; Curve Loop(2) = {5, 6, 7, 8};",
+        "Plane Surface(1) = {1, 2};",
+    ] + downstream + [
+        "Field[1] = Distance; Field[1].CurvesList = {5, 6, 7, 8};",
+        "Field[1].NumPointsPerCurve = 200;",
+        "Field[2] = Threshold; Field[2].InField = 1; Field[2].SizeMin = hc;",
+        "Field[2].SizeMax = h; Field[2].DistMin = 0.0; Field[2].DistMax = 0.3;",
+        "Background Field = 2;",
+        "Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0;",
+        "Mesh.MeshSizeFromCurvature = 0;",
+        'Physical Curve("inflow") = {4}; Physical Curve("outflow") = {12};',
+        'Physical Curve("walls") = {1, 3, 11, 13};',
+        'Physical Curve("cylinder") = {5, 6, 7, 8};',
+        'Physical Surface("upstream") = {1}; Physical Surface("downstream") = {2};',
+    ]) + "\n"
+
+
+def dfg_split(h, hc, np=1, conforming=False):
+    work = tempfile.mkdtemp(prefix="seam_dfg_tied_")
+    H.write_case(work, "dfg.geo", split_dfg_geo(h, hc, conforming=conforming))
+    with open(os.path.join(F.EXAMPLE, "dfg_2d1.yaml")) as f:
+        text = f.read()
+    tie = ("" if conforming else "interfaces:\n"
+           "  - {name: cut, type: mesh_tying, slave: cut_right, master: cut_left}\n")
+    text = text.replace("  - {region: fluid, material: air}\n",
+                        "  - {region: upstream, material: air}\n"
+                        "  - {region: downstream, material: air}\n" + tie)
+    out = H.solve(H.write_case(work, "case.yaml", text), np=np)
+    f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
+    probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
+    dofs = H.read_json(os.path.join(out, "summary.json"))["dofs"]
+    H.cleanup(work, out)
+    scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
+    cd, cl = scale * f["fx"], scale * f["fy"]
+    dp = probes[0]["pressure"] - probes[1]["pressure"]
+    print("   %s mesh, h = %g, hc = %g, np = %d, %d dofs: c_D = %.6f, c_L = %.6f, dp = %.6f"
+          % ("one" if conforming else "tied", h, hc, np, dofs, cd, cl, dp))
+    return cd, cl, dp
+
+
+def compare_split(h, hc):
+    single = dfg_split(h, hc, conforming=True)
+    cut = dfg_split(h, hc)
+    print("   cut against uncut: c_D %+.4f %%, c_L %+.4f %%, dp %+.4f %%"
+          % tuple(100 * (cut[k] / single[k] - 1) for k in range(3)))
+    H.assert_close(cut[0], single[0], rtol=1e-3, what="c_D of the cut mesh")
+    H.assert_close(cut[1], single[1], rtol=1e-3, what="c_L of the cut mesh")
+    H.assert_close(cut[2], single[2], rtol=1e-3, what="pressure difference of the cut mesh")
+    return cut
+
+
+def test_dfg_2d1_cut():
+    cut = compare_split(0.04, 0.006)
+    three = dfg_split(0.04, 0.006, np=3)
+    for k, what in enumerate(("c_D", "c_L", "pressure difference")):
+        H.assert_close(three[k], cut[k], rtol=1e-8, what=what + " of the cut mesh on 3 ranks")
+
+
+def test_bad_input():
+    tie = "interfaces: [{name: t, type: %s, slave: top, master: bottom%s}]\n"
+    F.expect_bad("contact between fluids", ["contact", "fluid contact is not available"],
+                 extra=tie % ("contact", ""))
+    F.expect_bad("standard multipliers for fluids", ["dual multipliers, condensed"],
+                 extra=tie % ("mesh_tying", ", multiplier: standard"))
+    F.expect_bad("tying a moving fluid mesh", ["mesh_motion", "not available yet"],
+                 body=", mesh_motion: {model: prescribed, displacement: [0, 0]}",
+                 extra=tie % ("mesh_tying", ""))
+
+
+if __name__ == "__main__":
+    H.main([test_poiseuille_across_tied_interface, test_poiseuille_across_tied_interface_3d,
+            test_uniform_flow_tied_stabilized, test_poiseuille_tied_three_ranks,
+            test_dfg_2d1_cut, test_bad_input])
