@@ -42,7 +42,8 @@ int dispatch(int argc, char** argv) {
   run->add_option("input", run_opts.input, "input file (YAML)")->required();
   run->add_option("-o,--output", run_opts.output_dir, "output directory (default <stem>_out)");
   run->add_flag("-q,--quiet", run_opts.quiet, "no per-step progress on the terminal");
-  run->add_option("--restart", run_opts.restart, "continue from a checkpoint file");
+  run->add_option("--restart", run_opts.restart,
+                  "continue from a checkpoint directory (DIR/checkpoint_NNNNN)");
   std::string check_input;
   auto* check =
       app.add_subcommand("check", "parse and validate INPUT.yaml, load the mesh, solve nothing");

@@ -373,6 +373,12 @@ def test_negative_end():
     expect_input_error(text, ["time.end", "must be > 0, got -1"], at=position(text, "end: -1", "-1"))
 
 
+def test_checkpoint_every_zero():
+    text = mutate("  probes: [[1.0, 0.5]]\n", "  probes: [[1.0, 0.5]]\n  checkpoint_every: 0\n")
+    expect_input_error(text, ["output.checkpoint_every", "must be >= 1"],
+                       at=position(text, "checkpoint_every: 0", "0"))
+
+
 def test_dt_and_steps():
     text = mutate("steps: 2\n", "steps: 2\n  dt: 0.5\n")
     expect_input_error(text, ["time.dt", "either 'steps' or 'dt', not both"],
@@ -696,7 +702,7 @@ if __name__ == "__main__":
         test_expression_syntax, test_expression_unknown_variable,
         test_young_zero, test_young_negative, test_poisson_half, test_poisson_minus_one,
         test_density_negative,
-        test_zero_steps, test_negative_end, test_dt_and_steps, test_unknown_integrator,
+        test_zero_steps, test_negative_end, test_dt_and_steps, test_checkpoint_every_zero, test_unknown_integrator,
         test_bc_region_missing, test_bc_region_wrong_dimension, test_body_region_missing,
         test_unknown_material, test_probe_outside_mesh, test_vector_too_long_for_2d,
         test_probe_with_three_coordinates_in_2d, test_component_listed_twice,

@@ -301,11 +301,17 @@ std::vector<ForceGroup> read_forces(const Node& node) {
 
 OutputConfig read_output(const Node& node, int dimension) {
   const Map map(node, {"every", "probes", "exact_displacement", "forces", "exact_velocity",
-                       "exact_pressure"});
+                       "exact_pressure", "checkpoint_every"});
   OutputConfig output;
   if (const auto every = map.get("every")) {
     output.every = every->integer();
     if (output.every < 1) every->fail(concat("must be >= 1, got ", output.every));
+  }
+  if (const auto checkpoint = map.get("checkpoint_every")) {
+    output.checkpoint_every = checkpoint->integer();
+    if (output.checkpoint_every < 1)
+      checkpoint->fail(
+          concat("must be >= 1 (omit the key for no checkpoints), got ", output.checkpoint_every));
   }
   if (const auto probes = map.get("probes")) {
     for (const Node& probe : probes->sequence())

@@ -212,7 +212,8 @@ struct ForceGroup {
 };
 
 struct OutputConfig {
-  int every = 1; ///< write every n-th step
+  int every = 1;            ///< write every n-th step
+  int checkpoint_every = 0; ///< a checkpoint every n-th converged step; 0: never
   std::vector<Probe> probes;
   /// Optional exact displacement (`dimension` expressions): the L2 and H1 errors of every
   /// written step go to errors.csv (method of manufactured solutions).

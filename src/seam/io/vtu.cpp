@@ -428,6 +428,11 @@ PvdCollection::PvdCollection(std::filesystem::path file) : file_(std::move(file)
   write();
 }
 
+PvdCollection::PvdCollection(std::filesystem::path file, std::vector<Entry> entries)
+    : file_(std::move(file)), entries_(std::move(entries)) {
+  write();
+}
+
 void PvdCollection::add(double time, std::string file) {
   entries_.push_back({time, std::move(file)});
   write();

@@ -89,6 +89,8 @@ public:
 
   /// Starts a fresh collection and writes it (empty) at once, replacing any old file.
   explicit PvdCollection(std::filesystem::path file);
+  /// Continues a collection (a restart) with its entries so far, written at once.
+  PvdCollection(std::filesystem::path file, std::vector<Entry> entries);
 
   void add(double time, std::string file);
   std::span<const Entry> entries() const { return entries_; }

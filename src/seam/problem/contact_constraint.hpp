@@ -65,6 +65,9 @@
 
 namespace seam::problem {
 
+class RecordWriter;
+class RecordReader;
+
 class ContactConstraint {
 public:
   ContactConstraint(const io::Config& config, const Discretization& disc, const Model& model);
@@ -110,6 +113,10 @@ public:
   /// Multipliers of the last converged step (save) are restored after a failed attempt.
   void save();
   void restore();
+  /// The state of the last converged step in a checkpoint, and back (contact_checkpoint.cpp).
+  /// write_checkpoint is collective.
+  void write_checkpoint(RecordWriter& out) const;
+  void read_checkpoint(const RecordReader& in);
 
   int n_active() const;
   /// One line per interface for `seam check`.

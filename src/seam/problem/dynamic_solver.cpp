@@ -3,6 +3,7 @@
 #include "seam/common/error.hpp"
 #include "seam/problem/assembly.hpp"
 #include "seam/problem/newton.hpp"
+#include "seam/problem/solver_checkpoint.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -75,7 +76,8 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
 
 void run_dynamic(const io::Config& config, const Model& model, const Discretization& disc,
                  const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-                 SaddlePoint& saddle, ContactConstraint& contact, Output& out) {
+                 SaddlePoint& saddle, ContactConstraint& contact, Output& out,
+                 const Checkpoints& checkpoints) {
   const auto& tc = config.time;
   const bool emm = tc.integrator == io::Integrator::energy_momentum;
   const AlphaParameters ga(tc.rho_inf);
@@ -98,7 +100,6 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   }
   // Initial acceleration: a0 = 0 is exact for a stress-free, unloaded start (the seed's
   // examples); otherwise the first generalized-alpha steps carry a transient.
-  out.initial(u);
 
   auto record = [&](int step, double t, const NewtonResult& res, double internal,
                     double external_work) {
@@ -119,6 +120,19 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   int step = 0;
   double external_work = 0.0;
   la::Vector force = disc.make_vector(), force_old = disc.make_vector(), du = disc.make_vector();
+  // The state of the integrator: u, v and a (generalized-alpha's acceleration; zero with the
+  // energy-momentum method) and the last step's force of the trapezoidal external work.
+  const std::vector<std::pair<const char*, const la::Vector*>> state_out = {
+      {"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}};
+  if (checkpoints.restarting()) {
+    const auto state =
+        read_checkpoint(checkpoints, control, contact, saddle, tied,
+                        {{"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}});
+    step = state.step;
+    external_work = state.external_work;
+  } else {
+    out.initial(u);
+  }
   while (control.running()) {
     const double t = control.time();
     const double t_new = control.next();
@@ -221,6 +235,8 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     out.step(rec, u, &v, newton.reactions(), newton.multipliers(tied), last);
     newton.accept();
     control.accept(t_new);
+    write_checkpoint(checkpoints, {step, external_work}, control, contact, saddle, tied, out,
+                     state_out);
   }
   out.finish(true, step);
 }

@@ -5,6 +5,7 @@
 // work, linear and angular momentum every step.
 #include "seam/io/config.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
@@ -18,6 +19,7 @@ namespace seam::problem {
 /// after its cuts (everything before is written).
 void run_dynamic(const io::Config& config, const Model& model, const Discretization& disc,
                  const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-                 SaddlePoint& saddle, ContactConstraint& contact, Output& out);
+                 SaddlePoint& saddle, ContactConstraint& contact, Output& out,
+                 const Checkpoints& checkpoints);
 
 } // namespace seam::problem

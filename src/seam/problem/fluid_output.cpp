@@ -1,5 +1,8 @@
 #include "seam/problem/fluid_output.hpp"
 
+#include "seam/common/collective.hpp"
+#include "seam/problem/checkpoint.hpp"
+
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
@@ -9,10 +12,16 @@
 namespace seam::problem {
 
 FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
-                         const FluidModel& model, std::filesystem::path dir, bool quiet)
+                         const FluidModel& model, std::filesystem::path dir, bool quiet,
+                         const Checkpoints* restart)
     : config_(config), layout_(layout), model_(model), dir_(std::move(dir)), quiet_(quiet),
       start_wall_(wall_seconds()) {
-  if (layout.comm().is_root()) {
+  // A restart's tables may refuse to continue (another header): every rank stops.
+  on_root_collectively(layout.comm(), [&] {
+    // A restart continues the tables (rows after its step dropped).
+    const auto mode = [&](const char* file) {
+      return restart ? restart->table_mode(dir_ / file) : io::CsvTable::Mode::truncate;
+    };
     // steps.csv keeps the solid's columns (energies and momenta are those of a structure,
     // none here).
     steps_ = std::make_unique<io::CsvTable>(
@@ -21,20 +30,29 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
                                  "slip_nodes", "kinetic_energy", "internal_energy", "external_work",
                                  "total_energy", "momentum_x", "momentum_y", "momentum_z",
                                  "angular_momentum_x", "angular_momentum_y", "angular_momentum_z",
-                                 "wall_seconds"});
-    newton_ = std::make_unique<io::CsvTable>(
-        dir_ / "newton.csv", std::vector<std::string>{"step", "iteration", "residual", "increment",
-                                                      "active_set_changes"});
+                                 "wall_seconds"},
+        mode("steps.csv"));
+    newton_ =
+        std::make_unique<io::CsvTable>(dir_ / "newton.csv",
+                                       std::vector<std::string>{"step", "iteration", "residual",
+                                                                "increment", "active_set_changes"},
+                                       mode("newton.csv"));
     forces_ = std::make_unique<io::CsvTable>(
-        dir_ / "forces.csv", std::vector<std::string>{"step", "time", "name", "fx", "fy", "fz"});
+        dir_ / "forces.csv", std::vector<std::string>{"step", "time", "name", "fx", "fy", "fz"},
+        mode("forces.csv"));
     if (!config.output.exact_velocity.empty() || !config.output.exact_pressure.empty())
       errors_ = std::make_unique<io::CsvTable>(
           dir_ / "errors.csv",
-          std::vector<std::string>{"step", "time", "velocity_l2_error", "pressure_l2_error"});
-    probes_ = std::make_unique<io::CsvTable>(
-        dir_ / "probes.csv", std::vector<std::string>{"step", "time", "probe", "x", "y", "z", "ux",
-                                                      "uy", "uz", "vx", "vy", "vz", "pressure"});
-    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+          std::vector<std::string>{"step", "time", "velocity_l2_error", "pressure_l2_error"},
+          mode("errors.csv"));
+    probes_ = std::make_unique<io::CsvTable>(dir_ / "probes.csv",
+                                             std::vector<std::string>{"step", "time", "probe", "x",
+                                                                      "y", "z", "ux", "uy", "uz",
+                                                                      "vx", "vy", "vz", "pressure"},
+                                             mode("probes.csv"));
+    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd",
+                                               restart ? restart->pvd_entries(dir_)
+                                                       : std::vector<io::PvdCollection::Entry>{});
     const auto& mesh = layout.mesh();
     for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
       const auto type = mesh.cell_type[c];
@@ -43,7 +61,7 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
       offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
       types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
     }
-  }
+  });
   const auto& mesh = layout.mesh();
   if (!config.output.probes.empty()) {
     const mesh::PointLocator locator(mesh);
@@ -209,6 +227,10 @@ void FluidOutput::finish(bool converged, int n_steps) {
     j["errors"]["pressure_l2"] = last_errors_->pressure_l2;
   }
   io::write_json(dir_ / "summary.json", j);
+}
+
+void FluidOutput::write_checkpoint(RecordWriter& out) const {
+  put_pvd(out, pvd_.get());
 }
 
 } // namespace seam::problem

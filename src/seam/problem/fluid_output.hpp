@@ -36,10 +36,14 @@ struct FluidStepRecord {
   std::optional<FluidErrors> errors;
 };
 
+class Checkpoints;
+class RecordWriter;
+
 class FluidOutput {
 public:
+  /// With `restart` the tables and results.pvd continue from the checkpoint (output.hpp).
   FluidOutput(const io::Config& config, const FluidLayout& layout, const FluidModel& model,
-              std::filesystem::path dir, bool quiet);
+              std::filesystem::path dir, bool quiet, const Checkpoints* restart = nullptr);
   ~FluidOutput();
 
   PhaseTimers& timers() { return timers_; }
@@ -52,6 +56,8 @@ public:
             std::span<const double> mesh_displacement, bool force_fields);
   /// summary.json. Collective.
   void finish(bool converged, int n_steps);
+  /// The output counters in a checkpoint (results.pvd's entries so far).
+  void write_checkpoint(RecordWriter& out) const;
 
 private:
   void write_fields(int step, double time, std::span<const double> all,

@@ -3,6 +3,7 @@
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
 #include "seam/fluid/navier_stokes.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fluid_layout.hpp"
 #include "seam/problem/fluid_mesh_motion.hpp"
 #include "seam/problem/fluid_model.hpp"
@@ -268,6 +269,20 @@ struct NewtonOutcome {
   const char* failure = "";
 };
 
+/// The stored order of fluid vectors: per mesh node its velocity, then its pressure (on the
+/// vertices of Taylor-Hood cells and every node of equal-order ones), as the layout has them.
+CanonicalOrder fluid_order(const FluidLayout& layout) {
+  const int dim = layout.dim();
+  CanonicalOrder order;
+  for (std::int32_t n = 0; n < layout.mesh().n_nodes(); ++n)
+    for (int c = 0; c < dim + (layout.has_pressure(n) ? 1 : 0); ++c) {
+      if (layout.comm().is_root()) order.global.push_back(layout.global_dof(n, c));
+      order.local.push_back(layout.local_dof(n, c));
+    }
+  order.size = order.local.size();
+  return order;
+}
+
 class FluidNewton {
 public:
   /// `tying`: the condensed mesh tying of fluid subdomains, or null.
@@ -281,6 +296,11 @@ public:
                                          : la::SolverKind::iterative) {
     for (const auto& d : model.dirichlet) fixed_.push_back(d.dof);
   }
+
+  /// The residual scale of the run so far (the largest first residual of a step): part of
+  /// the state a checkpoint keeps.
+  double reference() const { return reference_; }
+  void set_reference(double reference) { reference_ = reference; }
 
   /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
   using Evaluator = std::function<bool(const la::Vector& w, la::Vector& r, la::Matrix& K)>;
@@ -412,7 +432,8 @@ struct MovingMesh {
 } // namespace
 
 FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                       const std::filesystem::path& dir, bool quiet, bool check_only) {
+                       const std::filesystem::path& dir, bool quiet, bool check_only,
+                       const FluidRestart& restart) {
   const FluidLayout layout(mesh, comm);
   const auto model = build_fluid_model(config, layout);
   FluidMeshMotion motion(config, layout);
@@ -427,7 +448,10 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     tying.emplace(tied, tied_dofs(layout, model)); // the velocity; the pressure is untied
     if (!tying->active()) tying.reset();
   }
-  FluidOutput out(config, layout, model, dir, quiet);
+  const Checkpoints checkpoints(config, identify(mesh), comm, fluid_order(layout), restart.input,
+                                dir, restart.checkpoint);
+  FluidOutput out(config, layout, model, dir, quiet,
+                  checkpoints.restarting() ? &checkpoints : nullptr);
   if (comm.is_root() && !quiet)
     std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s)%s; "
                 "output in %s\n",
@@ -482,6 +506,28 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   }
   double t = 0.0, dt = tc.dt;
   int step = 0, cuts = 0;
+  if (checkpoints.restarting()) {
+    const auto& r = checkpoints.restart();
+    step = checkpoints.restart_step();
+    t = checkpoints.restart_time();
+    dt = r.real("control.dt");
+    cuts = static_cast<int>(r.integer("control.cuts"));
+    newton.set_reference(r.real("newton.reference"));
+    checkpoints.get_vector("w", w);
+    if (unsteady) {
+      checkpoints.get_vector("u_dot", u_dot);
+      const auto f = r.reals("last_forces", last_forces.size() * 3);
+      for (std::size_t g = 0; g < last_forces.size(); ++g)
+        for (int i = 0; i < 3; ++i) last_forces[g][i] = f[g * 3 + i];
+    }
+    if (motion.moving()) {
+      mm.d = r.reals("mesh.d", mm.d.size());
+      mm.d_dot = r.reals("mesh.d_dot", mm.d_dot.size());
+    }
+    if (comm.is_root() && !quiet)
+      std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
+                  t);
+  }
   while (t < tc.end * (1.0 - 1e-12)) {
     double t_new = std::min(t + dt, tc.end);
     const double k = std::round(t_new / tc.dt);
@@ -575,6 +621,24 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     if (exact) rec.errors = errors(config, model, layout, now, w, t);
     out.step(rec, w, motion.moving() ? std::span<const double>(mm.d) : std::span<const double>(),
              t >= tc.end * (1.0 - 1e-12));
+    if (checkpoints.due(step)) {
+      auto writer = checkpoints.begin(step, t);
+      writer.put_real("control.dt", dt);
+      writer.put_integer("control.cuts", cuts);
+      writer.put_real("newton.reference", newton.reference());
+      checkpoints.put_vector(writer, "w", w);
+      if (unsteady) {
+        checkpoints.put_vector(writer, "u_dot", u_dot);
+        std::vector<double> f;
+        for (const auto& g : last_forces) f.insert(f.end(), g.begin(), g.end());
+        writer.put("last_forces", f);
+      }
+      // The moving mesh (replicated, dim per mesh node): its displacement and rate at t.
+      writer.put("mesh.d", mm.d);
+      writer.put("mesh.d_dot", mm.d_dot);
+      out.write_checkpoint(writer);
+      checkpoints.commit(writer, step);
+    }
   }
   out.finish(true, step);
   return info;

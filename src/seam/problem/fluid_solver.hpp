@@ -8,6 +8,7 @@
 #include "seam/mesh/mesh.hpp"
 
 #include <filesystem>
+#include <string>
 
 namespace seam::problem {
 
@@ -15,10 +16,18 @@ struct FluidRunInfo {
   long long n_dofs = 0;
 };
 
+/// The input file (its hash identifies checkpoints) and the checkpoint to restart from
+/// (empty: start at t = 0).
+struct FluidRestart {
+  std::string input;
+  std::string checkpoint;
+};
+
 /// Checks the input for the fluid field, then runs all steps, writing into `dir` (which
 /// exists). `check_only` stops after the checks. The mesh initialization of tied interfaces
 /// moves slave nodes of `mesh`. Throws InputError or SolverError.
 FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                       const std::filesystem::path& dir, bool quiet, bool check_only = false);
+                       const std::filesystem::path& dir, bool quiet, bool check_only = false,
+                       const FluidRestart& restart = {});
 
 } // namespace seam::problem

@@ -47,6 +47,17 @@ public:
   void fail(const NewtonResult& result, double t_new, int step, Output& out, const Comm& comm);
   /// A converged step ending at t_new.
   void accept(double t_new);
+  /// What a checkpoint keeps: the time reached, the step size and the cuts in effect.
+  struct State {
+    double t, dt;
+    int cuts;
+  };
+  State state() const { return {t_, dt_, cuts_}; }
+  void set_state(const State& s) {
+    t_ = s.t;
+    dt_ = s.dt;
+    cuts_ = s.cuts;
+  }
 
 private:
   const io::TimeConfig& tc_;

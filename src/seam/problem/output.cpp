@@ -1,5 +1,8 @@
 #include "seam/problem/output.hpp"
 
+#include "seam/common/collective.hpp"
+#include "seam/problem/checkpoint.hpp"
+
 #include "seam/common/error.hpp"
 #include "seam/fem/cell.hpp"
 #include "seam/io/json.hpp"
@@ -59,7 +62,7 @@ std::string duration_text(double seconds) {
 
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
                const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
-               bool quiet)
+               bool quiet, const Checkpoints* restart)
     : config_(config), disc_(disc), model_(model), tied_(tied), dir_(std::move(dir)), quiet_(quiet),
       start_wall_(wall_seconds()), progress_wall_(start_wall_) {
   for (const auto& itf : config.interfaces)
@@ -108,39 +111,55 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
       probes_.push_back({p.point, -1, {}});
   }
 
-  if (comm.is_root()) {
+  // A restart's tables may refuse to continue (another header): every rank stops.
+  on_root_collectively(comm, [&] {
     std::error_code ec;
     std::filesystem::create_directories(dir_, ec);
     if (ec)
       SEAM_THROW(InputError, "cannot create the output directory ", dir_.string(), ": ",
                  ec.message());
+    // A restart continues the tables (rows after its step dropped).
+    const auto mode = [&](const char* file) {
+      return restart ? restart->table_mode(dir_ / file) : io::CsvTable::Mode::truncate;
+    };
     steps_ = std::make_unique<io::CsvTable>(
         dir_ / "steps.csv",
         columns({"step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
                  "kinetic_energy", "internal_energy", "external_work", "total_energy", "momentum_x",
                  "momentum_y", "momentum_z", "angular_momentum_x", "angular_momentum_y",
-                 "angular_momentum_z", "wall_seconds"}));
+                 "angular_momentum_z", "wall_seconds"}),
+        mode("steps.csv"));
     newton_ = std::make_unique<io::CsvTable>(
         dir_ / "newton.csv",
-        columns({"step", "iteration", "residual", "increment", "active_set_changes"}));
+        columns({"step", "iteration", "residual", "increment", "active_set_changes"}),
+        mode("newton.csv"));
     reactions_ = std::make_unique<io::CsvTable>(
-        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}));
+        dir_ / "reactions.csv", columns({"step", "time", "region", "fx", "fy", "fz"}),
+        mode("reactions.csv"));
     probes_table_ = std::make_unique<io::CsvTable>(
-        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}));
+        dir_ / "probes.csv", columns({"step", "time", "probe", "x", "y", "z", "ux", "uy", "uz"}),
+        mode("probes.csv"));
     interfaces_ = std::make_unique<io::CsvTable>(
         dir_ / "interfaces.csv",
         columns({"step", "time", "interface", "normal_force", "tangential_force", "active_nodes",
-                 "slip_nodes", "contact_area", "frictional_dissipation"}));
+                 "slip_nodes", "contact_area", "frictional_dissipation"}),
+        mode("interfaces.csv"));
     if (has_contact_)
       parallel_ = std::make_unique<io::CsvTable>(
-          dir_ / "parallel.csv", columns({"step", "time", "interface", "ranks", "min_work",
-                                          "mean_work", "max_work", "imbalance", "redistributed"}));
-    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd");
+          dir_ / "parallel.csv",
+          columns({"step", "time", "interface", "ranks", "min_work", "mean_work", "max_work",
+                   "imbalance", "redistributed"}),
+          mode("parallel.csv"));
+    pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd",
+                                               restart ? restart->pvd_entries(dir_)
+                                                       : std::vector<io::PvdCollection::Entry>{});
     if (!config.output.exact_displacement.empty())
       errors_ = std::make_unique<io::CsvTable>(
-          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}));
-  }
+          dir_ / "errors.csv", columns({"step", "time", "l2_error", "h1_error", "l2_exact"}),
+          mode("errors.csv"));
+  });
   comm.barrier(); // the directory exists before any rank writes a piece
+  if (restart) progress_time_ = restart->restart_time();
 
   for (const auto& t : tied) {
     std::vector<PetscInt> dofs;
@@ -500,6 +519,10 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   }
   if (comm.is_root()) pvd_->add(time, file);
   last_field_step_ = step;
+}
+
+void Output::write_checkpoint(RecordWriter& out) const {
+  put_pvd(out, pvd_.get());
 }
 
 void Output::finish(bool converged, int n_steps) {

@@ -80,10 +80,16 @@ struct LocatedProbe {
   std::array<double, 3> xi{};
 };
 
+class Checkpoints;
+class RecordWriter;
+
 class Output {
 public:
+  /// With `restart` the tables continue: their rows after the checkpoint's step are dropped,
+  /// new rows are appended, and results.pvd continues with the checkpoint's entries.
   Output(const io::Config& config, const Discretization& disc, const Model& model,
-         const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir, bool quiet);
+         const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir, bool quiet,
+         const Checkpoints* restart = nullptr);
   ~Output();
 
   PhaseTimers& timers() { return timers_; }
@@ -105,6 +111,8 @@ public:
   void contact_state(std::vector<ContactReport> reports) { contact_ = std::move(reports); }
   /// The initial state (step 0) as fields only. Collective.
   void initial(const la::Vector& u);
+  /// The output counters in a checkpoint (results.pvd's entries so far).
+  void write_checkpoint(RecordWriter& out) const;
   /// summary.json; `converged` false for a run that gave up. Collective.
   void finish(bool converged, int n_steps);
 

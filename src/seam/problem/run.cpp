@@ -1,5 +1,6 @@
 #include "seam/problem/run.hpp"
 
+#include "seam/common/collective.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
@@ -8,6 +9,7 @@
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/dynamic_solver.hpp"
@@ -31,21 +33,6 @@ const char* version() {
 }
 
 namespace {
-
-/// Rank 0 runs `f`; an InputError there is re-thrown on every rank (no rank is left waiting
-/// in a collective).
-template <class F> void on_root_collectively(const Comm& comm, F&& f) {
-  std::string error;
-  if (comm.is_root()) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      error = e.what();
-    }
-  }
-  comm.broadcast(error);
-  if (!error.empty()) throw InputError(error);
-}
 
 /// Rank 0 reads (or meshes) the mesh; the other ranks get an empty one.
 mesh::Mesh read_on_root(const io::Config& config, const Comm& comm) {
@@ -81,8 +68,12 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
 
 /// This rank's part of the mesh: its cells, one ghost layer and the cells of the interface
 /// sides (mesh/distribute.hpp); rank 0 frees the whole mesh once it is sent.
-mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm) {
+/// `identity` gets the whole mesh's (checkpoint.hpp), taken on rank 0 before it is sent.
+mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm,
+                                            MeshIdentity& identity) {
   auto whole = read_on_root(config, comm);
+  if (comm.is_root()) identity = identify(whole);
+  comm.broadcast_value(identity);
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     sides.push_back(itf.slave.name);
@@ -93,6 +84,8 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
 
 std::filesystem::path output_directory(const RunOptions& options) {
   if (!options.output_dir.empty()) return options.output_dir;
+  // A restart continues the files of the run that wrote the checkpoint.
+  if (!options.restart.empty()) return restart_output_directory(options.restart);
   return std::filesystem::path(std::filesystem::path(options.input).stem().string() + "_out");
 }
 
@@ -113,19 +106,18 @@ void make_output_directory(const std::filesystem::path& dir, const Comm& comm) {
 int run(const RunOptions& options, int argc, char** argv) {
   Comm comm;
   la::Session petsc(argc, argv, options.petsc_args);
-  if (!options.restart.empty())
-    SEAM_THROW(InputError, "--restart ", options.restart,
-               ": restarting from a checkpoint is not available in this version of seam");
   const auto config = io::load_config(options.input);
   if (has_fluid(config)) {
     auto mesh = load_mesh(config, comm);
     if (comm.is_root() && comm.size() > 1)
       std::printf("seam: fluid runs are not distributed yet: every rank holds the whole mesh\n");
     make_output_directory(output_directory(options), comm);
-    run_fluid(config, mesh, comm, output_directory(options), options.quiet);
+    run_fluid(config, mesh, comm, output_directory(options), options.quiet, false,
+              {options.input, options.restart});
     return 0;
   }
-  auto part = load_distributed_mesh(config, comm);
+  MeshIdentity identity;
+  auto part = load_distributed_mesh(config, comm, identity);
   auto& mesh = part.mesh;
   const Discretization disc(part, comm);
   const auto model = build_model(config, disc);
@@ -141,8 +133,11 @@ int run(const RunOptions& options, int argc, char** argv) {
     SEAM_THROW(InputError, options.input,
                ": interfaces: contact and mesh tying in one run are not available in this "
                "version of seam");
+  const Checkpoints checkpoints(config, identity, comm, nodal_order(disc), options.input,
+                                output_directory(options), options.restart);
   make_output_directory(output_directory(options), comm);
-  Output out(config, disc, model, tied, output_directory(options), options.quiet);
+  Output out(config, disc, model, tied, output_directory(options), options.quiet,
+             checkpoints.restarting() ? &checkpoints : nullptr);
   for (const auto& [phase, seconds] : setup_timers.all()) out.timers().add(phase, seconds);
   if (comm.is_root() && !options.quiet)
     std::printf("seam %s: %s\n  %d nodes, %d cells, %lld dofs, %d rank(s); output in %s\n",
@@ -150,10 +145,13 @@ int run(const RunOptions& options, int argc, char** argv) {
                 static_cast<int>(disc.n_global_nodes()), static_cast<int>(disc.n_global_cells()),
                 static_cast<long long>(disc.n_global_dofs()), comm.size(),
                 out.directory().string().c_str());
+  if (checkpoints.restarting() && comm.is_root() && !options.quiet)
+    std::printf("  restarting from %s: step %d, t = %.17g\n", options.restart.c_str(),
+                checkpoints.restart_step(), checkpoints.restart_time());
   if (config.time.is_dynamic())
-    run_dynamic(config, model, disc, tied, tying, saddle, contact, out);
+    run_dynamic(config, model, disc, tied, tying, saddle, contact, out, checkpoints);
   else
-    run_static(config, model, disc, tied, tying, saddle, contact, out);
+    run_static(config, model, disc, tied, tying, saddle, contact, out, checkpoints);
   return 0;
 }
 

@@ -182,4 +182,16 @@ std::vector<double> SaddlePoint::multipliers(std::size_t k) const {
   return out;
 }
 
+void SaddlePoint::set_multipliers(const std::vector<std::vector<double>>& values) {
+  if (!active_) return;
+  const int dim = disc_.dim();
+  {
+    la::Vector::LocalView lv(lambda_, true);
+    auto ll = lv.values();
+    for (PetscInt i = 0; i < n_lm_; ++i)
+      ll[i] = values[lm_dofs_[i].interface][lm_dofs_[i].slave_node * dim + lm_dofs_[i].component];
+  }
+  lambda_saved_.copy_from(lambda_);
+}
+
 } // namespace seam::problem

@@ -41,6 +41,9 @@ public:
   void restore();
   /// lambda of interface k per slave node (dim values each), on every rank (collective).
   std::vector<double> multipliers(std::size_t k) const;
+  /// Sets lambda (and the saved copy) of every interface from values per slave node as
+  /// multipliers() returns them (a restart).
+  void set_multipliers(const std::vector<std::vector<double>>& values);
 
 private:
   struct LmDof {

@@ -4,6 +4,7 @@
 #include "seam/problem/assembly.hpp"
 #include "seam/problem/newton.hpp"
 #include "seam/problem/saddle_point.hpp"
+#include "seam/problem/solver_checkpoint.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -13,12 +14,12 @@ namespace seam::problem {
 
 void run_static(const io::Config& config, const Model& model, const Discretization& disc,
                 const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-                SaddlePoint& saddle, ContactConstraint& contact, Output& out) {
+                SaddlePoint& saddle, ContactConstraint& contact, Output& out,
+                const Checkpoints& checkpoints) {
   const auto& tc = config.time;
   NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
   la::Vector u = disc.make_vector();
   la::Vector u_saved = disc.make_vector();
-  out.initial(u);
 
   const double end = tc.end;
   StepControl control(tc);
@@ -28,6 +29,14 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
   double external_work = 0.0;
   la::Vector force_old = disc.make_vector(), force = disc.make_vector();
   la::Vector du = disc.make_vector();
+  if (checkpoints.restarting()) {
+    const auto state = read_checkpoint(checkpoints, control, contact, saddle, tied,
+                                       {{"u", &u}, {"force_old", &force_old}});
+    step = state.step;
+    external_work = state.external_work;
+  } else {
+    out.initial(u);
+  }
   while (control.running()) {
     const double t_new = control.next();
     u_saved.copy_from(u);
@@ -65,6 +74,8 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     out.step(rec, u, nullptr, reactions, newton.multipliers(tied), last);
     newton.accept();
     control.accept(t_new);
+    write_checkpoint(checkpoints, {step, external_work}, control, contact, saddle, tied, out,
+                     {{"u", &u}, {"force_old", &force_old}});
   }
   out.finish(true, step);
 }

@@ -5,6 +5,7 @@
 // step are exhausted, after every converged step was written.
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
@@ -17,6 +18,7 @@ namespace seam::problem {
 /// Runs all load steps; writes output through `out`. Throws SolverError on failure.
 void run_static(const io::Config& config, const Model& model, const Discretization& disc,
                 const std::vector<meshtying::TiedInterface>& tied, const TyingConstraint& tying,
-                SaddlePoint& saddle, ContactConstraint& contact, Output& out);
+                SaddlePoint& saddle, ContactConstraint& contact, Output& out,
+                const Checkpoints& checkpoints);
 
 } // namespace seam::problem

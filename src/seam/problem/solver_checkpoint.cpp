@@ -1,0 +1,50 @@
+#include "seam/problem/solver_checkpoint.hpp"
+
+#include <string>
+
+namespace seam::problem {
+
+void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
+                      const StepControl& control, const ContactConstraint& contact,
+                      const SaddlePoint& saddle, const std::vector<meshtying::TiedInterface>& tied,
+                      const Output& out,
+                      const std::vector<std::pair<const char*, const la::Vector*>>& vectors) {
+  if (!checkpoints.due(state.step)) return;
+  const auto c = control.state();
+  RecordWriter w = checkpoints.begin(state.step, c.t);
+  w.put_real("control.dt", c.dt);
+  w.put_integer("control.cuts", c.cuts);
+  w.put_real("external_work", state.external_work);
+  for (const auto& [name, v] : vectors) checkpoints.put_vector(w, name, *v);
+  if (contact.active()) contact.write_checkpoint(w);
+  if (saddle.active())
+    for (std::size_t k = 0; k < tied.size(); ++k)
+      w.put("saddle_point." + std::to_string(k), saddle.multipliers(k));
+  out.write_checkpoint(w);
+  checkpoints.commit(w, state.step);
+}
+
+DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control,
+                            ContactConstraint& contact, SaddlePoint& saddle,
+                            const std::vector<meshtying::TiedInterface>& tied,
+                            const std::vector<std::pair<const char*, la::Vector*>>& vectors) {
+  const auto& r = checkpoints.restart();
+  DriverState state;
+  state.step = checkpoints.restart_step();
+  state.external_work = r.real("external_work");
+  control.set_state({checkpoints.restart_time(), r.real("control.dt"),
+                     static_cast<int>(r.integer("control.cuts"))});
+  for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);
+  if (contact.active()) contact.read_checkpoint(r);
+  if (saddle.active()) {
+    std::vector<std::vector<double>> lambda;
+    const auto dim = static_cast<std::size_t>(r.integer("dimension"));
+    for (std::size_t k = 0; k < tied.size(); ++k)
+      lambda.push_back(
+          r.reals("saddle_point." + std::to_string(k), tied[k].slave.mesh_nodes.size() * dim));
+    saddle.set_multipliers(lambda);
+  }
+  return state;
+}
+
+} // namespace seam::problem

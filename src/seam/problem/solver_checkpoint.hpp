@@ -1,0 +1,37 @@
+#pragma once
+// The state the static and dynamic drivers keep from step to step, written to a checkpoint
+// after a converged step and read back at a restart (checkpoint.hpp): step control, the step
+// count, the accumulated external work, named vectors (displacement, velocity, acceleration,
+// the last step's force), the contact state and the saddle-point multipliers, and the output
+// counters.
+#include "seam/problem/checkpoint.hpp"
+#include "seam/problem/contact_constraint.hpp"
+#include "seam/problem/newton.hpp"
+#include "seam/problem/output.hpp"
+#include "seam/problem/saddle_point.hpp"
+
+#include <utility>
+#include <vector>
+
+namespace seam::problem {
+
+/// What the drivers carry from step to step besides vectors.
+struct DriverState {
+  int step = 0;
+  double external_work = 0.0;
+};
+
+/// Writes checkpoint_NNNNN/ after converged step `state.step` if one is due. Collective.
+void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
+                      const StepControl& control, const ContactConstraint& contact,
+                      const SaddlePoint& saddle, const std::vector<meshtying::TiedInterface>& tied,
+                      const Output& out,
+                      const std::vector<std::pair<const char*, const la::Vector*>>& vectors);
+
+/// Restores everything write_checkpoint wrote from the restart checkpoint. Collective.
+DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control,
+                            ContactConstraint& contact, SaddlePoint& saddle,
+                            const std::vector<meshtying::TiedInterface>& tied,
+                            const std::vector<std::pair<const char*, la::Vector*>>& vectors);
+
+} // namespace seam::problem

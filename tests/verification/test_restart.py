@@ -1,0 +1,344 @@
+"""Checkpoints and restart (CONTRACT.md "Checkpoints").
+
+A run writes checkpoint_NNNNN/ every `output.checkpoint_every` converged steps; a copy of its
+output directory, whose rows after the checkpoint are overwritten with garbage (a run that died
+later), is continued with `--restart copy/checkpoint_NNNNN`. The continued tables must equal
+those of the uninterrupted run: bit for bit on one rank, and to 1e-12 relative (of each
+column's scale) on another number of ranks (1 -> 3 and 3 -> 1) or on 3 ranks (the contact
+interface is redistributed at a restart, which changes sums at round-off).
+- static frictional contact of two elastic blocks (the mortar operators of the last converged
+  step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
+- dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
+- free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
+  mesh tying),
+- pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
+  rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE).
+Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
+mesh, another dimension, no such directory) end with exit code 1 and a message.
+"""
+import os
+import shutil
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import geometry as G  # noqa: E402
+import harness as H  # noqa: E402
+import test_friction as F  # noqa: E402
+import test_ale as TA  # noqa: E402
+import test_fluid as TF  # noqa: E402
+
+_dirs = []
+TABLES = ["steps.csv", "reactions.csv", "interfaces.csv", "probes.csv", "forces.csv",
+          "errors.csv"]
+# Columns that are not results: the wall clock, and the residual at convergence, which is
+# round-off when the summation order changes (compared bit for bit on the same ranks).
+SKIP = {"wall_seconds"}
+# Columns of one unit share a scale: a component or an energy that stays near zero (the
+# external work of a free flight, the strain energy of a rigid slide) is compared with the
+# size of its kind, not with its own round-off.
+GROUPS = [("kinetic_energy", "internal_energy", "external_work", "total_energy"),
+          ("momentum_x", "momentum_y", "momentum_z"),
+          ("angular_momentum_x", "angular_momentum_y", "angular_momentum_z"),
+          ("fx", "fy", "fz"), ("ux", "uy", "uz"), ("vx", "vy", "vz"),
+          ("normal_force", "tangential_force")]
+
+
+def column_scale(rows, col):
+    group = next((g for g in GROUPS if col in g), (col,))
+    return max(max(abs(r[c]) for r in rows for c in group if c in r), 1e-300)
+
+# The two blocks of test_friction.py: base 2 x 0.5 (h = 0.15), slider 1 x 0.25 (h = 0.1) on it.
+TWO_BLOCKS_GEO = F.TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.1}
+
+
+def two_blocks_yaml(every, contact="friction: {model: coulomb, coefficient: 0.3}"):
+    """Press the slider onto the base (t in [0, 1]), then drag it along (t in [1, 3])."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100.0, poisson: 0.0}}",
+        "bodies: [{region: base, material: m}, {region: slider, material: m}]",
+        "boundary_conditions:",
+        "  - {region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}",
+        "  - {region: slider_top, type: dirichlet, components: [x, y], "
+        "value: ['0.1*max(t-1,0)', '-0.01*min(t,1)']}",
+        "interfaces:",
+        "  - {name: slide, type: contact, slave: slider_bottom, master: base_top, %s}" % contact,
+        "time: {integrator: static, end: 3.0, steps: 8}",
+        "solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}",
+        "output: {checkpoint_every: %d, probes: [[1.0, 0.125]]}" % every]) + "\n"
+
+
+def sliding_block_yaml(every):
+    """A block under gravity on a rigid plane, pushed along by a growing body force: it sticks,
+    then slides (test_friction.py), with generalized-alpha."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 10000.0, poisson: 0.3, density: 1.0}}",
+        "bodies: [{region: body, material: m}]",
+        "boundary_conditions:",
+        "  - {region: body, type: body_force, value: ['6*t', '-10*min(t/0.2,1)']}",
+        "interfaces:",
+        "  - {name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
+        "coefficient: 0.3}, rigid_plane: {point: [0, 0], normal: [0, 1]}}",
+        "time: {integrator: generalized_alpha, rho_inf: 0.5, end: 1.0, steps: 20}",
+        "solver: {newton: {tolerance: 1.0e-10, max_iterations: 30}}",
+        "output: {every: 5, checkpoint_every: %d, probes: [[0.5, 0.125]]}" % every]) + "\n"
+
+
+def flight_yaml(strategy, every):
+    """Two tied Neo-Hookean bodies in free flight, rotating and stretching (test_dynamics.py)."""
+    v = "['-3*(y-1) + 1 + 0.5*(x-0.5)', '3*(x-0.5) + 0.5']"
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100, poisson: 0.3, density: 1}}",
+        "bodies: [{region: lower, material: m}, {region: upper, material: m}]",
+        "initial_conditions:",
+        "  - {region: lower, velocity: %s}" % v,
+        "  - {region: upper, velocity: %s}" % v,
+        "interfaces:",
+        "  - {name: tie, type: mesh_tying, slave: upper_bottom, master: lower_top, "
+        "strategy: %s}" % strategy,
+        "time: {integrator: energy_momentum, end: 0.3, steps: 30}",
+        "solver: {newton: {tolerance: 1.0e-12}}",
+        "output: {every: 10, checkpoint_every: %d}" % every]) + "\n"
+
+
+def pulsating_flow_yaml(every):
+    """Pulsating plane Poiseuille flow with generalized-alpha (test_fluid.py): the restart
+    needs the velocity, the pressure, their rates and the last step's forces."""
+    return (TF.pulsating_yaml(10).replace("body.geo", "case.geo")
+            + "  checkpoint_every: %d\n  probes: [[1.0, 0.3]]\n" % every)
+
+
+def make_case(geo, yaml):
+    work = tempfile.mkdtemp(prefix="seam_restart_")
+    _dirs.append(work)
+    H.write_case(work, "case.geo", geo)
+    return work, H.write_case(work, "case.yaml", yaml)
+
+
+_full_runs = {}
+
+
+def full_run(yaml, np):
+    """The uninterrupted run of `yaml` on np ranks (once per test session)."""
+    key = (open(yaml).read(), open(os.path.join(os.path.dirname(yaml), "case.geo")).read(), np)
+    if key not in _full_runs:
+        out = tempfile.mkdtemp(prefix="seam_restart_out_")
+        _dirs.append(out)
+        H.run(["run", yaml, "-o", out, "--quiet"], np=np)
+        _full_runs[key] = out
+    return _full_runs[key]
+
+
+def spoil_rows_after(path, step):
+    """Overwrites the numbers of every row after `step` (as if the run had gone on
+    differently and died): a restart must drop them."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    out = [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        if int(cells[0]) > step:
+            cells = [cells[0]] + ["12345" if c.replace(".", "").replace("-", "").replace("e", "")
+                                  .isdigit() else c for c in cells[1:]]
+        out.append(",".join(cells))
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
+def restarted_run(yaml, full_out, step, np):
+    """A copy of the uninterrupted run's output with its later rows spoiled, continued from
+    checkpoint `step` on np ranks."""
+    copy = tempfile.mkdtemp(prefix="seam_restart_copy_")
+    _dirs.append(copy)
+    shutil.rmtree(copy)
+    shutil.copytree(full_out, copy)
+    for name in TABLES + ["newton.csv"]:
+        if os.path.exists(os.path.join(copy, name)):
+            spoil_rows_after(os.path.join(copy, name), step)
+    checkpoint = os.path.join(copy, "checkpoint_%05d" % step)
+    if not os.path.isdir(checkpoint):
+        raise AssertionError("no checkpoint_%05d in %s" % (step, full_out))
+    code, stdout, _ = H.run(["run", yaml, "--restart", checkpoint], np=np)
+    if "restarting from" not in stdout:
+        raise AssertionError("the restart does not say where it continues:\n" + stdout[-2000:])
+    return copy
+
+
+def compare(full, restarted, rtol, what):
+    """Every table row by row; rtol 0: bit for bit. Returns the largest relative difference."""
+    worst = 0.0
+    for name in TABLES + (["newton.csv"] if rtol == 0.0 else []):
+        a_path, b_path = os.path.join(full, name), os.path.join(restarted, name)
+        if not os.path.exists(a_path):
+            continue
+        a, b = H.read_csv(a_path), H.read_csv(b_path)
+        if len(a) != len(b):
+            raise AssertionError("%s %s: %d rows uninterrupted, %d restarted"
+                                 % (what, name, len(a), len(b)))
+        if not a:
+            continue
+        for col in a[0]:
+            if col in SKIP:
+                continue
+            va, vb = [r[col] for r in a], [r[col] for r in b]
+            if not isinstance(va[0], float):
+                if va != vb:
+                    raise AssertionError("%s %s column %s differs" % (what, name, col))
+                continue
+            if col == "residual" and rtol > 0.0:
+                continue
+            scale = column_scale(a, col)
+            for i, (x, y) in enumerate(zip(va, vb)):
+                d = abs(x - y) / scale
+                worst = max(worst, d)
+                if (rtol == 0.0 and x != y) or d > rtol:
+                    raise AssertionError("%s %s row %d column %s: %r uninterrupted, %r restarted "
+                                         "(relative %.3e)" % (what, name, i + 1, col, x, y, d))
+    pvd_a = open(os.path.join(full, "results.pvd")).read().count("<DataSet")
+    pvd_b = open(os.path.join(restarted, "results.pvd")).read().count("<DataSet")
+    if pvd_a != pvd_b:
+        raise AssertionError("%s results.pvd: %d entries uninterrupted, %d restarted"
+                             % (what, pvd_a, pvd_b))
+    return worst
+
+
+def check_case(geo, yaml_of, step, what, cross_np=True):
+    _, yaml = make_case(geo, yaml_of(step))
+    one = full_run(yaml, 1)
+    rows = H.read_csv(os.path.join(one, "steps.csv"))
+    if "contact" in open(yaml).read() and not any(r["active_nodes"] > 0 for r in rows[step:]):
+        raise AssertionError("%s: no active contact node after the checkpoint" % what)
+    same = compare(one, restarted_run(yaml, one, step, 1), 0.0, what + " 1 -> 1")
+    print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
+    if not cross_np:
+        return
+    d13 = compare(one, restarted_run(yaml, one, step, 3), 1e-12, what + " 1 -> 3")
+    print("   %s: largest relative difference 1 -> 3 %.2e" % (what, d13))
+    if cross_np == "1 -> 3":
+        return
+    # On 3 ranks two uninterrupted runs differ at round-off already (the parallel direct
+    # solver's ordering), so 3 -> 3 is compared to 1e-12 as well.
+    three = full_run(yaml, 3)
+    d31 = compare(three, restarted_run(yaml, three, step, 1), 1e-12, what + " 3 -> 1")
+    print("   %s: largest relative difference 3 -> 1 %.2e" % (what, d31))
+    if H.FULL:
+        d33 = compare(three, restarted_run(yaml, three, step, 3), 1e-12, what + " 3 -> 3")
+        print("   %s: largest relative difference 3 -> 3 %.2e" % (what, d33))
+
+
+def test_static_friction_two_bodies():
+    check_case(TWO_BLOCKS_GEO, two_blocks_yaml, 3, "static friction, two bodies")
+
+
+def test_static_standard_multipliers():
+    """Frictionless, standard multipliers: the multipliers are unknowns of the saddle point."""
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: standard"), 3,
+               "static contact, standard multipliers", cross_np="1 -> 3")
+
+
+def test_dynamic_friction_generalized_alpha():
+    # 3 -> 1 is the static case's in CI (the gather of the state from 3 ranks is the same).
+    check_case(G.rectangle("quad_structured", 0.125, lx=1.0, ly=0.25), sliding_block_yaml, 8,
+               "generalized-alpha friction", cross_np=True if H.FULL else "1 -> 3")
+
+
+def test_energy_momentum_tied_condensed():
+    check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("condensed", e), 10,
+               "energy-momentum, condensed tying", cross_np="1 -> 3")
+
+
+def test_energy_momentum_tied_saddle_point():
+    check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("saddle_point", e), 10,
+               "energy-momentum, saddle-point tying", cross_np=False)
+
+
+def test_fluid_generalized_alpha():
+    check_case(G.rectangle("quad_structured", 0.25, 2), pulsating_flow_yaml, 4,
+               "fluid, generalized-alpha", cross_np="1 -> 3")
+
+
+def test_fluid_moving_mesh():
+    """ALE: a wall bulging in and out (test_ale.py); the mesh displacement and its rate are
+    part of the state."""
+    yaml = (TA.BULGE.replace("body.geo", "case.geo").replace("every: 6", "every: 2")
+            + "  checkpoint_every: 3\n")
+    check_case(G.rectangle("tri", 0.2, 2), lambda e: yaml, 3, "fluid, moving mesh",
+               cross_np="1 -> 3")
+
+
+def expect_input_error(args, words, what, np=1):
+    code, stdout, stderr = H.run(args, np=np, check=False, timeout=300)
+    text = stdout + stderr
+    if code != 1 or not all(w in text for w in words) or "PETSC ERROR" in text:
+        raise AssertionError("%s: exit %d (expected 1 with %s):\n%s" % (what, code, words,
+                                                                         text[-2000:]))
+    line = next((ln for ln in text.splitlines() if ln.startswith("seam:")), "")
+    print("   %s: %s" % (what, line[:150]))
+
+
+def test_bad_checkpoints():
+    work, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
+    out = full_run(yaml, 1)  # the static friction case's run
+    good = os.path.join(out, "checkpoint_00003")
+    state = os.path.join(good, "state.bin")
+    with open(state, "rb") as f:
+        data = f.read()
+
+    def variant(name, content):
+        d = os.path.join(out, name)
+        os.makedirs(d)
+        if content is not None:
+            with open(os.path.join(d, "state.bin"), "wb") as f:
+                f.write(content)
+        return d
+
+    expect_input_error(["run", yaml, "--restart", variant("missing", None)],
+                       ["state.bin", "missing"], "missing file")
+    expect_input_error(["run", yaml, "--restart", variant("truncated", data[:len(data) // 2])],
+                       ["truncated"], "truncated file")
+    middle = len(data) // 2
+    flipped = data[:middle] + bytes([data[middle] ^ 0x40]) + data[middle + 1:]
+    expect_input_error(["run", yaml, "--restart", variant("flipped", flipped)],
+                       ["damaged"], "corrupted byte")
+    expect_input_error(["run", yaml, "--restart", os.path.join(out, "checkpoint_99999")],
+                       ["no such checkpoint"], "no such directory")
+    # Another input: the same case with another friction coefficient.
+    other = H.write_case(work, "other.yaml", open(yaml).read().replace("0.3}", "0.4}"))
+    expect_input_error(["run", other, "--restart", good], ["another input"], "another input")
+    # Another mesh: the same input next to a finer .geo.
+    work2, yaml2 = make_case(F.TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.05}, two_blocks_yaml(3))
+    expect_input_error(["run", yaml2, "--restart", good], ["mesh"], "another mesh")
+    # The same numbers of nodes and cells, one corner moved.
+    moved = TWO_BLOCKS_GEO.replace("Point(7) = {1.5, 0.25,", "Point(7) = {1.5, 0.26,")
+    work4, yaml4 = make_case(moved, two_blocks_yaml(3))
+    expect_input_error(["run", yaml4, "--restart", good], ["another mesh"], "moved mesh node")
+    # Another dimension: a 3D input restarted from the 2D checkpoint.
+    work3, yaml3 = make_case(G.box("hex", 0.5), "\n".join([
+        "dimension: 3", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100.0, poisson: 0.3}}",
+        "bodies: [{region: body, material: m}]",
+        "time: {integrator: static, end: 1.0, steps: 2}"]) + "\n")
+    expect_input_error(["run", yaml3, "--restart", good], ["dimension"], "another dimension")
+    expect_input_error(["run", yaml3, "--restart", good, "-o", os.path.join(work3, "o")],
+                       ["dimension 2"], "another dimension, -o")
+    # A table of the output directory that cannot be continued (another header): every rank
+    # stops with the message, none waits for rank 0.
+    other = os.path.join(work, "other_out")
+    os.makedirs(other)
+    with open(os.path.join(other, "steps.csv"), "w") as f:
+        f.write("a,b,c\n1,2,3\n")
+    expect_input_error(["run", yaml, "--restart", good, "-o", other], ["steps.csv", "header"],
+                       "foreign steps.csv on 3 ranks", np=3)
+
+
+if __name__ == "__main__":
+    try:
+        H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
+                test_dynamic_friction_generalized_alpha,
+                test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
+                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_bad_checkpoints])
+    finally:
+        H.cleanup(*_dirs)
