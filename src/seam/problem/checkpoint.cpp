@@ -1,5 +1,7 @@
 #include "seam/problem/checkpoint.hpp"
 
+#include "seam/common/collective.hpp"
+
 #include "seam/common/error.hpp"
 #include "seam/io/vtu.hpp"
 
