@@ -1,11 +1,13 @@
 #pragma once
 // What a fluid run writes (CONTRACT.md, "Fluids"): the VTU fields `velocity` and `pressure`
 // with the PVD collection, steps.csv and newton.csv with the solid's columns, forces.csv,
-// errors.csv against an exact solution, summary.json. Rank 0 writes everything; the fields
-// are gathered there (one piece per step). probes.csv has the solid's columns and the
-// fluid's velocity and pressure last, and ux..uz the mesh displacement (ALE; 0 on a fixed
-// mesh) at the probe's point of the reference mesh, which moves with the mesh. The VTU holds
-// the reference mesh and the point field `mesh_displacement` (warp by it for the current).
+// errors.csv against an exact solution, summary.json. Rank 0 writes the tables; every rank
+// writes the fields of its own cells as one VTU piece (with the .pvtu on more than one rank),
+// from the owned and ghost values it holds, so the state is never gathered. probes.csv has the
+// solid's columns and the fluid's velocity and pressure last, and ux..uz the mesh displacement
+// (ALE; 0 on a fixed mesh) at the probe's point of the reference mesh, which moves with the mesh.
+// The VTU holds the reference mesh and the point field `mesh_displacement` (warp by it for the
+// current).
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
 #include "seam/io/table.hpp"
@@ -54,10 +56,11 @@ public:
   void finish(bool converged, int n_steps);
 
 private:
-  void write_fields(int step, double time, std::span<const double> all,
+  void write_fields(int step, double time, std::span<const double> local,
                     std::span<const double> mesh_displacement);
-  /// The pressure at every node from the global vector (linear on each cell).
-  std::vector<double> nodal_pressure(std::span<const double> all) const;
+  /// The pressure at every point of this rank's piece from the local vector form (linear on
+  /// each cell).
+  std::vector<double> nodal_pressure(std::span<const double> local) const;
 
   const io::Config& config_;
   const FluidLayout& layout_;
@@ -73,11 +76,10 @@ private:
     std::array<double, 3> xi;
   };
   std::vector<Probe> located_;
-  /// The whole state on rank 0 (fields and probes are written there), nothing elsewhere.
-  la::Gather to_root_;
-  bool to_root_made_ = false;
   std::unique_ptr<io::PvdCollection> pvd_;
-  std::vector<std::int32_t> connectivity_, offsets_;
+  // This rank's piece: the nodes of its cells (mesh numbering) and the cells over them.
+  std::vector<std::int32_t> piece_nodes_;
+  std::vector<std::int32_t> connectivity_, offsets_, cell_rank_;
   std::vector<std::uint8_t> types_;
   std::optional<FluidErrors> last_errors_;
   std::vector<std::array<double, 3>> last_forces_;
