@@ -247,10 +247,11 @@ def test_kovasznay_3d_three_ranks():
 CD_REF, CL_REF, DP_REF = 5.57954, 0.010619, 0.11752
 
 
-def dfg(h, hc, np=1, order=2, fields=None):
+def dfg(h, hc, np=1, order=2, fields=None, solver=None, summary=None):
     """c_D, c_L and the pressure difference of DFG 2D-1 on the example's geometry with cell
     sizes h (far) and hc, Taylor-Hood (order 2) or stabilized linear cells (order 1). With a
-    list `fields`, the pieces of the last written step are appended to it."""
+    list `fields`, the pieces of the last written step are appended to it; with a dict
+    `summary`, it is updated with summary.json. `solver`: the `solver` section, if given."""
     work = tempfile.mkdtemp(prefix="seam_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -258,12 +259,16 @@ def dfg(h, hc, np=1, order=2, fields=None):
     geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % hc)
     H.write_case(work, "dfg.geo", geo)
     with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
-        H.write_case(work, "case.yaml", f.read().replace("order: 2", "order: %d" % order))
+        text = f.read().replace("order: 2", "order: %d" % order)
+    H.write_case(work, "case.yaml", text + ("solver: %s\n" % solver if solver else ""))
     out = H.solve(os.path.join(work, "case.yaml"), np=np)
     f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
     probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
     dp = probes[0]["pressure"] - probes[1]["pressure"]
-    dofs = H.read_json(os.path.join(out, "summary.json"))["dofs"]
+    info = H.read_json(os.path.join(out, "summary.json"))
+    dofs = info["dofs"]
+    if summary is not None:
+        summary.update(info)
     if fields is not None:
         last = sorted(f for f in os.listdir(out) if f.endswith(".pvtu" if np > 1 else ".vtu"))
         fields.append(vtu_reader.read_pieces(os.path.join(out, last[-1])))
@@ -352,6 +357,25 @@ def test_dfg_2d1_three_ranks():
           % (len(a), [len(p["cells"]) for p in pieces], worst))
     if worst > 1e-8 * scale:
         raise AssertionError("the fields on 3 ranks differ from 1 rank by %.3e" % worst)
+
+
+def test_dfg_2d1_fieldsplit():
+    """`solver: {linear: iterative}`: GMRES with the Schur-complement fieldsplit
+    preconditioner (velocity | pressure) gives the MUMPS result to the solvers' tolerances,
+    on 1 and 3 ranks, in a bounded number of iterations per linear solve."""
+    direct = dfg(0.08, 0.012)
+    for np in (1, 3):
+        info = {}
+        it = dfg(0.08, 0.012, np=np, solver="{linear: iterative}", summary=info)
+        per_solve = info["linear_iterations"] / info["linear_solves"]
+        print("   np = %d: %d linear solves, %.0f GMRES iterations per solve, linear solve %.2f s"
+              % (np, info["linear_solves"], per_solve, info["timings"]["linear_solve"]))
+        H.assert_close(it[0], direct[0], rtol=1e-8, what="c_D, fieldsplit against MUMPS")
+        H.assert_close(it[1], direct[1], rtol=1e-6, what="c_L, fieldsplit against MUMPS")
+        H.assert_close(it[2], direct[2], rtol=1e-8, what="dp, fieldsplit against MUMPS")
+        if info["linear_solves"] > 8 or per_solve > 400:
+            raise AssertionError("fieldsplit: %d solves, %.0f iterations per solve (expected "
+                                 "<= 8 and <= 400)" % (info["linear_solves"], per_solve))
 
 
 @H.full_only
@@ -446,5 +470,5 @@ if __name__ == "__main__":
             test_generalized_alpha_second_order, test_kovasznay_rates,
             test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded,
             test_kovasznay_3d_three_ranks, test_dfg_2d1, test_dfg_2d1_stabilized,
-            test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input,
+            test_dfg_2d1_three_ranks, test_dfg_2d1_fieldsplit, test_dfg_2d1_finer, test_bad_input,
             test_gives_up_after_step_cuts])

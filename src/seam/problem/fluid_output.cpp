@@ -206,6 +206,9 @@ void FluidOutput::finish(bool converged, int n_steps) {
   j["dofs"] = static_cast<std::int64_t>(layout_.n_global_dofs());
   j["ranks"] = comm.size();
   j["wall_seconds"] = wall;
+  // Newton's linear solves and their iterations (a direct solve counts one).
+  j["linear_solves"] = linear_solves_;
+  j["linear_iterations"] = linear_iterations_;
   auto& t = j["timings"];
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
   j["nodes"] = layout_.mesh().n_nodes();

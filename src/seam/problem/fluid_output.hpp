@@ -47,6 +47,11 @@ public:
   PhaseTimers& timers() { return timers_; }
   const std::filesystem::path& directory() const { return dir_; }
   void newton(int step, int iteration, double residual, double increment);
+  /// The iterations of one linear solve (summed into summary.json's linear_iterations).
+  void linear_iterations(int n) {
+    linear_iterations_ += n;
+    ++linear_solves_;
+  }
   /// A converged step: the tables, and the fields if due (every n-th, and `force_fields`).
   /// `w` is ghosted and up to date; `mesh_displacement` the displacement of every mesh node
   /// (node-major, the same on every rank), or empty for a fixed mesh. Collective.
@@ -82,6 +87,7 @@ private:
   std::vector<std::int32_t> connectivity_, offsets_, cell_rank_;
   std::vector<std::uint8_t> types_;
   std::optional<FluidErrors> last_errors_;
+  long long linear_iterations_ = 0, linear_solves_ = 0;
   std::vector<std::array<double, 3>> last_forces_;
 };
 
