@@ -30,6 +30,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import geometry  # noqa: E402
 import harness as H  # noqa: E402
+import vtu_reader  # noqa: E402
 
 EXAMPLE = os.path.join(H.HERE, "..", "..", "examples", "dfg_cylinder")
 MU = 0.1
@@ -246,9 +247,11 @@ def test_kovasznay_3d_three_ranks():
 CD_REF, CL_REF, DP_REF = 5.57954, 0.010619, 0.11752
 
 
-def dfg(h, hc, np=1, order=2):
+def dfg(h, hc, np=1, order=2, fields=None, solver=None, summary=None):
     """c_D, c_L and the pressure difference of DFG 2D-1 on the example's geometry with cell
-    sizes h (far) and hc, Taylor-Hood (order 2) or stabilized linear cells (order 1)."""
+    sizes h (far) and hc, Taylor-Hood (order 2) or stabilized linear cells (order 1). With a
+    list `fields`, the pieces of the last written step are appended to it; with a dict
+    `summary`, it is updated with summary.json. `solver`: the `solver` section, if given."""
     work = tempfile.mkdtemp(prefix="seam_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -256,12 +259,19 @@ def dfg(h, hc, np=1, order=2):
     geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % hc)
     H.write_case(work, "dfg.geo", geo)
     with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
-        H.write_case(work, "case.yaml", f.read().replace("order: 2", "order: %d" % order))
+        text = f.read().replace("order: 2", "order: %d" % order)
+    H.write_case(work, "case.yaml", text + ("solver: %s\n" % solver if solver else ""))
     out = H.solve(os.path.join(work, "case.yaml"), np=np)
     f = H.read_csv(os.path.join(out, "forces.csv"))[-1]
     probes = H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv")))
     dp = probes[0]["pressure"] - probes[1]["pressure"]
-    dofs = H.read_json(os.path.join(out, "summary.json"))["dofs"]
+    info = H.read_json(os.path.join(out, "summary.json"))
+    dofs = info["dofs"]
+    if summary is not None:
+        summary.update(info)
+    if fields is not None:
+        last = sorted(f for f in os.listdir(out) if f.endswith(".pvtu" if np > 1 else ".vtu"))
+        fields.append(vtu_reader.read_pieces(os.path.join(out, last[-1])))
     H.cleanup(work, out)
     # c = 2 F / (rho U_mean^2 D), U_mean = 2/3 * 0.3, D = 0.1
     scale = 2 / (1.0 * 0.2 ** 2 * 0.1)
@@ -299,12 +309,73 @@ def test_dfg_2d1_stabilized():
     H.assert_close(dp, DP_REF, rtol=5e-3, what="pressure difference")
 
 
+def cell_fields(pieces):
+    """Per cell of all pieces, keyed by its nodes' coordinates: the velocity and pressure of
+    its nodes, and the piece it came from."""
+    out = {}
+    for k, piece in enumerate(pieces):
+        pd = piece["point_data"]
+        for cell in piece["cells"]:
+            key = tuple(sorted(tuple(round(x, 9) for x in piece["points"][i]) for i in cell))
+            if key in out:
+                raise AssertionError("cell %s is written twice" % (key,))
+            out[key] = (k, [(pd["velocity"][i], pd["pressure"][i]) for i in cell])
+    return out
+
+
 def test_dfg_2d1_three_ranks():
-    one = dfg(0.08, 0.012)
-    three = dfg(0.08, 0.012, np=3)
+    """The same results on 3 ranks as on 1, and the fields written as one piece per rank:
+    three pieces, each of the cells of its rank only, whose union is the mesh of the serial
+    run, with the same velocity and pressure at every node of every cell."""
+    fields = []
+    one = dfg(0.08, 0.012, fields=fields)
+    three = dfg(0.08, 0.012, np=3, fields=fields)
     H.assert_close(three[0], one[0], rtol=1e-8, what="c_D on 3 ranks")
     H.assert_close(three[1], one[1], rtol=1e-6, atol=1e-10, what="c_L on 3 ranks")
     H.assert_close(three[2], one[2], rtol=1e-8, what="pressure difference on 3 ranks")
+    serial, pieces = fields
+    if len(serial) != 1 or len(pieces) != 3:
+        raise AssertionError("%d serial and %d parallel pieces, expected 1 and 3"
+                             % (len(serial), len(pieces)))
+    for k, piece in enumerate(pieces):
+        if set(piece["cell_data"]["rank"]) != {k}:
+            raise AssertionError("piece %d holds cells of ranks %s"
+                                 % (k, sorted(set(piece["cell_data"]["rank"]))))
+        if len(piece["points"]) >= len(serial[0]["points"]):
+            raise AssertionError("piece %d has all %d points of the mesh"
+                                 % (k, len(piece["points"])))
+    a, b = cell_fields(serial), cell_fields(pieces)
+    if set(a) != set(b):
+        raise AssertionError("the pieces' cells differ from the mesh: %d cells, %d in the "
+                             "pieces, %d in common" % (len(a), len(b), len(set(a) & set(b))))
+    scale = max(abs(c) for _, nodes in a.values() for v, _ in nodes for c in v)
+    worst = 0.0
+    for key, (_, nodes) in a.items():
+        for (v1, p1), (v3, p3) in zip(nodes, b[key][1]):
+            worst = max([worst, abs(p1 - p3)] + [abs(x - y) for x, y in zip(v1, v3)])
+    print("   %d cells in pieces of %s cells; largest velocity/pressure difference %.2e"
+          % (len(a), [len(p["cells"]) for p in pieces], worst))
+    if worst > 1e-8 * scale:
+        raise AssertionError("the fields on 3 ranks differ from 1 rank by %.3e" % worst)
+
+
+def test_dfg_2d1_fieldsplit():
+    """`solver: {linear: iterative}`: GMRES with the Schur-complement fieldsplit
+    preconditioner (velocity | pressure) gives the MUMPS result to the solvers' tolerances,
+    on 1 and 3 ranks, in a bounded number of iterations per linear solve."""
+    direct = dfg(0.08, 0.012)
+    for np in (1, 3):
+        info = {}
+        it = dfg(0.08, 0.012, np=np, solver="{linear: iterative}", summary=info)
+        per_solve = info["linear_iterations"] / info["linear_solves"]
+        print("   np = %d: %d linear solves, %.0f GMRES iterations per solve, linear solve %.2f s"
+              % (np, info["linear_solves"], per_solve, info["timings"]["linear_solve"]))
+        H.assert_close(it[0], direct[0], rtol=1e-8, what="c_D, fieldsplit against MUMPS")
+        H.assert_close(it[1], direct[1], rtol=1e-6, what="c_L, fieldsplit against MUMPS")
+        H.assert_close(it[2], direct[2], rtol=1e-8, what="dp, fieldsplit against MUMPS")
+        if info["linear_solves"] > 8 or per_solve > 400:
+            raise AssertionError("fieldsplit: %d solves, %.0f iterations per solve (expected "
+                                 "<= 8 and <= 400)" % (info["linear_solves"], per_solve))
 
 
 @H.full_only
@@ -399,5 +470,5 @@ if __name__ == "__main__":
             test_generalized_alpha_second_order, test_kovasznay_rates,
             test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded,
             test_kovasznay_3d_three_ranks, test_dfg_2d1, test_dfg_2d1_stabilized,
-            test_dfg_2d1_three_ranks, test_dfg_2d1_finer, test_bad_input,
+            test_dfg_2d1_three_ranks, test_dfg_2d1_fieldsplit, test_dfg_2d1_finer, test_bad_input,
             test_gives_up_after_step_cuts])

@@ -361,6 +361,52 @@ LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 }
 
+namespace {
+
+// A default for an option of the database that the command line did not set.
+void default_option(const char* name, const char* value) {
+  PetscBool set = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
+  if (!set) check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+}
+
+} // namespace
+
+void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second) {
+  SEAM_CHECK(kind_ == SolverKind::iterative, InternalError,
+             "a fieldsplit preconditioner for the direct solver");
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm), "PetscObjectGetComm");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCFIELDSPLIT), "PCSetType");
+  IS is[2] = {nullptr, nullptr};
+  const std::span<const PetscInt> rows[2] = {first, second};
+  const char* names[2] = {"u", "p"};
+  for (int k = 0; k < 2; ++k) {
+    check(ISCreateGeneral(comm, static_cast<PetscInt>(rows[k].size()), rows[k].data(),
+                          PETSC_COPY_VALUES, &is[k]),
+          "ISCreateGeneral");
+    check(PCFieldSplitSetIS(pc, names[k], is[k]), "PCFieldSplitSetIS");
+    ISDestroy(&is[k]);
+  }
+  check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
+  check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER),
+        "PCFieldSplitSetSchurFactType");
+  check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr),
+        "PCFieldSplitSetSchurPre");
+  // The blocks' solvers are only reachable after the set-up; their defaults go to the
+  // options database, where the command line wins.
+  // Both blocks: block Jacobi with ILU(0) per rank. Measured on DFG 2D-1: with GAMG on the
+  // convective, nonsymmetric velocity block or on the selfp Schur approximation GMRES does
+  // not reach 1e-10 in 2000 iterations; with ILU(0) it does in 90-170.
+  for (const char* name : {"-fieldsplit_u_ksp_type", "-fieldsplit_p_ksp_type"})
+    default_option(name, "preonly");
+  for (const char* name : {"-fieldsplit_u_pc_type", "-fieldsplit_p_pc_type"})
+    default_option(name, "bjacobi");
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+}
+
 LinearSolver::~LinearSolver() {
   if (ksp_) KSPDestroy(&ksp_);
 }

@@ -170,6 +170,13 @@ public:
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
+  /// A saddle-point system [A B^T; C D] (velocity | pressure) for the iterative kind: GMRES
+  /// preconditioned by PCFIELDSPLIT's Schur factorization, lower-triangular, with the
+  /// SIMPLE-type Schur approximation S = D - C diag(A)^-1 B^T assembled (selfp), block
+  /// Jacobi ILU(0) on A and on S (Elman, Silvester & Wathen 2014, ch. 9). `first`/`second`: the
+  /// owned global rows of each field. Options with the prefixes -fieldsplit_u_ and -fieldsplit_p_
+  /// override the blocks' solvers. Collective.
+  void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second);
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).
   bool solve(const Matrix& A, const Vector& b, Vector& x);
   int last_iterations() const { return iterations_; }

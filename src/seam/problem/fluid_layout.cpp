@@ -81,6 +81,19 @@ int FluidLayout::cell_local_dofs(std::int32_t c, std::span<std::int32_t> out) co
   return k;
 }
 
+void FluidLayout::owned_fields(std::vector<PetscInt>& velocity,
+                               std::vector<PetscInt>& pressure) const {
+  velocity.clear();
+  pressure.clear();
+  for (std::int32_t n = 0; n < mesh_->n_nodes(); ++n) {
+    if (!owns_node(n)) continue;
+    for (int i = 0; i < dim_; ++i) velocity.push_back(first_dof_[n] + i);
+    if (has_pressure_[n]) pressure.push_back(first_dof_[n] + dim_);
+  }
+  std::sort(velocity.begin(), velocity.end());
+  std::sort(pressure.begin(), pressure.end());
+}
+
 la::Vector FluidLayout::make_vector() const {
   return la::Vector(comm_.get(), n_owned_dofs_, ghost_dofs_);
 }

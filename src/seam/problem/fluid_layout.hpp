@@ -44,6 +44,10 @@ public:
   /// The same in the local form.
   int cell_local_dofs(std::int32_t c, std::span<std::int32_t> out) const;
 
+  /// The owned global dofs of the velocity and of the pressure, ascending (the index sets of
+  /// a fieldsplit preconditioner).
+  void owned_fields(std::vector<PetscInt>& velocity, std::vector<PetscInt>& pressure) const;
+
   la::Vector make_vector() const;
   /// The Jacobian with exact preallocation and its pattern fixed with explicit zeros.
   la::Matrix make_matrix() const;

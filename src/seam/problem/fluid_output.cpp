@@ -6,6 +6,7 @@
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
+#include "seam/problem/output.hpp"
 
 #include <cstdio>
 
@@ -53,15 +54,25 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
     pvd_ = std::make_unique<io::PvdCollection>(dir_ / "results.pvd",
                                                restart ? restart->pvd_entries(dir_)
                                                        : std::vector<io::PvdCollection::Entry>{});
-    const auto& mesh = layout.mesh();
-    for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
-      const auto type = mesh.cell_type[c];
-      const auto nodes = mesh.cell(c);
-      for (int k : fem::vtk_node_order(type)) connectivity_.push_back(nodes[k]);
-      offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
-      types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
-    }
   });
+  // The piece of this rank: its cells over the nodes they touch (owned or ghost here).
+  const auto& cells_mesh = layout.mesh();
+  std::vector<std::int32_t> point_of(cells_mesh.n_nodes(), -1);
+  for (auto c : layout.local_cells()) {
+    const auto type = cells_mesh.cell_type[c];
+    const auto nodes = cells_mesh.cell(c);
+    for (int k : fem::vtk_node_order(type)) {
+      auto& p = point_of[nodes[k]];
+      if (p < 0) {
+        p = static_cast<std::int32_t>(piece_nodes_.size());
+        piece_nodes_.push_back(nodes[k]);
+      }
+      connectivity_.push_back(p);
+    }
+    offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
+    types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
+    cell_rank_.push_back(layout.comm().rank());
+  }
   const auto& mesh = layout.mesh();
   if (!config.output.probes.empty()) {
     const mesh::PointLocator locator(mesh);
@@ -77,8 +88,9 @@ FluidOutput::~FluidOutput() = default;
 
 namespace {
 
-// Velocity (3 values) and pressure at reference point xi of cell c from the global vector.
-std::array<double, 4> evaluate_at(const FluidLayout& layout, std::span<const double> all,
+// Velocity (3 values) and pressure at reference point xi of cell c (local or touching a
+// local cell's nodes only) from the local vector form.
+std::array<double, 4> evaluate_at(const FluidLayout& layout, std::span<const double> local,
                                   std::int32_t c, const double* xi) {
   const auto& mesh = layout.mesh();
   const int dim = mesh.dim;
@@ -90,9 +102,9 @@ std::array<double, 4> evaluate_at(const FluidLayout& layout, std::span<const dou
   fem::shape_values(fluid::pressure_cell(type), xi, M.data());
   std::array<double, 4> out{};
   for (std::size_t a = 0; a < nodes.size(); ++a)
-    for (int i = 0; i < dim; ++i) out[i] += N[a] * all[layout.global_dof(nodes[a], i)];
+    for (int i = 0; i < dim; ++i) out[i] += N[a] * local[layout.local_dof(nodes[a], i)];
   for (int k = 0; k < fem::n_vertices(type); ++k)
-    out[3] += M[k] * all[layout.global_dof(nodes[k], dim)];
+    out[3] += M[k] * local[layout.local_dof(nodes[k], dim)];
   return out;
 }
 
@@ -107,18 +119,29 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
                        std::span<const double> mesh_displacement, bool force_fields) {
   ScopedTimer timer(timers_, "output");
   const bool due = force_fields || r.step % config_.output.every == 0;
-  std::vector<double> all;
-  if (due || !located_.empty()) {
-    if (!to_root_made_) {
-      std::vector<PetscInt> dofs(
-          layout_.comm().is_root() ? static_cast<std::size_t>(layout_.n_global_dofs()) : 0);
-      for (std::size_t i = 0; i < dofs.size(); ++i) dofs[i] = static_cast<PetscInt>(i);
-      to_root_ = la::Gather(w, dofs); // collective
-      to_root_made_ = true;
+  // Probes: the rank of the probe's cell evaluates (velocity, pressure, mesh displacement),
+  // then the values are summed over the ranks.
+  std::vector<double> probe(located_.size() * 7, 0.0);
+  {
+    la::Vector::LocalView view(w, false);
+    if (due) write_fields(r.step, r.time, view.values(), mesh_displacement);
+    const auto& mesh = layout_.mesh();
+    for (std::size_t k = 0; k < located_.size(); ++k) {
+      const auto& pr = located_[k];
+      if (!layout_.is_local_cell(pr.cell)) continue;
+      const auto v = evaluate_at(layout_, view.values(), pr.cell, pr.xi.data());
+      double* out = &probe[k * 7];
+      for (int i = 0; i < 4; ++i) out[3 + i] = v[i];
+      if (mesh_displacement.empty()) continue;
+      const auto nodes = mesh.cell(pr.cell);
+      std::array<double, fem::max_cell_nodes> N{};
+      fem::shape_values(mesh.cell_type[pr.cell], pr.xi.data(), N.data());
+      for (std::size_t a = 0; a < nodes.size(); ++a)
+        for (int i = 0; i < mesh.dim; ++i)
+          out[i] += N[a] * mesh_displacement[nodes[a] * mesh.dim + i];
     }
-    to_root_(w, all); // collective
   }
-  if (due) write_fields(r.step, r.time, all, mesh_displacement);
+  layout_.comm().sum_in_place(probe);
   last_errors_ = r.errors;
   last_forces_ = r.forces;
   if (!layout_.comm().is_root()) return;
@@ -129,20 +152,10 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
     forces_->add_row(
         {r.step, r.time, model_.forces[k].name, r.forces[k][0], r.forces[k][1], r.forces[k][2]});
   for (std::size_t k = 0; k < located_.size(); ++k) {
-    const auto& pr = located_[k];
-    const auto v = evaluate_at(layout_, all, pr.cell, pr.xi.data());
-    std::array<double, 3> d{};
-    if (!mesh_displacement.empty()) {
-      const auto& mesh = layout_.mesh();
-      const auto nodes = mesh.cell(pr.cell);
-      std::array<double, fem::max_cell_nodes> N{};
-      fem::shape_values(mesh.cell_type[pr.cell], pr.xi.data(), N.data());
-      for (std::size_t a = 0; a < nodes.size(); ++a)
-        for (int i = 0; i < mesh.dim; ++i)
-          d[i] += N[a] * mesh_displacement[nodes[a] * mesh.dim + i];
-    }
-    probes_->add_row({r.step, r.time, static_cast<int>(k), pr.point[0], pr.point[1], pr.point[2],
-                      d[0], d[1], d[2], v[0], v[1], v[2], v[3]});
+    const auto& pt = located_[k].point;
+    const double* v = &probe[k * 7];
+    probes_->add_row({r.step, r.time, static_cast<int>(k), pt[0], pt[1], pt[2], v[0], v[1], v[2],
+                      v[3], v[4], v[5], v[6]});
   }
   if (errors_ && r.errors)
     errors_->add_row({r.step, r.time, r.errors->velocity_l2, r.errors->pressure_l2});
@@ -151,48 +164,51 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
                 r.newton_iterations, r.residual);
 }
 
-std::vector<double> FluidOutput::nodal_pressure(std::span<const double> all) const {
+std::vector<double> FluidOutput::nodal_pressure(std::span<const double> local) const {
   const auto& mesh = layout_.mesh();
-  std::vector<double> pressure(mesh.n_nodes(), 0.0);
+  std::vector<double> pressure(piece_nodes_.size(), 0.0);
   // The pressure is linear on each cell: its value at a node that is not a vertex is that of
   // the linear interpolant of the cell's vertices there.
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+  std::size_t next = 0;
+  for (auto c : layout_.local_cells()) {
     const auto type = mesh.cell_type[c];
-    const auto nodes = mesh.cell(c);
     const auto xi = fem::reference_nodes(type);
-    for (int a = 0; a < fem::n_nodes(type); ++a)
-      pressure[nodes[a]] = evaluate_at(layout_, all, c, &xi[a * mesh.dim])[3];
+    for (int k : fem::vtk_node_order(type))
+      pressure[connectivity_[next++]] = evaluate_at(layout_, local, c, &xi[k * mesh.dim])[3];
   }
   return pressure;
 }
 
-void FluidOutput::write_fields(int step, double time, std::span<const double> all,
+void FluidOutput::write_fields(int step, double time, std::span<const double> local,
                                std::span<const double> mesh_displacement) {
-  if (!layout_.comm().is_root()) return;
   const auto& mesh = layout_.mesh();
   const int dim = mesh.dim;
-  std::vector<double> velocity(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
-  for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
-    for (int i = 0; i < dim; ++i) velocity[n * 3 + i] = all[layout_.global_dof(n, i)];
-  const auto pressure = nodal_pressure(all);
-  std::vector<double> displacement(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
-  if (!mesh_displacement.empty())
-    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
-      for (int i = 0; i < dim; ++i) displacement[n * 3 + i] = mesh_displacement[n * dim + i];
+  const auto n = piece_nodes_.size();
+  std::vector<double> points(n * dim), velocity(n * 3, 0.0), displacement(n * 3, 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const auto node = piece_nodes_[p];
+    for (int i = 0; i < dim; ++i) {
+      points[p * dim + i] = mesh.x[static_cast<std::size_t>(node) * dim + i];
+      velocity[p * 3 + i] = local[layout_.local_dof(node, i)];
+      if (!mesh_displacement.empty())
+        displacement[p * 3 + i] = mesh_displacement[static_cast<std::size_t>(node) * dim + i];
+    }
+  }
+  const auto pressure = nodal_pressure(local);
   io::VtuPiece piece;
   piece.point_dim = dim;
-  piece.points = mesh.x;
+  piece.points = points;
   piece.connectivity = connectivity_;
   piece.offsets = offsets_;
   piece.types = types_;
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(velocity));
   piece.point_data.emplace_back("pressure", 1, std::span<const double>(pressure));
   piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(displacement));
+  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(cell_rank_));
   piece.time = time;
   piece.cycle = step;
-  const auto file = io::step_file_name("results", step, ".vtu");
-  io::write_vtu(dir_ / file, piece);
-  pvd_->add(time, file);
+  const auto file = write_step_fields(dir_, step, piece, layout_.comm());
+  if (layout_.comm().is_root()) pvd_->add(time, file);
 }
 
 void FluidOutput::finish(bool converged, int n_steps) {
@@ -208,6 +224,9 @@ void FluidOutput::finish(bool converged, int n_steps) {
   j["dofs"] = static_cast<std::int64_t>(layout_.n_global_dofs());
   j["ranks"] = comm.size();
   j["wall_seconds"] = wall;
+  // Newton's linear solves and their iterations (a direct solve counts one).
+  j["linear_solves"] = linear_solves_;
+  j["linear_iterations"] = linear_iterations_;
   auto& t = j["timings"];
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
   j["nodes"] = layout_.mesh().n_nodes();

@@ -1,11 +1,13 @@
 #pragma once
 // What a fluid run writes (CONTRACT.md, "Fluids"): the VTU fields `velocity` and `pressure`
 // with the PVD collection, steps.csv and newton.csv with the solid's columns, forces.csv,
-// errors.csv against an exact solution, summary.json. Rank 0 writes everything; the fields
-// are gathered there (one piece per step). probes.csv has the solid's columns and the
-// fluid's velocity and pressure last, and ux..uz the mesh displacement (ALE; 0 on a fixed
-// mesh) at the probe's point of the reference mesh, which moves with the mesh. The VTU holds
-// the reference mesh and the point field `mesh_displacement` (warp by it for the current).
+// errors.csv against an exact solution, summary.json. Rank 0 writes the tables; every rank
+// writes the fields of its own cells as one VTU piece (with the .pvtu on more than one rank),
+// from the owned and ghost values it holds, so the state is never gathered. probes.csv has the
+// solid's columns and the fluid's velocity and pressure last, and ux..uz the mesh displacement
+// (ALE; 0 on a fixed mesh) at the probe's point of the reference mesh, which moves with the mesh.
+// The VTU holds the reference mesh and the point field `mesh_displacement` (warp by it for the
+// current).
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
 #include "seam/io/table.hpp"
@@ -49,6 +51,11 @@ public:
   PhaseTimers& timers() { return timers_; }
   const std::filesystem::path& directory() const { return dir_; }
   void newton(int step, int iteration, double residual, double increment);
+  /// The iterations of one linear solve (summed into summary.json's linear_iterations).
+  void linear_iterations(int n) {
+    linear_iterations_ += n;
+    ++linear_solves_;
+  }
   /// A converged step: the tables, and the fields if due (every n-th, and `force_fields`).
   /// `w` is ghosted and up to date; `mesh_displacement` the displacement of every mesh node
   /// (node-major, the same on every rank), or empty for a fixed mesh. Collective.
@@ -60,10 +67,11 @@ public:
   void write_checkpoint(RecordWriter& out) const;
 
 private:
-  void write_fields(int step, double time, std::span<const double> all,
+  void write_fields(int step, double time, std::span<const double> local,
                     std::span<const double> mesh_displacement);
-  /// The pressure at every node from the global vector (linear on each cell).
-  std::vector<double> nodal_pressure(std::span<const double> all) const;
+  /// The pressure at every point of this rank's piece from the local vector form (linear on
+  /// each cell).
+  std::vector<double> nodal_pressure(std::span<const double> local) const;
 
   const io::Config& config_;
   const FluidLayout& layout_;
@@ -79,13 +87,13 @@ private:
     std::array<double, 3> xi;
   };
   std::vector<Probe> located_;
-  /// The whole state on rank 0 (fields and probes are written there), nothing elsewhere.
-  la::Gather to_root_;
-  bool to_root_made_ = false;
   std::unique_ptr<io::PvdCollection> pvd_;
-  std::vector<std::int32_t> connectivity_, offsets_;
+  // This rank's piece: the nodes of its cells (mesh numbering) and the cells over them.
+  std::vector<std::int32_t> piece_nodes_;
+  std::vector<std::int32_t> connectivity_, offsets_, cell_rank_;
   std::vector<std::uint8_t> types_;
   std::optional<FluidErrors> last_errors_;
+  long long linear_iterations_ = 0, linear_solves_ = 0;
   std::vector<std::array<double, 3>> last_forces_;
 };
 

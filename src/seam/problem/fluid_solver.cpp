@@ -295,6 +295,12 @@ public:
                                          ? la::SolverKind::direct
                                          : la::SolverKind::iterative) {
     for (const auto& d : model.dirichlet) fixed_.push_back(d.dof);
+    if (config.solver.linear == io::LinearSolverKind::iterative) {
+      // Velocity | pressure: a Schur-complement fieldsplit (la::LinearSolver::set_fields).
+      std::vector<PetscInt> velocity, pressure;
+      layout.owned_fields(velocity, pressure);
+      solver_.set_fields(velocity, pressure);
+    }
   }
 
   /// The residual scale of the run so far (the largest first residual of a step): part of
@@ -369,6 +375,7 @@ public:
         ScopedTimer timer(out_.timers(), "linear_solve");
         solved = solver_.solve(*K_sys, *r_sys, *d_sys);
       }
+      out_.linear_iterations(solver_.last_iterations());
       if (solved && tying_) tying_->expand(dwt_, dw_);
       if (!solved) {
         res.failure = "the linear solver failed";

@@ -60,6 +60,24 @@ std::string duration_text(double seconds) {
 
 } // namespace
 
+std::string write_step_fields(const std::filesystem::path& dir, int step, const io::VtuPiece& piece,
+                              Comm comm) {
+  if (comm.size() == 1) {
+    auto file = io::step_file_name("results", step, ".vtu");
+    io::write_vtu(dir / file, piece);
+    return file;
+  }
+  io::write_vtu(dir / io::piece_file_name("results", step, comm.rank()), piece);
+  comm.barrier();
+  auto file = io::step_file_name("results", step, ".pvtu");
+  if (comm.is_root()) {
+    std::vector<std::string> pieces;
+    for (int r = 0; r < comm.size(); ++r) pieces.push_back(io::piece_file_name("results", step, r));
+    io::write_pvtu(dir / file, piece, pieces);
+  }
+  return file;
+}
+
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
                const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
                bool quiet, const Checkpoints* restart)
@@ -502,21 +520,7 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   piece.time = time;
   piece.cycle = step;
 
-  std::string file;
-  if (comm.size() == 1) {
-    file = io::step_file_name("results", step, ".vtu");
-    io::write_vtu(dir_ / file, piece);
-  } else {
-    io::write_vtu(dir_ / io::piece_file_name("results", step, comm.rank()), piece);
-    comm.barrier();
-    file = io::step_file_name("results", step, ".pvtu");
-    if (comm.is_root()) {
-      std::vector<std::string> pieces;
-      for (int r = 0; r < comm.size(); ++r)
-        pieces.push_back(io::piece_file_name("results", step, r));
-      io::write_pvtu(dir_ / file, piece, pieces);
-    }
-  }
+  const auto file = write_step_fields(dir_, step, piece, comm);
   if (comm.is_root()) pvd_->add(time, file);
   last_field_step_ = step;
 }

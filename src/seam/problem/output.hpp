@@ -82,6 +82,11 @@ struct LocatedProbe {
 
 class Checkpoints;
 class RecordWriter;
+/// Writes this rank's piece of the fields of a step: results_NNNNN.vtu on one rank, else
+/// one piece per rank and the .pvtu that lists them (rank 0). Returns the file the PVD
+/// collection refers to. Collective.
+std::string write_step_fields(const std::filesystem::path& dir, int step, const io::VtuPiece& piece,
+                              Comm comm);
 
 class Output {
 public:
