@@ -140,7 +140,8 @@ std::vector<double> RecordReader::reals(const std::string& name,
   if (r.bytes.size() % sizeof(double) != 0 || (expected && out.size() != *expected))
     fail(::seam::detail::concat("record '", name, "' holds ", out.size(), " values, expected ",
                                 expected ? *expected : 0));
-  std::memcpy(out.data(), r.bytes.data(), r.bytes.size());
+  // An empty record has no storage to copy (memcpy with a null pointer is undefined).
+  if (!out.empty()) std::memcpy(out.data(), r.bytes.data(), r.bytes.size());
   return out;
 }
 
@@ -151,7 +152,8 @@ std::vector<std::int64_t> RecordReader::integers(const std::string& name,
   if (r.bytes.size() % sizeof(std::int64_t) != 0 || (expected && out.size() != *expected))
     fail(::seam::detail::concat("record '", name, "' holds ", out.size(), " values, expected ",
                                 expected ? *expected : 0));
-  std::memcpy(out.data(), r.bytes.data(), r.bytes.size());
+  // An empty record has no storage to copy (memcpy with a null pointer is undefined).
+  if (!out.empty()) std::memcpy(out.data(), r.bytes.data(), r.bytes.size());
   return out;
 }
 
