@@ -46,7 +46,8 @@ enum class Strategy { condensed, saddle_point };
 enum class FrictionModel { frictionless, coulomb, tresca };
 /// `static` in the input: a sequence of equilibrium states, t is a load parameter.
 enum class Integrator { quasi_static, generalized_alpha, energy_momentum };
-enum class LinearSolverKind { direct, iterative };
+/// `auto`: direct or iterative by the problem (problem/newton.hpp, linear_solver_kind).
+enum class LinearSolverKind { direct, iterative, automatic };
 /// How the slave elements of an interface are spread over the ranks.
 enum class InterfaceDistribution { independent, bulk };
 /// What the dynamic load balance measures per rank.
@@ -186,7 +187,7 @@ struct NewtonConfig {
 
 struct SolverConfig {
   NewtonConfig newton;
-  LinearSolverKind linear = LinearSolverKind::direct;
+  LinearSolverKind linear = LinearSolverKind::automatic;
 };
 
 /// `parallel:` (CONTRACT.md, "Parallel runs").
