@@ -1,6 +1,7 @@
 #include "seam/contact/contact_interface.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/contact/self_contact.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/mortar/normals.hpp"
 
@@ -12,22 +13,6 @@
 namespace seam::contact {
 
 namespace {
-
-/// A normal of facet f (any length), for the facing test of candidate pairs.
-std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_index f) {
-  const int dim = side.dim;
-  const auto* nodes = &side.nodes[static_cast<std::size_t>(side.offsets[f])];
-  const auto x = [&](int i, int c) {
-    return side.coordinates[static_cast<std::size_t>(nodes[i]) * dim + c];
-  };
-  if (dim == 2) return {x(1, 1) - x(0, 1), -(x(1, 0) - x(0, 0)), 0.0};
-  const int n = fem::n_vertices(side.types[static_cast<std::size_t>(f)]);
-  // Diagonals of a quadrilateral, two edges of a triangle.
-  const int a0 = 0, a1 = n == 4 ? 2 : 1, b0 = n == 4 ? 1 : 0, b1 = n == 4 ? 3 : 2;
-  const double u[3] = {x(a1, 0) - x(a0, 0), x(a1, 1) - x(a0, 1), x(a1, 2) - x(a0, 2)};
-  const double v[3] = {x(b1, 0) - x(b0, 0), x(b1, 1) - x(b0, 1), x(b1, 2) - x(b0, 2)};
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
 
 double mean_edge_length(const meshtying::InterfaceSide& side) {
   const int dim = side.dim;
@@ -56,10 +41,12 @@ double mean_edge_length(const meshtying::InterfaceSide& side) {
 
 ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
     : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value()),
-      frictional_(config.friction.model != io::FrictionModel::frictionless) {
+      frictional_(config.friction.model != io::FrictionModel::frictionless),
+      self_(!config.surface.empty()) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
   const int dim = mesh.dim;
-  slave_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
+  slave_ = self_ ? extract_surface(mesh, config.surface)
+                 : meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
   if (slave_.n_facets() == 0)
     io::fail_at(config.slave.mark, "the slave region '" + config.slave.name + "' has no facets");
   mesh_size_ = mean_edge_length(slave_);
@@ -117,6 +104,10 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     // The plane only translates: its normal, towards the body, is the contact normal of
     // every slave node (the slave normal points out of the body, at the plane).
     plane_normal_ = n;
+  } else if (self_) {
+    // Both sides are the whole surface; the pairs say which facet is slave (self_contact.hpp).
+    master_ = slave_;
+    master_mesh_nodes_ = master_.mesh_nodes;
   } else {
     master_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, *config.master));
     std::vector<std::int32_t> shared;
@@ -139,9 +130,16 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   // Candidates up to about one slave element away, so that approaching parts are integrated
   // (and get their weighted gaps) before they touch.
   search_options_.inflation_factor = 0.75;
-  search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(),
-                                                      search_options_);
-  search_options_.inflation = search_->inflation();
+  if (self_) {
+    search_options_.inflation =
+        search_options_.inflation_factor * search::min_edge_length(slave_.surface());
+    self_tree_ =
+        std::make_unique<search::Tree>(self_contact_tree(slave_, search_options_.inflation));
+  } else {
+    search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(),
+                                                        search_options_);
+    search_options_.inflation = search_->inflation();
+  }
   normals_.assign(slave_.coordinates.size(), 0.0);
   pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
   owned_.resize(static_cast<std::size_t>(slave_.n_facets()));
@@ -164,7 +162,7 @@ void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
     owned_offsets_.push_back(static_cast<local_index>(owned_nodes_.size()));
   }
   search_.reset();
-  if (!owned_.empty())
+  if (!owned_.empty() && !self_)
     search_ = std::make_unique<search::InterfaceSearch>(
         search::FacetSurface{dim(), slave_.coordinates, owned_offsets_, owned_nodes_},
         master_.surface(), search_options_);
@@ -227,7 +225,14 @@ void ContactInterface::update(std::span<const double> u, double t) {
     master_.update_coordinates(*mesh_, u);
   }
   pairs_.clear();
-  if (search_) {
+  if (self_) {
+    // The whole surface is searched on every part, so that all parts assign the same roles;
+    // each keeps the pairs of its own slave facets.
+    std::vector<mortar::CandidatePair> all;
+    self_contact_pairs(*self_tree_, slave_, all);
+    for (const auto& p : all)
+      if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
+  } else if (search_) {
     search_->update(slave_.coordinates, master_.coordinates);
     // Only facets that face each other can come into contact.
     std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));

@@ -101,6 +101,9 @@ public:
   /// Mesh nodes of the master side (empty for a rigid plane).
   std::span<const std::int32_t> master_nodes() const;
   bool rigid() const { return rigid_; }
+  /// Self and multi-body contact (`surface:`, self_contact.hpp): the slave and the master side
+  /// are both the whole surface and every search assigns the roles of its facets.
+  bool self_contact() const { return self_; }
   /// Contact with friction: multipliers are Cartesian vectors (dim per slave node) in
   /// add_force and linearize instead of normal multipliers.
   bool frictional() const { return frictional_; }
@@ -190,6 +193,7 @@ private:
   std::string name_;
   bool rigid_ = false;
   bool frictional_ = false;
+  bool self_ = false;
   meshtying::InterfaceSide slave_, master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid plane: reference corners and the motion.
@@ -200,6 +204,7 @@ private:
   mortar::MortarOptions options_;
   mortar::NodeFacets slave_adjacency_;
   std::unique_ptr<search::InterfaceSearch> search_;
+  std::unique_ptr<search::Tree> self_tree_; ///< self contact: one tree over the surface
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<local_index> owned_;           ///< slave facets this part evaluates
