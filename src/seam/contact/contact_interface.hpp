@@ -204,7 +204,7 @@ private:
   mortar::MortarOptions options_;
   mortar::NodeFacets slave_adjacency_;
   std::unique_ptr<search::InterfaceSearch> search_;
-  std::unique_ptr<search::Tree> self_tree_; ///< self contact: one tree over the surface
+  std::unique_ptr<search::Tree> self_tree_;  ///< self contact: one tree over the surface
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<local_index> owned_;           ///< slave facets this part evaluates

@@ -161,10 +161,13 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
   if (const auto surface = map.get("surface")) {
     map.forbid("surface", !contact, "applies only to type 'contact'");
     for (const char* key : {"slave", "master", "rigid_plane"})
-      map.forbid(key, true, "a 'surface' interface assigns its slave and master sides itself");
+      map.forbid(key, true,
+                 "cannot be combined with 'surface' (whose slave and master facets are assigned "
+                 "at every search)");
     interface.surface = read_surface(*surface);
     interface.slave = interface.surface.front();
   } else {
+    if (contact && !map.has("slave")) node.fail("missing required key 'slave' (or 'surface')");
     interface.slave = region_of(map.required("slave"));
   }
   map.forbid("rigid_plane", !contact, "applies only to type 'contact'");
