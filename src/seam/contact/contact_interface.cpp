@@ -232,6 +232,7 @@ void ContactInterface::update(std::span<const double> u, double t) {
     self_contact_pairs(*self_tree_, slave_, all);
     for (const auto& p : all)
       if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
+    build_slave_patch(slave_, all, patch_);
   } else if (search_) {
     search_->update(slave_.coordinates, master_.coordinates);
     // Only facets that face each other can come into contact.
@@ -262,7 +263,8 @@ void ContactInterface::update(std::span<const double> u, double t) {
     for (std::size_t i = 0; i < normals_.size(); ++i)
       normals_[i] = -plane_normal_[i % static_cast<std::size_t>(dim)];
   } else {
-    normals_ = mortar::averaged_nodal_normals(slave_.facet_set());
+    normals_.assign(slave_.coordinates.size(), 0.0);
+    if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
   }
 }
 
@@ -284,10 +286,11 @@ void ContactInterface::evaluate(NodalValues& out) const {
   for (const auto f : owned_)
     for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
          i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i)
-      mine.push_back(pairs_[static_cast<std::size_t>(i)]);
+      mine.push_back({slave_index(pairs_[static_cast<std::size_t>(i)].slave),
+                      pairs_[static_cast<std::size_t>(i)].master});
   if (mine.empty()) return;
   const auto ops =
-      mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), mine, options_);
+      mortar::assemble_mortar_operators(slave_set(), master_.facet_set(), mine, options_);
   for (const auto& e : ops.D) {
     if (e.row == e.col)
       out.D[static_cast<std::size_t>(e.row)] += e.value;
@@ -299,7 +302,10 @@ void ContactInterface::evaluate(NodalValues& out) const {
     for (const auto& e : ops.M)
       out.M.push_back({e.row, master_mesh_nodes_[static_cast<std::size_t>(e.col)], e.value});
   out.area = ops.integrated_area;
-  out.facet_cells = ops.slave_facet_cells;
+  for (local_index f = 0; f < slave_.n_facets(); ++f)
+    if (const auto k = slave_index(f); k >= 0)
+      out.facet_cells[static_cast<std::size_t>(f)] =
+          ops.slave_facet_cells[static_cast<std::size_t>(k)];
   out.n_pairs = ops.n_pairs_integrated;
   out.n_cells = ops.n_integration_cells;
 }
@@ -334,7 +340,7 @@ void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& o
   if (rigid_) return;
   const int dim = this->dim();
   mortar::NodalNormalLinearization lin;
-  mortar::linearize_nodal_normal(slave_.facet_set(), j, slave_adjacency_.of(j), lin);
+  mortar::linearize_nodal_normal(slave_set(), j, slave_adjacency().of(j), lin);
   const auto n = lin.nodes.size();
   for (int a = 0; a < dim; ++a)
     for (std::size_t i = 0; i < n; ++i)
@@ -484,8 +490,8 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
     masters.clear();
     for (auto i = begin; i < end; ++i)
       masters.push_back(pairs_[static_cast<std::size_t>(i)].master);
-    mortar::linearize_slave_facet(slave_.facet_set(), master_.facet_set(), slave_adjacency_, f,
-                                  masters, options_, lin);
+    mortar::linearize_slave_facet(slave_set(), master_.facet_set(), slave_adjacency(),
+                                  slave_index(f), masters, options_, lin);
     if (lin.n_pairs_integrated == 0) continue;
     const int nv = lin.n_variables();
     column.assign(static_cast<std::size_t>(nv), -1);

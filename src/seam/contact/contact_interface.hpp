@@ -18,6 +18,7 @@
 // Its normal is the contact normal, and each candidate slave facet is integrated as a whole
 // (rigid_plane_facet.hpp) instead of being clipped against the master facet.
 #include "seam/contact/rigid_plane_facet.hpp"
+#include "seam/contact/self_contact.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
@@ -188,6 +189,18 @@ private:
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out) const;
+  /// The slave facets the mortar integration and the nodal normals use: the whole slave side,
+  /// or on a self-contact interface the current slave patch; facet f of the side is facet
+  /// slave_index(f) of that set.
+  mortar::FacetSet slave_set() const {
+    return self_ ? patch_.facet_set(slave_) : slave_.facet_set();
+  }
+  const mortar::NodeFacets& slave_adjacency() const {
+    return self_ ? patch_.adjacency : slave_adjacency_;
+  }
+  local_index slave_index(local_index f) const {
+    return self_ ? patch_.index[static_cast<std::size_t>(f)] : f;
+  }
 
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
@@ -205,6 +218,7 @@ private:
   mortar::NodeFacets slave_adjacency_;
   std::unique_ptr<search::InterfaceSearch> search_;
   std::unique_ptr<search::Tree> self_tree_;  ///< self contact: one tree over the surface
+  SlavePatch patch_;                         ///< self contact: the current slave facets
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<local_index> owned_;           ///< slave facets this part evaluates

@@ -105,4 +105,23 @@ void self_contact_pairs(search::Tree& tree, const meshtying::InterfaceSide& side
   });
 }
 
+void build_slave_patch(const meshtying::InterfaceSide& side,
+                       std::span<const mortar::CandidatePair> pairs, SlavePatch& out) {
+  out.index.assign(static_cast<std::size_t>(side.n_facets()), -1);
+  for (const auto& p : pairs) out.index[static_cast<std::size_t>(p.slave)] = 0;
+  out.types.clear();
+  out.offsets.assign(1, 0);
+  out.nodes.clear();
+  for (local_index f = 0; f < side.n_facets(); ++f) {
+    auto& k = out.index[static_cast<std::size_t>(f)];
+    if (k < 0) continue;
+    k = static_cast<local_index>(out.types.size());
+    out.types.push_back(side.types[static_cast<std::size_t>(f)]);
+    const auto nodes = side.facet_set().facet_nodes(f);
+    out.nodes.insert(out.nodes.end(), nodes.begin(), nodes.end());
+    out.offsets.push_back(static_cast<local_index>(out.nodes.size()));
+  }
+  out.adjacency = mortar::node_facets(out.facet_set(side));
+}
+
 } // namespace seam::contact

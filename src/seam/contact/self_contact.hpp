@@ -11,6 +11,7 @@
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
 #include "seam/mortar/interface.hpp"
+#include "seam/mortar/linearization.hpp"
 #include "seam/search/tree.hpp"
 
 #include <array>
@@ -41,5 +42,26 @@ search::Tree self_contact_tree(const meshtying::InterfaceSide& side, double infl
 /// roles assigned.
 void self_contact_pairs(search::Tree& tree, const meshtying::InterfaceSide& side,
                         std::vector<mortar::CandidatePair>& out);
+
+/// The slave facets of the current pairs as a facet set over the surface's nodes. The mortar
+/// integration and the averaged nodal normals use these facets only, so that the normal of a
+/// node is that of the faces that touch (a body's corner that touches with one face keeps that
+/// face's normal, as on a slave/master interface whose slave side is that face), and facets
+/// that are only master never enter a slave normal.
+struct SlavePatch {
+  std::vector<fem::CellType> types;
+  std::vector<local_index> offsets{0};
+  std::vector<local_index> nodes;
+  std::vector<local_index> index; ///< per surface facet: its number here, -1 if not slave
+  mortar::NodeFacets adjacency;   ///< node -> facets of the patch
+
+  mortar::FacetSet facet_set(const meshtying::InterfaceSide& side) const {
+    return {side.dim, side.coordinates, types, offsets, nodes};
+  }
+};
+
+/// The patch of the slave facets of `pairs` (surface facet numbers).
+void build_slave_patch(const meshtying::InterfaceSide& side,
+                       std::span<const mortar::CandidatePair> pairs, SlavePatch& out);
 
 } // namespace seam::contact
