@@ -10,7 +10,8 @@ every search.
   itself (one `surface:` interface over the inner circle): the deformed shape keeps the two
   mirror symmetries of the problem, no inner node penetrates the opposite side by more than
   1e-6 of the radius, the inner contact force is positive, the two plane forces balance to
-  1e-8; np = 3 equals np = 1.
+  1e-8; np = 3 equals np = 1. The same ring extruded into hexahedra in plane strain (3D self
+  contact of quad4 faces) gives the 2D forces per unit thickness within 1e-4.
 - Bar impact: two equal elastic bars (E = rho = 1, nu = 0, 40 x 2 quads each) end on, bar a at
   v onto bar b at rest, as one `surface:` interface over both bars' whole boundaries and as a
   two-body interface between the ends, with generalized-alpha and the energy-momentum scheme:
@@ -253,6 +254,64 @@ def test_ring_closes_onto_itself():
         H.assert_close(a, b, rtol=1e-8, what="%s np 3 vs np 1" % what)
 
 
+def ring_3d_yaml():
+    """The ring extruded by 0.2 (one layer of hexahedra) with w = 0 on both faces: plane strain,
+    so the 3D solution per unit thickness is the 2D one up to the 3D mortar's projection onto
+    auxiliary planes."""
+    y = RING_YAML.replace("dimension: 2", "dimension: 3")
+    y = y.replace("""  - {region: south, type: dirichlet, components: [x], value: [0]}""",
+                  """  - {region: south, type: dirichlet, components: [x], value: [0]}
+  - {region: front, type: dirichlet, components: [z], value: [0]}
+  - {region: back, type: dirichlet, components: [z], value: [0]}""")
+    for a, b in (('point: [0, 1], normal: [0, -1], motion: ["0", "-0.65*t"]',
+                  'point: [0, 1, 0], normal: [0, -1, 0], motion: ["0", "-0.65*t", "0"]'),
+                 ('point: [0, -1], normal: [0, 1], motion: ["0", "0.65*t"]',
+                  'point: [0, -1, 0], normal: [0, 1, 0], motion: ["0", "0.65*t", "0"]')):
+        y = y.replace(a, b)
+    return y
+
+
+def ring_3d_geo(nc, nr):
+    geo = RING_GEO.replace("NC", str(nc)).replace("NR", str(nr))
+    return geo[:geo.find('Physical Surface("ring")')] + """\
+out[] = Extrude {0, 0, 0.2} { Surface{1:4}; Layers{1}; Recombine; };
+Physical Volume("ring") = {out[1], out[7], out[13], out[19]};
+Physical Surface("outer_top") = {out[3], out[9]};
+Physical Surface("outer_bottom") = {out[15], out[21]};
+Physical Surface("inner") = {out[5], out[11], out[17], out[23]};
+Physical Surface("front") = {1:4};
+Physical Surface("back") = {out[0], out[6], out[12], out[18]};
+Physical Point("north") = {3};
+Physical Point("south") = {5};
+"""
+
+
+def test_ring_3d_equals_2d():
+    """3D self contact (quad4 faces): the extruded ring in plane strain against the 2D ring on
+    the same section mesh (16 x 4 cells): forces per unit thickness within 1e-4, the hole
+    closed over twice as many nodes."""
+    nc, nr, steps = 16, 4, 30
+    work, out = T.run_case(RING_GEO.replace("NC", str(nc)).replace("NR", str(nr)),
+                           RING_YAML.replace("STEPS", str(steps)))
+    ref = {r["interface"]: r for r in H.last_step_rows(H.read_csv(os.path.join(out,
+                                                                                "interfaces.csv")))}
+    work3, out3 = T.run_case(ring_3d_geo(nc, nr), ring_3d_yaml().replace("STEPS", str(steps)))
+    got = {r["interface"]: r for r in H.last_step_rows(H.read_csv(os.path.join(out3,
+                                                                                "interfaces.csv")))}
+    for name in ("top", "bottom", "inner"):
+        f2, f3 = ref[name]["normal_force"], got[name]["normal_force"] / 0.2
+        print("   %s: 2D %.10g, 3D per thickness %.10g (rel. diff %.1e); active nodes %d, %d"
+              % (name, f2, f3, abs(f3 - f2) / f2, ref[name]["active_nodes"],
+                 got[name]["active_nodes"]))
+        H.assert_close(f3, f2, rtol=1e-4, what="%s force per thickness 3D vs 2D" % name)
+        if got[name]["active_nodes"] != 2 * ref[name]["active_nodes"]:
+            raise AssertionError("%s: %d active nodes in 3D, %d in 2D" % (
+                name, got[name]["active_nodes"], ref[name]["active_nodes"]))
+    H.assert_close(got["top"]["normal_force"], got["bottom"]["normal_force"], rtol=1e-8,
+                   what="3D force balance")
+    H.cleanup(work, out, work3, out3)
+
+
 # ---------------------------------------------------------------------------------------------
 # Bar impact: two equal elastic bars (nu = 0) end on
 
@@ -371,4 +430,5 @@ def test_bar_impact():
 
 if __name__ == "__main__":
     H.main([test_two_blocks_surface_2d, test_two_blocks_surface_standard_and_friction,
-            test_two_blocks_surface_3d, test_ring_closes_onto_itself, test_bar_impact])
+            test_two_blocks_surface_3d, test_ring_closes_onto_itself, test_ring_3d_equals_2d,
+            test_bar_impact])
