@@ -23,9 +23,12 @@ every search.
   bars leave with the velocities exchanged (within 3 % of v), momentum is constant to 1e-10,
   the energy-momentum scheme never gains energy, generalized-alpha gains at most 1.1e-4 in a
   step; the two interfaces give the same contact force history to 1e-8; np = 3 equals np = 1.
+- Bad `surface:` input (combined with slave/master/rigid_plane, on mesh tying, empty, a group
+  twice, missing or of the wrong dimension): exit 1 with a located message.
 """
 import os
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import contact_analysis as C  # noqa: E402
@@ -445,7 +448,42 @@ def test_bar_impact():
         raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
 
 
+def test_surface_bad_input():
+    """A `surface:` interface with slave, master or rigid_plane, on mesh tying, empty, with a
+    group twice, a missing group or a group of the wrong dimension: exit 1 with a located
+    message."""
+    base = RING_YAML.replace("STEPS", "1")
+    work = tempfile.mkdtemp(prefix="seam_self_bad_")
+    H.write_case(work, "case.geo", RING_GEO.replace("NC", "8").replace("NR", "2"))
+    cases = [
+        ("surface: [inner], slave: inner", "interfaces[2].slave: 'slave' cannot be combined"),
+        ("surface: [inner], master: inner", "interfaces[2].master: 'master' cannot be combined"),
+        ("surface: [inner], rigid_plane: {point: [0, 0], normal: [0, 1]}",
+         "interfaces[2].rigid_plane: 'rigid_plane' cannot be combined"),
+        ("surface: []", "interfaces[2].surface: expected a list of one or more boundary groups"),
+        ("surface: [inner, inner]", "interfaces[2].surface[1]: group 'inner' is listed twice"),
+        ("surface: [nothere]", "interfaces[2].surface[0]: no region 'nothere'"),
+        ("surface: [ring]", "interfaces[2].surface[0]: region 'ring' has dimension 2"),
+    ]
+    for keys, expected in cases + [("surface: [inner]", "")]:
+        text = base.replace("{name: inner, type: contact, surface: [inner]}",
+                            "{name: inner, type: contact, %s}" % keys)
+        path = H.write_case(work, "case.yaml", text)
+        code, out, err = H.run(["check", path], check=False)
+        if expected and (code != 1 or expected not in out + err):
+            raise AssertionError("%s: exit %d, %r; expected exit 1 and %r"
+                                 % (keys, code, (out + err)[-300:], expected))
+        if not expected and code != 0:
+            raise AssertionError("the valid input fails: %s" % (out + err)[-300:])
+    text = base.replace("type: contact, surface: [inner]", "type: mesh_tying, surface: [inner]")
+    code, out, err = H.run(["check", H.write_case(work, "case.yaml", text)], check=False)
+    if code != 1 or "'surface' applies only to type 'contact'" not in out + err:
+        raise AssertionError("mesh tying with surface: exit %d, %r" % (code, (out + err)[-300:]))
+    H.cleanup(work)
+
+
 if __name__ == "__main__":
     H.main([test_two_blocks_surface_2d, test_two_blocks_surface_standard_friction_quadratic,
             test_two_blocks_surface_3d, test_two_blocks_surface_3d_tet10,
-            test_ring_closes_onto_itself, test_ring_3d_equals_2d, test_bar_impact])
+            test_ring_closes_onto_itself, test_ring_3d_equals_2d, test_bar_impact,
+            test_surface_bad_input])
