@@ -18,6 +18,7 @@
 // Its normal is the contact normal, and each candidate slave facet is integrated as a whole
 // (rigid_plane_facet.hpp) instead of being clipped against the master facet.
 #include "seam/contact/rigid_plane_facet.hpp"
+#include "seam/contact/self_contact.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
@@ -101,6 +102,9 @@ public:
   /// Mesh nodes of the master side (empty for a rigid plane).
   std::span<const std::int32_t> master_nodes() const;
   bool rigid() const { return rigid_; }
+  /// Self and multi-body contact (`surface:`, self_contact.hpp): the slave and the master side
+  /// are both the whole surface and every search assigns the roles of its facets.
+  bool self_contact() const { return self_; }
   /// Contact with friction: multipliers are Cartesian vectors (dim per slave node) in
   /// add_force and linearize instead of normal multipliers.
   bool frictional() const { return frictional_; }
@@ -185,11 +189,24 @@ private:
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out) const;
+  /// The slave facets the mortar integration and the nodal normals use: the whole slave side,
+  /// or on a self-contact interface the current slave patch; facet f of the side is facet
+  /// slave_index(f) of that set.
+  mortar::FacetSet slave_set() const {
+    return self_ ? patch_.facet_set(slave_) : slave_.facet_set();
+  }
+  const mortar::NodeFacets& slave_adjacency() const {
+    return self_ ? patch_.adjacency : slave_adjacency_;
+  }
+  local_index slave_index(local_index f) const {
+    return self_ ? patch_.index[static_cast<std::size_t>(f)] : f;
+  }
 
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
   bool rigid_ = false;
   bool frictional_ = false;
+  bool self_ = false;
   meshtying::InterfaceSide slave_, master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid plane: reference corners and the motion.
@@ -200,6 +217,8 @@ private:
   mortar::MortarOptions options_;
   mortar::NodeFacets slave_adjacency_;
   std::unique_ptr<search::InterfaceSearch> search_;
+  std::unique_ptr<search::Tree> self_tree_;  ///< self contact: one tree over the surface
+  SlavePatch patch_;                         ///< self contact: the current slave facets
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<local_index> owned_;           ///< slave facets this part evaluates

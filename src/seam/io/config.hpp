@@ -146,8 +146,12 @@ struct Friction {
 struct Interface {
   std::string name; ///< unique; used in output file names
   InterfaceType type = InterfaceType::mesh_tying;
-  RegionRef slave;
-  std::optional<RegionRef> master;       ///< exactly one of master and rigid_plane
+  RegionRef slave;                 ///< self/multi-body contact: the first group of `surface`
+  std::optional<RegionRef> master; ///< exactly one of master and rigid_plane
+  /// Self and multi-body contact (`surface: [groups...]`, contact only): the boundary groups
+  /// of one interface whose slave and master facets are chosen at every search; then there is
+  /// neither master nor rigid_plane.
+  std::vector<RegionRef> surface;
   std::optional<RigidPlane> rigid_plane; ///< contact only
   Multiplier multiplier = Multiplier::dual;
   /// default condensed with dual multipliers, saddle_point with standard ones (a standard

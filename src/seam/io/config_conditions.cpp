@@ -128,9 +128,22 @@ void check_name(const Node& node, const std::string& name) {
     node.fail(concat("expected a name of letters, digits, '_', '-' or '.', got '", name, "'"));
 }
 
+// `surface: [groups...]`: one or more distinct boundary groups.
+std::vector<RegionRef> read_surface(const Node& node) {
+  std::vector<RegionRef> groups;
+  for (const Node& item : node.sequence()) {
+    groups.push_back(region_of(item));
+    for (std::size_t i = 0; i + 1 < groups.size(); ++i)
+      if (groups[i].name == groups.back().name)
+        item.fail(concat("group '", groups.back().name, "' is listed twice"));
+  }
+  if (groups.empty()) node.fail("expected a list of one or more boundary groups");
+  return groups;
+}
+
 Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
-  const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "multiplier", "strategy",
-                       "friction", "c_n", "c_t"});
+  const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "surface", "multiplier",
+                       "strategy", "friction", "c_n", "c_t"});
   Interface interface;
   interface.mark = node.mark();
   const Node name = map.required("name");
@@ -143,13 +156,23 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
   }
   interface.type = map.required("type").choice(interface_names);
   const bool contact = interface.type == InterfaceType::contact;
-  interface.slave = region_of(map.required("slave"));
-
   const auto master = map.get("master");
   const auto rigid_plane = map.get("rigid_plane");
+  if (const auto surface = map.get("surface")) {
+    map.forbid("surface", !contact, "applies only to type 'contact'");
+    for (const char* key : {"slave", "master", "rigid_plane"})
+      map.forbid(key, true,
+                 "cannot be combined with 'surface' (whose slave and master facets are assigned "
+                 "at every search)");
+    interface.surface = read_surface(*surface);
+    interface.slave = interface.surface.front();
+  } else {
+    if (contact && !map.has("slave")) node.fail("missing required key 'slave' (or 'surface')");
+    interface.slave = region_of(map.required("slave"));
+  }
   map.forbid("rigid_plane", !contact, "applies only to type 'contact'");
   if (master && rigid_plane) rigid_plane->fail("give either 'master' or 'rigid_plane', not both");
-  if (!master && !rigid_plane) {
+  if (!master && !rigid_plane && interface.surface.empty()) {
     node.fail(contact ? "missing required key 'master' (or 'rigid_plane')"
                       : "missing required key 'master'");
   }
@@ -158,7 +181,7 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
     if (!contact && interface.master->name == interface.slave.name)
       master->fail(concat("a mesh tying interface needs two different regions; slave is also '",
                           interface.slave.name, "'"));
-  } else {
+  } else if (rigid_plane) {
     interface.rigid_plane = read_rigid_plane(*rigid_plane, dimension);
   }
 

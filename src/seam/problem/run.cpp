@@ -79,6 +79,7 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   for (const auto& itf : config.interfaces) {
     sides.push_back(itf.slave.name);
     if (itf.master) sides.push_back(itf.master->name);
+    for (const auto& group : itf.surface) sides.push_back(group.name);
   }
   return mesh::distribute_mesh(whole, comm.get(), sides);
 }
