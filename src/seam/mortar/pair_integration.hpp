@@ -18,8 +18,23 @@
 
 namespace seam::mortar {
 
+/// The clip of mortar integration classifies and merges at round-off level, not at the
+/// geometric default (1e-8 x edge). A vertex within the band of a clipping line counts as on
+/// it and is kept even when it lies outside, so the clipped area, D and M jump by about
+/// band x edge where a vertex crosses the band. Vertices of stuck faces that coincide in the
+/// reference configuration (non-matching meshes whose nodes line up, e.g. the midside
+/// sub-facet corners of quad8 faces) stay within about 1e-9 of each other for good, and
+/// Newton's method stalled there at the size of the jump (a relative residual of 1e-5, the
+/// iterates alternating across the band with increments of 2 x band). At 1e-13 the jump
+/// lies at the residual's round-off floor; exactly coincident vertices are still merged.
+inline geometry::ClipOptions mortar_clip_options() {
+  geometry::ClipOptions options;
+  options.merge_tolerance = 1e-13;
+  return options;
+}
+
 struct PairOptions {
-  geometry::ClipOptions clip;
+  geometry::ClipOptions clip = mortar_clip_options();
   geometry::NewtonOptions newton;
   /// 2D: a projected end node counts as inside a facet when its parameter is within
   /// [-1 - tol, 1 + tol] (ALGORITHMS.md §1).
