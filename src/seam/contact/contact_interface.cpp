@@ -55,7 +55,8 @@ double mean_edge_length(const meshtying::InterfaceSide& side) {
 } // namespace
 
 ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
-    : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value() || config.rigid_obstacle.has_value()),
+    : mesh_(&mesh), name_(config.name),
+      rigid_(config.rigid_plane.has_value() || config.rigid_obstacle.has_value()),
       frictional_(config.friction.model != io::FrictionModel::frictionless) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
   const int dim = mesh.dim;
@@ -369,7 +370,8 @@ void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& o
     // The obstacle's normal moves with the node's closest point on a round surface.
     double n[3], jac[9];
     current_.contact_normal(dim, &slave_.coordinates[static_cast<std::size_t>(j) * dim], n, jac);
-    const auto dof0 = static_cast<std::int64_t>(slave_.mesh_nodes[static_cast<std::size_t>(j)]) * dim;
+    const auto dof0 =
+        static_cast<std::int64_t>(slave_.mesh_nodes[static_cast<std::size_t>(j)]) * dim;
     for (int a = 0; a < dim; ++a)
       for (int b = 0; b < dim; ++b)
         if (jac[a * dim + b] != 0.0) out.push_back({a, dof0 + b, jac[a * dim + b]});
@@ -392,8 +394,7 @@ void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& o
       }
 }
 
-void ContactInterface::rigid_facet(local_index f, bool derivatives,
-                                   RigidObstacleFacet& out) const {
+void ContactInterface::rigid_facet(local_index f, bool derivatives, RigidObstacleFacet& out) const {
   if (dim() == 2) {
     rigid_obstacle_facet<2>(mortar::gather_facet<2>(slave_.facet_set(), f), current_,
                             options_.multiplier, derivatives, out);

@@ -75,15 +75,15 @@ void with_derivatives(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
 
 template <int Dim>
 void rigid_obstacle_facet(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
-                          mortar::Multiplier multiplier, bool derivatives, RigidObstacleFacet& out) {
+                          mortar::Multiplier multiplier, bool derivatives,
+                          RigidObstacleFacet& out) {
   const int n = facet.n_nodes;
   out.n = n;
   if (!derivatives) {
     out.n_variables = 0;
     ad::SmallMatrixT<double> D;
     ad::NodalVectorT<double> gap;
-    kernel<double, Dim>(ad::seed<double, Dim>(facet, 0), obstacle, multiplier, D, gap,
-                        out.area);
+    kernel<double, Dim>(ad::seed<double, Dim>(facet, 0), obstacle, multiplier, D, gap, out.area);
     for (int j = 0; j < n; ++j) {
       for (int k = 0; k < n; ++k) out.D[static_cast<std::size_t>(j * n + k)] = D(j, k);
       out.gap[static_cast<std::size_t>(j)] = gap(j);

@@ -105,7 +105,8 @@ RigidPlane read_rigid_plane(const Node& node, int dimension) {
 // rigid_sphere: {center, radius, motion}; rigid_cylinder: {point, axis, radius, motion} (3D).
 RigidObstacle read_rigid_obstacle(const Node& node, bool cylinder, int dimension) {
   const Map map(node, {"center", "point", "axis", "radius", "motion"});
-  map.forbid("center", cylinder, "applies only to rigid_sphere (a cylinder has 'point' and 'axis')");
+  map.forbid("center", cylinder,
+             "applies only to rigid_sphere (a cylinder has 'point' and 'axis')");
   map.forbid("point", !cylinder, "applies only to rigid_cylinder (a sphere has 'center')");
   map.forbid("axis", !cylinder, "applies only to rigid_cylinder");
   RigidObstacle obstacle;

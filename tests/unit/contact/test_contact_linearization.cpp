@@ -184,8 +184,11 @@ void check(int dim, bool tets, bool rigid, bool standard = false, Shape shape = 
   std::printf("  dim %d %s %s %s: %zu dofs, |dF/du| max %.3e err %.3e, |dg/du| max %.3e err "
               "%.3e\n",
               dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
-              rigid ? (shape == Shape::plane ? "rigid plane" : (shape == Shape::sphere ? "rigid sphere" : "rigid cylinder")) : "two bodies", standard ? "standard" : "dual", dofs.size(),
-              k_max, k_err, g_max, g_err);
+              rigid ? (shape == Shape::plane
+                           ? "rigid plane"
+                           : (shape == Shape::sphere ? "rigid sphere" : "rigid cylinder"))
+                    : "two bodies",
+              standard ? "standard" : "dual", dofs.size(), k_max, k_err, g_max, g_err);
   if (standard) {
     EXPECT_FALSE(values.D_coupling.empty()); // D is not diagonal
   }
@@ -290,8 +293,11 @@ void check_friction(int dim, bool tets, bool rigid, bool standard = false,
   std::printf("  friction%s dim %d %s %s: |dF| %.2e err %.2e, |dD| %.2e err %.2e, |dW| %.2e err "
               "%.2e, |dn| %.2e err %.2e\n",
               standard ? " standard" : "", dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
-              rigid ? (shape == Shape::plane ? "rigid plane" : (shape == Shape::sphere ? "rigid sphere" : "rigid cylinder")) : "two bodies", big[0], err[0], big[1], err[1], big[2], err[2],
-              big[3], err[3]);
+              rigid ? (shape == Shape::plane
+                           ? "rigid plane"
+                           : (shape == Shape::sphere ? "rigid sphere" : "rigid cylinder"))
+                    : "two bodies",
+              big[0], err[0], big[1], err[1], big[2], err[2], big[3], err[3]);
   EXPECT_GT(big[0], 0.05);
   EXPECT_GT(big[1], 1e-3);
   // A rigid plane has no M: its slip increment is built from the nodal positions alone.
