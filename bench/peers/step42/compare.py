@@ -16,7 +16,7 @@ Both codes write their graphical output once; the wall times are those of the wh
 (mesh generation, set-up, solve and output included) measured here, and the codes' own totals.
 
   python3 bench/peers/step42/compare.py --step42 build/peers/step42/step-42 \\
-      --seam build/bin/seam [--sizes 16 32] [--linear direct|iterative] [--np 1]
+      --seam build/bin/seam [--sizes 16 32] [--linear direct|iterative|auto] [--np 1]
 
 bench/peers/step42/setup.sh installs and builds step-42 first.
 """

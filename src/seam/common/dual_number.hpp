@@ -172,6 +172,12 @@ template <int N> Dual<N> sqrt(const Dual<N>& a) {
   for (int i = 0; i < N; ++i) r.gradient[i] = factor * a.gradient[i];
   return r;
 }
+template <int N> Dual<N> cbrt(const Dual<N>& a) {
+  Dual<N> r(std::cbrt(a.value));
+  const double factor = r.value / (3.0 * a.value);
+  for (int i = 0; i < N; ++i) r.gradient[i] = factor * a.gradient[i];
+  return r;
+}
 /// |a|; at a = 0 the derivative of the positive branch.
 template <int N> Dual<N> abs(const Dual<N>& a) {
   return a.value < 0.0 ? -a : a;

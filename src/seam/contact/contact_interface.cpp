@@ -1,6 +1,7 @@
 #include "seam/contact/contact_interface.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/contact/self_contact.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/mortar/normals.hpp"
 
@@ -12,22 +13,6 @@
 namespace seam::contact {
 
 namespace {
-
-/// A normal of facet f (any length), for the facing test of candidate pairs.
-std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_index f) {
-  const int dim = side.dim;
-  const auto* nodes = &side.nodes[static_cast<std::size_t>(side.offsets[f])];
-  const auto x = [&](int i, int c) {
-    return side.coordinates[static_cast<std::size_t>(nodes[i]) * dim + c];
-  };
-  if (dim == 2) return {x(1, 1) - x(0, 1), -(x(1, 0) - x(0, 0)), 0.0};
-  const int n = fem::n_vertices(side.types[static_cast<std::size_t>(f)]);
-  // Diagonals of a quadrilateral, two edges of a triangle.
-  const int a0 = 0, a1 = n == 4 ? 2 : 1, b0 = n == 4 ? 1 : 0, b1 = n == 4 ? 3 : 2;
-  const double u[3] = {x(a1, 0) - x(a0, 0), x(a1, 1) - x(a0, 1), x(a1, 2) - x(a0, 2)};
-  const double v[3] = {x(b1, 0) - x(b0, 0), x(b1, 1) - x(b0, 1), x(b1, 2) - x(b0, 2)};
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
 
 double mean_edge_length(const meshtying::InterfaceSide& side) {
   const int dim = side.dim;
@@ -57,10 +42,12 @@ double mean_edge_length(const meshtying::InterfaceSide& side) {
 ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
     : mesh_(&mesh), name_(config.name),
       rigid_(config.rigid_plane.has_value() || config.rigid_obstacle.has_value()),
-      frictional_(config.friction.model != io::FrictionModel::frictionless) {
+      frictional_(config.friction.model != io::FrictionModel::frictionless),
+      self_(!config.surface.empty()) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
   const int dim = mesh.dim;
-  slave_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
+  slave_ = self_ ? extract_surface(mesh, config.surface)
+                 : meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
   if (slave_.n_facets() == 0)
     io::fail_at(config.slave.mark, "the slave region '" + config.slave.name + "' has no facets");
   mesh_size_ = mean_edge_length(slave_);
@@ -128,6 +115,10 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     obstacle_.shape = Obstacle::Shape::plane;
     obstacle_.point = plane.point;
     obstacle_.direction = n;
+  } else if (self_) {
+    // Both sides are the whole surface; the pairs say which facet is slave (self_contact.hpp).
+    master_ = slave_;
+    master_mesh_nodes_ = master_.mesh_nodes;
   } else {
     master_ = meshtying::extract_side(mesh, meshtying::side_region(mesh, *config.master));
     std::vector<std::int32_t> shared;
@@ -154,6 +145,11 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   if (obstacle_.round()) {
     // No master facets: the candidates come from the analytic distance (update).
     search_options_.inflation = search_options_.inflation_factor * mesh_size_;
+  } else if (self_) {
+    search_options_.inflation =
+        search_options_.inflation_factor * search::min_edge_length(slave_.surface());
+    self_tree_ =
+        std::make_unique<search::Tree>(self_contact_tree(slave_, search_options_.inflation));
   } else {
     search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(),
                                                         search_options_);
@@ -181,7 +177,7 @@ void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
     owned_offsets_.push_back(static_cast<local_index>(owned_nodes_.size()));
   }
   search_.reset();
-  if (!owned_.empty() && !obstacle_.round())
+  if (!owned_.empty() && !self_ && !obstacle_.round())
     search_ = std::make_unique<search::InterfaceSearch>(
         search::FacetSurface{dim(), slave_.coordinates, owned_offsets_, owned_nodes_},
         master_.surface(), search_options_);
@@ -246,8 +242,17 @@ void ContactInterface::update(std::span<const double> u, double t) {
     master_.update_coordinates(*mesh_, u);
   }
   pairs_.clear();
-  if (obstacle_.round()) collect_round_candidates();
-  if (search_) {
+  if (obstacle_.round()) {
+    collect_round_candidates();
+  } else if (self_) {
+    // The whole surface is searched on every part, so that all parts assign the same roles;
+    // each keeps the pairs of its own slave facets.
+    std::vector<mortar::CandidatePair> all;
+    self_contact_pairs(*self_tree_, slave_, all);
+    for (const auto& p : all)
+      if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
+    build_slave_patch(slave_, all, patch_);
+  } else if (search_) {
     search_->update(slave_.coordinates, master_.coordinates);
     // Only facets that face each other can come into contact.
     std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
@@ -277,7 +282,8 @@ void ContactInterface::update(std::span<const double> u, double t) {
     for (std::size_t j = 0; j < normals_.size() / static_cast<std::size_t>(dim); ++j)
       current_.contact_normal(dim, &slave_.coordinates[j * dim], &normals_[j * dim], nullptr);
   } else {
-    normals_ = mortar::averaged_nodal_normals(slave_.facet_set());
+    normals_.assign(slave_.coordinates.size(), 0.0);
+    if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
   }
 }
 
@@ -299,10 +305,11 @@ void ContactInterface::evaluate(NodalValues& out) const {
   for (const auto f : owned_)
     for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
          i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i)
-      mine.push_back(pairs_[static_cast<std::size_t>(i)]);
+      mine.push_back({slave_index(pairs_[static_cast<std::size_t>(i)].slave),
+                      pairs_[static_cast<std::size_t>(i)].master});
   if (mine.empty()) return;
   const auto ops =
-      mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), mine, options_);
+      mortar::assemble_mortar_operators(slave_set(), master_.facet_set(), mine, options_);
   for (const auto& e : ops.D) {
     if (e.row == e.col)
       out.D[static_cast<std::size_t>(e.row)] += e.value;
@@ -314,7 +321,10 @@ void ContactInterface::evaluate(NodalValues& out) const {
     for (const auto& e : ops.M)
       out.M.push_back({e.row, master_mesh_nodes_[static_cast<std::size_t>(e.col)], e.value});
   out.area = ops.integrated_area;
-  out.facet_cells = ops.slave_facet_cells;
+  for (local_index f = 0; f < slave_.n_facets(); ++f)
+    if (const auto k = slave_index(f); k >= 0)
+      out.facet_cells[static_cast<std::size_t>(f)] =
+          ops.slave_facet_cells[static_cast<std::size_t>(k)];
   out.n_pairs = ops.n_pairs_integrated;
   out.n_cells = ops.n_integration_cells;
 }
@@ -378,7 +388,7 @@ void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& o
     return;
   }
   mortar::NodalNormalLinearization lin;
-  mortar::linearize_nodal_normal(slave_.facet_set(), j, slave_adjacency_.of(j), lin);
+  mortar::linearize_nodal_normal(slave_set(), j, slave_adjacency().of(j), lin);
   const auto n = lin.nodes.size();
   for (int a = 0; a < dim; ++a)
     for (std::size_t i = 0; i < n; ++i)
@@ -540,8 +550,8 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
     masters.clear();
     for (auto i = begin; i < end; ++i)
       masters.push_back(pairs_[static_cast<std::size_t>(i)].master);
-    mortar::linearize_slave_facet(slave_.facet_set(), master_.facet_set(), slave_adjacency_, f,
-                                  masters, options_, lin);
+    mortar::linearize_slave_facet(slave_set(), master_.facet_set(), slave_adjacency(),
+                                  slave_index(f), masters, options_, lin);
     if (lin.n_pairs_integrated == 0) continue;
     const int nv = lin.n_variables();
     column.assign(static_cast<std::size_t>(nv), -1);

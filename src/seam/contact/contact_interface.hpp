@@ -22,6 +22,7 @@
 // (line2 / quad4) far larger than the slave surface, for the k-DOP search; the candidates of a
 // round obstacle are the slave facets within the search inflation of its surface.
 #include "seam/contact/rigid_obstacle_facet.hpp"
+#include "seam/contact/self_contact.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
@@ -107,6 +108,9 @@ public:
   bool rigid() const { return rigid_; }
   /// The rigid obstacle in its current position (rigid() only).
   const Obstacle& obstacle() const { return current_; }
+  /// Self and multi-body contact (`surface:`, self_contact.hpp): the slave and the master side
+  /// are both the whole surface and every search assigns the roles of its facets.
+  bool self_contact() const { return self_; }
   /// Contact with friction: multipliers are Cartesian vectors (dim per slave node) in
   /// add_force and linearize instead of normal multipliers.
   bool frictional() const { return frictional_; }
@@ -187,18 +191,31 @@ private:
   /// Component c of the multiplier vector of slave node j.
   double multiplier(std::span<const double> lambda, std::size_t j, int c) const;
   /// Rigid plane: D and g~ of slave facet f integrated over the whole facet, with their
-  /// derivatives if asked (rigid_plane_facet.hpp).
+  /// derivatives if asked (rigid_obstacle_facet.hpp).
   void rigid_facet(local_index f, bool derivatives, RigidObstacleFacet& out) const;
   /// Round obstacle: the candidate slave facets, those within the inflation of its surface.
   void collect_round_candidates();
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out) const;
+  /// The slave facets the mortar integration and the nodal normals use: the whole slave side,
+  /// or on a self-contact interface the current slave patch; facet f of the side is facet
+  /// slave_index(f) of that set.
+  mortar::FacetSet slave_set() const {
+    return self_ ? patch_.facet_set(slave_) : slave_.facet_set();
+  }
+  const mortar::NodeFacets& slave_adjacency() const {
+    return self_ ? patch_.adjacency : slave_adjacency_;
+  }
+  local_index slave_index(local_index f) const {
+    return self_ ? patch_.index[static_cast<std::size_t>(f)] : f;
+  }
 
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
   bool rigid_ = false;
   bool frictional_ = false;
+  bool self_ = false;
   meshtying::InterfaceSide slave_, master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid obstacle: its reference and current surfaces, the motion (a plane's reference corners
@@ -211,6 +228,8 @@ private:
   mortar::MortarOptions options_;
   mortar::NodeFacets slave_adjacency_;
   std::unique_ptr<search::InterfaceSearch> search_;
+  std::unique_ptr<search::Tree> self_tree_;  ///< self contact: one tree over the surface
+  SlavePatch patch_;                         ///< self contact: the current slave facets
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
   std::vector<local_index> owned_;           ///< slave facets this part evaluates

@@ -1,9 +1,12 @@
 #include "seam/fluid/navier_stokes.hpp"
 
+#include "seam/common/dual_number.hpp"
 #include "seam/common/error.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace seam::fluid {
 
@@ -12,37 +15,45 @@ namespace {
 constexpr int max_nodes = fem::max_cell_nodes;
 constexpr int max_dofs = max_nodes * 3 + 8;
 
+// The kernel is written once on the scalar S of the mesh: S = double gives the residual and
+// its Jacobian by (u, p); S = Dual<N> carries the derivatives of the residual by N of the
+// node coordinates or mesh velocities (the shape derivatives of a moving mesh, needed where
+// the mesh motion is an unknown, as in fluid-structure interaction).
+
 // The quantities of one quadrature point: shape functions, their physical gradients, the
 // weight times det J, the physical point.
-struct Point {
+template <class S> struct Point {
   std::array<double, max_nodes> N;
-  std::array<double, max_nodes * 3> G; // dN_a/dx_i at [a * dim + i]
-  std::array<double, 8> M;             // pressure shape functions
-  std::array<double, 3> x;
-  double weight;
+  std::array<S, max_nodes * 3> G; // dN_a/dx_i at [a * dim + i]
+  std::array<double, 8> M;        // pressure shape functions
+  std::array<S, 3> x;
+  S weight;
 };
 
-// Geometry at reference point xi; false if det J <= 0.
-bool evaluate(const FluidElementInput& in, const double* xi, double w, Point& q) {
+// Geometry at reference point xi of the cell with nodes `x`; false if det J <= 0.
+template <class S>
+bool evaluate(const FluidElementInput& in, std::span<const S> x, const double* xi, double w,
+              Point<S>& q) {
   const int dim = in.dim;
   const int n = fem::n_nodes(in.cell);
   std::array<double, max_nodes * 3> dN;
   fem::shape_values(in.cell, xi, q.N.data());
   fem::shape_gradients(in.cell, xi, dN.data());
   fem::shape_values(pressure_cell(in.cell), xi, q.M.data());
-  std::array<double, 9> J{}, Jinv{};
-  q.x = {0.0, 0.0, 0.0};
+  std::array<S, 9> J, Jinv;
+  J.fill(S(0.0));
+  q.x.fill(S(0.0));
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < dim; ++i) {
-      q.x[i] += q.N[a] * in.x[a * dim + i];
-      for (int b = 0; b < dim; ++b) J[i * dim + b] += in.x[a * dim + i] * dN[a * dim + b];
+      add_product(q.x[i], x[a * dim + i], q.N[a]);
+      for (int b = 0; b < dim; ++b) add_product(J[i * dim + b], x[a * dim + i], dN[a * dim + b]);
     }
-  double det;
+  S det;
   if (dim == 2) {
     det = J[0] * J[3] - J[1] * J[2];
     Jinv = {J[3] / det, -J[1] / det, -J[2] / det, J[0] / det};
   } else {
-    const auto c = [&](int r, int s) { return J[r * 3 + s]; };
+    const auto c = [&](int r, int s) -> const S& { return J[r * 3 + s]; };
     det = c(0, 0) * (c(1, 1) * c(2, 2) - c(1, 2) * c(2, 1)) -
           c(0, 1) * (c(1, 0) * c(2, 2) - c(1, 2) * c(2, 0)) +
           c(0, 2) * (c(1, 0) * c(2, 1) - c(1, 1) * c(2, 0));
@@ -57,8 +68,8 @@ bool evaluate(const FluidElementInput& in, const double* xi, double w, Point& q)
   // dN_a/dx_i = dN_a/dxi_b dxi_b/dx_i
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < dim; ++i) {
-      double g = 0.0;
-      for (int b = 0; b < dim; ++b) g += dN[a * dim + b] * Jinv[b * dim + i];
+      S g(0.0);
+      for (int b = 0; b < dim; ++b) add_product(g, Jinv[b * dim + i], dN[a * dim + b]);
       q.G[a * dim + i] = g;
     }
   q.weight = w * det;
@@ -66,22 +77,49 @@ bool evaluate(const FluidElementInput& in, const double* xi, double w, Point& q)
 }
 
 // Velocity, its gradient grad_u[i * dim + j] = du_i/dx_j and the pressure at a point.
-void interpolate(const FluidElementInput& in, const Point& q, double* u, double* grad_u,
-                 double& p) {
+template <class S>
+void interpolate(const FluidElementInput& in, const Point<S>& q, S* u, S* grad_u, S& p) {
   const int dim = in.dim;
   const int n = fem::n_nodes(in.cell);
   for (int i = 0; i < dim; ++i) {
-    u[i] = 0.0;
-    for (int j = 0; j < dim; ++j) grad_u[i * dim + j] = 0.0;
+    u[i] = S(0.0);
+    for (int j = 0; j < dim; ++j) grad_u[i * dim + j] = S(0.0);
   }
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < dim; ++i) {
       const double ua = in.u[a * dim + i];
       u[i] += q.N[a] * ua;
-      for (int j = 0; j < dim; ++j) grad_u[i * dim + j] += ua * q.G[a * dim + j];
+      for (int j = 0; j < dim; ++j) add_product(grad_u[i * dim + j], q.G[a * dim + j], ua);
     }
-  p = 0.0;
+  p = S(0.0);
   for (int k = 0; k < fem::n_vertices(in.cell); ++k) p += q.M[k] * in.p[k];
+}
+
+// The body force at the point x. The user's expression is evaluated on plain numbers; with
+// dual coordinates its gradient comes from central differences of the expression (a smooth
+// function of position), step 1e-6 of the point's size.
+template <class S> void body_force(const FluidElementInput& in, const std::array<S, 3>& x, S* f) {
+  std::array<double, 3> xv{}, fv{};
+  for (int i = 0; i < in.dim; ++i) xv[static_cast<std::size_t>(i)] = value_of(x[i]);
+  (*in.body_force)(xv.data(), fv.data());
+  for (int i = 0; i < in.dim; ++i) f[i] = S(fv[static_cast<std::size_t>(i)]);
+  if constexpr (is_dual<S>) {
+    const double scale = std::max({1.0, std::abs(xv[0]), std::abs(xv[1]), std::abs(xv[2])});
+    const double h = 1e-6 * scale;
+    std::array<double, 3> fp{}, fm{};
+    for (int j = 0; j < in.dim; ++j) {
+      auto xp = xv, xm = xv;
+      xp[static_cast<std::size_t>(j)] += h;
+      xm[static_cast<std::size_t>(j)] -= h;
+      (*in.body_force)(xp.data(), fp.data());
+      (*in.body_force)(xm.data(), fm.data());
+      for (int i = 0; i < in.dim; ++i) {
+        const double d = (fp[static_cast<std::size_t>(i)] - fm[static_cast<std::size_t>(i)]) /
+                         (2.0 * h);
+        for (int k = 0; k < S::n_variables; ++k) f[i].gradient[k] += d * x[j].gradient[k];
+      }
+    }
+  }
 }
 
 // Residual-based stabilization of equal-order linear cells (PSPG, SUPG, LSIC; Tezduyar 1991,
@@ -91,89 +129,234 @@ void interpolate(const FluidElementInput& in, const Point& q, double* u, double*
 // M_k, div u against tau_C div N_a, with
 //   tau_M = ((2 rho / dt)^2 + (2 rho |u| / h)^2 + (12 mu / h^2)^2)^(-1/2),  tau_C = h^2 / (8 tau_M)
 // (dt = 0 for steady flow); the derivatives of tau by u are in K, so Newton stays exact.
-struct Stabilization {
-  double h = 0.0;  // cell size: diameter of the circle (sphere) of the cell's area (volume)
+template <class S> struct Stabilization {
+  S h = S(0.0);    // cell size: diameter of the circle (sphere) of the cell's area (volume)
   double dt = 0.0; // 0: steady
 };
 
 // `u` is the convective velocity c = u - w (ALE): the SUPG direction and tau's |c|.
-void add_stabilization(const FluidElementInput& in, const Stabilization& st, const Point& q,
-                       const double* u, const double* grad_u, const double* material,
-                       const double* f, std::span<double> r, std::span<double> K) {
+template <class S>
+void add_stabilization(const FluidElementInput& in, const Stabilization<S>& st, const Point<S>& q,
+                       const S* u, const S* grad_u, const S* material, const S* f,
+                       std::span<S> r, std::span<double> K) {
+  using std::sqrt;
   const int dim = in.dim;
   const int n = fem::n_nodes(in.cell);
   const int nu = n * dim;
-  const int nd = nu + n;
-  const double rho = in.fluid.density, mu = in.fluid.viscosity, w = q.weight;
-  const double cw = in.state_weight;
-  std::array<double, 3> R{};
-  double uu = 0.0, div = 0.0;
+  const double rho = in.fluid.density, mu = in.fluid.viscosity;
+  const S& w = q.weight;
+  std::array<S, 3> R;
+  S uu(0.0), div(0.0);
   for (int i = 0; i < dim; ++i) {
-    double grad_p = 0.0;
-    for (int k = 0; k < n; ++k) grad_p += in.p[k] * q.G[k * dim + i];
+    S grad_p(0.0);
+    for (int k = 0; k < n; ++k) add_product(grad_p, q.G[k * dim + i], in.p[k]);
     R[i] = rho * material[i] + grad_p - f[i];
     uu += u[i] * u[i];
     div += grad_u[i * dim + i];
   }
   const double A = st.dt > 0.0 ? std::pow(2.0 * rho / st.dt, 2) : 0.0;
-  const double B = std::pow(2.0 * rho / st.h, 2);
-  const double C = std::pow(12.0 * mu / (st.h * st.h), 2);
-  const double tau = 1.0 / std::sqrt(A + B * uu + C);
-  const double tau_c = st.h * st.h / (8.0 * tau);
-  std::array<double, max_nodes> uG{};
-  for (int a = 0; a < n; ++a)
+  const S b = 2.0 * rho / st.h, c = 12.0 * mu / (st.h * st.h);
+  const S B = b * b, C = c * c;
+  const S tau = 1.0 / sqrt(A + B * uu + C);
+  const S tau_c = st.h * st.h / (8.0 * tau);
+  std::array<S, max_nodes> uG;
+  for (int a = 0; a < n; ++a) {
+    uG[a] = S(0.0);
     for (int j = 0; j < dim; ++j) uG[a] += u[j] * q.G[a * dim + j];
+  }
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < dim; ++i)
       r[a * dim + i] += w * (tau * rho * uG[a] * R[i] + tau_c * q.G[a * dim + i] * div);
   for (int k = 0; k < n; ++k) {
-    double GR = 0.0;
+    S GR(0.0);
     for (int i = 0; i < dim; ++i) GR += q.G[k * dim + i] * R[i];
     r[nu + k] -= w * tau * GR;
   }
-  if (K.empty()) return;
-  // Derivatives by the unknown velocity u_{b j} and pressure p_l.
-  for (int b = 0; b < n; ++b) {
-    const double Nb = q.N[b];
-    const double* Gb = &q.G[b * dim];
-    for (int j = 0; j < dim; ++j) {
-      const double dtau = -cw * tau * tau * tau * B * u[j] * Nb;
-      const double dtau_c = -tau_c / tau * dtau;
-      // dR_i / du_{b j}
-      std::array<double, 3> dR{};
-      for (int i = 0; i < dim; ++i)
-        dR[i] = cw * rho * Nb * grad_u[i * dim + j] + (i == j ? cw * rho * uG[b] : 0.0) +
-                (i == j ? in.mass_weight * rho * Nb : 0.0);
-      const int col = b * dim + j;
+  if constexpr (std::is_same_v<S, double>) {
+    if (K.empty()) return;
+    const int nd = nu + n;
+    const double cw = in.state_weight;
+    // Derivatives by the unknown velocity u_{b j} and pressure p_l.
+    for (int b = 0; b < n; ++b) {
+      const double Nb = q.N[b];
+      const double* Gb = &q.G[b * dim];
+      for (int j = 0; j < dim; ++j) {
+        const double dtau = -cw * tau * tau * tau * B * u[j] * Nb;
+        const double dtau_c = -tau_c / tau * dtau;
+        // dR_i / du_{b j}
+        std::array<double, 3> dR{};
+        for (int i = 0; i < dim; ++i)
+          dR[i] = cw * rho * Nb * grad_u[i * dim + j] + (i == j ? cw * rho * uG[b] : 0.0) +
+                  (i == j ? in.mass_weight * rho * Nb : 0.0);
+        const int col = b * dim + j;
+        for (int a = 0; a < n; ++a) {
+          const double* Ga = &q.G[a * dim];
+          const double duG = cw * Nb * Ga[j];
+          for (int i = 0; i < dim; ++i)
+            K[(a * dim + i) * nd + col] +=
+                w * (rho * (dtau * uG[a] * R[i] + tau * duG * R[i] + tau * uG[a] * dR[i]) +
+                     dtau_c * Ga[i] * div + tau_c * Ga[i] * cw * Gb[j]);
+        }
+        for (int k = 0; k < n; ++k) {
+          double GR = 0.0, GdR = 0.0;
+          for (int i = 0; i < dim; ++i) {
+            GR += q.G[k * dim + i] * R[i];
+            GdR += q.G[k * dim + i] * dR[i];
+          }
+          K[(nu + k) * nd + col] -= w * (dtau * GR + tau * GdR);
+        }
+      }
+    }
+    for (int l = 0; l < n; ++l) {
+      const double* Gl = &q.G[l * dim];
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i)
+          K[(a * dim + i) * nd + nu + l] += w * tau * rho * uG[a] * cw * Gl[i];
+      for (int k = 0; k < n; ++k) {
+        double GG = 0.0;
+        for (int i = 0; i < dim; ++i) GG += q.G[k * dim + i] * Gl[i];
+        K[(nu + k) * nd + nu + l] -= w * tau * cw * GG;
+      }
+    }
+  }
+}
+
+// The residual at the nodes `x` moving with the velocity `w` (empty: a fixed mesh), and with
+// S = double its Jacobian by (u, p) (K empty to skip). False if the cell is inverted.
+template <class S>
+bool kernel(const FluidElementInput& in, std::span<const S> x, std::span<const S> mesh_velocity,
+            std::span<S> r, std::span<double> K) {
+  using std::cbrt;
+  using std::sqrt;
+  const int dim = in.dim;
+  const int n = fem::n_nodes(in.cell);
+  const int nv = fem::n_vertices(in.cell);
+  const int nu = n * dim;
+  const int nd = nu + nv;
+  SEAM_ASSERT(static_cast<int>(r.size()) == nd &&
+              (K.empty() || static_cast<int>(K.size()) == nd * nd));
+  SEAM_ASSERT(nd <= max_dofs);
+  std::fill(r.begin(), r.end(), S(0.0));
+  std::fill(K.begin(), K.end(), 0.0);
+  const double rho = in.fluid.density, mu = in.fluid.viscosity;
+  // N_a u grad u is of degree 3 order (per direction on tensor cells, total on simplices).
+  const auto rule = fem::quadrature(in.cell, 3 * fem::order(in.cell));
+  Point<S> q;
+  const bool stabilized = is_stabilized(in.cell);
+  Stabilization<S> st;
+  if (stabilized) {
+    S volume(0.0);
+    for (int iq = 0; iq < rule.n_points; ++iq) {
+      if (!evaluate(in, x, &rule.points[iq * dim], rule.weights[iq], q)) return false;
+      volume += q.weight;
+    }
+    st.h = dim == 2 ? 2.0 * sqrt(volume / M_PI) : cbrt(6.0 * volume / M_PI);
+    st.dt = in.time_step;
+  }
+  std::array<S, 3> u, c, f, material;
+  std::array<S, 9> grad_u;
+  for (auto* v : {&u, &c, &f, &material}) v->fill(S(0.0));
+  grad_u.fill(S(0.0));
+  std::array<double, max_nodes> c_G{};
+  S p(0.0);
+  for (int iq = 0; iq < rule.n_points; ++iq) {
+    if (!evaluate(in, x, &rule.points[iq * dim], rule.weights[iq], q)) return false;
+    interpolate(in, q, u.data(), grad_u.data(), p);
+    // The convective velocity c = u - w (ALE; w = 0 on a fixed mesh).
+    c = u;
+    if (!mesh_velocity.empty())
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i) c[i] -= q.N[a] * mesh_velocity[a * dim + i];
+    f.fill(S(0.0));
+    if (in.body_force) body_force(in, q.x, f.data());
+    S div(0.0);
+    for (int i = 0; i < dim; ++i) {
+      div += grad_u[i * dim + i];
+      material[i] = S(0.0);
+      for (int j = 0; j < dim; ++j) material[i] += c[j] * grad_u[i * dim + j];
+    }
+    if (!in.u_dot.empty())
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i) material[i] += q.N[a] * in.u_dot[a * dim + i];
+    const S& w = q.weight;
+    for (int a = 0; a < n; ++a) {
+      const S* Ga = &q.G[a * dim];
+      for (int i = 0; i < dim; ++i) {
+        S visc(0.0);
+        for (int j = 0; j < dim; ++j) visc += Ga[j] * grad_u[i * dim + j];
+        r[a * dim + i] += w * (rho * q.N[a] * material[i] + mu * visc - p * Ga[i] - q.N[a] * f[i]);
+      }
+    }
+    for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div;
+    if (stabilized)
+      add_stabilization(in, st, q, c.data(), grad_u.data(), material.data(), f.data(), r, K);
+    if constexpr (std::is_same_v<S, double>) {
+      if (K.empty()) continue;
+      for (int b = 0; b < n; ++b) {
+        double s = 0.0;
+        for (int j = 0; j < dim; ++j) s += c[j] * q.G[b * dim + j];
+        c_G[b] = s;
+      }
+      // material = Du/Dt with dc/du = du/du (w does not depend on u). Every column carries
+      // state_weight, the velocity block the mass term.
+      const double cw = in.state_weight;
       for (int a = 0; a < n; ++a) {
         const double* Ga = &q.G[a * dim];
-        const double duG = cw * Nb * Ga[j];
-        for (int i = 0; i < dim; ++i)
-          K[(a * dim + i) * nd + col] +=
-              w * (rho * (dtau * uG[a] * R[i] + tau * duG * R[i] + tau * uG[a] * dR[i]) +
-                   dtau_c * Ga[i] * div + tau_c * Ga[i] * cw * Gb[j]);
-      }
-      for (int k = 0; k < n; ++k) {
-        double GR = 0.0, GdR = 0.0;
-        for (int i = 0; i < dim; ++i) {
-          GR += q.G[k * dim + i] * R[i];
-          GdR += q.G[k * dim + i] * dR[i];
+        const double rNa = rho * q.N[a] * w;
+        for (int b = 0; b < n; ++b) {
+          const double* Gb = &q.G[b * dim];
+          double GaGb = 0.0;
+          for (int j = 0; j < dim; ++j) GaGb += Ga[j] * Gb[j];
+          const double diag =
+              cw * (w * mu * GaGb + rNa * c_G[b]) + in.mass_weight * rNa * q.N[b];
+          for (int i = 0; i < dim; ++i) {
+            double* row = &K[(a * dim + i) * nd + b * dim];
+            for (int j = 0; j < dim; ++j) row[j] += cw * rNa * q.N[b] * grad_u[i * dim + j];
+            row[i] += diag;
+          }
         }
-        K[(nu + k) * nd + col] -= w * (dtau * GR + tau * GdR);
+        for (int k = 0; k < nv; ++k) {
+          const double wM = w * q.M[k];
+          for (int i = 0; i < dim; ++i) {
+            K[(a * dim + i) * nd + nu + k] -= cw * wM * Ga[i];
+            K[(nu + k) * nd + a * dim + i] -= cw * wM * Ga[i];
+          }
+        }
       }
     }
   }
-  for (int l = 0; l < n; ++l) {
-    const double* Gl = &q.G[l * dim];
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < dim; ++i)
-        K[(a * dim + i) * nd + nu + l] += w * tau * rho * uG[a] * cw * Gl[i];
-    for (int k = 0; k < n; ++k) {
-      double GG = 0.0;
-      for (int i = 0; i < dim; ++i) GG += q.G[k * dim + i] * Gl[i];
-      K[(nu + k) * nd + nu + l] -= w * tau * cw * GG;
+  return true;
+}
+
+// dr/dx (by_velocity = false) or dr/dw (true), row-major n_element_dofs x (n_nodes * dim), by
+// forward-mode differentiation in chunks of `chunk` variables.
+bool mesh_derivative(const FluidElementInput& in, bool by_velocity, std::span<double> D) {
+  constexpr int chunk = 8;
+  using Scalar = Dual<chunk>;
+  const int nx = fem::n_nodes(in.cell) * in.dim;
+  const int nd = n_element_dofs(in.cell);
+  SEAM_ASSERT(static_cast<int>(D.size()) == nd * nx);
+  SEAM_ASSERT(static_cast<int>(in.x.size()) == nx);
+  SEAM_ASSERT(in.mesh_velocity.empty() || static_cast<int>(in.mesh_velocity.size()) == nx);
+  std::array<Scalar, max_nodes * 3> x, w;
+  std::array<Scalar, max_dofs> r;
+  for (int first = 0; first < nx; first += chunk) {
+    for (int k = 0; k < nx; ++k) {
+      const bool seed = k >= first && k < first + chunk;
+      const double wk = in.mesh_velocity.empty() ? 0.0 : in.mesh_velocity[k];
+      x[k] = !by_velocity && seed ? Scalar::variable(in.x[k], k - first) : Scalar(in.x[k]);
+      w[k] = by_velocity && seed ? Scalar::variable(wk, k - first) : Scalar(wk);
     }
+    const bool moving = by_velocity || !in.mesh_velocity.empty();
+    if (!kernel<Scalar>(in, std::span<const Scalar>(x.data(), nx),
+                        moving ? std::span<const Scalar>(w.data(), nx) : std::span<const Scalar>(),
+                        std::span<Scalar>(r.data(), nd), {}))
+      return false;
+    for (int row = 0; row < nd; ++row)
+      for (int k = first; k < std::min(nx, first + chunk); ++k)
+        D[row * nx + k] = r[row].gradient[k - first];
   }
+  return true;
 }
 
 } // namespace
@@ -218,99 +401,13 @@ int n_element_dofs(fem::CellType cell) {
 }
 
 bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<double> K) {
-  const int dim = in.dim;
-  const int n = fem::n_nodes(in.cell);
-  const int nv = fem::n_vertices(in.cell);
-  const int nu = n * dim;
-  const int nd = nu + nv;
-  SEAM_ASSERT(static_cast<int>(r.size()) == nd &&
-              (K.empty() || static_cast<int>(K.size()) == nd * nd));
-  SEAM_ASSERT(nd <= max_dofs);
-  std::fill(r.begin(), r.end(), 0.0);
-  std::fill(K.begin(), K.end(), 0.0);
-  const double rho = in.fluid.density, mu = in.fluid.viscosity;
-  // N_a u grad u is of degree 3 order (per direction on tensor cells, total on simplices).
-  const auto rule = fem::quadrature(in.cell, 3 * fem::order(in.cell));
-  Point q;
-  const bool stabilized = is_stabilized(in.cell);
-  Stabilization st;
-  if (stabilized) {
-    double volume = 0.0;
-    for (int iq = 0; iq < rule.n_points; ++iq) {
-      if (!evaluate(in, &rule.points[iq * dim], rule.weights[iq], q)) return false;
-      volume += q.weight;
-    }
-    st.h = dim == 2 ? 2.0 * std::sqrt(volume / M_PI) : std::cbrt(6.0 * volume / M_PI);
-    st.dt = in.time_step;
-  }
-  std::array<double, 3> u{}, c{}, f{}, material{};
-  std::array<double, 9> grad_u{};
-  std::array<double, max_nodes> c_G{};
-  double p = 0.0;
-  for (int iq = 0; iq < rule.n_points; ++iq) {
-    if (!evaluate(in, &rule.points[iq * dim], rule.weights[iq], q)) return false;
-    interpolate(in, q, u.data(), grad_u.data(), p);
-    // The convective velocity c = u - w (ALE; w = 0 on a fixed mesh).
-    c = u;
-    if (!in.mesh_velocity.empty())
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < dim; ++i) c[i] -= q.N[a] * in.mesh_velocity[a * dim + i];
-    f = {0.0, 0.0, 0.0};
-    if (in.body_force) (*in.body_force)(q.x.data(), f.data());
-    double div = 0.0;
-    for (int i = 0; i < dim; ++i) {
-      div += grad_u[i * dim + i];
-      material[i] = 0.0;
-      for (int j = 0; j < dim; ++j) material[i] += c[j] * grad_u[i * dim + j];
-    }
-    if (!in.u_dot.empty())
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < dim; ++i) material[i] += q.N[a] * in.u_dot[a * dim + i];
-    const double w = q.weight;
-    for (int a = 0; a < n; ++a) {
-      const double* Ga = &q.G[a * dim];
-      for (int i = 0; i < dim; ++i) {
-        double visc = 0.0;
-        for (int j = 0; j < dim; ++j) visc += Ga[j] * grad_u[i * dim + j];
-        r[a * dim + i] += w * (rho * q.N[a] * material[i] + mu * visc - p * Ga[i] - q.N[a] * f[i]);
-      }
-    }
-    for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div;
-    if (stabilized)
-      add_stabilization(in, st, q, c.data(), grad_u.data(), material.data(), f.data(), r, K);
-    if (K.empty()) continue;
-    for (int b = 0; b < n; ++b) {
-      double s = 0.0;
-      for (int j = 0; j < dim; ++j) s += c[j] * q.G[b * dim + j];
-      c_G[b] = s;
-    }
-    // material = Du/Dt with dc/du = du/du (w does not depend on u). Every column carries
-    // state_weight, the velocity block the mass term.
-    const double cw = in.state_weight;
-    for (int a = 0; a < n; ++a) {
-      const double* Ga = &q.G[a * dim];
-      const double rNa = rho * q.N[a] * w;
-      for (int b = 0; b < n; ++b) {
-        const double* Gb = &q.G[b * dim];
-        double GaGb = 0.0;
-        for (int j = 0; j < dim; ++j) GaGb += Ga[j] * Gb[j];
-        const double diag = cw * (w * mu * GaGb + rNa * c_G[b]) + in.mass_weight * rNa * q.N[b];
-        for (int i = 0; i < dim; ++i) {
-          double* row = &K[(a * dim + i) * nd + b * dim];
-          for (int j = 0; j < dim; ++j) row[j] += cw * rNa * q.N[b] * grad_u[i * dim + j];
-          row[i] += diag;
-        }
-      }
-      for (int k = 0; k < nv; ++k) {
-        const double wM = w * q.M[k];
-        for (int i = 0; i < dim; ++i) {
-          K[(a * dim + i) * nd + nu + k] -= cw * wM * Ga[i];
-          K[(nu + k) * nd + a * dim + i] -= cw * wM * Ga[i];
-        }
-      }
-    }
-  }
-  return true;
+  return kernel<double>(in, in.x, in.mesh_velocity, r, K);
+}
+
+bool navier_stokes_mesh_derivatives(const FluidElementInput& in, std::span<double> by_position,
+                                    std::span<double> by_velocity) {
+  if (!by_position.empty() && !mesh_derivative(in, false, by_position)) return false;
+  return by_velocity.empty() || mesh_derivative(in, true, by_velocity);
 }
 
 std::array<double, 4> error_integrals(const FluidElementInput& in, const ExactVelocity& u_exact,
@@ -318,12 +415,12 @@ std::array<double, 4> error_integrals(const FluidElementInput& in, const ExactVe
   const int dim = in.dim;
   const auto rule = fem::quadrature(in.cell, 3 * fem::order(in.cell) + 2);
   std::array<double, 4> out{};
-  Point q;
+  Point<double> q;
   std::array<double, 3> u{}, ue{};
   std::array<double, 9> grad_u{};
   double p = 0.0;
   for (int iq = 0; iq < rule.n_points; ++iq) {
-    if (!evaluate(in, &rule.points[iq * dim], rule.weights[iq], q)) continue;
+    if (!evaluate(in, in.x, &rule.points[iq * dim], rule.weights[iq], q)) continue;
     interpolate(in, q, u.data(), grad_u.data(), p);
     ue = {0.0, 0.0, 0.0};
     if (u_exact) u_exact(q.x.data(), ue.data());

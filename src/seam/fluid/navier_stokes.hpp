@@ -22,8 +22,8 @@
 // is the current configuration, the time derivative is the one at a fixed mesh point and the
 // convective velocity is c = u - w with w the mesh velocity: (u . grad) u becomes (c . grad) u, in
 // the Galerkin term and in the stabilization (SUPG direction, tau). K is exact in (u, p) at the
-// given mesh motion; the derivatives by the mesh position (shape derivatives) are not here (they
-// come with the coupling to a structure). Residual convention of seam: r = f_int - f_ext. With time
+// given mesh motion; the derivatives by the mesh position and velocity (shape derivatives) come
+// from navier_stokes_mesh_derivatives. Residual convention of seam: r = f_int - f_ext. With time
 // integration the residual gains int rho N_a du_i/dt (Jansen, Whiting & Hulbert 2000: velocity and
 // pressure at n + alpha_f, the velocity's rate at n + alpha_m; the weights of the Jacobian come in
 // with the input).
@@ -81,6 +81,15 @@ int n_element_dofs(fem::CellType cell);
 /// Residual (size n_element_dofs) and Jacobian (its square, or empty to skip). Returns false
 /// if the cell is inverted (det J <= 0 at a quadrature point); the outputs are then unusable.
 bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<double> K);
+
+/// The shape derivatives of a moving mesh: the derivatives of the residual by the node
+/// coordinates x (`by_position`) and by the mesh velocity w (`by_velocity`), at fixed (u, p,
+/// u_dot); each row-major n_element_dofs x (n_nodes * dim), or empty to skip. Exact (forward-mode
+/// automatic differentiation of the residual), except that a position-dependent body force
+/// enters by central differences of its expression. An empty `mesh_velocity` is w = 0. Returns
+/// false if the cell is inverted.
+bool navier_stokes_mesh_derivatives(const FluidElementInput& in, std::span<double> by_position,
+                                    std::span<double> by_velocity);
 
 /// Integrals over one cell for the L2 errors against exact fields, with a rule two degrees
 /// above the residual's: {int |u_h - u|^2, int (p_h - p)^2, int (p_h - p), |cell|}. The last

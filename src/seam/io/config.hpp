@@ -46,7 +46,8 @@ enum class Strategy { condensed, saddle_point };
 enum class FrictionModel { frictionless, coulomb, tresca };
 /// `static` in the input: a sequence of equilibrium states, t is a load parameter.
 enum class Integrator { quasi_static, generalized_alpha, energy_momentum };
-enum class LinearSolverKind { direct, iterative };
+/// `auto`: direct or iterative by the problem (problem/newton.hpp, linear_solver_kind).
+enum class LinearSolverKind { direct, iterative, automatic };
 /// How the slave elements of an interface are spread over the ranks.
 enum class InterfaceDistribution { independent, bulk };
 /// What the dynamic load balance measures per rank.
@@ -156,8 +157,12 @@ struct Friction {
 struct Interface {
   std::string name; ///< unique; used in output file names
   InterfaceType type = InterfaceType::mesh_tying;
-  RegionRef slave;
-  std::optional<RegionRef> master;       ///< exactly one of master and rigid_plane
+  RegionRef slave;                 ///< self/multi-body contact: the first group of `surface`
+  std::optional<RegionRef> master; ///< exactly one of master and rigid_plane
+  /// Self and multi-body contact (`surface: [groups...]`, contact only): the boundary groups
+  /// of one interface whose slave and master facets are chosen at every search; then there is
+  /// neither master nor rigid_plane.
+  std::vector<RegionRef> surface;
   std::optional<RigidPlane> rigid_plane; ///< contact only
   /// Contact only: rigid_sphere or rigid_cylinder (exclusive with master and rigid_plane).
   std::optional<RigidObstacle> rigid_obstacle;
@@ -199,7 +204,7 @@ struct NewtonConfig {
 
 struct SolverConfig {
   NewtonConfig newton;
-  LinearSolverKind linear = LinearSolverKind::direct;
+  LinearSolverKind linear = LinearSolverKind::automatic;
 };
 
 /// `parallel:` (CONTRACT.md, "Parallel runs").

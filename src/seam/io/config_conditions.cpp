@@ -160,9 +160,23 @@ void check_name(const Node& node, const std::string& name) {
     node.fail(concat("expected a name of letters, digits, '_', '-' or '.', got '", name, "'"));
 }
 
+// `surface: [groups...]`: one or more distinct boundary groups.
+std::vector<RegionRef> read_surface(const Node& node) {
+  std::vector<RegionRef> groups;
+  for (const Node& item : node.sequence()) {
+    groups.push_back(region_of(item));
+    for (std::size_t i = 0; i + 1 < groups.size(); ++i)
+      if (groups[i].name == groups.back().name)
+        item.fail(concat("group '", groups.back().name, "' is listed twice"));
+  }
+  if (groups.empty()) node.fail("expected a list of one or more boundary groups");
+  return groups;
+}
+
 Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
-  const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "rigid_sphere",
-                       "rigid_cylinder", "multiplier", "strategy", "friction", "c_n", "c_t"});
+  const Map map(node,
+                {"name", "type", "slave", "master", "rigid_plane", "rigid_sphere", "rigid_cylinder",
+                 "surface", "multiplier", "strategy", "friction", "c_n", "c_t"});
   Interface interface;
   interface.mark = node.mark();
   const Node name = map.required("name");
@@ -175,10 +189,20 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
   }
   interface.type = map.required("type").choice(interface_names);
   const bool contact = interface.type == InterfaceType::contact;
-  interface.slave = region_of(map.required("slave"));
-
   const auto master = map.get("master");
   const auto rigid_plane = map.get("rigid_plane");
+  if (const auto surface = map.get("surface")) {
+    map.forbid("surface", !contact, "applies only to type 'contact'");
+    for (const char* key : {"slave", "master", "rigid_plane", "rigid_sphere", "rigid_cylinder"})
+      map.forbid(key, true,
+                 "cannot be combined with 'surface' (whose slave and master facets are assigned "
+                 "at every search)");
+    interface.surface = read_surface(*surface);
+    interface.slave = interface.surface.front();
+  } else {
+    if (contact && !map.has("slave")) node.fail("missing required key 'slave' (or 'surface')");
+    interface.slave = region_of(map.required("slave"));
+  }
   map.forbid("rigid_plane", !contact, "applies only to type 'contact'");
   if (master && rigid_plane) rigid_plane->fail("give either 'master' or 'rigid_plane', not both");
   // The round obstacles: one master side of any kind per interface.
@@ -186,14 +210,14 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
     const auto obstacle = map.get(key);
     if (!obstacle) continue;
     map.forbid(key, !contact, "applies only to type 'contact'");
-    if (master || rigid_plane || interface.rigid_obstacle)
-      obstacle->fail(concat("give only one of 'master', 'rigid_plane', 'rigid_sphere' and "
-                            "'rigid_cylinder'; '",
+    if (master || rigid_plane || interface.rigid_obstacle || !interface.surface.empty())
+      obstacle->fail(concat("give only one of 'master', 'rigid_plane', 'rigid_sphere', "
+                            "'rigid_cylinder' and 'surface'; '",
                             key, "' comes with another"));
     interface.rigid_obstacle =
         read_rigid_obstacle(*obstacle, std::string_view(key) == "rigid_cylinder", dimension);
   }
-  if (!master && !rigid_plane && !interface.rigid_obstacle) {
+  if (!master && !rigid_plane && !interface.rigid_obstacle && interface.surface.empty()) {
     node.fail(contact ? "missing required key 'master' (or 'rigid_plane', 'rigid_sphere', "
                         "'rigid_cylinder')"
                       : "missing required key 'master'");

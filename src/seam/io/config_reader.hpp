@@ -142,8 +142,10 @@ inline constexpr std::array<std::pair<std::string_view, Integrator>, 3> integrat
     {{"static", Integrator::quasi_static},
      {"generalized_alpha", Integrator::generalized_alpha},
      {"energy_momentum", Integrator::energy_momentum}}};
-inline constexpr std::array<std::pair<std::string_view, LinearSolverKind>, 2> linear_names{
-    {{"direct", LinearSolverKind::direct}, {"iterative", LinearSolverKind::iterative}}};
+inline constexpr std::array<std::pair<std::string_view, LinearSolverKind>, 3> linear_names{
+    {{"direct", LinearSolverKind::direct},
+     {"iterative", LinearSolverKind::iterative},
+     {"auto", LinearSolverKind::automatic}}};
 inline constexpr std::array<std::pair<std::string_view, InterfaceDistribution>, 2>
     distribution_names{{{"independent", InterfaceDistribution::independent},
                         {"bulk", InterfaceDistribution::bulk}}};

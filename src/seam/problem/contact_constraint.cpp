@@ -1,6 +1,7 @@
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/contact/self_contact.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 
 #include <algorithm>
@@ -89,7 +90,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     // The slave facets start with the bulk partition (the facets of this rank's cells).
-    const auto& region = meshtying::side_region(disc.mesh(), itf.slave);
+    const mesh::Region region = itf.surface.empty()
+                                    ? meshtying::side_region(disc.mesh(), itf.slave)
+                                    : contact::surface_region(disc.mesh(), itf.surface);
     for (std::int32_t f = 0; f < region.n_facets(); ++f)
       if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
         s.bulk_facets.push_back(f);
@@ -776,7 +779,9 @@ std::vector<std::string> ContactConstraint::describe() const {
         line, sizeof line, "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
         s.itf.name().c_str(), static_cast<int>(s.itf.slave().n_facets()),
         s.itf.rigid() ? s.itf.obstacle().name()
-                      : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
+        : s.itf.self_contact()
+            ? "themselves (self and multi-body contact, roles per search)"
+            : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
         s.itf.standard() ? "standard multipliers (saddle point)" : "dual multipliers (condensed)",
         s.c_n);
     std::string text = line;

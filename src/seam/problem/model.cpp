@@ -209,6 +209,7 @@ Model build_model(const io::Config& config, const Discretization& disc) {
   for (const auto& itf : config.interfaces) {
     find_region(mesh, itf.slave, {dim - 1}, "an interface side");
     if (itf.master) find_region(mesh, *itf.master, {dim - 1}, "an interface side");
+    for (const auto& group : itf.surface) find_region(mesh, group, {dim - 1}, "an interface side");
   }
   check_probes(config, disc);
   return model;

@@ -14,6 +14,7 @@
 #include "seam/problem/tying_constraint.hpp"
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace seam::problem {
@@ -65,6 +66,22 @@ private:
   int cuts_ = 0;
 };
 
+/// `solver.linear: auto` (the default) picks GMRES + GAMG for 3D solids of at least
+/// `auto_iterative_dofs` dofs whose Newton system is not a saddle point, MUMPS otherwise. On
+/// this 2-core machine (bench/linear_solver_choice.py, docs/performance.md) a hex8 cube pressed
+/// by a rigid plane cost within 15 % the same CPU time either way up to 20.6k dofs, and 0.53
+/// of MUMPS's CPU time and 0.34 of its memory with GAMG at 36.5k. Below the threshold the
+/// direct solver's robustness (nearly incompressible materials, stiff contrasts, thin walls)
+/// costs nothing. 2D systems stay direct (nested dissection keeps their fill small), as do
+/// saddle points (standard multipliers), on which GAMG has no smoother.
+inline constexpr PetscInt auto_iterative_dofs = 25000;
+la::SolverKind linear_solver_kind(const io::Config& config, const Discretization& disc,
+                                  bool saddle_point);
+/// The solver and why, for the run's header: "direct (MUMPS)", "iterative (GMRES + GAMG; auto:
+/// 3D, 73167 dofs >= 25000)".
+std::string describe_linear_solver(const io::Config& config, const Discretization& disc,
+                                   bool saddle_point);
+
 class NewtonSolver {
 public:
   NewtonSolver(const io::Config& config, const Model& model, const Discretization& disc,
@@ -74,9 +91,8 @@ public:
         contact_(contact), out_(out), K_(disc.make_matrix()), r_(disc.make_vector()),
         r_full_(disc.make_vector()), rt_(disc.make_vector()), du_(disc.make_vector()),
         dut_(disc.make_vector()), g_(disc.make_vector()), f_ext_(disc.make_vector()),
-        solver_(disc.comm().get(), config.solver.linear == io::LinearSolverKind::direct
-                                       ? la::SolverKind::direct
-                                       : la::SolverKind::iterative) {
+        solver_(disc.comm().get(), linear_solver_kind(config, disc,
+                                                      saddle.active() || contact.saddle_point())) {
     for (const auto& d : model_.dirichlet) dirichlet_rows_.push_back(d.dof);
     // Rows fixed in the Newton system: Dirichlet dofs and (with condensed tying) the
     // eliminated slave dofs, whose rows of T^T K T are empty.
@@ -86,7 +102,9 @@ public:
                          tying.eliminated_dofs().end());
     const auto X = disc.coordinates_vector();
     reference_coordinates_ = X.norm();
-    if (config.solver.linear == io::LinearSolverKind::iterative) K_.set_near_null_space(X);
+    if (linear_solver_kind(config, disc, saddle.active() || contact.saddle_point()) ==
+        la::SolverKind::iterative)
+      K_.set_near_null_space(X);
   }
 
   /// Newton iterations at time t from the last converged u. The first iteration is the

@@ -16,6 +16,7 @@
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_solver.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/newton.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/saddle_point.hpp"
 #include "seam/problem/static_solver.hpp"
@@ -78,6 +79,7 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   for (const auto& itf : config.interfaces) {
     sides.push_back(itf.slave.name);
     if (itf.master) sides.push_back(itf.master->name);
+    for (const auto& group : itf.surface) sides.push_back(group.name);
   }
   return mesh::distribute_mesh(whole, comm.get(), sides);
 }
@@ -145,6 +147,10 @@ int run(const RunOptions& options, int argc, char** argv) {
                 static_cast<int>(disc.n_global_nodes()), static_cast<int>(disc.n_global_cells()),
                 static_cast<long long>(disc.n_global_dofs()), comm.size(),
                 out.directory().string().c_str());
+  if (comm.is_root() && !options.quiet)
+    std::printf("  linear solver: %s\n",
+                describe_linear_solver(config, disc, saddle.active() || contact.saddle_point())
+                    .c_str());
   if (checkpoints.restarting() && comm.is_root() && !options.quiet)
     std::printf("  restarting from %s: step %d, t = %.17g\n", options.restart.c_str(),
                 checkpoints.restart_step(), checkpoints.restart_time());

@@ -131,11 +131,23 @@ std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const Candid
     parent[rb] = ra;
     parity[rb] = static_cast<std::uint8_t>(pa ^ pb ^ 1); // opposite roles across the pair
   }
+  // Each connected group of pairs is oriented so that its lowest facet number is slave: the
+  // roles then depend only on which facets meet, not on the order of the pairs, and a slave
+  // patch stays slave while its contact zone persists.
+  std::vector<std::uint8_t> flip(n, 2); // per root: the role of its lowest facet (2: unset)
+  std::vector<char> paired(n, 0);
+  for (const auto& p : pairs) paired[p.slave] = paired[p.master] = 1;
+  for (local_index f = 0; f < n; ++f)
+    if (paired[f]) {
+      const auto [r, par] = find(f);
+      if (flip[r] == 2) flip[r] = par;
+    }
   std::vector<CandidatePair> out;
   out.reserve(pairs.size());
   for (const auto& p : pairs) {
     const local_index lo = std::min(p.slave, p.master), hi = std::max(p.slave, p.master);
-    const std::uint8_t role_lo = find(lo).second, role_hi = find(hi).second;
+    const auto [root, par_lo] = find(lo);
+    const std::uint8_t role_lo = par_lo ^ flip[root], role_hi = find(hi).second ^ flip[root];
     if (role_lo == role_hi || role_lo == 0)
       out.push_back({lo, hi});
     else

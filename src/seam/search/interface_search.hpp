@@ -72,8 +72,8 @@ std::vector<BodyPair> find_body_pairs(std::span<const Tree> bodies, bool include
 /// and returns each pair as (slave, master). Edges are taken in order of decreasing angle
 /// between the facet normals (the most clearly facing pairs first), so that where the graph has
 /// odd cycles (e.g. through a fold) only the weakest pairs are left unalternated; those keep
-/// the lower facet number as slave. `tree` is the self-contact tree (with normal cones) that
-/// produced the pairs.
+/// the lower facet number as slave. In each connected group of pairs the lowest facet number
+/// is slave. `tree` is the self-contact tree (with normal cones) that produced the pairs.
 std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const CandidatePair> pairs);
 
 } // namespace seam::search

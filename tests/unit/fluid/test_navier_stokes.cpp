@@ -142,6 +142,57 @@ TEST_P(NavierStokes, AleJacobianMatchesCentralDifferences) {
   EXPECT_LT(jacobian_error(steady, c.w), 1e-7) << fem::name(GetParam());
 }
 
+// The shape derivatives (a moving mesh whose motion is an unknown, as in fluid-structure
+// interaction): the derivatives of the residual by every node coordinate and every nodal mesh
+// velocity against central differences, in generalized-alpha with a position-dependent body
+// force, and in the steady form.
+TEST_P(NavierStokes, MeshDerivativesMatchCentralDifferences) {
+  const auto c = make_cell(GetParam(), 31);
+  const auto rates = make_cell(GetParam(), 32).w;
+  const auto velocities = make_cell(GetParam(), 33).w;
+  const int dim = fem::dimension(c.type);
+  const auto nu = static_cast<std::size_t>(fem::n_nodes(c.type) * dim);
+  const auto nd = c.w.size();
+  const fluid::BodyForce force = [dim](const double* x, double* f) {
+    for (int i = 0; i < dim; ++i) f[i] = std::sin(1.3 * x[0] + i) * std::cos(0.7 * x[dim - 1]);
+  };
+  for (const bool steady : {false, true}) {
+    std::vector<double> x = c.x, w(velocities.begin(), velocities.begin() + nu);
+    const auto make = [&] {
+      auto in = input(c, c.w);
+      in.x = x;
+      in.mesh_velocity = w;
+      in.body_force = &force;
+      if (!steady) {
+        in.u_dot = std::span<const double>(rates.data(), nu);
+        in.time_step = 0.05;
+      }
+      return in;
+    };
+    std::vector<double> Dx(nd * nu), Dw(nd * nu), rp(nd), rm(nd), none;
+    ASSERT_TRUE(fluid::navier_stokes_mesh_derivatives(make(), Dx, Dw));
+    for (auto* variable : {&x, &w}) {
+      const auto& D = variable == &x ? Dx : Dw;
+      double scale = 0.0, worst = 0.0;
+      for (double v : D) scale = std::max(scale, std::abs(v));
+      const double h = 1e-6;
+      for (std::size_t k = 0; k < nu; ++k) {
+        const double keep = (*variable)[k];
+        (*variable)[k] = keep + h;
+        ASSERT_TRUE(fluid::navier_stokes(make(), rp, none));
+        (*variable)[k] = keep - h;
+        ASSERT_TRUE(fluid::navier_stokes(make(), rm, none));
+        (*variable)[k] = keep;
+        for (std::size_t i = 0; i < nd; ++i)
+          worst = std::max(worst, std::abs((rp[i] - rm[i]) / (2 * h) - D[i * nu + k]));
+      }
+      EXPECT_GT(scale, 0.0);
+      EXPECT_LT(worst / scale, 1e-7) << fem::name(GetParam()) << (steady ? " steady" : " unsteady")
+                                     << (variable == &x ? ", by position" : ", by mesh velocity");
+    }
+  }
+}
+
 // A mesh that moves with the flow (w = u) leaves no convection: the steady residual of the
 // Galerkin (Taylor-Hood) cells is that of the Stokes equations, the fluid's density set to 0.
 TEST_P(NavierStokes, MeshMovingWithTheFlowRemovesConvection) {

@@ -275,7 +275,7 @@ TEST_F(ConfigTest, Minimal2dInputTakesDefaults) {
   EXPECT_EQ(config.time.max_step_cuts, 5);
   EXPECT_EQ(config.solver.newton.tolerance, 1e-10);
   EXPECT_EQ(config.solver.newton.max_iterations, 25);
-  EXPECT_EQ(config.solver.linear, LinearSolverKind::direct);
+  EXPECT_EQ(config.solver.linear, LinearSolverKind::automatic);
   EXPECT_EQ(config.output.every, 1);
   ASSERT_EQ(config.output.probes.size(), 1u);
   EXPECT_EQ(config.output.probes[0].point, (std::array<double, 3>{0.5, 0.25, 0}));

@@ -96,7 +96,7 @@ INSTANTIATE_TEST_SUITE_P(
               "output:", "solver: {newton: {max_iterations: 0}}\noutput:", "0}", "max_iterations",
               "solver.newton.max_iterations", "must be >= 1"},
         Check{"linear_unknown", false, "output:", "solver: {linear: mumps}\noutput:", "mumps", "",
-              "solver.linear", "expected one of 'direct', 'iterative'"},
+              "solver.linear", "expected one of 'direct', 'iterative', 'auto'"},
         Check{"output_every_zero", false, "probes:", "every: 0\n  probes:", "0", "every",
               "output.every", "must be >= 1"},
         Check{"interface_type_unknown", false, "type: mesh_tying", "type: tying", "tying", "",
