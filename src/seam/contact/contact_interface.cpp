@@ -40,7 +40,8 @@ double mean_edge_length(const meshtying::InterfaceSide& side) {
 } // namespace
 
 ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
-    : mesh_(&mesh), name_(config.name), rigid_(config.rigid_plane.has_value()),
+    : mesh_(&mesh), name_(config.name),
+      rigid_(config.rigid_plane.has_value() || config.rigid_obstacle.has_value()),
       frictional_(config.friction.model != io::FrictionModel::frictionless),
       self_(!config.surface.empty()) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
@@ -52,7 +53,15 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   mesh_size_ = mean_edge_length(slave_);
   options_.multiplier = config.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
                                                                   : mortar::Multiplier::standard;
-  if (rigid_) {
+  if (config.rigid_obstacle) {
+    const auto& round = *config.rigid_obstacle;
+    obstacle_.shape = round.cylinder ? Obstacle::Shape::cylinder : Obstacle::Shape::sphere;
+    obstacle_.point = round.point;
+    obstacle_.direction = round.axis;
+    obstacle_.radius = round.radius;
+    plane_motion_ = round.motion;
+    master_.dim = dim;
+  } else if (rigid_) {
     // One master facet that covers every place the slave surface can reach: centred at the
     // slave surface's projection onto the plane, ten times its extent.
     const auto& plane = *config.rigid_plane;
@@ -103,7 +112,9 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     plane_motion_ = plane.motion;
     // The plane only translates: its normal, towards the body, is the contact normal of
     // every slave node (the slave normal points out of the body, at the plane).
-    plane_normal_ = n;
+    obstacle_.shape = Obstacle::Shape::plane;
+    obstacle_.point = plane.point;
+    obstacle_.direction = n;
   } else if (self_) {
     // Both sides are the whole surface; the pairs say which facet is slave (self_contact.hpp).
     master_ = slave_;
@@ -130,7 +141,11 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   // Candidates up to about one slave element away, so that approaching parts are integrated
   // (and get their weighted gaps) before they touch.
   search_options_.inflation_factor = 0.75;
-  if (self_) {
+  current_ = obstacle_;
+  if (obstacle_.round()) {
+    // No master facets: the candidates come from the analytic distance (update).
+    search_options_.inflation = search_options_.inflation_factor * mesh_size_;
+  } else if (self_) {
     search_options_.inflation =
         search_options_.inflation_factor * search::min_edge_length(slave_.surface());
     self_tree_ =
@@ -162,7 +177,7 @@ void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
     owned_offsets_.push_back(static_cast<local_index>(owned_nodes_.size()));
   }
   search_.reset();
-  if (!owned_.empty() && !self_)
+  if (!owned_.empty() && !self_ && !obstacle_.round())
     search_ = std::make_unique<search::InterfaceSearch>(
         search::FacetSurface{dim(), slave_.coordinates, owned_offsets_, owned_nodes_},
         master_.surface(), search_options_);
@@ -216,16 +231,20 @@ void ContactInterface::update(std::span<const double> u, double t) {
   const int dim = this->dim();
   slave_.update_coordinates(*mesh_, u);
   if (rigid_) {
-    for (std::size_t i = 0; i < plane_corners_.size(); ++i) {
-      const auto c = static_cast<int>(i % static_cast<std::size_t>(dim));
-      master_.coordinates[i] =
-          plane_corners_[i] + (plane_motion_.empty() ? 0.0 : plane_motion_[c](t));
+    for (int c = 0; c < dim; ++c) {
+      obstacle_displacement_[c] = plane_motion_.empty() ? 0.0 : plane_motion_[c](t);
+      current_.point[c] = obstacle_.point[c] + obstacle_displacement_[c];
     }
+    for (std::size_t i = 0; i < plane_corners_.size(); ++i)
+      master_.coordinates[i] =
+          plane_corners_[i] + obstacle_displacement_[i % static_cast<std::size_t>(dim)];
   } else {
     master_.update_coordinates(*mesh_, u);
   }
   pairs_.clear();
-  if (self_) {
+  if (obstacle_.round()) {
+    collect_round_candidates();
+  } else if (self_) {
     // The whole surface is searched on every part, so that all parts assign the same roles;
     // each keeps the pairs of its own slave facets.
     std::vector<mortar::CandidatePair> all;
@@ -259,9 +278,9 @@ void ContactInterface::update(std::span<const double> u, double t) {
   for (std::size_t f = 0; f < static_cast<std::size_t>(slave_.n_facets()); ++f)
     pair_offsets_[f + 1] += pair_offsets_[f];
   if (rigid_) {
-    // The plane's normal, reversed (out of the slave body), at every slave node.
-    for (std::size_t i = 0; i < normals_.size(); ++i)
-      normals_[i] = -plane_normal_[i % static_cast<std::size_t>(dim)];
+    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
+    for (std::size_t j = 0; j < normals_.size() / static_cast<std::size_t>(dim); ++j)
+      current_.contact_normal(dim, &slave_.coordinates[j * dim], &normals_[j * dim], nullptr);
   } else {
     normals_.assign(slave_.coordinates.size(), 0.0);
     if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
@@ -330,15 +349,44 @@ void ContactInterface::add_force(const NodalValues& values, std::span<const doub
 }
 
 std::array<double, 3> ContactInterface::plane_displacement() const {
-  std::array<double, 3> d{};
-  if (rigid_)
-    for (int c = 0; c < dim(); ++c) d[c] = master_.coordinates[c] - plane_corners_[c];
-  return d;
+  return obstacle_displacement_;
+}
+
+void ContactInterface::collect_round_candidates() {
+  const int dim = this->dim();
+  const double inflation = search_options_.inflation;
+  for (const auto f : owned_) {
+    // The facet lies in the ball about its centroid through its farthest node: it can reach
+    // the surface only if the centroid is within that radius (plus the inflation) of it.
+    const auto centre = slave_centroid(f);
+    double reach = 0.0;
+    for (const auto j : slave_.facet_set().facet_nodes(f)) {
+      double d2 = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        const double d = slave_.coordinates[static_cast<std::size_t>(j) * dim + c] - centre[c];
+        d2 += d * d;
+      }
+      reach = std::max(reach, std::sqrt(d2));
+    }
+    const auto at = [&](int c) { return centre[static_cast<std::size_t>(c)]; };
+    const double g = dim == 2 ? current_.distance<double, 2>(at) : current_.distance<double, 3>(at);
+    if (g < reach + inflation) pairs_.push_back({f, 0});
+  }
 }
 
 void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& out) const {
-  if (rigid_) return;
   const int dim = this->dim();
+  if (rigid_) {
+    // The obstacle's normal moves with the node's closest point on a round surface.
+    double n[3], jac[9];
+    current_.contact_normal(dim, &slave_.coordinates[static_cast<std::size_t>(j) * dim], n, jac);
+    const auto dof0 =
+        static_cast<std::int64_t>(slave_.mesh_nodes[static_cast<std::size_t>(j)]) * dim;
+    for (int a = 0; a < dim; ++a)
+      for (int b = 0; b < dim; ++b)
+        if (jac[a * dim + b] != 0.0) out.push_back({a, dof0 + b, jac[a * dim + b]});
+    return;
+  }
   mortar::NodalNormalLinearization lin;
   mortar::linearize_nodal_normal(slave_set(), j, slave_adjacency().of(j), lin);
   const auto n = lin.nodes.size();
@@ -356,21 +404,18 @@ void ContactInterface::normal_jacobian(local_index j, std::vector<DofTriplet>& o
       }
 }
 
-void ContactInterface::rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const {
-  // The plane's current position: its first corner.
-  std::array<double, 3> point{};
-  for (int c = 0; c < dim(); ++c) point[static_cast<std::size_t>(c)] = master_.coordinates[c];
+void ContactInterface::rigid_facet(local_index f, bool derivatives, RigidObstacleFacet& out) const {
   if (dim() == 2) {
-    rigid_plane_facet<2>(mortar::gather_facet<2>(slave_.facet_set(), f), plane_normal_, point,
-                         options_.multiplier, derivatives, out);
+    rigid_obstacle_facet<2>(mortar::gather_facet<2>(slave_.facet_set(), f), current_,
+                            options_.multiplier, derivatives, out);
   } else {
-    rigid_plane_facet<3>(mortar::gather_facet<3>(slave_.facet_set(), f), plane_normal_, point,
-                         options_.multiplier, derivatives, out);
+    rigid_obstacle_facet<3>(mortar::gather_facet<3>(slave_.facet_set(), f), current_,
+                            options_.multiplier, derivatives, out);
   }
 }
 
 void ContactInterface::evaluate_rigid(NodalValues& out) const {
-  RigidPlaneFacet rf;
+  RigidObstacleFacet rf;
   for (const auto f : owned_) {
     if (pair_offsets_[static_cast<std::size_t>(f)] ==
         pair_offsets_[static_cast<std::size_t>(f) + 1])
@@ -410,7 +455,7 @@ double ContactInterface::multiplier(std::span<const double> lambda, std::size_t 
 void ContactInterface::linearize_rigid(std::span<const double> lambda,
                                        std::span<const char> want_gap, Linearization& out) const {
   const int dim = this->dim();
-  RigidPlaneFacet rf;
+  RigidObstacleFacet rf;
   std::vector<std::int64_t> column;
   for (const auto f : owned_) {
     if (pair_offsets_[static_cast<std::size_t>(f)] ==
@@ -447,7 +492,16 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
                      rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv), 1.0);
       }
       if (!carries_multiplier(lambda, static_cast<local_index>(sj))) continue;
-      // Slave node k: D_jk lambda_j with the plane's constant normal (dual: k = j only).
+      // Frictionless against a round obstacle the multiplier vector lambda_n,j n_j turns with
+      // the normal at node j: D_jk lambda_n,j dn_j/dx_j (a plane's normal is constant).
+      double dn[9] = {};
+      const bool turning = !frictional_ && obstacle_.round();
+      if (turning) {
+        double nj[3];
+        current_.contact_normal(dim, &slave_.coordinates[sj * dim], nj, dn);
+      }
+      const auto dof_j = static_cast<std::int64_t>(slave_.mesh_nodes[sj]) * dim;
+      // Slave node k: D_jk lambda_j (dual: k = j only).
       for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k) {
         const auto row0 =
             static_cast<std::int64_t>(
@@ -457,6 +511,12 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
           push_row(out.force_tangent, row0 + a,
                    rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv),
                    multiplier(lambda, sj, a));
+        if (!turning) continue;
+        const double scale = rf.D[static_cast<std::size_t>(j * n + k)] * lambda[sj];
+        for (int a = 0; a < dim; ++a)
+          for (int b = 0; b < dim; ++b)
+            if (scale * dn[a * dim + b] != 0.0)
+              out.force_tangent.push_back({row0 + a, dof_j + b, scale * dn[a * dim + b]});
       }
     }
   }

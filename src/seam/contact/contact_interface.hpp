@@ -13,11 +13,15 @@
 // (set_owned_facets; all of them by default), evaluates them there and sums the partial
 // results; the indices it gets are mesh dofs, node * dim + component.
 //
-// A rigid plane is a single master facet (line2 / quad4) far larger than the slave surface,
-// moved by the prescribed motion; it has no dofs, so no derivative with respect to it is kept.
-// Its normal is the contact normal, and each candidate slave facet is integrated as a whole
-// (rigid_plane_facet.hpp) instead of being clipped against the master facet.
-#include "seam/contact/rigid_plane_facet.hpp"
+// A rigid obstacle (rigid_obstacle.hpp: plane, sphere or cylinder) is an analytic surface moved
+// by the prescribed motion; it has no dofs, so no derivative with respect to it is kept. Each
+// candidate slave facet is integrated as a whole against it (rigid_obstacle_facet.hpp) instead
+// of being clipped against master facets, and the contact normal of slave node j is the
+// obstacle's normal at the node's closest point: constant for a plane, -(x_j - c) / |x_j - c|
+// for a sphere, whose derivative enters the tangent. A plane is also a single master facet
+// (line2 / quad4) far larger than the slave surface, for the k-DOP search; the candidates of a
+// round obstacle are the slave facets within the search inflation of its surface.
+#include "seam/contact/rigid_obstacle_facet.hpp"
 #include "seam/contact/self_contact.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
@@ -102,13 +106,16 @@ public:
   /// Mesh nodes of the master side (empty for a rigid plane).
   std::span<const std::int32_t> master_nodes() const;
   bool rigid() const { return rigid_; }
+  /// The rigid obstacle in its current position (rigid() only).
+  const Obstacle& obstacle() const { return current_; }
   /// Self and multi-body contact (`surface:`, self_contact.hpp): the slave and the master side
   /// are both the whole surface and every search assigns the roles of its facets.
   bool self_contact() const { return self_; }
   /// Contact with friction: multipliers are Cartesian vectors (dim per slave node) in
   /// add_force and linearize instead of normal multipliers.
   bool frictional() const { return frictional_; }
-  /// The rigid plane's displacement at the last update (dim entries; zero for two bodies).
+  /// The rigid obstacle's displacement at the last update (dim entries; zero for two bodies).
+  /// Friction against it uses the slip increment relative to this translation.
   std::array<double, 3> plane_displacement() const;
   /// Current positions of the slave nodes (dim per slave node) and of the master nodes (dim
   /// per master node; the plane's corners for a rigid plane) at the last update.
@@ -174,7 +181,7 @@ public:
 
   /// d n_j / d(displacement) of the averaged normal of slave node j at the last update: row =
   /// component, column = mesh dof, appended to `out`. Nothing for a rigid plane (its normal is
-  /// fixed).
+  /// fixed); for a round obstacle the derivative of its normal at the node.
   void normal_jacobian(local_index j, std::vector<DofTriplet>& out) const;
 
 private:
@@ -184,8 +191,10 @@ private:
   /// Component c of the multiplier vector of slave node j.
   double multiplier(std::span<const double> lambda, std::size_t j, int c) const;
   /// Rigid plane: D and g~ of slave facet f integrated over the whole facet, with their
-  /// derivatives if asked (rigid_plane_facet.hpp).
-  void rigid_facet(local_index f, bool derivatives, RigidPlaneFacet& out) const;
+  /// derivatives if asked (rigid_obstacle_facet.hpp).
+  void rigid_facet(local_index f, bool derivatives, RigidObstacleFacet& out) const;
+  /// Round obstacle: the candidate slave facets, those within the inflation of its surface.
+  void collect_round_candidates();
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out) const;
@@ -209,10 +218,12 @@ private:
   bool self_ = false;
   meshtying::InterfaceSide slave_, master_;
   std::vector<std::int32_t> master_mesh_nodes_;
-  // Rigid plane: reference corners and the motion.
+  // Rigid obstacle: its reference and current surfaces, the motion (a plane's reference corners
+  // too) and the displacement at the last update.
+  Obstacle obstacle_, current_;
   std::vector<double> plane_corners_;
   std::vector<io::Expression> plane_motion_;
-  std::array<double, 3> plane_normal_{}; ///< unit, towards the slave body
+  std::array<double, 3> obstacle_displacement_{};
   double mesh_size_ = 0.0;
   mortar::MortarOptions options_;
   mortar::NodeFacets slave_adjacency_;

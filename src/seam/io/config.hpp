@@ -137,6 +137,17 @@ struct RigidPlane {
   Mark mark;
 };
 
+/// `rigid_sphere` (a circle in 2D) or `rigid_cylinder` (3D): a round rigid obstacle.
+struct RigidObstacle {
+  bool cylinder = false;
+  std::array<double, 3> point{}; ///< sphere: centre; cylinder: a point of the axis (reference)
+  std::array<double, 3> axis{};  ///< cylinder only: unit axis, as given then normalized
+  double radius = 0.0;           ///< > 0
+  /// `dimension` expressions in t: displacement of the obstacle (default: at rest)
+  std::vector<Expression> motion;
+  Mark mark;
+};
+
 struct Friction {
   FrictionModel model = FrictionModel::frictionless;
   double coefficient = 0.0; ///< Coulomb coefficient mu, >= 0
@@ -153,6 +164,8 @@ struct Interface {
   /// neither master nor rigid_plane.
   std::vector<RegionRef> surface;
   std::optional<RigidPlane> rigid_plane; ///< contact only
+  /// Contact only: rigid_sphere or rigid_cylinder (exclusive with master and rigid_plane).
+  std::optional<RigidObstacle> rigid_obstacle;
   Multiplier multiplier = Multiplier::dual;
   /// default condensed with dual multipliers, saddle_point with standard ones (a standard
   /// multiplier's D matrix is not diagonal, so it cannot be condensed cheaply).

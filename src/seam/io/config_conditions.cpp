@@ -102,6 +102,38 @@ RigidPlane read_rigid_plane(const Node& node, int dimension) {
   return plane;
 }
 
+// rigid_sphere: {center, radius, motion}; rigid_cylinder: {point, axis, radius, motion} (3D).
+RigidObstacle read_rigid_obstacle(const Node& node, bool cylinder, int dimension) {
+  const Map map(node, {"center", "point", "axis", "radius", "motion"});
+  map.forbid("center", cylinder,
+             "applies only to rigid_sphere (a cylinder has 'point' and 'axis')");
+  map.forbid("point", !cylinder, "applies only to rigid_cylinder (a sphere has 'center')");
+  map.forbid("axis", !cylinder, "applies only to rigid_cylinder");
+  RigidObstacle obstacle;
+  obstacle.mark = node.mark();
+  obstacle.cylinder = cylinder;
+  if (cylinder && dimension != 3)
+    node.fail("rigid_cylinder needs dimension 3 (in 2D a rigid_sphere is a circle)");
+  obstacle.point = map.required(cylinder ? "point" : "center").point(dimension);
+  if (cylinder) {
+    const Node axis = map.required("axis");
+    obstacle.axis = axis.point(dimension);
+    const double length = std::hypot(obstacle.axis[0], obstacle.axis[1], obstacle.axis[2]);
+    if (!(length > 0.0)) axis.fail("the axis must not be the zero vector");
+    for (double& component : obstacle.axis) component /= length;
+  }
+  const Node radius = map.required("radius");
+  obstacle.radius = radius.number();
+  if (!(obstacle.radius > 0.0))
+    radius.fail(concat("the radius must be > 0, got ", format_number(obstacle.radius)));
+  if (const auto motion = map.get("motion")) {
+    obstacle.motion = motion->expressions(dimension);
+  } else {
+    obstacle.motion.assign(static_cast<std::size_t>(dimension), Expression(0.0));
+  }
+  return obstacle;
+}
+
 Friction read_friction(const Node& node) {
   const Map map(node, {"model", "coefficient", "bound"});
   Friction friction;
@@ -142,8 +174,9 @@ std::vector<RegionRef> read_surface(const Node& node) {
 }
 
 Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
-  const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "surface", "multiplier",
-                       "strategy", "friction", "c_n", "c_t"});
+  const Map map(node,
+                {"name", "type", "slave", "master", "rigid_plane", "rigid_sphere", "rigid_cylinder",
+                 "surface", "multiplier", "strategy", "friction", "c_n", "c_t"});
   Interface interface;
   interface.mark = node.mark();
   const Node name = map.required("name");
@@ -160,7 +193,7 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
   const auto rigid_plane = map.get("rigid_plane");
   if (const auto surface = map.get("surface")) {
     map.forbid("surface", !contact, "applies only to type 'contact'");
-    for (const char* key : {"slave", "master", "rigid_plane"})
+    for (const char* key : {"slave", "master", "rigid_plane", "rigid_sphere", "rigid_cylinder"})
       map.forbid(key, true,
                  "cannot be combined with 'surface' (whose slave and master facets are assigned "
                  "at every search)");
@@ -172,8 +205,21 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
   }
   map.forbid("rigid_plane", !contact, "applies only to type 'contact'");
   if (master && rigid_plane) rigid_plane->fail("give either 'master' or 'rigid_plane', not both");
-  if (!master && !rigid_plane && interface.surface.empty()) {
-    node.fail(contact ? "missing required key 'master' (or 'rigid_plane')"
+  // The round obstacles: one master side of any kind per interface.
+  for (const char* key : {"rigid_sphere", "rigid_cylinder"}) {
+    const auto obstacle = map.get(key);
+    if (!obstacle) continue;
+    map.forbid(key, !contact, "applies only to type 'contact'");
+    if (master || rigid_plane || interface.rigid_obstacle || !interface.surface.empty())
+      obstacle->fail(concat("give only one of 'master', 'rigid_plane', 'rigid_sphere', "
+                            "'rigid_cylinder' and 'surface'; '",
+                            key, "' comes with another"));
+    interface.rigid_obstacle =
+        read_rigid_obstacle(*obstacle, std::string_view(key) == "rigid_cylinder", dimension);
+  }
+  if (!master && !rigid_plane && !interface.rigid_obstacle && interface.surface.empty()) {
+    node.fail(contact ? "missing required key 'master' (or 'rigid_plane', 'rigid_sphere', "
+                        "'rigid_cylinder')"
                       : "missing required key 'master'");
   }
   if (master) {

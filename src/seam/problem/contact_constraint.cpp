@@ -778,7 +778,7 @@ std::vector<std::string> ContactConstraint::describe() const {
     std::snprintf(
         line, sizeof line, "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
         s.itf.name().c_str(), static_cast<int>(s.itf.slave().n_facets()),
-        s.itf.rigid() ? "a rigid plane"
+        s.itf.rigid() ? s.itf.obstacle().name()
         : s.itf.self_contact()
             ? "themselves (self and multi-body contact, roles per search)"
             : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),

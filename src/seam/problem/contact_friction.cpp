@@ -351,6 +351,22 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
     for (const auto& e : dn)
       add_gradient(j, global_dof(e.col), coef_n, static_cast<int>(e.row), e.value);
     const double* normal = &s.itf.normals()[j * dim];
+    if (rigid && !dn.empty()) {
+      // A round obstacle's normal turns with the node, and so does P in u~ = D P d with
+      // d = x~ - x~^n - (c - c^n): du~ = -D (n (d . dn) + (d . n) dn).
+      const auto obstacle = s.itf.plane_displacement();
+      double d[3] = {0, 0, 0}, dn_d = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        d[c] = s.x[j * dim + c] - s.x_old[j * dim + c] - (obstacle[c] - s.plane_old[c]);
+        dn_d += d[c] * normal[c];
+      }
+      for (const auto& e : dn)
+        for (int c = 0; c < dim; ++c) {
+          const double v = -s.D[j] * e.value *
+                           (d[e.row] * normal[c] + (c == static_cast<int>(e.row) ? dn_d : 0.0));
+          if (v != 0.0) add_gradient(j, global_dof(e.col), coef_u, c, v);
+        }
+    }
     for (const auto& [k, tk] : inverse_row[j])
       for (int a = 0; a < dim; ++a)
         for (int b = 0; b < dim; ++b) {

@@ -3,7 +3,8 @@
 // two non-matching meshes in 2D (line2) and 3D (quad4, tri3), with dual and with standard
 // multipliers (D not diagonal), pressed into each other with a random perturbation, so that
 // master edges cross the slave integration cells, some slave nodes penetrate and others are
-// open; and on a rigid plane. Every derivative the contact
+// open; and on rigid obstacles (a plane, a sphere or circle, a cylinder with a tilted axis; the
+// round ones with the derivative of their normal at the node). Every derivative the contact
 // Newton uses goes through here: normals, projections, clip polygons, cell Jacobians, dual
 // coefficients, D, M and g~.
 #include "seam/contact/contact_interface.hpp"
@@ -65,7 +66,12 @@ Physical Curve("master") = {3}; Physical Curve("slave") = {5};
                          options);
 }
 
-io::Interface contact_config(bool rigid, int dim, bool standard, bool friction = false) {
+/// The rigid obstacle of a rigid case: a plane, or below the slave block's bottom a sphere
+/// (circle) or a cylinder of radius 2, so the slave bottom meets a curved surface.
+enum class Shape { plane, sphere, cylinder };
+
+io::Interface contact_config(bool rigid, int dim, bool standard, bool friction = false,
+                             Shape shape = Shape::plane) {
   io::Interface c;
   if (friction) {
     c.friction.model = io::FrictionModel::coulomb;
@@ -75,7 +81,17 @@ io::Interface contact_config(bool rigid, int dim, bool standard, bool friction =
   c.name.assign("contact");
   c.type = io::InterfaceType::contact;
   c.slave.name.assign("slave");
-  if (rigid) {
+  if (rigid && shape != Shape::plane) {
+    io::RigidObstacle o;
+    o.cylinder = shape == Shape::cylinder;
+    o.radius = 2.0;
+    o.point = {0.5, 0.5, 0.0};
+    o.point[dim - 1] = -2.0;
+    const double l = std::hypot(1.0, 0.3);
+    o.axis = {1.0 / l, 0.3 / l, 0.0};
+    o.motion.assign(static_cast<std::size_t>(dim), io::Expression(0.0));
+    c.rigid_obstacle = o;
+  } else if (rigid) {
     io::RigidPlane p;
     p.point = {0.0, 0.0, 0.0};
     p.normal = {0.0, 0.0, 0.0};
@@ -89,9 +105,9 @@ io::Interface contact_config(bool rigid, int dim, bool standard, bool friction =
 
 using Dense = std::map<std::pair<std::int64_t, std::int64_t>, double>;
 
-void check(int dim, bool tets, bool rigid, bool standard = false) {
+void check(int dim, bool tets, bool rigid, bool standard = false, Shape shape = Shape::plane) {
   const auto mesh = two_blocks(dim, tets);
-  ContactInterface itf(contact_config(rigid, dim, standard), mesh);
+  ContactInterface itf(contact_config(rigid, dim, standard, false, shape), mesh);
   // Press the upper block into the lower one, perturb every interface node.
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> perturb(-0.015, 0.015);
@@ -168,8 +184,11 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
   std::printf("  dim %d %s %s %s: %zu dofs, |dF/du| max %.3e err %.3e, |dg/du| max %.3e err "
               "%.3e\n",
               dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
-              rigid ? "rigid plane" : "two bodies", standard ? "standard" : "dual", dofs.size(),
-              k_max, k_err, g_max, g_err);
+              rigid ? (shape == Shape::plane
+                           ? "rigid plane"
+                           : (shape == Shape::sphere ? "rigid sphere" : "rigid cylinder"))
+                    : "two bodies",
+              standard ? "standard" : "dual", dofs.size(), k_max, k_err, g_max, g_err);
   if (standard) {
     EXPECT_FALSE(values.D_coupling.empty()); // D is not diagonal
   }
@@ -183,9 +202,10 @@ void check(int dim, bool tets, bool rigid, bool standard = false) {
 // derivative of the operators in the slip increment, sum_l M_jl x_l - D_jj x_j at fixed x, and
 // the normals' Jacobian, against central differences. Standard multipliers: the nodal weight
 // sum_k D_jk and sum_l M_jl x_l - sum_k D_jk x_k instead.
-void check_friction(int dim, bool tets, bool rigid, bool standard = false) {
+void check_friction(int dim, bool tets, bool rigid, bool standard = false,
+                    Shape shape = Shape::plane) {
   const auto mesh = two_blocks(dim, tets);
-  ContactInterface itf(contact_config(rigid, dim, standard, true), mesh);
+  ContactInterface itf(contact_config(rigid, dim, standard, true, shape), mesh);
   ASSERT_TRUE(itf.frictional());
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> perturb(-0.015, 0.015), unit(-1.0, 1.0);
@@ -273,8 +293,11 @@ void check_friction(int dim, bool tets, bool rigid, bool standard = false) {
   std::printf("  friction%s dim %d %s %s: |dF| %.2e err %.2e, |dD| %.2e err %.2e, |dW| %.2e err "
               "%.2e, |dn| %.2e err %.2e\n",
               standard ? " standard" : "", dim, tets ? "tri3" : (dim == 2 ? "line2" : "quad4"),
-              rigid ? "rigid plane" : "two bodies", big[0], err[0], big[1], err[1], big[2], err[2],
-              big[3], err[3]);
+              rigid ? (shape == Shape::plane
+                           ? "rigid plane"
+                           : (shape == Shape::sphere ? "rigid sphere" : "rigid cylinder"))
+                    : "two bodies",
+              big[0], err[0], big[1], err[1], big[2], err[2], big[3], err[3]);
   EXPECT_GT(big[0], 0.05);
   EXPECT_GT(big[1], 1e-3);
   // A rigid plane has no M: its slip increment is built from the nodal positions alone.
@@ -284,7 +307,9 @@ void check_friction(int dim, bool tets, bool rigid, bool standard = false) {
     }
   if (!rigid) {
     EXPECT_GT(big[2], 1e-3);
-    EXPECT_GT(big[3], 1e-2);
+  }
+  if (!rigid || shape != Shape::plane) {
+    EXPECT_GT(big[3], 1e-2); // the normal turns with the node
   }
 }
 
@@ -343,13 +368,40 @@ TEST(ContactLinearization, RigidPlane3DStandard) {
 TEST(ContactLinearization, RigidPlaneTri3) {
   check(3, true, true);
 }
+TEST(ContactLinearization, RigidCircle2D) {
+  check(2, false, true, false, Shape::sphere);
+}
+TEST(ContactLinearization, RigidCircle2DStandard) {
+  check(2, false, true, true, Shape::sphere);
+}
+TEST(ContactLinearization, RigidSphereQuad4) {
+  check(3, false, true, false, Shape::sphere);
+}
+TEST(ContactLinearization, RigidSphereTri3) {
+  check(3, true, true, false, Shape::sphere);
+}
+TEST(ContactLinearization, RigidCylinderQuad4) {
+  check(3, false, true, false, Shape::cylinder);
+}
+TEST(ContactLinearization, RigidCylinderTri3) {
+  check(3, true, true, false, Shape::cylinder);
+}
+TEST(ContactLinearization, FrictionRigidCircle2D) {
+  check_friction(2, false, true, false, Shape::sphere);
+}
+TEST(ContactLinearization, FrictionRigidSphere3D) {
+  check_friction(3, false, true, false, Shape::sphere);
+}
+TEST(ContactLinearization, FrictionRigidCylinder3DStandard) {
+  check_friction(3, false, true, true, Shape::cylinder);
+}
 
 /// The slave facets split into parts (as the ranks hold them): each part searches and
 /// integrates its own facets only, and the parts' sums equal the whole interface's D, g~, M,
 /// pairs, integration cells and force tangent.
-void check_parts(int dim, bool tets, bool rigid) {
+void check_parts(int dim, bool tets, bool rigid, Shape shape = Shape::plane) {
   const auto mesh = two_blocks(dim, tets);
-  ContactInterface whole(contact_config(rigid, dim, false), mesh);
+  ContactInterface whole(contact_config(rigid, dim, false, false, shape), mesh);
   std::vector<double> u(mesh.x.size(), 0.0);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> perturb(-0.01, 0.01);
@@ -375,7 +427,7 @@ void check_parts(int dim, bool tets, bool rigid) {
   Dense K_parts, M_parts;
   local_index pairs = 0, cells = 0, candidates = 0;
   for (int part = 0; part < n_parts; ++part) {
-    ContactInterface itf(contact_config(rigid, dim, false), mesh);
+    ContactInterface itf(contact_config(rigid, dim, false, false, shape), mesh);
     std::vector<local_index> mine; // contiguous blocks: parts with and without contact
     for (local_index f = part * n_facets / n_parts; f < (part + 1) * n_facets / n_parts; ++f)
       mine.push_back(f);
@@ -430,6 +482,9 @@ TEST(ContactParts, TwoBodiesTri3) {
 }
 TEST(ContactParts, RigidPlane3D) {
   check_parts(3, false, true);
+}
+TEST(ContactParts, RigidSphere3D) {
+  check_parts(3, false, true, Shape::sphere);
 }
 
 } // namespace

@@ -353,6 +353,21 @@ Case plane_case(std::string name, int dimension, std::string geo, const std::str
   return c;
 }
 
+/// A rigid round obstacle under the block instead of the plane: its surface curves away from
+/// the block's bottom (radius 8), so the normal and the projection P in the slip increment
+/// turn with each node.
+Case obstacle_case(std::string name, int dimension, std::string geo, const std::string& obstacle) {
+  Case c = plane_case(std::move(name), dimension, std::move(geo), "");
+  c.interface = "{name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
+                "coefficient: 0.3}, " +
+                obstacle + "}";
+  // Pressed deeper and dragged less than on the plane, so that part of the curved contact
+  // zone sticks while its rim slips.
+  c.tilt = "(-0.03+0.02*x)";
+  c.top_x = "0.0005";
+  return c;
+}
+
 Case blocks_case(std::string name, int order, const std::string& extra) {
   Case c;
   c.name = std::move(name);
@@ -380,6 +395,28 @@ TEST(FrictionTangent, TwoBodies3dQuad4Dual) {
 
 TEST(FrictionTangent, RigidPlane2dLine2Dual) {
   expect_mixed(check(plane_case("plane_2d_line2_dual", 2, rectangle_geo(0.0625, 1, false), ""), 3),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidCircle2dLine2Dual) {
+  expect_mixed(check(obstacle_case("circle_2d_line2_dual", 2, rectangle_geo(0.0625, 1, false),
+                                   "rigid_sphere: {center: [0.5, -8], radius: 8}"),
+                     3),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidSphere3dQuad4Dual) {
+  expect_mixed(check(obstacle_case("sphere_3d_quad4_dual", 3, box_geo(0.125, 1, false, false),
+                                   "rigid_sphere: {center: [0.5, 0.25, -8], radius: 8}"),
+                     2),
+               tolerance);
+}
+
+TEST(FrictionTangent, RigidCylinder3dQuad4Dual) {
+  expect_mixed(check(obstacle_case("cylinder_3d_quad4_dual", 3, box_geo(0.125, 1, false, false),
+                                   "rigid_cylinder: {point: [0.5, 0, -8], axis: [0.2, 1, 0], "
+                                   "radius: 8}"),
+                     2),
                tolerance);
 }
 

@@ -1,4 +1,4 @@
-#include "seam/contact/rigid_plane_facet.hpp"
+#include "seam/contact/rigid_obstacle_facet.hpp"
 
 #include "seam/mortar/linearization_kernels.hpp"
 
@@ -9,8 +9,7 @@ namespace {
 namespace ad = mortar::ad;
 
 template <class S, int Dim>
-void kernel(const ad::FacetT<S, Dim>& f, const std::array<double, 3>& normal,
-            const std::array<double, 3>& point, mortar::Multiplier multiplier,
+void kernel(const ad::FacetT<S, Dim>& f, const Obstacle& obstacle, mortar::Multiplier multiplier,
             ad::SmallMatrixT<S>& D, ad::NodalVectorT<S>& gap, double& area) {
   const int n = f.n_nodes;
   const double a = mortar::basis_modification(f.type, multiplier);
@@ -32,9 +31,7 @@ void kernel(const ad::FacetT<S, Dim>& f, const std::array<double, 3>& normal,
     Nt = N;
     if (a != 0.0) mortar::modify_basis(f.type, a, Nt.data());
     const Eigen::Matrix<S, Dim, 1> x = ad::times<S, Dim, 1>(f.x, N, n);
-    S distance = 0.0;
-    for (int c = 0; c < Dim; ++c)
-      distance += normal[static_cast<std::size_t>(c)] * (x(c) - point[static_cast<std::size_t>(c)]);
+    const S distance = obstacle.distance<S, Dim>(x);
     for (int j = 0; j < n; ++j) {
       S phi = 0.0;
       if (dual) {
@@ -51,13 +48,12 @@ void kernel(const ad::FacetT<S, Dim>& f, const std::array<double, 3>& normal,
 }
 
 template <int Dim, int K>
-void with_derivatives(const mortar::Facet<Dim>& facet, const std::array<double, 3>& normal,
-                      const std::array<double, 3>& point, mortar::Multiplier multiplier,
-                      RigidPlaneFacet& out) {
+void with_derivatives(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
+                      mortar::Multiplier multiplier, RigidObstacleFacet& out) {
   using S = Dual<K>;
   ad::SmallMatrixT<S> D;
   ad::NodalVectorT<S> gap;
-  kernel<S, Dim>(ad::seed<S, Dim>(facet, 0), normal, point, multiplier, D, gap, out.area);
+  kernel<S, Dim>(ad::seed<S, Dim>(facet, 0), obstacle, multiplier, D, gap, out.area);
   const int n = facet.n_nodes;
   const int nv = Dim * n;
   out.n_variables = nv;
@@ -78,17 +74,16 @@ void with_derivatives(const mortar::Facet<Dim>& facet, const std::array<double, 
 } // namespace
 
 template <int Dim>
-void rigid_plane_facet(const mortar::Facet<Dim>& facet, const std::array<double, 3>& normal,
-                       const std::array<double, 3>& point, mortar::Multiplier multiplier,
-                       bool derivatives, RigidPlaneFacet& out) {
+void rigid_obstacle_facet(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
+                          mortar::Multiplier multiplier, bool derivatives,
+                          RigidObstacleFacet& out) {
   const int n = facet.n_nodes;
   out.n = n;
   if (!derivatives) {
     out.n_variables = 0;
     ad::SmallMatrixT<double> D;
     ad::NodalVectorT<double> gap;
-    kernel<double, Dim>(ad::seed<double, Dim>(facet, 0), normal, point, multiplier, D, gap,
-                        out.area);
+    kernel<double, Dim>(ad::seed<double, Dim>(facet, 0), obstacle, multiplier, D, gap, out.area);
     for (int j = 0; j < n; ++j) {
       for (int k = 0; k < n; ++k) out.D[static_cast<std::size_t>(j * n + k)] = D(j, k);
       out.gap[static_cast<std::size_t>(j)] = gap(j);
@@ -96,14 +91,12 @@ void rigid_plane_facet(const mortar::Facet<Dim>& facet, const std::array<double,
     return;
   }
   ad::with_facet_width(
-      Dim * n, [&]<int K>() { with_derivatives<Dim, K>(facet, normal, point, multiplier, out); });
+      Dim * n, [&]<int K>() { with_derivatives<Dim, K>(facet, obstacle, multiplier, out); });
 }
 
-template void rigid_plane_facet(const mortar::Facet<2>&, const std::array<double, 3>&,
-                                const std::array<double, 3>&, mortar::Multiplier, bool,
-                                RigidPlaneFacet&);
-template void rigid_plane_facet(const mortar::Facet<3>&, const std::array<double, 3>&,
-                                const std::array<double, 3>&, mortar::Multiplier, bool,
-                                RigidPlaneFacet&);
+template void rigid_obstacle_facet(const mortar::Facet<2>&, const Obstacle&, mortar::Multiplier,
+                                   bool, RigidObstacleFacet&);
+template void rigid_obstacle_facet(const mortar::Facet<3>&, const Obstacle&, mortar::Multiplier,
+                                   bool, RigidObstacleFacet&);
 
 } // namespace seam::contact

@@ -1,8 +1,9 @@
 #pragma once
-// The mortar quantities of one slave facet against a rigid plane, integrated over the whole
-// facet with the facet's own Gauss rule (element-based integration). A plane covers every
-// slave facet near it, so no segmentation is needed: the contact normal is the plane's, the gap
-// at a point x of the facet is its distance n . (x - p) to the plane, and
+// The mortar quantities of one slave facet against a rigid obstacle (plane, sphere, cylinder;
+// rigid_obstacle.hpp), integrated over the whole facet with the facet's own Gauss rule
+// (element-based integration). The analytic surface covers every slave facet near it, so no
+// segmentation is needed: the gap at a point x of the facet is its signed distance g(x) to the
+// obstacle's surface (n . (x - p) for a plane, |x - c| - R for a sphere), and
 //   D_jk = int Phi_j N~_k da,   g~_j = int Phi_j g da
 // with the rule the dual basis Phi is built with. D and g~ are then exact also on quad4 facets
 // that are not parallelograms, where the triangles of a clip polygon integrate the non-polynomial
@@ -12,12 +13,13 @@
 #include <array>
 #include <vector>
 
+#include "seam/contact/rigid_obstacle.hpp"
 #include "seam/mortar/dual_basis.hpp"
 #include "seam/mortar/facet.hpp"
 
 namespace seam::contact {
 
-struct RigidPlaneFacet {
+struct RigidObstacleFacet {
   int n = 0;           ///< nodes of the facet
   int n_variables = 0; ///< dim * n with derivatives, 0 without
   /// D_jk at j * n + k (N~: the modified basis of tri6/quad8 with dual multipliers).
@@ -29,11 +31,9 @@ struct RigidPlaneFacet {
   std::vector<double> dD, dgap;
 };
 
-/// `normal`: unit normal of the plane pointing towards the slave body; `point`: a point of the
-/// plane in the current configuration (first dim entries used).
+/// `obstacle`: its surface in the current configuration.
 template <int Dim>
-void rigid_plane_facet(const mortar::Facet<Dim>& facet, const std::array<double, 3>& normal,
-                       const std::array<double, 3>& point, mortar::Multiplier multiplier,
-                       bool derivatives, RigidPlaneFacet& out);
+void rigid_obstacle_facet(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
+                          mortar::Multiplier multiplier, bool derivatives, RigidObstacleFacet& out);
 
 } // namespace seam::contact
