@@ -10,10 +10,12 @@
   touch; np = 3 equals np = 1. What the impact still does to the angular momentum and the
   energy is measured and printed (see test_free_bodies_2d).
 """
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import contact_analysis as C  # noqa: E402
 import harness as H  # noqa: E402
 import test_contact as T  # noqa: E402
 
@@ -181,5 +183,153 @@ def test_free_bodies_3d():
         check_free(free_bodies(3, integrator, n=6, steps=20), integrator)
 
 
+# ---------------------------------------------------------------------------------------------
+# examples/rings: elastic rings falling into a rigid box
+
+G, RHO, R_OUT, R_IN, NC = 10.0, 1.0, 1.0, 0.8, 6
+
+
+def rings_case(np=1, rings=10, k=4, end=0.35):
+    """examples/rings with N rings in rows of k, run to `end` (the lowest row lands at 0.2,
+    the second on it at about 0.26, the walls are reached at about 0.37). Returns the rows of
+    steps.csv, the plane forces per step and the output directory."""
+    width = 2 * k * (R_OUT + 0.1) + 0.2
+    work, yaml = H.copy_example("rings", "rings.yaml", [
+        ("point: [22.2, 0]", "point: [%r, 0]" % width),
+        ("end: 1.5, dt: 0.0025", "end: %r, dt: 0.0025" % end),
+        ("every: 20", "every: 1000")])
+    geo = os.path.join(work, "rings.geo")
+    with open(geo) as f:
+        text = f.read()
+    if "N = 200; k = 10;" not in text:
+        raise AssertionError("rings.geo: 'N = 200; k = 10;' not found")
+    with open(geo, "w") as f:
+        f.write(text.replace("N = 200; k = 10;", "N = %d; k = %d;" % (rings, k)))
+    out = H.solve(yaml, np=np)
+    rows = H.read_csv(os.path.join(out, "steps.csv"))
+    planes = {}
+    for r in H.read_csv(os.path.join(out, "interfaces.csv")):
+        planes.setdefault(r["step"], {})[r["interface"]] = r
+    return rows, planes, work, out, width
+
+
+def momentum_and_energy(rows, planes, mass):
+    """Momentum balance of every step, p_{n+1} - p_n = dt (F_gravity + F_planes(t_{n+1}))
+    (the ring-ring forces cancel; the contact forces act at the end of the step), and the
+    energy E_kin + E_int - W_gravity with the gravity work of the midpoint scheme,
+    W += -g dt (p_y,n + p_y,n+1) / 2 (u_{n+1} - u_n = dt (v_n + v_{n+1}) / 2 and the consistent
+    nodal weights of the body force are the row sums of M). Returns (largest momentum residual
+    over m g dt, [(t, E - W, W)])."""
+    p_old, t_old, work, worst, energy = (0.0, 0.0), 0.0, 0.0, 0.0, []
+    for r in rows:
+        dt = r["time"] - t_old
+        f = {name: planes.get(r["step"], {}).get(name, {}).get("normal_force", 0.0)
+             for name in ("floor", "left", "right")}
+        px, py = r["momentum_x"], r["momentum_y"]
+        res_y = py - p_old[1] - dt * (-mass * G + f["floor"])
+        res_x = px - p_old[0] - dt * (f["left"] - f["right"])
+        worst = max(worst, abs(res_x) / (mass * G * dt), abs(res_y) / (mass * G * dt))
+        work += -G * dt * (py + p_old[1]) / 2
+        energy.append((r["time"], r["total_energy"] - work, work))
+        p_old, t_old = (px, py), r["time"]
+    return worst, energy
+
+
+def ring_penetration(out, rings, k, width):
+    """Largest depth of a ring node inside another ring's deformed outer polygon, of a node
+    beyond the floor or a wall, and the smallest nodal mortar gap of an active node, at the
+    last step (interface_rings.csv: every node of every ring boundary)."""
+    nodes = H.read_csv(os.path.join(out, "interface_rings.csv"))
+    centres, i, row = [], 0, 0
+    while i < rings:  # the pile of rings.geo
+        for j in range(k - row % 2):
+            if i < rings:
+                centres.append((0.3 + R_OUT + j * 2.2 + (row % 2) * 1.1,
+                                R_OUT + 0.1 + row * 2.2 * 3 ** 0.5 / 2))
+                i += 1
+        row += 1
+    outer = [[] for _ in centres]
+    points = []
+    for n in nodes:
+        c = min(range(len(centres)), key=lambda c: (n["x"] - centres[c][0]) ** 2
+                + (n["y"] - centres[c][1]) ** 2)
+        pos = (n["x"] + n["ux"], n["y"] + n["uy"])
+        points.append((c, pos))
+        if (n["x"] - centres[c][0]) ** 2 + (n["y"] - centres[c][1]) ** 2 > 0.95 ** 2:
+            outer[c].append((math.atan2(n["y"] - centres[c][1], n["x"] - centres[c][0]), pos))
+    polygons = [[p for _, p in sorted(o)] for o in outer]
+    if any(len(p) != 4 * NC for p in polygons):
+        raise AssertionError("the ring nodes were not found by their reference centres")
+
+    def depth(point, poly):  # > 0 inside the (counter-clockwise) polygon
+        d = 1e300
+        for a, b in zip(poly, poly[1:] + poly[:1]):
+            ex, ey = b[0] - a[0], b[1] - a[1]
+            d = min(d, (ex * (point[1] - a[1]) - ey * (point[0] - a[0])) / math.hypot(ex, ey))
+        return d
+
+    worst = -1e300
+    for c, pos in points:
+        for other, poly in enumerate(polygons):
+            if other != c:
+                worst = max(worst, depth(pos, poly))
+    walls = max(max(-pos[1], -pos[0], pos[0] - width) for _, pos in points)
+    gaps = [n["gap"] for n in nodes if C.is_active(n)]
+    if not gaps:
+        raise AssertionError("no ring touches another at the last step")
+    return worst, walls, min(gaps)
+
+
+def check_rings(rows, planes, out, rings, k, width):
+    # Mass: N polygonal annuli (4 NC straight-sided quads around), rho N (4 NC / 2)
+    # sin(2 pi / 4 NC) (R^2 - r^2); before the first landing p_y = -m g t exactly.
+    n = 4 * NC
+    mass = RHO * rings * 0.5 * n * math.sin(2 * math.pi / n) * (R_OUT ** 2 - R_IN ** 2)
+    landed = [t for t in planes if planes[t]["floor"]["normal_force"] > 0]
+    fall = [r for r in rows if r["step"] < min(landed)]
+    free = max(abs(r["momentum_y"] + mass * G * r["time"]) / (mass * G * r["time"])
+               for r in fall)
+    worst, energy = momentum_and_energy(rows, planes, mass)
+    above = max(e for _, e, _ in energy)  # round-off: 1e-11 in free fall
+    rises = [b[1] - a[1] for a, b in zip(energy, energy[1:])]
+    pen, walls, gap = ring_penetration(out, rings, k, width)
+    thickness = R_OUT - R_IN
+    print("   %d rings, %d steps: free fall p_y + m g t %.1e (of m g t); momentum balance "
+          "with the plane forces %.1e (of m g dt); floor reached at step %d; energy - gravity "
+          "work at the end %.4f of the work %.4f, largest excess %.2e, largest rise in a step "
+          "%.2e; penetration ring into ring %.2e, into floor/walls %.2e (of the thickness), "
+          "smallest active gap %.1e" % (rings, len(rows), free, worst, min(landed), energy[-1][1],
+                                        energy[-1][2], above, max(rises), pen / thickness,
+                                        walls / thickness, gap))
+    if free > 1e-12:
+        raise AssertionError("free fall: p_y differs from -m g t by %.3e" % free)
+    if worst > 1e-10:
+        raise AssertionError("momentum balance residual %.3e of m g dt" % worst)
+    if above > 1e-10 * energy[-1][2]:
+        raise AssertionError("the energy exceeds the work of gravity by %.3e" % above)
+    if pen > 0.02 * thickness or walls > 1e-6 * thickness or gap < -1e-8:
+        raise AssertionError("penetration %.3e (rings), %.3e (walls), gap %.3e"
+                             % (pen, walls, gap))
+    return energy
+
+
+def test_rings_example():
+    """The 10-ring CI variant of examples/rings (rows of 4 and 3) to t = 0.35 with the
+    energy-momentum scheme: the mesh's mass (analytic) falls freely until the first landing,
+    every step balances momentum against gravity and the floor and wall forces to 1e-10, the
+    energy never exceeds the work of gravity, no ring node lies inside another ring by more
+    than 2 % of the wall thickness nor beyond the floor or a wall; np = 3 equals np = 1."""
+    rows, planes, work, out, width = rings_case()
+    check_rings(rows, planes, out, 10, 4, width)
+    H.cleanup(work, out)
+    three, _, work, out, _ = rings_case(np=3)
+    H.cleanup(work, out)
+    worst = max(abs(a[c] - b[c]) for a, b in zip(rows, three)
+                for c in ("total_energy", "momentum_x", "momentum_y")) / rows[-1]["total_energy"]
+    print("   np 3 vs np 1: energy and momentum max rel. diff %.2e" % worst)
+    if worst > 1e-6 or len(rows) != len(three):
+        raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
+
+
 if __name__ == "__main__":
-    H.main([test_free_bodies_2d, test_free_bodies_3d])
+    H.main([test_free_bodies_2d, test_free_bodies_3d, test_rings_example])
