@@ -190,9 +190,9 @@ G, RHO, R_OUT, R_IN, NC = 10.0, 1.0, 1.0, 0.8, 6
 
 
 def rings_case(np=1, rings=10, k=4, end=0.35):
-    """examples/rings with N rings in rows of k, run to `end` (the lowest row lands at 0.2,
-    the second on it at about 0.26, the walls are reached at about 0.37). Returns the rows of
-    steps.csv, the plane forces per step and the output directory."""
+    """examples/rings with N rings in rows of k, run to `end` (the lowest row lands at 0.14,
+    the walls are reached at about 0.37). Returns the rows of steps.csv, the plane forces per
+    step, the folders and the right wall's position."""
     width = 2 * k * (R_OUT + 0.1) + 0.2
     work, yaml = H.copy_example("rings", "rings.yaml", [
         ("point: [22.2, 0]", "point: [%r, 0]" % width),
