@@ -6,9 +6,10 @@ steps each (0.1 s: the pile lands and every ring comes into contact with its nei
 
 Printed per N, from summary.json (timings are cumulative seconds, maxima over ranks) and
 steps.csv: the facets of the `surface:` interface, its candidate pairs of the last search,
-the pairs integrated in the last evaluation (all interfaces, floor and walls included), the Newton iterations, and per iteration the search seconds (refit and query
-of the tree over the whole surface, role assignment) and the mortar seconds (evaluation
-and linearization of all interfaces). Then the exponents b of t = a N^b fitted by least
+the pairs integrated in the last evaluation (all interfaces, floor and walls included), the
+Newton iterations, and per iteration the search seconds (refit and query of the tree over
+the whole surface, role assignment) and the mortar seconds (evaluation and linearization
+of all interfaces). Then the exponents b of t = a N^b fitted by least
 squares in log-log over the runs. A search that grows like N log N has b a little above
 1 (1 + 1 / ln N, about 1.1 here); all-pairs work would give b = 2. The run fails (exit 1)
 when b > 1.5 for the search or the mortar time or when the candidate pairs per facet grow
@@ -95,9 +96,9 @@ def main():
     b_search = exponent(facets, [r["search"] for r in rows])
     b_mortar = exponent(facets, [r["mortar"] for r in rows])
     b_pairs = exponent(facets, [r["candidates"] for r in rows])
+    n_log_n = 1.0 + 1.0 / math.log(math.sqrt(facets[0] * facets[-1]))
     print("fitted exponents t ~ N^b: search %.2f, mortar %.2f, candidate pairs %.2f "
-          "(N log N: about %.2f; N^2: 2)" % (b_search, b_mortar, b_pairs,
-                                             1.0 + 1.0 / math.log(math.sqrt(facets[0] * facets[-1]))))
+          "(N log N: about %.2f; N^2: 2)" % (b_search, b_mortar, b_pairs, n_log_n))
     per_facet = [r["candidates"] / r["facets"] for r in rows]
     ok = b_search <= 1.5 and b_mortar <= 1.5 and per_facet[-1] <= 2.0 * per_facet[0]
     print("candidate pairs per facet %s: %s" % (", ".join("%.2f" % v for v in per_facet),
