@@ -1,0 +1,335 @@
+"""Free bodies colliding through one `surface:` interface, and the rings example (issue 13).
+
+- Free bodies: two Neo-Hooke rings (2D annuli of quads; 3D the annuli extruded into
+  hexahedra), no Dirichlet conditions, flying at each other off-centre with initial velocities
+  that have a rotation component (v = v0 + w x (X - c)), one `surface:` interface over both
+  whole boundaries, implicit dynamics (generalized-alpha and energy-momentum). Without
+  external loads the linear momentum sum (M v)_a and the angular momentum sum x_a x (M v)_a
+  are constant: the linear momentum must stay within 1e-12 of the momentum scale (m |v| of
+  one ring) through the impact, the angular momentum within 1e-12 before it; the bodies must
+  touch; np = 3 equals np = 1. What the impact still does to the angular momentum and the
+  energy is measured and printed (see test_free_bodies_2d).
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import contact_analysis as C  # noqa: E402
+import harness as H  # noqa: E402
+import test_contact as T  # noqa: E402
+
+
+def ring_geo(centres, nc, nr, radius=1.0, inner=0.6):
+    """Gmsh text of annuli (transfinite quads, nc cells per quarter circle, nr through the
+    wall) at the given centres: physical surfaces r0, r1, ... and curves r0_boundary, ...
+    (inner and outer circles)."""
+    lines = ["nc = %d; nr = %d; R = %r; r = %r;" % (nc, nr, radius, inner)]
+    for i, (cx, cy) in enumerate(centres):
+        o = 100 * i  # tag offset of ring i
+        lines.append("cx = %r; cy = %r;" % (cx, cy))
+        lines.append("Point(%d) = {cx, cy, 0};" % (o + 1))
+        for k, (dx, dy) in enumerate(((1, 0), (0, 1), (-1, 0), (0, -1))):
+            lines.append("Point(%d) = {cx + %d * R, cy + %d * R, 0};" % (o + 2 + k, dx, dy))
+            lines.append("Point(%d) = {cx + %d * r, cy + %d * r, 0};" % (o + 6 + k, dx, dy))
+        for k in range(4):
+            k1 = (k + 1) % 4
+            lines.append("Circle(%d) = {%d, %d, %d};" % (o + 1 + k, o + 2 + k, o + 1, o + 2 + k1))
+            lines.append("Circle(%d) = {%d, %d, %d};" % (o + 5 + k, o + 6 + k, o + 1, o + 6 + k1))
+            lines.append("Line(%d) = {%d, %d};" % (o + 9 + k, o + 6 + k, o + 2 + k))
+        for k in range(4):
+            k1 = (k + 1) % 4
+            lines.append("Curve Loop(%d) = {%d, %d, %d, %d}; Plane Surface(%d) = {%d};"
+                         % (o + 1 + k, o + 9 + k, o + 1 + k, -(o + 9 + k1), -(o + 5 + k),
+                            o + 1 + k, o + 1 + k))
+        lines.append("Transfinite Curve{%d:%d} = nc + 1; Transfinite Curve{%d:%d} = nr + 1;"
+                     % (o + 1, o + 8, o + 9, o + 12))
+        lines.append("Transfinite Surface{%d:%d}; Recombine Surface{%d:%d};"
+                     % (o + 1, o + 4, o + 1, o + 4))
+        lines.append('Physical Surface("r%d") = {%d:%d};' % (i, o + 1, o + 4))
+        lines.append('Physical Curve("r%d_boundary") = {%d:%d};' % (i, o + 1, o + 8))
+    return "\n".join(lines) + "\n"
+
+
+def ring_geo_3d(centres, nc, nr, thickness=0.5):
+    """The annuli of ring_geo extruded by `thickness` in z (one layer of hexahedra): physical
+    volumes r0, r1, ... and surfaces r0_boundary, ... (all faces of each)."""
+    geo = ring_geo(centres, nc, nr)
+    keep = [line for line in geo.splitlines() if not line.startswith("Physical")]
+    for i in range(len(centres)):
+        o = 100 * i
+        keep.append("e%d[] = Extrude {0, 0, %r} { Surface{%d:%d}; Layers{1}; Recombine; };"
+                    % (i, thickness, o + 1, o + 4))
+        # Extrude returns per surface: top, volume, then the four lateral faces.
+        keep.append('Physical Volume("r%d") = {e%d[1], e%d[7], e%d[13], e%d[19]};'
+                    % ((i,) + (i,) * 4))
+        keep.append('Physical Surface("r%d_boundary") = {%d:%d, e%d[0], e%d[6], e%d[12], '
+                    'e%d[18], e%d[3], e%d[5], e%d[9], e%d[11], e%d[15], e%d[17], e%d[21], '
+                    'e%d[23]};' % ((i, o + 1, o + 4) + (i,) * 12))
+    return "\n".join(keep) + "\n"
+
+
+# Ring a at the origin, ring b beyond a gap of 0.1 and 0.6 higher, so the impact is eccentric
+# and changes the spin of both.
+CENTRES = ((0.0, 0.0), (2.1, 0.6))
+
+# E = 100, rho = 1 (c ~ 10): a flies at 0.5 and spins at 0.3 about its centre, b comes at
+# -0.5 spinning the other way; they touch near t = 0.1.
+FREE_YAML = """dimension: DIM
+mesh: {geo: case.geo}
+SETFACTORY
+materials:
+  rubber: {model: neo_hooke, young: 100, poisson: 0.3, density: 1}
+bodies:
+  - {region: r0, material: rubber}
+  - {region: r1, material: rubber}
+initial_conditions:
+  - {region: r0, velocity: [VA]}
+  - {region: r1, velocity: [VB]}
+interfaces:
+  - {name: impact, type: contact, surface: [r0_boundary, r1_boundary]}
+time: {integrator: INTEGRATOR, end: 0.4, steps: STEPS}
+solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}
+output: {every: 1000}
+"""
+VELOCITIES = {
+    2: ('"0.5 - 0.3*y", "0.3*x"', '"-0.5 + 0.2*(y - 0.6)", "-0.2*(x - 2.1)"'),
+    3: ('"0.5 - 0.3*y", "0.3*x", "0.1"', '"-0.5 + 0.2*(y - 0.6)", "-0.2*(x - 2.1)", "-0.1"'),
+}
+
+# Linear momentum: the contact forces D_jj lambda_j n_j on a slave node and -M_jk lambda_j n_j
+# on the master nodes cancel (the rows of M sum to D_jj), so both integrators keep it to
+# round-off.
+MOMENTUM_BOUND = 1e-12
+
+def free_bodies(dimension, integrator, np=1, n=4, steps=40):
+    va, vb = VELOCITIES[dimension]
+    yaml = (FREE_YAML.replace("DIM", str(dimension)).replace("VA", va).replace("VB", vb)
+            .replace("INTEGRATOR", integrator).replace("STEPS", str(steps))
+            .replace("SETFACTORY\n", ""))
+    geo = ring_geo(CENTRES, n, 2) if dimension == 2 else ring_geo_3d(CENTRES, n, 2)
+    work, out = T.run_case(geo, yaml, np=np)
+    rows = H.read_csv(os.path.join(out, "steps.csv"))
+    itf = H.read_csv(os.path.join(out, "interfaces.csv"))
+    H.cleanup(work, out)
+    first = rows[0]
+    p0 = [first["momentum_%s" % c] for c in "xyz"]
+    l0 = [first["angular_momentum_%s" % c] for c in "xyz"]
+    scale_p = sum(x * x for x in p0) ** 0.5
+    # |p0| is small (the bodies fly at each other); the momentum scale is that of one body,
+    # m |v| = 0.5 per unit volume, and of its angular momentum about the origin.
+    scale_p = max(scale_p, 0.5)
+    scale_l = max(sum(x * x for x in l0) ** 0.5, scale_p * 2.0)
+    dp = max(abs(r["momentum_%s" % c] - p0[k]) for r in rows for k, c in enumerate("xyz"))
+    dl = max(abs(r["angular_momentum_%s" % c] - l0[k]) for r in rows
+             for k, c in enumerate("xyz"))
+    e = [r["total_energy"] for r in rows]
+    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
+    force = [r["normal_force"] for r in itf]
+    print("   %dD %s np %d: contact in %d of %d steps (peak force %.4g); linear momentum "
+          "drift %.2e, angular %.2e (relative); energy end/start %.8f, largest rise in a "
+          "step %.2e" % (dimension, integrator, np, sum(f > 0 for f in force), len(rows),
+                         max(force), dp / scale_p, dl / scale_l, e[-1] / e[0], rise))
+    if not any(f > 0 for f in force):
+        raise AssertionError("the bodies never touched")
+    return dict(dp=dp / scale_p, dl=dl / scale_l, rise=rise, force=force, energy=e,
+                dl_free=angular_before_contact(rows, force) / scale_l)
+
+
+def angular_before_contact(rows, force):
+    """Angular momentum drift over the steps before the first contact force, relative."""
+    first = next(k for k, f in enumerate(force) if f > 0.0)
+    free = rows[:first]
+    l0 = [rows[0]["angular_momentum_%s" % c] for c in "xyz"]
+    return max(abs(r["angular_momentum_%s" % c] - l0[k]) for r in free
+               for k, c in enumerate("xyz"))
+
+
+def check_free(r, integrator):
+    if r["dp"] > MOMENTUM_BOUND:
+        raise AssertionError("linear momentum drift %.3e > %.0e" % (r["dp"], MOMENTUM_BOUND))
+    if integrator == "energy_momentum" and r["dl_free"] > 1e-12:
+        raise AssertionError("angular momentum drift %.3e before the contact" % r["dl_free"])
+
+
+def test_free_bodies_2d():
+    """Two rings (32 x 2 quads each). Linear momentum to 1e-12 (both integrators), angular
+    momentum to 1e-12 before the contact (energy-momentum scheme), np = 3 equals np = 1.
+
+    Not met yet (issue 13 asks for both): through the contact the angular momentum drifts by
+    5e-4 of its scale and single steps of the energy-momentum scheme gain up to 5e-4 of the
+    energy (16 x 2 quads per ring: 3e-3 and 8e-2). The contact forces act at the end of the
+    step, torque-free about x_{n+1}, while the midpoint balance takes their moment about
+    x_{n+1/2}; the drift does not fall cleanly with dt (40 -> 80 steps: 5.2e-4 -> 3.0e-4), so
+    the faceted contact surface contributes as well."""
+    for integrator in ("generalized_alpha", "energy_momentum"):
+        r1 = free_bodies(2, integrator, n=8)
+        check_free(r1, integrator)
+    r3 = free_bodies(2, "energy_momentum", n=8, np=3)
+    worst = max(abs(a - b) for a, b in zip(r3["force"], r1["force"])) / max(r1["force"])
+    dl = abs(r3["dl"] - r1["dl"]) / r1["dl"]
+    print("   np 3 vs np 1: contact force max rel. diff %.2e, angular drift rel. diff %.2e"
+          % (worst, dl))
+    if worst > 1e-8 or len(r3["force"]) != len(r1["force"]) or dl > 1e-6:
+        raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
+
+
+def test_free_bodies_3d():
+    """The two rings extruded by 0.5 (24 x 2 x 1 hexahedra each), sliding past each other in
+    z as well: linear momentum to 1e-12 with both integrators, angular momentum to 1e-12
+    before the contact. Not met yet: through the contact the angular momentum drifts by 8e-3
+    and single steps gain up to 2e-3 of the energy (16 x 2 x 1 hexahedra: 18 %)."""
+    for integrator in ("generalized_alpha", "energy_momentum"):
+        check_free(free_bodies(3, integrator, n=6, steps=20), integrator)
+
+
+# ---------------------------------------------------------------------------------------------
+# examples/rings: elastic rings falling into a rigid box
+
+G, RHO, R_OUT, R_IN, NC = 10.0, 1.0, 1.0, 0.8, 6
+
+
+def rings_case(np=1, rings=10, k=4, end=0.35):
+    """examples/rings with N rings in rows of k, run to `end` (the lowest row lands at 0.14,
+    the walls are reached at about 0.37). Returns the rows of steps.csv, the plane forces per
+    step, the folders and the right wall's position."""
+    width = 2 * k * (R_OUT + 0.1) + 0.2
+    work, yaml = H.copy_example("rings", "rings.yaml", [
+        ("point: [22.2, 0]", "point: [%r, 0]" % width),
+        ("end: 1.5, dt: 0.0025", "end: %r, dt: 0.0025" % end),
+        ("every: 20", "every: 1000")])
+    geo = os.path.join(work, "rings.geo")
+    with open(geo) as f:
+        text = f.read()
+    if "N = 200; k = 10;" not in text:
+        raise AssertionError("rings.geo: 'N = 200; k = 10;' not found")
+    with open(geo, "w") as f:
+        f.write(text.replace("N = 200; k = 10;", "N = %d; k = %d;" % (rings, k)))
+    out = H.solve(yaml, np=np)
+    rows = H.read_csv(os.path.join(out, "steps.csv"))
+    planes = {}
+    for r in H.read_csv(os.path.join(out, "interfaces.csv")):
+        planes.setdefault(r["step"], {})[r["interface"]] = r
+    return rows, planes, work, out, width
+
+
+def momentum_and_energy(rows, planes, mass):
+    """Momentum balance of every step, p_{n+1} - p_n = dt (F_gravity + F_planes(t_{n+1}))
+    (the ring-ring forces cancel; the contact forces act at the end of the step), and the
+    energy E_kin + E_int - W_gravity with the gravity work of the midpoint scheme,
+    W += -g dt (p_y,n + p_y,n+1) / 2 (u_{n+1} - u_n = dt (v_n + v_{n+1}) / 2 and the consistent
+    nodal weights of the body force are the row sums of M). Returns (largest momentum residual
+    over m g dt, [(t, E - W, W)])."""
+    p_old, t_old, work, worst, energy = (0.0, 0.0), 0.0, 0.0, 0.0, []
+    for r in rows:
+        dt = r["time"] - t_old
+        f = {name: planes.get(r["step"], {}).get(name, {}).get("normal_force", 0.0)
+             for name in ("floor", "left", "right")}
+        px, py = r["momentum_x"], r["momentum_y"]
+        res_y = py - p_old[1] - dt * (-mass * G + f["floor"])
+        res_x = px - p_old[0] - dt * (f["left"] - f["right"])
+        worst = max(worst, abs(res_x) / (mass * G * dt), abs(res_y) / (mass * G * dt))
+        work += -G * dt * (py + p_old[1]) / 2
+        energy.append((r["time"], r["total_energy"] - work, work))
+        p_old, t_old = (px, py), r["time"]
+    return worst, energy
+
+
+def ring_penetration(out, rings, k, width):
+    """Largest depth of a ring node inside another ring's deformed outer polygon, of a node
+    beyond the floor or a wall, and the smallest nodal mortar gap of an active node, at the
+    last step (interface_rings.csv: every node of every ring boundary)."""
+    nodes = H.read_csv(os.path.join(out, "interface_rings.csv"))
+    centres, i, row = [], 0, 0
+    while i < rings:  # the pile of rings.geo
+        for j in range(k - row % 2):
+            if i < rings:
+                centres.append((0.3 + R_OUT + j * 2.2 + (row % 2) * 1.1,
+                                R_OUT + 0.1 + row * 2.2 * 3 ** 0.5 / 2))
+                i += 1
+        row += 1
+    outer = [[] for _ in centres]
+    points = []
+    for n in nodes:
+        c = min(range(len(centres)), key=lambda c: (n["x"] - centres[c][0]) ** 2
+                + (n["y"] - centres[c][1]) ** 2)
+        pos = (n["x"] + n["ux"], n["y"] + n["uy"])
+        points.append((c, pos))
+        if (n["x"] - centres[c][0]) ** 2 + (n["y"] - centres[c][1]) ** 2 > 0.95 ** 2:
+            outer[c].append((math.atan2(n["y"] - centres[c][1], n["x"] - centres[c][0]), pos))
+    polygons = [[p for _, p in sorted(o)] for o in outer]
+    if any(len(p) != 4 * NC for p in polygons):
+        raise AssertionError("the ring nodes were not found by their reference centres")
+
+    def depth(point, poly):  # > 0 inside the (counter-clockwise) polygon
+        d = 1e300
+        for a, b in zip(poly, poly[1:] + poly[:1]):
+            ex, ey = b[0] - a[0], b[1] - a[1]
+            d = min(d, (ex * (point[1] - a[1]) - ey * (point[0] - a[0])) / math.hypot(ex, ey))
+        return d
+
+    worst = -1e300
+    for c, pos in points:
+        for other, poly in enumerate(polygons):
+            if other != c:
+                worst = max(worst, depth(pos, poly))
+    walls = max(max(-pos[1], -pos[0], pos[0] - width) for _, pos in points)
+    gaps = [n["gap"] for n in nodes if C.is_active(n)]
+    if not gaps:
+        raise AssertionError("no ring touches another at the last step")
+    return worst, walls, min(gaps)
+
+
+def check_rings(rows, planes, out, rings, k, width):
+    # Mass: N polygonal annuli (4 NC straight-sided quads around), rho N (4 NC / 2)
+    # sin(2 pi / 4 NC) (R^2 - r^2); before the first landing p_y = -m g t exactly.
+    n = 4 * NC
+    mass = RHO * rings * 0.5 * n * math.sin(2 * math.pi / n) * (R_OUT ** 2 - R_IN ** 2)
+    landed = [t for t in planes if planes[t]["floor"]["normal_force"] > 0]
+    fall = [r for r in rows if r["step"] < min(landed)]
+    free = max(abs(r["momentum_y"] + mass * G * r["time"]) / (mass * G * r["time"])
+               for r in fall)
+    worst, energy = momentum_and_energy(rows, planes, mass)
+    above = max(e for _, e, _ in energy)  # round-off: 1e-11 in free fall
+    rises = [b[1] - a[1] for a, b in zip(energy, energy[1:])]
+    pen, walls, gap = ring_penetration(out, rings, k, width)
+    thickness = R_OUT - R_IN
+    print("   %d rings, %d steps: free fall p_y + m g t %.1e (of m g t); momentum balance "
+          "with the plane forces %.1e (of m g dt); floor reached at step %d; energy - gravity "
+          "work at the end %.4f of the work %.4f, largest excess %.2e, largest rise in a step "
+          "%.2e; penetration ring into ring %.2e, into floor/walls %.2e (of the thickness), "
+          "smallest active gap %.1e" % (rings, len(rows), free, worst, min(landed), energy[-1][1],
+                                        energy[-1][2], above, max(rises), pen / thickness,
+                                        walls / thickness, gap))
+    if free > 1e-12:
+        raise AssertionError("free fall: p_y differs from -m g t by %.3e" % free)
+    if worst > 1e-10:
+        raise AssertionError("momentum balance residual %.3e of m g dt" % worst)
+    if above > 1e-10 * energy[-1][2]:
+        raise AssertionError("the energy exceeds the work of gravity by %.3e" % above)
+    if pen > 0.02 * thickness or walls > 1e-6 * thickness or gap < -1e-8:
+        raise AssertionError("penetration %.3e (rings), %.3e (walls), gap %.3e"
+                             % (pen, walls, gap))
+    return energy
+
+
+def test_rings_example():
+    """The 10-ring CI variant of examples/rings (rows of 4 and 3) to t = 0.35 with the
+    energy-momentum scheme: the mesh's mass (analytic) falls freely until the first landing,
+    every step balances momentum against gravity and the floor and wall forces to 1e-10, the
+    energy never exceeds the work of gravity, no ring node lies inside another ring by more
+    than 2 % of the wall thickness nor beyond the floor or a wall; np = 3 equals np = 1."""
+    rows, planes, work, out, width = rings_case()
+    check_rings(rows, planes, out, 10, 4, width)
+    H.cleanup(work, out)
+    three, _, work, out, _ = rings_case(np=3)
+    H.cleanup(work, out)
+    worst = max(abs(a[c] - b[c]) for a, b in zip(rows, three)
+                for c in ("total_energy", "momentum_x", "momentum_y")) / rows[-1]["total_energy"]
+    print("   np 3 vs np 1: energy and momentum max rel. diff %.2e" % worst)
+    if worst > 1e-6 or len(rows) != len(three):
+        raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
+
+
+if __name__ == "__main__":
+    H.main([test_free_bodies_2d, test_free_bodies_3d, test_rings_example])
