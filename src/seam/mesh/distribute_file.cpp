@@ -168,8 +168,8 @@ private:
     const auto& t = c_.cells.tag;
     std::array<std::uint64_t, 2> mine{t.empty() ? 0 : t.front(), t.empty() ? 0 : t.back()};
     std::vector<std::int64_t> off;
-    const auto ends = parallel::allgatherv<std::array<std::uint64_t, 2>>(
-        comm_, std::span(&mine, 1), off);
+    const auto ends =
+        parallel::allgatherv<std::array<std::uint64_t, 2>>(comm_, std::span(&mine, 1), off);
     bool increasing = std::adjacent_find(t.begin(), t.end(), std::greater_equal<>()) == t.end();
     std::uint64_t last = 0;
     for (const auto& e : ends) {
@@ -185,8 +185,8 @@ private:
   }
 
   int chunk_of(std::int64_t cell) const {
-    return static_cast<int>(std::upper_bound(first_.begin(), first_.end(), cell) -
-                            first_.begin()) - 1;
+    return static_cast<int>(std::upper_bound(first_.begin(), first_.end(), cell) - first_.begin()) -
+           1;
   }
   int node_dir(std::uint64_t tag) const {
     const auto n = static_cast<std::uint64_t>(size_);
@@ -278,7 +278,10 @@ private:
       const auto type = cells.type[c];
       const auto* nodes = cells.nodes.data() + cells.offsets[c];
       for (int f = 0; f < fem::n_facets(type); ++f) {
-        FacetRecord r{{0, 0, 0, 0}, first_[rank_] + static_cast<std::int64_t>(c), 0, -1,
+        FacetRecord r{{0, 0, 0, 0},
+                      first_[rank_] + static_cast<std::int64_t>(c),
+                      0,
+                      -1,
                       static_cast<std::int8_t>(f)};
         const auto local = fem::facet_nodes(type, f);
         const int n = fem::n_vertices(fem::facet_type(type, f));
@@ -355,8 +358,7 @@ private:
   }
 
   void partition() {
-    part_ = partition_dual_graph(comm_, first_[rank_], c_.n_cells, adjacency_offsets_,
-                                 adjacency_);
+    part_ = partition_dual_graph(comm_, first_[rank_], c_.n_cells, adjacency_offsets_, adjacency_);
     adjacency_ = {};
     adjacency_offsets_ = {};
   }
@@ -415,10 +417,10 @@ private:
       for (std::size_t a = i; a < j; ++a)
         if (a == i || uses[a].part != uses[a - 1].part)
           for (std::size_t b = i; b < j; ++b)
-            holds.push_back({uses[b].cell, uses[a].part,
-                             static_cast<std::int32_t>(uses[b].part == uses[a].part
-                                                           ? CellRole::owned
-                                                           : CellRole::ghost)});
+            holds.push_back(
+                {uses[b].cell, uses[a].part,
+                 static_cast<std::int32_t>(uses[b].part == uses[a].part ? CellRole::owned
+                                                                        : CellRole::ghost)});
       i = j;
     }
     uses = {};
@@ -437,8 +439,8 @@ private:
     // Interface cells go to every rank.
     std::vector<char> interface_region(regions_.size(), 0);
     for (std::size_t k = 0; k < regions_.size(); ++k)
-      interface_region[k] = std::find(interfaces_.begin(), interfaces_.end(), regions_[k].name) !=
-                            interfaces_.end();
+      interface_region[k] =
+          std::find(interfaces_.begin(), interfaces_.end(), regions_[k].name) != interfaces_.end();
     holds = route(comm_, size_, holds, [&](const Hold& h) { return chunk_of(h.cell); });
     for (const auto& f : facets_)
       if (interface_region[f.region])
@@ -467,13 +469,14 @@ private:
                          cells.offsets[c + 1] - cells.offsets[c]});
       for (auto k = cells.offsets[c]; k < cells.offsets[c + 1]; ++k)
         w.push_back(static_cast<std::int64_t>(cells.nodes[k]));
-      const auto lo = std::lower_bound(
-          facets_.begin(), facets_.end(), h.cell,
-          [](const RegionFacet& f, std::int64_t cell) { return f.cell < cell; });
+      const auto lo =
+          std::lower_bound(facets_.begin(), facets_.end(), h.cell,
+                           [](const RegionFacet& f, std::int64_t cell) { return f.cell < cell; });
       auto hi = lo;
       while (hi != facets_.end() && hi->cell == h.cell) ++hi;
       w.push_back(hi - lo);
-      for (auto f = lo; f != hi; ++f) w.insert(w.end(), {std::int64_t{f->region}, std::int64_t{f->local}});
+      for (auto f = lo; f != hi; ++f)
+        w.insert(w.end(), {std::int64_t{f->region}, std::int64_t{f->local}});
     }
     holds_ = {};
     std::vector<std::int64_t> send;
@@ -506,7 +509,8 @@ private:
 
     // Node data from the directory, answered in the order asked.
     std::vector<std::int64_t> from;
-    const auto asked = route(comm_, size_, tags, [&](std::uint64_t t) { return node_dir(t); }, from);
+    const auto asked = route(
+        comm_, size_, tags, [&](std::uint64_t t) { return node_dir(t); }, from);
     std::vector<NodeInfo> info(asked.size());
     std::vector<std::int32_t> region_ids;
     std::vector<std::int64_t> region_send(static_cast<std::size_t>(size_) + 1, 0);
@@ -564,7 +568,8 @@ private:
             tags.begin()));
       m.add_cell(static_cast<fem::CellType>(w[2]), nodes);
       const auto lc = static_cast<std::int32_t>(c);
-      for (int region : regions_of(dim_, static_cast<int>(w[3]))) m.regions[region].cells.push_back(lc);
+      for (int region : regions_of(dim_, static_cast<int>(w[3])))
+        m.regions[region].cells.push_back(lc);
       const auto* f = w + 7 + w[6];
       for (std::int64_t k = 0; k < f[0]; ++k) {
         auto& r = m.regions[f[1 + 2 * k]];
@@ -601,10 +606,10 @@ private:
       for (int q = 0; q < rule.n_points && error.empty(); ++q) {
         const double det = jacobian(d.mesh, c, &rule.points[q * rule.dim], J);
         if (!(det > 0.0))
-          error = ::seam::detail::concat(
-              "mesh '", file_, "': element ", tags[c], " (", fem::name(type),
-              ") is inverted or degenerate: det(dX/dxi) = ", det,
-              " <= 0 inside it (misordered, coincident or misplaced nodes)");
+          error =
+              ::seam::detail::concat("mesh '", file_, "': element ", tags[c], " (", fem::name(type),
+                                     ") is inverted or degenerate: det(dX/dxi) = ", det,
+                                     " <= 0 inside it (misordered, coincident or misplaced nodes)");
       }
     }
     agree(comm_, error);

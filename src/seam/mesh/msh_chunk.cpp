@@ -24,8 +24,10 @@ public:
   std::string section = "MeshFormat";
 
   template <class... Args> [[noreturn]] void fail(const Args&... args) {
+    in_.clear();
+    const auto at = static_cast<long long>(in_.tellg());
     SEAM_THROW(InputError, "mesh '", file_, "': $", section, ": ", args...,
-               " (byte ", static_cast<long long>(in_.tellg()), ")");
+               at >= 0 ? " (byte " + std::to_string(at) + ")" : std::string(" (end of file)"));
   }
   // Next line without its end of line; false at the end of the file.
   bool line(std::string& out) {
@@ -337,8 +339,7 @@ std::vector<double> read_msh_nodes(const MshChunk& chunk, const std::vector<std:
     std::vector<std::uint64_t> buffer(in.binary ? std::min(count, piece) : 0);
     for (std::uint64_t i = 0; i < count;) {
       const auto m = in.binary ? std::min(piece, count - i) : 1;
-      if (in.binary)
-        in.raw_array(buffer.data(), m);
+      if (in.binary) in.raw_array(buffer.data(), m);
       for (std::uint64_t k = 0; k < m; ++k) {
         const auto t = in.binary ? buffer[k] : in.tag();
         const auto it = std::lower_bound(tags.begin(), tags.end(), t);

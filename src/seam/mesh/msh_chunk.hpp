@@ -42,11 +42,11 @@ struct MshElements {
 struct MshChunk {
   std::string file;
   bool binary = false;
-  int dim = 0;                  ///< dimension of the cells (highest element dimension)
-  std::int64_t n_cells = 0;     ///< top-dimension elements in the file
-  std::int64_t first_cell = 0;  ///< index (file order) of this rank's first cell
-  MshElements cells;            ///< this rank's share of the top-dimension elements
-  MshElements lower;            ///< this rank's share of the lower-dimensional physical elements
+  int dim = 0;                 ///< dimension of the cells (highest element dimension)
+  std::int64_t n_cells = 0;    ///< top-dimension elements in the file
+  std::int64_t first_cell = 0; ///< index (file order) of this rank's first cell
+  MshElements cells;           ///< this rank's share of the top-dimension elements
+  MshElements lower;           ///< this rank's share of the lower-dimensional physical elements
   /// (dim, physical tag) -> name, from $PhysicalNames.
   std::map<std::pair<int, int>, std::string> names;
   /// (dim, entity tag) -> physical tags, from $Entities.

@@ -7,8 +7,8 @@
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
 #include "seam/mesh/distribute_file.hpp"
-#include "seam/mesh/msh_chunk.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
+#include "seam/mesh/msh_chunk.hpp"
 #include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -183,8 +183,8 @@ int run(const RunOptions& options, int argc, char** argv) {
   MeshIdentity identity;
   // The output directory holds the mesh Gmsh makes of a geometry file (read by every rank).
   make_output_directory(output_directory(options), comm);
-  auto part = load_distributed_mesh(config, comm, identity, output_directory(options),
-                                    options.quiet);
+  auto part =
+      load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
   auto& mesh = part.mesh;
   const Discretization disc(part, comm);
   const auto model = build_model(config, disc);

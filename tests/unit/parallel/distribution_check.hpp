@@ -29,7 +29,7 @@ struct Reference {
 // What every rank should hold, from the owned cells that the ranks report (so the partition
 // itself is not taken from the code under test's internals).
 inline Reference reference(const mesh::Mesh& g, const DistributedMesh& d,
-                    const std::vector<std::string>& interfaces) {
+                           const std::vector<std::string>& interfaces) {
   Reference ref;
   std::vector<std::int64_t> own;
   for (std::int32_t c = 0; c < d.n_cells(); ++c)

@@ -110,7 +110,6 @@ TEST(DistributeFile, TrianglesAndQuadsAsciiAndBinary) {
         SCOPED_TRACE(std::string(quads ? "quads" : "triangles") + " order " +
                      std::to_string(order) + (binary ? " binary" : " ascii"));
         const auto file = mesh_file(square_geo(quads), "plate.msh", 2, binary, order);
-        if (rank() == 0) std::fprintf(stderr, "CASE %d %d %d\n", quads, order, binary);
         compare(file, {"top"});
       }
     }
