@@ -93,7 +93,13 @@ std::optional<mesh::DistributedMesh> read_chunked(const io::Config& config, cons
       std::printf("seam: mesh '%s' is read on rank 0 through Gmsh (%s)\n", file.string().c_str(),
                   e.what());
   } catch (const InputError& e) {
-    io::fail_at(mesh_mark(config), e.what());
+    // A mesh made from a geometry file is named by that file, as read_mesh names it.
+    std::string message = e.what();
+    const std::string made = file.string();
+    if (!config.mesh.geo.empty())
+      for (auto at = message.find(made); at != std::string::npos; at = message.find(made))
+        message.replace(at, made.size(), config.mesh.geo.string());
+    io::fail_at(mesh_mark(config), message);
   }
   return std::nullopt;
 }
