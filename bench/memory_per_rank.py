@@ -3,11 +3,16 @@
 tetrahedra above, non-matching at z = 1, dual mortar condensed), solved with the iterative
 solver (GMRES + GAMG) at np = 1, 2, 4, from summary.json ranks_detail (peak_rss_mb).
 
-Printed: dofs, per-rank peak RSS (max and min over the ranks), the ratio of the largest rank
-to the np = 1 run, and the cells each rank assembles and holds.
+The mesh is written once by the gmsh executable (binary MSH 4.1) and read from that file by
+both readers: "chunked" (every rank reads its share, PT-Scotch partitions in parallel; no rank
+holds the whole mesh) and "rank0" (SEAM_MESH_READER=rank0: rank 0 reads the whole mesh
+through the Gmsh API, partitions with METIS and sends the parts).
+
+Printed: reader, dofs, per-rank peak RSS (max and min over the ranks), the ratio of the largest
+rank to the same reader's np = 1 run, and the cells each rank assembles and holds.
 
 Usage: /usr/bin/python3 bench/memory_per_rank.py [--seam build/bin/seam] [--divisions 30]
-       [--size 0.04] [--ranks 1 2 4]
+       [--size 0.04] [--ranks 1 2 4] [--readers chunked rank0]
 """
 import argparse
 import json
@@ -20,7 +25,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLE = os.path.join(HERE, "..", "examples", "tied_blocks")
 
 
-def run(seam, np, divisions, size):
+def run(seam, np, divisions, size, reader):
     folder = tempfile.mkdtemp(prefix="seam_bench_mem_")
     for f in ("blocks.yaml", "blocks.geo"):
         shutil.copy(os.path.join(EXAMPLE, f), folder)
@@ -31,15 +36,19 @@ def run(seam, np, divisions, size):
                         % (divisions + 1)).replace("= 0.15;", "= %g;" % size)
     with open(geo, "w") as f:
         f.write(text)
+    subprocess.run(["gmsh", "-3", "-bin", "-format", "msh41", geo, "-o",
+                    os.path.join(folder, "blocks.msh")], check=True, capture_output=True)
     yaml = os.path.join(folder, "blocks.yaml")
     with open(yaml) as f:
         text = f.read().replace("steps: 5}", "steps: 1}\nsolver: {linear: iterative}")
+        text = text.replace("geo: blocks.geo", "file: blocks.msh")
     with open(yaml, "w") as f:
         f.write(text)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               SEAM_MESH_READER=reader)
     out = os.path.join(folder, "out")
-    subprocess.run(["mpirun", "--oversubscribe", "-np", str(np), seam, "run", yaml, "-o", out,
-                    "--quiet"], check=True, env=env)
+    subprocess.run(["mpirun", "--oversubscribe", "-np", str(np), "-x", "SEAM_MESH_READER", seam,
+                    "run", yaml, "-o", out, "--quiet"], check=True, env=env)
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     shutil.rmtree(folder, ignore_errors=True)
@@ -52,19 +61,23 @@ def main():
     parser.add_argument("--divisions", type=int, default=30)
     parser.add_argument("--size", type=float, default=0.04)
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
+    parser.add_argument("--readers", nargs="+", default=["chunked", "rank0"])
     args = parser.parse_args()
-    base = None
-    print("%3s %9s %12s %12s %14s %18s %8s" % ("np", "dofs", "max RSS MB", "min RSS MB",
-                                               "max / np=1", "cells (own/held)", "wall s"))
-    for np in args.ranks:
-        s = run(args.seam, np, args.divisions, args.size)
-        rss = [r["peak_rss_mb"] for r in s["ranks_detail"]]
-        if base is None:
-            base = max(rss)
-        own = max(r["cells"] for r in s["ranks_detail"])
-        held = max(r["cells"] + r["ghost_cells"] for r in s["ranks_detail"])
-        print("%3d %9d %12.1f %12.1f %14.3f %11d/%-7d %8.1f" % (
-            np, s["dofs"], max(rss), min(rss), max(rss) / base, own, held, s["wall_seconds"]))
+    print("%8s %3s %9s %12s %12s %14s %18s %8s" % (
+        "reader", "np", "dofs", "max RSS MB", "min RSS MB", "max / np=1", "cells (own/held)",
+        "wall s"))
+    for reader in args.readers:
+        base = None
+        for np in args.ranks:
+            s = run(args.seam, np, args.divisions, args.size, reader)
+            rss = [r["peak_rss_mb"] for r in s["ranks_detail"]]
+            if base is None:
+                base = max(rss)
+            own = max(r["cells"] for r in s["ranks_detail"])
+            held = max(r["cells"] + r["ghost_cells"] for r in s["ranks_detail"])
+            print("%8s %3d %9d %12.1f %12.1f %14.3f %11d/%-7d %8.1f" % (
+                reader, np, s["dofs"], max(rss), min(rss), max(rss) / base, own, held,
+                s["wall_seconds"]), flush=True)
 
 
 if __name__ == "__main__":

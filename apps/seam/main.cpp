@@ -64,7 +64,9 @@ int dispatch(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  // PT-Scotch 7, which partitions meshes read in chunks, runs threads that call MPI.
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);
   int code = 0;
   try {
     code = dispatch(argc, argv);

@@ -414,18 +414,13 @@ Mesh extract_mesh(GmshSession& g, const ReadOptions& options) {
 
 } // namespace
 
-Mesh read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
-  const std::string file = path.string();
-  check_options(file, options);
-  check_file(path, file);
+namespace {
+
+// Opens `path` in the session; geometry files are meshed with the caller's options.
+bool open_and_mesh(GmshSession& g, const std::filesystem::path& path, const ReadOptions& options) {
+  const std::string& file = g.file();
   const auto ext = lower_extension(path);
   const bool geometry = is_geometry_extension(ext);
-  SEAM_CHECK(geometry || ext == ".msh", InputError, "mesh '", file, "': unknown extension '", ext,
-             "' (expected .msh, or a geometry file such as .geo)");
-
-  if (!geometry) detail::check_msh_structure(path, file);
-  const std::lock_guard lock(gmsh_mutex());
-  GmshSession g(file);
   g.run("reading", [&] { gmsh::open(file); });
   if (geometry) {
     // Options given by the caller override what the geometry file sets, hence after open().
@@ -436,7 +431,44 @@ Mesh read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
     });
     g.run("meshing", [&] { gmsh::model::mesh::generate(gmsh::model::getDimension()); });
   }
+  return geometry;
+}
+
+void check_input(const std::filesystem::path& path, const ReadOptions& options) {
+  const std::string file = path.string();
+  check_options(file, options);
+  check_file(path, file);
+  const auto ext = lower_extension(path);
+  SEAM_CHECK(is_geometry_extension(ext) || ext == ".msh", InputError, "mesh '", file,
+             "': unknown extension '", ext, "' (expected .msh, or a geometry file such as .geo)");
+  if (!is_geometry_extension(ext)) detail::check_msh_structure(path, file);
+}
+
+} // namespace
+
+Mesh read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
+  check_input(path, options);
+  const std::lock_guard lock(gmsh_mutex());
+  GmshSession g(path.string());
+  open_and_mesh(g, path, options);
   return extract_mesh(g, options);
+}
+
+void mesh_to_msh(const std::filesystem::path& geometry, const ReadOptions& options,
+                 const std::filesystem::path& msh) {
+  check_input(geometry, options);
+  SEAM_CHECK(is_geometry_extension(lower_extension(geometry)), InputError, "mesh '",
+             geometry.string(), "': not a geometry file");
+  const std::lock_guard lock(gmsh_mutex());
+  GmshSession g(geometry.string());
+  open_and_mesh(g, geometry, options);
+  g.run("writing " + msh.string(), [&] {
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 1);
+    // Every element, as read_mesh takes the cells of entities outside physical groups too.
+    gmsh::option::setNumber("Mesh.SaveAll", 1);
+    gmsh::write(msh.string());
+  });
 }
 
 } // namespace seam::mesh

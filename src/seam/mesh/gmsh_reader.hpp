@@ -42,4 +42,10 @@ struct ReadOptions {
 /// read. Do not call it while the calling code itself holds Gmsh initialized.
 Mesh read_mesh(const std::filesystem::path& file, const ReadOptions& options = {});
 
+/// Meshes a geometry file as read_mesh does and writes the mesh to `msh` (binary MSH 4.1, the
+/// elements of every entity), for the chunked reader (distribute_file.hpp); the Gmsh model is freed
+/// on return. Throws InputError as read_mesh, or naming `msh` if it cannot be written.
+void mesh_to_msh(const std::filesystem::path& geometry, const ReadOptions& options,
+                 const std::filesystem::path& msh);
+
 } // namespace seam::mesh

@@ -36,11 +36,19 @@ template <class T> T take(const std::string& bytes, std::size_t& pos, bool& ok) 
   return v;
 }
 
-std::uint64_t mesh_hash(const mesh::Mesh& m) {
-  std::uint64_t h = fnv1a(&m.dim, sizeof(m.dim));
-  h = fnv1a(m.x.data(), m.x.size() * sizeof(double), h);
-  h = fnv1a(m.cell_type.data(), m.cell_type.size() * sizeof(m.cell_type[0]), h);
-  return fnv1a(m.cell_nodes.data(), m.cell_nodes.size() * sizeof(m.cell_nodes[0]), h);
+// A sum of per-cell hashes (cell id, type, node ids, node coordinates): independent of how the
+// cells are spread over ranks, so the whole mesh and a distributed one read from a file
+// (which no rank holds whole) give the same value.
+std::uint64_t cell_hash(const mesh::Mesh& m, std::int32_t c, std::int64_t gid,
+                        std::span<const std::int64_t> node_gid) {
+  std::uint64_t h = fnv1a(&gid, sizeof gid);
+  h = fnv1a(&m.cell_type[c], sizeof(m.cell_type[c]), h);
+  for (auto n : m.cell(c)) {
+    const std::int64_t g = node_gid.empty() ? n : node_gid[n];
+    h = fnv1a(&g, sizeof g, h);
+    h = fnv1a(m.node(n).data(), sizeof(double) * static_cast<std::size_t>(m.dim), h);
+  }
+  return h;
 }
 
 std::string hex(std::uint64_t v) {
@@ -192,7 +200,18 @@ CanonicalOrder nodal_order(const Discretization& disc) {
 }
 
 MeshIdentity identify(const mesh::Mesh& m) {
-  return {m.dim, m.n_nodes(), m.n_cells(), mesh_hash(m)};
+  std::uint64_t h = fnv1a(&m.dim, sizeof(m.dim));
+  for (std::int32_t c = 0; c < m.n_cells(); ++c) h += cell_hash(m, c, c, {});
+  return {m.dim, m.n_nodes(), m.n_cells(), h};
+}
+
+MeshIdentity identify(const mesh::DistributedMesh& d, const Comm& comm) {
+  const auto& m = d.mesh;
+  std::uint64_t h = 0, sum = 0;
+  for (std::int32_t c = 0; c < m.n_cells(); ++c)
+    if (d.cell_role[c] == mesh::CellRole::owned) h += cell_hash(m, c, d.cell_gid[c], d.node_gid);
+  MPI_Allreduce(&h, &sum, 1, MPI_UINT64_T, MPI_SUM, comm.get());
+  return {m.dim, d.n_global_nodes, d.n_global_cells, sum + fnv1a(&m.dim, sizeof(m.dim))};
 }
 
 Checkpoints::Checkpoints(const io::Config& config, MeshIdentity mesh, Comm comm,

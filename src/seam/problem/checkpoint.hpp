@@ -72,13 +72,15 @@ private:
 };
 
 /// What a checkpoint records of the mesh as read, so that a restart with another mesh is
-/// refused: taken from the whole mesh (on rank 0 before the mesh is distributed).
+/// refused: taken from the whole mesh (on rank 0 before the mesh is distributed), or from the
+/// parts of a distributed mesh (collective; the same value).
 struct MeshIdentity {
   int dim = 0;
   std::int64_t nodes = 0, cells = 0;
   std::uint64_t hash = 0;
 };
 MeshIdentity identify(const mesh::Mesh& m);
+MeshIdentity identify(const mesh::DistributedMesh& d, const Comm& comm);
 
 /// The rank-independent order in which a field's vectors are stored: per mesh node in node id
 /// order, its dofs in the field's order.

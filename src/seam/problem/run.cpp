@@ -6,7 +6,9 @@
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
+#include "seam/mesh/distribute_file.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
+#include "seam/mesh/msh_chunk.hpp"
 #include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -22,6 +24,7 @@
 #include "seam/problem/static_solver.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -35,17 +38,26 @@ const char* version() {
 
 namespace {
 
-/// Rank 0 reads (or meshes) the mesh; the other ranks get an empty one.
-mesh::Mesh read_on_root(const io::Config& config, const Comm& comm) {
+/// The mark that names the input file and key of the mesh in messages.
+io::Mark mesh_mark(const io::Config& config) {
+  io::Mark mark = config.mesh.mark;
+  mark.key_path = config.mesh.geo.empty() ? "mesh.file" : "mesh.geo";
+  return mark;
+}
+
+/// Rank 0 reads (or meshes) the mesh; the other ranks get an empty one. `meshed`: a .msh file
+/// written from the geometry file already, read instead of meshing again.
+mesh::Mesh read_on_root(const io::Config& config, const Comm& comm,
+                        const std::filesystem::path& meshed = {}) {
   mesh::Mesh m;
   on_root_collectively(comm, [&] {
     mesh::ReadOptions opts;
     opts.dim = config.dimension;
     // The reader names the mesh file; the prefix names the input file and key that chose it.
-    io::Mark mark = config.mesh.mark;
-    mark.key_path = config.mesh.geo.empty() ? "mesh.file" : "mesh.geo";
     try {
-      if (!config.mesh.geo.empty()) {
+      if (!meshed.empty()) {
+        m = mesh::read_mesh(meshed, opts);
+      } else if (!config.mesh.geo.empty()) {
         opts.size = config.mesh.size;
         opts.order = config.mesh.order;
         opts.serendipity = config.mesh.serendipity;
@@ -54,7 +66,7 @@ mesh::Mesh read_on_root(const io::Config& config, const Comm& comm) {
         m = mesh::read_mesh(config.mesh.file, opts);
       }
     } catch (const InputError& e) {
-      io::fail_at(mark, e.what());
+      io::fail_at(mesh_mark(config), e.what());
     }
   });
   return m;
@@ -67,21 +79,79 @@ mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
   return m;
 }
 
+/// The chunked reader (mesh/distribute_file.hpp) on a .msh file, or nothing if it leaves the
+/// file to Gmsh (said once on rank 0). SEAM_MESH_READER=rank0 forces the rank-0 path (used by
+/// bench/memory_per_rank.py to compare both).
+std::optional<mesh::DistributedMesh> read_chunked(const io::Config& config, const Comm& comm,
+                                                  const std::filesystem::path& file,
+                                                  std::span<const std::string> sides, bool quiet) {
+  const char* reader = std::getenv("SEAM_MESH_READER");
+  if (reader != nullptr && std::string_view(reader) == "rank0") return std::nullopt;
+  try {
+    return mesh::distribute_file(file, comm.get(), sides, config.dimension);
+  } catch (const mesh::MshUnsupported& e) {
+    if (comm.is_root() && !quiet)
+      std::printf("seam: mesh '%s' is read on rank 0 through Gmsh (%s)\n", file.string().c_str(),
+                  e.what());
+  } catch (const InputError& e) {
+    // A mesh made from a geometry file is named by that file, as read_mesh names it.
+    std::string message = e.what();
+    const std::string made = file.string();
+    if (!config.mesh.geo.empty())
+      for (auto at = message.find(made); at != std::string::npos; at = message.find(made))
+        message.replace(at, made.size(), config.mesh.geo.string());
+    io::fail_at(mesh_mark(config), message);
+  }
+  return std::nullopt;
+}
+
 /// This rank's part of the mesh: its cells, one ghost layer and the cells of the interface
-/// sides (mesh/distribute.hpp); rank 0 frees the whole mesh once it is sent.
-/// `identity` gets the whole mesh's (checkpoint.hpp), taken on rank 0 before it is sent.
+/// sides (mesh/distribute.hpp). A .msh file is read in chunks by every rank and partitioned in
+/// parallel, so that no rank ever holds the whole mesh; a geometry file is meshed by Gmsh on
+/// rank 0 into `scratch` (binary MSH 4.1, removed after reading; the Gmsh model is freed
+/// first) and then read the same way. Files the chunked reader leaves to Gmsh are read whole
+/// on rank 0, which sends each rank its part and frees the whole mesh.
+/// `identity` gets the whole mesh's (checkpoint.hpp).
 mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm,
-                                            MeshIdentity& identity) {
-  auto whole = read_on_root(config, comm);
-  if (comm.is_root()) identity = identify(whole);
-  comm.broadcast_value(identity);
+                                            MeshIdentity& identity,
+                                            const std::filesystem::path& scratch, bool quiet) {
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     sides.push_back(itf.slave.name);
     if (itf.master) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
   }
-  return mesh::distribute_mesh(whole, comm.get(), sides);
+  std::filesystem::path file = config.mesh.file;
+  const bool generated = !config.mesh.geo.empty();
+  if (generated) {
+    file = scratch / "mesh_generated.msh";
+    on_root_collectively(comm, [&] {
+      mesh::ReadOptions opts;
+      opts.dim = config.dimension;
+      opts.size = config.mesh.size;
+      opts.order = config.mesh.order;
+      opts.serendipity = config.mesh.serendipity;
+      try {
+        mesh::mesh_to_msh(config.mesh.geo, opts, file);
+      } catch (const InputError& e) {
+        io::fail_at(mesh_mark(config), e.what());
+      }
+    });
+  }
+  auto part = read_chunked(config, comm, file, sides, quiet);
+  if (part) {
+    identity = identify(*part, comm);
+  } else {
+    auto whole = read_on_root(config, comm, generated ? file : std::filesystem::path());
+    if (comm.is_root()) identity = identify(whole);
+    comm.broadcast_value(identity);
+    part = mesh::distribute_mesh(whole, comm.get(), sides);
+  }
+  if (generated && comm.is_root()) {
+    std::error_code ec;
+    std::filesystem::remove(file, ec);
+  }
+  return std::move(*part);
 }
 
 std::filesystem::path output_directory(const RunOptions& options) {
@@ -119,7 +189,10 @@ int run(const RunOptions& options, int argc, char** argv) {
     return 0;
   }
   MeshIdentity identity;
-  auto part = load_distributed_mesh(config, comm, identity);
+  // The output directory holds the mesh Gmsh makes of a geometry file (read by every rank).
+  make_output_directory(output_directory(options), comm);
+  auto part =
+      load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
   auto& mesh = part.mesh;
   const Discretization disc(part, comm);
   const auto model = build_model(config, disc);

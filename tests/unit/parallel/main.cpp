@@ -1,6 +1,8 @@
 // unit_parallel runs serially and under mpiexec (tests/CMakeLists.txt: np = 2, 3, 4). Every test
 // is collective: ranks run the same tests in the same order and check results that they
 // computed collectively, so that a failure on one rank never leaves the others in a collective.
+#include "seam/la/petsc.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -25,7 +27,9 @@ private:
 } // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  // PT-Scotch 7 (the chunked reader's partitioner) runs threads that call MPI.
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);
   testing::InitGoogleTest(&argc, argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -34,7 +38,12 @@ int main(int argc, char** argv) {
     delete listeners.Release(listeners.default_result_printer());
     listeners.Append(new FailurePrinter(rank));
   }
-  const int failed = RUN_ALL_TESTS();
+  int failed = 0;
+  {
+    // The chunked mesh reader partitions through PETSc (PT-Scotch).
+    seam::la::Session petsc(argc, argv, {});
+    failed = RUN_ALL_TESTS();
+  }
   int any = 0;
   MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   if (rank == 0 && any && !failed) std::fprintf(stderr, "unit_parallel: FAILED on another rank\n");
