@@ -11,6 +11,7 @@
 #include "seam/problem/tying_constraint.hpp"
 #include "seam/solid/loads.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -357,9 +358,12 @@ public:
         res.failure = "the residual is not finite";
         return res;
       }
-      // Relative to the largest first residual of the run: a later step whose boundary data
-      // barely changed is not asked to go below round-off of the flow it starts from.
-      if (it == 0) reference_ = std::max(reference_, norm);
+      // Relative to the largest first residual of the run and to the force level of the
+      // system (the full residual, whose velocity-condition rows carry the reactions), as
+      // for solids: a later step whose boundary data barely changed, or a state that already
+      // solves the equations (its first residual is round-off), is not asked to go below
+      // round-off of the flow it starts from.
+      if (it == 0) reference_ = std::max({reference_, norm, r_full_.norm()});
       out_.newton(step, it, norm, last_increment);
       res.iterations = it;
       res.residual = reference_ > 0.0 ? norm / reference_ : 0.0;
