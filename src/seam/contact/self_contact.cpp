@@ -27,23 +27,18 @@ std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_i
 
 mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRef> groups) {
   // One region with the facets of every group, each (cell, local facet) once.
-  std::vector<std::pair<std::int32_t, std::int8_t>> facets;
+  mesh::Region all;
+  all.name = groups.front().name;
+  all.dim = mesh.dim - 1;
   for (const auto& group : groups) {
     const auto& region = meshtying::side_region(mesh, group);
     if (region.n_facets() == 0)
       io::fail_at(group.mark, "the surface group '" + group.name + "' has no facets");
-    for (std::int32_t f = 0; f < region.n_facets(); ++f)
-      facets.emplace_back(region.facet_cell[f], region.facet_local[f]);
+    all.facet_cell.insert(all.facet_cell.end(), region.facet_cell.begin(), region.facet_cell.end());
+    all.facet_local.insert(all.facet_local.end(), region.facet_local.begin(),
+                           region.facet_local.end());
   }
-  std::sort(facets.begin(), facets.end());
-  facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
-  mesh::Region all;
-  all.name = groups.front().name;
-  all.dim = mesh.dim - 1;
-  for (const auto& [cell, local] : facets) {
-    all.facet_cell.push_back(cell);
-    all.facet_local.push_back(local);
-  }
+  all.sort_facets();
   return all;
 }
 

@@ -114,8 +114,8 @@ template <class S> void body_force(const FluidElementInput& in, const std::array
       (*in.body_force)(xp.data(), fp.data());
       (*in.body_force)(xm.data(), fm.data());
       for (int i = 0; i < in.dim; ++i) {
-        const double d = (fp[static_cast<std::size_t>(i)] - fm[static_cast<std::size_t>(i)]) /
-                         (2.0 * h);
+        const double d =
+            (fp[static_cast<std::size_t>(i)] - fm[static_cast<std::size_t>(i)]) / (2.0 * h);
         for (int k = 0; k < S::n_variables; ++k) f[i].gradient[k] += d * x[j].gradient[k];
       }
     }
@@ -137,8 +137,8 @@ template <class S> struct Stabilization {
 // `u` is the convective velocity c = u - w (ALE): the SUPG direction and tau's |c|.
 template <class S>
 void add_stabilization(const FluidElementInput& in, const Stabilization<S>& st, const Point<S>& q,
-                       const S* u, const S* grad_u, const S* material, const S* f,
-                       std::span<S> r, std::span<double> K) {
+                       const S* u, const S* grad_u, const S* material, const S* f, std::span<S> r,
+                       std::span<double> K) {
   using std::sqrt;
   const int dim = in.dim;
   const int n = fem::n_nodes(in.cell);
@@ -307,8 +307,7 @@ bool kernel(const FluidElementInput& in, std::span<const S> x, std::span<const S
           const double* Gb = &q.G[b * dim];
           double GaGb = 0.0;
           for (int j = 0; j < dim; ++j) GaGb += Ga[j] * Gb[j];
-          const double diag =
-              cw * (w * mu * GaGb + rNa * c_G[b]) + in.mass_weight * rNa * q.N[b];
+          const double diag = cw * (w * mu * GaGb + rNa * c_G[b]) + in.mass_weight * rNa * q.N[b];
           for (int i = 0; i < dim; ++i) {
             double* row = &K[(a * dim + i) * nd + b * dim];
             for (int j = 0; j < dim; ++j) row[j] += cw * rNa * q.N[b] * grad_u[i * dim + j];

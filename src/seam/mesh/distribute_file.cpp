@@ -578,16 +578,7 @@ private:
       }
     }
     words_ = {};
-    for (auto& r : m.regions) {
-      std::vector<std::pair<std::int32_t, std::int8_t>> pairs(r.facet_cell.size());
-      for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {r.facet_cell[k], r.facet_local[k]};
-      std::sort(pairs.begin(), pairs.end());
-      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-      r.facet_cell.resize(pairs.size());
-      r.facet_local.resize(pairs.size());
-      for (std::size_t k = 0; k < pairs.size(); ++k)
-        std::tie(r.facet_cell[k], r.facet_local[k]) = pairs[k];
-    }
+    for (auto& r : m.regions) r.sort_facets();
     d.node_offsets = offsets_;
     d.n_global_nodes = n_nodes_;
     d.n_global_cells = n_cells_;

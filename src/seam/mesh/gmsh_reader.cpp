@@ -327,18 +327,11 @@ void add_facets(const RegionContext& ctx, const Elements& e, Region& r) {
 // Once all entities are in: sort the (cell, local) pairs, drop duplicates (the same facet in
 // two entities of the group) and collect the facets' nodes, high-order ones included.
 void finish_facets(const RegionContext& ctx, Region& r) {
-  std::vector<std::pair<std::int32_t, std::int8_t>> pairs(r.facet_cell.size());
-  for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {r.facet_cell[k], r.facet_local[k]};
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  r.facet_cell.resize(pairs.size());
-  r.facet_local.resize(pairs.size());
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    r.facet_cell[k] = pairs[k].first;
-    r.facet_local[k] = pairs[k].second;
-    const auto cell_nodes = ctx.mesh.cell(pairs[k].first);
-    const auto type = ctx.mesh.cell_type[pairs[k].first];
-    for (auto a : fem::facet_nodes(type, pairs[k].second)) r.nodes.push_back(cell_nodes[a]);
+  r.sort_facets();
+  for (std::size_t k = 0; k < r.facet_cell.size(); ++k) {
+    const auto cell_nodes = ctx.mesh.cell(r.facet_cell[k]);
+    const auto type = ctx.mesh.cell_type[r.facet_cell[k]];
+    for (auto a : fem::facet_nodes(type, r.facet_local[k])) r.nodes.push_back(cell_nodes[a]);
   }
 }
 

@@ -3,6 +3,7 @@
 #include "seam/common/error.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 namespace seam::mesh {
 
@@ -11,6 +12,16 @@ void Mesh::add_cell(fem::CellType type, std::span<const std::int32_t> nodes) {
   cell_type.push_back(type);
   cell_nodes.insert(cell_nodes.end(), nodes.begin(), nodes.end());
   cell_offsets.push_back(static_cast<std::int64_t>(cell_nodes.size()));
+}
+
+void Region::sort_facets() {
+  std::vector<std::pair<std::int32_t, std::int8_t>> pairs(facet_cell.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {facet_cell[k], facet_local[k]};
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  facet_cell.resize(pairs.size());
+  facet_local.resize(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) std::tie(facet_cell[k], facet_local[k]) = pairs[k];
 }
 
 const Region* Mesh::find_region(std::string_view name, int region_dim) const {

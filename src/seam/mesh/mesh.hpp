@@ -29,6 +29,9 @@ struct Region {
   std::vector<std::int32_t> nodes;
 
   std::int32_t n_facets() const { return static_cast<std::int32_t>(facet_cell.size()); }
+  /// Sorts the facets by (cell, local) and drops repeated ones (the same facet listed twice,
+  /// e.g. by two entities or two groups), as the facet arrays must be.
+  void sort_facets();
 };
 
 struct Mesh {

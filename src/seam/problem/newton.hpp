@@ -93,8 +93,8 @@ public:
         contact_(contact), out_(out), K_(disc.make_matrix()), r_(disc.make_vector()),
         r_full_(disc.make_vector()), rt_(disc.make_vector()), du_(disc.make_vector()),
         dut_(disc.make_vector()), g_(disc.make_vector()), f_ext_(disc.make_vector()),
-        solver_(disc.comm().get(), linear_solver_kind(config, disc,
-                                                      saddle.active() || contact.saddle_point())) {
+        solver_(disc.comm().get(),
+                linear_solver_kind(config, disc, saddle.active() || contact.saddle_point())) {
     for (const auto& d : model_.dirichlet) dirichlet_rows_.push_back(d.dof);
     // Rows fixed in the Newton system: Dirichlet dofs and (with condensed tying) the
     // eliminated slave dofs, whose rows of T^T K T are empty.
