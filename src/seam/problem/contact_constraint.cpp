@@ -775,15 +775,21 @@ std::vector<std::string> ContactConstraint::describe() const {
   std::vector<std::string> out;
   for (const auto& s : sides_) {
     char line[256];
-    std::snprintf(
-        line, sizeof line, "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
-        s.itf.name().c_str(), static_cast<int>(s.itf.slave().n_facets()),
-        s.itf.rigid() ? s.itf.obstacle().name()
-        : s.itf.self_contact()
-            ? "themselves (self and multi-body contact, roles per search)"
-            : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
-        s.itf.standard() ? "standard multipliers (saddle point)" : "dual multipliers (condensed)",
-        s.c_n);
+    const int n_facets = static_cast<int>(s.itf.slave().n_facets());
+    const char* multipliers =
+        s.itf.standard() ? "standard multipliers (saddle point)" : "dual multipliers (condensed)";
+    if (s.itf.self_contact())
+      std::snprintf(line, sizeof line,
+                    "interface %s: self and multi-body contact over %d surface facets (slave and "
+                    "master roles assigned at every search), %s, c_n = %.4g",
+                    s.itf.name().c_str(), n_facets, multipliers, s.c_n);
+    else
+      std::snprintf(
+          line, sizeof line, "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
+          s.itf.name().c_str(), n_facets,
+          s.itf.rigid() ? s.itf.obstacle().name()
+                        : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
+          multipliers, s.c_n);
     std::string text = line;
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
