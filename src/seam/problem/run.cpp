@@ -221,9 +221,9 @@ int run(const RunOptions& options, int argc, char** argv) {
                 static_cast<long long>(disc.n_global_dofs()), comm.size(),
                 out.directory().string().c_str());
   if (comm.is_root() && !options.quiet)
-    std::printf("  linear solver: %s\n",
-                describe_linear_solver(config, disc, saddle.active() || contact.saddle_point())
-                    .c_str());
+    std::printf(
+        "  linear solver: %s\n",
+        describe_linear_solver(config, disc, saddle.active() || contact.saddle_point()).c_str());
   if (checkpoints.restarting() && comm.is_root() && !options.quiet)
     std::printf("  restarting from %s: step %d, t = %.17g\n", options.restart.c_str(),
                 checkpoints.restart_step(), checkpoints.restart_time());

@@ -20,8 +20,8 @@ namespace {
 // One directory per process: the np = 1 and np = 3 runs of this binary, and the ranks of one
 // run, write the same file names at the same time.
 std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("seam_unit_problem_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("seam_unit_problem_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir / name;
 }
