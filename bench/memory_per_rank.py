@@ -9,10 +9,16 @@ holds the whole mesh) and "rank0" (SEAM_MESH_READER=rank0: rank 0 reads the whol
 through the Gmsh API, partitions with METIS and sends the parts).
 
 Printed: reader, dofs, per-rank peak RSS (max and min over the ranks), the ratio of the largest
-rank to the same reader's np = 1 run, and the cells each rank assembles and holds.
+rank to the same reader's np = 1 run, and the cells each rank assembles and holds. Then, per
+phase of the run (summary.json ranks_detail memory_phases: the peak between the previous phase
+mark and this one, and the resident set at the mark), the largest rank's figures at each np.
+
+The constant per-process base (MPI, PETSc, libraries, the code itself) is measured by the same
+case at 2 divisions (a few hundred dofs): "- base" ratios subtract it from both runs,
+(max_np - base_np) / (max_1 - base_1), i.e. what falls with the problem size.
 
 Usage: /usr/bin/python3 bench/memory_per_rank.py [--seam build/bin/seam] [--divisions 30]
-       [--size 0.04] [--ranks 1 2 4] [--readers chunked rank0]
+       [--size 0.04] [--ranks 1 2 4] [--readers chunked rank0] [--no-base]
 """
 import argparse
 import json
@@ -55,6 +61,22 @@ def run(seam, np, divisions, size, reader):
     return summary
 
 
+def phase_table(runs):
+    """Per phase, the largest rank's peak and current RSS (MB) of each run."""
+    names = [p["phase"] for p in runs[0][1]["ranks_detail"][0].get("memory_phases", [])]
+    if not names:
+        return
+    print("\nper phase, largest rank: peak MB since the previous phase / resident MB at its end")
+    print("%-22s" % "phase" + "".join("%22s" % ("np %d" % np) for np, _ in runs))
+    for k, name in enumerate(names):
+        row = "%-22s" % name
+        for _, s in runs:
+            phases = [r["memory_phases"][k] for r in s["ranks_detail"]]
+            row += "%13.1f /%7.1f" % (max(p["peak_mb"] for p in phases),
+                                      max(p["rss_mb"] for p in phases))
+        print(row)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seam", default=os.path.join(HERE, "..", "build", "bin", "seam"))
@@ -62,22 +84,35 @@ def main():
     parser.add_argument("--size", type=float, default=0.04)
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
     parser.add_argument("--readers", nargs="+", default=["chunked", "rank0"])
+    parser.add_argument("--no-base", action="store_true",
+                        help="do not measure the per-process base (the tiny case)")
     args = parser.parse_args()
-    print("%8s %3s %9s %12s %12s %14s %18s %8s" % (
-        "reader", "np", "dofs", "max RSS MB", "min RSS MB", "max / np=1", "cells (own/held)",
-        "wall s"))
+    base_rss = {}
+    if not args.no_base:
+        for np in args.ranks:
+            s = run(args.seam, np, 2, 0.5, args.readers[0])
+            base_rss[np] = max(r["peak_rss_mb"] for r in s["ranks_detail"])
+        print("base (2 divisions, %d dofs): largest rank %s MB" % (
+            s["dofs"], ", ".join("np %d %.1f" % (np, base_rss[np]) for np in args.ranks)))
+    print("%8s %3s %9s %12s %12s %14s %14s %18s %8s" % (
+        "reader", "np", "dofs", "max RSS MB", "min RSS MB", "max / np=1", "- base",
+        "cells (own/held)", "wall s"))
     for reader in args.readers:
-        base = None
+        runs = []
         for np in args.ranks:
             s = run(args.seam, np, args.divisions, args.size, reader)
+            runs.append((np, s))
             rss = [r["peak_rss_mb"] for r in s["ranks_detail"]]
-            if base is None:
-                base = max(rss)
+            one = max(r["peak_rss_mb"] for r in runs[0][1]["ranks_detail"])
+            net = float("nan")
+            if base_rss:
+                net = (max(rss) - base_rss[np]) / (one - base_rss[runs[0][0]])
             own = max(r["cells"] for r in s["ranks_detail"])
             held = max(r["cells"] + r["ghost_cells"] for r in s["ranks_detail"])
-            print("%8s %3d %9d %12.1f %12.1f %14.3f %11d/%-7d %8.1f" % (
-                reader, np, s["dofs"], max(rss), min(rss), max(rss) / base, own, held,
+            print("%8s %3d %9d %12.1f %12.1f %14.3f %14.3f %11d/%-7d %8.1f" % (
+                reader, np, s["dofs"], max(rss), min(rss), max(rss) / one, net, own, held,
                 s["wall_seconds"]), flush=True)
+        phase_table(runs)
 
 
 if __name__ == "__main__":

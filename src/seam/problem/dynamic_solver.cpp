@@ -1,6 +1,7 @@
 #include "seam/problem/dynamic_solver.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/assembly.hpp"
 #include "seam/problem/newton.hpp"
 #include "seam/problem/solver_checkpoint.hpp"
@@ -88,6 +89,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     ScopedTimer timer(out.timers(), "assembly");
     assemble_mass(model, disc, M);
   }
+  parallel::mark_memory(disc.comm().get(), "matrix_allocation");
   la::Vector u = disc.make_vector(), v = disc.make_vector(), a = disc.make_vector();
   la::Vector u_n = disc.make_vector(), v_n = disc.make_vector(), a_n = disc.make_vector();
   la::Vector work = disc.make_vector(), mid = disc.make_vector(), w2 = disc.make_vector();

@@ -1,6 +1,7 @@
 #include "seam/problem/newton.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/parallel/memory_trace.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -95,6 +96,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       ScopedTimer timer(out_.timers(), "assembly");
       status = evaluate(u, r_, K_, f_ext_);
     }
+    parallel::mark_memory(disc_.comm().get(), "first_assembly", true);
     if (disc_.comm().any(status.inverted)) {
       res.failure = "an element is inverted (det F <= 0)";
       return res;
@@ -197,6 +199,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       K_sys = &Kt_;
       r_sys = &rt_;
     }
+    parallel::mark_memory(disc_.comm().get(), "first_condensation", true);
     r_sys->scale(-1.0);
     bool solved;
     if (saddle_.active()) {
@@ -224,6 +227,8 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
 }
 
 void NewtonSolver::apply_increment(la::Vector& u, double t, bool predictor) {
+  // The first solve has set up the preconditioner (GAMG's hierarchy) or the factorization.
+  parallel::mark_memory(disc_.comm().get(), "first_linear_solve", true);
   last_increment_ = du_.norm();
   u.axpy(1.0, du_);
   if (predictor) {

@@ -9,6 +9,7 @@
 #include "seam/mesh/locate.hpp"
 #include "seam/parallel/exchange.hpp"
 #include "seam/parallel/load_balance.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/error_norms.hpp"
 #include "seam/solid/element.hpp"
 
@@ -17,8 +18,6 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
-
-#include <sys/resource.h>
 
 namespace seam::problem {
 
@@ -538,7 +537,10 @@ void Output::finish(bool converged, int n_steps) {
   // Every rank's share (CONTRACT.md, ranks_detail): the cells it assembles, and the cells it
   // holds without assembling them (ghost layer and interface cells of a distributed mesh; all
   // the others when the mesh is replicated).
-  constexpr std::size_t n_detail = 7;
+  // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
+  parallel::mark_memory(comm.get(), "end");
+  const auto& memory = parallel::memory_phases(); // the same phases on every rank
+  const std::size_t n_detail = 7 + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
     double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
@@ -550,9 +552,11 @@ void Output::finish(bool converged, int n_steps) {
       mine[4] += static_cast<double>(c.local_pairs);
       mine[5] += static_cast<double>(c.local_integration_cells);
     }
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    mine[6] = static_cast<double>(usage.ru_maxrss) / 1024.0; // kB on Linux
+    mine[6] = parallel::peak_rss_mb();
+    for (std::size_t k = 0; k < memory.size(); ++k) {
+      mine[7 + 2 * k] = memory[k].peak_mb;
+      mine[8 + 2 * k] = memory[k].current_mb;
+    }
   }
   comm.sum_in_place(detail);
   if (!comm.is_root()) return;
@@ -607,6 +611,16 @@ void Output::finish(bool converged, int n_steps) {
     e["pairs"] = static_cast<std::int64_t>(d[4]);
     e["integration_cells"] = static_cast<std::int64_t>(d[5]);
     e["peak_rss_mb"] = d[6];
+    // Per phase of the run: the peak since the previous phase and the resident set at its end.
+    auto& phases = e["memory_phases"];
+    phases = io::Json::array();
+    for (std::size_t k = 0; k < memory.size(); ++k) {
+      io::Json p = io::Json::object();
+      p["phase"] = memory[k].name;
+      p["peak_mb"] = d[7 + 2 * k];
+      p["rss_mb"] = d[8 + 2 * k];
+      phases.push_back(std::move(p));
+    }
     ranks.push_back(std::move(e));
   }
   if (last_errors_.size() == 2) {

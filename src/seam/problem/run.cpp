@@ -11,6 +11,7 @@
 #include "seam/mesh/msh_chunk.hpp"
 #include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
@@ -191,16 +192,22 @@ int run(const RunOptions& options, int argc, char** argv) {
   MeshIdentity identity;
   // The output directory holds the mesh Gmsh makes of a geometry file (read by every rank).
   make_output_directory(output_directory(options), comm);
+  // Memory by phase (parallel/memory_trace.hpp): summary.json and SEAM_MEMORY_TRACE=1.
+  parallel::mark_memory(comm.get(), "start");
   auto part =
       load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
   auto& mesh = part.mesh;
+  parallel::mark_memory(comm.get(), "mesh");
   const Discretization disc(part, comm);
   const auto model = build_model(config, disc);
+  parallel::mark_memory(comm.get(), "discretization");
   PhaseTimers setup_timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
+  parallel::mark_memory(comm.get(), "interface_integration");
   const TyingConstraint tying(tied, disc, model);
   SaddlePoint saddle(tied, disc, model);
   ContactConstraint contact(config, disc, model);
+  parallel::mark_memory(comm.get(), "interface_operators");
   if (tying.active() && saddle.active())
     SEAM_THROW(InputError, options.input,
                ": interfaces: condensed and saddle_point mesh tying cannot be mixed in one run");
@@ -224,6 +231,7 @@ int run(const RunOptions& options, int argc, char** argv) {
     std::printf(
         "  linear solver: %s\n",
         describe_linear_solver(config, disc, saddle.active() || contact.saddle_point()).c_str());
+  parallel::mark_memory(comm.get(), "output_setup");
   if (checkpoints.restarting() && comm.is_root() && !options.quiet)
     std::printf("  restarting from %s: step %d, t = %.17g\n", options.restart.c_str(),
                 checkpoints.restart_step(), checkpoints.restart_time());

@@ -1,6 +1,7 @@
 #include "seam/problem/static_solver.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/assembly.hpp"
 #include "seam/problem/newton.hpp"
 #include "seam/problem/saddle_point.hpp"
@@ -18,6 +19,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
                 const Checkpoints& checkpoints) {
   const auto& tc = config.time;
   NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
+  parallel::mark_memory(disc.comm().get(), "matrix_allocation");
   la::Vector u = disc.make_vector();
   la::Vector u_saved = disc.make_vector();
 
