@@ -20,7 +20,14 @@ Each test can fail:
 - one master surface shared by two slave interfaces (two blocks tied side by side onto one
   block, non-matching) at np = 3: the patch test (uniform uniaxial stress) stays exact;
 - with the default measure (CPU time of the interface evaluation) parallel.csv reports
-  positive per-rank times and a consistent imbalance column.
+  positive per-rank times and a consistent imbalance column;
+- what each rank holds, at np = 3 on the tied blocks (a refined copy of the example): against
+  the ghost layer found by brute force from the ranks' output pieces (each piece holds the
+  cells its rank owns; a ghost is a cell of another piece sharing a node position with one of
+  them), no rank holds more than (its cells + ghosts) * 1.1 cells besides the cells of the
+  interface sides, no more of those than touch the interface, and no more nodes than its held
+  cells have (ranks_detail nodes, owned_nodes, ghost_nodes, interface_cells); the owned
+  cells and nodes add up to the mesh's, no rank owns half of the nodes or holds 0.7 of them.
 """
 import os
 import sys
@@ -28,6 +35,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
+import vtu_reader  # noqa: E402
 
 _dirs = []
 
@@ -261,6 +269,84 @@ def test_shared_master_patch_np3():
     H.cleanup(*_dirs)
 
 
+def test_held_cells_np3():
+    work, path = H.copy_example("tied_blocks", "blocks.yaml", (("steps: 5}", "steps: 1}"),))
+    _dirs.append(work)
+    # Refined (11 x 11 x 11 hexahedra, tetrahedra of size 0.1): the interface sides' cells,
+    # which every rank holds, are then a small part of each rank's cells.
+    geo = os.path.join(work, "blocks.geo")
+    with open(geo) as f:
+        text = f.read()
+    for a, b in (("Curve{1:12} = 6;", "Curve{1:12} = 12;"), ("= 0.15;", "= 0.1;")):
+        if a not in text:
+            raise AssertionError("blocks.geo: '%s' not found" % a)
+        text = text.replace(a, b)
+    with open(geo, "w") as f:
+        f.write(text)
+    out = H.solve(path, np=3)
+    _dirs.append(out)
+    summary = H.read_json(os.path.join(out, "summary.json"))
+    detail = summary["ranks_detail"]
+    pieces = vtu_reader.read_pieces(os.path.join(out, "results_00000.pvtu"))
+    if len(pieces) != 3 or len(detail) != 3:
+        raise AssertionError("%d pieces, %d ranks_detail entries" % (len(pieces), len(detail)))
+
+    def key(p):
+        return tuple(round(v, 9) for v in p)
+
+    # Cells as sets of node positions (two bodies touching at z = 1 may share a position:
+    # that only makes the brute-force ghost layer larger, never smaller).
+    cells = [[frozenset(key(piece["points"][i]) for i in c) for c in piece["cells"]]
+             for piece in pieces]
+    # Cells with a facet on the tied plane z = 1 (3 or more nodes there): the interface cells.
+    on_plane = sum(1 for part in cells for c in part
+                   if sum(1 for p in c if abs(p[2] - 1.0) < 1e-9) >= 3)
+    total_cells = sum(len(part) for part in cells)
+    if total_cells != summary["cells"]:
+        raise AssertionError("pieces hold %d cells, the mesh %d" % (total_cells, summary["cells"]))
+    if sum(r["owned_nodes"] for r in detail) != summary["nodes"]:
+        raise AssertionError("owned nodes add up to %d, the mesh has %d"
+                             % (sum(r["owned_nodes"] for r in detail), summary["nodes"]))
+    layers = []
+    for r, part in enumerate(cells):
+        mine = set().union(*part)
+        ghosts = [c for q, other in enumerate(cells) if q != r for c in other if c & mine]
+        layers.append((ghosts, set(mine).union(*ghosts)))
+        d = detail[r]
+        print("   rank %d: owns %d cells, holds %d (ghost layer by brute force %d, interface "
+              "cells %d of %d touching z = 1); nodes held %d, owned %d + ghost %d, of the "
+              "layer %d; mesh %d cells, %d nodes" % (
+                  r, d["cells"], d["cells"] + d["ghost_cells"], len(ghosts),
+                  d["interface_cells"], on_plane, d["nodes"], d["owned_nodes"], d["ghost_nodes"],
+                  len(layers[-1][1]), summary["cells"], summary["nodes"]))
+    for r, part in enumerate(cells):
+        d = detail[r]
+        ghosts, layer_nodes = layers[r]
+        held = d["cells"] + d["ghost_cells"]
+        if d["cells"] != len(part):
+            raise AssertionError("rank %d assembles %d cells, its piece has %d"
+                                 % (r, d["cells"], len(part)))
+        if held - d["interface_cells"] > 1.1 * (len(part) + len(ghosts)):
+            raise AssertionError("rank %d holds %d cells besides the interface cells, more "
+                                 "than 1.1 x (%d own + %d ghosts)"
+                                 % (r, held - d["interface_cells"], len(part), len(ghosts)))
+        if d["interface_cells"] > on_plane:
+            raise AssertionError("rank %d holds %d interface cells, only %d touch the interface"
+                                 % (r, d["interface_cells"], on_plane))
+        if d["owned_nodes"] + d["ghost_nodes"] > d["nodes"]:
+            raise AssertionError("rank %d: owned + ghost nodes exceed the nodes it holds" % r)
+        # The nodes held are those of the held cells: the layer's plus the interface cells'.
+        if d["nodes"] > 1.1 * len(layer_nodes) + 8 * d["interface_cells"]:
+            raise AssertionError("rank %d holds %d nodes, its cells and ghosts have %d"
+                                 % (r, d["nodes"], len(layer_nodes)))
+        # Cells are weighted by their nodes in the partition (a hexahedron weighs about ten
+        # tetrahedra), so the owned nodes are balanced, not the cells.
+        if d["owned_nodes"] > 0.5 * summary["nodes"] or d["nodes"] > 0.7 * summary["nodes"]:
+            raise AssertionError("rank %d owns %d and holds %d of the %d nodes"
+                                 % (r, d["owned_nodes"], d["nodes"], summary["nodes"]))
+    H.cleanup(*_dirs)
+
+
 if __name__ == "__main__":
-    H.main([test_hertz_independent_against_bulk_np4, test_hertz_held_never_redistributes,
-            test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])
+    H.main([test_held_cells_np3, test_hertz_independent_against_bulk_np4,
+            test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])

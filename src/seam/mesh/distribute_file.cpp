@@ -4,6 +4,7 @@
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/msh_chunk.hpp"
 #include "seam/mesh/parallel_partition.hpp"
+#include "seam/mesh/partition.hpp"
 #include "seam/mesh/transfer.hpp"
 #include "seam/parallel/exchange.hpp"
 
@@ -357,8 +358,49 @@ private:
     });
   }
 
+  // The partitioning weight of each chunk cell (partition.hpp, cell_weight): the node
+  // directory counts the cells around each node and returns every cell its nodes' shares.
+  std::vector<int> cell_weights() {
+    if (size_ == 1) return {};
+    struct Share {
+      std::int64_t cell;
+      double share;
+    };
+    std::vector<NodeUse> uses;
+    const auto& cells = c_.cells;
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      for (auto k = cells.offsets[c]; k < cells.offsets[c + 1]; ++k)
+        uses.push_back({cells.nodes[k], first_[rank_] + static_cast<std::int64_t>(c), 0, 0});
+    uses = route(comm_, size_, uses, [&](const NodeUse& u) { return node_dir(u.tag); });
+    std::sort(uses.begin(), uses.end(),
+              [](const NodeUse& a, const NodeUse& b) { return a.tag < b.tag; });
+    std::vector<Share> shares;
+    shares.reserve(uses.size());
+    for (std::size_t i = 0; i < uses.size();) {
+      std::size_t j = i;
+      while (j < uses.size() && uses[j].tag == uses[i].tag) ++j;
+      for (std::size_t a = i; a < j; ++a)
+        shares.push_back({uses[a].cell, 1.0 / static_cast<double>(j - i)});
+      i = j;
+    }
+    uses = {};
+    shares = route(comm_, size_, shares, [&](const Share& s) { return chunk_of(s.cell); });
+    std::vector<double> sum(cells.size(), 0.0);
+    for (const auto& s : shares) sum[static_cast<std::size_t>(s.cell - first_[rank_])] += s.share;
+    double total = 0.0;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      sum[c] = cell_weight(static_cast<int>(cells.offsets[c + 1] - cells.offsets[c]), sum[c]);
+      total += sum[c];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, comm_);
+    std::vector<int> weights(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c) weights[c] = integer_weight(sum[c], total);
+    return weights;
+  }
+
   void partition() {
-    part_ = partition_dual_graph(comm_, first_[rank_], c_.n_cells, adjacency_offsets_, adjacency_);
+    part_ = partition_dual_graph(comm_, first_[rank_], c_.n_cells, adjacency_offsets_, adjacency_,
+                                 cell_weights());
     adjacency_ = {};
     adjacency_offsets_ = {};
   }

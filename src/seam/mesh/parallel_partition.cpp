@@ -16,7 +16,8 @@ void check(PetscErrorCode code, const char* what) {
 
 std::vector<int> partition_dual_graph(MPI_Comm comm, std::int64_t first, std::int64_t n_global,
                                       const std::vector<std::int64_t>& offsets,
-                                      const std::vector<std::int64_t>& adjacency) {
+                                      const std::vector<std::int64_t>& adjacency,
+                                      const std::vector<int>& weights) {
   int size = 1;
   MPI_Comm_size(comm, &size);
   const auto n = static_cast<PetscInt>(offsets.size() - 1);
@@ -39,6 +40,15 @@ std::vector<int> partition_dual_graph(MPI_Comm comm, std::int64_t first, std::in
   check(MatPartitioningCreate(comm, &mp), "MatPartitioningCreate");
   check(MatPartitioningSetAdjacency(mp, graph), "MatPartitioningSetAdjacency");
   check(MatPartitioningSetNParts(mp, size), "MatPartitioningSetNParts");
+  if (!weights.empty()) {
+    SEAM_CHECK(weights.size() == static_cast<std::size_t>(n), InternalError,
+               "parallel partitioning: ", weights.size(), " weights for ", n, " cells");
+    // MatPartitioningSetVertexWeights takes ownership (freed with the partitioning).
+    PetscInt* w = nullptr;
+    check(PetscMalloc1(n + 1, &w), "PetscMalloc1");
+    for (PetscInt i = 0; i < n; ++i) w[i] = static_cast<PetscInt>(weights[i]);
+    check(MatPartitioningSetVertexWeights(mp, w), "MatPartitioningSetVertexWeights");
+  }
   check(MatPartitioningSetType(mp, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType(ptscotch)");
   IS is = nullptr;
   check(MatPartitioningApply(mp, &is), "MatPartitioningApply");

@@ -28,8 +28,8 @@ Discretization::Discretization(const mesh::Mesh& mesh, Comm comm)
 Discretization::Discretization(const mesh::DistributedMesh& part, Comm comm)
     : mesh_(&part.mesh), comm_(comm), dim_(part.mesh.dim), distributed_(true),
       n_global_nodes_(part.n_global_nodes), n_global_cells_(part.n_global_cells),
-      node_gid_(part.node_gid), cell_gid_(part.cell_gid), cell_part_(part.cell_owner),
-      new_index_(part.node_index), node_owner_(part.node_owner) {
+      node_gid_(part.node_gid), cell_gid_(part.cell_gid), cell_role_(part.cell_role),
+      cell_part_(part.cell_owner), new_index_(part.node_index), node_owner_(part.node_owner) {
   SEAM_CHECK(part.node_offsets.size() == static_cast<std::size_t>(comm_.size()) + 1, InternalError,
              "a mesh distributed over ", part.node_offsets.size() - 1, " ranks used on ",
              comm_.size());
@@ -70,6 +70,15 @@ void Discretization::number_local_nodes() {
     local_node_[local_nodes_[i]] = static_cast<std::int32_t>(i);
   for (auto n : ghosts)
     for (int c = 0; c < dim_; ++c) ghost_dofs_.push_back(global_dof(n, c));
+}
+
+std::int32_t Discretization::n_cells_held(mesh::CellRole role) const {
+  if (!distributed_) {
+    const auto owned = static_cast<std::int32_t>(local_cells_.size());
+    if (role == mesh::CellRole::owned) return owned;
+    return role == mesh::CellRole::ghost ? mesh_->n_cells() - owned : 0;
+  }
+  return static_cast<std::int32_t>(std::count(cell_role_.begin(), cell_role_.end(), role));
 }
 
 la::Vector Discretization::make_vector() const {

@@ -38,6 +38,9 @@ public:
   /// Id in the mesh as read of mesh node n / cell c (n / c itself when replicated).
   std::int64_t node_gid(std::int32_t node) const { return distributed_ ? node_gid_[node] : node; }
   std::int64_t cell_gid(std::int32_t c) const { return distributed_ ? cell_gid_[c] : c; }
+  /// Held cells of a role (mesh/distribute.hpp): owned, ghost layer, or held only for an
+  /// interface side. A replicated mesh counts its cells of other ranks as ghosts.
+  std::int32_t n_cells_held(mesh::CellRole role) const;
 
   /// Cells this rank assembles (all cells whose partition is this rank).
   std::span<const std::int32_t> local_cells() const { return local_cells_; }
@@ -83,6 +86,7 @@ private:
   std::int64_t n_global_nodes_ = 0;
   std::int64_t n_global_cells_ = 0;
   std::span<const std::int64_t> node_gid_, cell_gid_;
+  std::span<const mesh::CellRole> cell_role_;
   std::vector<int> cell_part_;
   std::vector<std::int32_t> local_cells_;
   std::vector<std::int64_t> new_index_;

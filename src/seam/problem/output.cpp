@@ -540,7 +540,8 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  const std::size_t n_detail = 7 + 2 * memory.size();
+  constexpr std::size_t n_counts = 11;
+  const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
     double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
@@ -553,9 +554,15 @@ void Output::finish(bool converged, int n_steps) {
       mine[5] += static_cast<double>(c.local_integration_cells);
     }
     mine[6] = parallel::peak_rss_mb();
+    // What the rank holds beyond its share (issue 12): cells held only for an interface
+    // side, and nodes: owned, ghost (of the cells it assembles) and all held.
+    mine[7] = disc_.n_cells_held(mesh::CellRole::interface);
+    mine[8] = disc_.n_owned_nodes();
+    mine[9] = static_cast<double>(disc_.local_nodes().size()) - disc_.n_owned_nodes();
+    mine[10] = disc_.mesh().n_nodes();
     for (std::size_t k = 0; k < memory.size(); ++k) {
-      mine[7 + 2 * k] = memory[k].peak_mb;
-      mine[8 + 2 * k] = memory[k].current_mb;
+      mine[n_counts + 2 * k] = memory[k].peak_mb;
+      mine[n_counts + 1 + 2 * k] = memory[k].current_mb;
     }
   }
   comm.sum_in_place(detail);
@@ -611,14 +618,18 @@ void Output::finish(bool converged, int n_steps) {
     e["pairs"] = static_cast<std::int64_t>(d[4]);
     e["integration_cells"] = static_cast<std::int64_t>(d[5]);
     e["peak_rss_mb"] = d[6];
+    e["interface_cells"] = static_cast<std::int64_t>(d[7]);
+    e["owned_nodes"] = static_cast<std::int64_t>(d[8]);
+    e["ghost_nodes"] = static_cast<std::int64_t>(d[9]);
+    e["nodes"] = static_cast<std::int64_t>(d[10]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();
     for (std::size_t k = 0; k < memory.size(); ++k) {
       io::Json p = io::Json::object();
       p["phase"] = memory[k].name;
-      p["peak_mb"] = d[7 + 2 * k];
-      p["rss_mb"] = d[8 + 2 * k];
+      p["peak_mb"] = d[n_counts + 2 * k];
+      p["rss_mb"] = d[n_counts + 1 + 2 * k];
       phases.push_back(std::move(p));
     }
     ranks.push_back(std::move(e));
