@@ -94,6 +94,71 @@ TEST_F(Partition, BalancedDeterministicInRange) {
   check_numbering(mesh, part, n_parts);
 }
 
+// The weights sum to the nodes, each counted with the nodes of its cells (partition.hpp):
+// 8 per node of an all-hexahedral mesh.
+TEST_F(Partition, CellWeightsCountNodes) {
+  const Mesh& mesh = *cube_;
+  std::vector<int> around(static_cast<std::size_t>(mesh.n_nodes()), 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    for (auto n : mesh.cell(c)) ++around[n];
+  double total = 0.0;
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    double shares = 0.0;
+    for (auto n : mesh.cell(c)) shares += 1.0 / around[n];
+    total += cell_weight(static_cast<int>(mesh.cell(c).size()), shares);
+  }
+  EXPECT_NEAR(total, 8.0 * mesh.n_nodes(), 1e-9 * total);
+  EXPECT_EQ(integer_weight(8.0, 1e3), 128);
+  EXPECT_EQ(integer_weight(1e-3, 1e3), 1);
+  EXPECT_EQ(integer_weight(800.0, 16.0 * 0x1p30), 50); // scaled to keep the sum below 2^30
+}
+
+// Hexahedra beside tetrahedra (about 5.5 tetrahedra per node): the weighted partition
+// balances the parts' nodes, each counted with the nodes of its cells (8 for a hexahedron's,
+// 4 for a tetrahedron's: the length of its matrix rows), so the part with the tetrahedra has
+// several times the cells. Partitioned by cell count, the cells would be balanced and the
+// part of hexahedra would have about three times the nodes of the other.
+TEST_F(Partition, MixedHexTetBalancesNodes) {
+  test::ScratchDir dir("partition_mixed");
+  const std::string geo = "SetFactory(\"OpenCASCADE\");\n"
+                          "Box(1) = {0, 0, 0, 1, 1, 1};\n"
+                          "Box(2) = {1, 0, 0, 1, 1, 1};\n"
+                          "Transfinite Curve{1:12} = 9;\n"
+                          "Transfinite Surface{1:6};\n"
+                          "Recombine Surface{1:6};\n"
+                          "Transfinite Volume{1};\n"
+                          "MeshSize{PointsOf{Volume{2};}} = 0.12;\n"
+                          "Physical Volume(\"hex\") = {1};\n"
+                          "Physical Volume(\"tet\") = {2};\n";
+  ReadOptions o;
+  o.order = 1;
+  const Mesh mesh = read_mesh(dir.write("mixed.geo", geo), o);
+  const int n_parts = 2;
+  const auto part = partition_cells(mesh, n_parts);
+  std::vector<std::vector<char>> held(n_parts, std::vector<char>(mesh.n_nodes(), 0));
+  std::vector<int> cells(n_parts, 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    ++cells[part[c]];
+    for (auto n : mesh.cell(c)) held[part[c]][n] = 1;
+  }
+  // Each node counted with the mean node count of its cells.
+  std::vector<double> sum(static_cast<std::size_t>(mesh.n_nodes()), 0.0), around(sum);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    for (auto n : mesh.cell(c)) {
+      sum[n] += static_cast<double>(mesh.cell(c).size());
+      around[n] += 1.0;
+    }
+  std::vector<double> nodes(n_parts, 0.0);
+  for (int p = 0; p < n_parts; ++p)
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+      if (held[p][n]) nodes[p] += sum[n] / around[n];
+  const auto [lo, hi] = std::minmax_element(nodes.begin(), nodes.end());
+  EXPECT_LE(*hi / *lo, 1.15) << nodes[0] << " and " << nodes[1] << " weighted nodes";
+  const auto [cl, ch] = std::minmax_element(cells.begin(), cells.end());
+  EXPECT_GE(static_cast<double>(*ch) / *cl, 2.0) << cells[0] << " and " << cells[1] << " cells";
+  check_numbering(mesh, part, n_parts);
+}
+
 TEST_F(Partition, QuadraticTrianglesSeveralPartCounts) {
   const Mesh& mesh = *square_;
   for (int n_parts : {1, 2, 4, 7}) {
