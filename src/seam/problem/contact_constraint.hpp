@@ -245,6 +245,10 @@ private:
                          std::vector<double>& add_values) const;
   /// The frictional work of the current step (replicated).
   double dissipation_increment(const Side& s) const;
+  /// Against a rigid obstacle: w_j = sum_k D_jk d_k with d_k = x~_k - x~_k^n - (c - c^n) the
+  /// motion of slave node k relative to the obstacle in the step (D_jj d_j with dual
+  /// multipliers); dim per node, replicated. Collective.
+  std::vector<double> rigid_motion_weighted(const Side& s) const;
   void save_friction(Side& s);
   /// Linearizes side s at its multipliers and active set (s.lin) and appends this rank's part
   /// of the contact force tangent as global triplets.

@@ -22,6 +22,24 @@ constexpr double cone_band = 1e-3;
 
 } // namespace
 
+std::vector<double> ContactConstraint::rigid_motion_weighted(const Side& s) const {
+  const int dim = disc_.dim();
+  const auto obstacle = s.itf.plane_displacement();
+  std::vector<double> d(s.x.size()), w(s.x.size(), 0.0);
+  for (std::size_t i = 0; i < d.size(); ++i)
+    d[i] = s.x[i] - s.x_old[i] - (obstacle[i % dim] - s.plane_old[i % dim]);
+  if (s.itf.standard()) {
+    // This rank's coupling entries D_jk, k != j.
+    for (const auto& e : s.part.D_coupling)
+      for (int c = 0; c < dim; ++c)
+        w[static_cast<std::size_t>(e.row) * dim + c] +=
+            e.value * d[static_cast<std::size_t>(e.col) * dim + c];
+    disc_.comm().sum_in_place(w);
+  }
+  for (std::size_t i = 0; i < d.size(); ++i) w[i] += s.D_diag[i / dim] * d[i];
+  return w;
+}
+
 void ContactConstraint::init_friction(Side& s, const io::Interface& config, double c_n) {
   const int dim = disc_.dim();
   s.friction = true;
@@ -504,17 +522,28 @@ void ContactConstraint::saddle_friction(Side& s, std::vector<PetscInt>& ci,
 }
 
 double ContactConstraint::dissipation_increment(const Side& s) const {
-  // Work of the frictional tractions on the slip of the step: sum_j lambda_t,j . u~_j >= 0.
+  // Work of the frictional tractions on the step's relative motion: sum_j lambda_t,j . u~_j.
+  // Against a rigid obstacle with standard multipliers u~_j here is sum_k D_jk d_k, not the
+  // lumped D_j d_j of the stick/slip condition: the slave force of node k is
+  // sum_j D_jk lambda_j, so this is exactly the work of the frictional forces, the term of
+  // the energy balance (kinetic + strain + dissipated = external work). The lumped measure
+  // misses sum_jk D_jk lambda_t,j . (d_k - d_j), a share of the neighbours' relative motion
+  // that does not fall with the time step (5.4e-6 E0 at dt and 1.6e-5 at dt / 2 on the
+  // thrown block of test_friction.py). Between two bodies the condition's slip already
+  // carries the coupling (Gitterle et al. 2010, eq. 31).
   const int dim = disc_.dim();
-  double w = 0.0;
+  const bool coupled = s.itf.rigid() && s.itf.standard();
+  const std::vector<double> w = coupled ? rigid_motion_weighted(s) : std::vector<double>{};
+  const std::vector<double>& slip = coupled ? w : s.slip;
+  double work = 0.0;
   for (std::size_t j = 0; j < s.active.size(); ++j) {
     if (!s.active[j]) continue;
     const double* n = &s.itf.normals()[j * dim];
     double ln = 0.0;
     for (int c = 0; c < dim; ++c) ln += s.lambda[j * dim + c] * n[c];
-    for (int c = 0; c < dim; ++c) w += (s.lambda[j * dim + c] - ln * n[c]) * s.slip[j * dim + c];
+    for (int c = 0; c < dim; ++c) work += (s.lambda[j * dim + c] - ln * n[c]) * slip[j * dim + c];
   }
-  return w;
+  return work;
 }
 
 void ContactConstraint::save_friction(Side& s) {
