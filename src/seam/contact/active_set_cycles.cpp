@@ -1,0 +1,30 @@
+#include "seam/contact/active_set_cycles.hpp"
+
+#include <algorithm>
+
+namespace seam::contact {
+
+std::size_t ActiveSetCycles::guard(std::vector<char>& next, std::vector<char>& alternating) {
+  alternating.assign(next.size(), 0);
+  const std::size_t m = history_.size();
+  std::size_t period = 0;
+  // The set k iterations before `next` is history_[m - k] (history_[m - 1] is one before).
+  if (m >= 2 && next != history_.back())
+    for (std::size_t k = 2; k <= max_period && k <= m; ++k)
+      if (history_[m - k] == next) {
+        period = k;
+        break;
+      }
+  if (period > 0)
+    for (std::size_t i = m - period; i < m; ++i)
+      for (std::size_t j = 0; j < next.size(); ++j) {
+        if (history_[i][j] != next[j]) alternating[j] = 1;
+        next[j] = std::max(next[j], history_[i][j]);
+      }
+  history_.push_back(next);
+  // A cycle of period max_period compares with the set max_period iterations back.
+  while (history_.size() > max_period) history_.pop_front();
+  return period;
+}
+
+} // namespace seam::contact
