@@ -91,6 +91,7 @@ void ContactConstraint::read_checkpoint(const RecordReader& in) {
     s.lambda_saved = s.lambda;
     for (std::size_t j = 0; const auto a : in.integers(p + "active", n)) s.active[j++] = a != 0;
     s.active_previous = s.active;
+    s.active_accepted = s.active;
     if (s.friction != in.has(p + "status"))
       in.fail("contact interface " + std::to_string(k + 1) + " was written " +
               (s.friction ? "without" : "with") + " friction");

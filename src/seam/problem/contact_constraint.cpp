@@ -74,6 +74,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.lambda_saved = s.lambda;
     s.active.assign(n, 0);
     s.active_previous = s.active;
+    s.active_accepted = s.active;
     // Prescribed components of the slave nodes (known on the owning rank only).
     const auto& nodes = s.itf.slave().mesh_nodes;
     std::vector<double> fixed(n * dim, 0.0);
@@ -756,8 +757,15 @@ void ContactConstraint::balance() {
 void ContactConstraint::save() {
   for (auto& s : sides_) {
     s.lambda_saved = s.lambda;
+    s.active_accepted = s.active;
     if (s.friction) save_friction(s);
   }
+}
+
+bool ContactConstraint::set_changed() const {
+  for (const auto& s : sides_)
+    if (s.active != s.active_accepted) return true;
+  return false;
 }
 
 void ContactConstraint::restore() {

@@ -120,6 +120,9 @@ public:
   void read_checkpoint(const RecordReader& in);
 
   int n_active() const;
+  /// Whether the active set at the last evaluate() differs from the one of the last converged
+  /// step (save()): a contact opened or closed in the step. Same on every rank.
+  bool set_changed() const;
   /// One line per interface for `seam check`.
   std::vector<std::string> describe() const;
   /// Per interface, the state for the output files (replicated), after balance().
@@ -163,8 +166,9 @@ private:
     std::vector<double> D, gap; ///< summed over ranks
     std::vector<double> lambda, lambda_saved;
     std::vector<char> active, active_previous;
-    contact::ActiveSetCycles cycles; ///< the sets of the current step, for the cycling guard
-    std::vector<char> dirichlet;     ///< per slave node and component
+    std::vector<char> active_accepted; ///< the active set of the last converged step
+    contact::ActiveSetCycles cycles;   ///< the sets of the current step, for the cycling guard
+    std::vector<char> dirichlet;       ///< per slave node and component
     contact::Linearization lin;
     /// Modified slave basis (tri6/quad8): T^-1 as triplets (side-local), empty when T = I.
     std::vector<mortar::Triplet> T_inverse;
