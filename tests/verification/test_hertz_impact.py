@@ -29,7 +29,8 @@ on 1085 nodes, SEAM_FULL=1 on 2926 nodes and the CI mesh on 3 ranks against 1.
 Measured: the contact duration from the first step (touching at t = 0) to the zero of the
 force, extrapolated from the last two steps with force by F^(2/3) linear in time (Hertz:
 F ~ delta^(3/2), delta linear in t at the end); the peak force from a parabola through the
-largest step value and its neighbours.
+largest step value and its neighbours. Measured (generalized-alpha, rho_inf = 0.8): 1085
+nodes -2.70 % and +4.07 %, 2926 nodes -2.01 % and +3.32 %; np 3 equal to np 1.
 """
 import math
 import os
