@@ -5,10 +5,11 @@
 // guarantee for contact problems (Hueeber & Wohlmuth 2005; Hintermueller, Ito & Kunisch 2002,
 // whose monotonicity argument needs an M-matrix), and a corner of one block hitting another
 // face first was seen to cycle through four sets. When the statuses asked for return to those
-// of k iterations ago (2 <= k <= max_period) while they differ from the ones in use, the
-// guard gives every node that changed within the cycle the largest status it had in it
-// (inactive < stick < slip): the union of the active sets of the cycle. The caller keeps that
-// choice for the rest of the step. Period 2 is the guard this replaces.
+// of k iterations ago (2 <= k <= max_period) while they differ from the ones in use (and, for
+// k >= 3, the statuses in use equal those of k iterations before them: the cycle has repeated
+// for two iterations), the guard gives every node that changed within the cycle the largest status
+// it had in it (inactive < stick < slip): the union of the active sets of the cycle. The caller
+// keeps that choice for the rest of the step. Period 2 is the guard this replaces.
 #include <cstddef>
 #include <deque>
 #include <vector>
@@ -25,7 +26,8 @@ public:
   void start(const std::vector<char>& current) { history_.assign(1, current); }
 
   /// `next`: the statuses the conditions ask for at this iterate (one char per node). If they
-  /// equal those of k iterations ago and differ from the last ones, `next` becomes the
+  /// equal those of k iterations ago and differ from the last ones (for k >= 3 the last ones
+  /// also equal those k iterations before them), `next` becomes the
   /// per-node maximum over the k sets of the cycle, `alternating` marks the nodes whose status
   /// changed within it, and k is returned; otherwise 0 (`alternating` all zero). The result is
   /// recorded as the newest set.
