@@ -21,7 +21,7 @@ every search.
   two-body interface between the ends, with generalized-alpha and the energy-momentum scheme:
   contact lasts 2 L / c within two steps, the contact stress is rho c v / 2 within 2 %, the
   bars leave with the velocities exchanged (within 3 % of v), momentum is constant to 1e-10,
-  the energy-momentum scheme never gains energy, generalized-alpha gains at most 1.1e-4 in a
+  the energy-momentum scheme never gains energy, generalized-alpha gains at most 1e-4 in a
   step; the two interfaces give the same contact force history to 1e-8; np = 3 equals np = 1.
 - Bad `surface:` input (combined with slave/master/rigid_plane, on mesh tying, empty, a group
   twice, missing or of the wrong dimension): exit 1 with a located message.
@@ -416,11 +416,12 @@ def check_bar(r, integrator, v=0.01):
     H.assert_close(r["vel"][1], v, rtol=0.03, what="velocity of bar b after the impact")
     H.assert_close(r["mom"], 0.0, atol=1e-10, what="momentum drift")
     # The energy-momentum scheme never gains energy through the impact. Generalized-alpha
-    # (rho_inf = 0.8) gains at most 1.03e-4 of it in the step of first touch when the bars meet
-    # 60-70 % into a step (measured over touch points 0.1 .. 0.9 of a step): issue 13 asks for
-    # 1e-4, which the contact forces at the end of the step do not yet meet; this bound keeps
-    # what is reached.
-    bound = 1e-12 if integrator == "energy_momentum" else 1.1e-4
+    # (rho_inf = 0.8) may gain at most 1e-4 of it in a step (issue 13). Carrying the Newmark
+    # acceleration of the step in which the bars separate into the next one made it gain
+    # 1.03e-4 two steps after the separation (the highest modes of the bars, excited by the
+    # jump of the contact force); generalized-alpha now restarts from the acceleration of
+    # equilibrium after every change of the contact set (dynamic_solver.cpp).
+    bound = 1e-12 if integrator == "energy_momentum" else 1e-4
     if r["rise"] > bound:
         raise AssertionError("a step gained %.2e of the energy (> %.1e)" % (r["rise"], bound))
 

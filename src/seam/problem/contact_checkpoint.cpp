@@ -91,7 +91,7 @@ void ContactConstraint::read_checkpoint(const RecordReader& in) {
     s.lambda_saved = s.lambda;
     for (std::size_t j = 0; const auto a : in.integers(p + "active", n)) s.active[j++] = a != 0;
     s.active_previous = s.active;
-    s.active_before = s.active;
+    s.active_accepted = s.active;
     if (s.friction != in.has(p + "status"))
       in.fail("contact interface " + std::to_string(k + 1) + " was written " +
               (s.friction ? "without" : "with") + " friction");
@@ -99,7 +99,6 @@ void ContactConstraint::read_checkpoint(const RecordReader& in) {
     for (std::size_t j = 0; const auto a : in.integers(p + "status", n))
       s.status[j++] = static_cast<char>(a);
     s.status_previous = s.status;
-    s.status_before = s.status;
     s.D_diag_old = in.reals(p + "D_old", n);
     s.x_old = in.reals(p + "x_old", n * dim);
     const auto plane = in.reals(p + "plane_old", 3);

@@ -74,7 +74,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.lambda_saved = s.lambda;
     s.active.assign(n, 0);
     s.active_previous = s.active;
-    s.active_before = s.active;
+    s.active_accepted = s.active;
     // Prescribed components of the slave nodes (known on the owning rank only).
     const auto& nodes = s.itf.slave().mesh_nodes;
     std::vector<double> fixed(n * dim, 0.0);
@@ -231,8 +231,10 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       changes += evaluate_friction(s, u_mesh, first);
       continue;
     }
-    if (first) s.frozen = false;
-    s.active_before = s.active_previous;
+    if (first) {
+      s.frozen = false;
+      s.cycles.start(s.active);
+    }
     s.active_previous = s.active;
     if (s.frozen || held_) continue;
     std::vector<char> next(s.active.size(), 0);
@@ -244,12 +246,11 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       // then start with a nonsingular system.
       next[j] = s.lambda[j] - s.c_n * (s.gap[j] / s.D[j] - touching) > 0.0;
     }
-    // Cycling guard: a set that returns to the one of two iterations ago is replaced by the
-    // union of the last two and kept for the rest of the step.
-    if (!first && next == s.active_before && next != s.active_previous) {
-      for (std::size_t j = 0; j < next.size(); ++j) next[j] = next[j] || s.active_previous[j];
-      s.frozen = true;
-    }
+    // Cycling guard (contact/active_set_cycles.hpp): a set that returns to the one of k <= 8
+    // iterations ago is replaced by the union of the sets of the cycle and kept for the rest
+    // of the step.
+    std::vector<char> alternating;
+    if (s.cycles.guard(next, alternating) > 0) s.frozen = true;
     s.active = std::move(next);
     for (std::size_t j = 0; j < s.active.size(); ++j)
       changes += s.active[j] != s.active_previous[j];
@@ -756,8 +757,15 @@ void ContactConstraint::balance() {
 void ContactConstraint::save() {
   for (auto& s : sides_) {
     s.lambda_saved = s.lambda;
+    s.active_accepted = s.active;
     if (s.friction) save_friction(s);
   }
+}
+
+bool ContactConstraint::set_changed() const {
+  for (const auto& s : sides_)
+    if (s.active != s.active_accepted) return true;
+  return false;
 }
 
 void ContactConstraint::restore() {

@@ -48,6 +48,7 @@
 // beta, the chained derivatives of n_j, the slip increment u~_j, D_jj and g~_j, into G.
 // Every stick/slip decision is taken in each Newton iteration together with the normal one.
 #include "seam/common/timer.hpp"
+#include "seam/contact/active_set_cycles.hpp"
 #include "seam/contact/contact_interface.hpp"
 #include "seam/contact/friction.hpp"
 #include "seam/io/config.hpp"
@@ -119,6 +120,9 @@ public:
   void read_checkpoint(const RecordReader& in);
 
   int n_active() const;
+  /// Whether the active set at the last evaluate() differs from the one of the last converged
+  /// step (save()): a contact opened or closed in the step. Same on every rank.
+  bool set_changed() const;
   /// One line per interface for `seam check`.
   std::vector<std::string> describe() const;
   /// Per interface, the state for the output files (replicated), after balance().
@@ -161,8 +165,10 @@ private:
     contact::NodalValues part;  ///< this rank's share
     std::vector<double> D, gap; ///< summed over ranks
     std::vector<double> lambda, lambda_saved;
-    std::vector<char> active, active_previous, active_before;
-    std::vector<char> dirichlet; ///< per slave node and component
+    std::vector<char> active, active_previous;
+    std::vector<char> active_accepted; ///< the active set of the last converged step
+    contact::ActiveSetCycles cycles;   ///< the sets of the current step, for the cycling guard
+    std::vector<char> dirichlet;       ///< per slave node and component
     contact::Linearization lin;
     /// Modified slave basis (tri6/quad8): T^-1 as triplets (side-local), empty when T = I.
     std::vector<mortar::Triplet> T_inverse;
@@ -189,7 +195,7 @@ private:
     // contact::NodeStatus of every node (active mirrors it).
     bool friction = false;
     contact::FrictionLaw law;
-    std::vector<char> status, status_previous, status_before;
+    std::vector<char> status, status_previous;
     std::vector<char> frozen_nodes; ///< nodes whose status the cycling guard fixed in this step
     std::vector<double> slip;       ///< weighted slip increment u~ of the step, dim per node
     /// Current slave node positions in the modified basis (x~ = T^-1 x; x without one), dim

@@ -56,7 +56,6 @@ void ContactConstraint::init_friction(Side& s, const io::Interface& config, doub
   s.lambda_saved = s.lambda;
   s.status.assign(n, 0);
   s.status_previous = s.status;
-  s.status_before = s.status;
   s.frozen_nodes = s.status;
   s.slip.assign(n * dim, 0.0);
   s.D_diag_old.assign(n, 0.0);
@@ -152,8 +151,10 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
         s.slip[j * dim + c] -= (s.D_diag[j] - s.D_diag_old[j]) * s.x[j * dim + c];
   }
 
-  if (first) s.frozen_nodes.assign(n, 0);
-  s.status_before = s.status_previous;
+  if (first) {
+    s.frozen_nodes.assign(n, 0);
+    s.cycles.start(s.status);
+  }
   s.status_previous = s.status;
   double d_max = 0.0;
   for (double d : s.D) d_max = std::max(d_max, d);
@@ -169,11 +170,12 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     if (lambda_n - s.c_n * (s.gap[j] / s.D[j] - touching) <= 0.0) continue;
     next[j] = static_cast<char>(contact::stick_or_slip(s.law, node));
   }
-  // Cycling guard: when the statuses return to those of two iterations ago, the nodes that
-  // alternate keep the larger of their last two statuses (inactive < stick < slip) for the
-  // rest of the step; the others go on being decided. A frozen node whose condition asks for
-  // another status counts as a change, so that an inconsistent state (say, a stuck node whose
-  // traction has left the cone) is never accepted: the step is cut instead.
+  // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 8
+  // iterations ago, the nodes that alternate keep the largest of their statuses in the cycle
+  // (inactive < stick < slip) for the rest of the step; the others go on being decided. A frozen
+  // node whose condition asks for another status counts as a change, so that an inconsistent state
+  // (say, a stuck node whose traction has left the cone) is never accepted: the step is cut
+  // instead.
   const auto decided = [&](const std::vector<char>& wanted) {
     std::vector<char> out = wanted;
     for (std::size_t j = 0; j < n; ++j)
@@ -181,12 +183,11 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     return out;
   };
   std::vector<char> status = held_ ? s.status_previous : decided(next);
-  if (!held_ && !first && status == s.status_before && status != s.status_previous) {
-    for (std::size_t j = 0; j < n; ++j)
-      if (status[j] != s.status_previous[j]) {
-        status[j] = std::max(status[j], s.status_previous[j]);
-        s.frozen_nodes[j] = 1;
-      }
+  if (!held_) {
+    std::vector<char> alternating;
+    if (s.cycles.guard(status, alternating) > 0)
+      for (std::size_t j = 0; j < n; ++j)
+        if (alternating[j]) s.frozen_nodes[j] = 1;
   }
   s.status = std::move(status);
   // A frozen node is consistent if its stick/slip condition holds up to a small tolerance (a

@@ -1,0 +1,40 @@
+#pragma once
+// Cycling guard of the semi-smooth Newton (primal-dual active set) method. Near a change of the
+// contact zone the set of active nodes (or the stick/slip statuses with friction) can return to
+// one it had a few iterations before without converging: the method has no global convergence
+// guarantee for contact problems (Hueeber & Wohlmuth 2005; Hintermueller, Ito & Kunisch 2002,
+// whose monotonicity argument needs an M-matrix), and a corner of one block hitting another
+// face first was seen to cycle through four sets. When the statuses asked for return to those
+// of k iterations ago (2 <= k <= max_period) while they differ from the ones in use (and, for
+// k >= 3, the statuses in use equal those of k iterations before them: the cycle has repeated
+// for two iterations), the guard gives every node that changed within the cycle the largest status
+// it had in it (inactive < stick < slip): the union of the active sets of the cycle. The caller
+// keeps that choice for the rest of the step. Period 2 is the guard this replaces.
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+namespace seam::contact {
+
+class ActiveSetCycles {
+public:
+  /// Periods 2 .. max_period are recognized: eight iterations are few beside a step's
+  /// iteration limit (typically 25 to 30), so a longer cycle is left to the step cut.
+  static constexpr std::size_t max_period = 8;
+
+  /// A new step (or a restart of the search) from the statuses in use.
+  void start(const std::vector<char>& current) { history_.assign(1, current); }
+
+  /// `next`: the statuses the conditions ask for at this iterate (one char per node). If they
+  /// equal those of k iterations ago and differ from the last ones (for k >= 3 the last ones
+  /// also equal those k iterations before them), `next` becomes the
+  /// per-node maximum over the k sets of the cycle, `alternating` marks the nodes whose status
+  /// changed within it, and k is returned; otherwise 0 (`alternating` all zero). The result is
+  /// recorded as the newest set.
+  std::size_t guard(std::vector<char>& next, std::vector<char>& alternating);
+
+private:
+  std::deque<std::vector<char>> history_; ///< oldest first; back() = the statuses in use
+};
+
+} // namespace seam::contact
