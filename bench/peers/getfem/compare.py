@@ -153,7 +153,8 @@ def main():
     ap.add_argument("--python", default="/usr/bin/python3", help="a Python with getfem")
     ap.add_argument("--refine", default="1.65")
     ap.add_argument("--steps", type=int, default=1)
-    ap.add_argument("--tolerance", type=float, default=1e-10)
+    # GetFEM's Newton did not reach 1e-10 on 21,861 and 73,977 dofs in 50 iterations.
+    ap.add_argument("--tolerance", type=float, default=1e-8)
     ap.add_argument("--linear", default="auto", choices=["auto", "direct", "iterative"])
     ap.add_argument("--r", type=float, default=10.0, help="GetFEM's augmentation parameter")
     ap.add_argument("--codes", nargs="+", default=["getfem", "seam"])
