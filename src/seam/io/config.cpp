@@ -242,7 +242,7 @@ SolverConfig read_solver(const Node& node) {
   const Map map(node, {"newton", "linear"});
   SolverConfig solver;
   if (const auto newton_node = map.get("newton")) {
-    const Map newton(*newton_node, {"tolerance", "max_iterations"});
+    const Map newton(*newton_node, {"tolerance", "max_iterations", "initial_guess"});
     if (const auto tolerance = newton.get("tolerance")) {
       solver.newton.tolerance = tolerance->number();
       if (solver.newton.tolerance <= 0.0)
@@ -253,6 +253,8 @@ SolverConfig read_solver(const Node& node) {
       if (solver.newton.max_iterations < 1)
         iterations->fail(concat("must be >= 1, got ", solver.newton.max_iterations));
     }
+    if (const auto guess = newton.get("initial_guess"))
+      solver.newton.initial_guess = guess->choice(detail::initial_guess_names);
   }
   if (const auto linear = map.get("linear")) solver.linear = linear->choice(detail::linear_names);
   return solver;
@@ -384,6 +386,9 @@ std::string_view to_string(Integrator value) {
 }
 std::string_view to_string(LinearSolverKind value) {
   return name_of(value, detail::linear_names);
+}
+std::string_view to_string(InitialGuess value) {
+  return name_of(value, detail::initial_guess_names);
 }
 std::string_view to_string(InterfaceDistribution value) {
   return name_of(value, detail::distribution_names);

@@ -48,6 +48,9 @@ enum class FrictionModel { frictionless, coulomb, tresca };
 enum class Integrator { quasi_static, generalized_alpha, energy_momentum };
 /// `auto`: direct or iterative by the problem (problem/newton.hpp, linear_solver_kind).
 enum class LinearSolverKind { direct, iterative, automatic };
+/// The start of Newton's method in a static load step: the last converged state, or that state
+/// extrapolated linearly in t from the last two (problem/static_solver.cpp).
+enum class InitialGuess { extrapolated, previous };
 /// How the slave elements of an interface are spread over the ranks.
 enum class InterfaceDistribution { independent, bulk };
 /// What the dynamic load balance measures per rank.
@@ -64,6 +67,7 @@ std::string_view to_string(Strategy value);
 std::string_view to_string(FrictionModel value);
 std::string_view to_string(Integrator value);
 std::string_view to_string(LinearSolverKind value);
+std::string_view to_string(InitialGuess value);
 std::string_view to_string(InterfaceDistribution value);
 std::string_view to_string(WorkMeasure value);
 
@@ -200,6 +204,7 @@ struct TimeConfig {
 struct NewtonConfig {
   double tolerance = 1e-10; ///< on the relative residual norm
   int max_iterations = 25;
+  InitialGuess initial_guess = InitialGuess::extrapolated; ///< static load steps only
 };
 
 struct SolverConfig {

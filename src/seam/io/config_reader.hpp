@@ -146,6 +146,8 @@ inline constexpr std::array<std::pair<std::string_view, LinearSolverKind>, 3> li
     {{"direct", LinearSolverKind::direct},
      {"iterative", LinearSolverKind::iterative},
      {"auto", LinearSolverKind::automatic}}};
+inline constexpr std::array<std::pair<std::string_view, InitialGuess>, 2> initial_guess_names{
+    {{"extrapolated", InitialGuess::extrapolated}, {"previous", InitialGuess::previous}}};
 inline constexpr std::array<std::pair<std::string_view, InterfaceDistribution>, 2>
     distribution_names{{{"independent", InterfaceDistribution::independent},
                         {"bulk", InterfaceDistribution::bulk}}};

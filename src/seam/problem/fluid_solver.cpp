@@ -8,6 +8,7 @@
 #include "seam/problem/fluid_mesh_motion.hpp"
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_output.hpp"
+#include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/tying_constraint.hpp"
 #include "seam/solid/loads.hpp"
 
@@ -284,6 +285,12 @@ CanonicalOrder fluid_order(const FluidLayout& layout) {
   return order;
 }
 
+la::SolverKind fluid_linear_solver_kind(const io::Config& config, const FluidLayout& layout) {
+  return choose_linear_solver(config.solver.linear, layout.dim(), layout.n_global_dofs(),
+                              SystemKind::fluid)
+      .kind;
+}
+
 class FluidNewton {
 public:
   /// `tying`: the condensed mesh tying of fluid subdomains, or null.
@@ -292,13 +299,10 @@ public:
       : config_(config), model_(model), layout_(layout), out_(out), tying_(tying),
         K_(layout.make_matrix()), r_(layout.make_vector()), rt_(layout.make_vector()),
         r_full_(layout.make_vector()), dw_(layout.make_vector()), dwt_(layout.make_vector()),
-        // `auto` is direct for fluids: the fieldsplit preconditioner of `iterative` is not
-        // optimal yet (docs/fluid.md, "Solving").
-        solver_(layout.comm().get(), config.solver.linear == io::LinearSolverKind::iterative
-                                         ? la::SolverKind::iterative
-                                         : la::SolverKind::direct) {
+        // `auto` is direct for fluids (linear_solver_choice.hpp).
+        solver_(layout.comm().get(), fluid_linear_solver_kind(config, layout)) {
     for (const auto& d : model.dirichlet) fixed_.push_back(d.dof);
-    if (config.solver.linear == io::LinearSolverKind::iterative) {
+    if (fluid_linear_solver_kind(config, layout) == la::SolverKind::iterative) {
       // Velocity | pressure: a Schur-complement fieldsplit (la::LinearSolver::set_fields).
       std::vector<PetscInt> velocity, pressure;
       layout.owned_fields(velocity, pressure);

@@ -53,36 +53,16 @@ void zero_dirichlet_rows(const Model& model, const Discretization& disc, la::Vec
 
 la::SolverKind linear_solver_kind(const io::Config& config, const Discretization& disc,
                                   bool saddle_point) {
-  switch (config.solver.linear) {
-  case io::LinearSolverKind::direct:
-    return la::SolverKind::direct;
-  case io::LinearSolverKind::iterative:
-    return la::SolverKind::iterative;
-  case io::LinearSolverKind::automatic:
-    break;
-  }
-  const bool large = disc.dim() == 3 && disc.n_global_dofs() >= auto_iterative_dofs;
-  return large && !saddle_point ? la::SolverKind::iterative : la::SolverKind::direct;
+  return choose_linear_solver(config.solver.linear, disc.dim(), disc.n_global_dofs(),
+                              saddle_point ? SystemKind::saddle_point : SystemKind::solid)
+      .kind;
 }
 
 std::string describe_linear_solver(const io::Config& config, const Discretization& disc,
                                    bool saddle_point) {
-  const bool iterative =
-      linear_solver_kind(config, disc, saddle_point) == la::SolverKind::iterative;
-  std::string text = iterative ? "iterative (GMRES + GAMG" : "direct (MUMPS";
-  if (config.solver.linear == io::LinearSolverKind::automatic) {
-    const auto dofs = std::to_string(disc.n_global_dofs());
-    const auto limit = std::to_string(auto_iterative_dofs);
-    if (iterative)
-      text += "; auto: 3D, " + dofs + " dofs >= " + limit;
-    else if (saddle_point)
-      text += "; auto: a saddle point";
-    else if (disc.dim() == 2)
-      text += "; auto: 2D";
-    else
-      text += "; auto: " + dofs + " dofs < " + limit;
-  }
-  return text + ")";
+  return describe(
+      choose_linear_solver(config.solver.linear, disc.dim(), disc.n_global_dofs(),
+                           saddle_point ? SystemKind::saddle_point : SystemKind::solid));
 }
 
 NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evaluator& evaluate) {

@@ -8,6 +8,7 @@
 #include "seam/problem/assembly.hpp"
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/discretization.hpp"
+#include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/saddle_point.hpp"
@@ -66,17 +67,7 @@ private:
   int cuts_ = 0;
 };
 
-/// `solver.linear: auto` (the default) picks GMRES + GAMG for 3D solids of at least
-/// `auto_iterative_dofs` dofs whose Newton system is not a saddle point, MUMPS otherwise. On
-/// this 2-core machine (bench/linear_solver_choice.py, docs/performance.md) a hex8 cube pressed
-/// by a rigid plane cost within 15 % the same CPU time either way up to 20.6k dofs, and 0.53
-/// of MUMPS's CPU time and 0.34 of its memory with GAMG at 36.5k; step-42's 107.8k-dof cube
-/// took 0.22 of MUMPS's time with GAMG. But on the thin-walled torus (26.4k dofs, hex8, 10
-/// load steps) GAMG took 3.9 times MUMPS's CPU time: AMG converges slowly on thin walls. The
-/// threshold sits where MUMPS's fill starts to cost gigabytes, so that thin structures of
-/// moderate size keep the direct solver. 2D systems stay direct (nested dissection keeps their
-/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother.
-inline constexpr PetscInt auto_iterative_dofs = 100000;
+/// The linear solver of a solid's Newton system (linear_solver_choice.hpp).
 la::SolverKind linear_solver_kind(const io::Config& config, const Discretization& disc,
                                   bool saddle_point);
 /// The solver and why, for the run's header: "direct (MUMPS)", "iterative (GMRES + GAMG; auto:

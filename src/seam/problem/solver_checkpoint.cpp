@@ -15,6 +15,9 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
   w.put_real("control.dt", c.dt);
   w.put_integer("control.cuts", c.cuts);
   w.put_real("external_work", state.external_work);
+  w.put_real("guess.t_older", state.t_older);
+  w.put_real("guess.t_oldest", state.t_oldest);
+  w.put_integer("guess.known", state.n_known);
   for (const auto& [name, v] : vectors) checkpoints.put_vector(w, name, *v);
   if (contact.active()) contact.write_checkpoint(w);
   if (saddle.active())
@@ -32,6 +35,9 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   DriverState state;
   state.step = checkpoints.restart_step();
   state.external_work = r.real("external_work");
+  state.t_older = r.real("guess.t_older");
+  state.t_oldest = r.real("guess.t_oldest");
+  state.n_known = static_cast<int>(r.integer("guess.known"));
   control.set_state({checkpoints.restart_time(), r.real("control.dt"),
                      static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);

@@ -19,6 +19,10 @@ namespace seam::problem {
 struct DriverState {
   int step = 0;
   double external_work = 0.0;
+  /// Static runs: the times of the converged states before the last one that the initial
+  /// guess extrapolates from, and how many of them are known (0 to 2; static_solver.cpp).
+  double t_older = 0.0, t_oldest = 0.0;
+  int n_known = 0;
 };
 
 /// Writes checkpoint_NNNNN/ after converged step `state.step` if one is due. Collective.

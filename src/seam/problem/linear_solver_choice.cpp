@@ -1,0 +1,32 @@
+#include "seam/problem/linear_solver_choice.hpp"
+
+namespace seam::problem {
+
+LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, PetscInt dofs,
+                                        SystemKind system) {
+  switch (setting) {
+  case io::LinearSolverKind::direct:
+    return {la::SolverKind::direct, ""};
+  case io::LinearSolverKind::iterative:
+    return {la::SolverKind::iterative, ""};
+  case io::LinearSolverKind::automatic:
+    break;
+  }
+  // The rules in the order they are tested; the first that applies decides.
+  if (system == SystemKind::fluid) return {la::SolverKind::direct, "auto: a fluid"};
+  if (system == SystemKind::saddle_point) return {la::SolverKind::direct, "auto: a saddle point"};
+  if (dim == 2) return {la::SolverKind::direct, "auto: 2D"};
+  const auto n = std::to_string(dofs), limit = std::to_string(auto_iterative_dofs);
+  if (dofs >= auto_iterative_dofs)
+    return {la::SolverKind::iterative, "auto: 3D, " + n + " dofs >= " + limit};
+  return {la::SolverKind::direct, "auto: " + n + " dofs < " + limit};
+}
+
+std::string describe(const LinearSolverChoice& choice) {
+  std::string text =
+      choice.kind == la::SolverKind::iterative ? "iterative (GMRES + GAMG" : "direct (MUMPS";
+  if (!choice.reason.empty()) text += "; " + choice.reason;
+  return text + ")";
+}
+
+} // namespace seam::problem

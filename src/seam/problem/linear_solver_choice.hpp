@@ -1,0 +1,40 @@
+#pragma once
+// `solver.linear`: which linear solver a Newton system gets, and why (the run's header).
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+
+#include <string>
+
+namespace seam::problem {
+
+/// `solver.linear: auto` (the default) picks GMRES + GAMG for 3D solids of at least
+/// `auto_iterative_dofs` dofs whose Newton system is not a saddle point, MUMPS otherwise. On
+/// this 2-core machine (bench/linear_solver_choice.py, docs/performance.md) a hex8 cube pressed
+/// by a rigid plane cost within 15 % the same CPU time either way up to 20.6k dofs, and 0.53
+/// of MUMPS's CPU time and 0.34 of its memory with GAMG at 36.5k; step-42's 107.8k-dof cube
+/// took 0.22 of MUMPS's time with GAMG. But on the thin-walled torus (26.4k dofs, hex8, 10
+/// load steps) GAMG took 3.9 times MUMPS's CPU time: AMG converges slowly on thin walls. The
+/// threshold sits where MUMPS's fill starts to cost gigabytes, so that thin structures of
+/// moderate size keep the direct solver. 2D systems stay direct (nested dissection keeps their
+/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother, and
+/// fluids, whose fieldsplit preconditioner is not optimal yet (docs/fluid.md, "Solving").
+inline constexpr PetscInt auto_iterative_dofs = 100000;
+
+/// What the Newton system is, as far as the choice goes.
+enum class SystemKind { solid, saddle_point, fluid };
+
+struct LinearSolverChoice {
+  la::SolverKind kind;
+  /// The rule that decided `auto`, e.g. "auto: 3D, 107811 dofs >= 100000"; empty when the
+  /// input named the solver.
+  std::string reason;
+};
+
+LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, PetscInt dofs,
+                                        SystemKind system);
+
+/// The choice as the run's header prints it: "direct (MUMPS)", "iterative (GMRES + GAMG; auto:
+/// 3D, 107811 dofs >= 100000)".
+std::string describe(const LinearSolverChoice& choice);
+
+} // namespace seam::problem

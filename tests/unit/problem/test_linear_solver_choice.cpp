@@ -1,0 +1,64 @@
+// `solver.linear`: the rules of `auto` (problem/linear_solver_choice.hpp) on each side of each
+// rule, and the reason the run's header prints for it.
+#include "seam/problem/linear_solver_choice.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using seam::io::LinearSolverKind;
+using seam::la::SolverKind;
+using seam::problem::auto_iterative_dofs;
+using seam::problem::choose_linear_solver;
+using seam::problem::describe;
+using seam::problem::SystemKind;
+
+void expect_choice(int dim, PetscInt dofs, SystemKind system, SolverKind kind,
+                   const std::string& reason) {
+  const auto choice = choose_linear_solver(LinearSolverKind::automatic, dim, dofs, system);
+  EXPECT_EQ(choice.kind, kind) << reason;
+  EXPECT_EQ(choice.reason, reason);
+  const std::string solver =
+      kind == SolverKind::direct ? "direct (MUMPS; " : "iterative (GMRES + GAMG; ";
+  EXPECT_EQ(describe(choice), solver + reason + ")");
+}
+
+TEST(LinearSolverChoice, ThreeDimensionalSolidAtTheThreshold) {
+  // The threshold is 100 000 dofs (docs/performance.md, "Choosing the linear solver").
+  ASSERT_EQ(auto_iterative_dofs, 100000);
+  expect_choice(3, 99999, SystemKind::solid, SolverKind::direct, "auto: 99999 dofs < 100000");
+  expect_choice(3, 100000, SystemKind::solid, SolverKind::iterative,
+                "auto: 3D, 100000 dofs >= 100000");
+  expect_choice(3, 107811, SystemKind::solid, SolverKind::iterative,
+                "auto: 3D, 107811 dofs >= 100000");
+  expect_choice(3, 1029, SystemKind::solid, SolverKind::direct, "auto: 1029 dofs < 100000");
+}
+
+TEST(LinearSolverChoice, TwoDimensionalStaysDirectAtAnySize) {
+  expect_choice(2, 1000, SystemKind::solid, SolverKind::direct, "auto: 2D");
+  expect_choice(2, 5000000, SystemKind::solid, SolverKind::direct, "auto: 2D");
+}
+
+TEST(LinearSolverChoice, SaddlePointStaysDirect) {
+  // Standard multipliers: GAMG has no smoother for the zero block.
+  expect_choice(3, 823875, SystemKind::saddle_point, SolverKind::direct, "auto: a saddle point");
+  expect_choice(2, 100, SystemKind::saddle_point, SolverKind::direct, "auto: a saddle point");
+}
+
+TEST(LinearSolverChoice, FluidStaysDirect) {
+  expect_choice(3, 2000000, SystemKind::fluid, SolverKind::direct, "auto: a fluid");
+  expect_choice(2, 40000, SystemKind::fluid, SolverKind::direct, "auto: a fluid");
+}
+
+TEST(LinearSolverChoice, NamedSolverIsTakenAsGiven) {
+  for (const auto system : {SystemKind::solid, SystemKind::saddle_point, SystemKind::fluid}) {
+    const auto direct = choose_linear_solver(LinearSolverKind::direct, 3, 5000000, system);
+    EXPECT_EQ(direct.kind, SolverKind::direct);
+    EXPECT_EQ(describe(direct), "direct (MUMPS)");
+    const auto iterative = choose_linear_solver(LinearSolverKind::iterative, 2, 10, system);
+    EXPECT_EQ(iterative.kind, SolverKind::iterative);
+    EXPECT_EQ(describe(iterative), "iterative (GMRES + GAMG)");
+  }
+}
+
+} // namespace
