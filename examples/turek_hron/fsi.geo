@@ -8,8 +8,8 @@
 //   nx, ny: the flag's cells along and across; fluid_ratio: fluid facets per structure facet
 //   on the interface (1 = matching nodes; 2, 3 or 0.5 = non-matching).
 // Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
-refine = DefineNumber[1, Name "refine"];
-fluid_ratio = DefineNumber[1, Name "fluid_ratio"];
+refine = 1;
+fluid_ratio = 1;
 nx = Round(20 * refine);
 ny = Round(2 * refine) > 1 ? Round(2 * refine) : 1;
 h = 0.05 / refine;                 // far from the obstacle
