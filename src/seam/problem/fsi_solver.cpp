@@ -4,6 +4,7 @@
 #include "seam/common/timer.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/vtu.hpp"
+#include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/locate.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/fsi_system.hpp"
@@ -53,7 +54,7 @@ std::array<double, 3> fluid_force(const FsiSystem& sys, const std::vector<double
 struct Writer {
   std::filesystem::path dir;
   std::unique_ptr<io::PvdCollection> pvd;
-  std::ofstream forces, steps, probes;
+  std::ofstream forces, steps, probes, interfaces;
   std::vector<mesh::PointLocation> probe_at;
   std::vector<std::pair<std::string, std::vector<std::int32_t>>> groups;
 };
@@ -114,7 +115,8 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
 // interface_<name>.csv: per fluid-side node its reference position, the structure's
 // displacement there (P d), and the traction the fluid exerts, t_j = -r_j / D_jj.
 void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
-                      const std::vector<double>& r, const std::filesystem::path& dir) {
+                      const std::vector<double>& r, const std::vector<double>& normals,
+                      const std::filesystem::path& dir) {
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
   for (const auto& cp : sys.couplings()) {
@@ -129,11 +131,44 @@ void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
         u[i] = raw[sys.m_dof(n, i)];
         tr[i] = -r[sys.f_dof(n, i)] / cp.d_diagonal[j];
       }
+      const double* nv = &normals[static_cast<std::size_t>(n) * 3];
+      const double tn = tr[0] * nv[0] + tr[1] * nv[1] + tr[2] * nv[2];
+      double tt = 0.0;
+      for (int i = 0; i < 3; ++i) tt += (tr[i] - tn * nv[i]) * (tr[i] - tn * nv[i]);
       s << n << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0] << ',' << u[1] << ','
-        << u[2] << ",0,,,tied," << tr[0] << ',' << tr[1] << ',' << tr[2] << '\n';
+        << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0] << ',' << tr[1] << ','
+        << tr[2] << '\n';
     }
     io::write_file_atomically(dir / ("interface_" + cp.name + ".csv"), s.str());
   }
+}
+
+// Unit normals of the fluid's interface nodes (3 per mesh node, 0 elsewhere): the mean of the
+// outward normals of the fluid's interface facets at their centres, on the reference mesh
+// (out of the fluid, into the structure: a positive normal force pushes on the structure).
+std::vector<double> interface_normals(const io::Config& config, const FsiSystem& sys) {
+  const auto& mesh = sys.mesh();
+  std::vector<double> n(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
+  for (const auto& itf : config.interfaces) {
+    const auto& region = meshtying::side_region(mesh, itf.slave);
+    for (std::int32_t f = 0; f < region.n_facets(); ++f) {
+      const auto c = region.facet_cell[f];
+      const int local = region.facet_local[f];
+      const auto type = mesh.cell_type[c];
+      const auto centre = mesh::reference_centre(fem::facet_type(type, local));
+      const auto normal = mesh::facet_normal(mesh, c, local, centre.data());
+      const auto nodes = mesh.cell(c);
+      for (int a : fem::facet_nodes(type, local))
+        for (int i = 0; i < mesh.dim; ++i)
+          n[static_cast<std::size_t>(nodes[a]) * 3 + i] += normal[i];
+    }
+  }
+  for (std::size_t k = 0; k < n.size(); k += 3) {
+    const double len = std::sqrt(n[k] * n[k] + n[k + 1] * n[k + 1] + n[k + 2] * n[k + 2]);
+    if (len > 0.0)
+      for (int i = 0; i < 3; ++i) n[k + i] /= len;
+  }
+  return n;
 }
 
 // Locates every probe: in a solid cell if one holds it (a point on the wet surface reports
@@ -231,8 +266,18 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     w.forces << "step,time,name,fx,fy,fz\n";
     w.forces.precision(17);
     w.steps.open(dir / "steps.csv");
-    w.steps << "step,time,newton_iterations,residual,interface_force_fluid_x,"
-               "interface_force_fluid_y,interface_force_structure_x,interface_force_structure_y\n";
+    // CONTRACT.md's columns (the structure's energies; steady: no kinetic energy or
+    // momentum, no contact), then the interface forces of both sides (force conservation).
+    w.steps << "step,time,newton_iterations,residual,active_nodes,slip_nodes,kinetic_energy,"
+               "internal_energy,external_work,total_energy,momentum_x,momentum_y,momentum_z,"
+               "angular_momentum_x,angular_momentum_y,angular_momentum_z,wall_seconds,"
+               "interface_force_fluid_x,interface_force_fluid_y,interface_force_fluid_z,"
+               "interface_force_structure_x,interface_force_structure_y,"
+               "interface_force_structure_z\n";
+    w.interfaces.open(dir / "interfaces.csv");
+    w.interfaces << "step,time,interface,normal_force,tangential_force,active_nodes,slip_nodes,"
+                    "contact_area\n";
+    w.interfaces.precision(17);
     w.steps.precision(17);
     if (!w.probe_at.empty()) {
       w.probes.open(dir / "probes.csv");
@@ -252,7 +297,10 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   std::vector<double> x(all.size(), 0.0), raw, dx_all;
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
-  double reference = 0.0;
+  double reference = 0.0, work = 0.0;
+  std::vector<double> last_force(sys.n_raw(), 0.0), last_raw(sys.n_raw(), 0.0);
+  const auto start = std::chrono::steady_clock::now();
+  const auto normals = interface_normals(config, sys);
   const auto& nc = config.solver.newton;
   bool converged = true;
   int step = 1;
@@ -309,21 +357,49 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     }
     w.forces.flush();
     // Force conservation: the fluid's interface force, and the one the structure receives
-    // through P^T (equal, since the rows of P sum to one).
+    // through P^T (equal, since the rows of P sum to one). The work of the transferred force on
+    // the structure by the trapezoidal rule over the load steps.
     std::array<double, 3> ff{}, fs{};
-    for (const auto& cp : sys.couplings())
-      for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
+    std::vector<double> transferred(sys.n_raw(), 0.0);
+    for (const auto& cp : sys.couplings()) {
+      double normal = 0.0;
+      std::array<double, 3> tangential{};
+      for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
+        const double* n = &normals[static_cast<std::size_t>(cp.fluid_nodes[j]) * 3];
+        double fn = 0.0;
+        std::array<double, 3> f{};
         for (int i = 0; i < dim; ++i) {
-          const double f = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
-          ff[i] += f;
-          for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) fs[i] += cp.weights[q] * f;
+          f[i] = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
+          fn += f[i] * n[i];
+          ff[i] += f[i];
+          for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
+            fs[i] += cp.weights[q] * f[i];
+            transferred[sys.d_dof(cp.structure_nodes[q], i)] += cp.weights[q] * f[i];
+          }
         }
-    w.steps << step << ',' << t << ',' << it << ',' << rn << ',' << ff[0] << ',' << ff[1] << ','
-            << fs[0] << ',' << fs[1] << '\n';
+        normal += fn;
+        for (int i = 0; i < dim; ++i) tangential[i] += f[i] - fn * n[i];
+      }
+      w.interfaces << step << ',' << t << ',' << cp.name << ',' << normal << ','
+                   << std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
+                                tangential[2] * tangential[2])
+                   << ",0,0," << cp.d_total << '\n';
+    }
+    w.interfaces.flush();
+    for (std::size_t a = 0; a < transferred.size(); ++a)
+      if (transferred[a] != 0.0 || last_force[a] != 0.0)
+        work += 0.5 * (transferred[a] + last_force[a]) * (raw[a] - last_raw[a]);
+    last_force = transferred;
+    last_raw = raw;
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0,0," << res.strain_energy << ','
+            << work << ',' << res.strain_energy << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ','
+            << ff[1] << ',' << ff[2] << ',' << fs[0] << ',' << fs[1] << ',' << fs[2] << '\n';
     w.steps.flush();
     write_fields(sys, raw, step, t, w);
     write_probes(sys, raw, step, t, w);
-    write_interfaces(sys, raw, res.raw_residual, dir);
+    write_interfaces(sys, raw, res.raw_residual, normals, dir);
   }
   if (root) {
     std::ostringstream s;

@@ -389,10 +389,12 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
       in.u = std::span<const double>(u.data(), nd);
       re.assign(nd, 0.0);
       Ke.assign(J ? nd * nd : 0, 0.0);
-      if (solid::internal_force(in, re, Ke).status != solid::KernelStatus::ok) {
+      const auto element = solid::internal_force(in, re, Ke);
+      if (element.status != solid::KernelStatus::ok) {
         out.inverted = true;
         continue;
       }
+      out.strain_energy += element.energy;
       for (std::size_t a = 0; a < nd; ++a) res[s_rows[a]] += re[a];
       if (J) add_block(s_rows, s_rows, Ke, I, Jc, V);
       continue;
@@ -455,6 +457,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
     if (J) add_block(m_rows, m_rows, Km, I, Jc, V);
   }
   out.inverted = comm_.any(out.inverted);
+  out.strain_energy = comm_.sum(out.strain_energy);
   comm_.sum_in_place(res);
 
   // R^T r: every rank sets the rows it owns from the summed raw residual.

@@ -92,6 +92,7 @@ public:
   };
   struct Result {
     bool inverted = false;
+    double strain_energy = 0.0; ///< of the structure, all ranks
     /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
     /// prescribed dofs, the fluid's interface forces before the transfer).
     std::vector<double> raw_residual;

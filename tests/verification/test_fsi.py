@@ -1,0 +1,136 @@
+"""Fluid-structure interaction (issue 15): the steady Turek-Hron FSI1 benchmark (Turek & Hron
+2006, Table 11) with seam's monolithic dual-mortar coupling, examples/turek_hron/fsi1.yaml.
+
+  * FSI1 on the example's coarse mesh (refine 1: the flag 20 x 2 quad9, tri6 fluid with
+    matching interface nodes): the tip point A's displacement and the drag and lift on
+    cylinder + flag against the published values u_x = 0.0227e-3, u_y = 0.8209e-3,
+    drag 14.295, lift 0.7638. The tolerances come from the refinement study of docs/fsi.md
+    (refine 1, 2, 3): refine 1 is within 6 % on u_y, 2 % on u_x, 0.3 % on the drag and
+    1.5 % on the lift, and the finer meshes move toward the published values.
+  * Force conservation: the force the structure receives through P^T equals the fluid's
+    interface force (steps.csv) to 1e-10.
+  * 3 ranks equal 1 rank to solver tolerance.
+  * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface give
+    the matching result within 1 % (tip u_y) and 0.5 % (drag).
+  * Bad input of an fsi run: exit 1 with a located message.
+"""
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness as H  # noqa: E402
+
+REFERENCE = {"ux": 0.0227e-3, "uy": 0.8209e-3, "drag": 14.295, "lift": 0.7638}
+
+
+def fsi_case(refine=1, fluid_ratio=1, replace=()):
+    work, path = H.copy_example("turek_hron", "fsi1.yaml", replace)
+    geo = os.path.join(work, "fsi.geo")
+    with open(geo) as f:
+        text = f.read()
+    assert "refine = 1;" in text and "fluid_ratio = 1;" in text
+    text = text.replace("refine = 1;", "refine = %g;" % refine)
+    text = text.replace("fluid_ratio = 1;", "fluid_ratio = %g;" % fluid_ratio)
+    with open(geo, "w") as f:
+        f.write(text)
+    return work, path
+
+
+def results(out):
+    tip = H.read_csv(os.path.join(out, "probes.csv"))[-1]
+    forces = [r for r in H.last_step_rows(H.read_csv(os.path.join(out, "forces.csv")))
+              if r["name"] == "obstacle"][0]
+    steps = H.read_csv(os.path.join(out, "steps.csv"))
+    return {"ux": tip["ux"], "uy": tip["uy"], "drag": forces["fx"], "lift": forces["fy"],
+            "steps": steps}
+
+
+def run_case(refine=1, fluid_ratio=1, np=1):
+    work, path = fsi_case(refine, fluid_ratio)
+    try:
+        out = H.solve(path, np=np)
+        return results(out)
+    finally:
+        H.cleanup(work)
+
+
+def test_fsi1_coarse():
+    r1 = run_case()
+    print("   FSI1 refine 1: u_x(A) %.4e, u_y(A) %.4e, drag %.4f, lift %.4f"
+          % (r1["ux"], r1["uy"], r1["drag"], r1["lift"]))
+    for key, rtol in (("uy", 0.06), ("ux", 0.02), ("drag", 0.003), ("lift", 0.015)):
+        H.assert_close(r1[key], REFERENCE[key], rtol=rtol, what="FSI1 " + key)
+    for row in r1["steps"]:
+        for c in ("x", "y"):
+            H.assert_close(row["interface_force_structure_" + c], row["interface_force_fluid_" + c],
+                           atol=1e-10 * max(1.0, abs(row["interface_force_fluid_" + c])),
+                           what="force transfer, step %d, %s" % (row["step"], c))
+    r3 = run_case(np=3)
+    for key in ("ux", "uy", "drag", "lift"):
+        H.assert_close(r3[key], r1[key], rtol=1e-7, what="FSI1 np 3 against np 1: " + key)
+
+
+def test_fsi1_nonmatching():
+    ref = run_case()
+    for ratio in (2, 0.5):
+        r = run_case(fluid_ratio=ratio)
+        print("   FSI1 fluid:structure facets %g:1: u_y(A) %.4e (matching %.4e), drag %.4f (%.4f)"
+              % (ratio, r["uy"], ref["uy"], r["drag"], ref["drag"]))
+        H.assert_close(r["uy"], ref["uy"], rtol=0.01, what="non-matching %g: u_y" % ratio)
+        H.assert_close(r["drag"], ref["drag"], rtol=0.005, what="non-matching %g: drag" % ratio)
+        for row in r["steps"]:
+            H.assert_close(row["interface_force_structure_y"], row["interface_force_fluid_y"],
+                           atol=1e-10 * max(1.0, abs(row["interface_force_fluid_y"])),
+                           what="non-matching %g: force transfer" % ratio)
+
+
+def expect_bad(what, replace, must, line):
+    work, path = fsi_case(replace=replace)
+    name = os.path.basename(path)
+    try:
+        for cmd in (["check", name], ["run", name, "-o", "out", "--quiet"]):
+            code, out, err = H.run(cmd, cwd=work, check=False, timeout=300)
+            if code != 1:
+                raise AssertionError("%s: %s: exit %d, expected 1\n%s%s"
+                                     % (what, cmd[0], code, out[-1500:], err[-1500:]))
+            prefix = "seam: input error: %s:%d:" % (name, line)
+            if prefix not in err:
+                raise AssertionError("%s: no located message %r:\n%s" % (what, prefix, err))
+            for piece in must:
+                if piece not in err:
+                    raise AssertionError("%s: message lacks %r:\n%s" % (what, piece, err))
+    finally:
+        H.cleanup(work)
+
+
+ITF = "  - {name: flag, type: fsi, fluid: flag_wet_fluid, structure: wet, multiplier: dual}"
+
+
+def test_bad_input():
+    with open(os.path.join(H.HERE, "..", "..", "examples", "turek_hron", "fsi1.yaml")) as f:
+        lines = f.read().splitlines()
+    at = {key: 1 + next(i for i, l in enumerate(lines) if key in l)
+          for key in (ITF, "time:", "region: flag, material", "region: clamped")}
+    expect_bad("sides swapped",
+               [(ITF, ITF.replace("fluid: flag_wet_fluid, structure: wet",
+                                  "fluid: wet, structure: flag_wet_fluid"))],
+               ["interface 'flag'", "'fluid' group 'wet'", "not on a fluid body"], at[ITF])
+    expect_bad("missing structure", [(ITF, ITF.replace(", structure: wet", ""))],
+               ["missing required key 'structure'"], at[ITF])
+    expect_bad("slave instead of fluid", [(ITF, ITF.replace("fluid: flag", "slave: flag"))],
+               ["'fsi' interface names its sides 'fluid' and 'structure'"], at[ITF])
+    expect_bad("standard multiplier", [(ITF, ITF.replace("dual", "standard"))],
+               ["dual multipliers"], at[ITF])
+    expect_bad("no structure body", [("  - {region: flag, material: flag}\n", "")],
+               ["no solid body"], at[ITF] - 1)
+    expect_bad("displacement condition on the fluid's interface group",
+               [("{region: clamped, type: dirichlet", "{region: flag_wet_fluid, type: dirichlet")],
+               ["type 'dirichlet'", "fluid body"], at["region: clamped"])
+    expect_bad("dynamics", [("integrator: static", "integrator: generalized_alpha")],
+               ["steady ('integrator: static')"], at["time:"])
+
+
+if __name__ == "__main__":
+    tests = [test_bad_input, test_fsi1_coarse, test_fsi1_nonmatching]
+    H.main(tests)
