@@ -5,15 +5,16 @@
 // the flag's group `wet`, joined by an `fsi` interface (mortar, so their nodes need not
 // match).
 //   refine: scales every mesh parameter (cells per length double when refine doubles);
-//   nx, ny: the flag's cells along and across; fluid_ratio: fluid facets per structure facet
-//   on the interface (1 = matching nodes; 2, 3 or 0.5 = non-matching).
+//   nx, ny: the fluid's facets along the flag and across its tip; fluid_ratio: fluid facets
+//   per structure facet on the interface (1 = matching nodes; 2, 3 or 0.5 = non-matching),
+//   made by coarsening or refining the flag: the fluid mesh stays the same.
 // Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
 refine = 1;
 fluid_ratio = 1;
 nx = Round(20 * refine);
 ny = Round(2 * refine) > 1 ? Round(2 * refine) : 1;
 h = 0.05 / refine;                 // far from the obstacle
-hc = 0.35 / nx / fluid_ratio;      // on the cylinder and the flag
+hc = 0.35 / nx;                    // on the cylinder and the flag (fluid)
 xc = 0.2; yc = 0.2; r = 0.05; th = 0.02;
 x0 = xc + Sqrt(r * r - (th / 2) * (th / 2));   // where the flag meets the cylinder
 
@@ -40,10 +41,8 @@ Line(9) = {8, 9};                        // its upper face
 Curve Loop(1) = {1, 2, 3, 4};
 Curve Loop(2) = {5, 6, 7, 8, 9};
 Plane Surface(1) = {1, 2};
-nxf = Round(nx * fluid_ratio);
-nyf = Round(ny * fluid_ratio) > 1 ? Round(ny * fluid_ratio) : 1;
-Transfinite Curve{7, 9} = nxf + 1;
-Transfinite Curve{8} = nyf + 1;
+Transfinite Curve{7, 9} = nx + 1;
+Transfinite Curve{8} = ny + 1;
 Field[1] = Distance;
 Field[1].CurvesList = {5, 6, 7, 8, 9};
 Field[1].NumPointsPerCurve = 200;
@@ -70,8 +69,10 @@ Line(23) = {23, 24};        // upper face
 Circle(24) = {24, 25, 21};  // glued to the cylinder
 Curve Loop(21) = {21, 22, 23, 24};
 Plane Surface(21) = {21};
-Transfinite Curve{21, 23} = nx + 1;
-Transfinite Curve{22, 24} = ny + 1;
+nxs = Round(nx / fluid_ratio);
+nys = Round(ny / fluid_ratio) > 1 ? Round(ny / fluid_ratio) : 1;
+Transfinite Curve{21, 23} = nxs + 1;
+Transfinite Curve{22, 24} = nys + 1;
 Transfinite Surface{21};
 Recombine Surface{21};
 

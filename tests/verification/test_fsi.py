@@ -10,8 +10,9 @@
   * Force conservation: the force the structure receives through P^T equals the fluid's
     interface force (steps.csv) to 1e-10.
   * 3 ranks equal 1 rank to solver tolerance.
-  * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface give
-    the matching result within 1 % (tip u_y) and 0.5 % (drag).
+  * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface (the
+    same fluid mesh, the flag coarsened or refined) give the matching result within 1.5 %
+    (tip u_y), 1 % (lift) and 1e-4 (drag); the force transfer stays exact.
   * Bad input of an fsi run: exit 1 with a located message.
 """
 import os
@@ -73,16 +74,23 @@ def test_fsi1_coarse():
 
 def test_fsi1_nonmatching():
     ref = run_case()
+    # The fluid mesh is the same in all three (fsi.geo coarsens or refines the flag), so the
+    # differences are the coupling's and the flag's discretization (measured on refine 1:
+    # u_y -0.96 % and +0.40 %, lift +0.46 % and -0.19 %, drag 1e-6).
     for ratio in (2, 0.5):
         r = run_case(fluid_ratio=ratio)
-        print("   FSI1 fluid:structure facets %g:1: u_y(A) %.4e (matching %.4e), drag %.4f (%.4f)"
-              % (ratio, r["uy"], ref["uy"], r["drag"], ref["drag"]))
-        H.assert_close(r["uy"], ref["uy"], rtol=0.01, what="non-matching %g: u_y" % ratio)
-        H.assert_close(r["drag"], ref["drag"], rtol=0.005, what="non-matching %g: drag" % ratio)
+        print("   FSI1 fluid:structure facets %g:1: u_y(A) %.4e (matching %.4e), drag %.4f (%.4f),"
+              " lift %.4f (%.4f)" % (ratio, r["uy"], ref["uy"], r["drag"], ref["drag"],
+                                     r["lift"], ref["lift"]))
+        H.assert_close(r["uy"], ref["uy"], rtol=0.015, what="non-matching %g: u_y" % ratio)
+        H.assert_close(r["drag"], ref["drag"], rtol=1e-4, what="non-matching %g: drag" % ratio)
+        H.assert_close(r["lift"], ref["lift"], rtol=0.01, what="non-matching %g: lift" % ratio)
         for row in r["steps"]:
-            H.assert_close(row["interface_force_structure_y"], row["interface_force_fluid_y"],
-                           atol=1e-10 * max(1.0, abs(row["interface_force_fluid_y"])),
-                           what="non-matching %g: force transfer" % ratio)
+            for c in ("x", "y"):
+                H.assert_close(row["interface_force_structure_" + c],
+                               row["interface_force_fluid_" + c],
+                               atol=1e-10 * max(1.0, abs(row["interface_force_fluid_" + c])),
+                               what="non-matching %g: force transfer %s" % (ratio, c))
 
 
 def expect_bad(what, replace, must, line):

@@ -196,7 +196,9 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
     // The fluid side carries the multiplier (slave), the structure is the master (4C's fluid
     // split; docs/fsi.md).
     for (const char* key : {"slave", "master", "surface"})
-      map.forbid(key, true, "an 'fsi' interface names its sides 'fluid' and 'structure'");
+      map.forbid(key, true,
+                 "does not apply to type 'fsi': an 'fsi' interface names its sides 'fluid' "
+                 "and 'structure'");
     for (const char* key :
          {"rigid_plane", "rigid_sphere", "rigid_cylinder", "friction", "c_n", "c_t"})
       map.forbid(key, true, "applies only to type 'contact'");
