@@ -36,10 +36,10 @@ void check_fsi_input(const io::Config& config) {
                                  "' of type 'fsi' joins a fluid and a structure, but the run "
                                  "has no " +
                                  (fluid ? "solid" : "fluid") + " body");
-  if (config.time.integrator != io::Integrator::quasi_static)
+  if (config.time.integrator == io::Integrator::energy_momentum)
     io::fail_at(config.time.mark,
-                "fluid-structure interaction is solved steady ('integrator: static') in this "
-                "version of seam; the coupled time integration is not available yet");
+                "fluid-structure interaction is integrated with 'generalized_alpha' (or solved "
+                "steady with 'static'); 'energy_momentum' is a scheme for solids");
 }
 
 // The fluid force on a set of nodes: minus the fluid momentum residual there (the reaction).
@@ -235,7 +235,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   check_fsi_input(config);
   PhaseTimers timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
-  const FsiSystem sys(config, mesh, tied, comm);
+  FsiSystem sys(config, mesh, tied, comm);
   FsiRunInfo info;
   info.n_dofs = sys.n_unknowns();
   const int dim = sys.dim();
@@ -304,8 +304,17 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   const auto& nc = config.solver.newton;
   bool converged = true;
   int step = 1;
+  // Dynamics: the state at t_n (from rest) and the force groups' forces at t_n.
+  const bool dynamic = config.time.integrator == io::Integrator::generalized_alpha;
+  FsiSystem::History history;
+  if (dynamic) {
+    history = FsiSystem::History::from_rho_inf(config.time.rho_inf, config.time.dt, sys.n_raw());
+    sys.set_history(&history);
+  }
+  std::vector<std::array<double, 3>> group_force(w.groups.size(), {0.0, 0.0, 0.0});
   for (; step <= config.time.n_steps; ++step) {
     const double t = config.time.time_at(step);
+    if (dynamic) history.dt = t - config.time.time_at(step - 1);
     const auto g = sys.prescribed(t);
     FsiSystem::Result res;
     double rn = 0.0;
@@ -349,11 +358,25 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                      step, t, nc.max_iterations, rn);
       break;
     }
+    if (dynamic) {
+      // The rates of the converged state become the history of the next step.
+      std::vector<double> rate, accel;
+      sys.rates(raw, rate, accel);
+      history.old = raw;
+      history.rate = std::move(rate);
+      history.accel = std::move(accel);
+    }
     if (!root) continue;
-    for (const auto& [name, nodes] : w.groups) {
-      const auto f = fluid_force(sys, res.raw_residual, nodes);
-      w.forces << step << ',' << t << ',' << name << ',' << f[0] << ',' << f[1] << ',' << f[2]
-               << '\n';
+    for (std::size_t k = 0; k < w.groups.size(); ++k) {
+      auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
+      // Dynamics: the residual holds the force at t_{n+alpha_f}; at t_{n+1} it is
+      // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f (as the fluid runs).
+      if (dynamic)
+        for (int i = 0; i < 3; ++i)
+          f[i] = (f[i] - (1 - history.f_af) * group_force[k][i]) / history.f_af;
+      group_force[k] = f;
+      w.forces << step << ',' << t << ',' << w.groups[k].first << ',' << f[0] << ',' << f[1] << ','
+               << f[2] << '\n';
     }
     w.forces.flush();
     // Force conservation: the fluid's interface force, and the one the structure receives
@@ -393,9 +416,10 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     last_raw = raw;
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0,0," << res.strain_energy << ','
-            << work << ',' << res.strain_energy << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ','
-            << ff[1] << ',' << ff[2] << ',' << fs[0] << ',' << fs[1] << ',' << fs[2] << '\n';
+    w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0," << res.kinetic_energy << ','
+            << res.strain_energy << ',' << work << ',' << res.kinetic_energy + res.strain_energy
+            << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ',' << ff[1] << ',' << ff[2] << ','
+            << fs[0] << ',' << fs[1] << ',' << fs[2] << '\n';
     w.steps.flush();
     write_fields(sys, raw, step, t, w);
     write_probes(sys, raw, step, t, w);

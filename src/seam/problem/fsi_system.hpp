@@ -82,6 +82,23 @@ public:
   bool is_fluid_cell(std::int32_t c) const { return cell_fluid_[c] >= 0; }
   const std::vector<FsiCoupling>& couplings() const { return couplings_; }
 
+  /// Time integration (docs/fsi.md, "Dynamics"): the structure by generalized-alpha (Chung &
+  /// Hulbert 1993), the fluid and its mesh by generalized-alpha for first-order systems
+  /// (Jansen, Whiting & Hulbert 2000), with one rho_inf, so that both fields' residuals are
+  /// taken at the same time t_n + dt / (1 + rho_inf). The state at t_n: raw values `old`, and
+  /// `rate` (v on d dofs, du/dt on u dofs, dm/dt on m dofs) and `accel` (a on d dofs).
+  struct History {
+    double dt = 0.0;
+    double s_am = 0.0, s_af = 0.0, beta = 0.25, s_gamma = 0.5; ///< structure
+    double f_am = 1.0, f_af = 1.0, f_gamma = 1.0;              ///< fluid and mesh
+    std::vector<double> old, rate, accel;
+    static History from_rho_inf(double rho_inf, double dt, std::size_t n_raw);
+  };
+  /// With `h` (kept by reference) the system is the step t_n -> t_n + h->dt; null: steady.
+  void set_history(const History* h) { history_ = h; }
+  /// The rate and acceleration at t_{n+1} of the raw state of a step (History's recursions).
+  void rates(std::span<const double> raw, std::vector<double>& rate,
+             std::vector<double>& accel) const;
   /// The raw values of the prescribed part g(t) (zero elsewhere).
   std::vector<double> prescribed(double t) const;
   /// raw = T_c x + g, x all condensed unknowns.
@@ -92,7 +109,8 @@ public:
   };
   struct Result {
     bool inverted = false;
-    double strain_energy = 0.0; ///< of the structure, all ranks
+    double strain_energy = 0.0;  ///< of the structure at t_{n+1}, all ranks
+    double kinetic_energy = 0.0; ///< of the structure at t_{n+1} (1/2 v M v), all ranks
     /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
     /// prescribed dofs, the fluid's interface forces before the transfer).
     std::vector<double> raw_residual;
@@ -125,7 +143,16 @@ private:
   std::vector<int> prescribed_;
   std::vector<io::Expression> values_;
   DofMap columns_; ///< T_c
-  DofMap rows_;    ///< R
+  /// Per raw dof: 1 for the interface velocity u_G = P v(d), whose T_c weights are P and get
+  /// the factor dv/dd = gamma / (beta dt) (0 when steady: u_G = 0).
+  std::vector<char> velocity_row_;
+  const History* history_ = nullptr;
+  double column_scale(std::size_t a) const {
+    return velocity_row_[a] == 0 ? 1.0
+           : history_            ? history_->s_gamma / (history_->beta * history_->dt)
+                                 : 0.0;
+  }
+  DofMap rows_; ///< R
   PetscInt n_unknowns_ = 0, n_owned_ = 0, first_owned_ = 0;
 };
 

@@ -4,8 +4,9 @@
 // tangent, the fluid by (u, p), the fluid by the mesh (shape derivatives), the pseudo-elastic
 // mesh, and the chain rules of the coupling (m_G = P d_G, the fluid's interface rows moved to
 // the structure by P^T). The same check without the shape derivatives must fail: the test
-// can tell. Also: the force the structure receives through P^T equals the fluid's interface
-// force (the rows of P sum to one), on a non-matching interface.
+// can tell. The same in a generalized-alpha step (inertia of both fields, the mesh velocity,
+// the interface velocity u_G = P v(d_{n+1})). Also: the force the structure receives through P^T
+// equals the fluid's interface force (the rows of P sum to one), on a non-matching interface.
 //
 // The case: a channel [0, 1] x [0, 0.4] whose bottom has an elastic block [0.3, 0.7] x
 // [-0.1, 0] (own nodes) under it; the fluid's bottom segment over the block and the block's
@@ -62,7 +63,7 @@ struct Errors {
   double with_shape = 0.0, without_shape = 0.0, force = 0.0;
 };
 
-Errors check(int order) {
+Errors check(int order, bool dynamic = false) {
   Comm comm;
   const auto folder =
       std::filesystem::temp_directory_path() /
@@ -94,7 +95,19 @@ Errors check(int order) {
   auto mesh = mesh::read_mesh(folder / "case.geo", opts);
   PhaseTimers timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
-  const FsiSystem sys(config, mesh, tied, comm);
+  FsiSystem sys(config, mesh, tied, comm);
+  // Dynamics: a step from a state at t_n that is not at rest (random, the same on every rank):
+  // the inertia of both fields, the mesh velocity's derivatives and u_G = P v(d) enter.
+  FsiSystem::History history;
+  if (dynamic) {
+    history = FsiSystem::History::from_rho_inf(0.5, 0.05, sys.n_raw());
+    for (std::size_t k = 0; k < sys.n_raw(); ++k) {
+      history.old[k] = 0.003 * noise(static_cast<std::int64_t>(k), 3);
+      history.rate[k] = 0.01 * noise(static_cast<std::int64_t>(k), 4);
+      history.accel[k] = 0.1 * noise(static_cast<std::int64_t>(k), 5);
+    }
+    sys.set_history(&history);
+  }
   const auto N = static_cast<std::size_t>(sys.n_unknowns());
   // A state away from rest: every unknown perturbed (mesh and structure by a few percent of
   // a cell, so that no cell inverts), the same on every rank.
@@ -169,9 +182,9 @@ Errors check(int order) {
     (shape ? e.with_shape : e.without_shape) = worst;
   }
   if (comm.is_root())
-    std::printf("fsi Jacobian, order %d: relative error %.3e with the shape derivatives, %.3e "
+    std::printf("fsi Jacobian, order %d%s: relative error %.3e with the shape derivatives, %.3e "
                 "without; force transfer %.3e\n",
-                order, e.with_shape, e.without_shape, e.force);
+                order, dynamic ? ", dynamic" : "", e.with_shape, e.without_shape, e.force);
   return e;
 }
 
@@ -186,6 +199,20 @@ TEST(FsiJacobian, LinearStabilizedAgreesWithFiniteDifferences) {
   const auto e = check(1);
   EXPECT_LT(e.with_shape, 1e-6);
   EXPECT_GT(e.without_shape, 1e-5); // fails the 1e-6 test by far
+  EXPECT_LT(e.force, 1e-10);
+}
+
+TEST(FsiJacobian, DynamicQuadraticAgreesWithFiniteDifferences) {
+  const auto e = check(2, true);
+  EXPECT_LT(e.with_shape, 1e-6);
+  EXPECT_GT(e.without_shape, 1e-5);
+  EXPECT_LT(e.force, 1e-10);
+}
+
+TEST(FsiJacobian, DynamicLinearStabilizedAgreesWithFiniteDifferences) {
+  const auto e = check(1, true);
+  EXPECT_LT(e.with_shape, 1e-6);
+  EXPECT_GT(e.without_shape, 1e-5);
   EXPECT_LT(e.force, 1e-10);
 }
 
