@@ -173,8 +173,8 @@ def test_bad_input():
     expect_bad("displacement condition on the fluid's interface group",
                [("{region: clamped, type: dirichlet", "{region: flag_wet_fluid, type: dirichlet")],
                ["type 'dirichlet'", "fluid body"], at["region: clamped"])
-    expect_bad("dynamics", [("integrator: static", "integrator: generalized_alpha")],
-               ["steady ('integrator: static')"], at["time:"])
+    expect_bad("energy-momentum", [("integrator: static", "integrator: energy_momentum")],
+               ["'generalized_alpha'", "'energy_momentum' is a scheme for solids"], at["time:"])
 
 
 if __name__ == "__main__":
