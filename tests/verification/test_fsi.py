@@ -14,6 +14,8 @@
     same fluid mesh, the flag coarsened or refined) give the matching result within 1.5 %
     (tip u_y), 1 % (lift) and 1e-4 (drag); the force transfer stays exact.
   * A velocity condition on the fluid's interface group changes nothing (the coupling wins).
+  * The FSI3 start-up (generalized-alpha on both fields, rho_s/rho_f = 1): 10 steps on a coarse
+    mesh converge, the force transfer is exact at every step, 3 ranks equal 1 rank.
   * SEAM_FULL=1: refine 2, the errors fall toward the published values.
   * Bad input of an fsi run: exit 1 with a located message.
 """
@@ -128,6 +130,45 @@ def test_fsi1_refinement():
         H.assert_close(r2[key], REFERENCE[key], rtol=rtol, what="FSI1 refine 2 " + key)
 
 
+def fsi3_startup(np):
+    work, path = H.copy_example("turek_hron", "fsi3.yaml",
+                                [("end: 0.5, dt: 0.01", "end: 0.1, dt: 0.01")])
+    geo = os.path.join(work, "fsi.geo")
+    with open(geo) as f:
+        text = f.read()
+    with open(geo, "w") as f:
+        f.write(text.replace("refine = 1;", "refine = 0.5;"))
+    try:
+        out = H.solve(path, np=np)
+        return (H.read_csv(os.path.join(out, "steps.csv")),
+                H.read_csv(os.path.join(out, "probes.csv")),
+                H.read_csv(os.path.join(out, "forces.csv")))
+    finally:
+        H.cleanup(work)
+
+
+def test_fsi3_startup():
+    """The dynamic coupling runs (10 generalized-alpha steps of the FSI3 start-up, coarse mesh):
+    every step converges, the force transfer is exact at every step, the flag stays at rest to
+    within its tiny start-up motion, and 3 ranks equal 1 rank."""
+    steps, probes, forces = fsi3_startup(1)
+    if len(steps) != 10:
+        raise AssertionError("FSI3 start-up: %d steps converged, expected 10" % len(steps))
+    for row in steps:
+        for c in ("x", "y"):
+            H.assert_close(row["interface_force_structure_" + c], row["interface_force_fluid_" + c],
+                           atol=1e-10 * max(1.0, abs(row["interface_force_fluid_" + c])),
+                           what="FSI3 force transfer, step %d" % row["step"])
+    uy = probes[-1]["uy"]
+    print("   FSI3 start-up t = 0.1: u_y(A) %.4e, drag %.4f, structure kinetic energy %.3e"
+          % (uy, forces[-1]["fx"], steps[-1]["kinetic_energy"]))
+    if not abs(uy) < 1e-3:
+        raise AssertionError("FSI3 start-up: |u_y(A)| = %g at t = 0.1, expected < 1e-3" % uy)
+    steps3, probes3, forces3 = fsi3_startup(3)
+    H.assert_close(probes3[-1]["uy"], uy, rtol=1e-6, atol=1e-12, what="FSI3 np 3 against np 1")
+    H.assert_close(forces3[-1]["fx"], forces[-1]["fx"], rtol=1e-8, what="FSI3 drag np 3")
+
+
 def expect_bad(what, replace, must, line):
     work, path = fsi_case(replace=replace)
     name = os.path.basename(path)
@@ -179,5 +220,5 @@ def test_bad_input():
 
 if __name__ == "__main__":
     tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_nonmatching,
-             test_fsi1_refinement]
+             test_fsi3_startup, test_fsi1_refinement]
     H.main(tests)

@@ -428,8 +428,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   if (root) {
     std::ostringstream s;
     s << "{\n  \"status\": \"" << (converged ? "converged" : "failed")
-      << "\",\n  \"steps\": " << (converged ? step - 1 : step - 1)
-      << ",\n  \"dofs\": " << info.n_dofs << ",\n  \"ranks\": " << comm.size() << "\n}\n";
+      << "\",\n  \"steps\": " << step - 1 << ",\n  \"dofs\": " << info.n_dofs
+      << ",\n  \"ranks\": " << comm.size() << "\n}\n";
     io::write_file_atomically(dir / "summary.json", s.str());
   }
   if (!converged) SEAM_THROW(SolverError, "the fluid-structure Newton method did not converge");
