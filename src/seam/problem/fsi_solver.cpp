@@ -328,13 +328,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                    "): a fluid or solid cell inverted in Newton iteration ", it,
                    "; take more steps (time.steps)");
       rn = r.norm();
-      // The scale: the largest first residual so far and the reactions' level.
+      // The scale: the largest first residual so far, the reactions' level and the force level
+      // of the system (the magnitudes of the element contributions), so that a state that
+      // already solves the equations is not iterated at round-off.
       double level = 0.0;
       for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
         if (sys.is_fluid_node(n))
           for (int i = 0; i < dim; ++i)
             level += res.raw_residual[sys.f_dof(n, i)] * res.raw_residual[sys.f_dof(n, i)];
-      reference = std::max({reference, it == 0 ? rn : 0.0, std::sqrt(level)});
+      reference = std::max({reference, it == 0 ? rn : 0.0, std::sqrt(level), res.level});
       if (root && !quiet)
         std::printf("  step %d t = %g  iteration %d  |r| = %.3e (relative %.3e)\n", step, t, it, rn,
                     reference > 0 ? rn / reference : 0.0);

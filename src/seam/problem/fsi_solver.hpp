@@ -1,7 +1,9 @@
 #pragma once
 // A fluid-structure run (an `fsi` interface between a fluid and a solid body): the monolithic
-// Newton method on structure, fluid and fluid mesh (FsiSystem) with `integrator: static`: each
-// step solves the steady coupled problem at its t, starting from the last converged state.
+// Newton method on structure, fluid and fluid mesh (FsiSystem). `integrator: static`: each
+// step solves the steady coupled problem at its t, starting from the last converged state;
+// `generalized_alpha`: each step is one generalized-alpha step of both fields from rest
+// (FsiSystem::History).
 // Output: results.pvd (structure and fluid fields on the whole mesh), forces.csv over
 // fluid-side groups, steps.csv, interface_<name>.csv with the fluid's traction on the
 // structure (docs/fsi.md).

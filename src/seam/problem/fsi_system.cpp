@@ -420,6 +420,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
   Result out;
   out.raw_residual.assign(n_raw(), 0.0);
   auto& res = out.raw_residual;
+  std::vector<double> mag(n_raw(), 0.0);
   std::vector<PetscInt> I, Jc;
   std::vector<double> V;
   constexpr std::size_t nmax = fem::max_cell_nodes;
@@ -483,7 +484,10 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
           for (std::size_t k = 0; k < nd * nd; ++k)
             Ke[k] = wf * Ke[k] + (1 - hs->s_am) / (b * dt * dt) * Ms[k];
       }
-      for (std::size_t a = 0; a < nd; ++a) res[s_rows[a]] += re[a];
+      for (std::size_t a = 0; a < nd; ++a) {
+        res[s_rows[a]] += re[a];
+        mag[s_rows[a]] += std::abs(re[a]);
+      }
       if (J) add_block(s_rows, s_rows, Ke, I, Jc, V);
       continue;
     }
@@ -537,7 +541,10 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
       out.inverted = true;
       continue;
     }
-    for (std::size_t a = 0; a < ne; ++a) res[f_rows[a]] += re[a];
+    for (std::size_t a = 0; a < ne; ++a) {
+      res[f_rows[a]] += re[a];
+      mag[f_rows[a]] += std::abs(re[a]);
+    }
     if (J) {
       add_block(f_rows, f_rows, Ke, I, Jc, V);
       if (options.shape_derivatives) {
@@ -565,6 +572,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
       double val = 0.0;
       for (std::size_t b = 0; b < nd; ++b) val += Km[a * nd + b] * m[b];
       res[m_rows[a]] += val;
+      for (std::size_t b = 0; b < nd; ++b) mag[m_rows[a]] += std::abs(Km[a * nd + b] * m[b]);
     }
     if (J) add_block(m_rows, m_rows, Km, I, Jc, V);
   }
@@ -572,6 +580,10 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
   out.strain_energy = comm_.sum(out.strain_energy);
   out.kinetic_energy = comm_.sum(out.kinetic_energy);
   comm_.sum_in_place(res);
+  comm_.sum_in_place(mag);
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    if (rows_.offsets[a + 1] > rows_.offsets[a]) out.level += mag[a] * mag[a];
+  out.level = std::sqrt(out.level);
 
   // R^T r: every rank sets the rows it owns from the summed raw residual.
   std::vector<double> owned(static_cast<std::size_t>(n_owned_), 0.0);

@@ -5,7 +5,8 @@
 // (u, p) and the fluid mesh displacement m on the nodes of fluid cells. The condensed unknowns
 // x are what is left after eliminating
 //   - prescribed values (structure `dirichlet`, fluid `velocity`): known, g(t);
-//   - the fluid interface velocity: u_G = P v_G (steady: the structure rests, u_G = 0);
+//   - the fluid interface velocity: u_G = P v_G, v the structure velocity of its
+//     generalized-alpha step, a function of d_{n+1} (steady: the structure rests, u_G = 0);
 //   - the fluid interface mesh displacement: m_G = P d_G, P = D^-1 M (dual mortar, fluid side
 //     slave, structure master, integrated once on the reference interface);
 //   - the mesh displacement of the other fluid boundary nodes: held at 0.
@@ -13,8 +14,8 @@
 // rows of interface nodes go to the structure's rows through P^T (force and energy
 // conserving), the mesh rows of interface nodes and all rows of prescribed dofs are dropped.
 // The Newton system is R^T J T_c dx = -R^T r with every block of J: the solid tangent, the
-// fluid by (u, p), the fluid by the mesh position (shape derivatives), the pseudo-elastic
-// mesh stiffness.
+// fluid by (u, p), the fluid by the mesh position and velocity (shape derivatives), the
+// pseudo-elastic mesh stiffness, the mass blocks of a time step.
 //
 // Every rank holds the description (the mesh is replicated) and the whole state; each rank
 // assembles a contiguous block of cells, the condensed system is a distributed PETSc system.
@@ -111,6 +112,9 @@ public:
     bool inverted = false;
     double strain_energy = 0.0;  ///< of the structure at t_{n+1}, all ranks
     double kinetic_energy = 0.0; ///< of the structure at t_{n+1} (1/2 v M v), all ranks
+    /// The force level: the norm over the condensed rows of the sums of the magnitudes of the
+    /// element contributions (round-off in the residual is a small multiple of eps times this).
+    double level = 0.0;
     /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
     /// prescribed dofs, the fluid's interface forces before the transfer).
     std::vector<double> raw_residual;
