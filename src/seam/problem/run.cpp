@@ -181,6 +181,10 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
+    if (!options.restart.empty() || config.output.checkpoint_every > 0)
+      SEAM_THROW(InputError, options.input,
+                 ": checkpoints and restart (output.checkpoint_every, --restart) are not "
+                 "available for fluid-structure runs in this version of seam");
     auto mesh = load_mesh(config, comm);
     make_output_directory(output_directory(options), comm);
     run_fsi(config, mesh, comm, output_directory(options), options.quiet);
