@@ -16,17 +16,6 @@ namespace seam::problem {
 
 namespace {
 
-solid::MaterialModel solid_model(io::MaterialModel m) {
-  switch (m) {
-  case io::MaterialModel::saint_venant_kirchhoff:
-    return solid::MaterialModel::saint_venant_kirchhoff;
-  case io::MaterialModel::neo_hooke:
-    return solid::MaterialModel::neo_hooke;
-  default:
-    return solid::MaterialModel::linear_elastic;
-  }
-}
-
 std::string point_text(const mesh::Mesh& mesh, std::int32_t n) {
   std::string s = "(";
   for (int i = 0; i < mesh.dim; ++i)
@@ -55,7 +44,7 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
       fluids_.push_back({m.density, m.viscosity});
     } else {
       solid_index[name] = static_cast<int>(solids_.size());
-      solids_.push_back({solid_model(m.model), m.young, m.poisson, m.density});
+      solids_.push_back({to_solid(m.model), m.young, m.poisson, m.density});
     }
   }
   cell_fluid_.assign(mesh.n_cells(), -1);
