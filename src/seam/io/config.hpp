@@ -40,7 +40,9 @@ enum class BoundaryType { dirichlet, pressure, traction, body_force, velocity, m
 /// `mesh_displacement` conditions, or by a displacement given everywhere.
 enum class MeshMotionModel { pseudo_elastic, prescribed };
 enum class Stiffening { jacobian, none };
-enum class InterfaceType { mesh_tying, contact };
+/// fsi: a fluid-structure interface (docs/fsi.md); its `fluid` group is the slave side, its
+/// `structure` group the master.
+enum class InterfaceType { mesh_tying, contact, fsi };
 enum class Multiplier { dual, standard };
 enum class Strategy { condensed, saddle_point };
 enum class FrictionModel { frictionless, coulomb, tresca };

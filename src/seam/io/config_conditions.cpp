@@ -174,9 +174,9 @@ std::vector<RegionRef> read_surface(const Node& node) {
 }
 
 Interface read_interface(const Node& node, int dimension, std::span<const Interface> previous) {
-  const Map map(node,
-                {"name", "type", "slave", "master", "rigid_plane", "rigid_sphere", "rigid_cylinder",
-                 "surface", "multiplier", "strategy", "friction", "c_n", "c_t"});
+  const Map map(node, {"name", "type", "slave", "master", "rigid_plane", "rigid_sphere",
+                       "rigid_cylinder", "surface", "multiplier", "strategy", "friction", "c_n",
+                       "c_t", "fluid", "structure"});
   Interface interface;
   interface.mark = node.mark();
   const Node name = map.required("name");
@@ -189,6 +189,38 @@ Interface read_interface(const Node& node, int dimension, std::span<const Interf
   }
   interface.type = map.required("type").choice(interface_names);
   const bool contact = interface.type == InterfaceType::contact;
+  const bool fsi = interface.type == InterfaceType::fsi;
+  map.forbid("fluid", !fsi, "applies only to type 'fsi'");
+  map.forbid("structure", !fsi, "applies only to type 'fsi'");
+  if (fsi) {
+    // The fluid side carries the multiplier (slave), the structure is the master (4C's fluid
+    // split; docs/fsi.md).
+    for (const char* key : {"slave", "master", "surface"})
+      map.forbid(key, true,
+                 "does not apply to type 'fsi': an 'fsi' interface names its sides 'fluid' "
+                 "and 'structure'");
+    for (const char* key :
+         {"rigid_plane", "rigid_sphere", "rigid_cylinder", "friction", "c_n", "c_t"})
+      map.forbid(key, true, "applies only to type 'contact'");
+    interface.slave = region_of(map.required("fluid"));
+    interface.master = region_of(map.required("structure"));
+    if (interface.master->name == interface.slave.name)
+      map.required("structure")
+          .fail(concat("the fluid and the structure side need two different groups; 'fluid' is "
+                       "also '",
+                       interface.slave.name, "'"));
+    if (const auto multiplier = map.get("multiplier")) {
+      interface.multiplier = multiplier->choice(multiplier_names);
+      if (interface.multiplier != Multiplier::dual)
+        multiplier->fail("an 'fsi' interface is condensed with dual multipliers; give "
+                         "'multiplier: dual' or leave it out");
+    }
+    map.forbid("strategy",
+               map.has("strategy") &&
+                   map.required("strategy").choice(strategy_names) != Strategy::condensed,
+               "an 'fsi' interface is condensed ('strategy: condensed')");
+    return interface;
+  }
   const auto master = map.get("master");
   const auto rigid_plane = map.get("rigid_plane");
   if (const auto surface = map.get("surface")) {

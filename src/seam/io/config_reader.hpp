@@ -128,8 +128,10 @@ inline constexpr std::array<std::pair<std::string_view, MeshMotionModel>, 2> mes
      {"prescribed", MeshMotionModel::prescribed}}};
 inline constexpr std::array<std::pair<std::string_view, Stiffening>, 2> stiffening_names{
     {{"jacobian", Stiffening::jacobian}, {"none", Stiffening::none}}};
-inline constexpr std::array<std::pair<std::string_view, InterfaceType>, 2> interface_names{
-    {{"mesh_tying", InterfaceType::mesh_tying}, {"contact", InterfaceType::contact}}};
+inline constexpr std::array<std::pair<std::string_view, InterfaceType>, 3> interface_names{
+    {{"mesh_tying", InterfaceType::mesh_tying},
+     {"contact", InterfaceType::contact},
+     {"fsi", InterfaceType::fsi}}};
 inline constexpr std::array<std::pair<std::string_view, Multiplier>, 2> multiplier_names{
     {{"dual", Multiplier::dual}, {"standard", Multiplier::standard}}};
 inline constexpr std::array<std::pair<std::string_view, Strategy>, 2> strategy_names{

@@ -59,10 +59,10 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
 }
 
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
-                                            PhaseTimers& timers) {
+                                            PhaseTimers& timers, io::InterfaceType type) {
   std::vector<TiedInterface> out;
   for (const auto& itf : config.interfaces) {
-    if (itf.type != io::InterfaceType::mesh_tying) continue;
+    if (itf.type != type) continue;
     TiedInterface t;
     t.name = itf.name;
     t.multiplier = itf.multiplier;
@@ -94,7 +94,9 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh
         options.pair.cell_quadrature_degree = 8;
       // Slave nodes with a fully prescribed displacement are treated like master nodes
       // (boundary modification of the multiplier basis, mortar/dual_basis.hpp).
-      const auto bound = bound_slave_nodes(config, mesh, t.slave, options.multiplier);
+      const auto bound = type == io::InterfaceType::fsi
+                             ? std::vector<char>{}
+                             : bound_slave_nodes(config, mesh, t.slave, options.multiplier);
       t.operators = mortar::assemble_mortar_operators(t.slave.facet_set(), t.master.facet_set(),
                                                       candidates, options, bound);
       if (t.operators.n_pairs_integrated == 0)

@@ -31,7 +31,10 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
 /// pairs (k-DOP trees), integrates D and M, relocates the slave nodes of the mesh so that the
 /// constraint holds exactly for the reference geometry. Throws InputError (located at the
 /// interface in the YAML) for sides that share nodes or do not face each other.
+/// `type` fsi: the same for the `fsi` interfaces (fluid side = slave, structure = master),
+/// where the coupling wins over velocity conditions (no bound slave nodes).
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
-                                            PhaseTimers& timers);
+                                            PhaseTimers& timers,
+                                            io::InterfaceType type = io::InterfaceType::mesh_tying);
 
 } // namespace seam::meshtying

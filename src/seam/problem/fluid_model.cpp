@@ -17,9 +17,9 @@ void check_supported(const io::Config& config) {
   for (const auto& body : config.bodies)
     if (!config.materials.at(body.material).is_fluid())
       io::fail_at(body.mark, "body '" + body.region.name +
-                                 "' is a solid in a run with fluid bodies; fluid-structure "
-                                 "interaction (an 'fsi' interface) is not available yet in this "
-                                 "version of seam, so a run holds either solids or fluids");
+                                 "' is a solid in a run with fluid bodies but no 'fsi' "
+                                 "interface: a fluid and a structure are joined by an interface "
+                                 "of type 'fsi' (its 'fluid' and 'structure' groups)");
   const bool moving = std::any_of(config.bodies.begin(), config.bodies.end(),
                                   [](const io::Body& b) { return b.mesh_motion.has_value(); });
   for (const auto& itf : config.interfaces) {

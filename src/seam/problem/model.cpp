@@ -12,8 +12,6 @@
 
 namespace seam::problem {
 
-namespace {
-
 solid::MaterialModel to_solid(io::MaterialModel m) {
   switch (m) {
   case io::MaterialModel::linear_elastic:
@@ -23,10 +21,12 @@ solid::MaterialModel to_solid(io::MaterialModel m) {
   case io::MaterialModel::neo_hooke:
     return solid::MaterialModel::neo_hooke;
   case io::MaterialModel::newtonian_fluid:
-    break; // runs with fluids never build a solid model (problem/fluid_model.cpp)
+    break; // a fluid has no solid model (fluid_model.cpp, fsi_setup.cpp)
   }
   return solid::MaterialModel::linear_elastic;
 }
+
+namespace {
 
 std::string describe_regions(const mesh::Mesh& mesh) {
   std::ostringstream s;

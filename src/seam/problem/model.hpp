@@ -67,6 +67,9 @@ SurfaceLoad surface_load(const mesh::Mesh& mesh, const io::BoundaryCondition& bc
 BodyLoad body_load(const mesh::Mesh& mesh, const io::BoundaryCondition& bc,
                    const std::function<bool(std::int32_t)>& is_local_cell);
 
+/// The solid model of a solid material of the input (linear_elastic for a fluid, which has none).
+solid::MaterialModel to_solid(io::MaterialModel m);
+
 /// Checks the input's region references against the mesh (InputError, located in the YAML)
 /// and builds this rank's model.
 Model build_model(const io::Config& config, const Discretization& disc);

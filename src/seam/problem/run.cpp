@@ -18,6 +18,7 @@
 #include "seam/problem/dynamic_solver.hpp"
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_solver.hpp"
+#include "seam/problem/fsi_solver.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/newton.hpp"
 #include "seam/problem/output.hpp"
@@ -180,6 +181,16 @@ int run(const RunOptions& options, int argc, char** argv) {
   Comm comm;
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
+  if (has_fsi(config)) {
+    if (!options.restart.empty() || config.output.checkpoint_every > 0)
+      SEAM_THROW(InputError, options.input,
+                 ": checkpoints and restart (output.checkpoint_every, --restart) are not "
+                 "available for fluid-structure runs in this version of seam");
+    auto mesh = load_mesh(config, comm);
+    make_output_directory(output_directory(options), comm);
+    run_fsi(config, mesh, comm, output_directory(options), options.quiet);
+    return 0;
+  }
   if (has_fluid(config)) {
     auto mesh = load_mesh(config, comm);
     if (comm.is_root() && comm.size() > 1)
@@ -246,6 +257,14 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   Comm comm;
   const auto config = io::load_config(input);
   auto mesh = load_mesh(config, comm);
+  if (has_fsi(config)) {
+    const auto info = run_fsi(config, mesh, comm, {}, true, true);
+    if (comm.is_root())
+      std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %d nodes, %d cells, %lld "
+                  "unknowns\n",
+                  input.c_str(), mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
+    return 0;
+  }
   if (has_fluid(config)) {
     const auto info = run_fluid(config, mesh, comm, {}, true, true);
     if (comm.is_root())

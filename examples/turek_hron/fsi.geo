@@ -1,0 +1,87 @@
+// The Turek-Hron FSI benchmarks (Turek & Hron 2006): the channel [0, 2.5] x [0, 0.41] with the
+// rigid cylinder of radius 0.05 at (0.2, 0.2) and the elastic flag 0.35 x 0.02 behind it
+// (tip point A = (0.6, 0.2)) cut out: the fluid; and the flag itself as a surface of its own,
+// with its own nodes: the structure. The two meet at the fluid's group `flag_wet_fluid` and
+// the flag's group `wet`, joined by an `fsi` interface (mortar, so their nodes need not
+// match).
+//   refine: scales every mesh parameter (cells per length double when refine doubles);
+//   nx, ny: the fluid's facets along the flag and across its tip; fluid_ratio: fluid facets
+//   per structure facet on the interface (1 = matching nodes; 2, 3 or 0.5 = non-matching),
+//   made by coarsening or refining the flag: the fluid mesh stays the same.
+// Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
+refine = 1;
+fluid_ratio = 1;
+nx = Round(20 * refine);
+ny = Round(2 * refine) > 1 ? Round(2 * refine) : 1;
+h = 0.05 / refine;                 // far from the obstacle
+hc = 0.35 / nx;                    // on the cylinder and the flag (fluid)
+xc = 0.2; yc = 0.2; r = 0.05; th = 0.02;
+x0 = xc + Sqrt(r * r - (th / 2) * (th / 2));   // where the flag meets the cylinder
+
+// ---- The fluid.
+Point(1) = {0, 0, 0, h};
+Point(2) = {2.5, 0, 0, h};
+Point(3) = {2.5, 0.41, 0, h};
+Point(4) = {0, 0.41, 0, h};
+Point(5) = {xc, yc, 0, hc};
+Point(6) = {x0, yc - th / 2, 0, hc};     // flag's lower attachment
+Point(7) = {0.6, yc - th / 2, 0, hc};
+Point(8) = {0.6, yc + th / 2, 0, hc};
+Point(9) = {x0, yc + th / 2, 0, hc};     // flag's upper attachment
+Point(10) = {xc - r, yc, 0, hc};         // the cylinder's front
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Circle(5) = {9, 5, 10};                  // the cylinder's wetted arc, upper half
+Circle(6) = {10, 5, 6};                  // lower half
+Line(7) = {6, 7};                        // the flag's lower face, from the fluid
+Line(8) = {7, 8};                        // its tip
+Line(9) = {8, 9};                        // its upper face
+Curve Loop(1) = {1, 2, 3, 4};
+Curve Loop(2) = {5, 6, 7, 8, 9};
+Plane Surface(1) = {1, 2};
+Transfinite Curve{7, 9} = nx + 1;
+Transfinite Curve{8} = ny + 1;
+Field[1] = Distance;
+Field[1].CurvesList = {5, 6, 7, 8, 9};
+Field[1].NumPointsPerCurve = 200;
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = hc;
+Field[2].SizeMax = h;
+Field[2].DistMin = 0.0;
+Field[2].DistMax = 0.4;
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+
+// ---- The flag (own points and curves: own nodes).
+Point(21) = {x0, yc - th / 2, 0};
+Point(22) = {0.6, yc - th / 2, 0};
+Point(23) = {0.6, yc + th / 2, 0};
+Point(24) = {x0, yc + th / 2, 0};
+Point(25) = {xc, yc, 0};
+Line(21) = {21, 22};        // lower face
+Line(22) = {22, 23};        // tip
+Line(23) = {23, 24};        // upper face
+Circle(24) = {24, 25, 21};  // glued to the cylinder
+Curve Loop(21) = {21, 22, 23, 24};
+Plane Surface(21) = {21};
+nxs = Round(nx / fluid_ratio);
+nys = Round(ny / fluid_ratio) > 1 ? Round(ny / fluid_ratio) : 1;
+Transfinite Curve{21, 23} = nxs + 1;
+Transfinite Curve{22, 24} = nys + 1;
+Transfinite Surface{21};
+Recombine Surface{21};
+
+Physical Surface("fluid") = {1};
+Physical Curve("inflow") = {4};
+Physical Curve("outflow") = {2};
+Physical Curve("walls") = {1, 3};
+Physical Curve("cylinder") = {5, 6};
+Physical Curve("flag_wet_fluid") = {7, 8, 9};
+Physical Surface("flag") = {21};
+Physical Curve("clamped") = {24};
+Physical Curve("wet") = {21, 22, 23};

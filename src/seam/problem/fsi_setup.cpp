@@ -1,0 +1,303 @@
+// The set-up of FsiSystem (fsi_system.hpp): bodies, checks of the input, P = D^-1 M of
+// every interface, the condensed numbering and the maps T_c and R, the pseudo-elastic
+// mesh moduli.
+#include "seam/problem/fsi_system.hpp"
+
+#include "seam/ale/mesh_motion.hpp"
+#include "seam/common/error.hpp"
+#include "seam/mesh/facets.hpp"
+#include "seam/problem/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace seam::problem {
+
+namespace {
+
+std::string point_text(const mesh::Mesh& mesh, std::int32_t n) {
+  std::string s = "(";
+  for (int i = 0; i < mesh.dim; ++i)
+    s += (i ? ", " : "") + std::to_string(mesh.x[static_cast<std::size_t>(n) * mesh.dim + i]);
+  return s + ")";
+}
+
+} // namespace
+
+FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
+                     const std::vector<meshtying::TiedInterface>& interfaces, Comm comm)
+    : config_(&config), mesh_(&mesh), comm_(comm), dim_(mesh.dim) {
+  const int dim = dim_;
+  n_nodes_ = static_cast<std::size_t>(mesh.n_nodes());
+  base_f_ = n_nodes_ * dim;
+  base_m_ = base_f_ + n_nodes_ * (dim + 1);
+  plane_ = dim == 3                                ? solid::PlaneMode::none
+           : config.plane == io::PlaneMode::stress ? solid::PlaneMode::plane_stress
+                                                   : solid::PlaneMode::plane_strain;
+
+  // Bodies: a fluid or a solid material per cell.
+  std::map<std::string, int> fluid_index, solid_index;
+  for (const auto& [name, m] : config.materials) {
+    if (m.is_fluid()) {
+      fluid_index[name] = static_cast<int>(fluids_.size());
+      fluids_.push_back({m.density, m.viscosity});
+    } else {
+      solid_index[name] = static_cast<int>(solids_.size());
+      solids_.push_back({to_solid(m.model), m.young, m.poisson, m.density});
+    }
+  }
+  cell_fluid_.assign(mesh.n_cells(), -1);
+  cell_solid_.assign(mesh.n_cells(), -1);
+  std::vector<int> cell_body(mesh.n_cells(), -1);
+  for (std::size_t b = 0; b < config.bodies.size(); ++b) {
+    const auto& body = config.bodies[b];
+    const bool is_fluid = config.materials.at(body.material).is_fluid();
+    if (!is_fluid && body.mesh_motion)
+      io::fail_at(body.mark, "body '" + body.region.name +
+                                 "' is a solid: mesh_motion applies only to fluid bodies");
+    if (is_fluid && body.mesh_motion &&
+        body.mesh_motion->model != io::MeshMotionModel::pseudo_elastic)
+      io::fail_at(body.mesh_motion->mark,
+                  "in a run with an 'fsi' interface the fluid mesh follows the structure: "
+                  "mesh_motion must be 'pseudo_elastic'");
+    for (auto c : find_region(mesh, body.region, {dim}, "a body").cells) {
+      const auto type = mesh.cell_type[c];
+      if (is_fluid && !fluid::is_taylor_hood(type) && !fluid::is_stabilized(type))
+        io::fail_at(body.mark, "fluid body '" + body.region.name + "' has " +
+                                   std::string(fem::name(type)) +
+                                   " cells; seam's fluids use tri6, quad9, tet10, hex27 "
+                                   "(Taylor-Hood) or tri3, quad4, tet4, hex8 (stabilized)");
+      cell_fluid_[c] = is_fluid ? fluid_index.at(body.material) : -1;
+      cell_solid_[c] = is_fluid ? -1 : solid_index.at(body.material);
+      cell_body[c] = static_cast<int>(b);
+    }
+  }
+  const auto uncovered = std::count(cell_body.begin(), cell_body.end(), -1);
+  if (uncovered > 0)
+    io::fail_at(config.bodies.front().mark,
+                std::to_string(uncovered) + " of " + std::to_string(mesh.n_cells()) +
+                    " cells belong to no body (every cell needs a material)");
+
+  solid_node_.assign(n_nodes_, 0);
+  fluid_node_.assign(n_nodes_, 0);
+  pressure_node_.assign(n_nodes_, 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const auto nodes = mesh.cell(c);
+    const int nv = fem::n_vertices(mesh.cell_type[c]);
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      if (cell_fluid_[c] >= 0) {
+        fluid_node_[nodes[a]] = 1;
+        if (static_cast<int>(a) < nv) pressure_node_[nodes[a]] = 1;
+      } else {
+        solid_node_[nodes[a]] = 1;
+      }
+    }
+  }
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    if (solid_node_[n] && fluid_node_[n])
+      io::fail_at(config.bodies.front().mark,
+                  "node " + std::to_string(n) + " at " +
+                      point_text(mesh, static_cast<std::int32_t>(n)) +
+                      " belongs to a fluid and a solid cell; the fluid and the structure are "
+                      "separate meshes (own nodes) joined by an 'fsi' interface");
+
+  // The fsi interfaces: sides of the right kind, P = D^-1 M.
+  std::size_t k = 0;
+  for (const auto& itf : config.interfaces) {
+    if (itf.type != io::InterfaceType::fsi)
+      io::fail_at(itf.mark, "interface '" + itf.name + "' of type '" +
+                                std::string(io::to_string(itf.type)) +
+                                "' in a run with an 'fsi' interface: a fluid-structure run "
+                                "holds 'fsi' interfaces only in this version of seam");
+    const auto& t = interfaces.at(k++);
+    const auto check_side = [&](const std::vector<std::int32_t>& nodes, const std::vector<char>& ok,
+                                const std::string& group, const char* key, const char* what) {
+      for (auto n : nodes)
+        if (!ok[n])
+          io::fail_at(itf.mark, "interface '" + itf.name + "': its '" + key + "' group '" + group +
+                                    "' has node " + std::to_string(n) + " at " +
+                                    point_text(mesh, n) + " that is not on a " + what +
+                                    " body; 'fluid' names a boundary group of the fluid, "
+                                    "'structure' one of the structure");
+    };
+    check_side(t.slave.mesh_nodes, fluid_node_, itf.slave.name, "fluid", "fluid");
+    check_side(t.master.mesh_nodes, solid_node_, itf.master->name, "structure", "solid");
+    const auto& ops = t.operators;
+    FsiCoupling cp;
+    cp.name = t.name;
+    cp.fluid_nodes = t.slave.mesh_nodes;
+    const std::size_t ns = cp.fluid_nodes.size();
+    std::vector<double> diag(ns, 0.0);
+    for (const auto& e : ops.D) {
+      if (e.row != e.col) SEAM_THROW(InternalError, "fsi: D of a dual basis is not diagonal");
+      diag[e.row] = e.value;
+    }
+    double d_max = 0.0;
+    for (double v : diag) d_max = std::max(d_max, std::abs(v));
+    for (std::size_t j = 0; j < ns; ++j)
+      if (!(diag[j] > 1e-12 * d_max))
+        io::fail_at(itf.mark, "interface '" + itf.name + "': fluid node " +
+                                  std::to_string(cp.fluid_nodes[j]) + " at " +
+                                  point_text(mesh, cp.fluid_nodes[j]) +
+                                  " faces no structure facet (the fluid group must lie on the "
+                                  "structure group)");
+    // tilde = D^-1 M; with a modified quadratic basis d_S = T d~_S (tying_constraint.cpp).
+    std::vector<std::map<std::int32_t, double>> tilde(ns), P(ns);
+    for (const auto& e : ops.M) tilde[e.row][t.master.mesh_nodes[e.col]] += e.value / diag[e.row];
+    if (ops.T.empty()) {
+      P = tilde;
+    } else {
+      for (const auto& e : ops.T)
+        for (const auto& [m, v] : tilde[e.col]) P[e.row][m] += e.value * v;
+    }
+    for (std::size_t j = 0; j < ns; ++j) {
+      for (const auto& [m, v] : P[j]) {
+        cp.structure_nodes.push_back(m);
+        cp.weights.push_back(v);
+      }
+      cp.offsets.push_back(static_cast<std::int64_t>(cp.structure_nodes.size()));
+    }
+    cp.d_diagonal = diag;
+    for (double v : diag) cp.d_total += v;
+    couplings_.push_back(std::move(cp));
+  }
+  // Per mesh node: (coupling, side-local index) of a fluid interface node; the first wins.
+  std::vector<std::pair<int, std::int32_t>> on_interface(n_nodes_, {-1, -1});
+  for (std::size_t c = 0; c < couplings_.size(); ++c)
+    for (std::size_t j = 0; j < couplings_[c].fluid_nodes.size(); ++j) {
+      auto& slot = on_interface[couplings_[c].fluid_nodes[j]];
+      if (slot.first < 0) slot = {static_cast<int>(c), static_cast<std::int32_t>(j)};
+    }
+
+  // Conditions: the structure's displacement, the fluid's velocity.
+  prescribed_.assign(n_raw(), -1);
+  for (const auto& bc : config.boundary_conditions) {
+    const auto& region = find_region(mesh, bc.region, {0, 1, 2, 3}, "a boundary condition");
+    const auto n_fluid = std::count_if(region.nodes.begin(), region.nodes.end(),
+                                       [&](std::int32_t n) { return fluid_node_[n] != 0; });
+    switch (bc.type) {
+    case io::BoundaryType::dirichlet:
+      if (n_fluid > 0)
+        io::fail_at(bc.mark, "type 'dirichlet' prescribes a solid's displacement, but region '" +
+                                 bc.region.name +
+                                 "' belongs to a fluid body; prescribe the fluid's velocity "
+                                 "with type 'velocity'");
+      break;
+    case io::BoundaryType::velocity:
+      if (n_fluid < static_cast<std::ptrdiff_t>(region.nodes.size()))
+        io::fail_at(bc.mark, "type 'velocity' prescribes a fluid's velocity, but region '" +
+                                 bc.region.name +
+                                 "' belongs to a solid body (a solid's motion is prescribed "
+                                 "with type 'dirichlet')");
+      break;
+    default:
+      io::fail_at(bc.mark, "type '" + std::string(io::to_string(bc.type)) +
+                               "' is not available yet in a run with an 'fsi' interface (only "
+                               "'dirichlet' on the structure and 'velocity' on the fluid)");
+    }
+    for (std::size_t q = 0; q < bc.components.size(); ++q) {
+      const int expr = static_cast<int>(values_.size());
+      values_.push_back(bc.value[q]);
+      for (auto n : region.nodes) {
+        if (bc.type == io::BoundaryType::dirichlet) {
+          prescribed_[d_dof(n, bc.components[q])] = expr;
+        } else if (on_interface[n].first < 0) {
+          // On the interface the coupling wins (CONTRACT.md): the structure's motion.
+          prescribed_[f_dof(n, bc.components[q])] = expr;
+        }
+      }
+    }
+  }
+
+  // Fluid boundary nodes off the interfaces hold their mesh position.
+  std::vector<char> boundary(n_nodes_, 0);
+  const auto exterior = mesh::exterior_facets(mesh);
+  for (std::int32_t f = 0; f < exterior.size(); ++f) {
+    const auto c = exterior.cell[f];
+    if (cell_fluid_[c] < 0) continue;
+    const auto nodes = mesh.cell(c);
+    for (int a : fem::facet_nodes(mesh.cell_type[c], exterior.local[f])) boundary[nodes[a]] = 1;
+  }
+
+  // Condensed numbering and the maps T_c (columns) and R (rows), raw dof by raw dof.
+  PetscInt next = 0;
+  std::vector<PetscInt> own(n_raw(), -1);
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    for (int i = 0; i < dim; ++i)
+      if (solid_node_[n] && prescribed_[d_dof(n, i)] < 0) own[d_dof(n, i)] = next++;
+  for (std::size_t n = 0; n < n_nodes_; ++n) {
+    if (!fluid_node_[n]) continue;
+    for (int i = 0; i < dim; ++i)
+      if (on_interface[n].first < 0 && prescribed_[f_dof(n, i)] < 0) own[f_dof(n, i)] = next++;
+    if (pressure_node_[n]) own[f_dof(n, dim)] = next++;
+  }
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    if (fluid_node_[n] && on_interface[n].first < 0 && !boundary[n])
+      for (int i = 0; i < dim; ++i) own[m_dof(n, i)] = next++;
+  n_unknowns_ = next;
+  const int size = comm.size(), rank = comm.rank();
+  n_owned_ = next / size + (rank < next % size ? 1 : 0);
+  first_owned_ = rank * (next / size) + std::min<PetscInt>(rank, next % size);
+
+  // The structure dofs P maps an interface node to, component i.
+  const auto for_master = [&](std::int32_t n, const auto& f) {
+    const auto& cp = couplings_[on_interface[n].first];
+    const auto j = on_interface[n].second;
+    for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q)
+      f(cp.structure_nodes[q], cp.weights[q]);
+  };
+  velocity_row_.assign(n_raw(), 0);
+  for (std::size_t a = 0; a < n_raw(); ++a) {
+    if (own[a] >= 0) {
+      columns_.add(own[a], 1.0);
+      rows_.add(own[a], 1.0);
+    } else if (a >= base_f_ && a < base_m_) {
+      const auto n = static_cast<std::int32_t>((a - base_f_) / (dim + 1));
+      const int i = static_cast<int>((a - base_f_) % (dim + 1));
+      // The interface velocity's momentum row moves to the structure by P^T; its value is
+      // u_G = P v(d) (column_scale: dv/dd; steady: the structure rests, u_G = 0).
+      if (i < dim && fluid_node_[n] && on_interface[n].first >= 0) {
+        velocity_row_[a] = 1;
+        for_master(n, [&](std::int32_t s, double w) {
+          if (own[d_dof(s, i)] >= 0) {
+            rows_.add(own[d_dof(s, i)], w);
+            columns_.add(own[d_dof(s, i)], w);
+          }
+        });
+      }
+    } else if (a >= base_m_) {
+      const auto n = static_cast<std::int32_t>((a - base_m_) / dim);
+      const int i = static_cast<int>((a - base_m_) % dim);
+      if (fluid_node_[n] && on_interface[n].first >= 0)
+        for_master(n, [&](std::int32_t s, double w) {
+          if (own[d_dof(s, i)] >= 0) columns_.add(own[d_dof(s, i)], w);
+        });
+    }
+    columns_.append_row();
+    rows_.append_row();
+  }
+
+  // The pseudo-elastic mesh: E = (V_min / V_e)^chi over the fluid cells (Stein et al.).
+  std::vector<std::int32_t> fluid_cells;
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    if (cell_fluid_[c] >= 0) fluid_cells.push_back(c);
+  const auto ratio = ale::jacobian_stiffening(mesh, fluid_cells, 1.0);
+  mesh_young_.assign(mesh.n_cells(), 0.0);
+  for (std::size_t q = 0; q < fluid_cells.size(); ++q) {
+    const auto& body = config.bodies[cell_body[fluid_cells[q]]];
+    double power = 1.0;
+    if (body.mesh_motion)
+      power = body.mesh_motion->stiffening == io::Stiffening::jacobian
+                  ? body.mesh_motion->stiffening_power
+                  : 0.0;
+    mesh_young_[fluid_cells[q]] = std::pow(ratio[q], power);
+  }
+
+  // A contiguous block of cells per rank.
+  const auto n_cells = static_cast<std::int64_t>(mesh.n_cells());
+  for (std::int64_t c = n_cells * rank / size; c < n_cells * (rank + 1) / size; ++c)
+    local_cells_.push_back(static_cast<std::int32_t>(c));
+}
+
+} // namespace seam::problem

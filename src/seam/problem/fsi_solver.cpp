@@ -1,0 +1,441 @@
+#include "seam/problem/fsi_solver.hpp"
+
+#include "seam/common/error.hpp"
+#include "seam/common/timer.hpp"
+#include "seam/fluid/navier_stokes.hpp"
+#include "seam/io/vtu.hpp"
+#include "seam/mesh/cell_geometry.hpp"
+#include "seam/mesh/locate.hpp"
+#include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/fsi_system.hpp"
+#include "seam/problem/model.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <numeric>
+#include <sstream>
+
+namespace seam::problem {
+
+namespace {
+
+// Checks what a steady fsi run needs beyond FsiSystem's checks.
+void check_fsi_input(const io::Config& config) {
+  const io::Interface* first = nullptr;
+  for (const auto& itf : config.interfaces)
+    if (itf.type == io::InterfaceType::fsi && !first) first = &itf;
+  bool fluid = false, solid = false;
+  for (const auto& body : config.bodies)
+    (config.materials.at(body.material).is_fluid() ? fluid : solid) = true;
+  if (!fluid || !solid)
+    io::fail_at(first->mark, "interface '" + first->name +
+                                 "' of type 'fsi' joins a fluid and a structure, but the run "
+                                 "has no " +
+                                 (fluid ? "solid" : "fluid") + " body");
+  if (config.time.integrator == io::Integrator::energy_momentum)
+    io::fail_at(config.time.mark,
+                "fluid-structure interaction is integrated with 'generalized_alpha' (or solved "
+                "steady with 'static'); 'energy_momentum' is a scheme for solids");
+}
+
+// The fluid force on a set of nodes: minus the fluid momentum residual there (the reaction).
+std::array<double, 3> fluid_force(const FsiSystem& sys, const std::vector<double>& r,
+                                  const std::vector<std::int32_t>& nodes) {
+  std::array<double, 3> f{};
+  for (auto n : nodes)
+    for (int i = 0; i < sys.dim(); ++i) f[i] -= r[sys.f_dof(n, i)];
+  return f;
+}
+
+struct Writer {
+  std::filesystem::path dir;
+  std::unique_ptr<io::PvdCollection> pvd;
+  std::ofstream forces, steps, probes, interfaces;
+  std::vector<mesh::PointLocation> probe_at;
+  std::vector<std::pair<std::string, std::vector<std::int32_t>>> groups;
+};
+
+void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
+                  Writer& w) {
+  const auto& mesh = sys.mesh();
+  const int dim = mesh.dim;
+  const auto nn = static_cast<std::size_t>(mesh.n_nodes());
+  std::vector<double> disp(nn * dim, 0.0), mdisp(nn * dim, 0.0), vel(nn * dim, 0.0), pres(nn, 0.0);
+  for (std::size_t n = 0; n < nn; ++n)
+    for (int i = 0; i < dim; ++i) {
+      const auto node = static_cast<std::int32_t>(n);
+      if (sys.is_solid_node(node)) disp[n * dim + i] = raw[sys.d_dof(node, i)];
+      if (sys.is_fluid_node(node)) {
+        mdisp[n * dim + i] = raw[sys.m_dof(node, i)];
+        disp[n * dim + i] = mdisp[n * dim + i];
+        vel[n * dim + i] = raw[sys.f_dof(node, i)];
+      }
+    }
+  std::vector<std::int32_t> conn, offsets;
+  std::vector<std::uint8_t> types;
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const auto type = mesh.cell_type[c];
+    const auto nodes = mesh.cell(c);
+    for (int k : fem::vtk_node_order(type)) conn.push_back(nodes[k]);
+    offsets.push_back(static_cast<std::int32_t>(conn.size()));
+    types.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
+    if (!sys.is_fluid_node(nodes[0])) continue;
+    // The pressure at every node of the cell: its linear interpolation from the vertices.
+    const auto pcell = fluid::pressure_cell(type);
+    const auto xi = fem::reference_nodes(type);
+    std::array<double, 8> N{};
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      fem::shape_values(pcell, &xi[a * dim], N.data());
+      double p = 0.0;
+      for (int v = 0; v < fem::n_nodes(pcell); ++v) p += N[v] * raw[sys.f_dof(nodes[v], dim)];
+      pres[nodes[a]] = p;
+    }
+  }
+  io::VtuPiece piece;
+  piece.point_dim = dim;
+  piece.points = mesh.x;
+  piece.connectivity = conn;
+  piece.offsets = offsets;
+  piece.types = types;
+  piece.point_data.emplace_back("displacement", dim, std::span<const double>(disp));
+  piece.point_data.emplace_back("velocity", dim, std::span<const double>(vel));
+  piece.point_data.emplace_back("pressure", 1, std::span<const double>(pres));
+  piece.point_data.emplace_back("mesh_displacement", dim, std::span<const double>(mdisp));
+  piece.time = t;
+  piece.cycle = step;
+  const auto file = io::step_file_name("results", step, ".vtu");
+  io::write_vtu(w.dir / file, piece);
+  w.pvd->add(t, file);
+}
+
+// interface_<name>.csv: per fluid-side node its reference position, the structure's
+// displacement there (P d), and the traction the fluid exerts, t_j = -r_j / D_jj.
+void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
+                      const std::vector<double>& r, const std::vector<double>& normals,
+                      const std::filesystem::path& dir) {
+  const auto& mesh = sys.mesh();
+  const int dim = mesh.dim;
+  for (const auto& cp : sys.couplings()) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "node,x,y,z,ux,uy,uz,gap,normal_traction,tangential_traction,status,tx,ty,tz\n";
+    for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
+      const auto n = cp.fluid_nodes[j];
+      std::array<double, 3> x{}, u{}, tr{};
+      for (int i = 0; i < dim; ++i) {
+        x[i] = mesh.x[static_cast<std::size_t>(n) * dim + i];
+        u[i] = raw[sys.m_dof(n, i)];
+        tr[i] = -r[sys.f_dof(n, i)] / cp.d_diagonal[j];
+      }
+      const double* nv = &normals[static_cast<std::size_t>(n) * 3];
+      const double tn = tr[0] * nv[0] + tr[1] * nv[1] + tr[2] * nv[2];
+      double tt = 0.0;
+      for (int i = 0; i < 3; ++i) tt += (tr[i] - tn * nv[i]) * (tr[i] - tn * nv[i]);
+      s << n << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0] << ',' << u[1] << ','
+        << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0] << ',' << tr[1] << ','
+        << tr[2] << '\n';
+    }
+    io::write_file_atomically(dir / ("interface_" + cp.name + ".csv"), s.str());
+  }
+}
+
+// Unit normals of the fluid's interface nodes (3 per mesh node, 0 elsewhere): the mean of the
+// outward normals of the fluid's interface facets at their centres, on the reference mesh
+// (out of the fluid, into the structure: a positive normal force pushes on the structure).
+std::vector<double> interface_normals(const io::Config& config, const FsiSystem& sys) {
+  const auto& mesh = sys.mesh();
+  std::vector<double> n(static_cast<std::size_t>(mesh.n_nodes()) * 3, 0.0);
+  for (const auto& itf : config.interfaces) {
+    const auto& region = meshtying::side_region(mesh, itf.slave);
+    for (std::int32_t f = 0; f < region.n_facets(); ++f) {
+      const auto c = region.facet_cell[f];
+      const int local = region.facet_local[f];
+      const auto type = mesh.cell_type[c];
+      const auto centre = mesh::reference_centre(fem::facet_type(type, local));
+      const auto normal = mesh::facet_normal(mesh, c, local, centre.data());
+      const auto nodes = mesh.cell(c);
+      for (int a : fem::facet_nodes(type, local))
+        for (int i = 0; i < mesh.dim; ++i)
+          n[static_cast<std::size_t>(nodes[a]) * 3 + i] += normal[i];
+    }
+  }
+  for (std::size_t k = 0; k < n.size(); k += 3) {
+    const double len = std::sqrt(n[k] * n[k] + n[k + 1] * n[k + 1] + n[k + 2] * n[k + 2]);
+    if (len > 0.0)
+      for (int i = 0; i < 3; ++i) n[k + i] /= len;
+  }
+  return n;
+}
+
+// Locates every probe: in a solid cell if one holds it (a point on the wet surface reports
+// the structure), else in a fluid cell; a probe outside both is an input error.
+void locate_probes(const io::Config& config, const FsiSystem& sys, Writer& w) {
+  const auto& mesh = sys.mesh();
+  std::vector<std::int32_t> solid, fluid;
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    (sys.is_fluid_cell(c) ? fluid : solid).push_back(c);
+  const mesh::PointLocator in_solid(mesh, solid), in_fluid(mesh, fluid);
+  for (const auto& probe : config.output.probes) {
+    const std::span<const double> p(probe.point.data(), static_cast<std::size_t>(mesh.dim));
+    auto at = in_solid.locate(p, 1e-8);
+    if (!at) at = in_fluid.locate(p, 1e-8);
+    if (!at) io::fail_at(probe.mark, "the probe lies outside the mesh");
+    w.probe_at.push_back(*at);
+  }
+}
+
+// probes.csv: the structure's displacement (velocity 0: steady) in a solid cell; the mesh
+// displacement, the velocity and the pressure in a fluid cell.
+void write_probes(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
+                  Writer& w) {
+  const auto& mesh = sys.mesh();
+  const int dim = mesh.dim;
+  for (std::size_t k = 0; k < w.probe_at.size(); ++k) {
+    const auto& at = w.probe_at[k];
+    const auto type = mesh.cell_type[at.cell];
+    const auto nodes = mesh.cell(at.cell);
+    std::array<double, fem::max_cell_nodes> N{};
+    fem::shape_values(type, at.xi.data(), N.data());
+    std::array<double, 3> x{}, u{}, v{};
+    const bool fluid = sys.is_fluid_cell(at.cell);
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < dim; ++i) {
+        x[i] += N[a] * mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
+        u[i] += N[a] * raw[fluid ? sys.m_dof(nodes[a], i) : sys.d_dof(nodes[a], i)];
+        if (fluid) v[i] += N[a] * raw[sys.f_dof(nodes[a], i)];
+      }
+    w.probes << step << ',' << t << ',' << k << ',' << x[0] << ',' << x[1] << ',' << x[2] << ','
+             << u[0] << ',' << u[1] << ',' << u[2] << ',' << v[0] << ',' << v[1] << ',' << v[2]
+             << ',';
+    if (fluid) {
+      const auto pcell = fluid::pressure_cell(type);
+      fem::shape_values(pcell, at.xi.data(), N.data());
+      double p = 0.0;
+      for (int a = 0; a < fem::n_nodes(pcell); ++a) p += N[a] * raw[sys.f_dof(nodes[a], dim)];
+      w.probes << p;
+    }
+    w.probes << '\n';
+  }
+  w.probes.flush();
+}
+
+} // namespace
+
+bool has_fsi(const io::Config& config) {
+  return std::any_of(config.interfaces.begin(), config.interfaces.end(),
+                     [](const io::Interface& i) { return i.type == io::InterfaceType::fsi; });
+}
+
+FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
+                   const std::filesystem::path& dir, bool quiet, bool check_only) {
+  check_fsi_input(config);
+  PhaseTimers timers;
+  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
+  FsiSystem sys(config, mesh, tied, comm);
+  FsiRunInfo info;
+  info.n_dofs = sys.n_unknowns();
+  const int dim = sys.dim();
+  Writer w;
+  w.dir = dir;
+  for (const auto& group : config.output.forces) {
+    std::vector<std::int32_t> nodes;
+    for (const auto& ref : group.regions) {
+      const auto& region = find_region(mesh, ref, {dim - 1}, "a force group");
+      for (auto n : region.nodes) {
+        if (!sys.is_fluid_node(n))
+          io::fail_at(ref.mark, "force group '" + group.name + "': region '" + ref.name +
+                                    "' is not on the fluid; forces.csv sums fluid-side groups");
+        nodes.push_back(n);
+      }
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    w.groups.emplace_back(group.name, std::move(nodes));
+  }
+  locate_probes(config, sys, w);
+  if (check_only) return info;
+
+  const bool root = comm.is_root();
+  if (root) {
+    w.pvd = std::make_unique<io::PvdCollection>(dir / "results.pvd");
+    w.forces.open(dir / "forces.csv");
+    w.forces << "step,time,name,fx,fy,fz\n";
+    w.forces.precision(17);
+    w.steps.open(dir / "steps.csv");
+    // CONTRACT.md's columns (the structure's energies; steady: no kinetic energy or
+    // momentum, no contact), then the interface forces of both sides (force conservation).
+    w.steps << "step,time,newton_iterations,residual,active_nodes,slip_nodes,kinetic_energy,"
+               "internal_energy,external_work,total_energy,momentum_x,momentum_y,momentum_z,"
+               "angular_momentum_x,angular_momentum_y,angular_momentum_z,wall_seconds,"
+               "interface_force_fluid_x,interface_force_fluid_y,interface_force_fluid_z,"
+               "interface_force_structure_x,interface_force_structure_y,"
+               "interface_force_structure_z\n";
+    w.interfaces.open(dir / "interfaces.csv");
+    w.interfaces << "step,time,interface,normal_force,tangential_force,active_nodes,slip_nodes,"
+                    "contact_area\n";
+    w.interfaces.precision(17);
+    w.steps.precision(17);
+    if (!w.probe_at.empty()) {
+      w.probes.open(dir / "probes.csv");
+      w.probes << "step,time,probe,x,y,z,ux,uy,uz,vx,vy,vz,pressure\n";
+      w.probes.precision(17);
+    }
+    if (!quiet)
+      std::printf("seam: fluid-structure interaction, %d nodes, %d cells, %lld unknowns, %d "
+                  "rank(s); output in %s\n",
+                  mesh.n_nodes(), mesh.n_cells(), info.n_dofs, comm.size(), dir.string().c_str());
+  }
+  std::vector<PetscInt> all(static_cast<std::size_t>(sys.n_unknowns()));
+  std::iota(all.begin(), all.end(), PetscInt{0});
+  la::Vector layout(comm.get(), sys.n_owned());
+  const la::Gather gather(layout, all);
+  la::LinearSolver solver(comm.get(), la::SolverKind::direct);
+  std::vector<double> x(all.size(), 0.0), raw, dx_all;
+  la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
+  la::Matrix J;
+  double reference = 0.0, work = 0.0;
+  std::vector<double> last_force(sys.n_raw(), 0.0), last_raw(sys.n_raw(), 0.0);
+  const auto start = std::chrono::steady_clock::now();
+  const auto normals = interface_normals(config, sys);
+  const auto& nc = config.solver.newton;
+  bool converged = true;
+  int step = 1;
+  // Dynamics: the state at t_n (from rest) and the force groups' forces at t_n.
+  const bool dynamic = config.time.integrator == io::Integrator::generalized_alpha;
+  FsiSystem::History history;
+  if (dynamic) {
+    history = FsiSystem::History::from_rho_inf(config.time.rho_inf, config.time.dt, sys.n_raw());
+    sys.set_history(&history);
+  }
+  std::vector<std::array<double, 3>> group_force(w.groups.size(), {0.0, 0.0, 0.0});
+  for (; step <= config.time.n_steps; ++step) {
+    const double t = config.time.time_at(step);
+    if (dynamic) history.dt = t - config.time.time_at(step - 1);
+    const auto g = sys.prescribed(t);
+    FsiSystem::Result res;
+    double rn = 0.0;
+    int it = 0;
+    converged = false;
+    for (;; ++it) {
+      sys.expand(x, g, raw);
+      res = sys.assemble(raw, t, r, it < nc.max_iterations ? &J : nullptr, {});
+      if (res.inverted)
+        SEAM_THROW(SolverError, "step ", step, " (t = ", t,
+                   "): a fluid or solid cell inverted in Newton iteration ", it,
+                   "; take more steps (time.steps)");
+      rn = r.norm();
+      // The scale: the largest first residual so far, the reactions' level and the force level
+      // of the system (the magnitudes of the element contributions), so that a state that
+      // already solves the equations is not iterated at round-off.
+      double level = 0.0;
+      for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+        if (sys.is_fluid_node(n))
+          for (int i = 0; i < dim; ++i)
+            level += res.raw_residual[sys.f_dof(n, i)] * res.raw_residual[sys.f_dof(n, i)];
+      reference = std::max({reference, it == 0 ? rn : 0.0, std::sqrt(level), res.level});
+      if (root && !quiet)
+        std::printf("  step %d t = %g  iteration %d  |r| = %.3e (relative %.3e)\n", step, t, it, rn,
+                    reference > 0 ? rn / reference : 0.0);
+      if (rn <= nc.tolerance * reference || rn == 0.0) {
+        converged = true;
+        break;
+      }
+      if (it >= nc.max_iterations) break;
+      b.copy_from(r);
+      b.scale(-1.0);
+      if (!solver.solve(J, b, dx))
+        SEAM_THROW(SolverError, "step ", step, ": the linear solve failed (MUMPS)");
+      gather(dx, dx_all);
+      for (std::size_t k = 0; k < x.size(); ++k) x[k] += dx_all[k];
+    }
+    if (!converged) {
+      if (root)
+        std::fprintf(stderr,
+                     "seam: step %d (t = %g): Newton did not converge in %d iterations "
+                     "(|r| = %.3e)\n",
+                     step, t, nc.max_iterations, rn);
+      break;
+    }
+    if (dynamic) {
+      // The rates of the converged state become the history of the next step.
+      std::vector<double> rate, accel;
+      sys.rates(raw, rate, accel);
+      history.old = raw;
+      history.rate = std::move(rate);
+      history.accel = std::move(accel);
+    }
+    if (!root) continue;
+    for (std::size_t k = 0; k < w.groups.size(); ++k) {
+      auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
+      // Dynamics: the residual holds the force at t_{n+alpha_f}; at t_{n+1} it is
+      // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f (as the fluid runs).
+      if (dynamic)
+        for (int i = 0; i < 3; ++i)
+          f[i] = (f[i] - (1 - history.f_af) * group_force[k][i]) / history.f_af;
+      group_force[k] = f;
+      w.forces << step << ',' << t << ',' << w.groups[k].first << ',' << f[0] << ',' << f[1] << ','
+               << f[2] << '\n';
+    }
+    w.forces.flush();
+    // Force conservation: the fluid's interface force, and the one the structure receives
+    // through P^T (equal, since the rows of P sum to one). The work of the transferred force on
+    // the structure by the trapezoidal rule over the load steps.
+    std::array<double, 3> ff{}, fs{};
+    std::vector<double> transferred(sys.n_raw(), 0.0);
+    for (const auto& cp : sys.couplings()) {
+      double normal = 0.0;
+      std::array<double, 3> tangential{};
+      for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
+        const double* n = &normals[static_cast<std::size_t>(cp.fluid_nodes[j]) * 3];
+        double fn = 0.0;
+        std::array<double, 3> f{};
+        for (int i = 0; i < dim; ++i) {
+          f[i] = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
+          fn += f[i] * n[i];
+          ff[i] += f[i];
+          for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
+            fs[i] += cp.weights[q] * f[i];
+            transferred[sys.d_dof(cp.structure_nodes[q], i)] += cp.weights[q] * f[i];
+          }
+        }
+        normal += fn;
+        for (int i = 0; i < dim; ++i) tangential[i] += f[i] - fn * n[i];
+      }
+      w.interfaces << step << ',' << t << ',' << cp.name << ',' << normal << ','
+                   << std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
+                                tangential[2] * tangential[2])
+                   << ",0,0," << cp.d_total << '\n';
+    }
+    w.interfaces.flush();
+    for (std::size_t a = 0; a < transferred.size(); ++a)
+      if (transferred[a] != 0.0 || last_force[a] != 0.0)
+        work += 0.5 * (transferred[a] + last_force[a]) * (raw[a] - last_raw[a]);
+    last_force = transferred;
+    last_raw = raw;
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0," << res.kinetic_energy << ','
+            << res.strain_energy << ',' << work << ',' << res.kinetic_energy + res.strain_energy
+            << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ',' << ff[1] << ',' << ff[2] << ','
+            << fs[0] << ',' << fs[1] << ',' << fs[2] << '\n';
+    w.steps.flush();
+    write_fields(sys, raw, step, t, w);
+    write_probes(sys, raw, step, t, w);
+    write_interfaces(sys, raw, res.raw_residual, normals, dir);
+  }
+  if (root) {
+    std::ostringstream s;
+    s << "{\n  \"status\": \"" << (converged ? "converged" : "failed")
+      << "\",\n  \"steps\": " << step - 1 << ",\n  \"dofs\": " << info.n_dofs
+      << ",\n  \"ranks\": " << comm.size() << "\n}\n";
+    io::write_file_atomically(dir / "summary.json", s.str());
+  }
+  if (!converged) SEAM_THROW(SolverError, "the fluid-structure Newton method did not converge");
+  return info;
+}
+
+} // namespace seam::problem

@@ -1,0 +1,30 @@
+#pragma once
+// A fluid-structure run (an `fsi` interface between a fluid and a solid body): the monolithic
+// Newton method on structure, fluid and fluid mesh (FsiSystem). `integrator: static`: each
+// step solves the steady coupled problem at its t, starting from the last converged state;
+// `generalized_alpha`: each step is one generalized-alpha step of both fields from rest
+// (FsiSystem::History).
+// Output: results.pvd (structure and fluid fields on the whole mesh), forces.csv over
+// fluid-side groups, steps.csv, interface_<name>.csv with the fluid's traction on the
+// structure (docs/fsi.md).
+#include "seam/common/mpi.hpp"
+#include "seam/io/config.hpp"
+#include "seam/mesh/mesh.hpp"
+
+#include <filesystem>
+
+namespace seam::problem {
+
+/// True if the input has an interface of type fsi.
+bool has_fsi(const io::Config& config);
+
+struct FsiRunInfo {
+  long long n_dofs = 0;
+};
+
+/// Checks the input, then runs all steps, writing into `dir` (which exists). `check_only`
+/// stops after the checks. Throws InputError or SolverError.
+FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
+                   const std::filesystem::path& dir, bool quiet, bool check_only = false);
+
+} // namespace seam::problem

@@ -1,0 +1,310 @@
+// The evaluation of FsiSystem (fsi_system.hpp): g(t), T_c x + g, the rates of a step, and
+// the assembly of R^T r and R^T J T_c.
+#include "seam/problem/fsi_system.hpp"
+
+#include "seam/ale/mesh_motion.hpp"
+#include "seam/common/error.hpp"
+#include "seam/solid/element.hpp"
+#include "seam/solid/mass.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace seam::problem {
+
+namespace {
+
+// The pseudo-elastic mesh's Poisson ratio (as FluidMeshMotion).
+constexpr double mesh_poisson = 0.3;
+
+} // namespace
+
+FsiSystem::History FsiSystem::History::from_rho_inf(double rho, double dt, std::size_t n_raw) {
+  History h;
+  h.dt = dt;
+  // Chung & Hulbert 1993 (as dynamic_solver.cpp) and Jansen, Whiting & Hulbert 2000 (as
+  // ale::GeneralizedAlpha): 1 - s_af = f_af = 1 / (1 + rho), the same intermediate time.
+  h.s_am = (2 * rho - 1) / (rho + 1);
+  h.s_af = rho / (rho + 1);
+  h.beta = 0.25 * (1 - h.s_am + h.s_af) * (1 - h.s_am + h.s_af);
+  h.s_gamma = 0.5 - h.s_am + h.s_af;
+  const auto ga = ale::GeneralizedAlpha::from_rho_inf(rho);
+  h.f_am = ga.alpha_m;
+  h.f_af = ga.alpha_f;
+  h.f_gamma = ga.gamma;
+  h.old.assign(n_raw, 0.0);
+  h.rate.assign(n_raw, 0.0);
+  h.accel.assign(n_raw, 0.0);
+  return h;
+}
+
+void FsiSystem::rates(std::span<const double> raw, std::vector<double>& rate,
+                      std::vector<double>& accel) const {
+  const auto& h = *history_;
+  const double dt = h.dt;
+  rate.assign(n_raw(), 0.0);
+  accel.assign(n_raw(), 0.0);
+  for (std::size_t a = 0; a < n_raw(); ++a) {
+    if (a < base_f_) {
+      accel[a] = (raw[a] - h.old[a] - dt * h.rate[a]) / (h.beta * dt * dt) -
+                 (1 - 2 * h.beta) / (2 * h.beta) * h.accel[a];
+      rate[a] = h.rate[a] + dt * ((1 - h.s_gamma) * h.accel[a] + h.s_gamma * accel[a]);
+    } else {
+      rate[a] = (raw[a] - h.old[a]) / (h.f_gamma * dt) - (1 - h.f_gamma) / h.f_gamma * h.rate[a];
+    }
+  }
+}
+
+std::vector<double> FsiSystem::prescribed(double t) const {
+  const int dim = dim_;
+  std::vector<double> g(n_raw(), 0.0);
+  for (std::size_t a = 0; a < n_raw(); ++a) {
+    if (prescribed_[a] < 0) continue;
+    const auto n = a < base_f_ ? a / dim : (a - base_f_) / (dim + 1);
+    const double* x = &mesh_->x[n * dim];
+    g[a] = values_[prescribed_[a]](t, x[0], x[1], dim == 3 ? x[2] : 0.0);
+  }
+  // m_G = P d_G: prescribed structure displacements move the interface mesh too. u_G = P v
+  // with v_{n+1} = c d_{n+1} + h, c = gamma / (beta dt) and h from the state at t_n:
+  //   h = v_n + dt (1 - gamma) a_n + dt gamma (-(d_n + dt v_n) / (beta dt^2)
+  //       - (1 - 2 beta) / (2 beta) a_n)   (Newmark's relations, Chung & Hulbert 1993).
+  const auto* hs = history_;
+  for (const auto& cp : couplings_)
+    for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
+      for (int i = 0; i < dim; ++i) {
+        double v = 0.0, u = 0.0;
+        for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
+          const auto k = d_dof(cp.structure_nodes[q], i);
+          v += cp.weights[q] * g[k];
+          if (hs) {
+            const double dt = hs->dt, b = hs->beta, gm = hs->s_gamma;
+            const double h = hs->rate[k] + dt * (1 - gm) * hs->accel[k] +
+                             dt * gm *
+                                 (-(hs->old[k] + dt * hs->rate[k]) / (b * dt * dt) -
+                                  (1 - 2 * b) / (2 * b) * hs->accel[k]);
+            u += cp.weights[q] * (gm / (b * dt) * g[k] + h);
+          }
+        }
+        g[m_dof(cp.fluid_nodes[j], i)] = v;
+        g[f_dof(cp.fluid_nodes[j], i)] = u;
+      }
+  return g;
+}
+
+void FsiSystem::expand(std::span<const double> x, std::span<const double> g,
+                       std::vector<double>& raw) const {
+  raw.assign(g.begin(), g.end());
+  for (std::size_t a = 0; a < n_raw(); ++a) {
+    const double scale = column_scale(a);
+    for (auto q = columns_.offsets[a]; q < columns_.offsets[a + 1]; ++q)
+      raw[a] += scale * columns_.weight[q] * x[columns_.index[q]];
+  }
+}
+
+void FsiSystem::add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
+                          std::span<const double> K, std::vector<PetscInt>& I,
+                          std::vector<PetscInt>& J, std::vector<double>& V) const {
+  for (std::size_t a = 0; a < rows.size(); ++a)
+    for (auto p = rows_.offsets[rows[a]]; p < rows_.offsets[rows[a] + 1]; ++p)
+      for (std::size_t b = 0; b < cols.size(); ++b) {
+        const double k = K[a * cols.size() + b] * column_scale(cols[b]);
+        if (k == 0.0) continue;
+        for (auto q = columns_.offsets[cols[b]]; q < columns_.offsets[cols[b] + 1]; ++q) {
+          I.push_back(rows_.index[p]);
+          J.push_back(columns_.index[q]);
+          V.push_back(rows_.weight[p] * columns_.weight[q] * k);
+        }
+      }
+}
+
+FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/, la::Vector& r,
+                                      la::Matrix* J, const Options& options) const {
+  const auto& mesh = *mesh_;
+  const int dim = dim_;
+  const auto* hs = history_;
+  Result out;
+  out.raw_residual.assign(n_raw(), 0.0);
+  auto& res = out.raw_residual;
+  std::vector<double> mag(n_raw(), 0.0);
+  std::vector<PetscInt> I, Jc;
+  std::vector<double> V;
+  constexpr std::size_t nmax = fem::max_cell_nodes;
+  std::array<double, nmax * 3> X{}, x{}, u{}, m{}, zero{}, ud{}, w{}, v{}, am{};
+  std::array<double, nmax> p{};
+  std::vector<std::size_t> f_rows, s_rows, m_rows;
+  std::vector<double> re, Ke, Kx, Kw, Km, Ms;
+  // Generalized-alpha: a value at the intermediate time, (1 - weight) old + weight new.
+  const auto between = [&](std::size_t k, double weight) {
+    return hs ? (1 - weight) * hs->old[k] + weight * raw[k] : raw[k];
+  };
+  for (auto c : local_cells_) {
+    const auto type = mesh.cell_type[c];
+    const auto nodes = mesh.cell(c);
+    const auto nn = nodes.size();
+    const auto nd = nn * dim;
+    for (std::size_t a = 0; a < nn; ++a)
+      for (int i = 0; i < dim; ++i) X[a * dim + i] = mesh.x[nodes[a] * dim + i];
+    if (cell_solid_[c] >= 0) {
+      s_rows.clear();
+      for (std::size_t a = 0; a < nn; ++a)
+        for (int i = 0; i < dim; ++i) s_rows.push_back(d_dof(nodes[a], i));
+      // M a_{n+1-alpha_m} + f_int(d_{n+1-alpha_f}) (Chung & Hulbert 1993).
+      const double wf = hs ? 1 - hs->s_af : 1.0;
+      for (std::size_t k = 0; k < nd; ++k) u[k] = between(s_rows[k], wf);
+      solid::ElementInput in;
+      in.cell = type;
+      in.dim = dim;
+      in.plane = plane_;
+      in.material = solids_[cell_solid_[c]];
+      in.X = std::span<const double>(X.data(), nd);
+      in.u = std::span<const double>(u.data(), nd);
+      re.assign(nd, 0.0);
+      Ke.assign(J ? nd * nd : 0, 0.0);
+      const auto element = solid::internal_force(in, re, Ke);
+      if (element.status != solid::KernelStatus::ok) {
+        out.inverted = true;
+        continue;
+      }
+      out.strain_energy += element.energy;
+      if (hs) {
+        // The energy at t_{n+1}, and the inertia.
+        for (std::size_t k = 0; k < nd; ++k) u[k] = raw[s_rows[k]];
+        out.strain_energy += solid::internal_force(in, {}, {}).energy - element.energy;
+        const double dt = hs->dt, b = hs->beta;
+        for (std::size_t k = 0; k < nd; ++k) {
+          const auto q = s_rows[k];
+          const double a_new = (raw[q] - hs->old[q] - dt * hs->rate[q]) / (b * dt * dt) -
+                               (1 - 2 * b) / (2 * b) * hs->accel[q];
+          am[k] = (1 - hs->s_am) * a_new + hs->s_am * hs->accel[q];
+          v[k] = hs->rate[q] + dt * ((1 - hs->s_gamma) * hs->accel[q] + hs->s_gamma * a_new);
+        }
+        Ms.assign(nd * nd, 0.0);
+        solid::consistent_mass(type, dim, in.X, in.material.density, Ms);
+        for (std::size_t a = 0; a < nd; ++a)
+          for (std::size_t b2 = 0; b2 < nd; ++b2) {
+            re[a] += Ms[a * nd + b2] * am[b2];
+            out.kinetic_energy += 0.5 * v[a] * Ms[a * nd + b2] * v[b2];
+          }
+        if (J)
+          for (std::size_t k = 0; k < nd * nd; ++k)
+            Ke[k] = wf * Ke[k] + (1 - hs->s_am) / (b * dt * dt) * Ms[k];
+      }
+      for (std::size_t a = 0; a < nd; ++a) {
+        res[s_rows[a]] += re[a];
+        mag[s_rows[a]] += std::abs(re[a]);
+      }
+      if (J) add_block(s_rows, s_rows, Ke, I, Jc, V);
+      continue;
+    }
+    // Fluid cell on the mesh x = X + m (at t_{n+alpha_f}; Jansen, Whiting & Hulbert 2000: u and
+    // p at n + alpha_f, du/dt and the mesh velocity dm/dt at n + alpha_m).
+    const int nv = fem::n_vertices(type);
+    const double wf = hs ? hs->f_af : 1.0;
+    f_rows.clear();
+    m_rows.clear();
+    for (std::size_t a = 0; a < nn; ++a)
+      for (int i = 0; i < dim; ++i) {
+        f_rows.push_back(f_dof(nodes[a], i));
+        m_rows.push_back(m_dof(nodes[a], i));
+        const auto k = a * dim + i;
+        u[k] = between(f_rows.back(), wf);
+        m[k] = raw[m_rows.back()];
+        x[k] = X[k] + between(m_rows.back(), wf);
+        if (hs) {
+          const double dt = hs->dt, gm = hs->f_gamma;
+          const auto rate_at = [&](std::size_t q) {
+            const double r_new = (raw[q] - hs->old[q]) / (gm * dt) - (1 - gm) / gm * hs->rate[q];
+            return (1 - hs->f_am) * hs->rate[q] + hs->f_am * r_new;
+          };
+          ud[k] = rate_at(f_rows.back());
+          w[k] = rate_at(m_rows.back());
+        }
+      }
+    for (int a = 0; a < nv; ++a) {
+      f_rows.push_back(f_dof(nodes[a], dim));
+      p[a] = between(f_rows.back(), wf);
+    }
+    const auto ne = f_rows.size();
+    fluid::FluidElementInput in;
+    in.cell = type;
+    in.dim = dim;
+    in.fluid = fluids_[cell_fluid_[c]];
+    in.x = std::span<const double>(x.data(), nd);
+    in.u = std::span<const double>(u.data(), nd);
+    in.p = std::span<const double>(p.data(), nv);
+    const double rate_weight = hs ? hs->f_am / (hs->f_gamma * hs->dt) : 0.0;
+    if (hs) {
+      in.u_dot = std::span<const double>(ud.data(), nd);
+      in.mesh_velocity = std::span<const double>(w.data(), nd);
+      in.state_weight = wf;
+      in.mass_weight = rate_weight;
+      in.time_step = hs->dt;
+    }
+    re.assign(ne, 0.0);
+    Ke.assign(J ? ne * ne : 0, 0.0);
+    if (!fluid::navier_stokes(in, re, Ke)) {
+      out.inverted = true;
+      continue;
+    }
+    for (std::size_t a = 0; a < ne; ++a) {
+      res[f_rows[a]] += re[a];
+      mag[f_rows[a]] += std::abs(re[a]);
+    }
+    if (J) {
+      add_block(f_rows, f_rows, Ke, I, Jc, V);
+      if (options.shape_derivatives) {
+        // d r / d m_{n+1} = alpha_f d r / dx + alpha_m / (gamma dt) d r / dw.
+        Kx.assign(ne * nd, 0.0);
+        Kw.assign(hs ? ne * nd : 0, 0.0);
+        fluid::navier_stokes_mesh_derivatives(in, Kx, Kw);
+        for (std::size_t k = 0; k < Kx.size(); ++k)
+          Kx[k] = wf * Kx[k] + (hs ? rate_weight * Kw[k] : 0.0);
+        add_block(f_rows, m_rows, Kx, I, Jc, V);
+      }
+    }
+    // The pseudo-elastic mesh on the reference cell: r_m = K_m m (linear, at t_{n+1}).
+    solid::ElementInput mi;
+    mi.cell = type;
+    mi.dim = dim;
+    mi.plane = dim == 2 ? solid::PlaneMode::plane_strain : solid::PlaneMode::none;
+    mi.material.young = mesh_young_[c];
+    mi.material.poisson = mesh_poisson;
+    mi.X = std::span<const double>(X.data(), nd);
+    mi.u = std::span<const double>(zero.data(), nd);
+    Km.assign(nd * nd, 0.0);
+    solid::internal_force(mi, {}, Km);
+    for (std::size_t a = 0; a < nd; ++a) {
+      double val = 0.0;
+      for (std::size_t b = 0; b < nd; ++b) val += Km[a * nd + b] * m[b];
+      res[m_rows[a]] += val;
+      for (std::size_t b = 0; b < nd; ++b) mag[m_rows[a]] += std::abs(Km[a * nd + b] * m[b]);
+    }
+    if (J) add_block(m_rows, m_rows, Km, I, Jc, V);
+  }
+  out.inverted = comm_.any(out.inverted);
+  out.strain_energy = comm_.sum(out.strain_energy);
+  out.kinetic_energy = comm_.sum(out.kinetic_energy);
+  comm_.sum_in_place(res);
+  comm_.sum_in_place(mag);
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    if (rows_.offsets[a + 1] > rows_.offsets[a]) out.level += mag[a] * mag[a];
+  out.level = std::sqrt(out.level);
+
+  // R^T r: every rank sets the rows it owns from the summed raw residual.
+  std::vector<double> owned(static_cast<std::size_t>(n_owned_), 0.0);
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    for (auto q = rows_.offsets[a]; q < rows_.offsets[a + 1]; ++q) {
+      const auto row = rows_.index[q] - first_owned_;
+      if (row >= 0 && row < n_owned_) owned[row] += rows_.weight[q] * res[a];
+    }
+  r = la::Vector(comm_.get(), n_owned_);
+  std::vector<PetscInt> ids(owned.size());
+  for (std::size_t q = 0; q < ids.size(); ++q) ids[q] = first_owned_ + static_cast<PetscInt>(q);
+  r.set_values(ids, owned);
+  r.assemble();
+  if (J) *J = la::Matrix::from_triplets(comm_.get(), n_owned_, I, Jc, V);
+  return out;
+}
+
+} // namespace seam::problem

@@ -1,0 +1,163 @@
+#pragma once
+// The monolithic fluid-structure system with the fluid-split dual-mortar condensation
+// (Kloeppel, Popp, Kuettler & Wall 2011; docs/fsi.md). Raw fields on the (replicated) mesh:
+// the structure displacement d on the nodes of solid cells, the fluid velocity and pressure
+// (u, p) and the fluid mesh displacement m on the nodes of fluid cells. The condensed unknowns
+// x are what is left after eliminating
+//   - prescribed values (structure `dirichlet`, fluid `velocity`): known, g(t);
+//   - the fluid interface velocity: u_G = P v_G, v the structure velocity of its
+//     generalized-alpha step, a function of d_{n+1} (steady: the structure rests, u_G = 0);
+//   - the fluid interface mesh displacement: m_G = P d_G, P = D^-1 M (dual mortar, fluid side
+//     slave, structure master, integrated once on the reference interface);
+//   - the mesh displacement of the other fluid boundary nodes: held at 0.
+// So raw = T_c x + g. The residual rows are gathered by another map R: the fluid momentum
+// rows of interface nodes go to the structure's rows through P^T (force and energy
+// conserving), the mesh rows of interface nodes and all rows of prescribed dofs are dropped.
+// The Newton system is R^T J T_c dx = -R^T r with every block of J: the solid tangent, the
+// fluid by (u, p), the fluid by the mesh position and velocity (shape derivatives), the
+// pseudo-elastic mesh stiffness, the mass blocks of a time step.
+//
+// Every rank holds the description (the mesh is replicated) and the whole state; each rank
+// assembles a contiguous block of cells, the condensed system is a distributed PETSc system.
+#include "seam/common/mpi.hpp"
+#include "seam/fluid/navier_stokes.hpp"
+#include "seam/io/config.hpp"
+#include "seam/la/petsc.hpp"
+#include "seam/meshtying/tied_interface.hpp"
+#include "seam/solid/material.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace seam::problem {
+
+/// A sparse map from raw dofs to condensed indices: per raw dof a list of (index, weight).
+struct DofMap {
+  std::vector<std::int64_t> offsets{0};
+  std::vector<PetscInt> index;
+  std::vector<double> weight;
+  void append_row() { offsets.push_back(static_cast<std::int64_t>(index.size())); }
+  void add(PetscInt i, double w) {
+    index.push_back(i);
+    weight.push_back(w);
+  }
+};
+
+/// P = D^-1 M of one interface: per fluid interface node its structure nodes and weights.
+struct FsiCoupling {
+  std::string name;
+  std::vector<std::int32_t> fluid_nodes; ///< mesh nodes, sorted
+  std::vector<std::int64_t> offsets{0};
+  std::vector<std::int32_t> structure_nodes;
+  std::vector<double> weights;
+  double d_total = 0.0;           ///< sum of D_jj (the interface's length or area), for tractions
+  std::vector<double> d_diagonal; ///< D_jj per fluid interface node
+};
+
+class FsiSystem {
+public:
+  /// Checks the input for a steady fsi run (InputError, located) and builds the maps.
+  FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
+            const std::vector<meshtying::TiedInterface>& interfaces, Comm comm);
+
+  int dim() const { return dim_; }
+  Comm comm() const { return comm_; }
+  const mesh::Mesh& mesh() const { return *mesh_; }
+  PetscInt n_unknowns() const { return n_unknowns_; }
+  PetscInt n_owned() const { return n_owned_; }
+  PetscInt first_owned() const { return first_owned_; }
+  std::size_t n_raw() const { return static_cast<std::size_t>(base_m_) + n_nodes_ * dim_; }
+
+  /// Raw dof numbers: d of node n component i, u (c < dim) or p (c = dim), m.
+  std::size_t d_dof(std::int32_t n, int i) const { return static_cast<std::size_t>(n) * dim_ + i; }
+  std::size_t f_dof(std::int32_t n, int c) const {
+    return base_f_ + static_cast<std::size_t>(n) * (dim_ + 1) + c;
+  }
+  std::size_t m_dof(std::int32_t n, int i) const {
+    return base_m_ + static_cast<std::size_t>(n) * dim_ + i;
+  }
+  bool is_solid_node(std::int32_t n) const { return solid_node_[n] != 0; }
+  bool is_fluid_node(std::int32_t n) const { return fluid_node_[n] != 0; }
+  bool has_pressure(std::int32_t n) const { return pressure_node_[n] != 0; }
+  bool is_fluid_cell(std::int32_t c) const { return cell_fluid_[c] >= 0; }
+  const std::vector<FsiCoupling>& couplings() const { return couplings_; }
+
+  /// Time integration (docs/fsi.md, "Dynamics"): the structure by generalized-alpha (Chung &
+  /// Hulbert 1993), the fluid and its mesh by generalized-alpha for first-order systems
+  /// (Jansen, Whiting & Hulbert 2000), with one rho_inf, so that both fields' residuals are
+  /// taken at the same time t_n + dt / (1 + rho_inf). The state at t_n: raw values `old`, and
+  /// `rate` (v on d dofs, du/dt on u dofs, dm/dt on m dofs) and `accel` (a on d dofs).
+  struct History {
+    double dt = 0.0;
+    double s_am = 0.0, s_af = 0.0, beta = 0.25, s_gamma = 0.5; ///< structure
+    double f_am = 1.0, f_af = 1.0, f_gamma = 1.0;              ///< fluid and mesh
+    std::vector<double> old, rate, accel;
+    static History from_rho_inf(double rho_inf, double dt, std::size_t n_raw);
+  };
+  /// With `h` (kept by reference) the system is the step t_n -> t_n + h->dt; null: steady.
+  void set_history(const History* h) { history_ = h; }
+  /// The rate and acceleration at t_{n+1} of the raw state of a step (History's recursions).
+  void rates(std::span<const double> raw, std::vector<double>& rate,
+             std::vector<double>& accel) const;
+  /// The raw values of the prescribed part g(t) (zero elsewhere).
+  std::vector<double> prescribed(double t) const;
+  /// raw = T_c x + g, x all condensed unknowns.
+  void expand(std::span<const double> x, std::span<const double> g, std::vector<double>& raw) const;
+
+  struct Options {
+    bool shape_derivatives = true; ///< false: drop d r_fluid / d m (tests show it matters)
+  };
+  struct Result {
+    bool inverted = false;
+    double strain_energy = 0.0;  ///< of the structure at t_{n+1}, all ranks
+    double kinetic_energy = 0.0; ///< of the structure at t_{n+1} (1/2 v M v), all ranks
+    /// The force level: the norm over the condensed rows of the sums of the magnitudes of the
+    /// element contributions (round-off in the residual is a small multiple of eps times this).
+    double level = 0.0;
+    /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
+    /// prescribed dofs, the fluid's interface forces before the transfer).
+    std::vector<double> raw_residual;
+  };
+  /// The condensed residual R^T r (a vector of n_owned entries per rank, made here) and, if
+  /// J is given, the condensed Jacobian R^T J T_c, both assembled. Collective.
+  Result assemble(std::span<const double> raw, double t, la::Vector& r, la::Matrix* J,
+                  const Options& options) const;
+
+private:
+  void add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
+                 std::span<const double> K, std::vector<PetscInt>& I, std::vector<PetscInt>& J,
+                 std::vector<double>& V) const;
+
+  const io::Config* config_;
+  const mesh::Mesh* mesh_;
+  Comm comm_;
+  int dim_;
+  std::size_t n_nodes_ = 0, base_f_ = 0, base_m_ = 0;
+  solid::PlaneMode plane_ = solid::PlaneMode::none;
+  std::vector<int> cell_fluid_;    ///< index into fluids_, or -1
+  std::vector<int> cell_solid_;    ///< index into solids_, or -1
+  std::vector<double> mesh_young_; ///< per cell: the pseudo-elastic modulus (fluid cells)
+  std::vector<fluid::Fluid> fluids_;
+  std::vector<solid::Material> solids_;
+  std::vector<char> solid_node_, fluid_node_, pressure_node_;
+  std::vector<std::int32_t> local_cells_;
+  std::vector<FsiCoupling> couplings_;
+  /// Per raw dof: the expression of a prescribed value (-1: none).
+  std::vector<int> prescribed_;
+  std::vector<io::Expression> values_;
+  DofMap columns_; ///< T_c
+  /// Per raw dof: 1 for the interface velocity u_G = P v(d), whose T_c weights are P and get
+  /// the factor dv/dd = gamma / (beta dt) (0 when steady: u_G = 0).
+  std::vector<char> velocity_row_;
+  const History* history_ = nullptr;
+  double column_scale(std::size_t a) const {
+    return velocity_row_[a] == 0 ? 1.0
+           : history_            ? history_->s_gamma / (history_->beta * history_->dt)
+                                 : 0.0;
+  }
+  DofMap rows_; ///< R
+  PetscInt n_unknowns_ = 0, n_owned_ = 0, first_owned_ = 0;
+};
+
+} // namespace seam::problem
