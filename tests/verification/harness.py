@@ -53,6 +53,23 @@ def solve(yaml_path, np=1, extra=()):
     return out
 
 
+def expect_input_error(what, work, name, line, must=(), timeout=300):
+    """`seam check NAME` and `seam run NAME` in `work` both end with exit 1 and the message
+    `seam: input error: NAME:LINE:` (any line if `line` is None) containing every piece of
+    `must`."""
+    for cmd in (["check", name], ["run", name, "-o", "out", "--quiet"]):
+        code, out, err = run(cmd, cwd=work, check=False, timeout=timeout)
+        if code != 1:
+            raise AssertionError("%s: %s: exit %d, expected 1\n%s%s"
+                                 % (what, cmd[0], code, out[-1500:], err[-1500:]))
+        prefix = "seam: input error: %s:" % name + ("%d:" % line if line else "")
+        if prefix not in err:
+            raise AssertionError("%s: no located message %r:\n%s" % (what, prefix, err))
+        for piece in must:
+            if piece not in err:
+                raise AssertionError("%s: message lacks %r:\n%s" % (what, piece, err))
+
+
 def write_case(directory, name, text):
     path = os.path.join(directory, name)
     with open(path, "w") as f:

@@ -405,17 +405,7 @@ def expect_bad(what, must, order=2, material="{model: newtonian_fluid, density: 
                            extra=extra, body=body)
     H.write_case(work, "case.yaml", text)
     try:
-        for cmd in (["check", "case.yaml"], ["run", "case.yaml", "-o", "out", "--quiet"]):
-            code, out, err = H.run(cmd, cwd=work, check=False, timeout=120)
-            if code != 1:
-                raise AssertionError("%s: %s: exit %d, expected 1\n%s%s"
-                                     % (what, cmd[0], code, out[-1500:], err[-1500:]))
-            prefix = "seam: input error: case.yaml:" + ("%d:" % line if line else "")
-            if prefix not in err:
-                raise AssertionError("%s: no located message %r:\n%s" % (what, prefix, err))
-            for piece in must:
-                if piece not in err:
-                    raise AssertionError("%s: message lacks %r:\n%s" % (what, piece, err))
+        H.expect_input_error(what, work, "case.yaml", line, must, timeout=120)
     finally:
         H.cleanup(work)
 

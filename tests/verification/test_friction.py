@@ -26,14 +26,15 @@ full_only = H.full_only
 
 
 def case_yaml(dimension, bcs, interface, steps, end, materials=(("m", 100.0, 0.0),),
-              bodies=(("body", "m"),), tolerance=1e-12):
+              bodies=(("body", "m"),), tolerance=1e-12, initial_guess="previous"):
     lines = ["dimension: %d" % dimension, "mesh: {geo: case.geo}", "materials:"]
     lines += ["  %s: {model: neo_hooke, young: %r, poisson: %r}" % m for m in materials]
     lines += ["bodies:"] + ["  - {region: %s, material: %s}" % b for b in bodies]
     lines += ["boundary_conditions:"] + ["  - " + b for b in bcs]
     lines += ["interfaces:", "  - " + interface]
     lines += ["time: {integrator: static, end: %r, steps: %d}" % (end, steps),
-              "solver: {newton: {tolerance: %r, max_iterations: 30}}" % tolerance]
+              "solver: {newton: {tolerance: %r, max_iterations: 30, initial_guess: %s}}"
+              % (tolerance, initial_guess)]
     return "\n".join(lines) + "\n"
 
 
@@ -354,19 +355,39 @@ Physical Curve("slider_bottom") = {5}; Physical Curve("slider_top") = {7};
 """
 
 
-def drag_two_bodies(np=1, extra=""):
+def drag_two_bodies(np=1, extra="", initial_guess="previous"):
     bcs = ["{region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}",
            "{region: slider_top, type: dirichlet, components: [x, y], "
            "value: ['%r*max(t-1,0)', '-%r*min(t,1)']}" % (SLIDE, PRESS)]
     itf = ("{name: slide, type: contact, slave: slider_bottom, master: base_top, "
            "friction: {model: coulomb, coefficient: %r}%s}" % (MU, extra))
     return run_case(TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.1},
-                    case_yaml(2, bcs, itf, 8, 3.0, bodies=(("base", "m"), ("slider", "m"))),
+                    case_yaml(2, bcs, itf, 8, 3.0, bodies=(("base", "m"), ("slider", "m")),
+                              initial_guess=initial_guess),
                     np=np)
 
 
 def test_drag_2d_two_bodies():
-    check_two_bodies(drag_two_bodies())
+    out = drag_two_bodies()
+    # The extrapolated start of the load steps (`initial_guess: extrapolated`) must find the
+    # same path-dependent solution (the slip of each step is measured from the last converged
+    # state, not from where Newton starts), in fewer iterations.
+    guessed = drag_two_bodies(initial_guess="extrapolated")
+    its = [len(rows_of(o, "newton.csv")) for o in (out, guessed)]
+    worst = 0.0
+    for region in ("slider_top", "base_bottom"):
+        a, b = reactions_by_step(out, region), reactions_by_step(guessed, region)
+        scale = max(abs(a[s][c]) for s in a for c in ("fx", "fy"))
+        worst = max(worst, max(abs(a[s][c] - b[s][c]) / scale for s in a for c in ("fx", "fy")))
+    statuses = [[r["status"] for r in rows_of(o, "interface_slide.csv")] for o in (out, guessed)]
+    print("   extrapolated start: reactions equal to %.2e, same statuses %s, Newton iterations "
+          "%d (from the last converged state: %d)" % (worst, statuses[0] == statuses[1],
+                                                       its[1], its[0]))
+    if worst > 1e-9 or statuses[0] != statuses[1]:
+        raise AssertionError("the extrapolated start changes the solution")
+    if its[1] > its[0]:
+        raise AssertionError("the extrapolated start takes more Newton iterations")
+    check_two_bodies(out)
 
 
 def check_two_bodies(out, dim=2):

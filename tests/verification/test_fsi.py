@@ -186,17 +186,7 @@ def expect_bad(what, replace, must, line):
     work, path = fsi_case(replace=replace)
     name = os.path.basename(path)
     try:
-        for cmd in (["check", name], ["run", name, "-o", "out", "--quiet"]):
-            code, out, err = H.run(cmd, cwd=work, check=False, timeout=300)
-            if code != 1:
-                raise AssertionError("%s: %s: exit %d, expected 1\n%s%s"
-                                     % (what, cmd[0], code, out[-1500:], err[-1500:]))
-            prefix = "seam: input error: %s:%d:" % (name, line)
-            if prefix not in err:
-                raise AssertionError("%s: no located message %r:\n%s" % (what, prefix, err))
-            for piece in must:
-                if piece not in err:
-                    raise AssertionError("%s: message lacks %r:\n%s" % (what, piece, err))
+        H.expect_input_error(what, work, name, line, must)
     finally:
         H.cleanup(work)
 

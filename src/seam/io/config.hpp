@@ -206,7 +206,7 @@ struct TimeConfig {
 struct NewtonConfig {
   double tolerance = 1e-10; ///< on the relative residual norm
   int max_iterations = 25;
-  InitialGuess initial_guess = InitialGuess::extrapolated; ///< static load steps only
+  InitialGuess initial_guess = InitialGuess::previous; ///< static load steps only
 };
 
 struct SolverConfig {
