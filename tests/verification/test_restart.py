@@ -9,6 +9,9 @@ interface is redistributed at a restart, which changes sums at round-off).
 - static frictional contact of two elastic blocks (the mortar operators of the last converged
   step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
+- static friction continued from a checkpoint written while the step was cut (the halved step
+  size and the cut count in effect), and a rigid circle moved along a block (its position is
+  a function of the restart time),
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
   mesh tying),
 - pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
@@ -267,6 +270,52 @@ def test_fluid_moving_mesh():
             + "  checkpoint_every: 3\n")
     check_case(G.rectangle("tri", 0.2, 2), lambda e: yaml, 3, "fluid, moving mesh",
                cross_np="1 -> 3")
+
+
+def cut_steps_yaml(every):
+    """The two blocks in two steps of 2 with 6 Newton iterations at most: the first step is
+    cut once and the drag steps twice, so the checkpoint after step 2 (t = 1.5) holds a
+    halved step size (0.5, two cuts in effect) that must be continued (dt 1 next), not the
+    nominal 2; a restart that forgot it would try t = 3.5 and cut again (other newton.csv
+    rows)."""
+    return (two_blocks_yaml(every).replace("end: 3.0, steps: 8", "end: 4.0, steps: 2")
+            .replace("max_iterations: 30", "max_iterations: 6"))
+
+
+def test_after_step_cuts():
+    _, yaml = make_case(TWO_BLOCKS_GEO, cut_steps_yaml(1))
+    one = full_run(yaml, 1)
+    text = open(os.path.join(one, "newton.csv")).read()
+    times = [r["time"] for r in H.read_csv(os.path.join(one, "steps.csv"))]
+    # The uninterrupted run must cut where the docstring says, or the test checks nothing.
+    if times[:3] != [1.0, 1.5, 2.5]:
+        raise AssertionError("expected steps at t = 1, 1.5, 2.5 (cut steps), got %s" % times)
+    print("   uninterrupted run: steps at t = %s, %d Newton rows"
+          % (", ".join("%g" % t for t in times), text.count("\n") - 1))
+    check_case(TWO_BLOCKS_GEO, cut_steps_yaml, 2, "after step cuts", cross_np="1 -> 3")
+
+
+def moving_sphere_yaml(every):
+    """A rigid circle pressed into a block and moved along it (its motion is a function of
+    t: the restart must place it where the uninterrupted run had it), Coulomb friction."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100.0, poisson: 0.3}}",
+        "bodies: [{region: body, material: m}]",
+        "boundary_conditions:",
+        "  - {region: bottom, type: dirichlet, components: [x, y], value: [0, 0]}",
+        "interfaces:",
+        "  - {name: ball, type: contact, slave: top, friction: {model: coulomb, "
+        "coefficient: 0.2}, rigid_sphere: {center: [0.3, 0.55], radius: 0.3, "
+        "motion: ['0.4*max(t-1,0)', '-0.06*min(t,1)']}}",
+        "time: {integrator: static, end: 2.0, steps: 8}",
+        "solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}",
+        "output: {checkpoint_every: %d, probes: [[0.5, 0.125]]}" % every]) + "\n"
+
+
+def test_moving_obstacle():
+    check_case(G.rectangle("quad_structured", 0.05, lx=1.0, ly=0.25), moving_sphere_yaml, 5,
+               "moving rigid circle", cross_np="1 -> 3")
 
 
 def expect_input_error(args, words, what, np=1):
