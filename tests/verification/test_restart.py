@@ -17,7 +17,8 @@ interface is redistributed at a restart, which changes sums at round-off).
 - pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
   rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE).
 Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
-mesh, another dimension, no such directory) end with exit code 1 and a message.
+mesh, another dimension, no such directory, a missing or damaged part file) end with exit code
+1 and a message. The nodal vectors are not gathered: each rank writes its own entries.
 """
 import os
 import shutil
@@ -381,6 +382,59 @@ def test_bad_checkpoints():
         f.write("a,b,c\n1,2,3\n")
     expect_input_error(["run", yaml, "--restart", good, "-o", other], ["steps.csv", "header"],
                        "foreign steps.csv on 3 ranks", np=3)
+    # The part files of a 3-rank checkpoint: one missing (restart on 3 ranks: the rank that
+    # reads it names it, every rank stops), one damaged (on 1 rank, which reads all three).
+    three = os.path.join(full_run(yaml, 3), "checkpoint_00003")
+    for name, change, np, words in (("part_00002.bin", None, 3, ["part_00002.bin", "missing"]),
+                                    ("part_00001.bin", "flip", 1, ["part_00001.bin", "damaged"])):
+        copy = os.path.join(work, "parts_" + name)
+        shutil.copytree(three, copy)
+        path = os.path.join(copy, name)
+        if change is None:
+            os.remove(path)
+        else:
+            data = open(path, "rb").read()
+            middle = len(data) // 2
+            open(path, "wb").write(data[:middle] + bytes([data[middle] ^ 0x40])
+                                   + data[middle + 1:])
+        expect_input_error(["run", yaml, "--restart", copy, "-o", os.path.join(copy, "o")],
+                           words, "%s %s, np %d" % (name, "missing" if change is None
+                                                    else "damaged", np), np=np)
+
+
+def test_parts_not_gathered():
+    """The nodal vectors are written by the ranks that own them: at np 3 each part file holds
+    about a third of the entries (none holds them all), and the three together hold each
+    entry once. Read through the records' byte counts (the format of checkpoint.hpp)."""
+    _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
+    one = os.path.join(full_run(yaml, 1), "checkpoint_00003")
+    three = os.path.join(full_run(yaml, 3), "checkpoint_00003")
+    total = len(index_record(os.path.join(one, "part_00000.bin")))
+    counts = [len(index_record(os.path.join(three, "part_%05d.bin" % r))) for r in range(3)]
+    entries = sorted(i for r in range(3)
+                     for i in index_record(os.path.join(three, "part_%05d.bin" % r)))
+    print("   entries per part at np 3: %s of %d" % (counts, total))
+    if entries != list(range(total)):
+        raise AssertionError("the parts do not hold each of the %d entries once" % total)
+    if max(counts) > 0.7 * total:
+        raise AssertionError("a part holds %d of %d entries" % (max(counts), total))
+
+
+def index_record(path):
+    """The int64 values of record 'index' of a checkpoint file (magic line, then records:
+    uint32 name length, name, type byte, uint64 byte count, bytes; a 16-byte trailer)."""
+    import struct
+    data = open(path, "rb").read()
+    pos = data.index(b"\n") + 1
+    while pos < len(data) - 16:
+        (n,) = struct.unpack_from("<I", data, pos)
+        name = data[pos + 4:pos + 4 + n].decode()
+        (size,) = struct.unpack_from("<Q", data, pos + 5 + n)
+        start = pos + 13 + n
+        if name == "index":
+            return list(struct.unpack_from("<%dq" % (size // 8), data, start))
+        pos = start + size
+    raise AssertionError("%s has no record 'index'" % path)
 
 
 if __name__ == "__main__":
@@ -388,6 +442,7 @@ if __name__ == "__main__":
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
-                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_bad_checkpoints])
+                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_after_step_cuts,
+                test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
     finally:
         H.cleanup(*_dirs)

@@ -4,7 +4,9 @@
 
 #include "seam/common/error.hpp"
 #include "seam/io/vtu.hpp"
+#include "seam/parallel/exchange.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -70,35 +72,70 @@ std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t hash) {
 
 // ---- RecordWriter -----------------------------------------------------------------------
 
-void RecordWriter::append(const std::string& name, char type, const void* data, std::size_t bytes) {
+void RecordWriter::append(std::string& records, const std::string& name, char type,
+                          const void* data, std::size_t bytes) {
   const auto n = static_cast<std::uint32_t>(name.size());
   const auto size = static_cast<std::uint64_t>(bytes);
-  records_.append(reinterpret_cast<const char*>(&n), sizeof n);
-  records_ += name;
-  records_ += type;
-  records_.append(reinterpret_cast<const char*>(&size), sizeof size);
-  records_.append(static_cast<const char*>(data), bytes);
+  records.append(reinterpret_cast<const char*>(&n), sizeof n);
+  records += name;
+  records += type;
+  records.append(reinterpret_cast<const char*>(&size), sizeof size);
+  records.append(static_cast<const char*>(data), bytes);
 }
 
 void RecordWriter::put(const std::string& name, std::span<const double> values) {
-  append(name, real_type, values.data(), values.size_bytes());
+  append(records_, name, real_type, values.data(), values.size_bytes());
 }
 void RecordWriter::put(const std::string& name, std::span<const std::int64_t> values) {
-  append(name, integer_type, values.data(), values.size_bytes());
+  append(records_, name, integer_type, values.data(), values.size_bytes());
 }
 void RecordWriter::put(const std::string& name, const std::string& text) {
-  append(name, text_type, text.data(), text.size());
+  append(records_, name, text_type, text.data(), text.size());
+}
+void RecordWriter::put_part(const std::string& name, std::span<const double> values) {
+  append(part_, name, real_type, values.data(), values.size_bytes());
+}
+void RecordWriter::put_part(const std::string& name, std::span<const std::int64_t> values) {
+  append(part_, name, integer_type, values.data(), values.size_bytes());
 }
 
-std::string RecordWriter::document() const {
+namespace {
+
+std::string document_of(const std::string& records) {
   std::string out = magic;
-  out += records_;
+  out += records;
   // Trailer: the byte count of the records and their checksum.
-  const std::uint64_t size = records_.size();
-  const std::uint64_t sum = fnv1a(records_.data(), records_.size());
+  const std::uint64_t size = records.size();
+  const std::uint64_t sum = fnv1a(records.data(), records.size());
   out.append(reinterpret_cast<const char*>(&size), sizeof size);
   out.append(reinterpret_cast<const char*>(&sum), sizeof sum);
   return out;
+}
+
+// Throws `error` of the lowest rank that has one as InputError on every rank (the same message
+// everywhere, so that rank 0 prints the file another rank could not read or write).
+void throw_collectively(const Comm& comm, std::string error) {
+  const int mine = error.empty() ? comm.size() : comm.rank();
+  int first = mine;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm.get());
+  if (first == comm.size()) return;
+  comm.broadcast(error, first);
+  SEAM_THROW(InputError, error);
+}
+
+std::string part_name(std::int64_t rank) {
+  char name[32];
+  std::snprintf(name, sizeof name, "part_%05lld.bin", static_cast<long long>(rank));
+  return name;
+}
+
+} // namespace
+
+std::string RecordWriter::document() const {
+  return document_of(records_);
+}
+std::string RecordWriter::part_document() const {
+  return document_of(part_);
 }
 
 // ---- RecordReader -----------------------------------------------------------------------
@@ -172,29 +209,15 @@ std::string RecordReader::text(const std::string& name) const {
 // ---- Checkpoints ------------------------------------------------------------------------
 
 CanonicalOrder nodal_order(const Discretization& disc) {
-  // Per node of the mesh as read (node_gid): the local entries of this rank's nodes, and on
-  // rank 0 the global dof of every node, from the owners (the mesh may be distributed).
+  // Per node of the mesh as read (node_gid), dim entries; this rank lists the nodes it holds.
   const int dim = disc.dim();
   CanonicalOrder order;
-  order.size = static_cast<std::size_t>(disc.n_global_nodes()) * static_cast<std::size_t>(dim);
-  order.local.assign(order.size, -1);
-  std::vector<std::int64_t> owned; // pairs (node id, its first global dof)
+  order.size = disc.n_global_nodes() * dim;
   for (std::int32_t node = 0; node < disc.mesh().n_nodes(); ++node) {
     if (!disc.has_node(node)) continue;
-    const auto id = static_cast<std::size_t>(disc.node_gid(node));
-    for (int c = 0; c < dim; ++c) order.local[id * dim + c] = disc.local_dof(node, c);
-    if (disc.owns_node(node)) {
-      owned.push_back(static_cast<std::int64_t>(id));
-      owned.push_back(disc.global_dof(node, 0));
-    }
-  }
-  const auto all = gather_to_root(disc.comm(), owned);
-  if (disc.comm().is_root()) {
-    order.global.assign(order.size, -1);
-    for (std::size_t k = 0; k + 1 < all.size(); k += 2)
-      for (int c = 0; c < dim; ++c)
-        order.global[static_cast<std::size_t>(all[k]) * dim + c] =
-            static_cast<PetscInt>(all[k + 1] + c);
+    const std::int64_t id = disc.node_gid(node);
+    for (int c = 0; c < dim; ++c)
+      order.add(id * dim + c, disc.local_dof(node, c), disc.owns_node(node));
   }
   return order;
 }
@@ -248,6 +271,19 @@ Checkpoints::Checkpoints(const io::Config& config, MeshIdentity mesh, Comm comm,
   restart_dir_ = restart_output_directory(restart);
   restart_step_ = static_cast<int>(r.integer("step"));
   restart_time_ = r.real("time");
+  if (!r.has("vector_parts"))
+    r.fail("was written by an earlier seam, which stored the fields whole in state.bin; "
+           "rerun to write a checkpoint of this version");
+  // The part files this rank reads; a missing or damaged one stops every rank.
+  const auto n_parts = r.integer("vector_parts");
+  std::string error;
+  try {
+    for (std::int64_t f = comm_.rank(); f < n_parts; f += comm_.size())
+      parts_.emplace_back(dir / part_name(f));
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  throw_collectively(comm_, error);
   // Output counters (Output::write_checkpoint), read here so that every rank checks them.
   std::istringstream files(r.text("output.pvd_files"));
   for (const double t : r.reals("output.pvd_times")) {
@@ -277,50 +313,143 @@ RecordWriter Checkpoints::begin(int step, double time) const {
   w.put_integer("mesh_hash", static_cast<std::int64_t>(m.hash));
   w.put_integer("input_hash", static_cast<std::int64_t>(input_hash_));
   w.put_integer("ranks", comm_.size());
+  w.put_integer("vector_parts", comm_.size());
   w.put_integer("step", step);
   w.put_real("time", time);
+  std::vector<std::int64_t> owned;
+  for (std::size_t k = 0; k < order_.index.size(); ++k)
+    if (order_.owned[k]) owned.push_back(order_.index[k]);
+  w.put_part("index", owned);
   return w;
 }
 
 void Checkpoints::commit(const RecordWriter& writer, int step) const {
   const auto& comm = comm_;
+  char name[32];
+  std::snprintf(name, sizeof name, "checkpoint_%05d", step);
+  const auto dir = dir_ / name;
   std::string error;
   if (comm.is_root()) {
-    char name[32];
-    std::snprintf(name, sizeof name, "checkpoint_%05d", step);
-    const auto dir = dir_ / name;
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
-    if (ec) {
-      error = "cannot create " + dir.string() + ": " + ec.message();
-    } else {
-      try {
-        io::write_file_atomically(dir / "state.bin", writer.document());
-      } catch (const InputError& e) {
-        error = e.what();
-      }
-    }
+    if (ec) error = "cannot create " + dir.string() + ": " + ec.message();
   }
+  comm.broadcast(error);
+  if (!error.empty()) SEAM_THROW(InputError, error);
+  // Every rank its part, then rank 0 the shared records: state.bin is written last, so a
+  // checkpoint with a state.bin has all its parts.
+  const auto write = [&](const std::filesystem::path& file, const std::string& text) {
+    try {
+      io::write_file_atomically(file, text);
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+  };
+  write(dir / part_name(comm.rank()), writer.part_document());
+  throw_collectively(comm, error);
+  if (comm.is_root()) write(dir / "state.bin", writer.document());
   comm.broadcast(error);
   if (!error.empty()) SEAM_THROW(InputError, error);
 }
 
 void Checkpoints::put_vector(RecordWriter& writer, const std::string& name,
                              const la::Vector& v) const {
-  // Rank 0 gathers every entry in the canonical order; the others ask for nothing.
-  const la::Gather gather(v, order_.global);
   std::vector<double> values;
-  gather(v, values);
-  writer.put(name, values);
+  {
+    const la::Vector::LocalView view(v, false);
+    const auto vl = view.values();
+    for (std::size_t k = 0; k < order_.index.size(); ++k)
+      if (order_.owned[k]) values.push_back(vl[static_cast<std::size_t>(order_.local[k])]);
+  }
+  writer.put_part(name, values);
 }
 
+namespace {
+
+struct Entry {
+  std::int64_t index;
+  double value;
+};
+
+} // namespace
+
 void Checkpoints::get_vector(const std::string& name, la::Vector& v) const {
-  const auto values = reader_.reals(name, order_.size);
+  const auto& order = order_;
+  const int np = comm_.size();
+  std::vector<double> held(order.index.size(), 0.0);
+  {
+    // The entries of the part files this rank read go to the rank that keeps index i
+    // (i mod np) ...
+    const auto home = [np](std::int64_t i) { return static_cast<int>(i % np); };
+    std::vector<std::vector<Entry>> out(static_cast<std::size_t>(np));
+    std::string error; // a bad record stops every rank, not only the one reading it
+    try {
+      for (const auto& part : parts_) {
+        const auto index = part.integers("index");
+        const auto values = part.reals(name, index.size());
+        for (std::size_t k = 0; k < index.size(); ++k) {
+          if (index[k] < 0 || index[k] >= order.size)
+            part.fail("record 'index' holds an entry out of range");
+          out[static_cast<std::size_t>(home(index[k]))].push_back({index[k], values[k]});
+        }
+      }
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+    throw_collectively(comm_, error);
+    std::vector<Entry> send;
+    std::vector<std::int64_t> offsets(1, 0), recv_offsets;
+    for (const auto& o : out) {
+      send.insert(send.end(), o.begin(), o.end());
+      offsets.push_back(static_cast<std::int64_t>(send.size()));
+    }
+    auto kept = parallel::alltoallv<Entry>(comm_.get(), send, offsets, recv_offsets);
+    std::sort(kept.begin(), kept.end(),
+              [](const Entry& a, const Entry& b) { return a.index < b.index; });
+    // ... which answers the requests of the ranks that hold it.
+    std::vector<std::vector<std::int64_t>> ask(static_cast<std::size_t>(np));
+    std::vector<std::vector<std::size_t>> slot(static_cast<std::size_t>(np));
+    for (std::size_t k = 0; k < order.index.size(); ++k) {
+      ask[static_cast<std::size_t>(home(order.index[k]))].push_back(order.index[k]);
+      slot[static_cast<std::size_t>(home(order.index[k]))].push_back(k);
+    }
+    std::vector<std::int64_t> asked;
+    offsets.assign(1, 0);
+    for (const auto& a : ask) {
+      asked.insert(asked.end(), a.begin(), a.end());
+      offsets.push_back(static_cast<std::int64_t>(asked.size()));
+    }
+    std::vector<std::int64_t> asked_offsets;
+    const auto requests =
+        parallel::alltoallv<std::int64_t>(comm_.get(), asked, offsets, asked_offsets);
+    std::vector<double> answers(requests.size(), 0.0);
+    bool missing = false;
+    for (std::size_t k = 0; k < requests.size(); ++k) {
+      const auto it = std::lower_bound(kept.begin(), kept.end(), requests[k],
+                                       [](const Entry& e, std::int64_t i) { return e.index < i; });
+      if (it == kept.end() || it->index != requests[k])
+        missing = true;
+      else
+        answers[k] = it->value;
+    }
+    if (comm_.any(missing))
+      SEAM_THROW(InputError, "checkpoint ", reader_.path().parent_path().string(), ": record '",
+                 name,
+                 "' of its part files lacks entries (a part file of another "
+                 "run?)");
+    std::vector<std::int64_t> back_offsets;
+    const auto values =
+        parallel::alltoallv<double>(comm_.get(), answers, asked_offsets, back_offsets);
+    for (int r = 0; r < np; ++r)
+      for (std::size_t j = 0; j < slot[static_cast<std::size_t>(r)].size(); ++j)
+        held[slot[static_cast<std::size_t>(r)][j]] =
+            values[static_cast<std::size_t>(back_offsets[r]) + j];
+  }
   {
     la::Vector::LocalView view(v, true);
     auto vl = view.values();
-    for (std::size_t i = 0; i < order_.size; ++i)
-      if (order_.local[i] >= 0) vl[static_cast<std::size_t>(order_.local[i])] = values[i];
+    for (std::size_t k = 0; k < held.size(); ++k)
+      if (order.local[k] >= 0) vl[static_cast<std::size_t>(order.local[k])] = held[k];
   }
   v.update_ghosts();
 }

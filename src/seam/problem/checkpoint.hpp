@@ -1,11 +1,15 @@
 #pragma once
 // Checkpoints and restart (CONTRACT.md "Checkpoints"). A checkpoint is the directory
-// checkpoint_NNNNN/ in the output directory with one file, state.bin: named records (reals,
-// integers, text) behind a magic line and followed by their byte count and an FNV-1a checksum,
-// so that a truncated or damaged file is found before anything is read from it.
-// The records do not depend on the number of ranks: vectors are stored per mesh node (node id
-// order, dim values each), interface state per slave node of the side, and per-rank pieces of
-// operators as (row, column, value) triplets, so that any number of ranks can reload them.
+// checkpoint_NNNNN/ in the output directory with the file state.bin and one file
+// part_RRRRR.bin per rank that wrote it: named records (reals, integers, text) behind a magic
+// line and followed by their byte count and an FNV-1a checksum, so that a truncated or damaged
+// file is found before anything is read from it.
+// state.bin holds what is not sized by the mesh, interface state per slave node of the side
+// and per-rank pieces of operators as (row, column, value) triplets. The nodal vectors are not
+// gathered: each rank writes the entries it owns into its part file, with their index in a
+// rank-independent order (per mesh node in node id order, the node's dofs in order), and a
+// restart on any number of ranks routes them to the ranks that hold them (no rank holds a
+// whole vector).
 // The input file's and the mesh's hashes are stored with them: a checkpoint of another input
 // or mesh is an input error.
 #include "seam/io/config.hpp"
@@ -24,9 +28,15 @@
 
 namespace seam::problem {
 
-/// Named records, built on every rank (rank 0's copy is the one written).
+/// Named records, built on every rank: the shared records (rank 0's copy is the one written to
+/// state.bin) and this rank's part (part_RRRRR.bin).
 class RecordWriter {
 public:
+  /// A record of this rank's part file.
+  void put_part(const std::string& name, std::span<const double> values);
+  void put_part(const std::string& name, std::span<const std::int64_t> values);
+  /// The part file: magic line, records, byte count, checksum.
+  std::string part_document() const;
   void put(const std::string& name, std::span<const double> values);
   void put(const std::string& name, std::span<const std::int64_t> values);
   void put(const std::string& name, const std::string& text);
@@ -36,8 +46,9 @@ public:
   std::string document() const;
 
 private:
-  void append(const std::string& name, char type, const void* data, std::size_t bytes);
-  std::string records_;
+  static void append(std::string& records, const std::string& name, char type, const void* data,
+                     std::size_t bytes);
+  std::string records_, part_;
 };
 
 /// The records of a file written by RecordWriter; every accessor throws InputError naming the
@@ -83,13 +94,20 @@ MeshIdentity identify(const mesh::Mesh& m);
 MeshIdentity identify(const mesh::DistributedMesh& d, const Comm& comm);
 
 /// The rank-independent order in which a field's vectors are stored: per mesh node in node id
-/// order, its dofs in the field's order.
+/// order, its dofs in the field's order. Each rank lists only the entries it holds.
 struct CanonicalOrder {
-  /// The global index of every stored entry (rank 0 only: it gathers them).
-  std::vector<PetscInt> global;
-  /// The local (ghosted) index of every stored entry, -1 where this rank has none.
+  /// Per entry this rank holds (owned or ghost): its index in the stored order, its local
+  /// (ghosted) index, and whether this rank owns it (each entry has one owner, who writes it).
+  std::vector<std::int64_t> index;
   std::vector<std::int32_t> local;
-  std::size_t size = 0;
+  std::vector<char> owned;
+  /// The number of stored entries over all ranks.
+  std::int64_t size = 0;
+  void add(std::int64_t i, std::int32_t l, bool own) {
+    index.push_back(i);
+    local.push_back(l);
+    owned.push_back(own ? 1 : 0);
+  }
 };
 /// Solids: dim displacement dofs per node.
 CanonicalOrder nodal_order(const Discretization& disc);
@@ -117,12 +135,13 @@ public:
   bool due(int step) const { return every_ > 0 && step % every_ == 0; }
   /// A writer holding the identification records (format, input and mesh hashes, step).
   RecordWriter begin(int step, double time) const;
-  /// Writes checkpoint_NNNNN/state.bin (rank 0). Collective.
+  /// Writes checkpoint_NNNNN/: every rank its part file, then rank 0 state.bin. Collective.
   void commit(const RecordWriter& writer, int step) const;
 
-  /// v's values in the canonical order as record `name`. Collective.
+  /// v's owned values as record `name` of this rank's part (in the order of the part's
+  /// record `index`).
   void put_vector(RecordWriter& writer, const std::string& name, const la::Vector& v) const;
-  /// Record `name` of the restart checkpoint into v (owned and ghost entries).
+  /// Record `name` of the restart checkpoint into v (owned and ghost entries). Collective.
   void get_vector(const std::string& name, la::Vector& v) const;
 
   /// The mode of an output table: a fresh file, or (restarting) the file continued after its
@@ -138,6 +157,8 @@ private:
   std::uint64_t input_hash_ = 0;
   bool restarting_ = false;
   RecordReader reader_;
+  /// The part files of the restart checkpoint this rank reads (files r, r + size, ...).
+  std::vector<RecordReader> parts_;
   int restart_step_ = 0;
   double restart_time_ = 0.0;
   std::vector<io::PvdCollection::Entry> pvd_;

@@ -277,11 +277,9 @@ CanonicalOrder fluid_order(const FluidLayout& layout) {
   const int dim = layout.dim();
   CanonicalOrder order;
   for (std::int32_t n = 0; n < layout.mesh().n_nodes(); ++n)
-    for (int c = 0; c < dim + (layout.has_pressure(n) ? 1 : 0); ++c) {
-      if (layout.comm().is_root()) order.global.push_back(layout.global_dof(n, c));
-      order.local.push_back(layout.local_dof(n, c));
-    }
-  order.size = order.local.size();
+    for (int c = 0; c < dim + (layout.has_pressure(n) ? 1 : 0); ++c, ++order.size)
+      if (layout.local_dof(n, c) >= 0)
+        order.add(order.size, layout.local_dof(n, c), layout.owns_node(n));
   return order;
 }
 
