@@ -9,6 +9,7 @@ interface is redistributed at a restart, which changes sums at round-off).
 - static frictional contact of two elastic blocks (the mortar operators of the last converged
   step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
+- self and multi-body contact (`surface:`) with friction,
 - static friction continued from a checkpoint written while the step was cut (the halved step
   size and the cut count in effect), and a rigid circle moved along a block (its position is
   a function of the restart time),
@@ -273,6 +274,14 @@ def test_fluid_moving_mesh():
                cross_np="1 -> 3")
 
 
+def test_self_contact_surface():
+    """The two blocks as one `surface:` interface (self and multi-body contact: the slave and
+    master facets are assigned at every search) with Coulomb friction."""
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e).replace(
+        "slave: slider_bottom, master: base_top", "surface: [slider_bottom, base_top]"), 3,
+        "self contact surface, friction", cross_np="1 -> 3")
+
+
 def cut_steps_yaml(every):
     """The two blocks in two steps of 2 with 6 Newton iterations at most: the first step is
     cut once and the drag steps twice, so the checkpoint after step 2 (t = 1.5) holds a
@@ -442,7 +451,7 @@ if __name__ == "__main__":
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
-                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_after_step_cuts,
-                test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
+                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_self_contact_surface,
+                test_after_step_cuts, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
     finally:
         H.cleanup(*_dirs)
