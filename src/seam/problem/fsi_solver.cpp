@@ -275,7 +275,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                "angular_momentum_x,angular_momentum_y,angular_momentum_z,wall_seconds,"
                "interface_force_fluid_x,interface_force_fluid_y,interface_force_fluid_z,"
                "interface_force_structure_x,interface_force_structure_y,"
-               "interface_force_structure_z\n";
+               "interface_force_structure_z,fluid_kinetic_energy,viscous_dissipation,"
+               "boundary_work,interface_work_fluid,interface_work_structure\n";
     w.interfaces.open(dir / "interfaces.csv");
     w.interfaces << "step,time,interface,normal_force,tangential_force,active_nodes,slip_nodes,"
                     "contact_area\n";
@@ -332,7 +333,19 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       tj[phase] = timers.get(phase);
     io::write_json(dir / "summary.json", j);
   };
+  // The energy budget (docs/fsi.md, "Energy budget"): the powers at t_n, the works accumulated
+  // to t_n (trapezoidal rule), the fluid's reactions at t_n.
+  struct Powers {
+    double boundary = 0.0, dissipation = 0.0, interface_fluid = 0.0, interface_structure = 0.0;
+  };
+  Powers power_old, work_sum;
+  std::vector<double> reaction(sys.n_raw(), 0.0);
+  std::vector<char> on_interface(sys.n_raw(), 0);
+  for (const auto& cp : sys.couplings())
+    for (auto n : cp.fluid_nodes)
+      for (int i = 0; i < dim; ++i) on_interface[sys.f_dof(n, i)] = 1;
   while (control.running()) {
+    const double t_old = control.time();
     const double t = control.next();
     if (dynamic) history.dt = t - control.time();
     const auto g = sys.prescribed(t);
@@ -412,6 +425,45 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       history.rate = std::move(rate);
       history.accel = std::move(accel);
     }
+    // The powers at t_{n+1}. The fluid's reactions (the residual rows of its velocity: the force
+    // of the walls, the inflow and the structure on the fluid) at t_{n+1} from the residual at
+    // t_{n+alpha_f}, as for forces.csv; their power on the fluid's velocity; the power of the
+    // transferred force P^T f on the structure's velocity; the dissipation and the kinetic
+    // energy carried through the boundary (- convection + mesh transport, fluid::EnergyIntegrals).
+    Powers power;
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+      if (sys.is_fluid_node(n))
+        for (int i = 0; i < dim; ++i) {
+          const auto a = sys.f_dof(n, i);
+          const double ra = res.raw_residual[a];
+          reaction[a] = dynamic ? (ra - (1 - history.f_af) * reaction[a]) / history.f_af : ra;
+          if (on_interface[a])
+            power.interface_fluid += raw[a] * reaction[a];
+          else if (sys.is_prescribed(a))
+            power.boundary += raw[a] * reaction[a];
+        }
+    if (dynamic)
+      for (const auto& cp : sys.couplings())
+        for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
+          for (int i = 0; i < dim; ++i) {
+            const double f = -reaction[sys.f_dof(cp.fluid_nodes[j], i)];
+            for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q)
+              power.interface_structure +=
+                  cp.weights[q] * f * history.rate[sys.d_dof(cp.structure_nodes[q], i)];
+          }
+    const auto fluid_energy = sys.fluid_energy(raw, dynamic ? std::span<const double>(history.rate)
+                                                            : std::span<const double>());
+    power.boundary += fluid_energy.mesh_transport - fluid_energy.convection;
+    power.dissipation = fluid_energy.dissipation;
+    if (dynamic) {
+      const double h = 0.5 * (t - t_old);
+      work_sum.boundary += h * (power_old.boundary + power.boundary);
+      work_sum.dissipation += h * (power_old.dissipation + power.dissipation);
+      work_sum.interface_fluid += h * (power_old.interface_fluid + power.interface_fluid);
+      work_sum.interface_structure +=
+          h * (power_old.interface_structure + power.interface_structure);
+    }
+    power_old = power;
     if (!root) continue;
     for (std::size_t k = 0; k < w.groups.size(); ++k) {
       auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
@@ -465,7 +517,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0," << res.kinetic_energy << ','
             << res.strain_energy << ',' << work << ',' << res.kinetic_energy + res.strain_energy
             << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ',' << ff[1] << ',' << ff[2] << ','
-            << fs[0] << ',' << fs[1] << ',' << fs[2] << '\n';
+            << fs[0] << ',' << fs[1] << ',' << fs[2] << ',' << fluid_energy.kinetic << ','
+            << work_sum.dissipation << ',' << work_sum.boundary << ',' << work_sum.interface_fluid
+            << ',' << work_sum.interface_structure << '\n';
     w.steps.flush();
     ScopedTimer timer(timers, "output");
     write_probes(sys, raw, step, t, w);

@@ -103,6 +103,45 @@ void FsiSystem::expand(std::span<const double> x, std::span<const double> g,
   }
 }
 
+fluid::EnergyIntegrals FsiSystem::fluid_energy(std::span<const double> raw,
+                                               std::span<const double> rate) const {
+  const int dim = dim_;
+  fluid::EnergyIntegrals sum;
+  constexpr std::size_t nmax = fem::max_cell_nodes;
+  std::array<double, nmax * 3> x{}, u{}, w{};
+  std::array<double, nmax> p{};
+  for (auto c : local_cells_) {
+    if (cell_fluid_[c] < 0) continue;
+    const auto nodes = mesh_->cell(c);
+    const auto nd = nodes.size() * dim;
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < dim; ++i) {
+        const auto k = a * dim + i;
+        x[k] = mesh_->x[static_cast<std::size_t>(nodes[a]) * dim + i] + raw[m_dof(nodes[a], i)];
+        u[k] = raw[f_dof(nodes[a], i)];
+        w[k] = rate.empty() ? 0.0 : rate[m_dof(nodes[a], i)];
+      }
+    fluid::FluidElementInput in;
+    in.cell = mesh_->cell_type[c];
+    in.dim = dim;
+    in.fluid = fluids_[cell_fluid_[c]];
+    in.x = std::span<const double>(x.data(), nd);
+    in.u = std::span<const double>(u.data(), nd);
+    in.p = std::span<const double>(p.data(), static_cast<std::size_t>(fem::n_vertices(in.cell)));
+    if (!rate.empty()) in.mesh_velocity = std::span<const double>(w.data(), nd);
+    const auto e = fluid::energy_integrals(in);
+    sum.kinetic += e.kinetic;
+    sum.dissipation += e.dissipation;
+    sum.convection += e.convection;
+    sum.mesh_transport += e.mesh_transport;
+  }
+  sum.kinetic = comm_.sum(sum.kinetic);
+  sum.dissipation = comm_.sum(sum.dissipation);
+  sum.convection = comm_.sum(sum.convection);
+  sum.mesh_transport = comm_.sum(sum.mesh_transport);
+  return sum;
+}
+
 void FsiSystem::add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
                           std::span<const double> K, std::vector<PetscInt>* I,
                           std::vector<PetscInt>* J, std::vector<double>& V) const {

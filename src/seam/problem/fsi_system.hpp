@@ -82,6 +82,8 @@ public:
   bool has_pressure(std::int32_t n) const { return pressure_node_[n] != 0; }
   bool is_fluid_cell(std::int32_t c) const { return cell_fluid_[c] >= 0; }
   const std::vector<FsiCoupling>& couplings() const { return couplings_; }
+  /// Whether raw dof a holds a prescribed value (a `velocity` or `dirichlet` condition).
+  bool is_prescribed(std::size_t a) const { return prescribed_[a] >= 0; }
 
   /// Time integration (docs/fsi.md, "Dynamics"): the structure by generalized-alpha (Chung &
   /// Hulbert 1993), the fluid and its mesh by generalized-alpha for first-order systems
@@ -129,6 +131,12 @@ public:
   /// values, in place, so that MUMPS reuses its symbolic analysis; an empty J is made.
   Result assemble(std::span<const double> raw, double t, la::Vector& r, la::Matrix* J,
                   const Options& options) const;
+
+  /// The fluid's energy integrals (fluid::energy_integrals) over all fluid cells, summed over
+  /// ranks, at the raw state `raw` on its mesh X + m, with the mesh velocity from `rate` (the
+  /// rates of the state, empty: w = 0). Collective.
+  fluid::EnergyIntegrals fluid_energy(std::span<const double> raw,
+                                      std::span<const double> rate) const;
 
 private:
   /// Adds R^T K T_c of one element block to the triplets; I and J null: the values only.
