@@ -16,6 +16,10 @@
   * A velocity condition on the fluid's interface group changes nothing (the coupling wins).
   * The FSI3 start-up (generalized-alpha on both fields, rho_s/rho_f = 1): 10 steps on a coarse
     mesh converge, the force transfer is exact at every step, 3 ranks equal 1 rank.
+  * The energy budget of the coupled system closes at second order in dt; the interface works
+    of the two sides cancel to round-off.
+  * Step cutting: a step whose Newton method fails is cut and retried; the run then equals the
+    run with the smaller steps.
   * SEAM_FULL=1: refine 2, the errors fall toward the published values; the FSI3 start-up's
     u_y(A) converges at about second order in dt.
   * Bad input of an fsi run: exit 1 with a located message.
@@ -131,14 +135,21 @@ def test_fsi1_refinement():
         H.assert_close(r2[key], REFERENCE[key], rtol=rtol, what="FSI1 refine 2 " + key)
 
 
-def fsi3_startup(np, end=0.1, dt=0.01):
+def fsi3_case(end, dt, replace=()):
+    """The FSI3 start-up (fsi3.yaml) to `end` with steps `dt` on the mesh of refine 0.5."""
     work, path = H.copy_example("turek_hron", "fsi3.yaml",
-                                [("end: 0.5, dt: 0.01", "end: %g, dt: %g" % (end, dt))])
+                                [("end: 0.5, dt: 0.01", "end: %g, dt: %g" % (end, dt))]
+                                + list(replace))
     geo = os.path.join(work, "fsi.geo")
     with open(geo) as f:
         text = f.read()
     with open(geo, "w") as f:
         f.write(text.replace("refine = 1;", "refine = 0.5;"))
+    return work, path
+
+
+def fsi3_startup(np, end=0.1, dt=0.01):
+    work, path = fsi3_case(end, dt)
     try:
         out = H.solve(path, np=np)
         return (H.read_csv(os.path.join(out, "steps.csv")),
@@ -168,6 +179,9 @@ def test_fsi3_startup():
     steps3, probes3, forces3 = fsi3_startup(3)
     H.assert_close(probes3[-1]["uy"], uy, rtol=1e-6, atol=1e-12, what="FSI3 np 3 against np 1")
     H.assert_close(forces3[-1]["fx"], forces[-1]["fx"], rtol=1e-8, what="FSI3 drag np 3")
+    for key in ("fluid_kinetic_energy", "viscous_dissipation", "boundary_work",
+                "interface_work_structure"):
+        H.assert_close(steps3[-1][key], steps[-1][key], rtol=1e-8, what="FSI3 %s np 3" % key)
 
 
 @H.full_only
@@ -180,6 +194,91 @@ def test_fsi3_time_order():
     print("   u_y(A) at t = 0.2: %s; differences %s" % (uy, d))
     if not (d[0] / d[1] > 2.5 and d[1] / d[2] > 3.5):
         raise AssertionError("u_y(A) differences %s do not fall at second order" % d)
+
+
+def test_fsi3_step_cut():
+    """A failed step is cut and retried from the last converged state (docs/input.md 6.3). The
+    FSI3 start-up to t = 0.16 with at most 2 Newton corrections to a relative residual of 3e-9:
+    one step of dt = 0.16 needs 3 (it reaches 1.05e-8 after 2), steps of 0.08 need 2 (3.7e-11
+    and 1.1e-9). So dt = 0.16 is cut to 0.08 and then takes the same two steps as a run with
+    dt = 0.08: u_y(A), the drag and the structure's energy at t = 0.16 agree to 1e-9. With
+    max_step_cuts: 0 the run ends with exit 2 and summary.json says failed."""
+    newton = ("time: {", "solver: {newton: {tolerance: 3.0e-9, max_iterations: 2}}\ntime: {")
+    results = []
+    for dt in (0.16, 0.08):
+        work, path = fsi3_case(0.16, dt, [newton])
+        out = tempfile.mkdtemp(prefix="seam_verif_")
+        _, stdout, _ = H.run(["run", path, "-o", out, "--quiet"])
+        cut = "cutting the step to dt = 0.08" in stdout
+        if cut != (dt == 0.16):
+            raise AssertionError("dt = %g: step cut printed: %s\n%s" % (dt, cut, stdout))
+        steps = H.read_csv(os.path.join(out, "steps.csv"))
+        times = [r["time"] for r in steps]
+        if [round(t, 12) for t in times] != [0.08, 0.16]:
+            raise AssertionError("dt = %g: steps end at %s, expected 0.08 and 0.16" % (dt, times))
+        results.append((H.read_csv(os.path.join(out, "probes.csv"))[-1]["uy"],
+                        H.read_csv(os.path.join(out, "forces.csv"))[-1]["fx"],
+                        steps[-1]["kinetic_energy"] + steps[-1]["internal_energy"]))
+        H.cleanup(work, out)
+    print("   FSI3 to t = 0.16, cut from dt = 0.16: u_y(A) %.9e, drag %.9f; dt = 0.08: %.9e, %.9f"
+          % (results[0][0], results[0][1], results[1][0], results[1][1]))
+    for name, a, b in zip(("u_y(A)", "drag", "structure energy"), results[0], results[1]):
+        H.assert_close(a, b, rtol=1e-9, what="%s after the cut against dt = 0.08" % name)
+    work, path = fsi3_case(0.16, 0.16, [newton, ("dt: 0.16}", "dt: 0.16, max_step_cuts: 0}")])
+    out = tempfile.mkdtemp(prefix="seam_verif_")
+    code, _, err = H.run(["run", path, "-o", out, "--quiet"], check=False)
+    summary = open(os.path.join(out, "summary.json")).read()
+    if code != 2 or "after 0 step cuts" not in err or '"failed"' not in summary:
+        raise AssertionError("max_step_cuts: 0: exit %d, expected 2\n%s\n%s" % (code, err, summary))
+    H.cleanup(work, out)
+
+
+def energy_closure(steps):
+    """The largest misfits of the energy budget over the steps (docs/fsi.md): of the fluid
+    (kinetic energy - boundary work + dissipation - work of the structure on it) relative to
+    the largest boundary work, of the structure (kinetic + strain energy - work of the fluid on
+    it) relative to its largest interface work, and the largest |sum of the two interface
+    works| relative to the structure's."""
+    fluid = structure = cancel = 0.0
+    w_b = max(abs(r["boundary_work"]) for r in steps)
+    w_s = max(abs(r["interface_work_structure"]) for r in steps)
+    for r in steps:
+        fluid = max(fluid, abs(r["fluid_kinetic_energy"] - r["boundary_work"]
+                               + r["viscous_dissipation"] - r["interface_work_fluid"]) / w_b)
+        structure = max(structure, abs(r["kinetic_energy"] + r["internal_energy"]
+                                       - r["interface_work_structure"]) / w_s)
+        cancel = max(cancel, abs(r["interface_work_fluid"] + r["interface_work_structure"]) / w_s)
+    return fluid, structure, cancel
+
+
+def test_fsi3_energy():
+    """The energy budget of the coupled system on the FSI3 start-up to t = 0.1 (coarse mesh)
+    with dt = 0.02, 0.01, 0.005. The interface works of the two sides cancel to round-off (the
+    P^T transfer conserves energy); the fluid's kinetic energy equals the work of the inflow,
+    outflow and walls minus the viscous dissipation plus the work of the structure on it, and
+    the structure's kinetic + strain energy the work of the fluid on it, each up to the time
+    discretization: the misfits fall at second order in dt (measured: fluid 3.8e-2, 9.7e-3,
+    2.4e-3, ratios 3.9 and 4.0; structure 2.8e-2, 7.1e-3, 2.2e-3, ratios 4.0 and 3.2)."""
+    misfits = []
+    for dt in (0.02, 0.01, 0.005):
+        steps = fsi3_startup(1, 0.1, dt)[0]
+        fluid, structure, cancel = energy_closure(steps)
+        print("   dt = %g: fluid misfit %.3e, structure misfit %.3e, interface works cancel to "
+              "%.1e (boundary work %.4e, dissipation %.4e, structure energy %.4e)"
+              % (dt, fluid, structure, cancel, steps[-1]["boundary_work"],
+                 steps[-1]["viscous_dissipation"],
+                 steps[-1]["kinetic_energy"] + steps[-1]["internal_energy"]))
+        if not cancel < 1e-12:
+            raise AssertionError("dt = %g: the interface works differ by %.3e" % (dt, cancel))
+        misfits.append((fluid, structure))
+    for k in range(2):
+        f = misfits[k][0] / misfits[k + 1][0]
+        s = misfits[k][1] / misfits[k + 1][1]
+        if not (f > 3.5 and s > 2.8):
+            raise AssertionError("energy misfits %s do not fall at second order (ratios %.2f, %.2f)"
+                                 % (misfits, f, s))
+    if not misfits[-1][0] < 4e-3:
+        raise AssertionError("fluid energy misfit %.3e at dt = 0.005" % misfits[-1][0])
 
 
 def expect_bad(what, replace, must, line):
@@ -223,5 +322,6 @@ def test_bad_input():
 
 if __name__ == "__main__":
     tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_nonmatching,
-             test_fsi3_startup, test_fsi1_refinement, test_fsi3_time_order]
+             test_fsi3_startup, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
+             test_fsi3_time_order]
     H.main(tests)

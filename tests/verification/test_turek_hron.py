@@ -18,6 +18,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from periodic_state import periodic_state  # noqa: E402
+
 CSM = {  # mu_s: (E = 2 mu (1 + nu) with nu = 0.4, u_x(A), u_y(A))
     "CSM1": (1.4e6, -7.187e-3, -66.10e-3),
     "CSM2": (5.6e6, -0.469e-3, -16.97e-3),
@@ -67,14 +70,6 @@ def test_csm1_parallel():
     H.cleanup(work, one, three)
 
 
-def extremum(t, u, i):
-    """Time and value of the parabola through the samples i-1, i, i+1."""
-    a = (u[i + 1] - 2 * u[i] + u[i - 1]) / 2
-    b = (u[i + 1] - u[i - 1]) / 2
-    s = -b / (2 * a)
-    return t[i] + s * (t[i + 1] - t[i]), u[i] - b * b / (4 * a)
-
-
 def test_csm3():
     # dt = 0.01 and 2.8 s (three periods) keep the CI case short; the example runs dt = 0.005.
     work, path = flag_case("csm3.yaml", replace=[("end: 4, dt: 0.005", "end: 2.8, dt: 0.01")])
@@ -82,14 +77,9 @@ def test_csm3():
     rows = H.read_csv(os.path.join(out, "probes.csv"))
     t = [r["time"] for r in rows]
     uy = [r["uy"] for r in rows]
-    maxima = [extremum(t, uy, i) for i in range(1, len(uy) - 1)
-              if uy[i] > uy[i - 1] and uy[i] >= uy[i + 1]]
-    minima = [extremum(t, uy, i) for i in range(1, len(uy) - 1)
-              if uy[i] < uy[i - 1] and uy[i] <= uy[i + 1]]
-    assert len(maxima) >= 2 and len(minima) >= 2, "fewer than two periods: %s %s" % (maxima, minima)
-    hi, lo = maxima[-1][1], minima[-1][1]
-    mean, amplitude = (hi + lo) / 2, (hi - lo) / 2
-    frequency = 2 / (maxima[-1][0] - maxima[-2][0] + minima[-1][0] - minima[-2][0])
+    state = periodic_state(t, uy)
+    assert state is not None and state["periods"] >= 2, "fewer than two periods: %s" % state
+    mean, amplitude, frequency = state["mean"], state["amplitude"], state["frequency"]
     print("   CSM3 u_y(A): mean %.4e (ref -63.607e-3), amplitude %.4e (ref 65.160e-3), "
           "frequency %.4f Hz (ref 1.0995)" % (mean, amplitude, frequency))
     H.assert_close(mean, -63.607e-3, rtol=0.02, what="CSM3 mean u_y(A)")

@@ -409,6 +409,43 @@ bool navier_stokes_mesh_derivatives(const FluidElementInput& in, std::span<doubl
   return by_velocity.empty() || mesh_derivative(in, true, by_velocity);
 }
 
+EnergyIntegrals energy_integrals(const FluidElementInput& in) {
+  const int dim = in.dim;
+  const int n = fem::n_nodes(in.cell);
+  const auto rule = fem::quadrature(in.cell, 3 * fem::order(in.cell));
+  EnergyIntegrals out;
+  Point<double> q;
+  std::array<double, 3> u{}, w{};
+  std::array<double, 9> grad_u{};
+  double p = 0.0;
+  for (int iq = 0; iq < rule.n_points; ++iq) {
+    if (!evaluate(in, in.x, &rule.points[iq * dim], rule.weights[iq], q)) continue;
+    interpolate(in, q, u.data(), grad_u.data(), p);
+    double div_w = 0.0;
+    w = {0.0, 0.0, 0.0};
+    if (!in.mesh_velocity.empty())
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i) {
+          w[i] += q.N[a] * in.mesh_velocity[a * dim + i];
+          div_w += q.G[a * dim + i] * in.mesh_velocity[a * dim + i];
+        }
+    double uu = 0.0, gg = 0.0, conv = 0.0;
+    for (int i = 0; i < dim; ++i) {
+      uu += u[i] * u[i];
+      for (int j = 0; j < dim; ++j) {
+        gg += grad_u[i * dim + j] * grad_u[i * dim + j];
+        conv += (u[j] - w[j]) * grad_u[i * dim + j] * u[i];
+      }
+    }
+    const double rho = in.fluid.density;
+    out.kinetic += q.weight * 0.5 * rho * uu;
+    out.dissipation += q.weight * in.fluid.viscosity * gg;
+    out.convection += q.weight * rho * conv;
+    out.mesh_transport += q.weight * 0.5 * rho * uu * div_w;
+  }
+  return out;
+}
+
 std::array<double, 4> error_integrals(const FluidElementInput& in, const ExactVelocity& u_exact,
                                       const ExactPressure& p_exact) {
   const int dim = in.dim;

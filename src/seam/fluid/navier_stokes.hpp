@@ -91,6 +91,17 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
 bool navier_stokes_mesh_derivatives(const FluidElementInput& in, std::span<double> by_position,
                                     std::span<double> by_velocity);
 
+/// Integrals over one cell for an energy budget of the flow (docs/fsi.md, "Energy budget"),
+/// with the residual's quadrature, at in.x, in.u and in.mesh_velocity w (empty: w = 0):
+/// the kinetic energy 1/2 int rho |u|^2, the dissipation rate int mu grad u : grad u (of the
+/// gradient form of the viscous term), the convective power int rho ((u - w) . grad u) . u and
+/// the mesh's transport 1/2 int rho |u|^2 div w. With u as test function the Taylor-Hood
+/// residual gives: the power of the reactions = int rho du/dt . u + convection + dissipation.
+struct EnergyIntegrals {
+  double kinetic = 0.0, dissipation = 0.0, convection = 0.0, mesh_transport = 0.0;
+};
+EnergyIntegrals energy_integrals(const FluidElementInput& in);
+
 /// Integrals over one cell for the L2 errors against exact fields, with a rule two degrees
 /// above the residual's: {int |u_h - u|^2, int (p_h - p)^2, int (p_h - p), |cell|}. The last
 /// two let a caller remove the constant by which an enclosed flow's pressure is undetermined:

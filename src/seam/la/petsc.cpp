@@ -268,6 +268,10 @@ Matrix Matrix::from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const Pe
   return out;
 }
 
+void Matrix::set_triplet_values(std::span<const double> values) {
+  check(MatSetValuesCOO(m_, values.data(), INSERT_VALUES), "MatSetValuesCOO");
+}
+
 Matrix Matrix::copy() const {
   Mat m = nullptr;
   check(MatDuplicate(m_, MAT_COPY_VALUES, &m), "MatDuplicate");

@@ -132,6 +132,10 @@ public:
   static Matrix from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
                               std::span<const PetscInt> cols, std::span<const double> values,
                               PetscInt n_owned_cols = -1);
+  /// New values for a matrix made by from_triplets, in the order of its triplets (the same
+  /// count; repeated entries are summed). The pattern is kept, so a direct solver reuses its
+  /// symbolic factorization. Collective.
+  void set_triplet_values(std::span<const double> values);
   /// A copy of this matrix (pattern and values).
   Matrix copy() const;
   /// y = this x, and y = this^T x.

@@ -3,12 +3,14 @@
 #include "seam/common/error.hpp"
 #include "seam/common/timer.hpp"
 #include "seam/fluid/navier_stokes.hpp"
+#include "seam/io/json.hpp"
 #include "seam/io/vtu.hpp"
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/locate.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/fsi_system.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/step_control.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -273,7 +275,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                "angular_momentum_x,angular_momentum_y,angular_momentum_z,wall_seconds,"
                "interface_force_fluid_x,interface_force_fluid_y,interface_force_fluid_z,"
                "interface_force_structure_x,interface_force_structure_y,"
-               "interface_force_structure_z\n";
+               "interface_force_structure_z,fluid_kinetic_energy,viscous_dissipation,"
+               "boundary_work,interface_work_fluid,interface_work_structure\n";
     w.interfaces.open(dir / "interfaces.csv");
     w.interfaces << "step,time,interface,normal_force,tangential_force,active_nodes,slip_nodes,"
                     "contact_area\n";
@@ -302,8 +305,6 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   const auto start = std::chrono::steady_clock::now();
   const auto normals = interface_normals(config, sys);
   const auto& nc = config.solver.newton;
-  bool converged = true;
-  int step = 1;
   // Dynamics: the state at t_n (from rest) and the force groups' forces at t_n.
   const bool dynamic = config.time.integrator == io::Integrator::generalized_alpha;
   FsiSystem::History history;
@@ -312,22 +313,67 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     sys.set_history(&history);
   }
   std::vector<std::array<double, 3>> group_force(w.groups.size(), {0.0, 0.0, 0.0});
-  for (; step <= config.time.n_steps; ++step) {
-    const double t = config.time.time_at(step);
-    if (dynamic) history.dt = t - config.time.time_at(step - 1);
+  // Steps as the solid runs them (docs/input.md §6.3): a failed Newton attempt restores the
+  // last converged state and halves the step.
+  StepControl control(config.time);
+  std::vector<double> x_converged = x;
+  int step = 0, newton_iterations = 0;
+  const auto finish = [&](bool ok) {
+    if (!root) return;
+    io::Json j = io::Json::object();
+    j["status"] = ok ? "converged" : "failed";
+    j["steps"] = step;
+    j["dofs"] = static_cast<std::int64_t>(info.n_dofs);
+    j["ranks"] = comm.size();
+    j["wall_seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    j["newton_iterations"] = newton_iterations;
+    auto& tj = j["timings"];
+    for (const char* phase : {"assembly", "condensation", "linear_solve", "output"})
+      tj[phase] = timers.get(phase);
+    io::write_json(dir / "summary.json", j);
+  };
+  // The energy budget (docs/fsi.md, "Energy budget"): the powers at t_n, the works accumulated
+  // to t_n (trapezoidal rule), the fluid's reactions at t_n.
+  struct Powers {
+    double boundary = 0.0, dissipation = 0.0, interface_fluid = 0.0, interface_structure = 0.0;
+  };
+  Powers power_old, work_sum;
+  std::vector<double> reaction(sys.n_raw(), 0.0);
+  std::vector<char> on_interface(sys.n_raw(), 0);
+  for (const auto& cp : sys.couplings())
+    for (auto n : cp.fluid_nodes)
+      for (int i = 0; i < dim; ++i) on_interface[sys.f_dof(n, i)] = 1;
+  while (control.running()) {
+    const double t_old = control.time();
+    const double t = control.next();
+    if (dynamic) history.dt = t - control.time();
     const auto g = sys.prescribed(t);
     FsiSystem::Result res;
     double rn = 0.0;
     int it = 0;
-    converged = false;
+    const char* failure = "";
     for (;; ++it) {
       sys.expand(x, g, raw);
-      res = sys.assemble(raw, t, r, it < nc.max_iterations ? &J : nullptr, {});
-      if (res.inverted)
-        SEAM_THROW(SolverError, "step ", step, " (t = ", t,
-                   "): a fluid or solid cell inverted in Newton iteration ", it,
-                   "; take more steps (time.steps)");
+      // The first iteration of a step assembles the Jacobian with the residual (it is rarely
+      // converged); later ones assemble the residual, and the Jacobian only if it is needed.
+      // The residual alone costs a fraction of the Jacobian (no shape derivatives).
+      const auto evaluate = [&](la::Matrix* jacobian) {
+        res = sys.assemble(raw, t, r, jacobian, {});
+        timers.add("assembly", comm.max(res.assembly_seconds));
+        timers.add("condensation", comm.max(res.condensation_seconds));
+      };
+      const bool with_jacobian = it == 0 && it < nc.max_iterations;
+      evaluate(with_jacobian ? &J : nullptr);
+      if (res.inverted) {
+        failure = "a fluid or solid cell is inverted";
+        break;
+      }
       rn = r.norm();
+      if (!std::isfinite(rn)) {
+        failure = "the residual is not finite";
+        break;
+      }
       // The scale: the largest first residual so far, the reactions' level and the force level
       // of the system (the magnitudes of the element contributions), so that a state that
       // already solves the equations is not iterated at round-off.
@@ -338,28 +384,39 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
             level += res.raw_residual[sys.f_dof(n, i)] * res.raw_residual[sys.f_dof(n, i)];
       reference = std::max({reference, it == 0 ? rn : 0.0, std::sqrt(level), res.level});
       if (root && !quiet)
-        std::printf("  step %d t = %g  iteration %d  |r| = %.3e (relative %.3e)\n", step, t, it, rn,
-                    reference > 0 ? rn / reference : 0.0);
-      if (rn <= nc.tolerance * reference || rn == 0.0) {
-        converged = true;
+        std::printf("  step %d t = %g  iteration %d  |r| = %.3e (relative %.3e)\n", step + 1, t, it,
+                    rn, reference > 0 ? rn / reference : 0.0);
+      if (rn <= nc.tolerance * reference || rn == 0.0) break;
+      if (it >= nc.max_iterations) {
+        failure = "Newton's method did not converge";
         break;
       }
-      if (it >= nc.max_iterations) break;
+      if (!with_jacobian) evaluate(&J);
       b.copy_from(r);
       b.scale(-1.0);
-      if (!solver.solve(J, b, dx))
-        SEAM_THROW(SolverError, "step ", step, ": the linear solve failed (MUMPS)");
+      bool solved = false;
+      {
+        ScopedTimer timer(timers, "linear_solve");
+        solved = solver.solve(J, b, dx);
+      }
+      if (!solved) {
+        failure = "the linear solver failed (MUMPS)";
+        break;
+      }
       gather(dx, dx_all);
       for (std::size_t k = 0; k < x.size(); ++k) x[k] += dx_all[k];
     }
-    if (!converged) {
-      if (root)
-        std::fprintf(stderr,
-                     "seam: step %d (t = %g): Newton did not converge in %d iterations "
-                     "(|r| = %.3e)\n",
-                     step, t, nc.max_iterations, rn);
-      break;
+    newton_iterations += it;
+    if (*failure != '\0') {
+      x = x_converged;
+      if (control.cut(failure, t, comm)) continue;
+      finish(false);
+      SEAM_THROW(SolverError, failure, " at t = ", t, " after ", control.cuts(), " step cuts; the ",
+                 step, " converged steps are written in ", dir.string());
     }
+    x_converged = x;
+    control.accept(t);
+    ++step;
     if (dynamic) {
       // The rates of the converged state become the history of the next step.
       std::vector<double> rate, accel;
@@ -368,6 +425,45 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       history.rate = std::move(rate);
       history.accel = std::move(accel);
     }
+    // The powers at t_{n+1}. The fluid's reactions (the residual rows of its velocity: the force
+    // of the walls, the inflow and the structure on the fluid) at t_{n+1} from the residual at
+    // t_{n+alpha_f}, as for forces.csv; their power on the fluid's velocity; the power of the
+    // transferred force P^T f on the structure's velocity; the dissipation and the kinetic
+    // energy carried through the boundary (- convection + mesh transport, fluid::EnergyIntegrals).
+    Powers power;
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+      if (sys.is_fluid_node(n))
+        for (int i = 0; i < dim; ++i) {
+          const auto a = sys.f_dof(n, i);
+          const double ra = res.raw_residual[a];
+          reaction[a] = dynamic ? (ra - (1 - history.f_af) * reaction[a]) / history.f_af : ra;
+          if (on_interface[a])
+            power.interface_fluid += raw[a] * reaction[a];
+          else if (sys.is_prescribed(a))
+            power.boundary += raw[a] * reaction[a];
+        }
+    if (dynamic)
+      for (const auto& cp : sys.couplings())
+        for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
+          for (int i = 0; i < dim; ++i) {
+            const double f = -reaction[sys.f_dof(cp.fluid_nodes[j], i)];
+            for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q)
+              power.interface_structure +=
+                  cp.weights[q] * f * history.rate[sys.d_dof(cp.structure_nodes[q], i)];
+          }
+    const auto fluid_energy = sys.fluid_energy(raw, dynamic ? std::span<const double>(history.rate)
+                                                            : std::span<const double>());
+    power.boundary += fluid_energy.mesh_transport - fluid_energy.convection;
+    power.dissipation = fluid_energy.dissipation;
+    if (dynamic) {
+      const double h = 0.5 * (t - t_old);
+      work_sum.boundary += h * (power_old.boundary + power.boundary);
+      work_sum.dissipation += h * (power_old.dissipation + power.dissipation);
+      work_sum.interface_fluid += h * (power_old.interface_fluid + power.interface_fluid);
+      work_sum.interface_structure +=
+          h * (power_old.interface_structure + power.interface_structure);
+    }
+    power_old = power;
     if (!root) continue;
     for (std::size_t k = 0; k < w.groups.size(); ++k) {
       auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
@@ -421,20 +517,24 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0," << res.kinetic_energy << ','
             << res.strain_energy << ',' << work << ',' << res.kinetic_energy + res.strain_energy
             << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ',' << ff[1] << ',' << ff[2] << ','
-            << fs[0] << ',' << fs[1] << ',' << fs[2] << '\n';
+            << fs[0] << ',' << fs[1] << ',' << fs[2] << ',' << fluid_energy.kinetic << ','
+            << work_sum.dissipation << ',' << work_sum.boundary << ',' << work_sum.interface_fluid
+            << ',' << work_sum.interface_structure << '\n';
     w.steps.flush();
-    write_fields(sys, raw, step, t, w);
+    ScopedTimer timer(timers, "output");
     write_probes(sys, raw, step, t, w);
-    write_interfaces(sys, raw, res.raw_residual, normals, dir);
+    // Fields every `output.every` steps and at the end.
+    if (step % config.output.every == 0 || !control.running()) {
+      write_fields(sys, raw, step, t, w);
+      write_interfaces(sys, raw, res.raw_residual, normals, dir);
+    }
   }
-  if (root) {
-    std::ostringstream s;
-    s << "{\n  \"status\": \"" << (converged ? "converged" : "failed")
-      << "\",\n  \"steps\": " << step - 1 << ",\n  \"dofs\": " << info.n_dofs
-      << ",\n  \"ranks\": " << comm.size() << "\n}\n";
-    io::write_file_atomically(dir / "summary.json", s.str());
-  }
-  if (!converged) SEAM_THROW(SolverError, "the fluid-structure Newton method did not converge");
+  finish(true);
+  if (root && !quiet)
+    std::printf("seam: %d steps, %d Newton iterations; wall time in assembly %.3g s, "
+                "condensation %.3g s, linear solves %.3g s, output %.3g s\n",
+                step, newton_iterations, timers.get("assembly"), timers.get("condensation"),
+                timers.get("linear_solve"), timers.get("output"));
   return info;
 }
 

@@ -4,6 +4,7 @@
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
+#include "seam/common/timer.hpp"
 #include "seam/solid/element.hpp"
 #include "seam/solid/mass.hpp"
 
@@ -102,18 +103,58 @@ void FsiSystem::expand(std::span<const double> x, std::span<const double> g,
   }
 }
 
+fluid::EnergyIntegrals FsiSystem::fluid_energy(std::span<const double> raw,
+                                               std::span<const double> rate) const {
+  const int dim = dim_;
+  fluid::EnergyIntegrals sum;
+  constexpr std::size_t nmax = fem::max_cell_nodes;
+  std::array<double, nmax * 3> x{}, u{}, w{};
+  std::array<double, nmax> p{};
+  for (auto c : local_cells_) {
+    if (cell_fluid_[c] < 0) continue;
+    const auto nodes = mesh_->cell(c);
+    const auto nd = nodes.size() * dim;
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < dim; ++i) {
+        const auto k = a * dim + i;
+        x[k] = mesh_->x[static_cast<std::size_t>(nodes[a]) * dim + i] + raw[m_dof(nodes[a], i)];
+        u[k] = raw[f_dof(nodes[a], i)];
+        w[k] = rate.empty() ? 0.0 : rate[m_dof(nodes[a], i)];
+      }
+    fluid::FluidElementInput in;
+    in.cell = mesh_->cell_type[c];
+    in.dim = dim;
+    in.fluid = fluids_[cell_fluid_[c]];
+    in.x = std::span<const double>(x.data(), nd);
+    in.u = std::span<const double>(u.data(), nd);
+    in.p = std::span<const double>(p.data(), static_cast<std::size_t>(fem::n_vertices(in.cell)));
+    if (!rate.empty()) in.mesh_velocity = std::span<const double>(w.data(), nd);
+    const auto e = fluid::energy_integrals(in);
+    sum.kinetic += e.kinetic;
+    sum.dissipation += e.dissipation;
+    sum.convection += e.convection;
+    sum.mesh_transport += e.mesh_transport;
+  }
+  sum.kinetic = comm_.sum(sum.kinetic);
+  sum.dissipation = comm_.sum(sum.dissipation);
+  sum.convection = comm_.sum(sum.convection);
+  sum.mesh_transport = comm_.sum(sum.mesh_transport);
+  return sum;
+}
+
 void FsiSystem::add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
-                          std::span<const double> K, std::vector<PetscInt>& I,
-                          std::vector<PetscInt>& J, std::vector<double>& V) const {
+                          std::span<const double> K, std::vector<PetscInt>* I,
+                          std::vector<PetscInt>* J, std::vector<double>& V) const {
+  // Zeros are kept: the pattern must not depend on the state.
   for (std::size_t a = 0; a < rows.size(); ++a)
     for (auto p = rows_.offsets[rows[a]]; p < rows_.offsets[rows[a] + 1]; ++p)
       for (std::size_t b = 0; b < cols.size(); ++b) {
         const double k = K[a * cols.size() + b] * column_scale(cols[b]);
-        if (k == 0.0) continue;
         for (auto q = columns_.offsets[cols[b]]; q < columns_.offsets[cols[b] + 1]; ++q) {
-          I.push_back(rows_.index[p]);
-          J.push_back(columns_.index[q]);
           V.push_back(rows_.weight[p] * columns_.weight[q] * k);
+          if (!I) continue;
+          I->push_back(rows_.index[p]);
+          J->push_back(columns_.index[q]);
         }
       }
 }
@@ -127,8 +168,22 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
   out.raw_residual.assign(n_raw(), 0.0);
   auto& res = out.raw_residual;
   std::vector<double> mag(n_raw(), 0.0);
+  const double start = wall_seconds();
+  double condensing = 0.0; // time in add_block
+  // A Jacobian made here before with the same options: values only (its triplets' order).
+  const bool reuse =
+      J && J->get() && J->get() == pattern_of_ && pattern_shape_ == options.shape_derivatives;
   std::vector<PetscInt> I, Jc;
   std::vector<double> V;
+  if (reuse) V.reserve(pattern_size_);
+  auto* pI = reuse ? nullptr : &I;
+  auto* pJ = reuse ? nullptr : &Jc;
+  const auto add = [&](std::span<const std::size_t> rows, std::span<const std::size_t> cols,
+                       std::span<const double> K) {
+    const double t0 = wall_seconds();
+    add_block(rows, cols, K, pI, pJ, V);
+    condensing += wall_seconds() - t0;
+  };
   constexpr std::size_t nmax = fem::max_cell_nodes;
   std::array<double, nmax * 3> X{}, x{}, u{}, m{}, zero{}, ud{}, w{}, v{}, am{};
   std::array<double, nmax> p{};
@@ -194,7 +249,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
         res[s_rows[a]] += re[a];
         mag[s_rows[a]] += std::abs(re[a]);
       }
-      if (J) add_block(s_rows, s_rows, Ke, I, Jc, V);
+      if (J) add(s_rows, s_rows, Ke);
       continue;
     }
     // Fluid cell on the mesh x = X + m (at t_{n+alpha_f}; Jansen, Whiting & Hulbert 2000: u and
@@ -252,7 +307,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
       mag[f_rows[a]] += std::abs(re[a]);
     }
     if (J) {
-      add_block(f_rows, f_rows, Ke, I, Jc, V);
+      add(f_rows, f_rows, Ke);
       if (options.shape_derivatives) {
         // d r / d m_{n+1} = alpha_f d r / dx + alpha_m / (gamma dt) d r / dw.
         Kx.assign(ne * nd, 0.0);
@@ -260,7 +315,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
         fluid::navier_stokes_mesh_derivatives(in, Kx, Kw);
         for (std::size_t k = 0; k < Kx.size(); ++k)
           Kx[k] = wf * Kx[k] + (hs ? rate_weight * Kw[k] : 0.0);
-        add_block(f_rows, m_rows, Kx, I, Jc, V);
+        add(f_rows, m_rows, Kx);
       }
     }
     // The pseudo-elastic mesh on the reference cell: r_m = K_m m (linear, at t_{n+1}).
@@ -280,7 +335,7 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
       res[m_rows[a]] += val;
       for (std::size_t b = 0; b < nd; ++b) mag[m_rows[a]] += std::abs(Km[a * nd + b] * m[b]);
     }
-    if (J) add_block(m_rows, m_rows, Km, I, Jc, V);
+    if (J) add(m_rows, m_rows, Km);
   }
   out.inverted = comm_.any(out.inverted);
   out.strain_energy = comm_.sum(out.strain_energy);
@@ -303,7 +358,21 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
   for (std::size_t q = 0; q < ids.size(); ++q) ids[q] = first_owned_ + static_cast<PetscInt>(q);
   r.set_values(ids, owned);
   r.assemble();
-  if (J) *J = la::Matrix::from_triplets(comm_.get(), n_owned_, I, Jc, V);
+  const double t0 = wall_seconds();
+  if (J && reuse) {
+    if (V.size() != pattern_size_)
+      SEAM_THROW(InternalError, "the FSI Jacobian's pattern changed (", V.size(), " entries, ",
+                 pattern_size_, " before)");
+    J->set_triplet_values(V);
+  } else if (J) {
+    *J = la::Matrix::from_triplets(comm_.get(), n_owned_, I, Jc, V);
+    pattern_of_ = J->get();
+    pattern_shape_ = options.shape_derivatives;
+    pattern_size_ = V.size();
+  }
+  condensing += wall_seconds() - t0;
+  out.condensation_seconds = condensing;
+  out.assembly_seconds = wall_seconds() - start - condensing;
   return out;
 }
 

@@ -82,6 +82,8 @@ public:
   bool has_pressure(std::int32_t n) const { return pressure_node_[n] != 0; }
   bool is_fluid_cell(std::int32_t c) const { return cell_fluid_[c] >= 0; }
   const std::vector<FsiCoupling>& couplings() const { return couplings_; }
+  /// Whether raw dof a holds a prescribed value (a `velocity` or `dirichlet` condition).
+  bool is_prescribed(std::size_t a) const { return prescribed_[a] >= 0; }
 
   /// Time integration (docs/fsi.md, "Dynamics"): the structure by generalized-alpha (Chung &
   /// Hulbert 1993), the fluid and its mesh by generalized-alpha for first-order systems
@@ -118,15 +120,28 @@ public:
     /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
     /// prescribed dofs, the fluid's interface forces before the transfer).
     std::vector<double> raw_residual;
+    /// Wall time of this call on this rank: the element kernels (assembly) and the products
+    /// with R and T_c into the condensed matrix (condensation).
+    double assembly_seconds = 0.0, condensation_seconds = 0.0;
   };
   /// The condensed residual R^T r (a vector of n_owned entries per rank, made here) and, if
   /// J is given, the condensed Jacobian R^T J T_c, both assembled. Collective.
+  /// The Jacobian's pattern does not depend on the state (entries that happen to be zero are
+  /// kept): a J that this system made in an earlier call with the same options only gets new
+  /// values, in place, so that MUMPS reuses its symbolic analysis; an empty J is made.
   Result assemble(std::span<const double> raw, double t, la::Vector& r, la::Matrix* J,
                   const Options& options) const;
 
+  /// The fluid's energy integrals (fluid::energy_integrals) over all fluid cells, summed over
+  /// ranks, at the raw state `raw` on its mesh X + m, with the mesh velocity from `rate` (the
+  /// rates of the state, empty: w = 0). Collective.
+  fluid::EnergyIntegrals fluid_energy(std::span<const double> raw,
+                                      std::span<const double> rate) const;
+
 private:
+  /// Adds R^T K T_c of one element block to the triplets; I and J null: the values only.
   void add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
-                 std::span<const double> K, std::vector<PetscInt>& I, std::vector<PetscInt>& J,
+                 std::span<const double> K, std::vector<PetscInt>* I, std::vector<PetscInt>* J,
                  std::vector<double>& V) const;
 
   const io::Config* config_;
@@ -158,6 +173,11 @@ private:
   }
   DofMap rows_; ///< R
   PetscInt n_unknowns_ = 0, n_owned_ = 0, first_owned_ = 0;
+  /// The last Jacobian made from triplets: its handle, the options it was made with and its
+  /// triplet count (assemble then sets only its values).
+  mutable Mat pattern_of_ = nullptr;
+  mutable bool pattern_shape_ = true;
+  mutable std::size_t pattern_size_ = 0;
 };
 
 } // namespace seam::problem

@@ -220,34 +220,12 @@ void NewtonSolver::apply_increment(la::Vector& u, double t, bool predictor) {
   u.update_ghosts();
 }
 
-double StepControl::next() const {
-  double t_new = std::min(t_ + dt_, tc_.end);
-  // Land exactly on the nominal times k * dt (no drift from repeated additions).
-  const double k = std::round(t_new / tc_.dt);
-  if (std::abs(t_new - k * tc_.dt) < 1e-9 * tc_.dt) t_new = tc_.time_at(static_cast<int>(k));
-  return t_new;
-}
-
 void StepControl::fail(const NewtonResult& result, double t_new, int step, Output& out,
                        const Comm& comm) {
-  if (cuts_ >= tc_.max_step_cuts) {
-    out.finish(false, step);
-    SEAM_THROW(SolverError, result.failure, " at t = ", t_new, " after ", cuts_, " step cuts; the ",
-               step, " converged steps are written in ", out.directory().string());
-  }
-  ++cuts_;
-  dt_ *= 0.5;
-  if (comm.is_root())
-    std::fprintf(stdout, "seam: %s at t = %g; cutting the step to dt = %g\n", result.failure, t_new,
-                 dt_);
-}
-
-void StepControl::accept(double t_new) {
-  t_ = t_new;
-  if (cuts_ > 0) {
-    dt_ = std::min(2.0 * dt_, tc_.dt); // grow back after a successful cut step
-    if (dt_ >= tc_.dt) cuts_ = 0;
-  }
+  if (cut(result.failure, t_new, comm)) return;
+  out.finish(false, step);
+  SEAM_THROW(SolverError, result.failure, " at t = ", t_new, " after ", cuts_, " step cuts; the ",
+             step, " converged steps are written in ", out.directory().string());
 }
 
 } // namespace seam::problem

@@ -12,6 +12,7 @@
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/saddle_point.hpp"
+#include "seam/problem/step_control.hpp"
 #include "seam/problem/tying_constraint.hpp"
 
 #include <functional>
@@ -33,38 +34,6 @@ struct NewtonResult {
   double residual = 0.0;
   double strain_energy = 0.0;
   const char* failure = "";
-};
-
-/// Step size control shared by the static and dynamic drivers: steps land on the nominal times
-/// k dt; a failed step is halved and retried, the size grows back after success; the run gives
-/// up (SolverError, after summary.json) when one step has used all its cuts.
-class StepControl {
-public:
-  explicit StepControl(const io::TimeConfig& tc) : tc_(tc), dt_(tc.dt) {}
-  bool running() const { return t_ < tc_.end * (1.0 - 1e-12); }
-  double time() const { return t_; }
-  /// The end of the next attempted step.
-  double next() const;
-  /// A failed attempt at t_new after `step` converged steps: cut, or give up.
-  void fail(const NewtonResult& result, double t_new, int step, Output& out, const Comm& comm);
-  /// A converged step ending at t_new.
-  void accept(double t_new);
-  /// What a checkpoint keeps: the time reached, the step size and the cuts in effect.
-  struct State {
-    double t, dt;
-    int cuts;
-  };
-  State state() const { return {t_, dt_, cuts_}; }
-  void set_state(const State& s) {
-    t_ = s.t;
-    dt_ = s.dt;
-    cuts_ = s.cuts;
-  }
-
-private:
-  const io::TimeConfig& tc_;
-  double t_ = 0.0, dt_;
-  int cuts_ = 0;
 };
 
 /// The linear solver of a solid's Newton system (linear_solver_choice.hpp).

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Mean, amplitude and frequency of a periodic history, as the Turek-Hron benchmarks define
+them (Turek & Hron 2006, sec. 3: over the last period, mean = (max + min) / 2, amplitude =
+(max - min) / 2, frequency = 1 / period), from seam's probes.csv and forces.csv. The extrema
+are those of the parabola through each sampled local extremum and its two neighbours.
+
+    python3 scripts/periodic_state.py OUT             # probe 0 (point A) and force group 0
+    python3 scripts/periodic_state.py OUT --fsi3      # also against the FSI3 reference values
+
+Plain Python (no numpy): tests/verification imports it (test_turek_hron.py, test_fsi.py).
+"""
+import argparse
+import csv
+import os
+import sys
+
+# Turek & Hron 2006, Table 12 (FSI3, finest mesh and step): mean, amplitude, frequency.
+FSI3 = {"ux": (-2.69e-3, 2.53e-3, 10.9), "uy": (1.48e-3, 34.38e-3, 5.3),
+        "drag": (457.3, 22.66, 10.9), "lift": (2.22, 149.78, 5.3)}
+# The tolerances of issue 15 on the FSI3 figures (relative): (what, key, part, tolerance).
+FSI3_CHECKS = [("u_y(A) amplitude", "uy", "amplitude", 0.05),
+               ("u_y(A) frequency", "uy", "frequency", 0.03),
+               ("mean drag", "drag", "mean", 0.02),
+               ("lift amplitude", "lift", "amplitude", 0.15)]
+
+
+def extremum(t, u, i):
+    """Time and value of the parabola through the samples i-1, i, i+1."""
+    a = (u[i + 1] - 2 * u[i] + u[i - 1]) / 2
+    b = (u[i + 1] - u[i - 1]) / 2
+    if a == 0:
+        return t[i], u[i]
+    s = -b / (2 * a)
+    return t[i] + s * (t[i + 1] - t[i]), u[i] - b * b / (4 * a)
+
+
+def extrema(t, u):
+    """The interpolated local maxima and minima of a sampled history: two lists of (t, u)."""
+    maxima = [extremum(t, u, i) for i in range(1, len(u) - 1)
+              if u[i] > u[i - 1] and u[i] >= u[i + 1]]
+    minima = [extremum(t, u, i) for i in range(1, len(u) - 1)
+              if u[i] < u[i - 1] and u[i] <= u[i + 1]]
+    return maxima, minima
+
+
+def periods(t, u):
+    """Per period, from the last backwards: (t_end, mean, amplitude, frequency), each period
+    from one maximum to the next with the minimum between them. A history with secondary
+    extrema (a drag with a small bump per period) keeps, per period, the largest maximum and
+    the smallest minimum: maxima closer than half the dominant period are merged."""
+    maxima, minima = extrema(t, u)
+    if len(maxima) < 2:
+        return []
+    # The dominant period: the median spacing of the maxima that stand out (above the mean).
+    mid = (max(m[1] for m in maxima) + min(m[1] for m in minima)) / 2 if minima else 0
+    tops = [m for m in maxima if m[1] > mid]
+    if len(tops) < 2:
+        return []
+    out = []
+    for k in range(len(tops) - 1, 0, -1):
+        t0, t1 = tops[k - 1][0], tops[k][0]
+        lows = [m[1] for m in minima if t0 < m[0] < t1]
+        if not lows:
+            continue
+        hi, lo = tops[k][1], min(lows)
+        out.append((t1, (hi + lo) / 2, (hi - lo) / 2, 1 / (t1 - t0)))
+    return out
+
+
+def periodic_state(t, u, last=1):
+    """Mean, amplitude and frequency averaged over the last `last` periods; None if the history
+    has fewer."""
+    p = periods(t, u)[:last]
+    if len(p) < last or not p:
+        return None
+    n = len(p)
+    return {"mean": sum(x[1] for x in p) / n, "amplitude": sum(x[2] for x in p) / n,
+            "frequency": sum(x[3] for x in p) / n, "periods": len(periods(t, u)),
+            "t_end": p[0][0]}
+
+
+def read(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def histories(out, probe=0, group=None):
+    """{'ux', 'uy': (t, values) of the probe; 'drag', 'lift': of the force group} from a run's
+    output directory (force group: the first one unless named)."""
+    h = {}
+    rows = [r for r in read(os.path.join(out, "probes.csv")) if int(r["probe"]) == probe]
+    t = [float(r["time"]) for r in rows]
+    for key in ("ux", "uy"):
+        h[key] = (t, [float(r[key]) for r in rows])
+    path = os.path.join(out, "forces.csv")
+    if os.path.exists(path):
+        rows = read(path)
+        if rows:
+            name = group or rows[0]["name"]
+            rows = [r for r in rows if r["name"] == name]
+            t = [float(r["time"]) for r in rows]
+            h["drag"] = (t, [float(r["fx"]) for r in rows])
+            h["lift"] = (t, [float(r["fy"]) for r in rows])
+    return h
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("output", help="a run's output directory")
+    parser.add_argument("--last", type=int, default=3, help="periods to average (default 3)")
+    parser.add_argument("--fsi3", action="store_true",
+                        help="compare with Turek & Hron's FSI3 values and issue 15's tolerances")
+    args = parser.parse_args()
+    h = histories(args.output)
+    failed = False
+    states = {}
+    for key, (t, u) in h.items():
+        s = periodic_state(t, u, args.last)
+        states[key] = s
+        if s is None:
+            print("%-5s fewer than %d periods in t <= %g" % (key, args.last, t[-1] if t else 0))
+            continue
+        line = ("%-5s mean %+.5e  amplitude %.5e  frequency %.4f Hz  (last %d of %d periods, "
+                "to t = %.3f)" % (key, s["mean"], s["amplitude"], s["frequency"], args.last,
+                                   s["periods"], s["t_end"]))
+        if args.fsi3:
+            ref = FSI3[key]
+            line += "   reference %+.4e +- %.4e, %.1f Hz" % ref
+        print(line)
+        # Settled? The amplitude of each of the last periods against their mean.
+        p = periods(t, u)[:args.last]
+        spread = max(abs(x[2] - s["amplitude"]) for x in p) / s["amplitude"]
+        print("      amplitude spread over these periods %.2f %%" % (100 * spread))
+    if args.fsi3:
+        for what, key, part, tol in FSI3_CHECKS:
+            ref = FSI3[key][("mean", "amplitude", "frequency").index(part)]
+            s = states.get(key)
+            if s is None:
+                print("%-18s not measured" % what)
+                failed = True
+                continue
+            err = s[part] / ref - 1
+            ok = abs(err) <= tol
+            failed |= not ok
+            print("%-18s %.5g against %.5g: %+.2f %% (tolerance %g %%) %s"
+                  % (what, s[part], ref, 100 * err, 100 * tol, "ok" if ok else "OUTSIDE"))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
