@@ -112,6 +112,12 @@ def main():
             print("%8s %3d %9d %12.1f %12.1f %14.3f %14.3f %11d/%-7d %8.1f" % (
                 reader, np, s["dofs"], max(rss), min(rss), max(rss) / one, net, own, held,
                 s["wall_seconds"]), flush=True)
+            # What each rank holds for the interfaces: cells held only for an interface side,
+            # slave facets it integrates, master facets ghosted to it.
+            print("%8s %3s interface per rank: cells %s, slave facets %s, master ghosts %s" % (
+                "", "", [r["interface_cells"] for r in s["ranks_detail"]],
+                [r["slave_elements"] for r in s["ranks_detail"]],
+                [r["master_ghosts"] for r in s["ranks_detail"]]), flush=True)
         phase_table(runs)
 
 

@@ -27,7 +27,11 @@ Each test can fail:
   them), no rank holds more than (its cells + ghosts) * 1.1 cells besides the cells of the
   interface sides, no more of those than touch the interface, and no more nodes than its held
   cells have (ranks_detail nodes, owned_nodes, ghost_nodes, interface_cells); the owned
-  cells and nodes add up to the mesh's, no rank owns half of the nodes or holds 0.7 of them.
+  cells and nodes add up to the mesh's, no rank owns half of the nodes or holds 0.7 of them;
+- the tied interface distributed (two 3 x 1 x 1 blocks tied at z = 1, np = 3): every slave
+  facet is integrated on exactly one rank, the ranks hold no cells for the interface sides, the
+  interface elements they hold (slave facets integrated, master facets ghosted) add up to at
+  most 1.25 x the interface's and no rank holds 0.75 of it; results equal np = 1 to 1e-12.
 """
 import os
 import sys
@@ -347,6 +351,88 @@ def test_held_cells_np3():
     H.cleanup(*_dirs)
 
 
+def wide_tied_case():
+    """The tied blocks example stretched to two 3 x 1 x 1 blocks (one step): the bulk
+    partition cuts the bar along its length, so every rank owns a part of the interface."""
+    work, path = H.copy_example("tied_blocks", "blocks.yaml", (("steps: 5}", "steps: 1}"),))
+    _dirs.append(work)
+    geo = os.path.join(work, "blocks.geo")
+    with open(geo) as f:
+        text = f.read()
+    for a, b in (("Box(1) = {0, 0, 0, 1, 1, 1};", "Box(1) = {0, 0, 0, 3, 1, 1};"),
+                 ("Box(2) = {0, 0, 1, 1, 1, 1};", "Box(2) = {0, 0, 1, 3, 1, 1};")):
+        if a not in text:
+            raise AssertionError("blocks.geo: '%s' not found" % a)
+        text = text.replace(a, b)
+    with open(geo, "w") as f:
+        f.write(text)
+    return path
+
+
+def test_tied_interface_part_np3():
+    """Mesh tying distributed (docs/parallel.md, "Mesh tying distributed"). Bounds: each
+    slave facet is integrated by the rank owning its cell, so the slave counts add up to the
+    interface's exactly; a master facet is ghosted to every rank whose slave part its box
+    overlaps: one rank, two or three near the cuts between the parts, so the master copies
+    exceed the master facets only by the facets along the cuts (1.25 x the whole interface
+    bounds both together). Replicated, every rank held all interface cells."""
+    path = wide_tied_case()
+    outs = {}
+    for np in (1, 3):
+        out = H.solve(path, np=np)
+        _dirs.append(out)
+        outs[np] = out
+    summary = H.read_json(os.path.join(outs[3], "summary.json"))
+    serial = H.read_json(os.path.join(outs[1], "summary.json"))
+    itf = summary["interfaces"][0]
+    n_s, n_m = itf["slave_elements"], itf["master_elements"]
+    total = n_s + n_m
+    detail = summary["ranks_detail"]
+    held = [d["slave_elements"] + d["master_ghosts"] + d["interface_cells"] for d in detail]
+    for r, d in enumerate(detail):
+        print("   rank %d: slave facets %d, master ghosts %d, interface cells %d, pairs %d, "
+              "integration cells %d (interface: %d slave, %d master facets)"
+              % (r, d["slave_elements"], d["master_ghosts"], d["interface_cells"], d["pairs"],
+                 d["integration_cells"], n_s, n_m))
+    if sum(d["slave_elements"] for d in detail) != n_s:
+        raise AssertionError("slave facets integrated: %d over the ranks, the interface has %d"
+                             % (sum(d["slave_elements"] for d in detail), n_s))
+    for key in ("pairs", "integration_cells"):
+        got = sum(d[key] for d in detail)
+        want = serial["ranks_detail"][0][key]
+        if got != want:
+            raise AssertionError("%s: %d over the ranks, %d at np 1" % (key, got, want))
+    if any(d["interface_cells"] != 0 for d in detail):
+        raise AssertionError("ranks hold cells for the interface sides: %s"
+                             % [d["interface_cells"] for d in detail])
+    if sum(held) > 1.25 * total:
+        raise AssertionError("interface elements held: %d over the ranks, more than 1.25 x %d"
+                             % (sum(held), total))
+    if max(held) >= 0.75 * total:
+        raise AssertionError("a rank holds %d of the %d interface elements" % (max(held), total))
+    # Results: np 3 = np 1.
+    for name, keys in (("probes.csv", ("ux", "uy", "uz")), ("reactions.csv", ("fx", "fy", "fz")),
+                       ("interfaces.csv", ("normal_force", "tangential_force")),
+                       ("interface_tie.csv", ("x", "y", "z", "ux", "uy", "uz", "normal_traction",
+                                              "tangential_traction"))):
+        a, b = rows_of(outs[1], name), rows_of(outs[3], name)
+        if len(a) != len(b):
+            raise AssertionError("%s: %d rows at np 1, %d at np 3" % (name, len(a), len(b)))
+        worst = 0.0
+        for k in keys:
+            scale = max(abs(r[k]) for r in a) or 1.0
+            worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(a, b)])
+        if name == "interface_tie.csv" and any(x["node"] != y["node"] or x["status"] != y["status"]
+                                               for x, y in zip(a, b)):
+            raise AssertionError("interface_tie.csv: nodes or status differ")
+        print("   %s: np 3 against np 1, largest difference %.2e (relative)" % (name, worst))
+        if worst > 1e-12:
+            raise AssertionError("%s differs by %.3e" % (name, worst))
+    H.cleanup(*_dirs)
+
+
 if __name__ == "__main__":
-    H.main([test_held_cells_np3, test_hertz_independent_against_bulk_np4,
+    H.main([test_held_cells_np3, test_tied_interface_part_np3,
+            test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])
+

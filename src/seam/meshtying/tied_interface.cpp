@@ -1,6 +1,7 @@
 #include "seam/meshtying/tied_interface.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/meshtying/tied_interface_detail.hpp"
 #include "seam/search/interface_search.hpp"
 
 #include <algorithm>
@@ -9,7 +10,7 @@
 
 namespace seam::meshtying {
 
-namespace {
+namespace detail {
 
 // Slave nodes (side-local) whose displacement (a fluid's velocity) is known: every component
 // prescribed by some Dirichlet (velocity) condition. On facets with a modified quadratic basis (d =
@@ -48,7 +49,86 @@ std::vector<char> bound_slave_nodes(const io::Config& config, const mesh::Mesh& 
   return bound;
 }
 
-} // namespace
+mortar::MortarOptions mortar_options(const io::Interface& itf, const InterfaceSide& slave,
+                                     const InterfaceSide& master) {
+  mortar::MortarOptions options;
+  options.multiplier = itf.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
+                                                              : mortar::Multiplier::standard;
+  if (!mortar::all_affine(slave.facet_set()) || !mortar::all_affine(master.facet_set()))
+    options.pair.cell_quadrature_degree = 8;
+  return options;
+}
+
+TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, mesh::Mesh& mesh,
+                          PhaseTimers& timers, io::InterfaceType type) {
+  TiedInterface t;
+  t.name = itf.name;
+  t.multiplier = itf.multiplier;
+  t.strategy = itf.strategy;
+  t.slave = extract_side(mesh, side_region(mesh, itf.slave));
+  t.master = extract_side(mesh, side_region(mesh, *itf.master));
+  t.n_slave_facets = t.slave.n_facets();
+  t.n_master_facets = t.master.n_facets();
+
+  std::vector<std::int32_t> shared;
+  std::set_intersection(t.slave.mesh_nodes.begin(), t.slave.mesh_nodes.end(),
+                        t.master.mesh_nodes.begin(), t.master.mesh_nodes.end(),
+                        std::back_inserter(shared));
+  if (!shared.empty()) fail_shared_nodes(itf, static_cast<std::int64_t>(shared.size()));
+
+  std::vector<mortar::CandidatePair> candidates;
+  {
+    ScopedTimer timer(timers, "search");
+    search::InterfaceSearch finder(t.slave.surface(), t.master.surface());
+    for (const auto& p : finder.find_pairs()) candidates.push_back({p.slave, p.master});
+  }
+  {
+    ScopedTimer timer(timers, "mortar");
+    const auto options = mortar_options(itf, t.slave, t.master);
+    // Slave nodes with a fully prescribed displacement are treated like master nodes
+    // (boundary modification of the multiplier basis, mortar/dual_basis.hpp).
+    const auto bound = type == io::InterfaceType::fsi
+                           ? std::vector<char>{}
+                           : bound_slave_nodes(config, mesh, t.slave, options.multiplier);
+    t.operators = mortar::assemble_mortar_operators(t.slave.facet_set(), t.master.facet_set(),
+                                                    candidates, options, bound);
+    if (t.operators.n_pairs_integrated == 0) fail_no_overlap(itf);
+    // Mesh initialization: D X_S = M X_M exactly, so that the tying constraint on the
+    // displacements is also one on the positions (patch test on curved interfaces,
+    // conservation of angular momentum).
+    const auto moved = mortar::initialize_slave_coordinates(t.operators, t.slave.coordinates,
+                                                            t.master.coordinates);
+    const int dim = mesh.dim;
+    for (std::size_t i = 0; i < t.slave.mesh_nodes.size(); ++i) {
+      double d2 = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        const double delta = moved[i * dim + c] - t.slave.coordinates[i * dim + c];
+        d2 += delta * delta;
+        mesh.x[static_cast<std::size_t>(t.slave.mesh_nodes[i]) * dim + c] = moved[i * dim + c];
+      }
+      t.max_relocation = std::max(t.max_relocation, std::sqrt(d2));
+    }
+    t.slave.coordinates = moved;
+  }
+  t.local_slave_facets = t.n_slave_facets;
+  t.local_master_ghosts = t.n_master_facets;
+  t.local_pairs = t.operators.n_candidates;
+  t.local_integration_cells = t.operators.n_integration_cells;
+  return t;
+}
+
+void fail_shared_nodes(const io::Interface& itf, std::int64_t n) {
+  io::fail_at(itf.mark, "the slave side '" + itf.slave.name + "' and the master side '" +
+                            itf.master->name + "' share " + std::to_string(n) +
+                            " nodes; mesh tying couples two separate meshes");
+}
+
+void fail_no_overlap(const io::Interface& itf) {
+  io::fail_at(itf.mark, "the sides '" + itf.slave.name + "' and '" + itf.master->name +
+                            "' do not overlap: no slave facet faces a master facet");
+}
+
+} // namespace detail
 
 const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref) {
   const auto* r = mesh.find_region(ref.name, mesh.dim - 1);
@@ -61,66 +141,8 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
                                             PhaseTimers& timers, io::InterfaceType type) {
   std::vector<TiedInterface> out;
-  for (const auto& itf : config.interfaces) {
-    if (itf.type != type) continue;
-    TiedInterface t;
-    t.name = itf.name;
-    t.multiplier = itf.multiplier;
-    t.strategy = itf.strategy;
-    t.slave = extract_side(mesh, side_region(mesh, itf.slave));
-    t.master = extract_side(mesh, side_region(mesh, *itf.master));
-
-    std::vector<std::int32_t> shared;
-    std::set_intersection(t.slave.mesh_nodes.begin(), t.slave.mesh_nodes.end(),
-                          t.master.mesh_nodes.begin(), t.master.mesh_nodes.end(),
-                          std::back_inserter(shared));
-    if (!shared.empty())
-      io::fail_at(itf.mark, "the slave side '" + itf.slave.name + "' and the master side '" +
-                                itf.master->name + "' share " + std::to_string(shared.size()) +
-                                " nodes; mesh tying couples two separate meshes");
-
-    std::vector<mortar::CandidatePair> candidates;
-    {
-      ScopedTimer timer(timers, "search");
-      search::InterfaceSearch finder(t.slave.surface(), t.master.surface());
-      for (const auto& p : finder.find_pairs()) candidates.push_back({p.slave, p.master});
-    }
-    {
-      ScopedTimer timer(timers, "mortar");
-      mortar::MortarOptions options;
-      options.multiplier = itf.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
-                                                                  : mortar::Multiplier::standard;
-      if (!mortar::all_affine(t.slave.facet_set()) || !mortar::all_affine(t.master.facet_set()))
-        options.pair.cell_quadrature_degree = 8;
-      // Slave nodes with a fully prescribed displacement are treated like master nodes
-      // (boundary modification of the multiplier basis, mortar/dual_basis.hpp).
-      const auto bound = type == io::InterfaceType::fsi
-                             ? std::vector<char>{}
-                             : bound_slave_nodes(config, mesh, t.slave, options.multiplier);
-      t.operators = mortar::assemble_mortar_operators(t.slave.facet_set(), t.master.facet_set(),
-                                                      candidates, options, bound);
-      if (t.operators.n_pairs_integrated == 0)
-        io::fail_at(itf.mark, "the sides '" + itf.slave.name + "' and '" + itf.master->name +
-                                  "' do not overlap: no slave facet faces a master facet");
-      // Mesh initialization: D X_S = M X_M exactly, so that the tying constraint on the
-      // displacements is also one on the positions (patch test on curved interfaces,
-      // conservation of angular momentum).
-      const auto moved = mortar::initialize_slave_coordinates(t.operators, t.slave.coordinates,
-                                                              t.master.coordinates);
-      const int dim = mesh.dim;
-      for (std::size_t i = 0; i < t.slave.mesh_nodes.size(); ++i) {
-        double d2 = 0.0;
-        for (int c = 0; c < dim; ++c) {
-          const double delta = moved[i * dim + c] - t.slave.coordinates[i * dim + c];
-          d2 += delta * delta;
-          mesh.x[static_cast<std::size_t>(t.slave.mesh_nodes[i]) * dim + c] = moved[i * dim + c];
-        }
-        t.max_relocation = std::max(t.max_relocation, std::sqrt(d2));
-      }
-      t.slave.coordinates = moved;
-    }
-    out.push_back(std::move(t));
-  }
+  for (const auto& itf : config.interfaces)
+    if (itf.type == type) out.push_back(detail::setup_whole(config, itf, mesh, timers, type));
   return out;
 }
 

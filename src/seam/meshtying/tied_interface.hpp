@@ -7,8 +7,15 @@
 #include "seam/meshtying/interface_side.hpp"
 #include "seam/mortar/interface.hpp"
 
+#include <mpi.h>
+
+#include <cstdint>
 #include <string>
 #include <vector>
+
+namespace seam::mesh {
+struct DistributedMesh;
+}
 
 namespace seam::meshtying {
 
@@ -19,8 +26,23 @@ struct TiedInterface {
   InterfaceSide slave, master;
   /// D (slave x slave) and M (slave x master) over side-local node numbers.
   mortar::MortarOperators operators;
-  /// Largest distance a slave node was moved by the mesh initialization.
+  /// Largest distance a slave node was moved by the mesh initialization (over all ranks).
   double max_relocation = 0.0;
+  /// Facets of the whole sides (the same on every rank).
+  std::int64_t n_slave_facets = 0, n_master_facets = 0;
+
+  /// Distributed (docs/parallel.md, "Mesh tying distributed"): `slave` is the part of the
+  /// slave side this rank holds (its facets on owned and ghost cells), `master` holds no
+  /// facets but the master nodes the rows of M refer to (coordinates, `master_index`), and D
+  /// and M carry the complete rows (summed over the ranks) of every slave node of the rank's
+  /// own cells and of their neighbours in T. Replicated: both sides whole on every rank.
+  bool distributed = false;
+  std::vector<std::int64_t> slave_index;  ///< distributed: slave node -> global node number
+  std::vector<std::int64_t> master_index; ///< distributed: master node -> global node number
+  /// This rank's share (distributed; the whole interface when replicated): slave facets it
+  /// integrated, master facets ghosted to it, candidate pairs, integration cells.
+  std::int64_t local_slave_facets = 0, local_master_ghosts = 0, local_pairs = 0,
+               local_integration_cells = 0;
 };
 
 /// The boundary region (dimension mesh.dim - 1) an interface side names; a located InputError
@@ -36,5 +58,17 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
                                             PhaseTimers& timers,
                                             io::InterfaceType type = io::InterfaceType::mesh_tying);
+
+/// True for the mesh-tying interfaces set up distributed on a distributed mesh (condensed, hence
+/// dual): their sides need not be held whole on every rank.
+bool distributed_tying(const io::Interface& interface);
+
+/// Collective. The mesh-tying interfaces on a distributed mesh: the distributed_tying ones
+/// integrated by the ranks that own their slave facets' cells against the master facets ghosted
+/// to them by bounding boxes, the rows of D and M summed on the slave nodes' owners and sent to
+/// the ranks that hold the nodes; the others (saddle point) whole on every rank, as above
+/// (their sides are held whole). Relocates the slave nodes of `part` like the replicated set-up.
+std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::DistributedMesh& part,
+                                            MPI_Comm comm, PhaseTimers& timers);
 
 } // namespace seam::meshtying

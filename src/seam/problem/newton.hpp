@@ -115,8 +115,9 @@ public:
   }
 
   /// The Lagrange multipliers of every mesh-tying interface (per slave node, dim values), on
-  /// every rank: unknowns of the saddle-point system, or recovered from the slave rows of the
-  /// residual before condensation, lambda = -r_S / D_SS. Collective.
+  /// every rank (a distributed interface: of the slave nodes the rank owns): unknowns of the
+  /// saddle-point system, or recovered from the slave rows of the residual before condensation,
+  /// lambda = -r_S / D_SS. Collective.
   std::vector<std::vector<double>>
   multipliers(const std::vector<meshtying::TiedInterface>& tied) const {
     std::vector<std::vector<double>> out;
@@ -126,7 +127,7 @@ public:
         out.push_back(saddle_.multipliers(k));
       } else {
         out.push_back(tying_.multipliers(k, r_view.values()));
-        disc_.comm().sum_in_place(out.back());
+        if (!tied[k].distributed) disc_.comm().sum_in_place(out.back());
       }
     }
     return out;

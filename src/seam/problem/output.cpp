@@ -86,17 +86,15 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
     has_contact_ = has_contact_ || itf.type == io::InterfaceType::contact;
   const auto& comm = disc.comm();
   const auto& mesh = disc.mesh();
-  // A slave node is tied if it has a row of D and not every component is prescribed. The
-  // owners of the slave nodes know their prescribed components; the sides are in the same
-  // order on every rank.
+  // A slave node is tied if it has a row of D and not every component is prescribed (known on
+  // the rank that owns the node; only owned nodes are read).
   for (const auto& t : tied_) {
     const auto& nodes = t.slave.mesh_nodes;
-    std::vector<double> n_prescribed(nodes.size(), 0.0);
+    std::vector<int> n_prescribed(nodes.size(), 0);
     for (const auto& d : model.dirichlet) {
       const auto it = std::lower_bound(nodes.begin(), nodes.end(), d.node);
-      if (it != nodes.end() && *it == d.node) n_prescribed[it - nodes.begin()] += 1.0;
+      if (it != nodes.end() && *it == d.node) ++n_prescribed[it - nodes.begin()];
     }
-    comm.sum_in_place(n_prescribed);
     auto& rows = tied_rows_.emplace_back(nodes.size(), 0);
     for (const auto& e : t.operators.D)
       if (e.value != 0.0 && n_prescribed[e.row] < mesh.dim) rows[e.row] = 1;
@@ -180,9 +178,16 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
 
   for (const auto& t : tied) {
     std::vector<PetscInt> dofs;
-    for (const auto* side : {&t.slave, &t.master})
-      for (const auto node : side->mesh_nodes)
+    for (const auto node : t.slave.mesh_nodes)
+      for (int c = 0; c < disc.dim(); ++c) dofs.push_back(disc.global_dof(node, c));
+    if (t.distributed) { // the master nodes the rows of M reach, by global number
+      for (const auto index : t.master_index)
+        for (int c = 0; c < disc.dim(); ++c)
+          dofs.push_back(static_cast<PetscInt>(index) * disc.dim() + c);
+    } else {
+      for (const auto node : t.master.mesh_nodes)
         for (int c = 0; c < disc.dim(); ++c) dofs.push_back(disc.global_dof(node, c));
+    }
     tied_gather_.emplace_back(disc.make_vector(), dofs);
   }
 
@@ -225,8 +230,9 @@ void Output::initial(const la::Vector& u) {
   std::vector<InterfaceState> states(tied_.size());
   for (std::size_t k = 0; k < tied_.size(); ++k) {
     const auto n = tied_[k].slave.mesh_nodes.size() * disc_.dim();
-    states[k] = {std::vector<double>(n, 0.0), std::vector<double>(n / disc_.dim(), 0.0),
-                 std::vector<double>(n, 0.0)};
+    states[k].lambda.assign(n, 0.0);
+    states[k].gap.assign(n / disc_.dim(), 0.0);
+    states[k].displacement.assign(n, 0.0);
   }
   write_fields(0, 0.0, u, nullptr, states);
   progress_wall_ = wall_seconds();
@@ -234,8 +240,8 @@ void Output::initial(const la::Vector& u) {
 }
 
 std::vector<Output::InterfaceState>
-Output::interface_states(const la::Vector& u,
-                         const std::vector<std::vector<double>>& multipliers) const {
+Output::interface_states(const la::Vector& u, const std::vector<std::vector<double>>& multipliers,
+                         bool node_rows) const {
   std::vector<InterfaceState> states;
   if (tied_.empty()) return states;
   const int dim = disc_.dim();
@@ -275,9 +281,77 @@ Output::interface_states(const la::Vector& u,
     for (std::size_t j = 0; j < n_slave; ++j)
       for (int c = 0; c < dim; ++c)
         s.gap[j] += g[j * dim + c] * t.operators.nodal_normals[j * dim + c];
+    summarize(k, s, node_rows);
     states.push_back(std::move(s));
   }
   return states;
+}
+
+void Output::summarize(std::size_t k, InterfaceState& s, bool node_rows) const {
+  const auto& t = tied_[k];
+  const auto& comm = disc_.comm();
+  const auto& mesh = disc_.mesh();
+  const int dim = disc_.dim();
+  const auto& normals = t.operators.nodal_normals;
+  const auto n_slave = t.slave.mesh_nodes.size();
+  // Interface force on the slave nodes from the multipliers, F = D^T lambda, from the rows of
+  // the nodes this rank owns, summed on the owners of the columns; its normal part along the
+  // slave nodal normals and the magnitude of the rest.
+  std::vector<double> force(n_slave * dim, 0.0);
+  std::vector<std::int64_t> keys(n_slave);
+  std::vector<int> owners(n_slave);
+  for (std::size_t j = 0; j < n_slave; ++j) {
+    keys[j] = disc_.global_dof(t.slave.mesh_nodes[j], 0);
+    owners[j] = disc_.node_owner(t.slave.mesh_nodes[j]);
+  }
+  for (const auto& e : t.operators.D)
+    if (owners[e.row] == comm.rank())
+      for (int c = 0; c < dim; ++c) force[e.col * dim + c] += e.value * s.lambda[e.row * dim + c];
+  parallel::sum_on_owners(comm.get(), keys, owners, force, dim);
+  double totals[4] = {0.0, 0.0, 0.0, 0.0}; // fn, ft (3)
+  double tied = 0.0;
+  std::vector<TiedNodeRow> rows;
+  for (std::size_t j = 0; j < n_slave; ++j) {
+    if (owners[j] != comm.rank()) continue;
+    tied += tied_rows_[k][j];
+    double fj_n = 0.0;
+    for (int c = 0; c < dim; ++c) fj_n += force[j * dim + c] * normals[j * dim + c];
+    totals[0] += fj_n;
+    for (int c = 0; c < dim; ++c) totals[1 + c] += force[j * dim + c] - fj_n * normals[j * dim + c];
+    if (!node_rows) continue;
+    TiedNodeRow row;
+    const auto node = t.slave.mesh_nodes[j];
+    row.node = disc_.node_gid(node);
+    double ln = 0.0, lt2 = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      row.x[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
+      row.u[c] = s.displacement[j * dim + c];
+      ln += s.lambda[j * dim + c] * normals[j * dim + c];
+    }
+    for (int c = 0; c < dim; ++c) {
+      const double lt = s.lambda[j * dim + c] - ln * normals[j * dim + c];
+      lt2 += lt * lt;
+    }
+    row.gap = s.gap[j];
+    row.normal = ln;
+    row.tangential = std::sqrt(lt2);
+    row.tied = tied_rows_[k][j];
+    rows.push_back(row);
+  }
+  comm.sum_in_place(totals);
+  s.normal_force = totals[0];
+  s.tangential_force =
+      std::sqrt(totals[1] * totals[1] + totals[2] * totals[2] + totals[3] * totals[3]);
+  s.tied = static_cast<int>(std::lround(comm.sum(tied)));
+  if (!node_rows) return;
+  // The node rows to rank 0, in the order of the node ids.
+  std::vector<std::int64_t> offsets(static_cast<std::size_t>(comm.size()) + 1,
+                                    static_cast<std::int64_t>(rows.size()));
+  offsets[0] = 0;
+  std::vector<std::int64_t> recv_offsets;
+  s.rows = parallel::alltoallv<TiedNodeRow>(comm.get(), rows, offsets, recv_offsets);
+  std::sort(s.rows.begin(), s.rows.end(),
+            [](const TiedNodeRow& a, const TiedNodeRow& b) { return a.node < b.node; });
 }
 
 void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
@@ -310,46 +384,15 @@ void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceSt
   for (std::size_t k = 0; k < tied_.size(); ++k) {
     const auto& t = tied_[k];
     const auto& s = states[k];
-    const auto& normals = t.operators.nodal_normals;
-    // Interface force on the slave nodes from the multipliers, F = D^T lambda; its normal
-    // part along the slave nodal normals and the magnitude of the rest.
-    std::vector<double> force(t.slave.mesh_nodes.size() * dim, 0.0);
-    for (const auto& e : t.operators.D)
-      for (int c = 0; c < dim; ++c) force[e.col * dim + c] += e.value * s.lambda[e.row * dim + c];
-    double fn = 0.0;
-    std::array<double, 3> ft{};
-    int tied = 0;
-    for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
-      tied += tied_rows_[k][j];
-      double fj_n = 0.0;
-      for (int c = 0; c < dim; ++c) fj_n += force[j * dim + c] * normals[j * dim + c];
-      fn += fj_n;
-      for (int c = 0; c < dim; ++c) ft[c] += force[j * dim + c] - fj_n * normals[j * dim + c];
-    }
-    const double ft_norm = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
-    interfaces_->add_row(
-        {r.step, r.time, t.name, fn, ft_norm, tied, 0, t.operators.integrated_area, 0.0});
+    interfaces_->add_row({r.step, r.time, t.name, s.normal_force, s.tangential_force, s.tied, 0,
+                          t.operators.integrated_area, 0.0});
     if (!write_nodes) continue;
     io::CsvTable table(dir_ / ("interface_" + t.name + ".csv"),
                        columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
                                 "tangential_traction", "status"}));
-    const auto& mesh = disc_.mesh();
-    for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
-      const auto node = t.slave.mesh_nodes[j];
-      double X[3] = {0, 0, 0}, U[3] = {0, 0, 0}, ln = 0.0, lt2 = 0.0;
-      for (int c = 0; c < dim; ++c) {
-        X[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
-        U[c] = s.displacement[j * dim + c];
-        ln += s.lambda[j * dim + c] * normals[j * dim + c];
-      }
-      for (int c = 0; c < dim; ++c) {
-        const double lt = s.lambda[j * dim + c] - ln * normals[j * dim + c];
-        lt2 += lt * lt;
-      }
-      const bool is_tied = tied_rows_[k][j] != 0;
-      table.add_row({disc_.node_gid(node), X[0], X[1], X[2], U[0], U[1], U[2], s.gap[j], ln,
-                     std::sqrt(lt2), is_tied ? "tied" : "inactive"});
-    }
+    for (const auto& row : s.rows)
+      table.add_row({row.node, row.x[0], row.x[1], row.x[2], row.u[0], row.u[1], row.u[2], row.gap,
+                     row.normal, row.tangential, row.tied ? "tied" : "inactive"});
   }
 }
 
@@ -414,7 +457,7 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
     std::fflush(stdout);
   }
   const bool fields = force_fields || r.step % config_.output.every == 0;
-  const auto states = interface_states(u, multipliers);
+  const auto states = interface_states(u, multipliers, fields);
   if (comm.is_root()) write_interfaces(r, states, fields);
   if (fields) write_fields(r.step, r.time, u, v, states);
 }
@@ -486,15 +529,37 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   // interface, 0 inactive, 1 tied / stick, 2 slip).
   std::vector<double> lambda(n_points * 3, 0.0), gap(n_points, 0.0);
   std::vector<std::int32_t> status(n_points, -1);
-  for (std::size_t k = 0; k < tied_.size(); ++k) {
-    const auto& t = tied_[k];
-    for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
-      const auto node = t.slave.mesh_nodes[j];
-      if (!disc_.has_node(node)) continue;
-      const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
-      for (int c = 0; c < dim; ++c) lambda[i * 3 + c] = states[k].lambda[j * dim + c];
-      gap[i] = states[k].gap[j];
-      status[i] = tied_rows_[k][j] ? 1 : 0;
+  if (!tied_.empty()) {
+    // The owners' values, then the ghosts' copies of them (a distributed interface has its
+    // multipliers on the owned nodes only). Second vector: gap, and status + 2 (0: none).
+    la::Vector lambda_v = disc_.make_vector(), gap_v = disc_.make_vector();
+    {
+      la::Vector::LocalView lv(lambda_v, true), gv(gap_v, true);
+      auto l = lv.values();
+      auto g = gv.values();
+      std::fill(l.begin(), l.end(), 0.0);
+      std::fill(g.begin(), g.end(), 0.0);
+      for (std::size_t k = 0; k < tied_.size(); ++k) {
+        const auto& t = tied_[k];
+        for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
+          const auto node = t.slave.mesh_nodes[j];
+          if (!disc_.owns_node(node)) continue;
+          for (int c = 0; c < dim; ++c) l[disc_.local_dof(node, c)] = states[k].lambda[j * dim + c];
+          g[disc_.local_dof(node, 0)] = states[k].gap[j];
+          g[disc_.local_dof(node, 1)] = tied_rows_[k][j] ? 3.0 : 2.0;
+        }
+      }
+    }
+    lambda_v.update_ghosts();
+    gap_v.update_ghosts();
+    la::Vector::LocalView lv(lambda_v, false), gv(gap_v, false);
+    const auto l = lv.values();
+    const auto g = gv.values();
+    for (std::size_t i = 0; i < n_points; ++i) {
+      if (g[i * dim + 1] == 0.0) continue;
+      for (int c = 0; c < dim; ++c) lambda[i * 3 + c] = l[i * dim + c];
+      gap[i] = g[i * dim];
+      status[i] = static_cast<std::int32_t>(g[i * dim + 1]) - 2;
     }
   }
   for (const auto& c : contact_) {
@@ -547,6 +612,12 @@ void Output::finish(bool converged, int n_steps) {
     double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
     mine[0] = static_cast<double>(disc_.local_cells().size());
     mine[1] = static_cast<double>(disc_.mesh().n_cells()) - mine[0];
+    for (const auto& t : tied_) {
+      mine[2] += static_cast<double>(t.local_slave_facets);
+      mine[3] += static_cast<double>(t.local_master_ghosts);
+      mine[4] += static_cast<double>(t.local_pairs);
+      mine[5] += static_cast<double>(t.local_integration_cells);
+    }
     for (const auto& c : contact_) {
       mine[2] += c.local_slave_elements;
       mine[3] += c.local_master_ghosts;
@@ -583,8 +654,8 @@ void Output::finish(bool converged, int n_steps) {
     io::Json e = io::Json::object();
     e["name"] = t.name;
     e["type"] = "mesh_tying";
-    e["slave_elements"] = t.slave.n_facets();
-    e["master_elements"] = t.master.n_facets();
+    e["slave_elements"] = t.n_slave_facets;
+    e["master_elements"] = t.n_master_facets;
     e["candidate_pairs"] = t.operators.n_candidates;
     e["integrated_pairs"] = t.operators.n_pairs_integrated;
     e["integration_cells"] = t.operators.n_integration_cells;

@@ -122,14 +122,29 @@ public:
   void finish(bool converged, int n_steps);
 
 private:
-  /// Interface state of one step, replicated on every rank.
+  /// One slave node's row of interface_<name>.csv.
+  struct TiedNodeRow {
+    std::int64_t node = 0;
+    double x[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
+    double gap = 0.0, normal = 0.0, tangential = 0.0;
+    std::int32_t tied = 0, pad = 0;
+  };
+  /// Interface state of one step. Per slave node of the rank's side (valid on the nodes it
+  /// owns); the totals on every rank; the node rows on rank 0 (when asked for).
   struct InterfaceState {
     std::vector<double> lambda;       ///< dim per slave node
     std::vector<double> gap;          ///< normal part of D u_S - M u_M per slave node
     std::vector<double> displacement; ///< dim per slave node
+    double normal_force = 0.0, tangential_force = 0.0;
+    int tied = 0;
+    std::vector<TiedNodeRow> rows; ///< rank 0: every slave node, by node id
   };
-  std::vector<InterfaceState>
-  interface_states(const la::Vector& u, const std::vector<std::vector<double>>& multipliers) const;
+  /// Collective.
+  std::vector<InterfaceState> interface_states(const la::Vector& u,
+                                               const std::vector<std::vector<double>>& multipliers,
+                                               bool node_rows) const;
+  /// Collective: the totals and (node_rows) the node rows of tied interface k.
+  void summarize(std::size_t k, InterfaceState& s, bool node_rows) const;
   void write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
                         bool write_nodes);
   void write_fields(int step, double time, const la::Vector& u, const la::Vector* v,

@@ -117,8 +117,12 @@ std::optional<mesh::DistributedMesh> read_chunked(const io::Config& config, cons
 mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm,
                                             MeshIdentity& identity,
                                             const std::filesystem::path& scratch, bool quiet) {
+  // Sides held whole on every rank: those of contact and of saddle-point tying. The sides of
+  // condensed tying are set up distributed (meshtying::distributed_tying): each rank needs
+  // only its own cells' facets and the master facets ghosted to it.
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
+    if (meshtying::distributed_tying(itf)) continue;
     sides.push_back(itf.slave.name);
     if (itf.master) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
@@ -207,13 +211,12 @@ int run(const RunOptions& options, int argc, char** argv) {
   parallel::mark_memory(comm.get(), "start");
   auto part =
       load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
-  auto& mesh = part.mesh;
   parallel::mark_memory(comm.get(), "mesh");
   const Discretization disc(part, comm);
   const auto model = build_model(config, disc);
   parallel::mark_memory(comm.get(), "discretization");
   PhaseTimers setup_timers;
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
+  const auto tied = meshtying::setup_mesh_tying(config, part, comm.get(), setup_timers);
   parallel::mark_memory(comm.get(), "interface_integration");
   const TyingConstraint tying(tied, disc, model);
   SaddlePoint saddle(tied, disc, model);

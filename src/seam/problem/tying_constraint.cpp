@@ -1,6 +1,7 @@
 #include "seam/problem/tying_constraint.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/parallel/exchange.hpp"
 
 #include <algorithm>
 #include <map>
@@ -94,6 +95,10 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
         for (const auto& [key, v] : P[j]) {
           if (key < 0) {
             entries.emplace_back(disc.global_dof(t.slave.mesh_nodes[-1 - key], c), v);
+            continue;
+          }
+          if (t.distributed) { // global node number (the solid's layout); chains checked at set-up
+            entries.emplace_back(static_cast<PetscInt>(t.master_index[key]) * dim + c, v);
             continue;
           }
           const auto master = t.master.mesh_nodes[key];
@@ -204,7 +209,7 @@ std::vector<double> TyingConstraint::multipliers(std::size_t interface,
   const int dim = dofs_.dim;
   const auto n = t.slave.mesh_nodes.size();
   std::vector<double> lambda(n * dim, 0.0);
-  if (d_diag_[interface].empty()) return lambda;
+  if (t.strategy != io::Strategy::condensed) return lambda;
   // The slave rows of the residual this rank owns (eliminated dofs only).
   std::vector<double> r(n * dim, 0.0);
   for (std::size_t j = 0; j < n; ++j) {
@@ -221,6 +226,11 @@ std::vector<double> TyingConstraint::multipliers(std::size_t interface,
   } else {
     for (const auto& e : transforms_[interface])
       for (int c = 0; c < dim; ++c) tr[e.col * dim + c] += e.value * r[e.row * dim + c];
+  }
+  if (t.distributed) { // the rows of the neighbours in T may be owned elsewhere
+    std::vector<int> owners(n);
+    for (std::size_t j = 0; j < n; ++j) owners[j] = dofs_.node_owner(t.slave.mesh_nodes[j]);
+    parallel::sum_on_owners(dofs_.comm.get(), t.slave_index, owners, tr, dim);
   }
   for (std::size_t j = 0; j < n; ++j) {
     const double d = d_diag_[interface][j];

@@ -30,6 +30,8 @@ struct TiedDofs {
   int dim = 0;
   PetscInt first_owned = 0, n_owned = 0;
   std::function<bool(std::int32_t)> owns_node;
+  /// Owner rank of a node (solid layout; distributed interfaces need it).
+  std::function<int(std::int32_t)> node_owner;
   std::function<PetscInt(std::int32_t, int)> global_dof;
   std::function<std::int32_t(std::int32_t, int)> local_dof;
   std::vector<PetscInt> prescribed; ///< owned dofs with a prescribed value
@@ -47,6 +49,8 @@ TiedDofs tied_dofs(const Layout& layout, const Prescribed& model) {
   dofs.first_owned = layout.first_owned_dof();
   dofs.n_owned = layout.n_owned_dofs();
   dofs.owns_node = [&layout](std::int32_t n) { return layout.owns_node(n); };
+  if constexpr (requires { layout.node_owner(std::int32_t{0}); })
+    dofs.node_owner = [&layout](std::int32_t n) { return layout.node_owner(n); };
   dofs.global_dof = [&layout](std::int32_t n, int c) { return layout.global_dof(n, c); };
   dofs.local_dof = [&layout](std::int32_t n, int c) { return layout.local_dof(n, c); };
   for (const auto& d : model.dirichlet) dofs.prescribed.push_back(d.dof);
@@ -76,8 +80,9 @@ public:
 
   /// Per interface and slave node (side-local), the multiplier lambda (dim values) from the
   /// full residual r (owned + ghost values, local form): lambda = -D^{-1} T^T r_S (T = I
-  /// unless the slave basis is modified). This rank contributes the rows it owns; the caller
-  /// sums over ranks.
+  /// unless the slave basis is modified). Replicated interface: this rank contributes the rows
+  /// it owns, the caller sums over ranks. Distributed interface (collective): the multipliers
+  /// of the slave nodes this rank owns, zero elsewhere.
   std::vector<double> multipliers(std::size_t interface, std::span<const double> r_local) const;
   /// D_jj of a tied slave node (side-local), 0 if untied.
   double d_diagonal(std::size_t interface, std::size_t slave_node) const {

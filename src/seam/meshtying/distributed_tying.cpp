@@ -1,0 +1,392 @@
+// Mesh tying on a distributed mesh (issue 12, item 3; docs/parallel.md, "Mesh tying
+// distributed"): every rank integrates the slave facets of the cells it owns against the master
+// facets ghosted to it by bounding boxes; the rows of D and M are summed on the owners of their
+// slave nodes, and every rank then receives the complete rows of the slave nodes it holds.
+#include "seam/common/error.hpp"
+#include "seam/mesh/distribute.hpp"
+#include "seam/meshtying/tied_interface.hpp"
+#include "seam/meshtying/tied_interface_detail.hpp"
+#include "seam/parallel/distributed_search.hpp"
+#include "seam/parallel/exchange.hpp"
+#include "seam/parallel/ghosting.hpp"
+#include "seam/search/interface_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace seam::meshtying {
+
+bool distributed_tying(const io::Interface& itf) {
+  return itf.type == io::InterfaceType::mesh_tying && itf.strategy == io::Strategy::condensed;
+}
+
+namespace {
+
+/// One entry of a row of D (kind 0) or of M (kind 1) in global node numbers; x holds the
+/// coordinates of an M entry's master node.
+struct RowEntry {
+  std::int64_t row = 0;
+  std::int64_t col = 0;
+  double value = 0.0;
+  double x[3] = {0.0, 0.0, 0.0};
+  std::int32_t kind = 0;
+  std::int32_t pad = 0;
+};
+
+bool entry_less(const RowEntry& a, const RowEntry& b) {
+  if (a.row != b.row) return a.row < b.row;
+  if (a.kind != b.kind) return a.kind < b.kind;
+  return a.col < b.col;
+}
+
+fem::CellType facet_type_of(int dim, std::size_t n_nodes) {
+  using fem::CellType;
+  if (dim == 2) return n_nodes == 3 ? CellType::line3 : CellType::line2;
+  switch (n_nodes) {
+  case 3:
+    return CellType::tri3;
+  case 4:
+    return CellType::quad4;
+  case 6:
+    return CellType::tri6;
+  case 8:
+    return CellType::quad8;
+  default:
+    return CellType::quad9;
+  }
+}
+
+/// The facets f of `side` (extracted from `region`) with take[f], as a surface part in global
+/// node numbers; facet ids from the cell ids of the mesh as read.
+parallel::SurfacePart side_part(const InterfaceSide& side, const mesh::DistributedMesh& part,
+                                const mesh::Region& region, const std::vector<char>& take) {
+  parallel::SurfacePart p;
+  p.dim = side.dim;
+  std::vector<local_index> local(side.mesh_nodes.size(), -1);
+  for (local_index f = 0; f < side.n_facets(); ++f) {
+    if (!take[static_cast<std::size_t>(f)]) continue;
+    p.facet_ids.push_back(part.cell_gid[static_cast<std::size_t>(region.facet_cell[f])] * 8 +
+                          region.facet_local[f]);
+    for (auto k = side.offsets[f]; k < side.offsets[f + 1]; ++k) {
+      const auto n = static_cast<std::size_t>(side.nodes[static_cast<std::size_t>(k)]);
+      if (local[n] < 0) {
+        local[n] = p.n_nodes();
+        p.node_ids.push_back(part.node_index[static_cast<std::size_t>(side.mesh_nodes[n])]);
+        for (int c = 0; c < side.dim; ++c) p.coords.push_back(side.coordinates[n * side.dim + c]);
+      }
+      p.connectivity.push_back(local[n]);
+    }
+    p.offsets.push_back(static_cast<local_index>(p.connectivity.size()));
+  }
+  return p;
+}
+
+/// Facets of a held side on the cells this rank owns.
+std::vector<char> owned_facets(const mesh::DistributedMesh& part, const mesh::Region& region,
+                               int rank) {
+  std::vector<char> owned(static_cast<std::size_t>(region.n_facets()), 0);
+  for (std::int32_t f = 0; f < region.n_facets(); ++f)
+    owned[static_cast<std::size_t>(f)] =
+        part.cell_owner[static_cast<std::size_t>(region.facet_cell[f])] == rank;
+  return owned;
+}
+
+/// Records grouped by destination rank -> (records in rank order, offsets).
+template <class T>
+std::vector<T> by_rank(int size, const std::vector<std::pair<int, T>>& items,
+                       std::vector<std::int64_t>& offsets) {
+  offsets.assign(static_cast<std::size_t>(size) + 1, 0);
+  for (const auto& [r, x] : items) ++offsets[static_cast<std::size_t>(r) + 1];
+  for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
+  std::vector<T> out(items.size());
+  std::vector<std::int64_t> next(offsets.begin(), offsets.end() - 1);
+  for (const auto& [r, x] : items) out[static_cast<std::size_t>(next[r]++)] = x;
+  return out;
+}
+
+struct SetupResult {
+  TiedInterface t;
+  std::vector<std::int32_t> owned_master_nodes; ///< master side nodes this rank owns
+};
+
+SetupResult setup_distributed(const io::Config& config, const io::Interface& itf,
+                              mesh::DistributedMesh& part, MPI_Comm comm, PhaseTimers& timers) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  auto& mesh = part.mesh;
+  const int dim = mesh.dim;
+  SetupResult result;
+  TiedInterface& t = result.t;
+  t.name = itf.name;
+  t.multiplier = itf.multiplier;
+  t.strategy = itf.strategy;
+  t.distributed = true;
+  // The sides as held: facets on owned and ghost cells. Every slave facet around a node of an
+  // owned cell is held (the ghost layer holds every cell around such a node), so the averaged
+  // nodal normals and the nodal transformation of those nodes are complete.
+  const auto& slave_region = side_region(mesh, itf.slave);
+  const auto& master_region = side_region(mesh, *itf.master);
+  t.slave = extract_side(mesh, slave_region);
+  const auto master_held = extract_side(mesh, master_region);
+  const auto slave_owned = owned_facets(part, slave_region, rank);
+  const auto master_owned = owned_facets(part, master_region, rank);
+
+  // Shared nodes, each counted by its owner (who holds every facet around it).
+  {
+    std::vector<std::int32_t> shared;
+    std::set_intersection(t.slave.mesh_nodes.begin(), t.slave.mesh_nodes.end(),
+                          master_held.mesh_nodes.begin(), master_held.mesh_nodes.end(),
+                          std::back_inserter(shared));
+    std::int64_t n = 0;
+    for (auto s : shared) n += part.node_owner[static_cast<std::size_t>(s)] == rank;
+    MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT64_T, MPI_SUM, comm);
+    if (n > 0) detail::fail_shared_nodes(itf, n);
+  }
+  for (auto n : master_held.mesh_nodes)
+    if (part.node_owner[static_cast<std::size_t>(n)] == rank)
+      result.owned_master_nodes.push_back(n);
+
+  // This rank's slave facets and the master facets that can meet them.
+  const auto slave_part = side_part(t.slave, part, slave_region, slave_owned);
+  const auto master_part = side_part(master_held, part, master_region, master_owned);
+  std::vector<mortar::CandidatePair> candidates;
+  InterfaceSide ghosts;
+  ghosts.dim = dim;
+  {
+    ScopedTimer timer(timers, "search");
+    // The inflation of the whole interface (0.3 of the shortest edge of both sides), as the
+    // replicated search takes it, so that the ranks' pairs together are the serial ones.
+    const double eps = parallel::global_inflation(comm, slave_part, master_part, 0.3);
+    auto g = parallel::ghost_masters(comm, slave_part, master_part, eps);
+    ghosts.coordinates = std::move(g.coords);
+    ghosts.offsets = std::move(g.offsets);
+    ghosts.nodes = std::move(g.connectivity);
+    for (std::size_t f = 0; f + 1 < ghosts.offsets.size(); ++f)
+      ghosts.types.push_back(
+          facet_type_of(dim, static_cast<std::size_t>(ghosts.offsets[f + 1] - ghosts.offsets[f])));
+    t.master_index = std::move(g.node_ids);
+    if (slave_part.n_facets() > 0 && ghosts.n_facets() > 0) {
+      search::SearchOptions options;
+      options.inflation = eps;
+      search::InterfaceSearch finder(t.slave.surface(), ghosts.surface(), options);
+      for (const auto& p : finder.find_pairs())
+        if (slave_owned[static_cast<std::size_t>(p.slave)])
+          candidates.push_back({p.slave, p.master});
+    }
+  }
+
+  ScopedTimer timer(timers, "mortar");
+  auto options = detail::mortar_options(itf, t.slave, ghosts);
+  // Curved facets anywhere on the interface raise the quadrature everywhere, as when whole.
+  MPI_Allreduce(MPI_IN_PLACE, &options.pair.cell_quadrature_degree, 1, MPI_INT, MPI_MAX, comm);
+  const auto bound = detail::bound_slave_nodes(config, mesh, t.slave, options.multiplier);
+  auto ops = mortar::assemble_mortar_operators(t.slave.facet_set(), ghosts.facet_set(), candidates,
+                                               options, bound);
+  t.local_slave_facets = slave_part.n_facets();
+  t.local_master_ghosts = ghosts.n_facets();
+  t.local_pairs = static_cast<std::int64_t>(candidates.size());
+  t.local_integration_cells = ops.n_integration_cells;
+
+  // Global node numbers of the held slave nodes.
+  const auto n_slave = t.slave.mesh_nodes.size();
+  t.slave_index.resize(n_slave);
+  std::unordered_map<std::int64_t, local_index> slave_local;
+  for (std::size_t i = 0; i < n_slave; ++i) {
+    t.slave_index[i] = part.node_index[static_cast<std::size_t>(t.slave.mesh_nodes[i])];
+    slave_local.emplace(t.slave_index[i], static_cast<local_index>(i));
+  }
+  const auto owner = [&](std::size_t i) {
+    return part.node_owner[static_cast<std::size_t>(t.slave.mesh_nodes[i])];
+  };
+
+  // 1. This rank's contributions to the rows of D and M, to the owners of the rows' nodes.
+  std::vector<RowEntry> rows; // complete rows of the owned slave nodes, sorted
+  {
+    std::vector<std::pair<int, RowEntry>> items;
+    items.reserve(ops.D.size() + ops.M.size());
+    for (const auto& e : ops.D) {
+      RowEntry r;
+      r.row = t.slave_index[static_cast<std::size_t>(e.row)];
+      r.col = t.slave_index[static_cast<std::size_t>(e.col)];
+      r.value = e.value;
+      items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
+    }
+    for (const auto& e : ops.M) {
+      RowEntry r;
+      r.row = t.slave_index[static_cast<std::size_t>(e.row)];
+      r.col = t.master_index[static_cast<std::size_t>(e.col)];
+      r.value = e.value;
+      r.kind = 1;
+      for (int c = 0; c < dim; ++c)
+        r.x[c] = ghosts.coordinates[static_cast<std::size_t>(e.col) * dim + c];
+      items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
+    }
+    std::vector<std::int64_t> offsets, recv_offsets;
+    const auto send = by_rank(size, items, offsets);
+    auto received = parallel::alltoallv<RowEntry>(comm, send, offsets, recv_offsets);
+    // Summed in the order received (by source rank), the same on every call.
+    std::stable_sort(received.begin(), received.end(), entry_less);
+    for (const auto& r : received) {
+      if (!rows.empty() && rows.back().row == r.row && rows.back().kind == r.kind &&
+          rows.back().col == r.col) {
+        rows.back().value += r.value;
+      } else {
+        rows.push_back(r);
+      }
+    }
+  }
+
+  // 2. The complete rows of every held slave node, from their owners.
+  std::vector<RowEntry> complete;
+  {
+    std::vector<std::pair<int, std::int64_t>> requests;
+    for (std::size_t i = 0; i < n_slave; ++i) requests.emplace_back(owner(i), t.slave_index[i]);
+    std::vector<std::int64_t> offsets, recv_offsets;
+    const auto send = by_rank(size, requests, offsets);
+    const auto asked = parallel::alltoallv<std::int64_t>(comm, send, offsets, recv_offsets);
+    std::vector<std::pair<int, RowEntry>> replies;
+    for (int r = 0; r < size; ++r)
+      for (auto k = recv_offsets[r]; k < recv_offsets[r + 1]; ++k) {
+        RowEntry key;
+        key.row = asked[static_cast<std::size_t>(k)];
+        const auto first =
+            std::lower_bound(rows.begin(), rows.end(), key.row,
+                             [](const RowEntry& e, std::int64_t row) { return e.row < row; });
+        for (auto it = first; it != rows.end() && it->row == key.row; ++it)
+          replies.emplace_back(r, *it);
+      }
+    const auto reply = by_rank(size, replies, offsets);
+    complete = parallel::alltoallv<RowEntry>(comm, reply, offsets, recv_offsets);
+  }
+
+  // 3. The operators over the held slave nodes and the master nodes their rows reach. A row
+  // with a column outside the held side (a bound neighbour beyond the ghost layer) is dropped;
+  // it must not be one that this rank's own cells need.
+  std::vector<char> dropped(n_slave, 0);
+  for (const auto& e : complete)
+    if (e.kind == 0 && slave_local.count(e.col) == 0)
+      dropped[static_cast<std::size_t>(slave_local.at(e.row))] = 1;
+  InterfaceSide master;
+  master.dim = dim;
+  std::vector<std::int64_t> master_index;
+  std::unordered_map<std::int64_t, local_index> master_local;
+  std::vector<mortar::Triplet> D, M;
+  for (const auto& e : complete) {
+    const auto row = slave_local.at(e.row);
+    if (dropped[static_cast<std::size_t>(row)]) continue;
+    if (e.kind == 0) {
+      D.push_back({row, slave_local.at(e.col), e.value});
+      continue;
+    }
+    const auto [it, added] =
+        master_local.emplace(e.col, static_cast<local_index>(master_index.size()));
+    if (added) {
+      master_index.push_back(e.col);
+      for (int c = 0; c < dim; ++c) master.coordinates.push_back(e.x[c]);
+    }
+    M.push_back({row, it->second, e.value});
+  }
+  // The nodes of this rank's cells and their neighbours in T need complete rows.
+  std::vector<char> in_owned_cell(static_cast<std::size_t>(mesh.n_nodes()), 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    if (part.cell_role[static_cast<std::size_t>(c)] == mesh::CellRole::owned)
+      for (auto n : mesh.cell(c)) in_owned_cell[static_cast<std::size_t>(n)] = 1;
+  std::vector<char> needed(n_slave, 0);
+  for (std::size_t i = 0; i < n_slave; ++i)
+    needed[i] = in_owned_cell[static_cast<std::size_t>(t.slave.mesh_nodes[i])];
+  for (const auto& e : ops.T)
+    if (in_owned_cell[static_cast<std::size_t>(
+            t.slave.mesh_nodes[static_cast<std::size_t>(e.row)])])
+      needed[static_cast<std::size_t>(e.col)] = 1;
+  bool bad = false;
+  for (std::size_t i = 0; i < n_slave; ++i) bad = bad || (needed[i] && dropped[i]);
+  parallel::check_collectively(comm, bad,
+                               "mesh tying: a bound slave node beyond the ghost layer is needed "
+                               "by the distributed interface set-up; run on fewer ranks");
+
+  ops.D = std::move(D);
+  ops.M = std::move(M);
+  mortar::compress(ops.D, static_cast<local_index>(n_slave));
+  mortar::compress(ops.M, static_cast<local_index>(n_slave));
+  // Counts of the whole interface.
+  {
+    std::int64_t counts[6] = {ops.n_candidates,        ops.n_pairs_integrated,
+                              ops.n_integration_cells, ops.n_projection_failures,
+                              slave_part.n_facets(),   master_part.n_facets()};
+    MPI_Allreduce(MPI_IN_PLACE, counts, 6, MPI_INT64_T, MPI_SUM, comm);
+    double area = ops.integrated_area;
+    MPI_Allreduce(MPI_IN_PLACE, &area, 1, MPI_DOUBLE, MPI_SUM, comm);
+    ops.n_candidates = static_cast<local_index>(counts[0]);
+    ops.n_pairs_integrated = static_cast<local_index>(counts[1]);
+    ops.n_integration_cells = static_cast<local_index>(counts[2]);
+    ops.n_projection_failures = static_cast<local_index>(counts[3]);
+    t.n_slave_facets = counts[4];
+    t.n_master_facets = counts[5];
+    ops.integrated_area = area;
+  }
+  if (ops.n_pairs_integrated == 0) detail::fail_no_overlap(itf);
+  t.operators = std::move(ops);
+  t.master = std::move(master);
+  t.master_index = std::move(master_index);
+
+  // Mesh initialization (D X_S = M X_M) from the complete rows, for the nodes of the rank's
+  // cells: every rank that holds such a node computes the same position from the same rows.
+  const auto moved =
+      mortar::initialize_slave_coordinates(t.operators, t.slave.coordinates, t.master.coordinates);
+  double max_relocation = 0.0;
+  for (std::size_t i = 0; i < n_slave; ++i) {
+    const auto node = static_cast<std::size_t>(t.slave.mesh_nodes[i]);
+    if (!in_owned_cell[node]) continue;
+    double d2 = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      const double delta = moved[i * dim + c] - t.slave.coordinates[i * dim + c];
+      d2 += delta * delta;
+      mesh.x[node * dim + c] = moved[i * dim + c];
+    }
+    if (part.node_owner[node] == rank) max_relocation = std::max(max_relocation, std::sqrt(d2));
+  }
+  MPI_Allreduce(&max_relocation, &t.max_relocation, 1, MPI_DOUBLE, MPI_MAX, comm);
+  t.slave.update_coordinates(mesh);
+  return result;
+}
+
+} // namespace
+
+std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::DistributedMesh& part,
+                                            MPI_Comm comm, PhaseTimers& timers) {
+  std::vector<TiedInterface> out;
+  std::vector<std::vector<std::int32_t>> owned_master_nodes;
+  for (const auto& itf : config.interfaces) {
+    if (itf.type != io::InterfaceType::mesh_tying) continue;
+    if (!distributed_tying(itf)) {
+      out.push_back(detail::setup_whole(config, itf, part.mesh, timers, itf.type));
+      owned_master_nodes.emplace_back();
+      continue;
+    }
+    auto r = setup_distributed(config, itf, part, comm, timers);
+    out.push_back(std::move(r.t));
+    owned_master_nodes.push_back(std::move(r.owned_master_nodes));
+  }
+  // Chained tying: a master node (checked by its owner, who holds every facet around it) that
+  // is a slave node of another interface.
+  int chained = static_cast<int>(out.size());
+  for (std::size_t a = 0; a < out.size() && chained == static_cast<int>(out.size()); ++a)
+    for (std::size_t b = 0; b < out.size(); ++b) {
+      if (a == b || !out[a].distributed) continue;
+      const auto& slaves = out[b].slave.mesh_nodes;
+      for (auto n : owned_master_nodes[a])
+        if (std::binary_search(slaves.begin(), slaves.end(), n)) chained = static_cast<int>(a);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &chained, 1, MPI_INT, MPI_MIN, comm);
+  if (chained < static_cast<int>(out.size()))
+    for (const auto& itf : config.interfaces)
+      if (itf.name == out[static_cast<std::size_t>(chained)].name)
+        io::fail_at(itf.mark, "interface '" + itf.name +
+                                  "': a master node is a slave node of another interface; "
+                                  "chained tying is not supported");
+  return out;
+}
+
+} // namespace seam::meshtying
