@@ -178,3 +178,53 @@ TEST(AlgorithmicStress, TangentMatchesCentralDifferences) {
     }
   }
 }
+
+// A small increment just above the switch to the midpoint rule, from a stretched state of a
+// stiff Neo-Hookean material: S_alg : dE must equal the exact energy change, computed here in
+// long double, to near machine precision of the change itself. Subtracting the two energies in
+// double (W ~ mu, change ~ mu |dE|) loses about eps mu / (mu |dE|) of it, 1e-12 here: the
+// floor that kept a Newton residual of an almost rigidly sliding block near 1e-9.
+TEST(AlgorithmicStress, SmallIncrementKeepsTheEnergyChangeExact) {
+  for (auto mode : {PlaneMode::none, PlaneMode::plane_strain}) {
+    const Material m = make_material(MaterialModel::neo_hooke, 0.3);
+    Eigen::Matrix3d F0 = Eigen::Matrix3d::Identity();
+    F0(0, 0) = 1.3;
+    F0(0, 1) = 0.2;
+    F0(1, 1) = 0.8;
+    Eigen::Matrix3d dF = Eigen::Matrix3d::Zero();
+    dF(0, 0) = 1.1e-4;
+    dF(1, 0) = -0.7e-4;
+    dF(1, 1) = 0.9e-4;
+    if (mode == PlaneMode::none) {
+      F0(2, 2) = 1.1;
+      dF(2, 2) = -0.6e-4;
+    }
+    const Eigen::Matrix3d F1 = F0 + dF;
+    dF = F1 - F0; // exact (Sterbenz): the increment between the two stored states
+    AlgorithmicStress a;
+    ASSERT_EQ(algorithmic_stress(m, mode, F0, F1, a), PointStatus::ok);
+    ASSERT_FALSE(a.midpoint) << mode_name(mode);
+    const auto energy = [&](const Eigen::Matrix3d& F) {
+      Eigen::Matrix<long double, 3, 3> Fl = F.cast<long double>();
+      const Eigen::Matrix<long double, 3, 3> C = Fl.transpose() * Fl;
+      const long double J = Fl(0, 0) * (Fl(1, 1) * Fl(2, 2) - Fl(1, 2) * Fl(2, 1)) -
+                            Fl(0, 1) * (Fl(1, 0) * Fl(2, 2) - Fl(1, 2) * Fl(2, 0)) +
+                            Fl(0, 2) * (Fl(1, 0) * Fl(2, 1) - Fl(1, 1) * Fl(2, 0));
+      const long double mu = m.mu(), lambda = m.lambda(), lnJ = std::log(J);
+      return 0.5L * mu * (C.trace() - 3.0L) - mu * lnJ + 0.5L * lambda * lnJ * lnJ;
+    };
+    const long double exact = energy(F1) - energy(F0);
+    // dE without subtracting two O(1) strains: (F_mid^T dF + dF^T F_mid) / 2, in long double.
+    const Eigen::Matrix<long double, 3, 3> Fm = (0.5L * (F0 + F1).cast<long double>()).eval(),
+                                           dFl = dF.cast<long double>();
+    const Eigen::Matrix<long double, 3, 3> dE =
+        0.5L * (Fm.transpose() * dFl + dFl.transpose() * Fm);
+    const int nc = mode == PlaneMode::none ? 3 : 2;
+    long double work = 0.0L;
+    for (int i = 0; i < nc; ++i)
+      for (int j = 0; j < nc; ++j) work += static_cast<long double>(a.stress(i, j)) * dE(i, j);
+    EXPECT_LT(std::abs(static_cast<double>((work - exact) / exact)), 1e-13)
+        << mode_name(mode) << ": S_alg:dE " << static_cast<double>(work) << ", exact "
+        << static_cast<double>(exact);
+  }
+}
