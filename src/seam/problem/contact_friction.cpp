@@ -229,9 +229,13 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     return true;
   };
   int changes = 0;
+  s.inconsistent = 0;
   for (std::size_t j = 0; j < n; ++j) {
     changes += s.status[j] != s.status_previous[j];
-    changes += s.frozen_nodes[j] && s.status[j] == s.status_previous[j] && !consistent(j);
+    const bool inconsistent =
+        s.frozen_nodes[j] && s.status[j] == s.status_previous[j] && !consistent(j);
+    changes += inconsistent;
+    s.inconsistent += inconsistent;
     s.active[j] = s.status[j] != 0;
   }
   // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
@@ -464,6 +468,12 @@ void ContactConstraint::condense_friction(
 int ContactConstraint::n_on_cone() const {
   int n = 0;
   for (const auto& s : sides_) n += s.friction ? s.on_cone : 0;
+  return n;
+}
+
+int ContactConstraint::n_inconsistent() const {
+  int n = 0;
+  for (const auto& s : sides_) n += s.friction ? s.inconsistent : 0;
   return n;
 }
 
