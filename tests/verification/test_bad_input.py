@@ -600,6 +600,12 @@ def test_friction_tresca_bound_negative():
                        at=position(text, "friction:", "-1"))
 
 
+def test_friction_bound_not_a_number():
+    text = with_friction("{model: tresca, bound: smooth}")
+    expect_input_error(text, ["interfaces[0].friction.bound", "smooth"],
+                       at=position(text, "friction:", "smooth"))
+
+
 def test_friction_coefficient_with_tresca():
     text = with_friction("{model: tresca, bound: 1, coefficient: 0.3}")
     expect_input_error(text, ["interfaces[0].friction.coefficient", "coulomb"])
@@ -711,7 +717,8 @@ if __name__ == "__main__":
         test_version_and_help,
         test_friction_coefficient_negative, test_friction_coefficient_not_a_number,
         test_friction_unknown_model, test_friction_tresca_without_bound,
-        test_friction_tresca_bound_negative, test_friction_coefficient_with_tresca,
+        test_friction_tresca_bound_negative, test_friction_bound_not_a_number,
+        test_friction_coefficient_with_tresca,
         test_friction_on_mesh_tying, test_friction_c_t_without_friction,
         test_contact_standard_multiplier_tri6, test_friction_standard_multiplier_tri6,
         test_contact_c_n_negative, test_contact_slave_region_missing,

@@ -132,6 +132,9 @@ public:
   /// Nodes that the cycling guard froze between stick and slip and that were accepted within
   /// the hysteresis band of their friction cone at the last evaluate() (contact_friction.cpp).
   int n_on_cone() const;
+  /// Nodes that the cycling guard froze between stick and slip and whose frozen status violates
+  /// its condition beyond the band at the last evaluate(): each counts as a change.
+  int n_inconsistent() const;
 
   /// Diagnostics and tests of the linearization. While the sets are held, evaluate() keeps
   /// every node's status (active, stick, slip) and tangent frame as they are, so that the
@@ -210,6 +213,7 @@ private:
     std::array<double, 3> plane_old{};       ///< rigid plane displacement then
     double dissipation = 0.0;                ///< frictional work up to the last converged step
     int on_cone = 0;      ///< frozen nodes accepted within the stick/slip band at the last evaluate
+    int inconsistent = 0; ///< frozen nodes violating their condition beyond the band then
     bool has_old = false; ///< D_diag_old and M_old are set
     /// hold_sets(true): the frames of every node, kept until hold_sets(false).
     std::vector<NodeFrame> held_frames;

@@ -159,6 +159,10 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   double d_max = 0.0;
   for (double d : s.D) d_max = std::max(d_max, d);
   const double touching = 1e-9 * s.itf.slave_mesh_size();
+  // Tolerance of the stick/slip conditions, in traction units.
+  double scale = 0.0;
+  for (const double l : s.lambda) scale = std::max(scale, std::abs(l));
+  const double tolerance = 1e-8 * scale;
   // The status each node's condition asks for at this iterate.
   std::vector<char> next(n, 0);
   for (std::size_t j = 0; j < n; ++j) {
@@ -169,6 +173,14 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     for (int c = 0; c < dim; ++c) lambda_n += node.lambda[c] * node.normal[c];
     if (lambda_n - s.c_n * (s.gap[j] / s.D[j] - touching) <= 0.0) continue;
     next[j] = static_cast<char>(contact::stick_or_slip(s.law, node));
+    // A node on its cone satisfies both conditions: it keeps the status it has. A node that
+    // slid in the last step starts the next one with a zero slip increment, |z| = |lambda_t| =
+    // xi; deciding it by the strict test sent it to stick in the first iteration and back to
+    // slip in the second, which the cycling guard took for a cycle and froze for the rest of the
+    // step, so that a node whose slip then came to rest could no longer stick.
+    if (next[j] != s.status[j] && s.status[j] != 0 &&
+        contact::admissible(s.law, node, static_cast<contact::NodeStatus>(s.status[j]), tolerance))
+      next[j] = s.status[j];
   }
   // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 8
   // iterations ago, the nodes that alternate keep the largest of their statuses in the cycle
@@ -204,9 +216,6 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   // condition is violated by less than cone_band of its bound, |z| against xi, in traction
   // units (for slip, c_t times the slip against the traction), and counted so that the step
   // reports it.
-  double scale = 0.0;
-  for (const double l : s.lambda) scale = std::max(scale, std::abs(l));
-  const double tolerance = 1e-8 * scale;
   s.on_cone = 0;
   const auto consistent = [&](std::size_t j) {
     if (s.status[j] == next[j]) return true;
@@ -220,9 +229,13 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     return true;
   };
   int changes = 0;
+  s.inconsistent = 0;
   for (std::size_t j = 0; j < n; ++j) {
     changes += s.status[j] != s.status_previous[j];
-    changes += s.frozen_nodes[j] && s.status[j] == s.status_previous[j] && !consistent(j);
+    const bool inconsistent =
+        s.frozen_nodes[j] && s.status[j] == s.status_previous[j] && !consistent(j);
+    changes += inconsistent;
+    s.inconsistent += inconsistent;
     s.active[j] = s.status[j] != 0;
   }
   // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
@@ -455,6 +468,12 @@ void ContactConstraint::condense_friction(
 int ContactConstraint::n_on_cone() const {
   int n = 0;
   for (const auto& s : sides_) n += s.friction ? s.on_cone : 0;
+  return n;
+}
+
+int ContactConstraint::n_inconsistent() const {
+  int n = 0;
+  for (const auto& s : sides_) n += s.friction ? s.inconsistent : 0;
   return n;
 }
 

@@ -70,6 +70,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
   const auto& nc = config_.solver.newton;
   double reference = 0.0;
   const bool moving_boundary = dirichlet_increment(model_, disc_, u, t, g_);
+  int stalled = 0; // consecutive converged iterations changed only by frozen frictional nodes
   for (int it = 0; it <= nc.max_iterations; ++it) {
     AssemblyStatus status;
     {
@@ -140,6 +141,14 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     const bool meets_tolerance = norm <= nc.tolerance * reference || reference == 0.0;
     const bool at_floor = !meets_tolerance && (negligible_increment || roundoff);
     const bool converged = !predictor && changes == 0 && (meets_tolerance || at_floor);
+    // Frictional nodes frozen by the cycling guard whose status holds its condition in neither
+    // stick nor slip (beyond the hysteresis band) count as changes. Once they are the only
+    // changes left at a converged residual, nothing can change any more in this step (their
+    // statuses stay frozen): after three such iterations the step is cut instead of iterating
+    // up to the limit.
+    const bool frozen_only =
+        changes > 0 && contact_.active() && changes == contact_.n_inconsistent();
+    stalled = frozen_only && (meets_tolerance || at_floor) ? stalled + 1 : 0;
     out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
     last_norm_ = norm;
     res.residual = reference > 0 ? norm / reference : 0.0;
@@ -157,6 +166,10 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
             " frictional node(s) alternated between stick and slip and were accepted on their "
             "friction cone within 0.1 % of the bound (stick/slip hysteresis band)"));
       res.converged = true;
+      return res;
+    }
+    if (stalled >= 3) {
+      res.failure = "frictional nodes frozen between stick and slip hold neither status";
       return res;
     }
     if (it == nc.max_iterations) break;
