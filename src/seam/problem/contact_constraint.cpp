@@ -482,10 +482,9 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
 void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,
                                   std::vector<double>& values) {
   const double cpu = cpu_seconds();
-  // Energy-momentum contact: the gap rows only (at zero multipliers no force tangent); the
-  // tangent of the discrete-gradient force is that of the last evaluate().
-  s.itf.linearize(s.discrete_gradient ? std::vector<double>(s.lambda.size(), 0.0) : s.lambda,
-                  s.active, s.lin);
+  // Energy-momentum contact: the gap rows and the tangent of the discrete-gradient force come
+  // from the last evaluate().
+  if (!s.discrete_gradient) s.itf.linearize(s.lambda, s.active, s.lin);
   s.work_seconds += cpu_seconds() - cpu;
   for (const auto& e : s.discrete_gradient ? s.em_tangent : s.lin.force_tangent) {
     rows.push_back(global_dof(e.row));
@@ -550,6 +549,7 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     }
     // Active rows: c_n dg~_j dd = -c_n g~_j; inactive rows: D_j lambda_j = 0.
     for (const auto& e : s.lin.gap_gradient) {
+      if (!s.active[static_cast<std::size_t>(e.row)]) continue;
       ci.push_back(s.lm_index[static_cast<std::size_t>(e.row)]);
       cj.push_back(global_dof(e.col));
       cv.push_back(s.c_n * e.value);

@@ -171,6 +171,14 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
     const auto slot = b.dofs[static_cast<std::size_t>(v / 2)];
     return slot < 0 ? std::int64_t{-1} : slot + v % 2;
   };
+  // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
+  // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
+  s.lin.gap_gradient.clear();
+  for (const auto& b : end)
+    for (std::size_t r = 0; r < 2; ++r)
+      for (int v = 0; v < nv; ++v)
+        if (const auto dof = dof_of(b, v); dof >= 0 && b.gradient[r][v] != 0.0)
+          s.lin.gap_gradient.push_back({b.slave[r], dof, b.gradient[r][v]});
   std::vector<Entry> local;
   for (const auto& b : start)
     for (std::size_t r = 0; r < 2; ++r) local.push_back({0, b.slave[r], g0, b.gap[r]});
@@ -203,6 +211,10 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   // Every rank's entries; the owner of slave node j assembles its discrete gradient.
   std::vector<Entry> all = all_gather(disc_.comm(), local);
   const auto& nodes = s.itf.slave().mesh_nodes;
+  // The weighted gaps at x_{n+1} that the active set and the gap rows use.
+  std::fill(s.gap.begin(), s.gap.end(), 0.0);
+  for (const auto& e : all)
+    if (e.kind == g1) s.gap[static_cast<std::size_t>(e.j)] += e.value;
   std::stable_sort(all.begin(), all.end(),
                    [](const Entry& a, const Entry& b) { return a.j < b.j; });
   for (std::size_t begin = 0; begin < all.size();) {
