@@ -250,12 +250,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       dx(i) = u[d] - u0[d];
       x_mid(i) = X[d] + mid[d];
     }
-    // A node that takes contact beyond the other surface (g~_j(x_n) < 0: it was a master node
-    // or unconstrained in the last step, or the roles changed) would give back lambda_j times
-    // its penetration as energy: the correction is taken to the gap max(g~_j(x_n), 0), so
-    // that the step changes the energy by -sum_j lambda_j max(g~_j(x_n), 0) <= 0.
-    const DiscreteGradient dg =
-        discrete_gradient(dim, dx, x_mid, std::max(gap_start, 0.0), gap_end, G, G1, Hdx);
+    const DiscreteGradient dg = discrete_gradient(dim, dx, x_mid, gap_start, gap_end, G, G1, Hdx);
     for (Eigen::Index i = 0; i < n; ++i)
       if (dg.value(i) != 0.0)
         s.em_gradient.push_back({j, dofs[static_cast<std::size_t>(i)], -dg.value(i)});
