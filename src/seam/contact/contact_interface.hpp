@@ -83,6 +83,22 @@ struct Linearization {
   std::vector<DofTriplet> operator_gradient;
 };
 
+/// One candidate pair's contributions to the weighted gaps of its two slave nodes, with their
+/// first or second derivatives (energy-momentum contact, docs/contact_dynamics.md §4). The
+/// variables are 6 nodes, 2 coordinates each: the slave facet's nodes, up to two more nodes
+/// of the facets that enter their averaged normals, the master facet's nodes; variable
+/// 2 * slot + c is coordinate c of mesh dof dofs[slot] / 2 (dofs[slot] < 0: unused slot).
+struct GapBlock {
+  static constexpr int n_variables = 12;
+  std::array<local_index, 2> slave{}; ///< side-local slave nodes of the two rows
+  std::array<std::int64_t, 6> dofs{}; ///< mesh dof of coordinate 0 of each slot
+  std::array<double, 2> gap{};        ///< contribution to g~_j
+  std::array<std::array<double, 12>, 2> gradient{};
+  std::array<std::array<double, 144>, 2> hessian{}; ///< row-major
+};
+/// What gap_blocks computes: values, first or second derivatives.
+enum class GapOrder { value, gradient, hessian };
+
 /// y = T^-1 x for the slave nodal vectors x (dim values per slave node) and the triplets of
 /// T^-1 (side-local; mortar::inverse_transformation); nodes without a row keep their values.
 /// With a modified slave basis (d = T d~) the positions that D multiplies in D x~_S = M x_M
@@ -178,6 +194,17 @@ public:
   /// nonzero multiplier or a wanted gap are linearized.
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
                  Linearization& out) const;
+
+  /// Whether gap_blocks is available: 2D, line2 facets on both sides, two bodies or self
+  /// contact, no rigid obstacle.
+  bool has_gap_blocks() const;
+  /// The weighted gaps g~_j as functions of the positions: each candidate pair of the owned
+  /// slave facets of the last update (same pairs, slave patch and nodal normal averaging),
+  /// evaluated at the mesh displacement `u` (dim values per mesh node; interface nodes read)
+  /// with exact derivatives up to `order`. Summed over the blocks (and the parts), the values
+  /// at the displacement of the last update are those of evaluate() to the projections'
+  /// Newton tolerance.
+  void gap_blocks(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out) const;
 
   /// d n_j / d(displacement) of the averaged normal of slave node j at the last update: row =
   /// component, column = mesh dof, appended to `out`. Nothing for a rigid plane (its normal is

@@ -42,7 +42,8 @@ double side_young(const Discretization& disc, const Model& model,
 
 ContactConstraint::ContactConstraint(const io::Config& config, const Discretization& disc,
                                      const Model& model)
-    : disc_(disc), parallel_(config.parallel) {
+    : disc_(disc), parallel_(config.parallel),
+      energy_momentum_(config.time.integrator == io::Integrator::energy_momentum) {
   const int dim = disc.dim();
   double young = 0.0;
   for (const auto& m : model.materials) young = std::max(young, m.young);
@@ -89,6 +90,11 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
+    // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
+    // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
+    s.discrete_gradient = config.time.integrator == io::Integrator::energy_momentum &&
+                          !s.friction && s.itf.has_gap_blocks();
+    saddle_point_ = saddle_point_ || s.discrete_gradient;
     // The slave facets start with the bulk partition (the facets of this rank's cells).
     const mesh::Region region = itf.surface.empty()
                                     ? meshtying::side_region(disc.mesh(), itf.slave)
@@ -101,6 +107,13 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
     sides_.push_back(std::move(s));
   }
+  if (saddle_point_)
+    for (std::size_t k = 0; k < sides_.size(); ++k)
+      if (!sides_[k].T_inverse.empty())
+        io::fail_at(config.interfaces[k].mark,
+                    "interface '" + sides_[k].itf.name() +
+                        "': quadratic faces with dual multipliers cannot share a run with "
+                        "standard multipliers or energy-momentum contact (saddle point)");
   for (const auto& s : sides_) {
     const auto& slave = s.itf.slave().mesh_nodes;
     interface_nodes_.insert(interface_nodes_.end(), slave.begin(), slave.end());
@@ -224,6 +237,7 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     comm.sum_in_place(s.D);
     comm.sum_in_place(s.gap);
     s.area = comm.sum(s.part.area);
+    if (s.discrete_gradient) evaluate_discrete_gradient(s, u_mesh);
     double d_max = 0.0;
     for (double d : s.D) d_max = std::max(d_max, d);
     const double touching = 1e-9 * s.itf.slave_mesh_size();
@@ -263,6 +277,14 @@ void ContactConstraint::add_force(la::Vector& r) const {
   std::vector<PetscInt> rows;
   std::vector<double> values;
   for (const auto& s : sides_) {
+    if (s.discrete_gradient) {
+      // -sum_j lambda_j grad_d g~_j (the nodes this rank owns).
+      for (const auto& e : s.em_gradient) {
+        rows.push_back(global_dof(e.dof));
+        values.push_back(s.lambda[e.j] * e.value);
+      }
+      continue;
+    }
     std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
     s.itf.add_force(s.part, s.lambda, f);
     if (!s.T_inverse.empty()) {
@@ -460,9 +482,11 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
 void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,
                                   std::vector<double>& values) {
   const double cpu = cpu_seconds();
-  s.itf.linearize(s.lambda, s.active, s.lin);
+  // Energy-momentum contact: the gap rows and the tangent of the discrete-gradient force come
+  // from the last evaluate().
+  if (!s.discrete_gradient) s.itf.linearize(s.lambda, s.active, s.lin);
   s.work_seconds += cpu_seconds() - cpu;
-  for (const auto& e : s.lin.force_tangent) {
+  for (const auto& e : s.discrete_gradient ? s.em_tangent : s.lin.force_tangent) {
     rows.push_back(global_dof(e.row));
     cols.push_back(global_dof(e.col));
     values.push_back(e.value);
@@ -503,18 +527,29 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
         bv.push_back(v);
       }
     };
-    for (std::size_t j = 0; j < nodes.size(); ++j)
-      if (s.part.D[j] != 0.0) add_column(nodes[j], j, s.part.D[j]);
-    for (const auto& e : s.part.D_coupling)
-      add_column(nodes[static_cast<std::size_t>(e.col)], static_cast<std::size_t>(e.row), e.value);
-    for (const auto& e : s.part.M)
-      add_column(e.master_node, static_cast<std::size_t>(e.slave), -e.value);
+    if (s.discrete_gradient) {
+      // B^T: column j is -grad_d g~_j.
+      for (const auto& e : s.em_gradient) {
+        bi.push_back(global_dof(e.dof));
+        bj.push_back(s.lm_index[e.j]);
+        bv.push_back(e.value);
+      }
+    } else {
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        if (s.part.D[j] != 0.0) add_column(nodes[j], j, s.part.D[j]);
+      for (const auto& e : s.part.D_coupling)
+        add_column(nodes[static_cast<std::size_t>(e.col)], static_cast<std::size_t>(e.row),
+                   e.value);
+      for (const auto& e : s.part.M)
+        add_column(e.master_node, static_cast<std::size_t>(e.slave), -e.value);
+    }
     if (s.friction) {
       saddle_friction(s, ci, cj, cv, ei, ej, ev, lm_rhs);
       continue;
     }
     // Active rows: c_n dg~_j dd = -c_n g~_j; inactive rows: D_j lambda_j = 0.
     for (const auto& e : s.lin.gap_gradient) {
+      if (!s.active[static_cast<std::size_t>(e.row)]) continue;
       ci.push_back(s.lm_index[static_cast<std::size_t>(e.row)]);
       cj.push_back(global_dof(e.col));
       cv.push_back(s.c_n * e.value);
@@ -799,6 +834,11 @@ std::vector<std::string> ContactConstraint::describe() const {
                         : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
           multipliers, s.c_n);
     std::string text = line;
+    if (s.discrete_gradient)
+      text += ", energy-momentum contact force (discrete gradient of the weighted gaps)";
+    else if (energy_momentum_)
+      text += ", contact force of the end of the step (energy-momentum contact needs 2D line2 "
+              "faces, two bodies or self contact, no friction)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",

@@ -75,6 +75,18 @@ public:
 
   bool active() const { return !sides_.empty(); }
 
+  /// Energy-momentum contact (`integrator: energy_momentum`; docs/contact_dynamics.md §4): on
+  /// the frictionless two-body and self-contact interfaces of line2 faces the contact force is
+  /// -sum_j lambda_j grad_d g~_j(x_n, x_{n+1}), the discrete gradient of the weighted gaps, and
+  /// every Newton step is the saddle point with B^T = grad_d g~ (standard or dual multipliers
+  /// alike). start_step gives the displacement at the start of the step, before the first
+  /// evaluate() of the step. Collective.
+  void start_step(const la::Vector& u_n);
+  /// Interfaces with the discrete-gradient force, and those that keep the force of the end of
+  /// the step (friction, quadratic faces, rigid obstacles, 3D).
+  int n_discrete_gradient() const;
+  int n_end_of_step() const;
+
   /// The state at displacement u (ghosted, up to date) and time t with the current
   /// multipliers: geometry, search, D, g~; the active set from the complementarity function.
   /// Returns the number of nodes whose status changed against the previous iteration.
@@ -217,8 +229,23 @@ private:
     bool has_old = false; ///< D_diag_old and M_old are set
     /// hold_sets(true): the frames of every node, kept until hold_sets(false).
     std::vector<NodeFrame> held_frames;
+
+    // Energy-momentum contact: the force per unit multiplier -grad_d g~_j of the slave nodes
+    // this rank owns (their entries, node j and mesh dof) and this rank's part of the
+    // derivative of -sum_j lambda_j grad_d g~_j (mesh dofs), at the last evaluate().
+    bool discrete_gradient = false;
+    struct GradientEntry {
+      std::size_t j = 0;
+      std::int64_t dof = 0;
+      double value = 0.0;
+    };
+    std::vector<GradientEntry> em_gradient;
+    std::vector<contact::DofTriplet> em_tangent;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
+  /// The discrete gradients of side s at the interface displacement u (x_{n+1}) and the start
+  /// of the step, with the current multipliers (contact_energy_momentum.cpp). Collective.
+  void evaluate_discrete_gradient(Side& s, std::span<const double> u);
   // Friction (contact_friction.cpp).
   void init_friction(Side& s, const io::Interface& config, double c_n);
   /// Slip increments, stick/slip/inactive status with the cycling guard, complementarity
@@ -287,12 +314,14 @@ private:
   std::vector<std::int32_t> interface_nodes_; ///< mesh nodes of all sides, sorted
   mutable la::Gather gather_;                 ///< their dofs, node-major
   mutable std::vector<double> u_mesh_;
+  std::vector<double> u_mesh_start_; ///< interface displacement at the start of the step
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;
-  bool held_ = false;     ///< hold_sets
-  PetscInt n_lm_ = 0;     ///< multipliers this rank owns (those of its slave nodes)
-  PetscInt first_lm_ = 0; ///< global index of the first of them
+  bool energy_momentum_ = false; ///< integrator: energy_momentum
+  bool held_ = false;            ///< hold_sets
+  PetscInt n_lm_ = 0;            ///< multipliers this rank owns (those of its slave nodes)
+  PetscInt first_lm_ = 0;        ///< global index of the first of them
 };
 
 } // namespace seam::problem

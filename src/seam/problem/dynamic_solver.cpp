@@ -128,6 +128,11 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   for (const auto& d : model.dirichlet) prescribed.push_back(d.dof);
   std::unique_ptr<la::LinearSolver> mass_solver;
 
+  if (emm && contact.n_end_of_step() > 0 && disc.comm().is_root())
+    std::printf("seam: energy_momentum: %d contact interface(s) keep the contact force of the end "
+                "of the step (friction, quadratic faces, rigid obstacles or 3D): momentum and "
+                "energy are not conserved there (docs/contact_dynamics.md)\n",
+                contact.n_end_of_step());
   StepControl control(tc);
   int step = 0;
   double external_work = 0.0;
@@ -153,6 +158,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     v_n.copy_from(v);
     a_n.copy_from(a);
     u_n.update_ghosts();
+    if (emm) contact.start_step(u_n);
 
     NewtonSolver::Evaluator evaluate;
     if (emm) {

@@ -21,6 +21,12 @@
 // lightly pressed nodes slip, the others stick): the check state holds inactive, stick and
 // slip nodes at once. It is the converged state of the drag step before it is accepted (so the
 // slip increment of the step is not zero), perturbed at random.
+//
+// The same check covers energy-momentum contact (`integrator: energy_momentum`, frictionless,
+// docs/contact_dynamics.md §4): the contact force is sum_j lambda_j grad_d g~_j(x_n, d), the
+// discrete gradient between the pressed state x_n (the start of the step) and the dragged
+// one, and its derivative holds the Hessians of the weighted gaps and the derivative of the
+// correction term.
 #include "seam/common/mpi.hpp"
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
@@ -68,6 +74,7 @@ struct Case {
   std::string tilt = "(-0.01+0.02*x)"; ///< normal displacement of the top in the press step
   std::string fixed;                   ///< extra boundary condition (two bodies: the base)
   std::string bodies = "  - {region: body, material: m}\n";
+  std::string integrator = "static";
 };
 
 std::string rectangle_geo(double h, int order, bool two_bodies) {
@@ -147,18 +154,19 @@ Errors check(const Case& c, int n_directions) {
                       ("seam_fd_" + c.name + "_np" + std::to_string(comm.size()));
   const std::string dims = c.dimension == 2 ? "[x, y]" : "[x, y, z]";
   const std::string zero_normal = c.dimension == 2 ? "" : "0, ";
-  std::string yaml = "dimension: " + std::to_string(c.dimension) +
-                     "\nmesh: {geo: case.geo}\n"
-                     "materials:\n  m: {model: neo_hooke, young: 100.0, poisson: 0.3}\n"
-                     "bodies:\n" +
-                     c.bodies +
-                     "boundary_conditions:\n"
-                     "  - {region: top, type: dirichlet, components: " +
-                     dims + ", value: ['" + c.top_x + "*max(t-1,0)', " +
-                     (c.dimension == 3 ? "'0', " : "") + "'" + c.tilt + "*min(t,1)']}\n" + c.fixed +
-                     "interfaces:\n  - " + c.interface +
-                     "\ntime: {integrator: static, end: 2.0, steps: 2}\n"
-                     "solver: {newton: {tolerance: 1e-11, max_iterations: 40}}\n";
+  std::string yaml =
+      "dimension: " + std::to_string(c.dimension) +
+      "\nmesh: {geo: case.geo}\n"
+      "materials:\n  m: {model: neo_hooke, young: 100.0, poisson: 0.3, density: 1.0}\n"
+      "bodies:\n" +
+      c.bodies +
+      "boundary_conditions:\n"
+      "  - {region: top, type: dirichlet, components: " +
+      dims + ", value: ['" + c.top_x + "*max(t-1,0)', " + (c.dimension == 3 ? "'0', " : "") + "'" +
+      c.tilt + "*min(t,1)']}\n" + c.fixed + "interfaces:\n  - " + c.interface +
+      "\ntime: {integrator: " + c.integrator +
+      ", end: 2.0, steps: 2}\n"
+      "solver: {newton: {tolerance: 1e-11, max_iterations: 40}}\n";
   if (comm.is_root()) {
     std::filesystem::remove_all(folder);
     std::filesystem::create_directories(folder);
@@ -187,9 +195,12 @@ Errors check(const Case& c, int n_directions) {
       return assemble(model, disc, state, t, r, &K, &f_ext);
     };
   };
-  // Press (accepted), then drag: converged but not accepted.
+  // Press (accepted), then drag: converged but not accepted. The step starts (energy-momentum
+  // contact) at the reference and at the pressed state.
+  contact.start_step(u);
   EXPECT_TRUE(newton.solve(u, 1.0, 1, evaluator(1.0)).converged) << c.name << ": press";
   newton.accept();
+  contact.start_step(u);
   EXPECT_TRUE(newton.solve(u, 2.0, 2, evaluator(2.0)).converged) << c.name << ": drag";
   const double t = 2.0;
   Errors err;
@@ -475,6 +486,46 @@ TEST(FrictionTangent, RigidPlane3dQuad4Standard) {
                                 ", multiplier: standard"),
                      2),
                tolerance);
+}
+
+/// Frictionless energy-momentum contact of the block on the base: active and lifted nodes.
+void expect_frictionless(const Errors& e, double tolerance) {
+  EXPECT_GT(e.inactive, 0);
+  EXPECT_GT(e.slip, 0);
+  EXPECT_LT(e.displacement, tolerance);
+  EXPECT_LT(e.constraint, tolerance);
+}
+
+Case energy_momentum_case(std::string name, const std::string& interface) {
+  Case c = blocks_case(std::move(name), 1, "");
+  c.interface = interface;
+  c.integrator = "energy_momentum";
+  c.top_x = "0.02";
+  return c;
+}
+
+TEST(EnergyMomentumTangent, TwoBodies2dLine2Dual) {
+  expect_frictionless(check(energy_momentum_case("em_blocks_2d_line2_dual",
+                                                 "{name: joint, type: contact, slave: bottom, "
+                                                 "master: base_top}"),
+                            3),
+                      tolerance);
+}
+
+TEST(EnergyMomentumTangent, TwoBodies2dLine2Standard) {
+  expect_frictionless(check(energy_momentum_case("em_blocks_2d_line2_standard",
+                                                 "{name: joint, type: contact, slave: bottom, "
+                                                 "master: base_top, multiplier: standard}"),
+                            3),
+                      tolerance);
+}
+
+TEST(EnergyMomentumTangent, SelfContact2dLine2Dual) {
+  expect_frictionless(check(energy_momentum_case("em_surface_2d_line2_dual",
+                                                 "{name: joint, type: contact, surface: [bottom, "
+                                                 "base_top]}"),
+                            3),
+                      tolerance);
 }
 
 } // namespace

@@ -1,0 +1,133 @@
+#pragma once
+// Second-order forward-mode automatic differentiation (Griewank & Walther, Evaluating
+// Derivatives, 2nd ed. 2008, ch. 13): a number x = v + g . e + e^T H e / 2 over N independent
+// variables carries its value, gradient and Hessian through every arithmetic operation, so
+// a kernel written on a scalar template parameter gives exact second derivatives with
+// Hyper<N> (and first derivatives with Dual<N>, values with double). Comparisons look at
+// values only, which freezes every branch at the evaluation point, as with seam::Dual.
+//
+// The chain rule of a unary function f: value f(v), gradient f'(v) g, Hessian
+// f'(v) H + f''(v) g g^T; of a product: H_ab = a H_b + b H_a + g_a g_b^T + g_b g_a^T.
+#include <array>
+#include <cmath>
+
+namespace seam {
+
+template <int N> struct Hyper {
+  static constexpr int n_variables = N;
+  double value = 0.0;
+  std::array<double, N> gradient{};
+  std::array<double, N * N> hessian{}; ///< row-major, symmetric
+
+  Hyper() = default;
+  Hyper(double v) : value(v) {} // NOLINT(google-explicit-constructor): constants
+
+  static Hyper variable(double v, int i) {
+    Hyper x(v);
+    x.gradient[static_cast<std::size_t>(i)] = 1.0;
+    return x;
+  }
+  double second(int i, int k) const { return hessian[static_cast<std::size_t>(i * N + k)]; }
+
+  /// f(this) for f with f(v) = f0, f'(v) = f1, f''(v) = f2.
+  Hyper chain(double f0, double f1, double f2) const {
+    Hyper r(f0);
+    for (int i = 0; i < N; ++i) r.gradient[i] = f1 * gradient[i];
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < N; ++k)
+        r.hessian[i * N + k] = f1 * hessian[i * N + k] + f2 * gradient[i] * gradient[k];
+    return r;
+  }
+
+  Hyper& operator+=(const Hyper& b) {
+    value += b.value;
+    for (int i = 0; i < N; ++i) gradient[i] += b.gradient[i];
+    for (int i = 0; i < N * N; ++i) hessian[i] += b.hessian[i];
+    return *this;
+  }
+  Hyper& operator-=(const Hyper& b) {
+    value -= b.value;
+    for (int i = 0; i < N; ++i) gradient[i] -= b.gradient[i];
+    for (int i = 0; i < N * N; ++i) hessian[i] -= b.hessian[i];
+    return *this;
+  }
+  Hyper& operator*=(double b) {
+    value *= b;
+    for (int i = 0; i < N; ++i) gradient[i] *= b;
+    for (int i = 0; i < N * N; ++i) hessian[i] *= b;
+    return *this;
+  }
+};
+
+template <int N> Hyper<N> operator-(Hyper<N> a) {
+  a *= -1.0;
+  return a;
+}
+template <int N> Hyper<N> operator+(Hyper<N> a, const Hyper<N>& b) {
+  return a += b;
+}
+template <int N> Hyper<N> operator-(Hyper<N> a, const Hyper<N>& b) {
+  return a -= b;
+}
+template <int N> Hyper<N> operator*(const Hyper<N>& a, const Hyper<N>& b) {
+  Hyper<N> r(a.value * b.value);
+  for (int i = 0; i < N; ++i) r.gradient[i] = a.value * b.gradient[i] + b.value * a.gradient[i];
+  for (int i = 0; i < N; ++i)
+    for (int k = 0; k < N; ++k)
+      r.hessian[i * N + k] = a.value * b.hessian[i * N + k] + b.value * a.hessian[i * N + k] +
+                             a.gradient[i] * b.gradient[k] + b.gradient[i] * a.gradient[k];
+  return r;
+}
+template <int N> Hyper<N> inverse(const Hyper<N>& b) {
+  const double q = 1.0 / b.value;
+  return b.chain(q, -q * q, 2.0 * q * q * q);
+}
+template <int N> Hyper<N> operator/(const Hyper<N>& a, const Hyper<N>& b) {
+  return a * inverse(b);
+}
+template <int N> Hyper<N> operator+(Hyper<N> a, double b) {
+  a.value += b;
+  return a;
+}
+template <int N> Hyper<N> operator+(double a, Hyper<N> b) {
+  b.value += a;
+  return b;
+}
+template <int N> Hyper<N> operator-(Hyper<N> a, double b) {
+  a.value -= b;
+  return a;
+}
+template <int N> Hyper<N> operator-(double a, const Hyper<N>& b) {
+  Hyper<N> r = -b;
+  r.value += a;
+  return r;
+}
+template <int N> Hyper<N> operator*(Hyper<N> a, double b) {
+  return a *= b;
+}
+template <int N> Hyper<N> operator*(double a, Hyper<N> b) {
+  return b *= a;
+}
+template <int N> Hyper<N> operator/(Hyper<N> a, double b) {
+  return a *= 1.0 / b;
+}
+template <int N> Hyper<N> operator/(double a, const Hyper<N>& b) {
+  return inverse(b) * a;
+}
+template <int N> Hyper<N> sqrt(const Hyper<N>& a) {
+  const double s = std::sqrt(a.value);
+  return a.chain(s, 0.5 / s, -0.25 / (s * a.value));
+}
+
+template <int N> bool operator<(const Hyper<N>& a, double b) {
+  return a.value < b;
+}
+template <int N> bool operator>(const Hyper<N>& a, double b) {
+  return a.value > b;
+}
+
+template <int N> double value_of(const Hyper<N>& x) {
+  return x.value;
+}
+
+} // namespace seam

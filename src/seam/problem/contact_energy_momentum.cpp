@@ -1,0 +1,267 @@
+// Energy-momentum contact (docs/contact_dynamics.md §4; Hesch & Betsch 2009, Gonzalez 1996):
+// the contact force of the energy-momentum step (in the residual f_int - f_ext + f_c) is
+// f_c = -sum_j lambda_j grad_d g~_j (lambda_j >= 0 pushes the bodies apart: the gradient of
+// g~_j points from the slave towards the master side) with the discrete gradient
+//   grad_d g~_j = G + (g~_j(x_{n+1}) - g~_j(x_n) - G . dx) w / (w . dx),   G = grad g~_j(x_mid),
+// dx = x_{n+1} - x_n on the nodes of g~_j, x_mid = (x_n + x_{n+1}) / 2 and w = dx without its
+// rigid part (translations and the infinitesimal rotation about x_mid, Euclidean projection):
+// grad_d g~_j . dx = g~_j(x_{n+1}) - g~_j(x_n) (exactly unless dx is rigid to 1e-3, see
+// discrete_gradient), and the force and its moment about the midpoint vanish as for G. The Newton
+// matrix takes its exact derivative with respect to x_{n+1}: lambda_j H/2 (H the Hessian of g~_j at
+// x_mid) plus the derivative of the correction.
+#include "seam/problem/contact_constraint.hpp"
+
+#include "seam/common/error.hpp"
+
+#include <Eigen/Dense>
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace seam::problem {
+
+namespace {
+
+/// One contribution to the per-node data of the discrete gradient: node j, what (the gap at
+/// the start g0 or end g1 of the step, the gradient at the midpoint G or at the end G1, H dx
+/// at the midpoint), the mesh dof and the value.
+struct Entry {
+  std::int64_t dof = 0;
+  std::int32_t j = 0;
+  std::int32_t kind = 0;
+  double value = 0.0;
+};
+enum Kind : std::int32_t { g0 = 0, g1 = 1, mid_gradient = 2, end_gradient = 3, hessian_dx = 4 };
+
+std::vector<Entry> all_gather(const Comm& comm, const std::vector<Entry>& local) {
+  const int np = comm.size();
+  if (np == 1) return local;
+  const int bytes = static_cast<int>(local.size() * sizeof(Entry));
+  std::vector<int> counts(static_cast<std::size_t>(np), 0), offsets(counts.size(), 0);
+  MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.get());
+  int total = 0;
+  for (int r = 0; r < np; ++r) {
+    offsets[static_cast<std::size_t>(r)] = total;
+    total += counts[static_cast<std::size_t>(r)];
+  }
+  std::vector<Entry> out(static_cast<std::size_t>(total) / sizeof(Entry));
+  MPI_Allgatherv(local.data(), bytes, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE,
+                 comm.get());
+  return out;
+}
+
+/// The discrete gradient of one weighted gap over its n = dim * nodes dofs and the derivative
+/// of its correction term with respect to x_{n+1} (column-major n x n; zero if uncorrected).
+struct DiscreteGradient {
+  Eigen::VectorXd value;
+  Eigen::MatrixXd correction_jacobian;
+};
+
+/// dx, x_mid: the step's increment and midpoint positions on the dofs (node-major, dim per
+/// node); G, G1: the gradients at the midpoint and the end; Hdx: the Hessian at the midpoint
+/// times dx.
+DiscreteGradient discrete_gradient(int dim, const Eigen::VectorXd& dx, const Eigen::VectorXd& x_mid,
+                                   double gap_start, double gap_end, const Eigen::VectorXd& G,
+                                   const Eigen::VectorXd& G1, const Eigen::VectorXd& Hdx) {
+  const auto n = dx.size();
+  const int n_nodes = static_cast<int>(n / dim);
+  const int n_rotations = dim == 2 ? 1 : 3;
+  const int r = dim + n_rotations;
+  DiscreteGradient out;
+  out.value = G;
+  out.correction_jacobian = Eigen::MatrixXd::Zero(n, n);
+  // Rigid modes: translations, rotations e_k x (x_a - c) about the centroid c of x_mid.
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int a = 0; a < n_nodes; ++a)
+    for (int b = 0; b < dim; ++b) c(b) += x_mid(a * dim + b) / n_nodes;
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(n, r);
+  // e_k x e_b, the derivative of rotation mode k at a node along coordinate b.
+  const auto spin = [dim](int k, int b) {
+    Eigen::Vector3d e = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::Zero();
+    e(b) = 1.0;
+    axis(dim == 2 ? 2 : k) = 1.0;
+    return Eigen::Vector3d(axis.cross(e));
+  };
+  for (int a = 0; a < n_nodes; ++a) {
+    Eigen::Vector3d y = Eigen::Vector3d::Zero();
+    for (int b = 0; b < dim; ++b) {
+      R(a * dim + b, b) = 1.0;
+      y(b) = x_mid(a * dim + b) - c(b);
+    }
+    for (int k = 0; k < n_rotations; ++k) {
+      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+      axis(dim == 2 ? 2 : k) = 1.0;
+      const Eigen::Vector3d v = axis.cross(y);
+      for (int b = 0; b < dim; ++b) R(a * dim + b, dim + k) = v(b);
+    }
+  }
+  const Eigen::MatrixXd A_inv = (R.transpose() * R).inverse();
+  const Eigen::VectorXd coefficients = A_inv * (R.transpose() * dx);
+  const Eigen::VectorXd w = dx - R * coefficients;
+  // The correction N w / |w|^2 is 0 / 0 for a rigid increment (which changes no gap) and, as
+  // |w| -> 0, round-off in N over |w|: the denominator is |w|^2 + (c |dx|)^2. For
+  // |w| >> c |dx| the discrete gradient is exact; below, grad_d . dx misses N c^2 |dx|^2 /
+  // (|w|^2 + c^2 |dx|^2) <= |N|, and N = O(|w| |dx|^2) there (the midpoint rule's error for a
+  // nearly rigid motion): a relative energy error of about c |dx|^2 / L^2 of the step's
+  // contact work. c = 1e-3 keeps the round-off eps |G| |dx| / (c |dx|) at 1e-13 of |G|.
+  constexpr double c2 = 1e-6;
+  const double Q = w.squaredNorm();
+  const double den = Q + c2 * dx.squaredNorm();
+  if (!(den > 0.0)) return out;
+  const double N = gap_end - gap_start - G.dot(dx);
+  const double ratio = N / den;
+  out.value += ratio * w;
+  // dw/dx_{n+1} = P (I - dR a) - R A^-1 dR^T w with dR = d R / d x_{n+1} (x_mid moves by half).
+  Eigen::MatrixXd dw(n, n);
+  for (int a = 0; a < n_nodes; ++a)
+    for (int b = 0; b < dim; ++b) {
+      const int v = a * dim + b;
+      Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+      y(v) = 1.0;
+      Eigen::VectorXd rotation_rows = Eigen::VectorXd::Zero(r);
+      Eigen::Vector3d wa = Eigen::Vector3d::Zero();
+      for (int e = 0; e < dim; ++e) wa(e) = w(a * dim + e);
+      for (int k = 0; k < n_rotations; ++k) {
+        const Eigen::Vector3d s = spin(k, b);
+        for (int e = 0; e < dim; ++e) y(a * dim + e) -= 0.5 * coefficients(dim + k) * s(e);
+        rotation_rows(dim + k) = 0.5 * s.dot(wa);
+      }
+      dw.col(v) = y - R * (A_inv * (R.transpose() * y)) - R * (A_inv * rotation_rows);
+    }
+  const Eigen::VectorXd dN = G1 - G - 0.5 * Hdx;
+  const Eigen::VectorXd dden = 2.0 * dw.transpose() * w + 2.0 * c2 * dx;
+  out.correction_jacobian = w * (dN / den - N / (den * den) * dden).transpose() + ratio * dw;
+  return out;
+}
+
+} // namespace
+
+void ContactConstraint::start_step(const la::Vector& u_n) {
+  if (!energy_momentum_ || sides_.empty()) return;
+  const auto u = interface_displacement(u_n);
+  u_mesh_start_.assign(u.begin(), u.end());
+}
+
+int ContactConstraint::n_discrete_gradient() const {
+  return static_cast<int>(std::count_if(sides_.begin(), sides_.end(),
+                                        [](const Side& s) { return s.discrete_gradient; }));
+}
+
+int ContactConstraint::n_end_of_step() const {
+  return static_cast<int>(sides_.size()) - n_discrete_gradient();
+}
+
+void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const double> u) {
+  const int dim = disc_.dim();
+  const auto& X = disc_.mesh().x;
+  s.em_gradient.clear();
+  s.em_tangent.clear();
+  if (u_mesh_start_.size() != u.size()) u_mesh_start_.assign(u.begin(), u.end());
+  const std::vector<double>& u0 = u_mesh_start_;
+  std::vector<double> mid(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) mid[i] = 0.5 * (u[i] + u0[i]);
+  std::vector<contact::GapBlock> start, end, middle;
+  s.itf.gap_blocks(u0, contact::GapOrder::value, start);
+  s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
+  s.itf.gap_blocks(mid, contact::GapOrder::hessian, middle);
+  constexpr int nv = contact::GapBlock::n_variables;
+  const auto dof_of = [](const contact::GapBlock& b, int v) {
+    const auto slot = b.dofs[static_cast<std::size_t>(v / 2)];
+    return slot < 0 ? std::int64_t{-1} : slot + v % 2;
+  };
+  // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
+  // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
+  s.lin.gap_gradient.clear();
+  for (const auto& b : end)
+    for (std::size_t r = 0; r < 2; ++r)
+      for (int v = 0; v < nv; ++v)
+        if (const auto dof = dof_of(b, v); dof >= 0 && b.gradient[r][v] != 0.0)
+          s.lin.gap_gradient.push_back({b.slave[r], dof, b.gradient[r][v]});
+  std::vector<Entry> local;
+  for (const auto& b : start)
+    for (std::size_t r = 0; r < 2; ++r) local.push_back({0, b.slave[r], g0, b.gap[r]});
+  for (const auto& b : end)
+    for (std::size_t r = 0; r < 2; ++r) {
+      local.push_back({0, b.slave[r], g1, b.gap[r]});
+      for (int v = 0; v < nv; ++v)
+        if (const auto dof = dof_of(b, v); dof >= 0)
+          local.push_back({dof, b.slave[r], end_gradient, b.gradient[r][v]});
+    }
+  for (const auto& b : middle)
+    for (std::size_t r = 0; r < 2; ++r) {
+      const auto j = static_cast<std::size_t>(b.slave[r]);
+      for (int v = 0; v < nv; ++v) {
+        const auto dof = dof_of(b, v);
+        if (dof < 0) continue;
+        local.push_back({dof, b.slave[r], mid_gradient, b.gradient[r][v]});
+        double hdx = 0.0;
+        for (int k = 0; k < nv; ++k)
+          if (const auto col = dof_of(b, k); col >= 0) {
+            const double h = b.hessian[r][static_cast<std::size_t>(v * nv + k)];
+            hdx += h * (u[static_cast<std::size_t>(col)] - u0[static_cast<std::size_t>(col)]);
+            // This rank's part of -lambda_j d(grad g~_j(x_mid))/dx_{n+1} = -lambda_j H / 2.
+            if (s.lambda[j] != 0.0 && h != 0.0)
+              s.em_tangent.push_back({dof, col, -0.5 * s.lambda[j] * h});
+          }
+        local.push_back({dof, b.slave[r], hessian_dx, hdx});
+      }
+    }
+  // Every rank's entries; the owner of slave node j assembles its discrete gradient.
+  std::vector<Entry> all = all_gather(disc_.comm(), local);
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  // The weighted gaps at x_{n+1} that the active set and the gap rows use.
+  std::fill(s.gap.begin(), s.gap.end(), 0.0);
+  for (const auto& e : all)
+    if (e.kind == g1) s.gap[static_cast<std::size_t>(e.j)] += e.value;
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Entry& a, const Entry& b) { return a.j < b.j; });
+  for (std::size_t begin = 0; begin < all.size();) {
+    std::size_t stop = begin;
+    while (stop < all.size() && all[stop].j == all[begin].j) ++stop;
+    const auto j = static_cast<std::size_t>(all[begin].j);
+    if (!disc_.owns_node(nodes[j])) {
+      begin = stop;
+      continue;
+    }
+    // The node's dofs, node-major with all dim components.
+    std::map<std::int64_t, int> index;
+    for (std::size_t e = begin; e < stop; ++e)
+      if (all[e].kind >= mid_gradient) index.emplace(all[e].dof / dim * dim, 0);
+    std::vector<std::int64_t> dofs;
+    for (auto& [node_dof, i] : index) {
+      i = static_cast<int>(dofs.size());
+      for (int c = 0; c < dim; ++c) dofs.push_back(node_dof + c);
+    }
+    const auto n = static_cast<Eigen::Index>(dofs.size());
+    Eigen::VectorXd G = Eigen::VectorXd::Zero(n), G1 = G, Hdx = G, dx = G, x_mid = G;
+    double gap_start = 0.0, gap_end = 0.0;
+    for (std::size_t e = begin; e < stop; ++e) {
+      const Entry& en = all[e];
+      if (en.kind == g0) gap_start += en.value;
+      if (en.kind == g1) gap_end += en.value;
+      if (en.kind < mid_gradient) continue;
+      const auto i = index[en.dof / dim * dim] + static_cast<int>(en.dof % dim);
+      (en.kind == mid_gradient ? G : en.kind == end_gradient ? G1 : Hdx)(i) += en.value;
+    }
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto d = static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)]);
+      dx(i) = u[d] - u0[d];
+      x_mid(i) = X[d] + mid[d];
+    }
+    const DiscreteGradient dg = discrete_gradient(dim, dx, x_mid, gap_start, gap_end, G, G1, Hdx);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (dg.value(i) != 0.0)
+        s.em_gradient.push_back({j, dofs[static_cast<std::size_t>(i)], -dg.value(i)});
+    if (s.lambda[j] != 0.0)
+      for (Eigen::Index k = 0; k < n; ++k)
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (const double v = dg.correction_jacobian(i, k); v != 0.0)
+            s.em_tangent.push_back({dofs[static_cast<std::size_t>(i)],
+                                    dofs[static_cast<std::size_t>(k)], -s.lambda[j] * v});
+    begin = stop;
+  }
+}
+
+} // namespace seam::problem
