@@ -112,29 +112,32 @@ def test_poiseuille_exact_3d():
     poiseuille_3d("tet")
 
 
-def pulsating_yaml(steps):
-    """Plane Poiseuille flow with the amplitude g(t) = 1 - cos t (g(0) = g'(0) = 0, so that the
-    flow starts from rest consistently) driven by the body force rho g'(t) 4 y (1 - y): the
-    velocity and pressure are exact in space, so the errors are those of the time
-    integration."""
-    g = "(1-cos(t))"
+def poiseuille_in_time_yaml(g, dg, steps, end, initial=""):
+    """Plane Poiseuille flow 4 y (1 - y) g(t) with the pressure 8 mu (2 - x) g(t), driven by
+    the body force rho g'(t) 4 y (1 - y) (`dg`): the velocity and pressure are exact in space,
+    so the errors are those of the time integration (generalized-alpha, rho_inf = 0.5)."""
     return """\
 dimension: 2
 mesh: {geo: body.geo, order: 2}
 materials: {oil: {model: newtonian_fluid, density: 1, viscosity: %g}}
 bodies: [{region: body, material: oil}]
-boundary_conditions:
+%sboundary_conditions:
   - {region: left, type: velocity, value: ["4*y*(1-y)*%s", 0]}
   - {region: top, type: velocity, value: [0, 0]}
   - {region: bottom, type: velocity, value: [0, 0]}
-  - {region: body, type: body_force, value: ["4*y*(1-y)*sin(t)", 0]}
-time: {integrator: generalized_alpha, rho_inf: 0.5, end: 2, steps: %d}
+  - {region: body, type: body_force, value: ["4*y*(1-y)*%s", 0]}
+time: {integrator: generalized_alpha, rho_inf: 0.5, end: %g, steps: %d}
 output:
   every: 1000
   forces: [{name: walls, regions: [top, bottom]}]
   exact_velocity: ["4*y*(1-y)*%s", 0]
   exact_pressure: "%.17g*(2-x)*%s"
-""" % (MU, g, steps, g, 8 * MU, g)
+""" % (MU, initial, g, dg, end, steps, g, 8 * MU, g)
+
+
+def pulsating_yaml(steps):
+    """g(t) = 1 - cos t: g(0) = g'(0) = 0, so that the flow starts from rest consistently."""
+    return poiseuille_in_time_yaml("(1-cos(t))", "sin(t)", steps, 2)
 
 
 def test_generalized_alpha_second_order():
@@ -160,28 +163,11 @@ def test_generalized_alpha_second_order():
     H.assert_close(fx[1], fx[2], rtol=1e-5, what="wall force at t = 2, dt = 1/8 against 1/16")
 
 
-def started_yaml(steps, rho_inf):
-    """Plane Poiseuille flow with the amplitude g(t) = 1 + sin t, started from u(0) = 4 y (1 - y)
-    (initial_conditions): at t = 0 the pressure 8 mu (2 - x) and the rate 4 y (1 - y) are not 0,
-    and the body force rho g'(t) 4 y (1 - y) keeps the flow exact in space."""
-    g = "(1+sin(t))"
-    return """\
-dimension: 2
-mesh: {geo: body.geo, order: 2}
-materials: {oil: {model: newtonian_fluid, density: 1, viscosity: %g}}
-bodies: [{region: body, material: oil}]
-initial_conditions: [{region: body, velocity: ["4*y*(1-y)", 0]}]
-boundary_conditions:
-  - {region: left, type: velocity, value: ["4*y*(1-y)*%s", 0]}
-  - {region: top, type: velocity, value: [0, 0]}
-  - {region: bottom, type: velocity, value: [0, 0]}
-  - {region: body, type: body_force, value: ["4*y*(1-y)*cos(t)", 0]}
-time: {integrator: generalized_alpha, rho_inf: %g, end: 1, steps: %d}
-output:
-  every: 1000
-  exact_velocity: ["4*y*(1-y)*%s", 0]
-  exact_pressure: "%.17g*(2-x)*%s"
-""" % (MU, g, rho_inf, steps, g, 8 * MU, g)
+def started_yaml(steps):
+    """g(t) = 1 + sin t, started from u(0) = 4 y (1 - y) (initial_conditions): at t = 0 the
+    pressure 8 mu (2 - x) and the rate 4 y (1 - y) are not 0."""
+    return poiseuille_in_time_yaml("(1+sin(t))", "cos(t)", steps, 1, initial=(
+        'initial_conditions: [{region: body, velocity: ["4*y*(1-y)", 0]}]\n'))
 
 
 def test_generalized_alpha_consistent_start():
@@ -194,7 +180,7 @@ def test_generalized_alpha_consistent_start():
     H.write_case(work, "body.geo", geometry.rectangle("quad_structured", 0.25, 2))
     steps, eu, ep = (4, 8, 16), [], []
     for n in steps:
-        out = H.solve(H.write_case(work, "case.yaml", started_yaml(n, 0.5)))
+        out = H.solve(H.write_case(work, "case.yaml", started_yaml(n)))
         rows = H.read_csv(os.path.join(out, "errors.csv"))
         H.cleanup(out)
         eu.append(max(r["velocity_l2_error"] for r in rows))

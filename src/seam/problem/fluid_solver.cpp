@@ -179,8 +179,13 @@ bool assemble(const FluidModel& model, const FluidLayout& layout, const MeshStat
   return inverted;
 }
 
-// The prescribed values at time t written into w (owned entries), ghosts updated.
-void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Vector& w) {
+// The prescribed values at time t written into w (owned entries), ghosts updated. With
+// `rate_step` > 0 the rates at t instead, as the consistent initial state wants them: the time
+// derivative of every velocity condition (one-sided second-order differences of its
+// expression, step `rate_step`, so that it is not evaluated before t) and the value of a pinned
+// pressure (the state holds the pressure itself there).
+void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Vector& w,
+            double rate_step = 0.0) {
   {
     la::Vector::LocalView view(w, true);
     auto v = view.values();
@@ -188,36 +193,15 @@ void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Ve
     const int dim = layout.dim();
     for (const auto& d : model.dirichlet) {
       const double* p = &x[static_cast<std::size_t>(d.node) * dim];
+      const auto at = [&](double s) {
+        return model.values[d.expression](s, p[0], p[1], dim == 3 ? p[2] : 0.0);
+      };
+      const double h = d.dof == layout.global_dof(d.node, dim) ? 0.0 : rate_step;
       v[d.dof - layout.first_owned_dof()] =
-          model.values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0);
+          h > 0.0 ? (-3.0 * at(t) + 4.0 * at(t + h) - at(t + 2.0 * h)) / (2.0 * h) : at(t);
     }
   }
   w.update_ghosts();
-}
-
-// The prescribed rates at t = 0 written into y (owned entries), ghosts updated: the time
-// derivative of every velocity condition (one-sided second-order differences of its expression
-// in t, step `delta`, so that the expression is not evaluated before t = 0) and the value of a
-// pinned pressure (y holds the pressure itself in the consistent initial state).
-void impose_initial_rate(const FluidModel& model, const FluidLayout& layout, double delta,
-                         la::Vector& y) {
-  {
-    la::Vector::LocalView view(y, true);
-    auto v = view.values();
-    const auto& x = layout.mesh().x;
-    const int dim = layout.dim();
-    for (const auto& d : model.dirichlet) {
-      const double* p = &x[static_cast<std::size_t>(d.node) * dim];
-      const auto at = [&](double t) {
-        return model.values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0);
-      };
-      v[d.dof - layout.first_owned_dof()] =
-          d.dof == layout.global_dof(d.node, dim)
-              ? at(0.0)
-              : (-3.0 * at(0.0) + 4.0 * at(delta) - at(2.0 * delta)) / (2.0 * delta);
-    }
-  }
-  y.update_ghosts();
 }
 
 // The force the fluid exerts on each force group: minus the momentum residual at its nodes
@@ -585,7 +569,7 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       return assemble(model, layout, ms, {&w, &yk, &yk, 0.0, 1.0, tc.dt, true}, 0.0, r, &K);
     };
     const FluidNewton::Prescriber rates = [&](la::Vector& yk) {
-      impose_initial_rate(model, layout, 1e-4 * tc.dt, yk);
+      impose(model, layout, 0.0, yk, 1e-4 * tc.dt);
     };
     const auto res = newton.solve_initial(y, initial, rates);
     if (!res.converged)
