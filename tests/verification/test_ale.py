@@ -11,8 +11,8 @@ generalized-alpha integrator, prescribed and pseudo-elastic mesh motion, inverte
     8 mu e_x (so that p = 0; the velocity is prescribed on the slanted ends): the quadratic
     velocity stays in the Taylor-Hood space of the sheared (affine) cells, so the discrete
     flow is exact to round-off at every step although the mesh velocity is not zero. (A
-    pressure-driven flow would start from p = 0 too, and generalized-alpha's pressure at
-    n + alpha_f carries (1 - alpha_f) p_n of that start for a few steps.)
+    pressure-driven flow starts from the consistent pressure on Taylor-Hood cells, see
+    test_fluid.test_generalized_alpha_consistent_start.)
     The same on hex27 in a box, on 3 ranks.
   * A channel whose bottom wall bulges (a `mesh_displacement` condition and the wall's
     velocity on it; pseudo-elastic mesh with Jacobian stiffening on an unstructured tri6

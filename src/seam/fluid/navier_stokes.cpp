@@ -207,15 +207,17 @@ void add_stabilization(const FluidElementInput& in, const Stabilization<S>& st, 
         }
       }
     }
+    // The pressure columns (weight 1 in the consistent initial state: p is an unknown there).
+    const double pw = in.initial_rate ? 1.0 : cw;
     for (int l = 0; l < n; ++l) {
       const double* Gl = &q.G[l * dim];
       for (int a = 0; a < n; ++a)
         for (int i = 0; i < dim; ++i)
-          K[(a * dim + i) * nd + nu + l] += w * tau * rho * uG[a] * cw * Gl[i];
+          K[(a * dim + i) * nd + nu + l] += w * tau * rho * uG[a] * pw * Gl[i];
       for (int k = 0; k < n; ++k) {
         double GG = 0.0;
         for (int i = 0; i < dim; ++i) GG += q.G[k * dim + i] * Gl[i];
-        K[(nu + k) * nd + nu + l] -= w * tau * cw * GG;
+        K[(nu + k) * nd + nu + l] -= w * tau * pw * GG;
       }
     }
   }
@@ -287,7 +289,15 @@ bool kernel(const FluidElementInput& in, std::span<const S> x, std::span<const S
         r[a * dim + i] += w * (rho * q.N[a] * material[i] + mu * visc - p * Ga[i] - q.N[a] * f[i]);
       }
     }
-    for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div;
+    // The continuity rows: - int M_k div u; in the consistent initial state of Taylor-Hood
+    // cells - int M_k div u_dot, the time derivative of the constraint.
+    S div_rows = div;
+    if (in.initial_rate && !stabilized) {
+      div_rows = S(0.0);
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < dim; ++i) div_rows += q.G[a * dim + i] * in.u_dot[a * dim + i];
+    }
+    for (int k = 0; k < nv; ++k) r[nu + k] -= w * q.M[k] * div_rows;
     if (stabilized)
       add_stabilization(in, st, q, c.data(), grad_u.data(), material.data(), f.data(), r, K);
     if constexpr (std::is_same_v<S, double>) {
@@ -298,8 +308,11 @@ bool kernel(const FluidElementInput& in, std::span<const S> x, std::span<const S
         c_G[b] = s;
       }
       // material = Du/Dt with dc/du = du/du (w does not depend on u). Every column carries
-      // state_weight, the velocity block the mass term.
+      // state_weight, the velocity block the mass term. In the consistent initial state the
+      // pressure columns carry 1 and the continuity rows of Taylor-Hood cells are by u_dot.
       const double cw = in.state_weight;
+      const double pw = in.initial_rate ? 1.0 : cw;
+      const double bw = in.initial_rate && !stabilized ? 1.0 : cw;
       for (int a = 0; a < n; ++a) {
         const double* Ga = &q.G[a * dim];
         const double rNa = rho * q.N[a] * w;
@@ -317,8 +330,8 @@ bool kernel(const FluidElementInput& in, std::span<const S> x, std::span<const S
         for (int k = 0; k < nv; ++k) {
           const double wM = w * q.M[k];
           for (int i = 0; i < dim; ++i) {
-            K[(a * dim + i) * nd + nu + k] -= cw * wM * Ga[i];
-            K[(nu + k) * nd + a * dim + i] -= cw * wM * Ga[i];
+            K[(a * dim + i) * nd + nu + k] -= pw * wM * Ga[i];
+            K[(nu + k) * nd + a * dim + i] -= bw * wM * Ga[i];
           }
         }
       }

@@ -73,6 +73,12 @@ struct FluidElementInput {
   double mass_weight = 0.0;
   /// The time step, for the stabilization of linear cells (0: steady flow).
   double time_step = 0.0;
+  /// The consistent initial state of time integration: K is the derivative by (u_dot, p) at
+  /// the given u (state_weight 0: mass_weight * M in the velocity block, the pressure columns
+  /// with weight 1). On Taylor-Hood cells the continuity rows become the time derivative of
+  /// the constraint, - int M_k div u_dot = 0 (residual and K by u_dot). On stabilized cells
+  /// they are the PSPG-stabilized continuity equation itself, which holds u_dot and p.
+  bool initial_rate = false;
 };
 
 /// Number of element dofs: n_nodes * dim + n_vertices.

@@ -54,6 +54,8 @@ struct EvaluationState {
   double state_weight = 1.0;
   double mass_weight = 0.0;
   double time_step = 0.0; // 0: steady
+  /// The consistent initial state: K by (u_dot, p) at the given u (fluid::FluidElementInput).
+  bool initial_rate = false;
 };
 
 void gather(const FluidLayout& layout, const MeshState& ms, std::span<const double> u,
@@ -116,6 +118,7 @@ bool assemble(const FluidModel& model, const FluidLayout& layout, const MeshStat
     in.state_weight = state.state_weight;
     in.mass_weight = state.mass_weight;
     in.time_step = state.time_step;
+    in.initial_rate = state.initial_rate;
     cell_loads.clear();
     for (const auto& load : model.body_loads)
       if (std::binary_search(load.cells.begin(), load.cells.end(), c)) cell_loads.push_back(&load);
@@ -176,8 +179,13 @@ bool assemble(const FluidModel& model, const FluidLayout& layout, const MeshStat
   return inverted;
 }
 
-// The prescribed values at time t written into w (owned entries), ghosts updated.
-void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Vector& w) {
+// The prescribed values at time t written into w (owned entries), ghosts updated. With
+// `rate_step` > 0 the rates at t instead, as the consistent initial state wants them: the time
+// derivative of every velocity condition (one-sided second-order differences of its
+// expression, step `rate_step`, so that it is not evaluated before t) and the value of a pinned
+// pressure (the state holds the pressure itself there).
+void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Vector& w,
+            double rate_step = 0.0) {
   {
     la::Vector::LocalView view(w, true);
     auto v = view.values();
@@ -185,8 +193,12 @@ void impose(const FluidModel& model, const FluidLayout& layout, double t, la::Ve
     const int dim = layout.dim();
     for (const auto& d : model.dirichlet) {
       const double* p = &x[static_cast<std::size_t>(d.node) * dim];
+      const auto at = [&](double s) {
+        return model.values[d.expression](s, p[0], p[1], dim == 3 ? p[2] : 0.0);
+      };
+      const double h = d.dof == layout.global_dof(d.node, dim) ? 0.0 : rate_step;
       v[d.dof - layout.first_owned_dof()] =
-          model.values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0);
+          h > 0.0 ? (-3.0 * at(t) + 4.0 * at(t + h) - at(t + 2.0 * h)) / (2.0 * h) : at(t);
     }
   }
   w.update_ghosts();
@@ -315,11 +327,35 @@ public:
 
   /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
   using Evaluator = std::function<bool(const la::Vector& w, la::Vector& r, la::Matrix& K)>;
+  /// Writes the prescribed values of the unknowns (the velocity conditions' rows).
+  using Prescriber = std::function<void(la::Vector& w)>;
 
-  NewtonOutcome solve(la::Vector& w, double t, int step, const Evaluator& evaluate) {
+  /// The consistent initial state of generalized-alpha: y = (u_dot, p) at t = 0 from the
+  /// momentum equations at the initial velocity and the time derivative of the continuity
+  /// equation. The problem is linear: one Newton correction solves it (a flow already at
+  /// rest in its rates has a residual of round-off that no correction reduces). Not recorded
+  /// in newton.csv, and the residual scale of the steps is kept apart.
+  NewtonOutcome solve_initial(la::Vector& y, const Evaluator& evaluate,
+                              const Prescriber& prescribe) {
+    const double keep = reference_;
+    reference_ = 0.0;
+    linear_ = true;
+    const auto res = solve(y, 0.0, 0, evaluate, &prescribe);
+    linear_ = false;
+    reference_ = keep;
+    return res;
+  }
+
+  /// Newton's method for step `step` (0: the initial state, not recorded) at time t; the
+  /// prescribed values are those of the velocity conditions at t unless `prescribe` is given.
+  NewtonOutcome solve(la::Vector& w, double t, int step, const Evaluator& evaluate,
+                      const Prescriber* prescribe = nullptr) {
     NewtonOutcome res;
     const auto& nc = config_.solver.newton;
-    impose(model_, layout_, t, w);
+    if (prescribe)
+      (*prescribe)(w);
+    else
+      impose(model_, layout_, t, w);
     if (tying_) {
       // The tied slave velocities from the master ones (and the prescribed slave ones), so
       // that the state satisfies the constraint; the increments d = T d~ keep it.
@@ -366,11 +402,12 @@ public:
       // solves the equations (its first residual is round-off), is not asked to go below
       // round-off of the flow it starts from.
       if (it == 0) reference_ = std::max({reference_, norm, r_full_.norm()});
-      out_.newton(step, it, norm, last_increment);
+      if (step > 0) out_.newton(step, it, norm, last_increment);
       res.iterations = it;
       res.residual = reference_ > 0.0 ? norm / reference_ : 0.0;
       const bool stalled = it >= 2 && last_increment <= 1e-14 * w.norm();
-      if (norm <= nc.tolerance * reference_ || reference_ == 0.0 || stalled) {
+      if (norm <= nc.tolerance * reference_ || reference_ == 0.0 || stalled ||
+          (linear_ && it == 1)) {
         res.converged = true;
         return res;
       }
@@ -411,6 +448,7 @@ private:
   la::LinearSolver solver_;
   std::vector<PetscInt> fixed_;
   double reference_ = 0.0;
+  bool linear_ = false; // the problem is linear: converged after one correction
 };
 
 // Whether some cell of this rank is inverted in the configuration x (all ranks agree).
@@ -511,12 +549,49 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       SEAM_THROW(SolverError, "a fluid cell is inverted (det J <= 0) by the mesh displacement at "
                               "t = 0");
   }
+  // The consistent initial state of generalized-alpha: the velocity's rate and the pressure
+  // at t = 0 that satisfy the momentum equations at the initial velocity, with the rates of
+  // the velocity conditions and div u_dot = 0 (the projection of the initial acceleration).
+  // Started from u_dot = 0 and p = 0 instead, the integrator carries the error of the start
+  // as a mode multiplied by -(1 - alpha_f) / alpha_f (pressure) and (1 - 1 / gamma) (rate)
+  // every step. A restart continues from its stored state. Only on Taylor-Hood cells: the
+  // stabilized cells' continuity rows hold the rate only through the PSPG term, and the
+  // system they give at t = 0 was found singular (the free stream of test_ale.py); they start
+  // from u_dot = 0, p = 0 as before.
+  bool stabilized = false;
+  for (auto c : layout.local_cells())
+    stabilized = stabilized || fluid::is_stabilized(mesh.cell_type[c]);
+  if (unsteady && !checkpoints.restarting() && !comm.any(stabilized)) {
+    la::Vector y = layout.make_vector();
+    const FluidNewton::Evaluator initial = [&](const la::Vector& yk, la::Vector& r, la::Matrix& K) {
+      return assemble(model, layout, ms, {&w, &yk, &yk, 0.0, 1.0, tc.dt, true}, 0.0, r, &K);
+    };
+    const FluidNewton::Prescriber rates = [&](la::Vector& yk) {
+      impose(model, layout, 0.0, yk, 1e-4 * tc.dt);
+    };
+    const auto res = newton.solve_initial(y, initial, rates);
+    if (!res.converged)
+      SEAM_THROW(SolverError, res.failure,
+                 " in the consistent initial state (the velocity's rate "
+                 "and the pressure at t = 0)");
+    u_dot.copy_from(y);
+    u_dot.update_ghosts();
+    {
+      la::Vector::LocalView wv(w, true), yv(y, false);
+      for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+        if (layout.owns_node(n) && layout.has_pressure(n)) {
+          const auto k = layout.local_dof(n, layout.dim());
+          wv.values()[k] = yv.values()[k];
+        }
+    }
+    w.update_ghosts();
+  }
   // The residual of the step holds the forces at t_{n+alpha_f}; they are reported at t_{n+1},
   // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f, from the initial state's forces.
   std::vector<std::array<double, 3>> last_forces;
   if (unsteady) {
     la::Vector r0 = layout.make_vector();
-    assemble(model, layout, ms, {&w, &w}, 0.0, r0, nullptr);
+    assemble(model, layout, ms, {&w, &w, &u_dot}, 0.0, r0, nullptr);
     last_forces = forces(model, layout, r0);
   }
   double t = 0.0, dt = tc.dt;

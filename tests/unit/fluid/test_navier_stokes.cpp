@@ -193,6 +193,42 @@ TEST_P(NavierStokes, MeshDerivativesMatchCentralDifferences) {
   }
 }
 
+// The consistent initial state of time integration: the unknowns are the rate u_dot and the
+// pressure at a given velocity u (and mesh velocity); K must be the derivative of the residual
+// by (u_dot, p). On Taylor-Hood cells the continuity rows are the time derivative of the
+// constraint, - int M_k div u_dot: by u_dot the same rows as the steady Jacobian's by u.
+TEST_P(NavierStokes, InitialRateJacobianMatchesCentralDifferences) {
+  const auto c = make_cell(GetParam(), 51);
+  const auto mesh_velocity = make_cell(GetParam(), 52).w;
+  const auto nd = c.w.size();
+  const auto nu = static_cast<std::size_t>(fem::n_nodes(c.type) * fem::dimension(c.type));
+  std::vector<double> state = c.w, rate(nu);
+  const auto evaluate = [&](const std::vector<double>& y, std::vector<double>& r,
+                            std::vector<double>& K) {
+    for (std::size_t k = nu; k < nd; ++k) state[k] = y[k];
+    for (std::size_t k = 0; k < nu; ++k) rate[k] = y[k];
+    auto in = input(c, state);
+    in.u_dot = rate;
+    in.mesh_velocity = std::span<const double>(mesh_velocity.data(), nu);
+    in.state_weight = 0.0;
+    in.mass_weight = 1.0;
+    in.time_step = 0.05;
+    in.initial_rate = true;
+    return fluid::navier_stokes(in, r, K);
+  };
+  const auto y = make_cell(GetParam(), 53).w;
+  EXPECT_LT(jacobian_error(evaluate, y), 1e-7) << fem::name(GetParam());
+  if (!fluid::is_taylor_hood(c.type)) return;
+  std::vector<double> r(nd), K(nd * nd), rs(nd), Ks(nd * nd);
+  ASSERT_TRUE(evaluate(y, r, K));
+  ASSERT_TRUE(fluid::navier_stokes(input(c, c.w), rs, Ks));
+  double scale = 0.0;
+  for (double v : K) scale = std::max(scale, std::abs(v));
+  for (std::size_t i = nu; i < nd; ++i)
+    for (std::size_t j = 0; j < nd; ++j)
+      EXPECT_NEAR(K[i * nd + j], j < nu ? Ks[i * nd + j] : 0.0, 1e-14 * scale) << i << ", " << j;
+}
+
 // A mesh that moves with the flow (w = u) leaves no convection: the steady residual of the
 // Galerkin (Taylor-Hood) cells is that of the Stokes equations, the fluid's density set to 0.
 TEST_P(NavierStokes, MeshMovingWithTheFlowRemovesConvection) {
