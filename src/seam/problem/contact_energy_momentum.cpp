@@ -97,7 +97,12 @@ DiscreteGradient discrete_gradient(int dim, const Eigen::VectorXd& dx, const Eig
       for (int b = 0; b < dim; ++b) R(a * dim + b, dim + k) = v(b);
     }
   }
-  const Eigen::MatrixXd A_inv = (R.transpose() * R).inverse();
+  // At most 6 x 6 (3 translations, 3 rotations). A fixed-capacity type: inverting a MatrixXd
+  // would instantiate PartialPivLU<MatrixXd> in seam, and the dynamic linker then binds Gmsh's
+  // own calls of that template to seam's copy, whose allocation differs when the two were
+  // built with other alignment settings (AddressSanitizer: bad-free inside libgmsh).
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  const Small A_inv = Small(R.transpose() * R).inverse();
   const Eigen::VectorXd coefficients = A_inv * (R.transpose() * dx);
   const Eigen::VectorXd w = dx - R * coefficients;
   // The correction N w / |w|^2 is 0 / 0 for a rigid increment (which changes no gap) and, as
