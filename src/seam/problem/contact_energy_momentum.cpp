@@ -1,4 +1,6 @@
 // Energy-momentum contact (docs/contact_dynamics.md §4; Hesch & Betsch 2009, Gonzalez 1996):
+
+#include "seam/parallel/exchange.hpp"
 // the contact force of the energy-momentum step (in the residual f_int - f_ext + f_c) is
 // f_c = -sum_j lambda_j grad_d g~_j (lambda_j >= 0 pushes the bodies apart: the gradient of
 // g~_j points from the slave towards the master side) with the discrete gradient
@@ -34,23 +36,6 @@ struct Entry {
   double value = 0.0;
 };
 enum Kind : std::int32_t { g0 = 0, g1 = 1, mid_gradient = 2, end_gradient = 3, hessian_dx = 4 };
-
-std::vector<Entry> all_gather(const Comm& comm, const std::vector<Entry>& local) {
-  const int np = comm.size();
-  if (np == 1) return local;
-  const int bytes = static_cast<int>(local.size() * sizeof(Entry));
-  std::vector<int> counts(static_cast<std::size_t>(np), 0), offsets(counts.size(), 0);
-  MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.get());
-  int total = 0;
-  for (int r = 0; r < np; ++r) {
-    offsets[static_cast<std::size_t>(r)] = total;
-    total += counts[static_cast<std::size_t>(r)];
-  }
-  std::vector<Entry> out(static_cast<std::size_t>(total) / sizeof(Entry));
-  MPI_Allgatherv(local.data(), bytes, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE,
-                 comm.get());
-  return out;
-}
 
 /// The discrete gradient of one weighted gap over its n = dim * nodes dofs and the derivative
 /// of its correction term with respect to x_{n+1} (column-major n x n; zero if uncorrected).
@@ -214,7 +199,9 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       }
     }
   // Every rank's entries; the owner of slave node j assembles its discrete gradient.
-  std::vector<Entry> all = all_gather(disc_.comm(), local);
+  std::vector<std::int64_t> offsets;
+  std::vector<Entry> all =
+      parallel::allgatherv<Entry>(disc_.comm().get(), std::span<const Entry>(local), offsets);
   const auto& nodes = s.itf.slave().mesh_nodes;
   // The weighted gaps at x_{n+1} that the active set and the gap rows use.
   std::fill(s.gap.begin(), s.gap.end(), 0.0);
