@@ -20,9 +20,11 @@ interface is redistributed at a restart, which changes sums at round-off).
 - fluid-structure interaction (the Turek-Hron FSI3 start-up with generalized-alpha: structure
   displacement, velocity and acceleration, fluid velocity, pressure and rates, mesh
   displacement and its rate, the interface forces, the energy budget's works; and the steady
-  FSI1 flag with continuation in t). Across rank counts the FSI tables agree to 1e-11: two
-  uninterrupted 3-rank runs of the FSI3 case already differ by 1.1e-11 in the tip's u_y (the
-  parallel direct solver's reductions), which no restart can undercut.
+  FSI1 flag with continuation in t). Across rank counts the FSI tables are compared to 5e-11:
+  the uninterrupted 1-rank and 3-rank runs of the FSI3 case differ by 1.5e-11 in the tip's u_y
+  (of the largest |u|; 5e-17 m on a flag tip that has moved 7e-8 m), two 3-rank runs by
+  1.1e-11 (the parallel direct solver's reductions), which no restart can undercut; the other
+  columns agree to a few 1e-12.
 Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
 mesh, another dimension, no such directory, a missing or damaged part file, a checkpoint of
 another kind of run: solid, fluid, fluid-structure) end with exit code 1 and a message. The nodal vectors are not gathered: each rank writes its own entries.
@@ -263,11 +265,11 @@ def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12):
     same = compare(one, restarted_run(yaml, one, step, 1), 0.0, what + " 1 -> 1")
     print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
     if not cross_np:
-        return
+        return yaml
     d13 = compare(one, restarted_run(yaml, one, step, 3), rtol, what + " 1 -> 3")
     print("   %s: largest relative difference 1 -> 3 %.2e" % (what, d13))
     if cross_np == "1 -> 3":
-        return
+        return yaml
     # On 3 ranks two uninterrupted runs differ at round-off already (the parallel direct
     # solver's ordering), so 3 -> 3 is compared to 1e-12 as well.
     three = full_run(yaml, 3)
@@ -276,6 +278,7 @@ def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12):
     if H.FULL:
         d33 = compare(three, restarted_run(yaml, three, step, 3), rtol, what + " 3 -> 3")
         print("   %s: largest relative difference 3 -> 3 %.2e" % (what, d33))
+    return yaml
 
 
 def test_static_friction_two_bodies():
@@ -320,8 +323,11 @@ def test_fluid_moving_mesh():
 
 def test_fsi_generalized_alpha():
     """FSI3 start-up, 6 steps, restarted after step 3: bit for bit on 1 rank; 1 -> 3 and
-    3 -> 1 to 1e-11 (the reproducibility of the 3-rank run itself, see the docstring above)."""
-    check_case(fsi_geo(), fsi3_yaml, 3, "fluid-structure, generalized-alpha", rtol=1e-11)
+    3 -> 1 to 5e-11, the level at which uninterrupted runs on 1 and 3 ranks agree (printed;
+    see the docstring above)."""
+    yaml = check_case(fsi_geo(), fsi3_yaml, 3, "fluid-structure, generalized-alpha", rtol=5e-11)
+    d = compare(full_run(yaml, 1), full_run(yaml, 3), 1.0, "uninterrupted 1 and 3 ranks")
+    print("   fluid-structure: uninterrupted runs on 1 and 3 ranks differ by %.2e" % d)
 
 
 def test_fsi_static():
