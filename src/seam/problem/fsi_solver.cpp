@@ -281,34 +281,16 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     w.forces.emplace(table("forces.csv", {"step", "time", "name", "fx", "fy", "fz"}));
     // CONTRACT.md's columns (the structure's energies; steady: no kinetic energy or
     // momentum, no contact), then the interface forces of both sides (force conservation).
-    w.steps.emplace(table("steps.csv", {"step",
-                                        "time",
-                                        "newton_iterations",
-                                        "residual",
-                                        "active_nodes",
-                                        "slip_nodes",
-                                        "kinetic_energy",
-                                        "internal_energy",
-                                        "external_work",
-                                        "total_energy",
-                                        "momentum_x",
-                                        "momentum_y",
-                                        "momentum_z",
-                                        "angular_momentum_x",
-                                        "angular_momentum_y",
-                                        "angular_momentum_z",
-                                        "wall_seconds",
-                                        "interface_force_fluid_x",
-                                        "interface_force_fluid_y",
-                                        "interface_force_fluid_z",
-                                        "interface_force_structure_x",
-                                        "interface_force_structure_y",
-                                        "interface_force_structure_z",
-                                        "fluid_kinetic_energy",
-                                        "viscous_dissipation",
-                                        "boundary_work",
-                                        "interface_work_fluid",
-                                        "interface_work_structure"}));
+    // clang-format off
+    w.steps.emplace(table("steps.csv", {
+        "step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
+        "kinetic_energy", "internal_energy", "external_work", "total_energy", "momentum_x",
+        "momentum_y", "momentum_z", "angular_momentum_x", "angular_momentum_y",
+        "angular_momentum_z", "wall_seconds", "interface_force_fluid_x", "interface_force_fluid_y",
+        "interface_force_fluid_z", "interface_force_structure_x", "interface_force_structure_y",
+        "interface_force_structure_z", "fluid_kinetic_energy", "viscous_dissipation",
+        "boundary_work", "interface_work_fluid", "interface_work_structure"}));
+    // clang-format on
     w.interfaces.emplace(
         table("interfaces.csv", {"step", "time", "interface", "normal_force", "tangential_force",
                                  "active_nodes", "slip_nodes", "contact_area"}));
@@ -602,34 +584,13 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       last_raw = raw;
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      w.steps->add_row({step,
-                        t,
-                        it,
-                        rn,
-                        0,
-                        0,
-                        res.kinetic_energy,
-                        res.strain_energy,
-                        work,
-                        res.kinetic_energy + res.strain_energy,
-                        0,
-                        0,
-                        0,
-                        0,
-                        0,
-                        0,
-                        wall,
-                        ff[0],
-                        ff[1],
-                        ff[2],
-                        fs[0],
-                        fs[1],
-                        fs[2],
-                        fluid_energy.kinetic,
-                        work_sum.dissipation,
-                        work_sum.boundary,
-                        work_sum.interface_fluid,
+      // clang-format off
+      w.steps->add_row({step, t, it, rn, 0, 0, res.kinetic_energy, res.strain_energy, work,
+                        res.kinetic_energy + res.strain_energy, 0, 0, 0, 0, 0, 0, wall,
+                        ff[0], ff[1], ff[2], fs[0], fs[1], fs[2], fluid_energy.kinetic,
+                        work_sum.dissipation, work_sum.boundary, work_sum.interface_fluid,
                         work_sum.interface_structure});
+      // clang-format on
       ScopedTimer timer(timers, "output");
       if (w.probes) write_probes(sys, raw, step, t, w);
       // Fields every `output.every` steps and at the end.
