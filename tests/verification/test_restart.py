@@ -16,10 +16,18 @@ interface is redistributed at a restart, which changes sums at round-off).
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
   mesh tying),
 - pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
-  rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE).
+  rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE),
+- fluid-structure interaction (the Turek-Hron FSI3 start-up with generalized-alpha: structure
+  displacement, velocity and acceleration, fluid velocity, pressure and rates, mesh
+  displacement and its rate, the interface forces, the energy budget's works; and the steady
+  FSI1 flag with continuation in t). Across rank counts the FSI tables are compared to 5e-11:
+  the uninterrupted 1-rank and 3-rank runs of the FSI3 case differ by 1.5e-11 in the tip's u_y
+  (of the largest |u|; 5e-17 m on a flag tip that has moved 7e-8 m), two 3-rank runs by
+  1.1e-11 (the parallel direct solver's reductions), which no restart can undercut; the other
+  columns agree to a few 1e-12.
 Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
-mesh, another dimension, no such directory, a missing or damaged part file) end with exit code
-1 and a message. The nodal vectors are not gathered: each rank writes its own entries.
+mesh, another dimension, no such directory, a missing or damaged part file, a checkpoint of
+another kind of run: solid, fluid, fluid-structure) end with exit code 1 and a message. The nodal vectors are not gathered: each rank writes its own entries.
 """
 import os
 import shutil
@@ -46,7 +54,12 @@ GROUPS = [("kinetic_energy", "internal_energy", "external_work", "total_energy")
           ("momentum_x", "momentum_y", "momentum_z"),
           ("angular_momentum_x", "angular_momentum_y", "angular_momentum_z"),
           ("fx", "fy", "fz"), ("ux", "uy", "uz"), ("vx", "vy", "vz"),
-          ("normal_force", "tangential_force")]
+          ("normal_force", "tangential_force"),
+          ("interface_force_fluid_x", "interface_force_fluid_y", "interface_force_fluid_z",
+           "interface_force_structure_x", "interface_force_structure_y",
+           "interface_force_structure_z"),
+          ("fluid_kinetic_energy", "viscous_dissipation", "boundary_work", "interface_work_fluid",
+           "interface_work_structure")]
 
 
 def column_scale(rows, col):
@@ -114,6 +127,39 @@ def pulsating_flow_yaml(every):
     needs the velocity, the pressure, their rates and the last step's forces."""
     return (TF.pulsating_yaml(10).replace("body.geo", "case.geo")
             + "  checkpoint_every: %d\n  probes: [[1.0, 0.3]]\n" % every)
+
+
+TUREK_HRON = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                          "turek_hron")
+
+
+def fsi_geo(refine=0.5):
+    """The Turek-Hron channel and flag of examples/turek_hron (refine 0.5: test_fsi.py's
+    coarse mesh)."""
+    with open(os.path.join(TUREK_HRON, "fsi.geo")) as f:
+        text = f.read()
+    assert "refine = 1;" in text
+    return text.replace("refine = 1;", "refine = %g;" % refine)
+
+
+def fsi_yaml(example, every, time):
+    with open(os.path.join(TUREK_HRON, example)) as f:
+        text = f.read()
+    for a, b in (("geo: fsi.geo", "geo: case.geo"), (time[0], time[1]),
+                 ("output:\n", "output:\n  checkpoint_every: %d\n" % every)):
+        assert a in text, a
+        text = text.replace(a, b)
+    return text
+
+
+def fsi3_yaml(every):
+    """The FSI3 start-up (generalized-alpha on structure, fluid and fluid mesh) to t = 0.06."""
+    return fsi_yaml("fsi3.yaml", every, ("end: 0.5, dt: 0.01", "end: 0.06, dt: 0.01"))
+
+
+def fsi1_yaml(every):
+    """The steady FSI1 flag in 4 load steps (each continues from the last converged state)."""
+    return fsi_yaml("fsi1.yaml", every, ("end: 1, steps: 2", "end: 1, steps: 4"))
 
 
 def make_case(geo, yaml):
@@ -210,7 +256,7 @@ def compare(full, restarted, rtol, what):
     return worst
 
 
-def check_case(geo, yaml_of, step, what, cross_np=True):
+def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12):
     _, yaml = make_case(geo, yaml_of(step))
     one = full_run(yaml, 1)
     rows = H.read_csv(os.path.join(one, "steps.csv"))
@@ -219,19 +265,20 @@ def check_case(geo, yaml_of, step, what, cross_np=True):
     same = compare(one, restarted_run(yaml, one, step, 1), 0.0, what + " 1 -> 1")
     print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
     if not cross_np:
-        return
-    d13 = compare(one, restarted_run(yaml, one, step, 3), 1e-12, what + " 1 -> 3")
+        return yaml
+    d13 = compare(one, restarted_run(yaml, one, step, 3), rtol, what + " 1 -> 3")
     print("   %s: largest relative difference 1 -> 3 %.2e" % (what, d13))
     if cross_np == "1 -> 3":
-        return
+        return yaml
     # On 3 ranks two uninterrupted runs differ at round-off already (the parallel direct
     # solver's ordering), so 3 -> 3 is compared to 1e-12 as well.
     three = full_run(yaml, 3)
-    d31 = compare(three, restarted_run(yaml, three, step, 1), 1e-12, what + " 3 -> 1")
+    d31 = compare(three, restarted_run(yaml, three, step, 1), rtol, what + " 3 -> 1")
     print("   %s: largest relative difference 3 -> 1 %.2e" % (what, d31))
     if H.FULL:
-        d33 = compare(three, restarted_run(yaml, three, step, 3), 1e-12, what + " 3 -> 3")
+        d33 = compare(three, restarted_run(yaml, three, step, 3), rtol, what + " 3 -> 3")
         print("   %s: largest relative difference 3 -> 3 %.2e" % (what, d33))
+    return yaml
 
 
 def test_static_friction_two_bodies():
@@ -272,6 +319,56 @@ def test_fluid_moving_mesh():
             + "  checkpoint_every: 3\n")
     check_case(G.rectangle("tri", 0.2, 2), lambda e: yaml, 3, "fluid, moving mesh",
                cross_np="1 -> 3")
+
+
+def test_fsi_generalized_alpha():
+    """FSI3 start-up, 6 steps, restarted after step 3: bit for bit on 1 rank; 1 -> 3 and
+    3 -> 1 to 5e-11, the level at which uninterrupted runs on 1 and 3 ranks agree (printed;
+    see the docstring above)."""
+    yaml = check_case(fsi_geo(), fsi3_yaml, 3, "fluid-structure, generalized-alpha", rtol=5e-11)
+    d = compare(full_run(yaml, 1), full_run(yaml, 3), 1.0, "uninterrupted 1 and 3 ranks")
+    print("   fluid-structure: uninterrupted runs on 1 and 3 ranks differ by %.2e" % d)
+
+
+def test_fsi_static():
+    """The steady FSI1 flag in 4 load steps, restarted after step 2 (its residual scale and
+    the continued state; no time integration history)."""
+    check_case(fsi_geo(), fsi1_yaml, 2, "fluid-structure, static", cross_np=False)
+
+
+def test_fsi_bad_checkpoints():
+    """A checkpoint of another kind of run (an FSI checkpoint given to a solid and to a fluid
+    run, a solid and a fluid checkpoint given to an FSI run), of another FSI mesh or input, or
+    damaged: exit 1 with a message naming what differs."""
+    work, yaml = make_case(fsi_geo(), fsi3_yaml(3))
+    fsi = os.path.join(full_run(yaml, 1), "checkpoint_00003")
+    _, solid_yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
+    solid = os.path.join(full_run(solid_yaml, 1), "checkpoint_00003")
+    _, fluid_yaml = make_case(G.rectangle("quad_structured", 0.25, 2), pulsating_flow_yaml(4))
+    fluid = os.path.join(full_run(fluid_yaml, 1), "checkpoint_00004")
+    scratch = os.path.join(work, "o")
+    for input_, checkpoint, words, what in (
+            (solid_yaml, fsi, ["fluid-structure run", "describes a solid run"], "FSI -> solid"),
+            (fluid_yaml, fsi, ["fluid-structure run", "describes a fluid run"], "FSI -> fluid"),
+            (yaml, solid, ["solid run", "describes a fluid-structure run"], "solid -> FSI"),
+            (yaml, fluid, ["fluid run", "describes a fluid-structure run"], "fluid -> FSI")):
+        expect_input_error(["run", input_, "--restart", checkpoint, "-o", scratch], words, what)
+    # The FSI case on a finer mesh, and with another rho_inf.
+    _, finer = make_case(fsi_geo(0.6), fsi3_yaml(3))
+    expect_input_error(["run", finer, "--restart", fsi, "-o", scratch], ["mesh of"],
+                       "FSI, another mesh")
+    other = H.write_case(work, "other.yaml", fsi3_yaml(3).replace("rho_inf: 0.5", "rho_inf: 0.6"))
+    expect_input_error(["run", other, "--restart", fsi, "-o", scratch], ["another input"],
+                       "FSI, another input")
+    # A damaged state.bin (one byte flipped), on 3 ranks: every rank stops.
+    damaged = os.path.join(work, "damaged")
+    shutil.copytree(fsi, damaged)
+    path = os.path.join(damaged, "state.bin")
+    data = open(path, "rb").read()
+    middle = len(data) // 2
+    open(path, "wb").write(data[:middle] + bytes([data[middle] ^ 0x40]) + data[middle + 1:])
+    expect_input_error(["run", yaml, "--restart", damaged, "-o", scratch], ["damaged"],
+                       "FSI, damaged state.bin, np 3", np=3)
 
 
 def test_self_contact_surface():
@@ -451,7 +548,8 @@ if __name__ == "__main__":
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
-                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_self_contact_surface,
+                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_fsi_generalized_alpha,
+                test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,
                 test_after_step_cuts, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
     finally:
         H.cleanup(*_dirs)

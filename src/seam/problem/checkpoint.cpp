@@ -237,11 +237,11 @@ MeshIdentity identify(const mesh::DistributedMesh& d, const Comm& comm) {
   return {m.dim, d.n_global_nodes, d.n_global_cells, sum + fnv1a(&m.dim, sizeof(m.dim))};
 }
 
-Checkpoints::Checkpoints(const io::Config& config, MeshIdentity mesh, Comm comm,
-                         CanonicalOrder order, const std::string& input,
+Checkpoints::Checkpoints(const io::Config& config, std::string problem, MeshIdentity mesh,
+                         Comm comm, CanonicalOrder order, const std::string& input,
                          std::filesystem::path output_dir, const std::string& restart)
-    : mesh_(mesh), comm_(comm), order_(std::move(order)), every_(config.output.checkpoint_every),
-      dir_(std::move(output_dir)) {
+    : problem_(std::move(problem)), mesh_(mesh), comm_(comm), order_(std::move(order)),
+      every_(config.output.checkpoint_every), dir_(std::move(output_dir)) {
   bool ok = false;
   const std::string text = read_file(input, ok);
   input_hash_ = fnv1a(text.data(), text.size());
@@ -254,6 +254,10 @@ Checkpoints::Checkpoints(const io::Config& config, MeshIdentity mesh, Comm comm,
   reader_ = RecordReader(dir / "state.bin");
   const auto& r = reader_;
   const auto& m = mesh;
+  // The kind of run first: a checkpoint of another kind holds other records.
+  if (r.has("problem") && r.text("problem") != problem_)
+    r.fail("was written by a " + r.text("problem") + " run; " + input + " describes a " + problem_ +
+           " run");
   if (r.integer("dimension") != m.dim)
     r.fail(::seam::detail::concat("was written by a run in dimension ", r.integer("dimension"),
                                   "; the input has dimension ", m.dim));
@@ -307,6 +311,7 @@ Checkpoints::pvd_entries(const std::filesystem::path& output_dir) const {
 RecordWriter Checkpoints::begin(int step, double time) const {
   RecordWriter w;
   const auto& m = mesh_;
+  w.put("problem", problem_);
   w.put_integer("dimension", m.dim);
   w.put_integer("mesh_nodes", m.nodes);
   w.put_integer("mesh_cells", m.cells);

@@ -116,10 +116,12 @@ CanonicalOrder nodal_order(const Discretization& disc);
 /// and the one it restarts from.
 class Checkpoints {
 public:
-  /// `restart` empty: a fresh run. Otherwise the checkpoint directory is read and checked
-  /// against the input file and the mesh (InputError on any mismatch). Collective.
-  Checkpoints(const io::Config& config, MeshIdentity mesh, Comm comm, CanonicalOrder order,
-              const std::string& input, std::filesystem::path output_dir,
+  /// `problem` names the kind of run ("solid", "fluid", "fluid-structure"), recorded in every
+  /// checkpoint. `restart` empty: a fresh run. Otherwise the checkpoint directory is read and
+  /// checked against the kind of run, the input file and the mesh (InputError on any
+  /// mismatch). Collective.
+  Checkpoints(const io::Config& config, std::string problem, MeshIdentity mesh, Comm comm,
+              CanonicalOrder order, const std::string& input, std::filesystem::path output_dir,
               const std::string& restart);
 
   bool restarting() const { return restarting_; }
@@ -133,7 +135,7 @@ public:
 
   /// A checkpoint is due after converged step `step`.
   bool due(int step) const { return every_ > 0 && step % every_ == 0; }
-  /// A writer holding the identification records (format, input and mesh hashes, step).
+  /// A writer holding the identification records (kind of run, input and mesh hashes, step).
   RecordWriter begin(int step, double time) const;
   /// Writes checkpoint_NNNNN/: every rank its part file, then rank 0 state.bin. Collective.
   void commit(const RecordWriter& writer, int step) const;
@@ -149,6 +151,7 @@ public:
   io::CsvTable::Mode table_mode(const std::filesystem::path& file) const;
 
 private:
+  std::string problem_;
   MeshIdentity mesh_;
   Comm comm_;
   CanonicalOrder order_;

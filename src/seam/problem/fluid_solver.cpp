@@ -9,6 +9,7 @@
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_output.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
+#include "seam/problem/step_control.hpp"
 #include "seam/problem/tying_constraint.hpp"
 #include "seam/solid/loads.hpp"
 
@@ -486,7 +487,7 @@ struct MovingMesh {
 
 FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        const std::filesystem::path& dir, bool quiet, bool check_only,
-                       const FluidRestart& restart) {
+                       const RestartFrom& restart) {
   const FluidLayout layout(mesh, comm);
   const auto model = build_fluid_model(config, layout);
   FluidMeshMotion motion(config, layout);
@@ -501,8 +502,8 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     tying.emplace(tied, tied_dofs(layout, model)); // the velocity; the pressure is untied
     if (!tying->active()) tying.reset();
   }
-  const Checkpoints checkpoints(config, identify(mesh), comm, fluid_order(layout), restart.input,
-                                dir, restart.checkpoint);
+  const Checkpoints checkpoints(config, "fluid", identify(mesh), comm, fluid_order(layout),
+                                restart.input, dir, restart.checkpoint);
   FluidOutput out(config, layout, model, dir, quiet,
                   checkpoints.restarting() ? &checkpoints : nullptr);
   if (comm.is_root() && !quiet)
@@ -594,14 +595,15 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     assemble(model, layout, ms, {&w, &w, &u_dot}, 0.0, r0, nullptr);
     last_forces = forces(model, layout, r0);
   }
-  double t = 0.0, dt = tc.dt;
-  int step = 0, cuts = 0;
+  // Steps as the solid runs them (docs/input.md §6.3): a failed Newton attempt restores the
+  // last converged state and halves the step.
+  StepControl control(tc);
+  int step = 0;
   if (checkpoints.restarting()) {
     const auto& r = checkpoints.restart();
     step = checkpoints.restart_step();
-    t = checkpoints.restart_time();
-    dt = r.real("control.dt");
-    cuts = static_cast<int>(r.integer("control.cuts"));
+    control.set_state({checkpoints.restart_time(), r.real("control.dt"),
+                       static_cast<int>(r.integer("control.cuts"))});
     newton.set_reference(r.real("newton.reference"));
     checkpoints.get_vector("w", w);
     if (unsteady) {
@@ -616,12 +618,10 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     }
     if (comm.is_root() && !quiet)
       std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
-                  t);
+                  control.time());
   }
-  while (t < tc.end * (1.0 - 1e-12)) {
-    double t_new = std::min(t + dt, tc.end);
-    const double k = std::round(t_new / tc.dt);
-    if (std::abs(t_new - k * tc.dt) < 1e-9 * tc.dt) t_new = tc.time_at(static_cast<int>(k));
+  while (control.running()) {
+    const double t = control.time(), t_new = control.next();
     w_old.copy_from(w);
     w_old.update_ghosts();
     const double h = t_new - t;
@@ -669,16 +669,10 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     if (!res.converged) {
       w.copy_from(w_old);
       w.update_ghosts();
-      if (cuts >= tc.max_step_cuts) {
-        out.finish(false, step);
-        SEAM_THROW(SolverError, res.failure, " at t = ", t_new, " after ", cuts, " step cuts; the ",
-                   step, " converged steps are written in ", dir.string());
-      }
-      ++cuts;
-      dt *= 0.5;
-      if (comm.is_root())
-        std::printf("seam: %s at t = %g; cutting the step to dt = %g\n", res.failure, t_new, dt);
-      continue;
+      if (control.cut(res.failure, t_new, comm)) continue;
+      out.finish(false, step);
+      SEAM_THROW(SolverError, res.failure, " at t = ", t_new, " after ", control.cuts(),
+                 " step cuts; the ", step, " converged steps are written in ", dir.string());
     }
     if (unsteady) {
       u_dot.copy_from(u_dot_new); // of the converged state: its last evaluation
@@ -689,14 +683,10 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       if (unsteady) mm.d_dot.swap(mm.d_dot_new);
     }
     ++step;
-    t = t_new;
-    if (cuts > 0) {
-      dt = std::min(2.0 * dt, tc.dt); // grow back after a successful cut step
-      if (dt >= tc.dt) cuts = 0;
-    }
+    control.accept(t_new);
     FluidStepRecord rec;
     rec.step = step;
-    rec.time = t;
+    rec.time = t_new;
     rec.newton_iterations = res.iterations;
     rec.residual = res.residual;
     rec.forces = forces(model, layout, newton.full_residual());
@@ -708,13 +698,14 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     }
     // Errors on the mesh at t_{n+1}.
     const MeshState now{motion.moving() ? mm.at(mm.d) : std::span<const double>(mesh.x), {}};
-    if (exact) rec.errors = errors(config, model, layout, now, w, t);
+    if (exact) rec.errors = errors(config, model, layout, now, w, t_new);
     out.step(rec, w, motion.moving() ? std::span<const double>(mm.d) : std::span<const double>(),
-             t >= tc.end * (1.0 - 1e-12));
+             !control.running());
     if (checkpoints.due(step)) {
-      auto writer = checkpoints.begin(step, t);
-      writer.put_real("control.dt", dt);
-      writer.put_integer("control.cuts", cuts);
+      const auto c = control.state();
+      auto writer = checkpoints.begin(step, c.t);
+      writer.put_real("control.dt", c.dt);
+      writer.put_integer("control.cuts", c.cuts);
       writer.put_real("newton.reference", newton.reference());
       checkpoints.put_vector(writer, "w", w);
       if (unsteady) {

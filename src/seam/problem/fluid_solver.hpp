@@ -6,6 +6,7 @@
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
+#include "seam/problem/restart_from.hpp"
 
 #include <filesystem>
 #include <string>
@@ -16,18 +17,11 @@ struct FluidRunInfo {
   long long n_dofs = 0;
 };
 
-/// The input file (its hash identifies checkpoints) and the checkpoint to restart from
-/// (empty: start at t = 0).
-struct FluidRestart {
-  std::string input;
-  std::string checkpoint;
-};
-
 /// Checks the input for the fluid field, then runs all steps, writing into `dir` (which
 /// exists). `check_only` stops after the checks. The mesh initialization of tied interfaces
 /// moves slave nodes of `mesh`. Throws InputError or SolverError.
 FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        const std::filesystem::path& dir, bool quiet, bool check_only = false,
-                       const FluidRestart& restart = {});
+                       const RestartFrom& restart = {});
 
 } // namespace seam::problem

@@ -1,13 +1,16 @@
 #include "seam/problem/fsi_solver.hpp"
 
+#include "seam/common/collective.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/timer.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/json.hpp"
+#include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/locate.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fsi_system.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/step_control.hpp"
@@ -16,9 +19,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 namespace seam::problem {
@@ -56,7 +59,7 @@ std::array<double, 3> fluid_force(const FsiSystem& sys, const std::vector<double
 struct Writer {
   std::filesystem::path dir;
   std::unique_ptr<io::PvdCollection> pvd;
-  std::ofstream forces, steps, probes, interfaces;
+  std::optional<io::CsvTable> forces, steps, probes, interfaces;
   std::vector<mesh::PointLocation> probe_at;
   std::vector<std::pair<std::string, std::vector<std::int32_t>>> groups;
 };
@@ -210,19 +213,15 @@ void write_probes(const FsiSystem& sys, const std::vector<double>& raw, int step
         u[i] += N[a] * raw[fluid ? sys.m_dof(nodes[a], i) : sys.d_dof(nodes[a], i)];
         if (fluid) v[i] += N[a] * raw[sys.f_dof(nodes[a], i)];
       }
-    w.probes << step << ',' << t << ',' << k << ',' << x[0] << ',' << x[1] << ',' << x[2] << ','
-             << u[0] << ',' << u[1] << ',' << u[2] << ',' << v[0] << ',' << v[1] << ',' << v[2]
-             << ',';
+    double p = 0.0;
     if (fluid) {
       const auto pcell = fluid::pressure_cell(type);
       fem::shape_values(pcell, at.xi.data(), N.data());
-      double p = 0.0;
       for (int a = 0; a < fem::n_nodes(pcell); ++a) p += N[a] * raw[sys.f_dof(nodes[a], dim)];
-      w.probes << p;
     }
-    w.probes << '\n';
+    const io::CsvValue pressure = fluid ? io::CsvValue(p) : io::CsvValue("");
+    w.probes->add_row({step, t, k, x[0], x[1], x[2], u[0], u[1], u[2], v[0], v[1], v[2], pressure});
   }
-  w.probes.flush();
 }
 
 } // namespace
@@ -233,7 +232,8 @@ bool has_fsi(const io::Config& config) {
 }
 
 FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                   const std::filesystem::path& dir, bool quiet, bool check_only) {
+                   const std::filesystem::path& dir, bool quiet, bool check_only,
+                   const RestartFrom& restart) {
   check_fsi_input(config);
   PhaseTimers timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
@@ -262,31 +262,43 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   if (check_only) return info;
 
   const bool root = comm.is_root();
-  if (root) {
-    w.pvd = std::make_unique<io::PvdCollection>(dir / "results.pvd");
-    w.forces.open(dir / "forces.csv");
-    w.forces << "step,time,name,fx,fy,fz\n";
-    w.forces.precision(17);
-    w.steps.open(dir / "steps.csv");
+  // Checkpoints hold the whole state (every rank has it; state.bin only, no part files of
+  // nodal vectors), identified by the mesh after the mesh initialization of the interfaces.
+  const Checkpoints checkpoints(config, "fluid-structure", identify(mesh), comm, {}, restart.input,
+                                dir, restart.checkpoint);
+  // A restart continues the tables (rows after its step dropped) and results.pvd; a table
+  // with another header stops every rank.
+  on_root_collectively(comm, [&] {
+    const auto table = [&](const char* file, std::vector<std::string> columns) {
+      return io::CsvTable(dir / file, std::move(columns),
+                          checkpoints.restarting() ? checkpoints.table_mode(dir / file)
+                                                   : io::CsvTable::Mode::truncate);
+    };
+    w.pvd =
+        checkpoints.restarting()
+            ? std::make_unique<io::PvdCollection>(dir / "results.pvd", checkpoints.pvd_entries(dir))
+            : std::make_unique<io::PvdCollection>(dir / "results.pvd");
+    w.forces.emplace(table("forces.csv", {"step", "time", "name", "fx", "fy", "fz"}));
     // CONTRACT.md's columns (the structure's energies; steady: no kinetic energy or
     // momentum, no contact), then the interface forces of both sides (force conservation).
-    w.steps << "step,time,newton_iterations,residual,active_nodes,slip_nodes,kinetic_energy,"
-               "internal_energy,external_work,total_energy,momentum_x,momentum_y,momentum_z,"
-               "angular_momentum_x,angular_momentum_y,angular_momentum_z,wall_seconds,"
-               "interface_force_fluid_x,interface_force_fluid_y,interface_force_fluid_z,"
-               "interface_force_structure_x,interface_force_structure_y,"
-               "interface_force_structure_z,fluid_kinetic_energy,viscous_dissipation,"
-               "boundary_work,interface_work_fluid,interface_work_structure\n";
-    w.interfaces.open(dir / "interfaces.csv");
-    w.interfaces << "step,time,interface,normal_force,tangential_force,active_nodes,slip_nodes,"
-                    "contact_area\n";
-    w.interfaces.precision(17);
-    w.steps.precision(17);
-    if (!w.probe_at.empty()) {
-      w.probes.open(dir / "probes.csv");
-      w.probes << "step,time,probe,x,y,z,ux,uy,uz,vx,vy,vz,pressure\n";
-      w.probes.precision(17);
-    }
+    // clang-format off
+    w.steps.emplace(table("steps.csv", {
+        "step", "time", "newton_iterations", "residual", "active_nodes", "slip_nodes",
+        "kinetic_energy", "internal_energy", "external_work", "total_energy", "momentum_x",
+        "momentum_y", "momentum_z", "angular_momentum_x", "angular_momentum_y",
+        "angular_momentum_z", "wall_seconds", "interface_force_fluid_x", "interface_force_fluid_y",
+        "interface_force_fluid_z", "interface_force_structure_x", "interface_force_structure_y",
+        "interface_force_structure_z", "fluid_kinetic_energy", "viscous_dissipation",
+        "boundary_work", "interface_work_fluid", "interface_work_structure"}));
+    // clang-format on
+    w.interfaces.emplace(
+        table("interfaces.csv", {"step", "time", "interface", "normal_force", "tangential_force",
+                                 "active_nodes", "slip_nodes", "contact_area"}));
+    if (!w.probe_at.empty())
+      w.probes.emplace(table("probes.csv", {"step", "time", "probe", "x", "y", "z", "ux", "uy",
+                                            "uz", "vx", "vy", "vz", "pressure"}));
+  });
+  if (root) {
     if (!quiet)
       std::printf("seam: fluid-structure interaction, %d nodes, %d cells, %lld unknowns, %d "
                   "rank(s); output in %s\n",
@@ -316,7 +328,6 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   // Steps as the solid runs them (docs/input.md §6.3): a failed Newton attempt restores the
   // last converged state and halves the step.
   StepControl control(config.time);
-  std::vector<double> x_converged = x;
   int step = 0, newton_iterations = 0;
   const auto finish = [&](bool ok) {
     if (!root) return;
@@ -344,6 +355,67 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   for (const auto& cp : sys.couplings())
     for (auto n : cp.fluid_nodes)
       for (int i = 0; i < dim; ++i) on_interface[sys.f_dof(n, i)] = 1;
+  // The state carried from step to step: the unknowns, the history of the time integration,
+  // the residual scale, the reactions and powers at t_n and the works to t_n, the forces of
+  // the force groups, step control and the output counters. Rank 0's copy is written (the
+  // records of the tables' columns are kept on rank 0 only).
+  const auto flat = [](const auto& groups) {
+    std::vector<double> out;
+    for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
+    return out;
+  };
+  const auto powers = [](const Powers& p) {
+    return std::array<double, 4>{p.boundary, p.dissipation, p.interface_fluid,
+                                 p.interface_structure};
+  };
+  const auto write_checkpoint = [&] {
+    const auto c = control.state();
+    RecordWriter cw = checkpoints.begin(step, c.t);
+    cw.put_real("control.dt", c.dt);
+    cw.put_integer("control.cuts", c.cuts);
+    cw.put_integer("newton.iterations", newton_iterations);
+    cw.put_real("newton.reference", reference);
+    cw.put("x", x);
+    cw.put("reaction", reaction);
+    cw.put("power", powers(power_old));
+    cw.put("work", powers(work_sum));
+    cw.put_real("structure_work", work);
+    cw.put("last_force", last_force);
+    cw.put("last_raw", last_raw);
+    cw.put("group_force", flat(group_force));
+    cw.put("history.old", history.old);
+    cw.put("history.rate", history.rate);
+    cw.put("history.accel", history.accel);
+    put_pvd(cw, w.pvd.get());
+    checkpoints.commit(cw, step);
+  };
+  if (checkpoints.restarting()) {
+    const auto& r = checkpoints.restart();
+    step = checkpoints.restart_step();
+    control.set_state({checkpoints.restart_time(), r.real("control.dt"),
+                       static_cast<int>(r.integer("control.cuts"))});
+    newton_iterations = static_cast<int>(r.integer("newton.iterations"));
+    reference = r.real("newton.reference");
+    const auto n_raw = sys.n_raw();
+    x = r.reals("x", x.size());
+    reaction = r.reals("reaction", n_raw);
+    const auto p = r.reals("power", 4), s = r.reals("work", 4);
+    power_old = {p[0], p[1], p[2], p[3]};
+    work_sum = {s[0], s[1], s[2], s[3]};
+    work = r.real("structure_work");
+    last_force = r.reals("last_force", n_raw);
+    last_raw = r.reals("last_raw", n_raw);
+    const auto f = r.reals("group_force", group_force.size() * 3);
+    for (std::size_t k = 0; k < group_force.size(); ++k)
+      for (int i = 0; i < 3; ++i) group_force[k][i] = f[k * 3 + i];
+    history.old = r.reals("history.old", dynamic ? n_raw : 0);
+    history.rate = r.reals("history.rate", dynamic ? n_raw : 0);
+    history.accel = r.reals("history.accel", dynamic ? n_raw : 0);
+    if (root && !quiet)
+      std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
+                  control.time());
+  }
+  std::vector<double> x_converged = x;
   while (control.running()) {
     const double t_old = control.time();
     const double t = control.next();
@@ -464,70 +536,70 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
           h * (power_old.interface_structure + power.interface_structure);
     }
     power_old = power;
-    if (!root) continue;
-    for (std::size_t k = 0; k < w.groups.size(); ++k) {
-      auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
-      // Dynamics: the residual holds the force at t_{n+alpha_f}; at t_{n+1} it is
-      // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f (as the fluid runs).
-      if (dynamic)
-        for (int i = 0; i < 3; ++i)
-          f[i] = (f[i] - (1 - history.f_af) * group_force[k][i]) / history.f_af;
-      group_force[k] = f;
-      w.forces << step << ',' << t << ',' << w.groups[k].first << ',' << f[0] << ',' << f[1] << ','
-               << f[2] << '\n';
-    }
-    w.forces.flush();
-    // Force conservation: the fluid's interface force, and the one the structure receives
-    // through P^T (equal, since the rows of P sum to one). The work of the transferred force on
-    // the structure by the trapezoidal rule over the load steps.
-    std::array<double, 3> ff{}, fs{};
-    std::vector<double> transferred(sys.n_raw(), 0.0);
-    for (const auto& cp : sys.couplings()) {
-      double normal = 0.0;
-      std::array<double, 3> tangential{};
-      for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
-        const double* n = &normals[static_cast<std::size_t>(cp.fluid_nodes[j]) * 3];
-        double fn = 0.0;
-        std::array<double, 3> f{};
-        for (int i = 0; i < dim; ++i) {
-          f[i] = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
-          fn += f[i] * n[i];
-          ff[i] += f[i];
-          for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
-            fs[i] += cp.weights[q] * f[i];
-            transferred[sys.d_dof(cp.structure_nodes[q], i)] += cp.weights[q] * f[i];
-          }
-        }
-        normal += fn;
-        for (int i = 0; i < dim; ++i) tangential[i] += f[i] - fn * n[i];
+    if (root) {
+      for (std::size_t k = 0; k < w.groups.size(); ++k) {
+        auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
+        // Dynamics: the residual holds the force at t_{n+alpha_f}; at t_{n+1} it is
+        // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f (as the fluid runs).
+        if (dynamic)
+          for (int i = 0; i < 3; ++i)
+            f[i] = (f[i] - (1 - history.f_af) * group_force[k][i]) / history.f_af;
+        group_force[k] = f;
+        w.forces->add_row({step, t, w.groups[k].first, f[0], f[1], f[2]});
       }
-      w.interfaces << step << ',' << t << ',' << cp.name << ',' << normal << ','
-                   << std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
-                                tangential[2] * tangential[2])
-                   << ",0,0," << cp.d_total << '\n';
+      // Force conservation: the fluid's interface force, and the one the structure receives
+      // through P^T (equal, since the rows of P sum to one). The work of the transferred force on
+      // the structure by the trapezoidal rule over the load steps.
+      std::array<double, 3> ff{}, fs{};
+      std::vector<double> transferred(sys.n_raw(), 0.0);
+      for (const auto& cp : sys.couplings()) {
+        double normal = 0.0;
+        std::array<double, 3> tangential{};
+        for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
+          const double* n = &normals[static_cast<std::size_t>(cp.fluid_nodes[j]) * 3];
+          double fn = 0.0;
+          std::array<double, 3> f{};
+          for (int i = 0; i < dim; ++i) {
+            f[i] = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
+            fn += f[i] * n[i];
+            ff[i] += f[i];
+            for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
+              fs[i] += cp.weights[q] * f[i];
+              transferred[sys.d_dof(cp.structure_nodes[q], i)] += cp.weights[q] * f[i];
+            }
+          }
+          normal += fn;
+          for (int i = 0; i < dim; ++i) tangential[i] += f[i] - fn * n[i];
+        }
+        w.interfaces->add_row(
+            {step, t, cp.name, normal,
+             std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
+                       tangential[2] * tangential[2]),
+             0, 0, cp.d_total});
+      }
+      for (std::size_t a = 0; a < transferred.size(); ++a)
+        if (transferred[a] != 0.0 || last_force[a] != 0.0)
+          work += 0.5 * (transferred[a] + last_force[a]) * (raw[a] - last_raw[a]);
+      last_force = transferred;
+      last_raw = raw;
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      // clang-format off
+      w.steps->add_row({step, t, it, rn, 0, 0, res.kinetic_energy, res.strain_energy, work,
+                        res.kinetic_energy + res.strain_energy, 0, 0, 0, 0, 0, 0, wall,
+                        ff[0], ff[1], ff[2], fs[0], fs[1], fs[2], fluid_energy.kinetic,
+                        work_sum.dissipation, work_sum.boundary, work_sum.interface_fluid,
+                        work_sum.interface_structure});
+      // clang-format on
+      ScopedTimer timer(timers, "output");
+      if (w.probes) write_probes(sys, raw, step, t, w);
+      // Fields every `output.every` steps and at the end.
+      if (step % config.output.every == 0 || !control.running()) {
+        write_fields(sys, raw, step, t, w);
+        write_interfaces(sys, raw, res.raw_residual, normals, dir);
+      }
     }
-    w.interfaces.flush();
-    for (std::size_t a = 0; a < transferred.size(); ++a)
-      if (transferred[a] != 0.0 || last_force[a] != 0.0)
-        work += 0.5 * (transferred[a] + last_force[a]) * (raw[a] - last_raw[a]);
-    last_force = transferred;
-    last_raw = raw;
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    w.steps << step << ',' << t << ',' << it << ',' << rn << ",0,0," << res.kinetic_energy << ','
-            << res.strain_energy << ',' << work << ',' << res.kinetic_energy + res.strain_energy
-            << ",0,0,0,0,0,0," << wall << ',' << ff[0] << ',' << ff[1] << ',' << ff[2] << ','
-            << fs[0] << ',' << fs[1] << ',' << fs[2] << ',' << fluid_energy.kinetic << ','
-            << work_sum.dissipation << ',' << work_sum.boundary << ',' << work_sum.interface_fluid
-            << ',' << work_sum.interface_structure << '\n';
-    w.steps.flush();
-    ScopedTimer timer(timers, "output");
-    write_probes(sys, raw, step, t, w);
-    // Fields every `output.every` steps and at the end.
-    if (step % config.output.every == 0 || !control.running()) {
-      write_fields(sys, raw, step, t, w);
-      write_interfaces(sys, raw, res.raw_residual, normals, dir);
-    }
+    if (checkpoints.due(step)) write_checkpoint();
   }
   finish(true);
   if (root && !quiet)

@@ -10,6 +10,7 @@
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
+#include "seam/problem/restart_from.hpp"
 
 #include <filesystem>
 
@@ -22,9 +23,12 @@ struct FsiRunInfo {
   long long n_dofs = 0;
 };
 
-/// Checks the input, then runs all steps, writing into `dir` (which exists). `check_only`
-/// stops after the checks. Throws InputError or SolverError.
+/// Checks the input, then runs all steps, writing into `dir` (which exists), or continues
+/// from the checkpoint of `restart` (the tables and results.pvd continue; the checkpoints
+/// of `output.checkpoint_every` hold the whole state, fsi_solver.cpp). `check_only` stops
+/// after the checks. Throws InputError or SolverError.
 FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                   const std::filesystem::path& dir, bool quiet, bool check_only = false);
+                   const std::filesystem::path& dir, bool quiet, bool check_only = false,
+                   const RestartFrom& restart = {});
 
 } // namespace seam::problem

@@ -186,13 +186,10 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
-    if (!options.restart.empty() || config.output.checkpoint_every > 0)
-      SEAM_THROW(InputError, options.input,
-                 ": checkpoints and restart (output.checkpoint_every, --restart) are not "
-                 "available for fluid-structure runs in this version of seam");
     auto mesh = load_mesh(config, comm);
     make_output_directory(output_directory(options), comm);
-    run_fsi(config, mesh, comm, output_directory(options), options.quiet);
+    run_fsi(config, mesh, comm, output_directory(options), options.quiet, false,
+            {options.input, options.restart});
     return 0;
   }
   if (has_fluid(config)) {
@@ -229,7 +226,7 @@ int run(const RunOptions& options, int argc, char** argv) {
     SEAM_THROW(InputError, options.input,
                ": interfaces: contact and mesh tying in one run are not available in this "
                "version of seam");
-  const Checkpoints checkpoints(config, identity, comm, nodal_order(disc), options.input,
+  const Checkpoints checkpoints(config, "solid", identity, comm, nodal_order(disc), options.input,
                                 output_directory(options), options.restart);
   make_output_directory(output_directory(options), comm);
   Output out(config, disc, model, tied, output_directory(options), options.quiet,
