@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Histories of a tori_impact run (README.md figure):
+
+    /usr/bin/python3 examples/tori_impact/plot_tori.py OUTPUT_DIR [-o tori_history.png]
+
+Top: kinetic, strain and total energy, relative to the energy at the start (no loads and no
+supports: the total may only fall). Middle: the contact force and the number of active
+nodes. Bottom: the displacement along x of A's facing equator (probe 0) and of B's facing
+rim (probe 3), and B's free flight -v t for comparison."""
+import argparse
+import csv
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path) as f:
+        return [{k: (float(v) if k != "interface" else v) for k, v in r.items()}
+                for r in csv.DictReader(f)]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("out")
+    p.add_argument("-o", "--output", default="tori_history.png")
+    a = p.parse_args()
+    steps = read(os.path.join(a.out, "steps.csv"))
+    force = {r["step"]: r["normal_force"] for r in read(os.path.join(a.out, "interfaces.csv"))}
+    probes = {}
+    for r in read(os.path.join(a.out, "probes.csv")):
+        probes.setdefault(r["step"], {})[int(r["probe"])] = r["ux"]
+    e0 = steps[0]["total_energy"]
+    t = [r["time"] for r in steps]
+    fig, (top, mid, bottom) = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
+    top.plot(t, [r["kinetic_energy"] / e0 for r in steps], label="kinetic")
+    top.plot(t, [r["internal_energy"] / e0 for r in steps], label="strain")
+    top.plot(t, [r["total_energy"] / e0 for r in steps], "r", label="total")
+    top.set_ylabel("energy / initial energy")
+    top.legend()
+    top.grid(alpha=0.3)
+    mid.plot(t, [force.get(r["step"], 0.0) for r in steps], label="contact force")
+    mid.set_ylabel("normal force")
+    twin = mid.twinx()
+    twin.plot(t, [r["active_nodes"] for r in steps], "k:", label="active nodes")
+    twin.set_ylabel("active nodes")
+    mid.grid(alpha=0.3)
+    tp = [r["time"] for r in steps if r["step"] in probes]
+    for k, name in ((0, "A's facing equator"), (3, "B's facing rim")):
+        bottom.plot(tp, [probes[r["step"]][k] for r in steps if r["step"] in probes], label=name)
+    first = min(probes)
+    v = -probes[first][3] / next(r["time"] for r in steps if r["step"] == first)
+    bottom.plot(t, [-v * x for x in t], "k--", label="free flight of B")
+    bottom.set_ylabel("$u_x$")
+    bottom.set_xlabel("t")
+    bottom.legend()
+    bottom.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=110)
+    print("tori history drawn in", a.output)
+
+
+if __name__ == "__main__":
+    main()
