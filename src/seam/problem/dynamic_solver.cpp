@@ -82,8 +82,8 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
 /// i.e. w = v - M^-1 sum_j mu_j dg~_j/du, an impulse along the contact force directions (no
 /// net force on two bodies: linear momentum is kept). The multipliers mu come from the contact
 /// constraint itself: with the active set held, Newton finds z = argmin 1/2 |z - (u + eps v)|_M^2
-/// with g~_A(z) = 0, whose contact force is f_c = eps sum_j mu_j dg~_j/du (first order in eps,
-/// which moves the nodes by 1e-4 of a step's travel); w = v - M^-1 f_c / eps by a mass solve,
+/// with g~_A(z) = 0, whose contact force is f_c = eps sum_j mu_j dg~_j/du (first order in eps);
+/// w = v - M^-1 f_c / eps by a mass solve,
 /// with the prescribed dofs kept. Returns false when a solve failed (v is then unchanged).
 bool project_onto_active_contacts(NewtonSolver& projector, la::LinearSolver& mass_solver,
                                   const ContactConstraint& contact, const Discretization& disc,
@@ -174,6 +174,14 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   const bool persistency =
       !emm && contact.active() && contact.frictionless() && !tying.active() && !saddle.active();
   std::unique_ptr<NewtonSolver> projector;
+  // The projection moves the nodes by eps v: 1e-5 of the root mean square coordinate
+  // |X| / sqrt(n) in the root mean square, far above the round-off of the weighted gaps
+  // (1e-16 |X|, relative 1e-11) and small against the facets (at most a step's travel).
+  const double coordinate_scale = disc.coordinates_vector().norm();
+  auto projection_step = [&](const la::Vector& velocity, double h) {
+    const double speed = velocity.norm();
+    return speed > 1e-5 * coordinate_scale / h ? 1e-5 * coordinate_scale / speed : h;
+  };
   la::Vector z = disc.make_vector(), target = disc.make_vector();
   std::vector<PetscInt> prescribed;
   for (const auto& d : model.dirichlet) prescribed.push_back(d.dof);
@@ -289,7 +297,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
       contact.hold_sets(true);
       const bool ok =
           project_onto_active_contacts(*projector, *mass_solver, contact, disc, M, prescribed, u,
-                                       t_new, 1e-4 * h, step, v, z, target, work);
+                                       t_new, projection_step(v, h), step, v, z, target, work);
       contact.set_multipliers(lambda);
       contact.evaluate(u, t_new, false, out.timers());
       contact.hold_sets(false);
