@@ -83,8 +83,8 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
 /// net force on two bodies: linear momentum is kept). The multipliers mu come from the contact
 /// constraint itself: with the active set held, Newton finds z = argmin 1/2 |z - (u + eps v)|_M^2
 /// with g~_A(z) = 0, whose contact force is f_c = eps sum_j mu_j dg~_j/du (first order in eps);
-/// w = v - M^-1 f_c / eps by a mass solve,
-/// with the prescribed dofs kept. Returns false when a solve failed (v is then unchanged).
+/// then w = v - M^-1 f_c / eps by a mass solve, the prescribed dofs kept. Returns false when
+/// a solve failed (v is then unchanged).
 bool project_onto_active_contacts(NewtonSolver& projector, la::LinearSolver& mass_solver,
                                   const ContactConstraint& contact, const Discretization& disc,
                                   const la::Matrix& M, std::span<const PetscInt> prescribed,
@@ -174,9 +174,9 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   const bool persistency =
       !emm && contact.active() && contact.frictionless() && !tying.active() && !saddle.active();
   std::unique_ptr<NewtonSolver> projector;
-  // The projection moves the nodes by eps v: 1e-5 of the root mean square coordinate
-  // |X| / sqrt(n) in the root mean square, far above the round-off of the weighted gaps
-  // (1e-16 |X|, relative 1e-11) and small against the facets (at most a step's travel).
+  // The projection moves the nodes by eps v with |eps v| = 1e-5 |X| (both root mean squares
+  // 1e-5 apart): far above the round-off of the weighted gaps (1e-16 |X|, relative 1e-11) and
+  // small against the facets; eps is at most the step (a step's travel).
   const double coordinate_scale = disc.coordinates_vector().norm();
   auto projection_step = [&](const la::Vector& velocity, double h) {
     const double speed = velocity.norm();
