@@ -311,11 +311,38 @@ def test_drop_energy_momentum():
     H.assert_close(rows[-1]["total_energy"], 0.25, rtol=0.05, what="energy after the impact")
 
 
+def check_no_chatter(rows, what):
+    """No release and recontact: once the contact has closed, the number of active nodes never
+    falls in one step and rises again in the next (without the persistency of the contact
+    velocities, generalized-alpha's impact step threw the bottom nodes off the plane: 21 -> 6
+    -> 21 active nodes at t = 0.052 to 0.056)."""
+    n = [r["active_nodes"] for r in rows]
+    for k in range(1, len(n) - 1):
+        if n[k] < n[k - 1] and n[k + 1] > n[k]:
+            raise AssertionError("%s: %d -> %d -> %d active nodes at t = %.4f (chatter)"
+                                 % (what, n[k - 1], n[k], n[k + 1], rows[k]["time"]))
+
+
+# Largest energy gain of a generalized-alpha step (rho_inf = 0.8) in the drop, relative to the
+# initial energy. Measured 2.28e-4 with the persistency of the contact velocities (step 27,
+# in persistent contact), 2.98e-3 without it (the chatter). The rest is the bulk
+# integrator's: generalized-alpha's physical energy is not monotone step by step, and the
+# Neo-Hooke step after the shock gains 2.6e-4 even with rho_inf = 1 (trapezoidal), with or
+# without the projection (docs/contact_dynamics.md §6).
+DROP_GA_RISE = 3e-4
+
+
 def test_drop_generalized_alpha():
-    """Generalized-alpha (rho_inf = 0.8), dual and standard multipliers, np = 3 = np = 1."""
-    one, _ = drop("generalized_alpha")
-    drop("generalized_alpha", multiplier="standard")
+    """Generalized-alpha (rho_inf = 0.8), dual and standard multipliers, np = 3 = np = 1: no
+    release-and-recontact chatter, no step gains more than DROP_GA_RISE of the energy."""
+    one, rise = drop("generalized_alpha")
+    standard, rise_standard = drop("generalized_alpha", multiplier="standard")
     three, _ = drop("generalized_alpha", np=3)
+    for rows, r, what in ((one, rise, "dual"), (standard, rise_standard, "standard")):
+        check_no_chatter(rows, what)
+        if r > DROP_GA_RISE * 0.25:
+            raise AssertionError("%s multipliers: a step gained %.3e of the energy (> %.0e)"
+                                 % (what, r / 0.25, DROP_GA_RISE))
     for key in ("momentum_y", "total_energy"):
         H.assert_close(three[-1][key], one[-1][key], rtol=1e-8, what="np = 3 vs np = 1: " + key)
 

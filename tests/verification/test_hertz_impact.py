@@ -30,7 +30,9 @@ Measured: the contact duration from the first step (touching at t = 0) to the ze
 force, extrapolated from the last two steps with force by F^(2/3) linear in time (Hertz:
 F ~ delta^(3/2), delta linear in t at the end); the peak force from a parabola through the
 largest step value and its neighbours. Measured (generalized-alpha, rho_inf = 0.8): 1085
-nodes -2.70 % and +4.07 %, 2926 nodes -2.01 % and +3.32 %; np 3 equal to np 1.
+nodes -2.66 % and +3.86 % (-2.70 % and +4.07 % before the persistency of the contact
+velocities, docs/contact_dynamics.md §6), 2926 nodes -2.01 % and +3.32 % (before it); np 3
+equal to np 1.
 """
 import math
 import os

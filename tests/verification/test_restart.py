@@ -9,6 +9,8 @@ interface is redistributed at a restart, which changes sums at round-off).
 - static frictional contact of two elastic blocks (the mortar operators of the last converged
   step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
+- frictionless dynamic contact with generalized-alpha (a block dropped on a plane,
+  checkpoint in the contact, where each step projects the velocity onto the persistent contacts),
 - self and multi-body contact (`surface:`) with friction,
 - static friction continued from a checkpoint written while the step was cut (the halved step
   size and the cut count in effect), and a rigid circle moved along a block (its position is
@@ -39,6 +41,7 @@ import geometry as G  # noqa: E402
 import harness as H  # noqa: E402
 import test_friction as F  # noqa: E402
 import test_ale as TA  # noqa: E402
+import test_contact as T  # noqa: E402
 import test_fluid as TF  # noqa: E402
 
 _dirs = []
@@ -297,6 +300,21 @@ def test_dynamic_friction_generalized_alpha():
                "generalized-alpha friction", cross_np=True if H.FULL else "1 -> 3")
 
 
+def drop_yaml(every):
+    """test_contact.py's Neo-Hooke block dropped on a rigid plane (frictionless, dual
+    multipliers), generalized-alpha, to t = 0.1: the checkpoint after step 27 lies in the
+    contact, where every step projects the velocity onto the persistent contacts
+    (docs/contact_dynamics.md §6; no state of its own)."""
+    return (T.DROP_YAML.replace("INTEGRATOR", "generalized_alpha")
+            .replace("MULTIPLIER", "dual").replace("end: 0.3, steps: 150", "end: 0.1, steps: 50")
+            .replace("output: {every: 50}", "output: {every: 5, checkpoint_every: %d}" % every))
+
+
+def test_dynamic_contact_generalized_alpha():
+    check_case(G.rectangle("quad", 0.1, lx=1.0, ly=0.5), drop_yaml, 27,
+               "generalized-alpha frictionless drop", cross_np="1 -> 3")
+
+
 def test_energy_momentum_tied_condensed():
     check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("condensed", e), 10,
                "energy-momentum, condensed tying", cross_np="1 -> 3")
@@ -546,7 +564,7 @@ def index_record(path):
 if __name__ == "__main__":
     try:
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
-                test_dynamic_friction_generalized_alpha,
+                test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
                 test_fluid_generalized_alpha, test_fluid_moving_mesh, test_fsi_generalized_alpha,
                 test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,

@@ -58,6 +58,7 @@
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <span>
@@ -132,6 +133,10 @@ public:
   void read_checkpoint(const RecordReader& in);
 
   int n_active() const;
+  /// Whether no interface carries friction.
+  bool frictionless() const {
+    return std::none_of(sides_.begin(), sides_.end(), [](const Side& s) { return s.friction; });
+  }
   /// Whether the active set at the last evaluate() differs from the one of the last converged
   /// step (save()): a contact opened or closed in the step. Same on every rank.
   bool set_changed() const;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <span>
 
 namespace seam::problem {
 
@@ -74,6 +75,50 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
   L = {acc[3], acc[4], acc[5]};
 }
 
+/// Persistency of the contacts that push at t_{n+1} (Laursen & Chawla 1997; Laursen & Love
+/// 2002; docs/contact_dynamics.md §6): the velocity v is replaced by its projection in the mass
+/// norm onto the velocities that keep the weighted gaps of the active slave nodes closed,
+///   min_w 1/2 (w - v)^T M (w - v)  subject to  dg~_j/du (u) . w = 0  (j active at u),
+/// i.e. w = v - M^-1 sum_j mu_j dg~_j/du, an impulse along the contact force directions (no
+/// net force on two bodies: linear momentum is kept). The multipliers mu come from the contact
+/// constraint itself: with the active set held, Newton finds z = argmin 1/2 |z - (u + eps v)|_M^2
+/// with g~_A(z) = 0, whose contact force is f_c = eps sum_j mu_j dg~_j/du (first order in eps);
+/// then w = v - M^-1 f_c / eps by a mass solve, the prescribed dofs kept. Returns false when
+/// a solve failed (v is then unchanged).
+bool project_onto_active_contacts(NewtonSolver& projector, la::LinearSolver& mass_solver,
+                                  const ContactConstraint& contact, const Discretization& disc,
+                                  const la::Matrix& M, std::span<const PetscInt> prescribed,
+                                  const la::Vector& u, double t, double eps, int step,
+                                  la::Vector& v, la::Vector& z, la::Vector& target,
+                                  la::Vector& work) {
+  target.copy_from(u);
+  target.axpy(eps, v);
+  z.copy_from(u);
+  z.update_ghosts();
+  const auto res = projector.solve(
+      z, t + eps, step, [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f) {
+        work.copy_from(state);
+        work.axpy(-1.0, target);
+        M.mult(work, r);
+        K.zero();
+        K.axpy(1.0, M);
+        f.zero();
+        return AssemblyStatus{};
+      });
+  if (!res.converged) return false;
+  // The impulse -f_c / eps, taken by the free dofs.
+  target.zero();
+  contact.add_force(target);
+  target.scale(-1.0 / eps);
+  la::Matrix M_free = M.copy();
+  work.zero();
+  M_free.zero_rows_columns(prescribed, &work, &target);
+  if (!mass_solver.solve(M_free, target, work)) return false;
+  v.axpy(1.0, work);
+  v.update_ghosts();
+  return true;
+}
+
 } // namespace
 
 void run_dynamic(const io::Config& config, const Model& model, const Discretization& disc,
@@ -124,6 +169,20 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   // would have to satisfy as well.
   const bool restart_at_contact_change =
       !emm && contact.active() && !tying.active() && !saddle.active();
+  // Generalized-alpha: persistency of the pushing contacts after every step with an active
+  // node (docs/contact_dynamics.md §6; frictionless interfaces without mesh tying).
+  const bool persistency =
+      !emm && contact.active() && contact.frictionless() && !tying.active() && !saddle.active();
+  std::unique_ptr<NewtonSolver> projector;
+  // The projection moves the nodes by eps v with |eps v| = 1e-5 |X| (both root mean squares
+  // 1e-5 apart): far above the round-off of the weighted gaps (1e-16 |X|, relative 1e-11) and
+  // small against the facets; eps is at most the step (a step's travel).
+  const double coordinate_scale = disc.coordinates_vector().norm();
+  auto projection_step = [&](const la::Vector& velocity, double h) {
+    const double speed = velocity.norm();
+    return speed > 1e-5 * coordinate_scale / h ? 1e-5 * coordinate_scale / speed : h;
+  };
+  la::Vector z = disc.make_vector(), target = disc.make_vector();
   std::vector<PetscInt> prescribed;
   for (const auto& d : model.dirichlet) prescribed.push_back(d.dof);
   std::unique_ptr<la::LinearSolver> mass_solver;
@@ -225,6 +284,28 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     }
     v.update_ghosts();
     a.update_ghosts();
+    if (persistency && contact.n_active() > 0) {
+      if (!projector) {
+        projector =
+            std::make_unique<NewtonSolver>(config, model, disc, tying, saddle, contact, out);
+        projector->set_logging(false);
+      }
+      if (!mass_solver)
+        mass_solver = std::make_unique<la::LinearSolver>(disc.comm().get(), la::SolverKind::direct);
+      ScopedTimer timer(out.timers(), "contact_persistency");
+      const auto lambda = contact.multipliers();
+      contact.hold_sets(true);
+      const bool ok =
+          project_onto_active_contacts(*projector, *mass_solver, contact, disc, M, prescribed, u,
+                                       t_new, projection_step(v, h), step, v, z, target, work);
+      contact.set_multipliers(lambda);
+      contact.evaluate(u, t_new, false, out.timers());
+      contact.hold_sets(false);
+      if (!ok)
+        out.warning(::seam::detail::concat("step ", step, " at t = ", t_new,
+                                           ": the persistency projection of the contact "
+                                           "velocities failed; the Newmark velocity is kept"));
+    }
     // Strain energy at u_{n+1} (generalized-alpha evaluated the midpoint state).
     double internal = res.strain_energy;
     if (!emm) {

@@ -149,7 +149,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     const bool frozen_only =
         changes > 0 && contact_.active() && changes == contact_.n_inconsistent();
     stalled = frozen_only && (meets_tolerance || at_floor) ? stalled + 1 : 0;
-    out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
+    if (logging_) out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
     last_norm_ = norm;
     res.residual = reference > 0 ? norm / reference : 0.0;
     res.iterations = it;

@@ -85,6 +85,9 @@ public:
     saddle_.restore();
     contact_.restore();
   }
+  /// Whether the iterations go to newton.csv (on by default; auxiliary solves turn it off).
+  void set_logging(bool on) { logging_ = on; }
+
   /// A converged step: its multipliers are where the next failed attempt returns to.
   void accept() {
     saddle_.save();
@@ -150,7 +153,8 @@ private:
   la::LinearSolver solver_;
   std::vector<PetscInt> dirichlet_rows_;
   double last_increment_ = 0.0;
-  double last_norm_ = 0.0;             // residual norm of the previous iteration
+  double last_norm_ = 0.0; // residual norm of the previous iteration
+  bool logging_ = true;
   double reference_coordinates_ = 0.0; // |X|, the scale of round-off in X + u
 };
 
