@@ -517,7 +517,7 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
             lambda[j * dim + b] =
                 -values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)] / s.D[j];
       }
-      disc_.comm().sum_in_place(lambda);
+      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, dim);
       s.lambda = std::move(lambda);
       continue;
     }
@@ -530,7 +530,8 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
         wy += f.w[b] * values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)];
       lambda[j] = -wy / (s.D[j] * f.wn);
     }
-    disc_.comm().sum_in_place(lambda);
+    // The owners' multipliers (nonzero at active nodes only) to every rank.
+    parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, 1);
     s.lambda = std::move(lambda);
   }
 }
@@ -669,7 +670,8 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     for (std::size_t j = 0; j < nodes.size(); ++j)
       if (disc_.owns_node(nodes[j]))
         for (std::size_t c = 0; c < per_node; ++c) lambda[j * per_node + c] = xl[next++];
-    comm.sum_in_place(lambda);
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
+                                  static_cast<int>(per_node));
     s.lambda = std::move(lambda);
   }
   return true;
