@@ -433,8 +433,79 @@ def test_tied_interface_part_np3():
     H.cleanup(*_dirs)
 
 
+def contact_part_case(np, friction):
+    """The sphere on a block (examples/hertz_3d/sphere_block.yaml) in three load steps, the
+    slave facets integrated by the ranks owning their cells (`interface_distribution: bulk`);
+    with `friction`, Coulomb friction mu = 0.3 (stick in the centre, slip at the rim)."""
+    replace = [("steps: 5", "steps: 3"),
+               ("solver:", "parallel: {interface_distribution: bulk}\nsolver:")]
+    if friction:
+        replace.append(("    multiplier: dual",
+                        "    multiplier: dual\n    friction: {model: coulomb, coefficient: 0.3}"))
+    return run_example("hertz_3d", "sphere_block.yaml", np, tuple(replace))
+
+
+def check_contact_part(friction):
+    """Contact distributed by the bulk partition (docs/parallel.md, "Contact distributed"):
+    each rank integrates the slave facets of its own cells; the partial D_jj, g~_j (and slip
+    increments) go to the owners of the slave nodes, which decide the nodes' status and
+    publish the sums and decisions. Bounds: the slave facets, pairs and integration cells of
+    the ranks add up to the interface's (each facet on one rank); the nodes the ranks decide
+    add up to the nodes with nonzero sums at np 1 (each decided by its owner only); the nodal
+    records sent to the owners number at most 1.5 x those nodes (a node gets one record per
+    rank holding a facet around it: one, or two or three along the cuts); np 3 equals np 1."""
+    what = "friction" if friction else "frictionless"
+    one, three = contact_part_case(1, friction), contact_part_case(3, friction)
+    d1, d3 = ranks_detail(one), ranks_detail(three)
+    itf = H.read_json(os.path.join(one, "summary.json"))["interfaces"][0]
+    n_s = itf["slave_elements"]
+    for r in d3:
+        print("   %s rank %d: slave facets %d of %d, pairs %d, integration cells %d, nodes decided "
+              "%d, nodal records sent %d" % (what, r["rank"], r["slave_elements"], n_s, r["pairs"],
+                                             r["integration_cells"], r["contact_nodes"],
+                                             r["contact_nodal_records"]))
+    check_counts_add_up(one, three, what)
+    decided = sum(r["contact_nodes"] for r in d3)
+    records = sum(r["contact_nodal_records"] for r in d3)
+    print("   %s: nodes decided %d over the ranks, %d at np 1; records %d" %
+          (what, decided, d1[0]["contact_nodes"], records))
+    if d1[0]["contact_nodes"] == 0 or decided != d1[0]["contact_nodes"]:
+        raise AssertionError("%s: nodes decided %d over the ranks, %d at np 1"
+                             % (what, decided, d1[0]["contact_nodes"]))
+    if max(r["contact_nodes"] for r in d3) >= decided:
+        raise AssertionError("%s: one rank decides every node" % what)
+    if max(r["slave_elements"] for r in d3) >= n_s:
+        raise AssertionError("%s: one rank integrates every slave facet" % what)
+    if not decided <= records <= 1.5 * decided:
+        raise AssertionError("%s: %d nodal records for %d nodes" % (what, records, decided))
+    compare_reactions(one, three, 1e-10, what + " np 3 vs np 1")
+    keys = ["x", "y", "z", "gap", "normal_traction"] + (["tangential_traction"] if friction else [])
+    a, b = rows_of(one, "interface_contact.csv"), rows_of(three, "interface_contact.csv")
+    if len(a) != len(b) or any(x["node"] != y["node"] or x["status"] != y["status"]
+                               for x, y in zip(a, b)):
+        raise AssertionError("%s: interface_contact.csv nodes or status differ" % what)
+    worst = 0.0
+    for k in keys:
+        scale = max(abs(r[k]) for r in a) or 1.0
+        worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(a, b)])
+    print("   %s: interface_contact.csv np 3 against np 1, largest difference %.2e (relative)"
+          % (what, worst))
+    if worst > 1e-10:
+        raise AssertionError("%s: interface_contact.csv differs by %.3e" % (what, worst))
+    H.cleanup(*_dirs)
+
+
+def test_contact_interface_part_np3():
+    check_contact_part(friction=False)
+
+
+def test_contact_friction_part_np3():
+    check_contact_part(friction=True)
+
+
 if __name__ == "__main__":
     H.main([test_held_cells_np3, test_tied_interface_part_np3,
+            test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])
 

@@ -76,36 +76,43 @@ inline void check_collectively(MPI_Comm comm, bool bad, const char* message) {
   SEAM_CHECK(!any, InputError, message, bad ? "" : " (on another rank)");
 }
 
+namespace detail {
+/// The values of one item, sent with its key (sum_on_owners, publish_from_owners).
+struct KeyValues {
+  std::int64_t key;
+  double v[4];
+};
+inline bool any_nonzero(std::span<const double> values, std::size_t i, int width) {
+  for (int c = 0; c < width; ++c)
+    if (values[i * width + c] != 0.0) return true;
+  return false;
+}
+} // namespace detail
+
 /// Collective. Item i of this rank has the key keys[i] (the same item on several ranks has the
-/// same key), the owner rank owners[i] and `width` (<= 3) values from values[i * width]. The
+/// same key), the owner rank owners[i] and `width` (<= 4) values from values[i * width]. The
 /// values of a key are summed over the ranks on its owner, in rank order: on return the items
-/// this rank owns hold the sums and the others zero.
-inline void sum_on_owners(MPI_Comm comm, std::span<const std::int64_t> keys,
-                          std::span<const int> owners, std::span<double> values, int width) {
-  struct Record {
-    std::int64_t key;
-    double v[3];
-  };
-  SEAM_ASSERT(width >= 1 && width <= 3 && keys.size() == owners.size() &&
+/// this rank owns hold the sums and the others zero. Items whose values are all zero are not
+/// sent, so the exchange is in proportion to the nonzero items. Returns the number of items
+/// this rank sent.
+inline std::size_t sum_on_owners(MPI_Comm comm, std::span<const std::int64_t> keys,
+                                 std::span<const int> owners, std::span<double> values, int width) {
+  using Record = detail::KeyValues;
+  SEAM_ASSERT(width >= 1 && width <= 4 && keys.size() == owners.size() &&
               values.size() == keys.size() * static_cast<std::size_t>(width));
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
-  const auto nonzero = [&](std::size_t i) {
-    for (int c = 0; c < width; ++c)
-      if (values[i * width + c] != 0.0) return true;
-    return false;
-  };
   for (std::size_t i = 0; i < keys.size(); ++i)
-    if (nonzero(i)) ++offsets[static_cast<std::size_t>(owners[i]) + 1];
+    if (detail::any_nonzero(values, i, width)) ++offsets[static_cast<std::size_t>(owners[i]) + 1];
   for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
   std::vector<Record> send(static_cast<std::size_t>(offsets[size]));
   {
     std::vector<std::int64_t> next(offsets.begin(), offsets.end() - 1);
     for (std::size_t i = 0; i < keys.size(); ++i) {
-      if (!nonzero(i)) continue;
-      Record rec{keys[i], {0.0, 0.0, 0.0}};
+      if (!detail::any_nonzero(values, i, width)) continue;
+      Record rec{keys[i], {0.0, 0.0, 0.0, 0.0}};
       for (int c = 0; c < width; ++c) rec.v[c] = values[i * width + c];
       send[static_cast<std::size_t>(next[owners[i]]++)] = rec;
     }
@@ -124,6 +131,39 @@ inline void sum_on_owners(MPI_Comm comm, std::span<const std::int64_t> keys,
     SEAM_ASSERT(it != mine.end() && it->first == rec.key);
     for (int c = 0; c < width; ++c) values[it->second * width + c] += rec.v[c];
   }
+  return send.size();
+}
+
+/// Collective; the counterpart of sum_on_owners for items that every rank holds. The items
+/// this rank owns (owners[i] == rank) whose `width` (<= 4) values are not all zero go to every
+/// rank (one Allgatherv); on return every item holds the values its owner sent, zero where
+/// the owner sent none. What is exchanged is in proportion to the nonzero items, not to all
+/// keys. Returns the number of items this rank published.
+inline std::size_t publish_from_owners(MPI_Comm comm, std::span<const std::int64_t> keys,
+                                       std::span<const int> owners, std::span<double> values,
+                                       int width) {
+  using Record = detail::KeyValues;
+  SEAM_ASSERT(width >= 1 && width <= 4 && keys.size() == owners.size() &&
+              values.size() == keys.size() * static_cast<std::size_t>(width));
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<Record> mine;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (owners[i] != rank || !detail::any_nonzero(values, i, width)) continue;
+    Record rec{keys[i], {0.0, 0.0, 0.0, 0.0}};
+    for (int c = 0; c < width; ++c) rec.v[c] = values[i * width + c];
+    mine.push_back(rec);
+  }
+  std::vector<std::int64_t> offsets;
+  auto all = allgatherv<Record>(comm, mine, offsets);
+  std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) { return a.key < b.key; });
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const auto it = std::lower_bound(all.begin(), all.end(), keys[i],
+                                     [](const Record& a, std::int64_t k) { return a.key < k; });
+    const bool found = it != all.end() && it->key == keys[i];
+    for (int c = 0; c < width; ++c) values[i * width + c] = found ? it->v[c] : 0.0;
+  }
+  return mine.size();
 }
 
 } // namespace seam::parallel

@@ -3,6 +3,7 @@
 #include "seam/common/error.hpp"
 #include "seam/contact/self_contact.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/parallel/exchange.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -89,6 +90,12 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     disc.comm().sum_in_place(fixed);
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
+    s.node_keys.resize(n);
+    s.node_owners.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      s.node_keys[j] = static_cast<std::int64_t>(j);
+      s.node_owners[j] = disc.node_owner(nodes[j]);
+    }
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
     // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
@@ -226,21 +233,10 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     const double cpu = cpu_seconds();
     s.itf.evaluate(s.part);
     s.work_seconds += cpu_seconds() - cpu;
-    s.D = s.part.D;
-    // Standard multipliers: the nodal weight sum_k D_jk takes the place of D_jj.
-    for (const auto& e : s.part.D_coupling) s.D[static_cast<std::size_t>(e.row)] += e.value;
-    s.gap = s.part.gap;
-    if (s.friction) {
-      s.D_diag = s.part.D;
-      comm.sum_in_place(s.D_diag);
-    }
-    comm.sum_in_place(s.D);
-    comm.sum_in_place(s.gap);
+    sum_nodal_values(s);
     s.area = comm.sum(s.part.area);
+    // Replaces g~ by the gaps of the discrete-gradient blocks (replicated).
     if (s.discrete_gradient) evaluate_discrete_gradient(s, u_mesh);
-    double d_max = 0.0;
-    for (double d : s.D) d_max = std::max(d_max, d);
-    const double touching = 1e-9 * s.itf.slave_mesh_size();
     if (s.friction) {
       changes += evaluate_friction(s, u_mesh, first);
       continue;
@@ -250,9 +246,18 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       s.cycles.start(s.active);
     }
     s.active_previous = s.active;
-    if (s.frozen || held_) continue;
+    // The owner of each slave node decides its status from its sums; frozen or held sets
+    // keep theirs.
+    const double d_max = max_weight(s);
+    const double touching = 1e-9 * s.itf.slave_mesh_size();
+    const bool decide = !s.frozen && !held_;
     std::vector<char> next(s.active.size(), 0);
     for (std::size_t j = 0; j < next.size(); ++j) {
+      if (s.node_owners[j] != comm.rank()) continue;
+      if (!decide) {
+        next[j] = s.active[j];
+        continue;
+      }
       if (s.D[j] <= 1e-12 * d_max) continue;
       const NodeFrame f = frame(s, j);
       if (f.wn < min_free_normal) continue;
@@ -260,9 +265,11 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       // then start with a nonsingular system.
       next[j] = s.lambda[j] - s.c_n * (s.gap[j] / s.D[j] - touching) > 0.0;
     }
+    publish_nodal_values(s, next);
+    if (!decide) continue;
     // Cycling guard (contact/active_set_cycles.hpp): a set that returns to the one of k <= 8
     // iterations ago is replaced by the union of the sets of the cycle and kept for the rest
-    // of the step.
+    // of the step. The same published set on every rank gives the same decision.
     std::vector<char> alternating;
     if (s.cycles.guard(next, alternating) > 0) s.frozen = true;
     s.active = std::move(next);
@@ -270,6 +277,55 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       changes += s.active[j] != s.active_previous[j];
   }
   return changes;
+}
+
+void ContactConstraint::sum_nodal_values(Side& s) const {
+  const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
+  const int width = s.friction ? 3 : 2;
+  std::vector<double> v(n * width, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    v[j * width] = s.part.D[j];
+    v[j * width + 1] = s.part.gap[j];
+    if (s.friction) v[j * width + 2] = s.part.D[j];
+  }
+  // Standard multipliers: the nodal weight sum_k D_jk takes the place of D_jj.
+  for (const auto& e : s.part.D_coupling) v[static_cast<std::size_t>(e.row) * width] += e.value;
+  s.nodal.sent = static_cast<std::int64_t>(
+      parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, v, width));
+  s.D.resize(n);
+  s.gap.resize(n);
+  if (s.friction) s.D_diag.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    s.D[j] = v[j * width];
+    s.gap[j] = v[j * width + 1];
+    if (s.friction) s.D_diag[j] = v[j * width + 2];
+  }
+}
+
+void ContactConstraint::publish_nodal_values(Side& s, std::vector<char>& next) const {
+  const auto n = static_cast<std::size_t>(s.itf.n_slave_nodes());
+  const int width = s.friction ? 4 : 3;
+  std::vector<double> v(n * width, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    v[j * width] = s.D[j];
+    v[j * width + 1] = s.gap[j];
+    v[j * width + width - 1] = static_cast<double>(next[j]);
+    if (s.friction) v[j * width + 2] = s.D_diag[j];
+  }
+  s.nodal.decided = static_cast<std::int64_t>(
+      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, v, width));
+  for (std::size_t j = 0; j < n; ++j) {
+    s.D[j] = v[j * width];
+    s.gap[j] = v[j * width + 1];
+    next[j] = static_cast<char>(v[j * width + width - 1]);
+    if (s.friction) s.D_diag[j] = v[j * width + 2];
+  }
+}
+
+double ContactConstraint::max_weight(const Side& s) const {
+  double d_max = 0.0;
+  for (const double d : s.D) d_max = std::max(d_max, d);
+  return disc_.comm().max(d_max);
 }
 
 void ContactConstraint::add_force(la::Vector& r) const {
@@ -461,7 +517,7 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
             lambda[j * dim + b] =
                 -values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)] / s.D[j];
       }
-      disc_.comm().sum_in_place(lambda);
+      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, dim);
       s.lambda = std::move(lambda);
       continue;
     }
@@ -474,7 +530,8 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
         wy += f.w[b] * values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)];
       lambda[j] = -wy / (s.D[j] * f.wn);
     }
-    disc_.comm().sum_in_place(lambda);
+    // The owners' multipliers (nonzero at active nodes only) to every rank.
+    parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, 1);
     s.lambda = std::move(lambda);
   }
 }
@@ -613,7 +670,8 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     for (std::size_t j = 0; j < nodes.size(); ++j)
       if (disc_.owns_node(nodes[j]))
         for (std::size_t c = 0; c < per_node; ++c) lambda[j * per_node + c] = xl[next++];
-    comm.sum_in_place(lambda);
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
+                                  static_cast<int>(per_node));
     s.lambda = std::move(lambda);
   }
   return true;
@@ -914,6 +972,8 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.local_master_ghosts = s.share.master_ghosts;
     rep.local_pairs = s.part.n_pairs;
     rep.local_integration_cells = s.part.n_cells;
+    rep.local_contact_nodes = s.nodal.decided;
+    rep.local_nodal_records = s.nodal.sent;
     out.push_back(std::move(rep));
   }
   return out;

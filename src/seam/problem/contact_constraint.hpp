@@ -182,8 +182,16 @@ private:
     explicit Side(contact::ContactInterface i) : itf(std::move(i)) {}
     contact::ContactInterface itf;
     double c_n = 0.0;
-    contact::NodalValues part;  ///< this rank's share
-    std::vector<double> D, gap; ///< summed over ranks
+    contact::NodalValues part; ///< this rank's share
+    /// D_jj (the nodal weight with standard multipliers) and g~_j: summed on the owner of
+    /// slave node j, which decides its status, then published to every rank.
+    std::vector<double> D, gap;
+    std::vector<std::int64_t> node_keys; ///< side-local slave node j, the same on every rank
+    std::vector<int> node_owners;        ///< the rank owning each slave node
+    struct {
+      std::int64_t sent = 0;    ///< nodal records sent to the owners at the last evaluate
+      std::int64_t decided = 0; ///< slave nodes with nonzero sums this rank decided then
+    } nodal;
     std::vector<double> lambda, lambda_saved;
     std::vector<char> active, active_previous;
     std::vector<char> active_accepted; ///< the active set of the last converged step
@@ -248,6 +256,15 @@ private:
     std::vector<contact::DofTriplet> em_tangent;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
+  /// This rank's part of D_jj, g~_j (and on a frictional side D_jj without coupling, in
+  /// D_diag) summed on the owners of the slave nodes (parallel::sum_on_owners): on return the
+  /// owned nodes hold the sums, the others zero. Collective.
+  void sum_nodal_values(Side& s) const;
+  /// The owners' D, g~ (D_diag) and status decisions `next` (one per slave node) published to
+  /// every rank (parallel::publish_from_owners). Collective.
+  void publish_nodal_values(Side& s, std::vector<char>& next) const;
+  /// The largest D_jj of the side (its owners' sums). Collective.
+  double max_weight(const Side& s) const;
   /// The discrete gradients of side s at the interface displacement u (x_{n+1}) and the start
   /// of the step, with the current multipliers (contact_energy_momentum.cpp). Collective.
   void evaluate_discrete_gradient(Side& s, std::span<const double> u);

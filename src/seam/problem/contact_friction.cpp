@@ -3,6 +3,7 @@
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/parallel/exchange.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -102,11 +103,14 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   // the slave's motion relative to the master):
   //   u~_j = sum_l (M_jl - M_jl^n) x_l - (D_jj - D_jj^n) x~_j;
   // against a translating rigid plane it reduces to D_jj P (x~_j - x~_j^n - (c - c^n)).
+  // The increments are formed on the owners of the slave nodes, which hold the sums of D.
+  const bool init = !s.has_old;
   std::fill(s.slip.begin(), s.slip.end(), 0.0);
   if (s.itf.rigid()) {
     const auto plane = s.itf.plane_displacement();
     const double* normals = s.itf.normals().data();
     for (std::size_t j = 0; j < n; ++j) {
+      if (s.node_owners[j] != comm.rank()) continue;
       double d[3] = {0, 0, 0}, dn = 0.0;
       for (int c = 0; c < dim; ++c) {
         d[c] = s.x[j * dim + c] - s.x_old[j * dim + c] - (plane[c] - s.plane_old[c]);
@@ -145,10 +149,11 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       for (int c = 0; c < dim; ++c)
         s.slip[static_cast<std::size_t>(e.row) * dim + c] +=
             e.value * s.x[static_cast<std::size_t>(e.col) * dim + c];
-    comm.sum_in_place(s.slip);
+    parallel::sum_on_owners(comm.get(), s.node_keys, s.node_owners, s.slip, dim);
     for (std::size_t j = 0; j < n; ++j)
-      for (int c = 0; c < dim; ++c)
-        s.slip[j * dim + c] -= (s.D_diag[j] - s.D_diag_old[j]) * s.x[j * dim + c];
+      if (s.node_owners[j] == comm.rank())
+        for (int c = 0; c < dim; ++c)
+          s.slip[j * dim + c] -= (s.D_diag[j] - s.D_diag_old[j]) * s.x[j * dim + c];
   }
 
   if (first) {
@@ -156,16 +161,16 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     s.cycles.start(s.status);
   }
   s.status_previous = s.status;
-  double d_max = 0.0;
-  for (double d : s.D) d_max = std::max(d_max, d);
+  const double d_max = max_weight(s);
   const double touching = 1e-9 * s.itf.slave_mesh_size();
   // Tolerance of the stick/slip conditions, in traction units.
   double scale = 0.0;
   for (const double l : s.lambda) scale = std::max(scale, std::abs(l));
   const double tolerance = 1e-8 * scale;
-  // The status each node's condition asks for at this iterate.
   std::vector<char> next(n, 0);
+  // The status each owned node's condition asks for at this iterate, decided by its owner.
   for (std::size_t j = 0; j < n; ++j) {
+    if (s.node_owners[j] != comm.rank()) continue;
     if (s.D[j] <= 1e-12 * d_max) continue;
     if (frame(s, j).wn < min_free_normal) continue;
     const auto node = friction_node(s, j);
@@ -182,6 +187,10 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
         contact::admissible(s.law, node, static_cast<contact::NodeStatus>(s.status[j]), tolerance))
       next[j] = s.status[j];
   }
+  // Every rank gets the owners' sums, slip increments and decisions.
+  publish_nodal_values(s, next);
+  parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, s.slip, dim);
+  if (init && s.has_old) s.D_diag_old = s.D_diag;
   // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 8
   // iterations ago, the nodes that alternate keep the largest of their statuses in the cycle
   // (inactive < stick < slip) for the rest of the step; the others go on being decided. A frozen

@@ -605,7 +605,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 11;
+  constexpr std::size_t n_counts = 13;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -623,6 +623,8 @@ void Output::finish(bool converged, int n_steps) {
       mine[3] += c.local_master_ghosts;
       mine[4] += static_cast<double>(c.local_pairs);
       mine[5] += static_cast<double>(c.local_integration_cells);
+      mine[11] += static_cast<double>(c.local_contact_nodes);
+      mine[12] += static_cast<double>(c.local_nodal_records);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -693,6 +695,8 @@ void Output::finish(bool converged, int n_steps) {
     e["owned_nodes"] = static_cast<std::int64_t>(d[8]);
     e["ghost_nodes"] = static_cast<std::int64_t>(d[9]);
     e["nodes"] = static_cast<std::int64_t>(d[10]);
+    e["contact_nodes"] = static_cast<std::int64_t>(d[11]);
+    e["contact_nodal_records"] = static_cast<std::int64_t>(d[12]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

@@ -71,6 +71,10 @@ struct ContactReport {
   int local_master_ghosts = 0; ///< distinct master facets its candidate pairs reach
   std::int64_t local_pairs = 0;
   std::int64_t local_integration_cells = 0;
+  /// Slave nodes with nonzero mortar sums that this rank owns, sums and decides, and the nodal
+  /// records it sent to the owners, at the last evaluation.
+  std::int64_t local_contact_nodes = 0;
+  std::int64_t local_nodal_records = 0;
 };
 
 /// A probe located in the mesh: the cell that contains it and its reference coordinates.
