@@ -61,7 +61,7 @@ def observed_orders(seq):
             for i in range(len(seq) - 2) if seq[i + 1] < seq[i]]
 
 
-def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True):
+def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True, steps=None):
     """Observed order of the last Newton iterations of every step with at least 3 iterations
     after the sets settled (no active-set changes), from the residuals and from the Newton
     corrections (the distance to the solution). With `from_last_change` the sequence starts
@@ -73,10 +73,11 @@ def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True):
     to the next) starts its settled sequence with the residual after the load step's
     prescribed motion, which is not yet asymptotic (r_k+1 / r_k^2 about 0.05, then 0.4 on the
     dragged blocks); its corrections show the order there, so each step counts the larger of
-    the two observed orders."""
+    the two observed orders. `steps`, if given, selects the steps to check."""
     by_step = {}
     for r in rows_of(out, "newton.csv"):
-        by_step.setdefault(int(r["step"]), []).append(r)
+        if steps is None or int(r["step"]) in steps:
+            by_step.setdefault(int(r["step"]), []).append(r)
     worst, n_checked = 10.0, 0
     for step, its in by_step.items():
         res = [r["residual"] for r in its]
@@ -87,11 +88,14 @@ def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True):
         if from_last_change and first > 1 and all(i in settled for i in range(first, len(its))):
             first -= 1
         # Above the round-off plateau: well over the converged residual of the step.
-        tail = [v for v in res[first:] if v > max(100.0 * res[-1], floor_rel * max(res))]
+        plateau = max(100.0 * res[-1], floor_rel * max(res))
+        tail = [v for v in res[first:] if v > plateau]
         # The corrections computed from the settled sets (iterations first + 1 on), above the
-        # round-off of the state (1e-11 of the step's largest correction).
+        # round-off of the state (1e-11 of the step's largest correction) or solved from a
+        # residual above the round-off plateau (its size follows from that residual's).
         increments = [r["increment"] for r in its]
-        tail_du = [v for v in increments[first + 1:] if v > 1e-11 * max(increments)]
+        tail_du = [v for k, v in enumerate(increments) if k > first
+                   and (v > 1e-11 * max(increments) or res[k - 1] > plateau)]
         orders = observed_orders(tail) + observed_orders(tail_du)
         if orders:
             worst = min(worst, max(orders))
@@ -302,14 +306,14 @@ def check_parallel(serial, parallel):
     H.cleanup(*_dirs)
 
 
-def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6):
+def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6,
+            friction="{model: coulomb, coefficient: %r}" % MU):
     # A hex block pressed on a rigid plane, then dragged diagonally: |F_t| = mu |F_z|.
     bcs = ["{region: top, type: dirichlet, components: [x, y, z], "
            "value: ['%r*max(t-1,0)', '%r*max(t-1,0)', '-%r*min(t,1)']}"
            % (0.6 * SLIDE / 2, 0.8 * SLIDE / 2, PRESS)]
-    itf = ("{name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
-           "coefficient: %r}, %srigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}"
-           % (MU, extra))
+    itf = ("{name: floor, type: contact, slave: bottom, friction: %s, "
+           "%srigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}" % (friction, extra))
     h = 0.125 if order == 1 else 0.25
     return run_case(G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5,
                           lz=0.25),
@@ -672,6 +676,7 @@ def test_cattaneo_mindlin_2d():
                              % (width, c))
     if max(abs(v) for v in stick) > c + 2 * h or min(abs(v) for v in slip) < c - 2 * h:
         raise AssertionError("stick nodes outside or slip nodes inside the stick zone")
+    check_quadratic(out)
     H.cleanup(*_dirs)
 
 
@@ -722,6 +727,53 @@ def test_cattaneo_mindlin_3d():
     # Tetrahedral facets are up to about 1.5 hc across in the graded zone.
     if min(slip) < c - 1.5 * h:
         raise AssertionError("slip node at r = %.4f inside c - 1.5 h" % min(slip))
+    H.cleanup(*_dirs)
+
+
+def coarse_cattaneo_3d(np=1, refine=0.5):
+    """The 3D Cattaneo-Mindlin example on a mesh of half its resolution (hc = 0.04 R)."""
+    work = tempfile.mkdtemp(prefix="seam_cattaneo_3d_")
+    for f in ("sphere_block.geo", "cattaneo_3d.yaml"):
+        with open(os.path.join(EXAMPLES, "cattaneo_mindlin", f)) as src:
+            H.write_case(work, f, src.read().replace("refine = 1;", "refine = %r;" % refine))
+    out = H.solve(os.path.join(work, "cattaneo_3d.yaml"), np=np)
+    _dirs.extend([work, out])
+    return out
+
+
+def test_cattaneo_mindlin_3d_parallel():
+    """np = 3 equals np = 1 on the 3D Cattaneo-Mindlin case (sphere on block, tri3 faces on
+    both sides, coarsened to hc = 0.04 R): the same stick/slip/inactive status at every slave
+    node, the nodal tractions and the reactions of every step to 1e-8. Quadratic convergence
+    once the sets have settled (np = 1) in the steps that pull the sphere sideways. (In the
+    second pressing step the rim nodes slip by tiny amounts, as equal bodies pressed together
+    develop almost no tangential traction; the slip direction z / |z| curves strongly there and
+    Newton's method reaches its quadratic regime only in the last iterates: residuals 3.9e-6,
+    1.0e-8, 5.6e-12, order 1.3. With mu = 1000 the same step converges as 1.7e-7, 3.3e-13.)"""
+    one, three = coarse_cattaneo_3d(), coarse_cattaneo_3d(np=3)
+    a = {int(r["node"]): r for r in rows_of(one, "interface_contact.csv")}
+    b = {int(r["node"]): r for r in rows_of(three, "interface_contact.csv")}
+    if sorted(a) != sorted(b):
+        raise AssertionError("other slave nodes on 3 ranks")
+    statuses = [r["status"] for r in a.values()]
+    other = [k for k in a if a[k]["status"] != b[k]["status"]]
+    scale = max(abs(r["normal_traction"]) for r in a.values())
+    worst = max(abs(a[k][key] - b[k][key]) / scale for k in a
+                for key in ("normal_traction", "tangential_traction"))
+    ra, rb = rows_of(one, "reactions.csv"), rows_of(three, "reactions.csv")
+    if len(ra) != len(rb):
+        raise AssertionError("%d reaction rows on 1 rank, %d on 3" % (len(ra), len(rb)))
+    f_scale = max(abs(r["fz"]) for r in ra)
+    worst_f = max(abs(x[c] - y[c]) / f_scale for x, y in zip(ra, rb) for c in ("fx", "fy", "fz"))
+    print("   %d stick, %d slip nodes; np = 3 vs np = 1: %d nodes with another status, tractions "
+          "differ by %.2e, reactions by %.2e" % (statuses.count("stick"), statuses.count("slip"),
+                                                 len(other), worst, worst_f))
+    if not statuses.count("stick") or not statuses.count("slip"):
+        raise AssertionError("set-up: expected partial slip")
+    if other or worst > 1e-8 or worst_f > 1e-8:
+        raise AssertionError("np = 3 differs from np = 1")
+    pulled = [int(r["step"]) for r in rows_of(one, "steps.csv") if r["time"] > 1.0 + 1e-9]
+    check_quadratic(one, steps=pulled)
     H.cleanup(*_dirs)
 
 
@@ -863,6 +915,7 @@ def test_ironing_3d_press():
         raise AssertionError("expected stick and slip nodes at once")
     if worst > 1e-5:
         raise AssertionError("the Coulomb law is violated by %.2e of the bound" % worst)
+    check_quadratic(out)
     H.cleanup(*_dirs)
 
 
@@ -970,6 +1023,99 @@ def test_drag_3d_quad8_parallel():
 def test_drag_3d_tri6():
     """tet10 cells (tri6 slave faces) dragged on a rigid plane."""
     check_drag_3d(drag_3d(order=2, kind="tet"))
+
+
+def check_nodal_law(out, bound, what, interface="floor"):
+    """The nodal friction law of the last step at every contact node: |lambda_t| = bound
+    (slip), |lambda_t| <= bound (stick), to 1e-8 of the bound; bound(row) is mu lambda_n
+    (Coulomb) or S (Tresca). Returns the numbers of stick and slip nodes."""
+    worst, counts = 0.0, {"stick": 0, "slip": 0}
+    for r in rows_of(out, "interface_%s.csv" % interface):
+        if r["status"] == "inactive":
+            continue
+        counts[r["status"]] += 1
+        b, t = bound(r), abs(r["tangential_traction"])
+        worst = max(worst, abs(t - b) / b if r["status"] == "slip" else (t - b) / b)
+    print("   %s: %d slip and %d stick nodes, nodal law off by %.2e of the bound at most"
+          % (what, counts["slip"], counts["stick"], worst))
+    if worst > 1e-8:
+        raise AssertionError("%s: nodal friction law violated by %.3e of the bound" % (what, worst))
+    return counts
+
+
+def test_drag_3d_quad9_standard():
+    """hex27 cells (quad9 slave faces) with standard multipliers (saddle point), pressed and
+    then dragged diagonally on the rigid plane: at the end every node slides on its cone,
+    |lambda_t| = mu lambda_n, |F_t| = mu |F_z|; quadratic convergence once the sets have
+    settled. Against the dual (condensed) multipliers:
+    - While pressed (every node in contact and stuck) the reactions are equal: both weighted
+      gaps and weighted slips vanish only where the nodal ones do (the gap to a plane lies in
+      the span of the slave shape functions, and both Gram matrices are regular), so both
+      solve the same equations.
+    - In steady sliding they are equal too: the force on slave node k,
+      sum_j lambda_j int phi_j N_k (phi_j = N_j or the dual psi_j), is then mu times its normal
+      force along the one slip direction of the translating bottom in both. Before that the
+      nodes slip in slightly different directions, weighted by D or by M; the difference
+      decays as the block approaches the steady state, and must fall in every sliding step."""
+    standard = drag_3d(order=2, extra=STANDARD, steps=12)
+    dual = drag_3d(order=2, steps=12)
+    check_sliding(standard, "top", "3D hex27, standard multipliers")
+    counts = check_nodal_law(standard, lambda r: MU * r["normal_traction"],
+                             "hex27, standard multipliers")
+    if counts["stick"] or not counts["slip"]:
+        raise AssertionError("not every contact node slides at the end")
+    a, b = reactions_by_step(standard, "top"), reactions_by_step(dual, "top")
+    if sorted(a) != sorted(b):
+        raise AssertionError("%d steps with standard multipliers, %d with dual" % (len(a), len(b)))
+    off = {s: max(abs(a[s][c] - b[s][c]) / abs(b[s]["fz"]) for c in ("fx", "fy", "fz"))
+           for s in sorted(a)}
+    pressed = [s for s in off if a[s]["time"] <= 1.0 + 1e-9]
+    sliding = [s for s in off if a[s]["time"] > 2.0 + 1e-9]
+    print("   pressed: standard and dual reactions differ by %.2e of |F_z| at most; sliding: "
+          "%s" % (max(off[s] for s in pressed), " ".join("%.2e" % off[s] for s in sliding)))
+    if max(off[s] for s in pressed) > 1e-10:
+        raise AssertionError("pressed: standard and dual multipliers differ")
+    if any(off[q] >= 0.8 * off[p] for p, q in zip(sliding, sliding[1:])):
+        raise AssertionError("sliding: the difference does not decay towards the steady state")
+    if off[sliding[-1]] > 1e-7:
+        raise AssertionError("sliding: standard and dual differ by %.3e" % off[sliding[-1]])
+    check_quadratic(standard)
+    H.cleanup(*_dirs)
+
+
+def test_drag_3d_tri3():
+    """tet4 cells (tri3 slave faces) dragged diagonally on the rigid plane: |F_t| = mu |F_z|
+    once the sliding is steady, every node on its cone, quadratic convergence."""
+    out = drag_3d(kind="tet")
+    counts = check_nodal_law(out, lambda r: MU * r["normal_traction"], "tet4")
+    if counts["stick"] or not counts["slip"]:
+        raise AssertionError("not every contact node slides at the end")
+    check_drag_3d(out)
+
+
+def test_drag_3d_tresca():
+    """Tresca friction in 3D: the hex block dragged diagonally with the bound S. Every contact
+    node slides with |lambda_t| = S, the tangential force is S times the contact area, and the
+    support's tangential reaction equals it (|F_t| = S A); the normal load does not enter."""
+    out = drag_3d(friction="{model: tresca, bound: %r}" % TRESCA_BOUND)
+    counts = check_nodal_law(out, lambda r: TRESCA_BOUND, "3D Tresca")
+    if counts["stick"] or not counts["slip"]:
+        raise AssertionError("not every contact node slides at the end")
+    itf = {int(r["step"]): r for r in rows_of(out, "interfaces.csv")}
+    last = itf[max(itf)]
+    react = reactions_by_step(out, "top")[max(itf)]
+    f_t = math.hypot(react["fx"], react["fy"])
+    print("   3D Tresca: tangential force %.12f, S x contact area %.12f, |F_t| at the top %.12f"
+          " (undeformed area 0.25)" % (last["tangential_force"],
+                                        TRESCA_BOUND * last["contact_area"], f_t))
+    H.assert_close(last["tangential_force"], TRESCA_BOUND * last["contact_area"], rtol=1e-8,
+                   what="Tresca: tangential force = S x contact area")
+    H.assert_close(f_t, last["tangential_force"], rtol=1e-8,
+                   what="Tresca: support reaction = tangential contact force")
+    # The bottom of the block keeps its area 0.25 (nu = 0: no lateral strain under the press).
+    H.assert_close(f_t, TRESCA_BOUND * 0.25, rtol=1e-5, what="Tresca: |F_t| = S x 0.25")
+    check_quadratic(out)
+    H.cleanup(*_dirs)
 
 
 TWO_BOXES_GEO = """
@@ -1312,4 +1458,6 @@ if __name__ == "__main__":
             test_drag_2d_two_bodies_standard, test_drag_3d_quad8, test_drag_3d_quad8_parallel,
             test_drag_3d_tri6, test_drag_3d_two_bodies_tri6, test_frame_indifference_tri6,
             test_stuck_pair_hex20, test_stuck_pair_hex20_parallel, test_drag_2d_tresca_standard,
-            test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy])
+            test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy,
+            test_drag_3d_quad9_standard, test_drag_3d_tri3, test_drag_3d_tresca,
+            test_cattaneo_mindlin_3d_parallel])
