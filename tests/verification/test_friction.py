@@ -309,15 +309,16 @@ def check_parallel(serial, parallel):
 def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6,
             friction="{model: coulomb, coefficient: %r}" % MU):
     # A hex block pressed on a rigid plane, then dragged diagonally: |F_t| = mu |F_z|.
+    # With np = 0 the case is returned as (geo, yaml) instead of run.
     bcs = ["{region: top, type: dirichlet, components: [x, y, z], "
            "value: ['%r*max(t-1,0)', '%r*max(t-1,0)', '-%r*min(t,1)']}"
            % (0.6 * SLIDE / 2, 0.8 * SLIDE / 2, PRESS)]
     itf = ("{name: floor, type: contact, slave: bottom, friction: %s, "
            "%srigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}" % (friction, extra))
     h = 0.125 if order == 1 else 0.25
-    return run_case(G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5,
-                          lz=0.25),
-                    case_yaml(3, bcs, itf, steps, 3.0), np=np)
+    geo = G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5, lz=0.25)
+    yaml = case_yaml(3, bcs, itf, steps, 3.0)
+    return (geo, yaml) if np == 0 else run_case(geo, yaml, np=np)
 
 
 def check_sliding(out, region, what):
@@ -1118,6 +1119,122 @@ def test_drag_3d_tresca():
     H.cleanup(*_dirs)
 
 
+def parse_bench_contact(text):
+    """The figures `seam-bench contact --compare-frictionless` prints: per run (with, without
+    friction) steps, corrections, per-step, evaluations, wall, s/evaluation and the phases;
+    then the ratio lines and the share line."""
+    import re
+    runs, ratios, share = [], {}, None
+    for line in text.splitlines():
+        m = re.match(r"\s+steps (\d+), Newton corrections (\d+) \(([\d.]+) per step\), "
+                     r"residual evaluations (\d+)", line)
+        if m:
+            runs.append({"steps": int(m.group(1)), "corrections": int(m.group(2)),
+                         "per_step": float(m.group(3)), "evaluations": int(m.group(4)),
+                         "phases": {}})
+            continue
+        m = re.match(r"\s+wall ([\d.]+) s, ([\d.]+) s per residual evaluation", line)
+        if m:
+            runs[-1]["wall"], runs[-1]["per_evaluation"] = float(m.group(1)), float(m.group(2))
+            continue
+        m = re.match(r"\s+(search|mortar|condensation|assembly|linear_solve|output)\s+([\d.]+)"
+                     r"\s+([\d.]+)\s+([\d.]+)%", line)
+        if m:
+            runs[-1]["phases"][m.group(1)] = tuple(float(m.group(k)) for k in (2, 3, 4))
+            continue
+        m = re.match(r"\s+(.+?)\s+([\d.]+)\s+([\d.]+)\s+ratio ([\d.]+)$", line)
+        if m:
+            ratios[m.group(1)] = tuple(float(m.group(k)) for k in (2, 3, 4))
+            continue
+        m = re.match(r"\s+share of mortar \+ friction evaluation in an iteration: ([\d.]+) % "
+                     r"\(frictionless ([\d.]+) %\)", line)
+        if m:
+            share = (float(m.group(1)), float(m.group(2)))
+    return runs, ratios, share
+
+
+def test_bench_contact():
+    """`seam-bench contact --compare-frictionless` on the dragged hex block (6 steps): the
+    iterations it prints are those of the runs' newton.csv, counted here (steps, corrections
+    = rows after iteration 0, evaluations = rows); the per-step, per-evaluation and share
+    figures and the ratio lines are the quotients of the printed figures (to their printed
+    digits); the phases add up to at most the wall time; and the runs are what they claim:
+    the frictional run slides with |F_t| = mu |F_z|, the frictionless copy has no tangential
+    force."""
+    bench = os.path.join(os.path.dirname(os.path.abspath(H.SEAM)), "seam-bench")
+    if not os.path.exists(bench):
+        print("   skipped: %s not built (SEAM_BUILD_BENCH=OFF)" % bench)
+        return
+    work = tempfile.mkdtemp(prefix="seam_bench_contact_")
+    _dirs.append(work)
+    geo, yaml = drag_3d(np=0)
+    H.write_case(work, "case.geo", geo)
+    out = os.path.join(work, "out")
+    p = H.subprocess.run([bench, "contact", "--input", H.write_case(work, "case.yaml", yaml),
+                          "--output", out, "--compare-frictionless"], env=H.mpi_env(),
+                         capture_output=True, text=True, timeout=600)
+    if p.returncode != 0:
+        raise AssertionError("seam-bench contact failed (%d):\n%s\n%s"
+                             % (p.returncode, p.stdout[-3000:], p.stderr[-3000:]))
+    runs, ratios, share = parse_bench_contact(p.stdout)
+    if len(runs) != 2 or share is None or len(ratios) != 5:
+        raise AssertionError("unexpected output of seam-bench contact:\n" + p.stdout)
+    close = lambda a, b, digits: abs(a - b) <= 0.51 * 10.0 ** -digits + 1e-12
+    for run, folder in zip(runs, (out, out + "_frictionless")):
+        rows = rows_of(folder, "newton.csv")
+        steps = len(set(int(r["step"]) for r in rows))
+        corrections = sum(1 for r in rows if int(r["iteration"]) > 0)
+        if (run["steps"], run["corrections"], run["evaluations"]) != (steps, corrections,
+                                                                       len(rows)):
+            raise AssertionError("%s: printed steps/corrections/evaluations %d/%d/%d, newton.csv "
+                                 "%d/%d/%d" % (folder, run["steps"], run["corrections"],
+                                               run["evaluations"], steps, corrections, len(rows)))
+        if not close(run["per_step"], corrections / steps, 2):
+            raise AssertionError("corrections per step %.2f != %d / %d"
+                                 % (run["per_step"], corrections, steps))
+        if not close(run["per_evaluation"], run["wall"] / len(rows), 4) and \
+                abs(run["per_evaluation"] * len(rows) - run["wall"]) > 0.0005 * len(rows) + 0.0005:
+            raise AssertionError("s per evaluation %.4f != %.3f / %d"
+                                 % (run["per_evaluation"], run["wall"], len(rows)))
+        total = sum(v[0] for v in run["phases"].values())
+        if len(run["phases"]) != 6 or total > run["wall"] + 0.006:
+            raise AssertionError("phases %r add up to %.3f s > wall %.3f s"
+                                 % (run["phases"], total, run["wall"]))
+        for name, (sec, per, pct) in run["phases"].items():
+            if abs(per * len(rows) - sec) > 0.000005 * len(rows) + 0.0005 or \
+                    abs(pct - 100.0 * sec / run["wall"]) > 0.05 + 100.0 * 0.0005 / run["wall"]:
+                raise AssertionError("phase %s: %.3f s, %.5f s/evaluation, %.1f %% inconsistent"
+                                     % (name, sec, per, pct))
+    with_f, without = runs
+    want = {"Newton corrections per step": (with_f["per_step"], without["per_step"]),
+            "s per residual evaluation": (with_f["per_evaluation"], without["per_evaluation"])}
+    for name, (a, b) in want.items():
+        got = ratios[name]
+        if abs(got[0] - a) > 0.006 or abs(got[1] - b) > 0.006 or \
+                abs(got[2] - got[0] / got[1]) > 0.006 + 0.01 * got[2]:
+            raise AssertionError("ratio line %r = %r, expected %r" % (name, got, (a, b)))
+    for k, run in enumerate(runs):
+        mortar = run["phases"]["search"][0] + run["phases"]["mortar"][0]
+        if abs(share[k] - 100.0 * mortar / run["wall"]) > 0.06 + 100.0 * 0.001 / run["wall"]:
+            raise AssertionError("share %.1f %% != (search + mortar) / wall" % share[k])
+    # The runs themselves: the frictional one slides on the cone, the other has no friction.
+    itf = check_sliding(out, "top", "3D bench run")
+    last = reactions_by_step(out + "_frictionless", "top")
+    last = last[max(last)]
+    frictionless = {int(r["step"]): r for r in rows_of(out + "_frictionless", "interfaces.csv")}
+    f_t = max(abs(r["tangential_force"]) for r in frictionless.values())
+    print("   seam-bench contact: %d/%d steps, %d/%d corrections, %d/%d evaluations (with/without "
+          "friction) as in newton.csv; frictionless tangential force %.1e, reaction |F_t| %.1e "
+          "of |F_z|" % (with_f["steps"], without["steps"], with_f["corrections"],
+                        without["corrections"], with_f["evaluations"], without["evaluations"], f_t,
+                        math.hypot(last["fx"], last["fy"]) / abs(last["fz"])))
+    if f_t > 1e-12 or math.hypot(last["fx"], last["fy"]) > 1e-8 * abs(last["fz"]):
+        raise AssertionError("the frictionless copy carries a tangential force")
+    if itf[max(itf)]["frictional_dissipation"] <= 0.0:
+        raise AssertionError("no dissipation in the frictional run")
+    H.cleanup(*_dirs)
+
+
 TWO_BOXES_GEO = """
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, -0.25, 1.5, 1.0, 0.25};
@@ -1460,4 +1577,4 @@ if __name__ == "__main__":
             test_stuck_pair_hex20, test_stuck_pair_hex20_parallel, test_drag_2d_tresca_standard,
             test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy,
             test_drag_3d_quad9_standard, test_drag_3d_tri3, test_drag_3d_tresca,
-            test_cattaneo_mindlin_3d_parallel])
+            test_cattaneo_mindlin_3d_parallel, test_bench_contact])
