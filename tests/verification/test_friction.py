@@ -61,7 +61,7 @@ def observed_orders(seq):
             for i in range(len(seq) - 2) if seq[i + 1] < seq[i]]
 
 
-def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True):
+def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True, steps=None):
     """Observed order of the last Newton iterations of every step with at least 3 iterations
     after the sets settled (no active-set changes), from the residuals and from the Newton
     corrections (the distance to the solution). With `from_last_change` the sequence starts
@@ -73,10 +73,11 @@ def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True):
     to the next) starts its settled sequence with the residual after the load step's
     prescribed motion, which is not yet asymptotic (r_k+1 / r_k^2 about 0.05, then 0.4 on the
     dragged blocks); its corrections show the order there, so each step counts the larger of
-    the two observed orders."""
+    the two observed orders. `steps`, if given, selects the steps to check."""
     by_step = {}
     for r in rows_of(out, "newton.csv"):
-        by_step.setdefault(int(r["step"]), []).append(r)
+        if steps is None or int(r["step"]) in steps:
+            by_step.setdefault(int(r["step"]), []).append(r)
     worst, n_checked = 10.0, 0
     for step, its in by_step.items():
         res = [r["residual"] for r in its]
@@ -87,11 +88,14 @@ def check_quadratic(out, min_order=1.8, floor_rel=1e-14, from_last_change=True):
         if from_last_change and first > 1 and all(i in settled for i in range(first, len(its))):
             first -= 1
         # Above the round-off plateau: well over the converged residual of the step.
-        tail = [v for v in res[first:] if v > max(100.0 * res[-1], floor_rel * max(res))]
+        plateau = max(100.0 * res[-1], floor_rel * max(res))
+        tail = [v for v in res[first:] if v > plateau]
         # The corrections computed from the settled sets (iterations first + 1 on), above the
-        # round-off of the state (1e-11 of the step's largest correction).
+        # round-off of the state (1e-11 of the step's largest correction) or solved from a
+        # residual above the round-off plateau (its size follows from that residual's).
         increments = [r["increment"] for r in its]
-        tail_du = [v for v in increments[first + 1:] if v > 1e-11 * max(increments)]
+        tail_du = [v for k, v in enumerate(increments) if k > first
+                   and (v > 1e-11 * max(increments) or res[k - 1] > plateau)]
         orders = observed_orders(tail) + observed_orders(tail_du)
         if orders:
             worst = min(worst, max(orders))
@@ -302,18 +306,19 @@ def check_parallel(serial, parallel):
     H.cleanup(*_dirs)
 
 
-def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6):
+def drag_3d(np=1, order=1, serendipity=False, kind="hex_structured", extra="", steps=6,
+            friction="{model: coulomb, coefficient: %r}" % MU):
     # A hex block pressed on a rigid plane, then dragged diagonally: |F_t| = mu |F_z|.
+    # With np = 0 the case is returned as (geo, yaml) instead of run.
     bcs = ["{region: top, type: dirichlet, components: [x, y, z], "
            "value: ['%r*max(t-1,0)', '%r*max(t-1,0)', '-%r*min(t,1)']}"
            % (0.6 * SLIDE / 2, 0.8 * SLIDE / 2, PRESS)]
-    itf = ("{name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
-           "coefficient: %r}, %srigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}"
-           % (MU, extra))
+    itf = ("{name: floor, type: contact, slave: bottom, friction: %s, "
+           "%srigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}}" % (friction, extra))
     h = 0.125 if order == 1 else 0.25
-    return run_case(G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5,
-                          lz=0.25),
-                    case_yaml(3, bcs, itf, steps, 3.0), np=np)
+    geo = G.box(kind, h, order=order, serendipity=serendipity, lx=0.5, ly=0.5, lz=0.25)
+    yaml = case_yaml(3, bcs, itf, steps, 3.0)
+    return (geo, yaml) if np == 0 else run_case(geo, yaml, np=np)
 
 
 def check_sliding(out, region, what):
@@ -672,6 +677,7 @@ def test_cattaneo_mindlin_2d():
                              % (width, c))
     if max(abs(v) for v in stick) > c + 2 * h or min(abs(v) for v in slip) < c - 2 * h:
         raise AssertionError("stick nodes outside or slip nodes inside the stick zone")
+    check_quadratic(out)
     H.cleanup(*_dirs)
 
 
@@ -722,6 +728,53 @@ def test_cattaneo_mindlin_3d():
     # Tetrahedral facets are up to about 1.5 hc across in the graded zone.
     if min(slip) < c - 1.5 * h:
         raise AssertionError("slip node at r = %.4f inside c - 1.5 h" % min(slip))
+    H.cleanup(*_dirs)
+
+
+def coarse_cattaneo_3d(np=1, refine=0.5):
+    """The 3D Cattaneo-Mindlin example on a mesh of half its resolution (hc = 0.04 R)."""
+    work = tempfile.mkdtemp(prefix="seam_cattaneo_3d_")
+    for f in ("sphere_block.geo", "cattaneo_3d.yaml"):
+        with open(os.path.join(EXAMPLES, "cattaneo_mindlin", f)) as src:
+            H.write_case(work, f, src.read().replace("refine = 1;", "refine = %r;" % refine))
+    out = H.solve(os.path.join(work, "cattaneo_3d.yaml"), np=np)
+    _dirs.extend([work, out])
+    return out
+
+
+def test_cattaneo_mindlin_3d_parallel():
+    """np = 3 equals np = 1 on the 3D Cattaneo-Mindlin case (sphere on block, tri3 faces on
+    both sides, coarsened to hc = 0.04 R): the same stick/slip/inactive status at every slave
+    node, the nodal tractions and the reactions of every step to 1e-8. Quadratic convergence
+    once the sets have settled (np = 1) in the steps that pull the sphere sideways. (In the
+    second pressing step the rim nodes slip by tiny amounts, as equal bodies pressed together
+    develop almost no tangential traction; the slip direction z / |z| curves strongly there and
+    Newton's method reaches its quadratic regime only in the last iterates: residuals 3.9e-6,
+    1.0e-8, 5.6e-12, order 1.3. With mu = 1000 the same step converges as 1.7e-7, 3.3e-13.)"""
+    one, three = coarse_cattaneo_3d(), coarse_cattaneo_3d(np=3)
+    a = {int(r["node"]): r for r in rows_of(one, "interface_contact.csv")}
+    b = {int(r["node"]): r for r in rows_of(three, "interface_contact.csv")}
+    if sorted(a) != sorted(b):
+        raise AssertionError("other slave nodes on 3 ranks")
+    statuses = [r["status"] for r in a.values()]
+    other = [k for k in a if a[k]["status"] != b[k]["status"]]
+    scale = max(abs(r["normal_traction"]) for r in a.values())
+    worst = max(abs(a[k][key] - b[k][key]) / scale for k in a
+                for key in ("normal_traction", "tangential_traction"))
+    ra, rb = rows_of(one, "reactions.csv"), rows_of(three, "reactions.csv")
+    if len(ra) != len(rb):
+        raise AssertionError("%d reaction rows on 1 rank, %d on 3" % (len(ra), len(rb)))
+    f_scale = max(abs(r["fz"]) for r in ra)
+    worst_f = max(abs(x[c] - y[c]) / f_scale for x, y in zip(ra, rb) for c in ("fx", "fy", "fz"))
+    print("   %d stick, %d slip nodes; np = 3 vs np = 1: %d nodes with another status, tractions "
+          "differ by %.2e, reactions by %.2e" % (statuses.count("stick"), statuses.count("slip"),
+                                                 len(other), worst, worst_f))
+    if not statuses.count("stick") or not statuses.count("slip"):
+        raise AssertionError("set-up: expected partial slip")
+    if other or worst > 1e-8 or worst_f > 1e-8:
+        raise AssertionError("np = 3 differs from np = 1")
+    pulled = [int(r["step"]) for r in rows_of(one, "steps.csv") if r["time"] > 1.0 + 1e-9]
+    check_quadratic(one, steps=pulled)
     H.cleanup(*_dirs)
 
 
@@ -806,7 +859,7 @@ def test_ironing_2d():
     H.cleanup(*_dirs)
 
 
-def ironing_press(np=1):
+def ironing_press(np=1, c_t=None):
     """The pressing stage of the 3D ironing example (h = 0.5, t <= 0.4 in 10 steps); returns
     the output directory and seam's standard error (its warnings)."""
     work = tempfile.mkdtemp(prefix="seam_ironing_press_")
@@ -814,6 +867,10 @@ def ironing_press(np=1):
         H.write_case(work, "ironing_3d.geo", src.read())
     with open(os.path.join(EXAMPLES, "ironing", "ironing_3d.yaml")) as src:
         text = src.read().replace("end: 2, steps: 50", "end: 0.4, steps: 10")
+    if c_t is not None:
+        line = "    friction: {model: coulomb, coefficient: 0.3}\n"
+        assert line in text
+        text = text.replace(line, line + "    c_t: %r\n" % c_t)
     path = H.write_case(work, "ironing_3d.yaml", text)
     out = tempfile.mkdtemp(prefix="seam_verif_")
     _, _, err = H.run(["run", path, "-o", out, "--quiet"], np=np)
@@ -863,6 +920,7 @@ def test_ironing_3d_press():
         raise AssertionError("expected stick and slip nodes at once")
     if worst > 1e-5:
         raise AssertionError("the Coulomb law is violated by %.2e of the bound" % worst)
+    check_quadratic(out)
     H.cleanup(*_dirs)
 
 
@@ -883,6 +941,48 @@ def test_ironing_3d_press_parallel():
           % (len(ra), worst, other, len(na)))
     if worst > 1e-8 or other:
         raise AssertionError("np = 3 differs from np = 1")
+    H.cleanup(*_dirs)
+
+
+def test_ironing_3d_press_c_t():
+    """The converged pressing stage of the 3D ironing does not depend on c_t: the default
+    (c_t = c_n = E_slab / h) against c_t = 0.5 and 5, the die's reactions in every step to
+    1e-8 of max |F_z| in every step before a step cut (c_t = 5 cuts the step to t = 0.24, after
+    which the path differs), the same stick/slip/inactive status at every slave node at the end
+    of a run without a cut.
+    (With c_t = 10 or 20 the step to t = 0.08 does not converge: examples/ironing/README.md.)"""
+    runs = [ironing_press()[0]] + [ironing_press(c_t=c)[0] for c in (0.5, 5.0)]
+    react = [[r for r in rows_of(out, "reactions.csv") if r["region"] == "die_ends"]
+             for out in runs]
+    status = [{int(r["node"]): r["status"] for r in rows_of(out, "interface_ironing.csv")}
+              for out in runs]
+    scale = max(abs(r["fz"]) for r in react[0])
+    worst, other = 0.0, 0
+    common = []
+    for k in (1, 2):
+        # Friction depends on the path: the histories are compared up to a step cut (after it
+        # the other run takes other steps), the statuses at the end only without a cut.
+        pairs = []
+        for a, b in zip(react[0], react[k]):
+            if abs(a["time"] - b["time"]) > 1e-9:
+                break
+            pairs.append((a, b))
+        common.append(len(pairs))
+        if len(pairs) < 5 or abs(react[k][-1]["time"] - 0.4) > 1e-12:
+            raise AssertionError("c_t run %d: steps at %r" % (k, [r["time"] for r in react[k]]))
+        worst = max(worst, max(abs(a[c] - b[c]) / scale for a, b in pairs
+                               for c in ("fx", "fy", "fz")))
+        if len(pairs) == len(react[0]) == len(react[k]):
+            other += sum(1 for j in status[0] if status[k].get(j) != status[0][j])
+    n_slip = sum(1 for v in status[0].values() if v == "slip")
+    print("   c_t = c_n (default), 0.5, 5: %d steps; %d and %d steps before a cut (%d and %d "
+          "steps in all), reactions agree to %.2e of max |F_z|, %d nodes with another status "
+          "(%d slip at the end)" % (len(react[0]), common[0], common[1], len(react[1]),
+                                    len(react[2]), worst, other, n_slip))
+    if n_slip == 0:
+        raise AssertionError("set-up: no slipping node")
+    if worst > 1e-8 or other:
+        raise AssertionError("the converged pressing stage depends on c_t")
     H.cleanup(*_dirs)
 
 
@@ -970,6 +1070,215 @@ def test_drag_3d_quad8_parallel():
 def test_drag_3d_tri6():
     """tet10 cells (tri6 slave faces) dragged on a rigid plane."""
     check_drag_3d(drag_3d(order=2, kind="tet"))
+
+
+def check_nodal_law(out, bound, what, interface="floor"):
+    """The nodal friction law of the last step at every contact node: |lambda_t| = bound
+    (slip), |lambda_t| <= bound (stick), to 1e-8 of the bound; bound(row) is mu lambda_n
+    (Coulomb) or S (Tresca). Returns the numbers of stick and slip nodes."""
+    worst, counts = 0.0, {"stick": 0, "slip": 0}
+    for r in rows_of(out, "interface_%s.csv" % interface):
+        if r["status"] == "inactive":
+            continue
+        counts[r["status"]] += 1
+        b, t = bound(r), abs(r["tangential_traction"])
+        worst = max(worst, abs(t - b) / b if r["status"] == "slip" else (t - b) / b)
+    print("   %s: %d slip and %d stick nodes, nodal law off by %.2e of the bound at most"
+          % (what, counts["slip"], counts["stick"], worst))
+    if worst > 1e-8:
+        raise AssertionError("%s: nodal friction law violated by %.3e of the bound" % (what, worst))
+    return counts
+
+
+def test_drag_3d_quad9_standard():
+    """hex27 cells (quad9 slave faces) with standard multipliers (saddle point), pressed and
+    then dragged diagonally on the rigid plane: at the end every node slides on its cone,
+    |lambda_t| = mu lambda_n, |F_t| = mu |F_z|; quadratic convergence once the sets have
+    settled. Against the dual (condensed) multipliers:
+    - While pressed (every node in contact and stuck) the reactions are equal: both weighted
+      gaps and weighted slips vanish only where the nodal ones do (the gap to a plane lies in
+      the span of the slave shape functions, and both Gram matrices are regular), so both
+      solve the same equations.
+    - In steady sliding they are equal too: the force on slave node k,
+      sum_j lambda_j int phi_j N_k (phi_j = N_j or the dual psi_j), is then mu times its normal
+      force along the one slip direction of the translating bottom in both. Before that the
+      nodes slip in slightly different directions, weighted by D or by M; the difference
+      decays as the block approaches the steady state, and must fall in every sliding step."""
+    standard = drag_3d(order=2, extra=STANDARD, steps=12)
+    dual = drag_3d(order=2, steps=12)
+    check_sliding(standard, "top", "3D hex27, standard multipliers")
+    counts = check_nodal_law(standard, lambda r: MU * r["normal_traction"],
+                             "hex27, standard multipliers")
+    if counts["stick"] or not counts["slip"]:
+        raise AssertionError("not every contact node slides at the end")
+    a, b = reactions_by_step(standard, "top"), reactions_by_step(dual, "top")
+    if sorted(a) != sorted(b):
+        raise AssertionError("%d steps with standard multipliers, %d with dual" % (len(a), len(b)))
+    off = {s: max(abs(a[s][c] - b[s][c]) / abs(b[s]["fz"]) for c in ("fx", "fy", "fz"))
+           for s in sorted(a)}
+    pressed = [s for s in off if a[s]["time"] <= 1.0 + 1e-9]
+    sliding = [s for s in off if a[s]["time"] > 2.0 + 1e-9]
+    print("   pressed: standard and dual reactions differ by %.2e of |F_z| at most; sliding: "
+          "%s" % (max(off[s] for s in pressed), " ".join("%.2e" % off[s] for s in sliding)))
+    if max(off[s] for s in pressed) > 1e-10:
+        raise AssertionError("pressed: standard and dual multipliers differ")
+    if any(off[q] >= 0.8 * off[p] for p, q in zip(sliding, sliding[1:])):
+        raise AssertionError("sliding: the difference does not decay towards the steady state")
+    if off[sliding[-1]] > 1e-7:
+        raise AssertionError("sliding: standard and dual differ by %.3e" % off[sliding[-1]])
+    check_quadratic(standard)
+    H.cleanup(*_dirs)
+
+
+def test_drag_3d_tri3():
+    """tet4 cells (tri3 slave faces) dragged diagonally on the rigid plane: |F_t| = mu |F_z|
+    once the sliding is steady, every node on its cone, quadratic convergence."""
+    out = drag_3d(kind="tet")
+    counts = check_nodal_law(out, lambda r: MU * r["normal_traction"], "tet4")
+    if counts["stick"] or not counts["slip"]:
+        raise AssertionError("not every contact node slides at the end")
+    check_drag_3d(out)
+
+
+def test_drag_3d_tresca():
+    """Tresca friction in 3D: the hex block dragged diagonally with the bound S. Every contact
+    node slides with |lambda_t| = S, the tangential force is S times the contact area, and the
+    support's tangential reaction equals it (|F_t| = S A); the normal load does not enter."""
+    out = drag_3d(friction="{model: tresca, bound: %r}" % TRESCA_BOUND)
+    counts = check_nodal_law(out, lambda r: TRESCA_BOUND, "3D Tresca")
+    if counts["stick"] or not counts["slip"]:
+        raise AssertionError("not every contact node slides at the end")
+    itf = {int(r["step"]): r for r in rows_of(out, "interfaces.csv")}
+    last = itf[max(itf)]
+    react = reactions_by_step(out, "top")[max(itf)]
+    f_t = math.hypot(react["fx"], react["fy"])
+    print("   3D Tresca: tangential force %.12f, S x contact area %.12f, |F_t| at the top %.12f"
+          " (undeformed area 0.25)" % (last["tangential_force"],
+                                        TRESCA_BOUND * last["contact_area"], f_t))
+    H.assert_close(last["tangential_force"], TRESCA_BOUND * last["contact_area"], rtol=1e-8,
+                   what="Tresca: tangential force = S x contact area")
+    H.assert_close(f_t, last["tangential_force"], rtol=1e-8,
+                   what="Tresca: support reaction = tangential contact force")
+    # The bottom of the block keeps its area 0.25 (nu = 0: no lateral strain under the press).
+    H.assert_close(f_t, TRESCA_BOUND * 0.25, rtol=1e-5, what="Tresca: |F_t| = S x 0.25")
+    check_quadratic(out)
+    H.cleanup(*_dirs)
+
+
+def parse_bench_contact(text):
+    """The figures `seam-bench contact --compare-frictionless` prints: per run (with, without
+    friction) steps, corrections, per-step, evaluations, wall, s/evaluation and the phases;
+    then the ratio lines and the share line."""
+    import re
+    runs, ratios, share = [], {}, None
+    for line in text.splitlines():
+        m = re.match(r"\s+steps (\d+), Newton corrections (\d+) \(([\d.]+) per step\), "
+                     r"residual evaluations (\d+)", line)
+        if m:
+            runs.append({"steps": int(m.group(1)), "corrections": int(m.group(2)),
+                         "per_step": float(m.group(3)), "evaluations": int(m.group(4)),
+                         "phases": {}})
+            continue
+        m = re.match(r"\s+wall ([\d.]+) s, ([\d.]+) s per residual evaluation", line)
+        if m:
+            runs[-1]["wall"], runs[-1]["per_evaluation"] = float(m.group(1)), float(m.group(2))
+            continue
+        m = re.match(r"\s+(search|mortar|condensation|assembly|linear_solve|output)\s+([\d.]+)"
+                     r"\s+([\d.]+)\s+([\d.]+)%", line)
+        if m:
+            runs[-1]["phases"][m.group(1)] = tuple(float(m.group(k)) for k in (2, 3, 4))
+            continue
+        m = re.match(r"\s+(.+?)\s+([\d.]+)\s+([\d.]+)\s+ratio ([\d.]+)$", line)
+        if m:
+            ratios[m.group(1)] = tuple(float(m.group(k)) for k in (2, 3, 4))
+            continue
+        m = re.match(r"\s+share of mortar \+ friction evaluation in an iteration: ([\d.]+) % "
+                     r"\(frictionless ([\d.]+) %\)", line)
+        if m:
+            share = (float(m.group(1)), float(m.group(2)))
+    return runs, ratios, share
+
+
+def test_bench_contact():
+    """`seam-bench contact --compare-frictionless` on the dragged hex block (6 steps): the
+    iterations it prints are those of the runs' newton.csv, counted here (steps, corrections
+    = rows after iteration 0, evaluations = rows); the per-step, per-evaluation and share
+    figures and the ratio lines are the quotients of the printed figures (to their printed
+    digits); the phases add up to at most the wall time; and the runs are what they claim:
+    the frictional run slides with |F_t| = mu |F_z|, the frictionless copy has no tangential
+    force."""
+    bench = os.path.join(os.path.dirname(os.path.abspath(H.SEAM)), "seam-bench")
+    if not os.path.exists(bench):
+        print("   skipped: %s not built (SEAM_BUILD_BENCH=OFF)" % bench)
+        return
+    work = tempfile.mkdtemp(prefix="seam_bench_contact_")
+    _dirs.append(work)
+    geo, yaml = drag_3d(np=0)
+    H.write_case(work, "case.geo", geo)
+    out = os.path.join(work, "out")
+    p = H.subprocess.run([bench, "contact", "--input", H.write_case(work, "case.yaml", yaml),
+                          "--output", out, "--compare-frictionless"], env=H.mpi_env(),
+                         capture_output=True, text=True, timeout=600)
+    if p.returncode != 0:
+        raise AssertionError("seam-bench contact failed (%d):\n%s\n%s"
+                             % (p.returncode, p.stdout[-3000:], p.stderr[-3000:]))
+    runs, ratios, share = parse_bench_contact(p.stdout)
+    if len(runs) != 2 or share is None or len(ratios) != 5:
+        raise AssertionError("unexpected output of seam-bench contact:\n" + p.stdout)
+    close = lambda a, b, digits: abs(a - b) <= 0.51 * 10.0 ** -digits + 1e-12
+    for run, folder in zip(runs, (out, out + "_frictionless")):
+        rows = rows_of(folder, "newton.csv")
+        steps = len(set(int(r["step"]) for r in rows))
+        corrections = sum(1 for r in rows if int(r["iteration"]) > 0)
+        if (run["steps"], run["corrections"], run["evaluations"]) != (steps, corrections,
+                                                                       len(rows)):
+            raise AssertionError("%s: printed steps/corrections/evaluations %d/%d/%d, newton.csv "
+                                 "%d/%d/%d" % (folder, run["steps"], run["corrections"],
+                                               run["evaluations"], steps, corrections, len(rows)))
+        if not close(run["per_step"], corrections / steps, 2):
+            raise AssertionError("corrections per step %.2f != %d / %d"
+                                 % (run["per_step"], corrections, steps))
+        if not close(run["per_evaluation"], run["wall"] / len(rows), 4) and \
+                abs(run["per_evaluation"] * len(rows) - run["wall"]) > 0.0005 * len(rows) + 0.0005:
+            raise AssertionError("s per evaluation %.4f != %.3f / %d"
+                                 % (run["per_evaluation"], run["wall"], len(rows)))
+        total = sum(v[0] for v in run["phases"].values())
+        if len(run["phases"]) != 6 or total > run["wall"] + 0.006:
+            raise AssertionError("phases %r add up to %.3f s > wall %.3f s"
+                                 % (run["phases"], total, run["wall"]))
+        for name, (sec, per, pct) in run["phases"].items():
+            if abs(per * len(rows) - sec) > 0.000005 * len(rows) + 0.0005 or \
+                    abs(pct - 100.0 * sec / run["wall"]) > 0.05 + 100.0 * 0.0005 / run["wall"]:
+                raise AssertionError("phase %s: %.3f s, %.5f s/evaluation, %.1f %% inconsistent"
+                                     % (name, sec, per, pct))
+    with_f, without = runs
+    want = {"Newton corrections per step": (with_f["per_step"], without["per_step"]),
+            "s per residual evaluation": (with_f["per_evaluation"], without["per_evaluation"])}
+    for name, (a, b) in want.items():
+        got = ratios[name]
+        if abs(got[0] - a) > 0.006 or abs(got[1] - b) > 0.006 or \
+                abs(got[2] - got[0] / got[1]) > 0.006 + 0.01 * got[2]:
+            raise AssertionError("ratio line %r = %r, expected %r" % (name, got, (a, b)))
+    for k, run in enumerate(runs):
+        mortar = run["phases"]["search"][0] + run["phases"]["mortar"][0]
+        if abs(share[k] - 100.0 * mortar / run["wall"]) > 0.06 + 100.0 * 0.001 / run["wall"]:
+            raise AssertionError("share %.1f %% != (search + mortar) / wall" % share[k])
+    # The runs themselves: the frictional one slides on the cone, the other has no friction.
+    itf = check_sliding(out, "top", "3D bench run")
+    last = reactions_by_step(out + "_frictionless", "top")
+    last = last[max(last)]
+    frictionless = {int(r["step"]): r for r in rows_of(out + "_frictionless", "interfaces.csv")}
+    f_t = max(abs(r["tangential_force"]) for r in frictionless.values())
+    print("   seam-bench contact: %d/%d steps, %d/%d corrections, %d/%d evaluations (with/without "
+          "friction) as in newton.csv; frictionless tangential force %.1e, reaction |F_t| %.1e "
+          "of |F_z|" % (with_f["steps"], without["steps"], with_f["corrections"],
+                        without["corrections"], with_f["evaluations"], without["evaluations"], f_t,
+                        math.hypot(last["fx"], last["fy"]) / abs(last["fz"])))
+    if f_t > 1e-12 or math.hypot(last["fx"], last["fy"]) > 1e-8 * abs(last["fz"]):
+        raise AssertionError("the frictionless copy carries a tangential force")
+    if itf[max(itf)]["frictional_dissipation"] <= 0.0:
+        raise AssertionError("no dissipation in the frictional run")
+    H.cleanup(*_dirs)
 
 
 TWO_BOXES_GEO = """
@@ -1312,4 +1621,6 @@ if __name__ == "__main__":
             test_drag_2d_two_bodies_standard, test_drag_3d_quad8, test_drag_3d_quad8_parallel,
             test_drag_3d_tri6, test_drag_3d_two_bodies_tri6, test_frame_indifference_tri6,
             test_stuck_pair_hex20, test_stuck_pair_hex20_parallel, test_drag_2d_tresca_standard,
-            test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy])
+            test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy,
+            test_drag_3d_quad9_standard, test_drag_3d_tri3, test_drag_3d_tresca,
+            test_cattaneo_mindlin_3d_parallel, test_bench_contact, test_ironing_3d_press_c_t])

@@ -141,6 +141,18 @@ std::string boxes_geo(double h, int order) {
          std::to_string(order) + ";\nMesh.SecondOrderIncomplete = 1;\n";
 }
 
+/// The boxes of boxes_geo meshed with tetrahedra (tri3 faces on both sides, non-matching).
+std::string tet_boxes_geo(double h) {
+  return "SetFactory(\"OpenCASCADE\");\nBox(1) = {-0.25, -0.25, -0.25, 1.5, 1.0, 0.25};\n"
+         "Box(2) = {0, 0, 0, 1, 0.5, 0.25};\n"
+         "MeshSize{ PointsOf{ Volume{1}; } } = " +
+         std::to_string(1.3 * h) + ";\nMeshSize{ PointsOf{ Volume{2}; } } = " + std::to_string(h) +
+         ";\n"
+         "Physical Volume(\"base\") = {1}; Physical Volume(\"body\") = {2};\n"
+         "Physical Surface(\"base_bottom\") = {5}; Physical Surface(\"base_top\") = {6};\n"
+         "Physical Surface(\"bottom\") = {11}; Physical Surface(\"top\") = {12};\n";
+}
+
 struct Errors {
   double displacement = 0.0, constraint = 0.0;
   int inactive = 0, stick = 0, slip = 0;
@@ -402,6 +414,12 @@ Case boxes_case(std::string name, const std::string& extra) {
 
 TEST(FrictionTangent, TwoBodies3dQuad4Dual) {
   expect_mixed(check(boxes_case("blocks_3d_quad4_dual", ""), 2), tolerance);
+}
+
+TEST(FrictionTangent, TwoBodies3dTri3Dual) {
+  Case c = boxes_case("blocks_3d_tri3_dual", "");
+  c.geo = tet_boxes_geo(0.125);
+  expect_mixed(check(c, 2), tolerance);
 }
 
 TEST(FrictionTangent, RigidPlane2dLine2Dual) {
