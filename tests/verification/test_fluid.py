@@ -400,22 +400,35 @@ def test_dfg_2d1_three_ranks():
 
 
 def test_dfg_2d1_fieldsplit():
-    """`solver: {linear: iterative}`: GMRES with the Schur-complement fieldsplit
-    preconditioner (velocity | pressure) gives the MUMPS result to the solvers' tolerances,
-    on 1 and 3 ranks, in a bounded number of iterations per linear solve."""
+    """`solver: {linear: iterative}`: FGMRES with the Schur-complement fieldsplit
+    preconditioner (velocity | pressure) gives the MUMPS result to the Newton tolerance, on 1
+    and 3 ranks, and its iterations per Newton step grow by less than 1.5 times when the
+    mesh is refined once (measured 67 -> 84, 1.26; the former ILU(0) Schur block took 146 ->
+    302, 2.07, and fails this bound)."""
     direct = dfg(0.08, 0.012)
-    for np in (1, 3):
+    per_solve = {}
+    for np, h, hc in ((1, 0.08, 0.012), (3, 0.08, 0.012), (1, 0.04, 0.006)):
         info = {}
-        it = dfg(0.08, 0.012, np=np, solver="{linear: iterative}", summary=info)
-        per_solve = info["linear_iterations"] / info["linear_solves"]
-        print("   np = %d: %d linear solves, %.0f GMRES iterations per solve, linear solve %.2f s"
-              % (np, info["linear_solves"], per_solve, info["timings"]["linear_solve"]))
-        H.assert_close(it[0], direct[0], rtol=1e-8, what="c_D, fieldsplit against MUMPS")
-        H.assert_close(it[1], direct[1], rtol=1e-6, what="c_L, fieldsplit against MUMPS")
-        H.assert_close(it[2], direct[2], rtol=1e-8, what="dp, fieldsplit against MUMPS")
-        if info["linear_solves"] > 8 or per_solve > 400:
-            raise AssertionError("fieldsplit: %d solves, %.0f iterations per solve (expected "
-                                 "<= 8 and <= 400)" % (info["linear_solves"], per_solve))
+        it = dfg(h, hc, np=np, solver="{linear: iterative}", summary=info)
+        per_solve[(np, h)] = info["linear_iterations"] / info["linear_solves"]
+        print("   np = %d, h = %g: %d linear solves, %.1f FGMRES iterations per solve, linear "
+              "solve %.2f s" % (np, h, info["linear_solves"], per_solve[(np, h)],
+                                info["timings"]["linear_solve"]))
+        if h == 0.08:
+            H.assert_close(it[0], direct[0], rtol=1e-8, what="c_D, fieldsplit against MUMPS")
+            H.assert_close(it[1], direct[1], rtol=1e-6, what="c_L, fieldsplit against MUMPS")
+            H.assert_close(it[2], direct[2], rtol=1e-8, what="dp, fieldsplit against MUMPS")
+        else:
+            H.assert_close(it[0], CD_REF, rtol=5e-3, what="c_D, fieldsplit")
+            H.assert_close(it[1], CL_REF, rtol=5e-2, what="c_L, fieldsplit")
+        if info["linear_solves"] > 8:
+            raise AssertionError("fieldsplit: %d Newton steps (expected <= 8)"
+                                 % info["linear_solves"])
+    growth = per_solve[(1, 0.04)] / per_solve[(1, 0.08)]
+    print("   iterations per solve grow %.2f times over one refinement" % growth)
+    if growth > 1.5:
+        raise AssertionError("fieldsplit iterations grow %.2f times over one refinement "
+                             "(expected < 1.5)" % growth)
 
 
 @H.full_only

@@ -174,15 +174,19 @@ public:
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
-  /// A saddle-point system [A B^T; C D] (velocity | pressure) for the iterative kind: GMRES
-  /// preconditioned by PCFIELDSPLIT's Schur factorization, lower-triangular, with the
-  /// SIMPLE-type Schur approximation S = D - C diag(A)^-1 B^T assembled (selfp), block
-  /// Jacobi ILU(0) on A and on S (Elman, Silvester & Wathen 2014, ch. 9). `first`/`second`: the
-  /// owned global rows of each field. Options with the prefixes -fieldsplit_u_ and -fieldsplit_p_
-  /// override the blocks' solvers. Collective.
+  /// A saddle-point system [A B^T; C D] (velocity | pressure) for the iterative kind: FGMRES
+  /// preconditioned by PCFIELDSPLIT's lower-triangular Schur factorization with the
+  /// SIMPLE-type Schur approximation S = D - C diag(A)^-1 B^T assembled (selfp): block Jacobi
+  /// ILU(0) per rank on A, one BoomerAMG V-cycle (hypre) on S (Elman, Silvester & Wathen 2014,
+  /// ch. 9). `first`/`second`: the owned global rows of each field. Options with the prefixes
+  /// -fieldsplit_u_, -fieldsplit_p_ and -pc_fieldsplit_ override the defaults. Collective.
   void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second);
+  /// The relative tolerance of the next solves, unless the command line set -ksp_rtol.
+  void set_relative_tolerance(double rtol);
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).
   bool solve(const Matrix& A, const Vector& b, Vector& x);
+  /// The same with the preconditioner built from P instead of A.
+  bool solve(const Matrix& A, const Matrix& P, const Vector& b, Vector& x);
   int last_iterations() const { return iterations_; }
 
 private:
