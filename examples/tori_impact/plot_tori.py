@@ -8,19 +8,17 @@ supports: the total may only fall). Middle: the contact force and the number of 
 nodes. Bottom: the displacement along x of A's facing equator (probe 0) and of B's facing
 rim (probe 3), and B's free flight -v t for comparison."""
 import argparse
-import csv
 import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def read(path):
-    with open(path) as f:
-        return [{k: (float(v) if k != "interface" else v) for k, v in r.items()}
-                for r in csv.DictReader(f)]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests",
+                                "verification"))
+from contact_analysis import read_csv as read  # noqa: E402
 
 
 def main():
