@@ -75,6 +75,55 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
   L = {acc[3], acc[4], acc[5]};
 }
 
+/// Solves M x = b with x given at the prescribed dofs: M with their rows and columns replaced
+/// by the identity, b shifted by the prescribed columns. M and the prescribed dofs are fixed for
+/// the run, so that matrix is built and factorized at the first solve only; later solves reuse
+/// the factorization (the persistency projection and the restart after a contact change solve
+/// with it in many steps).
+class FreeMassSolver {
+public:
+  FreeMassSolver(const Discretization& disc, const la::Matrix& M,
+                 std::span<const PetscInt> prescribed)
+      : M_(M), prescribed_(prescribed.begin(), prescribed.end()),
+        solver_(disc.comm().get(), la::SolverKind::direct), mask_(disc.make_vector()),
+        fixed_(disc.make_vector()) {
+    const std::vector<double> ones(prescribed_.size(), 1.0);
+    mask_.set_values(prescribed_, ones);
+    mask_.assemble();
+  }
+
+  /// x from M x = b on the free dofs, x = `values` on the prescribed ones. b is overwritten.
+  bool solve(const la::Vector& values, la::Vector& b, la::Vector& x) {
+    if (!built_) {
+      M_free_ = M_.copy();
+      M_free_.zero_rows_columns(prescribed_);
+      built_ = true;
+    }
+    const auto n = static_cast<std::size_t>(b.owned_size());
+    {
+      la::Vector::LocalView m(mask_, false), v(values, false), f(fixed_, true);
+      for (std::size_t i = 0; i < n; ++i)
+        f.values()[i] = m.values()[i] != 0.0 ? v.values()[i] : 0.0;
+    }
+    M_.mult(fixed_, x); // b_F -= M_FP x_P, then b_P = x_P
+    b.axpy(-1.0, x);
+    {
+      la::Vector::LocalView m(mask_, false), f(fixed_, false), r(b, true);
+      for (std::size_t i = 0; i < n; ++i)
+        if (m.values()[i] != 0.0) r.values()[i] = f.values()[i];
+    }
+    return solver_.solve(M_free_, b, x);
+  }
+
+private:
+  const la::Matrix& M_;
+  std::vector<PetscInt> prescribed_;
+  la::LinearSolver solver_;
+  la::Vector mask_, fixed_;
+  la::Matrix M_free_;
+  bool built_ = false;
+};
+
 /// Persistency of the contacts that push at t_{n+1} (Laursen & Chawla 1997; Laursen & Love
 /// 2002; docs/contact_dynamics.md §6): the velocity v is replaced by its projection in the mass
 /// norm onto the velocities that keep the weighted gaps of the active slave nodes closed,
@@ -85,9 +134,8 @@ void momenta(const Discretization& disc, const la::Matrix& M, const la::Vector& 
 /// with g~_A(z) = 0, whose contact force is f_c = eps sum_j mu_j dg~_j/du (first order in eps);
 /// then w = v - M^-1 f_c / eps by a mass solve, the prescribed dofs kept. Returns false when
 /// a solve failed (v is then unchanged).
-bool project_onto_active_contacts(NewtonSolver& projector, la::LinearSolver& mass_solver,
-                                  const ContactConstraint& contact, const Discretization& disc,
-                                  const la::Matrix& M, std::span<const PetscInt> prescribed,
+bool project_onto_active_contacts(NewtonSolver& projector, FreeMassSolver& mass_solver,
+                                  const ContactConstraint& contact, const la::Matrix& M,
                                   const la::Vector& u, double t, double eps, int step,
                                   la::Vector& v, la::Vector& z, la::Vector& target,
                                   la::Vector& work) {
@@ -110,10 +158,8 @@ bool project_onto_active_contacts(NewtonSolver& projector, la::LinearSolver& mas
   target.zero();
   contact.add_force(target);
   target.scale(-1.0 / eps);
-  la::Matrix M_free = M.copy();
-  work.zero();
-  M_free.zero_rows_columns(prescribed, &work, &target);
-  if (!mass_solver.solve(M_free, target, work)) return false;
+  z.zero();
+  if (!mass_solver.solve(z, target, work)) return false;
   v.axpy(1.0, work);
   v.update_ghosts();
   return true;
@@ -185,7 +231,11 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   la::Vector z = disc.make_vector(), target = disc.make_vector();
   std::vector<PetscInt> prescribed;
   for (const auto& d : model.dirichlet) prescribed.push_back(d.dof);
-  std::unique_ptr<la::LinearSolver> mass_solver;
+  std::unique_ptr<FreeMassSolver> mass_solver;
+  auto free_mass = [&]() -> FreeMassSolver& {
+    if (!mass_solver) mass_solver = std::make_unique<FreeMassSolver>(disc, M, prescribed);
+    return *mass_solver;
+  };
 
   if (emm && contact.n_end_of_step() > 0 && disc.comm().is_root())
     std::printf("seam: energy_momentum: %d contact interface(s) keep the contact force of the end "
@@ -290,14 +340,11 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
             std::make_unique<NewtonSolver>(config, model, disc, tying, saddle, contact, out);
         projector->set_logging(false);
       }
-      if (!mass_solver)
-        mass_solver = std::make_unique<la::LinearSolver>(disc.comm().get(), la::SolverKind::direct);
       ScopedTimer timer(out.timers(), "contact_persistency");
       const auto lambda = contact.multipliers();
       contact.hold_sets(true);
-      const bool ok =
-          project_onto_active_contacts(*projector, *mass_solver, contact, disc, M, prescribed, u,
-                                       t_new, projection_step(v, h), step, v, z, target, work);
+      const bool ok = project_onto_active_contacts(*projector, free_mass(), contact, M, u, t_new,
+                                                   projection_step(v, h), step, v, z, target, work);
       contact.set_multipliers(lambda);
       contact.evaluate(u, t_new, false, out.timers());
       contact.hold_sets(false);
@@ -324,12 +371,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
         // prescribed dofs keep their Newmark acceleration.
         contact.add_force(work);
         work.scale(-1.0);
-        la::Matrix M_free = M.copy();
-        M_free.zero_rows_columns(prescribed, &a, &work);
-        if (!mass_solver)
-          mass_solver =
-              std::make_unique<la::LinearSolver>(disc.comm().get(), la::SolverKind::direct);
-        if (!mass_solver->solve(M_free, work, w2))
+        if (!free_mass().solve(a, work, w2))
           SEAM_THROW(SolverError,
                      "the mass matrix solve for the acceleration failed at t = ", t_new);
         a.copy_from(w2);
