@@ -18,6 +18,13 @@ solutions.
   held in y (plane strain) and whose hexahedra are the extrusion of the 2D quadrilaterals:
   the force per unit length equals the 2D rigid-circle result on the same section to 1e-6
   (the dual basis of a rectangle quad4 is the tensor product of the line2 ones), np = 3.
+- The iterative contact path (GMRES + GAMG with the preconditioner kept within a load step,
+  the condensed matrix updated in place, the inexact Newton forcing term and the constant
+  linear_elastic tangent): a step-42-like cube (10^3 hex8, 3,993 dofs) indented by a rigid
+  sphere in two load steps, `linear: iterative` on 1 and 3 ranks, equals the direct (MUMPS)
+  solve: the same Newton iterations per step and active nodes, forces and probe displacements
+  within 1e-8. A negative control loosens the Krylov tolerance (-ksp_rtol 1e-3): the same
+  comparison must then fail (more Newton iterations, forces off by about 3e-5).
 - Bad input: negative radius, zero axis, rigid_plane together with rigid_sphere, a 2D
   rigid_cylinder, a cylinder key on a sphere: exit code 1 with a message at the line.
 """
@@ -181,6 +188,84 @@ def test_hertz_3d_sphere_fine_np3():
 
 
 # ---------------------------------------------------------------------------------------------
+# The iterative contact path equals the direct solve
+
+
+CUBE_GEO = "\n".join([
+    'SetFactory("OpenCASCADE");', "Box(1) = {0, 0, 0, 1, 1, 1};", "Transfinite Curve{:} = 11;",
+    "Transfinite Surface{:}; Recombine Surface{:}; Transfinite Volume{1};",
+    'Physical Surface("sides") = {1, 2, 3, 4}; Physical Surface("bottom") = {5};',
+    'Physical Surface("top") = {6}; Physical Volume("body") = {1};']) + "\n"
+
+
+def sphere_on_cube(linear, np=1, extra=()):
+    """The cube of deal.II's step-42 (E = 2e5, nu = 0.3, base clamped, sides on rollers) and
+    its sphere (R = 0.6), pressed 0.01 and 0.02 into the top in two load steps: Newton
+    iterations per step, forces and active nodes per step, probe displacements."""
+    yaml = "\n".join([
+        "dimension: 3", "mesh: {geo: case.geo}", "materials:",
+        "  m: {model: linear_elastic, young: 2.0e5, poisson: 0.3}",
+        "bodies:", "  - {region: body, material: m}", "boundary_conditions:",
+        "  - {region: bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}",
+        "  - {region: sides, type: dirichlet, components: [x, y], value: [0, 0]}",
+        "interfaces:",
+        "  - {name: indenter, type: contact, slave: top, rigid_sphere: {center: [0.5, 0.5, 1.6],"
+        " radius: 0.6, motion: ['0', '0', '-0.02*t']}}",
+        "time: {integrator: static, end: 1, steps: 2}",
+        "solver: {newton: {tolerance: 1.0e-10, max_iterations: 30}, linear: %s}" % linear,
+        "output: {probes: [[0.5, 0.5, 1.0], [0.7, 0.5, 1.0], [0.5, 0.5, 0.5]]}"]) + "\n"
+    work = tempfile.mkdtemp(prefix="seam_obstacle_")
+    _dirs.append(work)
+    H.write_case(work, "case.geo", CUBE_GEO)
+    out = H.solve(H.write_case(work, "case.yaml", yaml), np=np, extra=extra)
+    _dirs.append(out)
+    steps = H.read_csv(os.path.join(out, "steps.csv"))
+    itf = H.read_csv(os.path.join(out, "interfaces.csv"))
+    probes = H.read_csv(os.path.join(out, "probes.csv"))
+    u = [r[k] for r in probes for k in ("ux", "uy", "uz")]
+    return {"newton": [int(r["newton_iterations"]) for r in steps],
+            "active": [int(r["active_nodes"]) for r in itf],
+            "force": [r["normal_force"] for r in itf], "u": u}
+
+
+def sphere_mismatch(run, ref):
+    """What differs between two sphere_on_cube results beyond the test's tolerances ('' if
+    nothing): Newton iterations and active nodes exactly, forces within 1e-8 relative, probe
+    displacements within 1e-8 of the largest."""
+    scale = max(abs(v) for v in ref["u"])
+    problems = []
+    for key in ("newton", "active"):
+        if run[key] != ref[key]:
+            problems.append("%s %s, direct %s" % (key, run[key], ref[key]))
+    if any(abs(a - b) > 1e-8 * abs(b) for a, b in zip(run["force"], ref["force"])):
+        problems.append("forces %s, direct %s" % (run["force"], ref["force"]))
+    du = max(abs(a - b) for a, b in zip(run["u"], ref["u"]))
+    if du > 1e-8 * scale:
+        problems.append("probe displacements differ by %.3g of the largest" % (du / scale))
+    return "; ".join(problems)
+
+
+def test_sphere_iterative_equals_direct():
+    direct = sphere_on_cube("direct")
+    print("   direct: Newton %s, active %s, forces %s"
+          % (direct["newton"], direct["active"], direct["force"]))
+    for np in (1, 3):
+        run = sphere_on_cube("iterative", np=np)
+        problem = sphere_mismatch(run, direct)
+        print("   iterative, np %d: Newton %s, forces %s %s"
+              % (np, run["newton"], run["force"], problem or "(equal)"))
+        if problem:
+            raise AssertionError("iterative solve on %d rank(s) differs from the direct one: %s"
+                                 % (np, problem))
+    # The comparison can fail: a Krylov tolerance far above the Newton target is caught.
+    loose = sphere_on_cube("iterative", extra=("--", "-ksp_rtol", "1e-3"))
+    problem = sphere_mismatch(loose, direct)
+    print("   iterative, -ksp_rtol 1e-3: %s" % (problem or "equal"))
+    if not problem:
+        raise AssertionError("a loosened Krylov tolerance (-ksp_rtol 1e-3) went unnoticed")
+
+
+# ---------------------------------------------------------------------------------------------
 # A cylinder along y on a block in plane strain equals the 2D circle per unit length
 
 
@@ -271,7 +356,7 @@ def test_bad_input():
 
 
 TESTS = [test_hertz_2d_circle, test_hertz_3d_sphere, test_cylinder_line_contact_equals_2d,
-         test_bad_input, test_hertz_3d_sphere_fine_np3]
+         test_sphere_iterative_equals_direct, test_bad_input, test_hertz_3d_sphere_fine_np3]
 
 if __name__ == "__main__":
     try:

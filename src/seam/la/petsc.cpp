@@ -4,6 +4,8 @@
 
 #include <petscsys.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace seam::la {
@@ -235,6 +237,10 @@ Matrix& Matrix::operator=(Matrix&& o) noexcept {
     if (m_) MatDestroy(&m_);
     m_ = o.m_;
     o.m_ = nullptr;
+    sum_source_ = o.sum_source_;
+    sum_source_state_ = o.sum_source_state_;
+    sum_state_ = o.sum_state_;
+    sum_same_pattern_ = o.sum_same_pattern_;
   }
   return *this;
 }
@@ -297,6 +303,65 @@ void Matrix::axpy(double a, const Matrix& X) {
 void Matrix::axpy_any_pattern(double a, const Matrix& X) {
   check(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
   check(MatAXPY(m_, a, X.m_, DIFFERENT_NONZERO_PATTERN), "MatAXPY");
+}
+
+bool Matrix::holds_pattern_of(const Matrix& X) const {
+  PetscInt lo = 0, hi = 0;
+  check(MatGetOwnershipRange(X.m_, &lo, &hi), "MatGetOwnershipRange");
+  bool holds = true;
+  for (PetscInt i = lo; i < hi && holds; ++i) {
+    PetscInt nx = 0, n = 0;
+    const PetscInt *cx = nullptr, *c = nullptr;
+    check(MatGetRow(X.m_, i, &nx, &cx, nullptr), "MatGetRow");
+    if (nx > 0) {
+      check(MatGetRow(m_, i, &n, &c, nullptr), "MatGetRow");
+      // Both rows are sorted by global column.
+      PetscInt k = 0;
+      for (PetscInt e = 0; e < nx && holds; ++e) {
+        while (k < n && c[k] < cx[e]) ++k;
+        holds = k < n && c[k] == cx[e];
+      }
+      check(MatRestoreRow(m_, i, &n, &c, nullptr), "MatRestoreRow");
+    }
+    check(MatRestoreRow(X.m_, i, &nx, &cx, nullptr), "MatRestoreRow");
+  }
+  int local = holds ? 1 : 0, all = 0;
+  MPI_Comm comm = MPI_COMM_NULL;
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(m_), &comm), "PetscObjectGetComm");
+  MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, comm);
+  return all == 1;
+}
+
+bool Matrix::assign_sum(const Matrix& A, const Matrix& B) {
+  PetscObjectId id = 0;
+  PetscObjectState a_state = 0, state = 0;
+  check(PetscObjectGetId(reinterpret_cast<PetscObject>(A.m_), &id), "PetscObjectGetId");
+  check(MatGetNonzeroState(A.m_, &a_state), "MatGetNonzeroState");
+  if (m_) check(MatGetNonzeroState(m_, &state), "MatGetNonzeroState");
+  // The decision is the same on every rank: the states and ids are collective, and
+  // holds_pattern_of reduces over the ranks.
+  if (m_ && id == sum_source_ && a_state == sum_source_state_ && state == sum_state_ &&
+      holds_pattern_of(B)) {
+    if (sum_same_pattern_) {
+      check(MatCopy(A.m_, m_, SAME_NONZERO_PATTERN), "MatCopy");
+    } else {
+      check(MatZeroEntries(m_), "MatZeroEntries");
+      check(MatAXPY(m_, 1.0, A.m_, SUBSET_NONZERO_PATTERN), "MatAXPY");
+    }
+    check(MatAXPY(m_, 1.0, B.m_, SUBSET_NONZERO_PATTERN), "MatAXPY");
+    check(MatGetNonzeroState(m_, &sum_state_), "MatGetNonzeroState");
+    return true;
+  }
+  *this = A.copy();
+  axpy_any_pattern(1.0, B);
+  MatInfo a_info, info;
+  check(MatGetInfo(A.m_, MAT_GLOBAL_SUM, &a_info), "MatGetInfo");
+  check(MatGetInfo(m_, MAT_GLOBAL_SUM, &info), "MatGetInfo");
+  sum_same_pattern_ = a_info.nz_used == info.nz_used;
+  sum_source_ = id;
+  sum_source_state_ = a_state;
+  check(MatGetNonzeroState(m_, &sum_state_), "MatGetNonzeroState");
+  return false;
 }
 
 void Matrix::add_diagonal(const Vector& values) {
@@ -363,6 +428,10 @@ LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
     check(KSPSetTolerances(ksp_, 1e-10, 1e-50, PETSC_DEFAULT, 2000), "KSPSetTolerances");
   }
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  PetscBool set = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, "-ksp_reuse_preconditioner", &set),
+        "PetscOptionsHasName");
+  user_reuse_set_ = set;
 }
 
 namespace {
@@ -432,8 +501,21 @@ bool LinearSolver::solve(const Matrix& A, const Vector& b, Vector& x) {
   return solve(A, A, b, x);
 }
 
-bool LinearSolver::solve(const Matrix& A, const Matrix& P, const Vector& b, Vector& x) {
+double LinearSolver::relative_tolerance() const {
+  PetscReal rtol = 0.0;
+  check(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, nullptr), "KSPGetTolerances");
+  return rtol;
+}
+
+bool LinearSolver::solve_once(const Matrix& A, const Matrix& P, const Vector& b, Vector& x,
+                              bool reuse) {
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  if (!user_reuse_set_)
+    check(PCSetReusePreconditioner(pc, reuse ? PETSC_TRUE : PETSC_FALSE),
+          "PCSetReusePreconditioner");
   check(KSPSetOperators(ksp_, A.get(), P.get()), "KSPSetOperators");
+  if (!reuse) ++builds_;
   PetscErrorCode ierr = KSPSolve(ksp_, b.get(), x.get());
   if (ierr) return false; // e.g. a zero pivot in the factorization: the caller cuts the step
   KSPConvergedReason reason;
@@ -442,6 +524,31 @@ bool LinearSolver::solve(const Matrix& A, const Matrix& P, const Vector& b, Vect
   KSPGetIterationNumber(ksp_, &its);
   iterations_ = static_cast<int>(its);
   return reason > 0;
+}
+
+bool LinearSolver::solve(const Matrix& A, const Matrix& P, const Vector& b, Vector& x) {
+  if (!keep_ || user_reuse_set_ || kind_ == SolverKind::direct)
+    return solve_once(A, P, b, x, false);
+  const double rtol = relative_tolerance();
+  if (stale_) {
+    const bool ok = solve_once(A, P, b, x, false);
+    stale_ = !ok;
+    first_iterations_ = iterations_;
+    first_rtol_ = rtol;
+    return ok;
+  }
+  const bool ok = solve_once(A, P, b, x, true);
+  // The iterations a fresh preconditioner would need at this tolerance: those of the first
+  // solve, scaled by the decades of reduction asked for.
+  const double decades = std::log10(std::max(rtol, 1e-300));
+  const double first_decades = std::log10(std::max(first_rtol_, 1e-300));
+  const double expected =
+      first_iterations_ * std::max(1.0, first_decades < 0.0 ? decades / first_decades : 1.0);
+  if (ok && iterations_ <= 2.0 * expected + 20.0) return true;
+  stale_ = true;
+  if (ok) return true; // converged, but slowly: the next solve builds it anew
+  x.zero();
+  return solve(A, P, b, x);
 }
 
 } // namespace seam::la

@@ -110,7 +110,11 @@ public:
   Matrix(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> d_nnz,
          std::span<const PetscInt> o_nnz, PetscInt block_size);
   ~Matrix();
-  Matrix(Matrix&& o) noexcept : m_(o.m_) { o.m_ = nullptr; }
+  Matrix(Matrix&& o) noexcept
+      : m_(o.m_), sum_source_(o.sum_source_), sum_source_state_(o.sum_source_state_),
+        sum_state_(o.sum_state_), sum_same_pattern_(o.sum_same_pattern_) {
+    o.m_ = nullptr;
+  }
   Matrix& operator=(Matrix&& o) noexcept;
   Matrix(const Matrix&) = delete;
   Matrix& operator=(const Matrix&) = delete;
@@ -146,6 +150,13 @@ public:
   void axpy(double a, const Matrix& X);
   /// this += a * X for any pattern of X (the pattern of this grows as needed).
   void axpy_any_pattern(double a, const Matrix& X);
+  /// this = A + B, in place when this matrix was last made by assign_sum from the same A (its
+  /// pattern unchanged since) and B's nonzeros lie in its pattern: A's values are copied
+  /// (MatCopy, a memcpy when the patterns are equal) and B's added (MatAXPY,
+  /// SUBSET_NONZERO_PATTERN), so the matrix object, its pattern and any preconditioner that
+  /// refers to it stay. Otherwise this becomes a new matrix with the union of the patterns.
+  /// Returns whether the pattern was reused. Collective.
+  bool assign_sum(const Matrix& A, const Matrix& B);
   /// Adds `values` to the diagonal (entries may be new).
   void add_diagonal(const Vector& values);
   void zero();
@@ -161,7 +172,15 @@ public:
   void set_near_null_space(const Vector& coordinates);
 
 private:
+  /// Whether every nonzero of X (owned rows) lies in this matrix's pattern. Collective.
+  bool holds_pattern_of(const Matrix& X) const;
+
   Mat m_ = nullptr;
+  /// assign_sum: the id and nonzero state of the A this matrix's pattern was made from, and
+  /// this matrix's nonzero state and whether its pattern equals A's then.
+  PetscInt64 sum_source_ = -1;
+  PetscObjectState sum_source_state_ = -1, sum_state_ = -1;
+  bool sum_same_pattern_ = false;
 };
 
 enum class SolverKind { direct, iterative };
@@ -183,6 +202,19 @@ public:
   void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second);
   /// The relative tolerance of the next solves, unless the command line set -ksp_rtol.
   void set_relative_tolerance(double rtol);
+  /// Keeps the preconditioner (GAMG's hierarchy, a factorization) from one solve to the next
+  /// although the matrix changes (PCSetReusePreconditioner), until rebuild_preconditioner()
+  /// or a solve with the kept one needs more than 2 n_0 + 20 Krylov iterations (n_0: those
+  /// of the solve that built it, scaled by the decades of the relative tolerances): then the
+  /// next solve builds it anew; a kept one that does not converge is rebuilt at once and the
+  /// solve repeated. -ksp_reuse_preconditioner on the command line overrides the switch
+  /// (true: PETSc's reuse without rebuilds, false: none).
+  /// The iterative kind only: a kept factorization would be a wrong solve.
+  void keep_preconditioner(bool on) { keep_ = on; }
+  /// The next solve builds the preconditioner from its matrix.
+  void rebuild_preconditioner() { stale_ = true; }
+  /// Preconditioner set-ups since construction.
+  int preconditioner_builds() const { return builds_; }
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).
   bool solve(const Matrix& A, const Vector& b, Vector& x);
   /// The same with the preconditioner built from P instead of A.
@@ -190,9 +222,19 @@ public:
   int last_iterations() const { return iterations_; }
 
 private:
+  /// One KSPSolve; `reuse`: with the preconditioner kept. Returns whether it converged.
+  bool solve_once(const Matrix& A, const Matrix& P, const Vector& b, Vector& x, bool reuse);
+  double relative_tolerance() const;
+
   KSP ksp_ = nullptr;
   SolverKind kind_;
   int iterations_ = 0;
+  bool keep_ = false;
+  bool stale_ = true;           ///< the next solve builds the preconditioner
+  bool user_reuse_set_ = false; ///< -ksp_reuse_preconditioner given: PETSc decides alone
+  int builds_ = 0;
+  int first_iterations_ = 0; ///< Krylov iterations of the solve that built the kept one
+  double first_rtol_ = 0.0;  ///< and its relative tolerance
 };
 
 } // namespace seam::la

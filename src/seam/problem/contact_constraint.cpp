@@ -478,8 +478,8 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
   S.axpy_any_pattern(1.0, la::Matrix::multiply(dL, Kc_));
   S.axpy_any_pattern(1.0, Kc_);
   S.axpy_any_pattern(1.0, la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv));
-  Ksys = K.copy();
-  Ksys.axpy_any_pattern(1.0, S);
+  // In place while the pattern holds (the matrix object and a kept preconditioner stay).
+  Ksys.assign_sum(K, S);
   dLP.mult(r, rsys);
   rsys.axpy(1.0, r);
   rsys.set_values(gap_rows, gap_values);

@@ -144,12 +144,14 @@ bool project_onto_active_contacts(NewtonSolver& projector, FreeMassSolver& mass_
   z.copy_from(u);
   z.update_ghosts();
   const auto res = projector.solve(
-      z, t + eps, step, [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f) {
+      z, t + eps, step, [&](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f) {
         work.copy_from(state);
         work.axpy(-1.0, target);
         M.mult(work, r);
-        K.zero();
-        K.axpy(1.0, M);
+        if (K) {
+          K->zero();
+          K->axpy(1.0, M);
+        }
         f.zero();
         return AssemblyStatus{};
       });
@@ -273,27 +275,27 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     if (emm) {
       // M (v_{n+1} - v_n)/h + f_alg(u_n, u_{n+1}) - f_ext(t_{n+1/2}) = 0 with
       // v_{n+1} = 2 (u_{n+1} - u_n)/h - v_n.
-      evaluate = [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
+      evaluate = [&](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f_ext) {
         const auto status =
-            assemble_algorithmic(model, disc, u_n, state, 0.5 * (t + t_new), r, &K, &f_ext);
+            assemble_algorithmic(model, disc, u_n, state, 0.5 * (t + t_new), r, K, &f_ext);
         w2.copy_from(state);
         w2.axpy(-1.0, u_n);
         w2.axpy(-h, v_n);
         w2.scale(2.0 / (h * h));
         M.mult(w2, work);
         r.axpy(1.0, work);
-        K.axpy(2.0 / (h * h), M);
+        if (K) K->axpy(2.0 / (h * h), M);
         return status;
       };
     } else {
       // M a_{n+1-alpha_m} + r(u_{n+1-alpha_f}, t_{n+1-alpha_f}) = 0 (Chung & Hulbert 1993).
       const double t_m = (1 - ga.alpha_f) * t_new + ga.alpha_f * t;
-      evaluate = [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
+      evaluate = [&](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f_ext) {
         mid.copy_from(state);
         mid.scale(1 - ga.alpha_f);
         mid.axpy(ga.alpha_f, u_n);
         mid.update_ghosts();
-        const auto status = assemble(model, disc, mid, t_m, r, &K, &f_ext);
+        const auto status = assemble(model, disc, mid, t_m, r, K, &f_ext);
         // a_{n+1}(u) and a_{n+1-alpha_m} = (1 - alpha_m) a_{n+1} + alpha_m a_n.
         w2.copy_from(state);
         w2.axpy(-1.0, u_n);
@@ -304,8 +306,10 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
         w2.axpy(ga.alpha_m, a_n);
         M.mult(w2, work);
         r.axpy(1.0, work);
-        K.scale(1 - ga.alpha_f);
-        K.axpy((1 - ga.alpha_m) / (ga.beta * h * h), M);
+        if (K) {
+          K->scale(1 - ga.alpha_f);
+          K->axpy((1 - ga.alpha_m) / (ga.beta * h * h), M);
+        }
         return status;
       };
     }

@@ -36,6 +36,10 @@ struct NewtonResult {
   const char* failure = "";
 };
 
+/// Whether the bulk tangent of a static run is constant: every body linear_elastic (small
+/// strain), no follower (pressure) loads on any rank, no saddle-point system. Collective.
+bool constant_tangent(const Model& model, const Discretization& disc, bool saddle_point);
+
 /// The linear solver of a solid's Newton system (linear_solver_choice.hpp).
 la::SolverKind linear_solver_kind(const io::Config& config, const Discretization& disc,
                                   bool saddle_point);
@@ -64,17 +68,26 @@ public:
                          tying.eliminated_dofs().end());
     const auto X = disc.coordinates_vector();
     reference_coordinates_ = X.norm();
-    if (linear_solver_kind(config, disc, saddle.active() || contact.saddle_point()) ==
-        la::SolverKind::iterative)
-      K_.set_near_null_space(X);
+    iterative_ = linear_solver_kind(config, disc, saddle.active() || contact.saddle_point()) ==
+                 la::SolverKind::iterative;
+    if (iterative_) K_.set_near_null_space(X);
+    // Within a load step the Newton matrices differ little: GAMG's hierarchy of the first
+    // solve preconditions the later ones (la::LinearSolver::keep_preconditioner).
+    solver_.keep_preconditioner(iterative_);
   }
+
+  /// Whether the bulk tangent is the same at every state of a load step: assembled at the
+  /// first iteration only, the later ones assemble the residual alone (static runs of
+  /// linear_elastic bodies without follower loads and saddle points: constant_tangent()).
+  void set_constant_tangent(bool on) { constant_tangent_ = on; }
 
   /// Newton iterations at time t from the last converged u. The first iteration is the
   /// predictor: it is linearized at the old state and carries the increment of the prescribed
   /// displacements as an inhomogeneous constraint, so the interior follows the moving
   /// boundary instead of being left behind (which would invert the elements next to it).
-  /// Evaluates r = f_int - f_ext (plus any inertia), its tangent K and f_ext alone at u.
-  using Evaluator = std::function<AssemblyStatus(const la::Vector& u, la::Vector& r, la::Matrix& K,
+  /// Evaluates r = f_int - f_ext (plus any inertia), its tangent K (unless K is null: the
+  /// residual alone) and f_ext alone at u.
+  using Evaluator = std::function<AssemblyStatus(const la::Vector& u, la::Vector& r, la::Matrix* K,
                                                  la::Vector& f_ext)>;
   NewtonResult solve(la::Vector& u, double t, int step, const Evaluator& evaluate);
 
@@ -155,6 +168,8 @@ private:
   double last_increment_ = 0.0;
   double last_norm_ = 0.0; // residual norm of the previous iteration
   bool logging_ = true;
+  bool iterative_ = false;             // the Newton systems go to GMRES + GAMG (inexact Newton)
+  bool constant_tangent_ = false;      // set_constant_tangent
   double reference_coordinates_ = 0.0; // |X|, the scale of round-off in X + u
 };
 

@@ -20,6 +20,8 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
                 const Checkpoints& checkpoints) {
   const auto& tc = config.time;
   NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
+  newton.set_constant_tangent(
+      constant_tangent(model, disc, saddle.active() || contact.saddle_point()));
   parallel::mark_memory(disc.comm().get(), "matrix_allocation");
   la::Vector u = disc.make_vector();
   la::Vector u_saved = disc.make_vector();
@@ -82,8 +84,8 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     }
     const auto res =
         newton.solve(u, t_new, step + 1,
-                     [&](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
-                       return assemble(model, disc, state, t_new, r, &K, &f_ext);
+                     [&](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f_ext) {
+                       return assemble(model, disc, state, t_new, r, K, &f_ext);
                      });
     if (!res.converged) {
       newton.reject(u, u_saved);

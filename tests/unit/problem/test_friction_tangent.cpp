@@ -203,8 +203,8 @@ Errors check(const Case& c, int n_directions) {
   NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
   la::Vector u = disc.make_vector();
   const auto evaluator = [&](double t) {
-    return [&, t](const la::Vector& state, la::Vector& r, la::Matrix& K, la::Vector& f_ext) {
-      return assemble(model, disc, state, t, r, &K, &f_ext);
+    return [&, t](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f_ext) {
+      return assemble(model, disc, state, t, r, K, &f_ext);
     };
   };
   // Press (accepted), then drag: converged but not accepted. The step starts (energy-momentum
