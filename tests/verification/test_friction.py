@@ -859,9 +859,11 @@ def test_ironing_2d():
     H.cleanup(*_dirs)
 
 
-def ironing_press(np=1, c_t=None):
-    """The pressing stage of the 3D ironing example (h = 0.5, t <= 0.4 in 10 steps); returns
-    the output directory and seam's standard error (its warnings)."""
+def ironing_press(np=1, c_t=None, line_search=None, max_step_cuts=None, check=True):
+    """The pressing stage of the 3D ironing example (h = 0.5, t <= 0.4 in 10 steps), with
+    `c_t`, `solver.newton.line_search` and `time.max_step_cuts` if given; returns the output
+    directory and seam's standard error (its warnings). Without `check` a failed run is kept:
+    then (output directory, exit code, stdout, stderr)."""
     work = tempfile.mkdtemp(prefix="seam_ironing_press_")
     with open(os.path.join(EXAMPLES, "ironing", "ironing_3d.geo")) as src:
         H.write_case(work, "ironing_3d.geo", src.read())
@@ -871,11 +873,18 @@ def ironing_press(np=1, c_t=None):
         line = "    friction: {model: coulomb, coefficient: 0.3}\n"
         assert line in text
         text = text.replace(line, line + "    c_t: %r\n" % c_t)
+    if line_search is not None:
+        text = text.replace("max_iterations: 30}", "max_iterations: 30, line_search: %s}"
+                            % ("true" if line_search else "false"))
+        assert "line_search" in text
+    if max_step_cuts is not None:
+        text = text.replace("steps: 10}", "steps: 10, max_step_cuts: %d}" % max_step_cuts)
+        assert "max_step_cuts" in text
     path = H.write_case(work, "ironing_3d.yaml", text)
     out = tempfile.mkdtemp(prefix="seam_verif_")
-    _, _, err = H.run(["run", path, "-o", out, "--quiet"], np=np)
+    code, stdout, err = H.run(["run", path, "-o", out], np=np, check=check)
     _dirs.extend([work, out])
-    return out, err
+    return (out, err) if check else (out, code, stdout, err)
 
 
 def test_ironing_3d_press():
@@ -946,43 +955,64 @@ def test_ironing_3d_press_parallel():
 
 def test_ironing_3d_press_c_t():
     """The converged pressing stage of the 3D ironing does not depend on c_t: the default
-    (c_t = c_n = E_slab / h) against c_t = 0.5 and 5, the die's reactions in every step to
-    1e-8 of max |F_z| in every step before a step cut (c_t = 5 cuts the step to t = 0.24, after
-    which the path differs), the same stick/slip/inactive status at every slave node at the end
-    of a run without a cut.
-    (With c_t = 10 or 20 the step to t = 0.08 does not converge: examples/ironing/README.md.)"""
-    runs = [ironing_press()[0]] + [ironing_press(c_t=c)[0] for c in (0.5, 5.0)]
+    (c_t = c_n = E_slab / h) against c_t = 5, 10 and 20 (20 times c_n), each run all 10 steps
+    without a step cut, the die's reactions in every step to 1e-8 of max |F_z|, the same
+    stick/slip/inactive status at every slave node at the end. With the larger c_t the sliding
+    nodes' slip, not their traction, sets the direction of z, and Newton's method without the
+    line search alternates between two iterates (docs/input.md §6.1): with `line_search: false`
+    and c_t = 10 the step to t = 0.08 does not converge (checked here with max_step_cuts 0; with
+    its 5 cuts the run gives up at t = 0.0475). The default run shortens no correction (its
+    iterations are those without the line search; SEAM_FULL compares its newton.csv with one
+    of `line_search: false` byte for byte)."""
+    values = (None, 5.0, 10.0, 20.0)
+    runs = [ironing_press(c_t=c, check=False) for c in values]
+    for c, (out, code, _, err) in zip(values, runs):
+        if code != 0:
+            raise AssertionError("c_t = %r: exit code %d\n%s" % (c, code, err[-2000:]))
     react = [[r for r in rows_of(out, "reactions.csv") if r["region"] == "die_ends"]
-             for out in runs]
+             for out, _, _, _ in runs]
     status = [{int(r["node"]): r["status"] for r in rows_of(out, "interface_ironing.csv")}
-              for out in runs]
+              for out, _, _, _ in runs]
+    shortened = [stdout.count("line search: correction shortened") for _, _, stdout, _ in runs]
     scale = max(abs(r["fz"]) for r in react[0])
     worst, other = 0.0, 0
-    common = []
-    for k in (1, 2):
-        # Friction depends on the path: the histories are compared up to a step cut (after it
-        # the other run takes other steps), the statuses at the end only without a cut.
-        pairs = []
-        for a, b in zip(react[0], react[k]):
-            if abs(a["time"] - b["time"]) > 1e-9:
-                break
-            pairs.append((a, b))
-        common.append(len(pairs))
-        if len(pairs) < 5 or abs(react[k][-1]["time"] - 0.4) > 1e-12:
-            raise AssertionError("c_t run %d: steps at %r" % (k, [r["time"] for r in react[k]]))
-        worst = max(worst, max(abs(a[c] - b[c]) / scale for a, b in pairs
+    for k, (out, _, _, _) in enumerate(runs):
+        solves = newton_histories(out)
+        steps = rows_of(out, "steps.csv")
+        print("   c_t = %s: %d steps, corrections per step %s, %d corrections shortened"
+              % ("c_n" if values[k] is None else "%g" % values[k], len(steps),
+                 " ".join(str(len(res) - 1) for _, res in solves), shortened[k]))
+        if len(steps) != 10 or len(solves) != len(steps) or abs(steps[-1]["time"] - 0.4) > 1e-12:
+            raise AssertionError("c_t = %r: %d Newton solves for steps at %r (a step cut)"
+                                 % (values[k], len(solves), [r["time"] for r in steps]))
+        worst = max(worst, max(abs(a[c] - b[c]) / scale for a, b in zip(react[0], react[k])
                                for c in ("fx", "fy", "fz")))
-        if len(pairs) == len(react[0]) == len(react[k]):
-            other += sum(1 for j in status[0] if status[k].get(j) != status[0][j])
+        other += sum(1 for j in status[0] if status[k].get(j) != status[0][j])
     n_slip = sum(1 for v in status[0].values() if v == "slip")
-    print("   c_t = c_n (default), 0.5, 5: %d steps; %d and %d steps before a cut (%d and %d "
-          "steps in all), reactions agree to %.2e of max |F_z|, %d nodes with another status "
-          "(%d slip at the end)" % (len(react[0]), common[0], common[1], len(react[1]),
-                                    len(react[2]), worst, other, n_slip))
+    print("   reactions agree to %.2e of max |F_z|, %d nodes with another status (%d slip at the "
+          "end)" % (worst, other, n_slip))
     if n_slip == 0:
         raise AssertionError("set-up: no slipping node")
     if worst > 1e-8 or other:
         raise AssertionError("the converged pressing stage depends on c_t")
+    if shortened[0] != 0:
+        raise AssertionError("the default run shortened %d corrections" % shortened[0])
+    if shortened[2] == 0:
+        raise AssertionError("set-up: c_t = 10 shortened no correction")
+    # Without the line search c_t = 10 does not converge at t = 0.08.
+    out, code, _, err = ironing_press(c_t=10.0, line_search=False, max_step_cuts=0, check=False)
+    steps = rows_of(out, "steps.csv")
+    print("   c_t = 10 without the line search: exit code %d after %d steps (%s)"
+          % (code, len(steps), err.strip().splitlines()[-1] if err.strip() else ""))
+    if code != 2 or len(steps) >= 10:
+        raise AssertionError("c_t = 10 converges without the line search (exit %d)" % code)
+    if H.FULL:
+        plain = ironing_press(line_search=False)[0]
+        with open(os.path.join(plain, "newton.csv")) as a, \
+                open(os.path.join(runs[0][0], "newton.csv")) as b:
+            if a.read() != b.read():
+                raise AssertionError("the default run's newton.csv changes with the line search")
+        print("   default run: newton.csv identical with and without the line search")
     H.cleanup(*_dirs)
 
 

@@ -30,9 +30,16 @@ std::size_t ActiveSetCycles::guard(std::vector<char>& next, std::vector<char>& a
         next[j] = std::max(next[j], history_[i][j]);
       }
   history_.push_back(next);
-  // A cycle of period max_period compares with the sets max_period + 1 iterations back.
-  while (history_.size() > max_period + 1) history_.pop_front();
+  retractable_ = true;
+  // A cycle of period max_period compares with the sets max_period + 1 iterations back; one
+  // more is kept for retract().
+  while (history_.size() > max_period + 2) history_.pop_front();
   return period;
+}
+
+void ActiveSetCycles::retract() {
+  if (retractable_ && history_.size() > 1) history_.pop_back();
+  retractable_ = false;
 }
 
 } // namespace seam::contact

@@ -23,7 +23,10 @@ public:
   static constexpr std::size_t max_period = 8;
 
   /// A new step (or a restart of the search) from the statuses in use.
-  void start(const std::vector<char>& current) { history_.assign(1, current); }
+  void start(const std::vector<char>& current) {
+    history_.assign(1, current);
+    retractable_ = false;
+  }
 
   /// `next`: the statuses the conditions ask for at this iterate (one char per node). If they
   /// equal those of k iterations ago and differ from the last ones (for k >= 3 the last ones
@@ -33,8 +36,15 @@ public:
   /// recorded as the newest set.
   std::size_t guard(std::vector<char>& next, std::vector<char>& alternating);
 
+  /// Forgets the set recorded by the last guard() (if any since start() or the last retract()):
+  /// a shortened Newton correction (line search) decides the statuses again at a point of
+  /// the same iteration, which then stands for it; recorded twice, the set would stretch a
+  /// cycle beyond the periods compared (a period-2 cycle went unseen that way).
+  void retract();
+
 private:
   std::deque<std::vector<char>> history_; ///< oldest first; back() = the statuses in use
+  bool retractable_ = false;
 };
 
 } // namespace seam::contact

@@ -63,12 +63,7 @@ MeshConfig read_mesh(const Node& node, const fs::path& folder) {
   map.forbid("order", !geo, "applies only to a 'geo' geometry (a .msh file is already meshed)");
   map.forbid("serendipity", !geo,
              "applies only to a 'geo' geometry (a .msh file is already meshed)");
-  if (const auto serendipity = map.get("serendipity")) {
-    const auto word = serendipity->string();
-    if (word != "true" && word != "false")
-      serendipity->fail(concat("expected true or false, got '", word, "'"));
-    mesh.serendipity = word == "true";
-  }
+  if (const auto serendipity = map.get("serendipity")) mesh.serendipity = serendipity->boolean();
   if (const auto size = map.get("size")) {
     mesh.size = size->number();
     if (*mesh.size <= 0.0) size->fail(concat("must be > 0, got ", format_number(*mesh.size)));
@@ -242,7 +237,7 @@ SolverConfig read_solver(const Node& node) {
   const Map map(node, {"newton", "linear"});
   SolverConfig solver;
   if (const auto newton_node = map.get("newton")) {
-    const Map newton(*newton_node, {"tolerance", "max_iterations", "initial_guess"});
+    const Map newton(*newton_node, {"tolerance", "max_iterations", "initial_guess", "line_search"});
     if (const auto tolerance = newton.get("tolerance")) {
       solver.newton.tolerance = tolerance->number();
       if (solver.newton.tolerance <= 0.0)
@@ -255,6 +250,8 @@ SolverConfig read_solver(const Node& node) {
     }
     if (const auto guess = newton.get("initial_guess"))
       solver.newton.initial_guess = guess->choice(detail::initial_guess_names);
+    if (const auto search = newton.get("line_search"))
+      solver.newton.line_search = search->boolean();
   }
   if (const auto linear = map.get("linear")) solver.linear = linear->choice(detail::linear_names);
   return solver;

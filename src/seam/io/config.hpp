@@ -207,6 +207,8 @@ struct NewtonConfig {
   double tolerance = 1e-10; ///< on the relative residual norm
   int max_iterations = 25;
   InitialGuess initial_guess = InitialGuess::previous; ///< static load steps only
+  /// Backtracking of condensed contact corrections that do not reduce the residual.
+  bool line_search = true;
 };
 
 struct SolverConfig {

@@ -139,6 +139,12 @@ int Node::integer() const {
   return *value;
 }
 
+bool Node::boolean() const {
+  if (yaml_.IsScalar() && (yaml_.Scalar() == "true" || yaml_.Scalar() == "false"))
+    return yaml_.Scalar() == "true";
+  fail(concat("expected true or false, got ", describe()));
+}
+
 Expression Node::expression() const {
   if (!yaml_.IsScalar()) fail(concat("expected a number or an expression, got ", describe()));
   if (const auto value = parse_number(yaml_.Scalar())) return Expression(*value);

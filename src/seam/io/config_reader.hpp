@@ -50,6 +50,8 @@ public:
   [[nodiscard]] std::string string() const;
   [[nodiscard]] double number() const;
   [[nodiscard]] int integer() const;
+  /// `true` or `false`.
+  [[nodiscard]] bool boolean() const;
   [[nodiscard]] Expression expression() const;
   /// Items of a sequence, with paths "path[i]".
   [[nodiscard]] std::vector<Node> sequence() const;

@@ -213,11 +213,13 @@ ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t
   return f;
 }
 
-int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers) {
+int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers,
+                                bool retrial) {
   const auto& comm = disc_.comm();
   const auto u_mesh = interface_displacement(u);
   int changes = 0;
   for (auto& s : sides_) {
+    if (retrial) s.cycles.retract();
     {
       ScopedTimer timer(timers, "search");
       s.itf.update(u_mesh, t);

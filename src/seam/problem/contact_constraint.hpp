@@ -91,8 +91,11 @@ public:
   /// The state at displacement u (ghosted, up to date) and time t with the current
   /// multipliers: geometry, search, D, g~; the active set from the complementarity function.
   /// Returns the number of nodes whose status changed against the previous iteration.
-  /// `first` marks the first iteration of a step. Collective.
-  int evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers);
+  /// `first` marks the first iteration of a step; `retrial` a shortened correction of the
+  /// same iteration (line search) after an evaluation that kept every status: the statuses
+  /// decided there replace that evaluation's for the cycling guard. Collective.
+  int evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers,
+               bool retrial = false);
   /// r += contact force of the current multipliers. Collective.
   void add_force(la::Vector& r) const;
   /// Complementarity residual in force units: c_n g~_j on active nodes, D_jj lambda_n,j on

@@ -18,6 +18,12 @@ constexpr double roundoff_increment = 256 * std::numeric_limits<double>::epsilon
 constexpr double stagnation_ratio = 0.25;
 // No floor lies this high: a residual that stagnates above it is a failure, not round-off.
 constexpr double max_floor_residual = 1e-8;
+// Line search on contact corrections (NewtonSolver::solve): a correction shortened to alpha
+// must reduce the residual norm by the fraction sufficient_decrease * alpha (Armijo's rule,
+// Armijo 1966, on the residual norm); alpha is halved down to min_step, which is then taken
+// as it is.
+constexpr double sufficient_decrease = 1e-4;
+constexpr double min_step = 1.0 / 16.0;
 } // namespace
 
 /// g = (prescribed values at time t) - u on the Dirichlet dofs, 0 elsewhere. Returns whether
@@ -76,60 +82,64 @@ std::string describe_linear_solver(const io::Config& config, const Discretizatio
                            saddle_point ? SystemKind::saddle_point : SystemKind::solid));
 }
 
+const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool first, bool retrial,
+                                         const Evaluator& evaluate, State& state) {
+  {
+    ScopedTimer timer(out_.timers(), "assembly");
+    // A constant tangent keeps the one of the first iteration. The plain system may zero the
+    // fixed rows and columns of K_ itself: doing that again changes nothing.
+    state.assembly = evaluate(u, r_, constant_tangent_ && !first ? nullptr : &K_, f_ext_);
+  }
+  parallel::mark_memory(disc_.comm().get(), "first_assembly", true);
+  if (disc_.comm().any(state.assembly.inverted)) return "an element is inverted (det F <= 0)";
+  if (saddle_.active()) saddle_.add_interface_forces(r_);
+  state.changes = 0;
+  state.status_changes = 0;
+  if (contact_.active()) {
+    state.changes = contact_.evaluate(u, t, first, out_.timers(), retrial);
+    state.status_changes = state.changes - contact_.n_inconsistent();
+  }
+  // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
+  la::Vector* r_sys = &r_;
+  if (tying_.active()) {
+    ScopedTimer timer(out_.timers(), "mortar");
+    tying_.condense_matrix(K_, Kt_);
+    tying_.condense_vector(r_, rt_);
+    r_sys = &rt_;
+  }
+  if (contact_.active()) {
+    // The residual with the contact forces of the current multipliers, and the
+    // complementarity residual; the system itself is condensed by the caller.
+    r_full_.copy_from(r_);
+    contact_.add_force(r_full_);
+    state.full_norm = r_full_.norm();
+    rt_.copy_from(r_full_);
+    zero_dirichlet_rows(model_, disc_, rt_);
+    state.norm = std::hypot(rt_.norm(), contact_.complementarity_norm());
+  } else {
+    state.full_norm = r_sys->norm();
+    r_full_.copy_from(*r_sys);
+    zero_dirichlet_rows(model_, disc_, *r_sys);
+    state.norm = r_sys->norm();
+  }
+  if (saddle_.active()) state.norm = std::hypot(state.norm, saddle_.constraint_norm(u));
+  if (!std::isfinite(state.norm) || !std::isfinite(state.full_norm))
+    return "the residual is not finite";
+  return "";
+}
+
 NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evaluator& evaluate) {
   NewtonResult res;
   const auto& nc = config_.solver.newton;
   double reference = 0.0;
   const bool moving_boundary = dirichlet_increment(model_, disc_, u, t, g_);
-  int stalled = 0; // consecutive converged iterations changed only by frozen frictional nodes
+  int stalled = 0;     // consecutive converged iterations changed only by frozen frictional nodes
+  bool search = false; // the last correction may be shortened (line search)
   solver_.rebuild_preconditioner();
   for (int it = 0; it <= nc.max_iterations; ++it) {
-    AssemblyStatus status;
-    {
-      ScopedTimer timer(out_.timers(), "assembly");
-      // A constant tangent keeps the one of the first iteration. The plain system may zero
-      // the fixed rows and columns of K_ itself: doing that again changes nothing.
-      status = evaluate(u, r_, constant_tangent_ && it > 0 ? nullptr : &K_, f_ext_);
-    }
-    parallel::mark_memory(disc_.comm().get(), "first_assembly", true);
-    if (disc_.comm().any(status.inverted)) {
-      res.failure = "an element is inverted (det F <= 0)";
-      return res;
-    }
-    if (saddle_.active()) saddle_.add_interface_forces(r_);
-    int changes = 0;
-    if (contact_.active()) changes = contact_.evaluate(u, t, it == 0, out_.timers());
-    // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
-    la::Matrix* K_sys = &K_;
-    la::Vector* r_sys = &r_;
-    la::Vector* d_sys = &du_;
-    if (tying_.active()) {
-      ScopedTimer timer(out_.timers(), "mortar");
-      tying_.condense_matrix(K_, Kt_);
-      tying_.condense_vector(r_, rt_);
-      K_sys = &Kt_;
-      r_sys = &rt_;
-      d_sys = &dut_;
-    }
-    double full_norm = 0.0, norm = 0.0;
-    if (contact_.active()) {
-      // The residual with the contact forces of the current multipliers, and the
-      // complementarity residual; the system itself is condensed below.
-      r_full_.copy_from(r_);
-      contact_.add_force(r_full_);
-      full_norm = r_full_.norm();
-      rt_.copy_from(r_full_);
-      zero_dirichlet_rows(model_, disc_, rt_);
-      norm = std::hypot(rt_.norm(), contact_.complementarity_norm());
-    } else {
-      full_norm = r_sys->norm();
-      r_full_.copy_from(*r_sys);
-      zero_dirichlet_rows(model_, disc_, *r_sys);
-      norm = r_sys->norm();
-    }
-    if (saddle_.active()) norm = std::hypot(norm, saddle_.constraint_norm(u));
-    if (!std::isfinite(norm) || !std::isfinite(full_norm)) {
-      res.failure = "the residual is not finite";
+    State state;
+    if (const char* failure = evaluate_state(u, t, it == 0, false, evaluate, state); *failure) {
+      res.failure = failure;
       return res;
     }
     // Relative residual: against the first residual of the step and the force level of
@@ -139,7 +149,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     // reflects the prescribed motion.
     const bool predictor = it == 0 && moving_boundary;
     if (it == 0 || (it == 1 && moving_boundary))
-      reference = std::max({reference, norm, full_norm, f_ext_.norm()});
+      reference = std::max({reference, state.norm, state.full_norm, f_ext_.norm()});
     // Or the residual has reached its round-off floor: the tolerance lies below what the
     // arithmetic resolves (the floor grows with |u| and, in dynamics, with M/dt^2, so a step
     // cut would only raise it). Either the last correction was within the tolerance of |u|
@@ -147,33 +157,79 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     // round-off while the state no longer changes), or it was a few hundred ulps of the
     // current configuration X + u and the residual no longer falls, where Newton's quadratic
     // convergence would divide it by orders of magnitude.
-    const double solution = u.norm() + reference_coordinates_;
-    const bool negligible_increment = it >= 2 && last_increment_ <= nc.tolerance * u.norm();
-    const bool roundoff = it >= 2 && last_increment_ <= roundoff_increment * solution &&
-                          norm > stagnation_ratio * last_norm_ &&
-                          norm <= max_floor_residual * reference;
-    const bool meets_tolerance = norm <= nc.tolerance * reference || reference == 0.0;
-    const bool at_floor = !meets_tolerance && (negligible_increment || roundoff);
-    const bool converged = !predictor && changes == 0 && (meets_tolerance || at_floor);
+    struct Convergence {
+      double solution = 0.0;
+      bool meets_tolerance = false, at_floor = false, converged = false;
+    };
+    const auto assess = [&](const State& s) {
+      Convergence c;
+      c.solution = u.norm() + reference_coordinates_;
+      const bool negligible_increment = it >= 2 && last_increment_ <= nc.tolerance * u.norm();
+      const bool roundoff = it >= 2 && last_increment_ <= roundoff_increment * c.solution &&
+                            s.norm > stagnation_ratio * last_norm_ &&
+                            s.norm <= max_floor_residual * reference;
+      c.meets_tolerance = s.norm <= nc.tolerance * reference || reference == 0.0;
+      c.at_floor = !c.meets_tolerance && (negligible_increment || roundoff);
+      c.converged = !predictor && s.changes == 0 && (c.meets_tolerance || c.at_floor);
+      return c;
+    };
+    Convergence conv = assess(state);
+    if (search) {
+      // Backtracking of the last correction (docs/input.md §6.1): where the statuses it was
+      // computed with still hold and the residual norm did not fall by the fraction
+      // sufficient_decrease * alpha, the correction is halved (the multipliers with it) and
+      // the statuses are decided again there; a trial point at which a status changes ends
+      // the search, so status-changing corrections go in full, as the semi-smooth Newton
+      // method has them. Not below the residual where round-off floors lie (§6.1).
+      const double full_norm = state.norm;
+      double alpha = 1.0;
+      while (state.status_changes == 0 && !conv.converged && alpha > min_step &&
+             state.norm > max_floor_residual * reference &&
+             state.norm > (1.0 - sufficient_decrease * alpha) * last_norm_) {
+        alpha *= 0.5;
+        u.copy_from(u_base_);
+        u.axpy(alpha, du_);
+        u.update_ghosts();
+        for (std::size_t i = 0; i < lambda_trial_.size(); ++i)
+          lambda_trial_[i] = lambda_base_[i] + alpha * (lambda_full_[i] - lambda_base_[i]);
+        contact_.set_multipliers(lambda_trial_);
+        last_increment_ = alpha * full_increment_;
+        if (const char* failure = evaluate_state(u, t, false, true, evaluate, state); *failure) {
+          res.failure = failure;
+          return res;
+        }
+        conv = assess(state);
+      }
+      if (alpha < 1.0 && logging_) {
+        char line[200];
+        std::snprintf(line, sizeof line,
+                      "step %5d  iteration %3d  line search: correction shortened to %g "
+                      "(residual %9.3e, %9.3e with the full correction, %9.3e before)",
+                      step, it, alpha, state.norm, full_norm, last_norm_);
+        out_.note(line);
+      }
+    }
     // Frictional nodes frozen by the cycling guard whose status holds its condition in neither
     // stick nor slip (beyond the hysteresis band) count as changes. Once they are the only
     // changes left at a converged residual, nothing can change any more in this step (their
     // statuses stay frozen): after three such iterations the step is cut instead of iterating
     // up to the limit.
+    const int changes = state.changes;
+    const double norm = state.norm;
     const bool frozen_only =
         changes > 0 && contact_.active() && changes == contact_.n_inconsistent();
-    stalled = frozen_only && (meets_tolerance || at_floor) ? stalled + 1 : 0;
+    stalled = frozen_only && (conv.meets_tolerance || conv.at_floor) ? stalled + 1 : 0;
     if (logging_) out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
     last_norm_ = norm;
     res.residual = reference > 0 ? norm / reference : 0.0;
     res.iterations = it;
-    res.strain_energy = disc_.comm().sum(status.strain_energy);
-    if (converged) {
-      if (at_floor)
+    res.strain_energy = disc_.comm().sum(state.assembly.strain_energy);
+    if (conv.converged) {
+      if (conv.at_floor)
         out_.warning(::seam::detail::concat(
             "step ", step, " at t = ", t, ": relative residual ", res.residual,
             " stays above the tolerance ", nc.tolerance, " while the last increment is ",
-            last_increment_ / solution, " of the solution (round-off floor); step accepted"));
+            last_increment_ / conv.solution, " of the solution (round-off floor); step accepted"));
       if (const int on_cone = contact_.n_on_cone(); on_cone > 0)
         out_.warning(::seam::detail::concat(
             "step ", step, " at t = ", t, ": ", on_cone,
@@ -186,6 +242,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       res.failure = "frictional nodes frozen between stick and slip hold neither status";
       return res;
     }
+    search = false;
     if (it == nc.max_iterations) break;
     // Inexact Newton: the Krylov solve needs to reduce its residual only to 1e-2 of the
     // residual Newton stops at (tolerance times the reference), which leaves the quadratic
@@ -211,6 +268,9 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       apply_increment(u, t, predictor);
       continue;
     }
+    la::Matrix* K_sys = tying_.active() ? &Kt_ : &K_;
+    la::Vector* r_sys = tying_.active() ? &rt_ : &r_;
+    la::Vector* d_sys = tying_.active() ? &dut_ : &du_;
     if (contact_.active()) {
       contact_.condense(K_, r_, Kt_, rt_, out_.timers());
       zero_dirichlet_rows(model_, disc_, rt_);
@@ -230,6 +290,11 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
     }
     if (solved && tying_.active()) tying_.expand(dut_, du_);
+    search = solved && line_search_ && !predictor;
+    if (search) {
+      u_base_.copy_from(u);
+      lambda_base_ = contact_.multipliers();
+    }
     if (solved && contact_.active()) {
       ScopedTimer timer(out_.timers(), "condensation");
       contact_.recover(K_, r_, du_);
@@ -238,7 +303,12 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       res.failure = "the linear solver failed";
       return res;
     }
+    if (search) {
+      lambda_full_ = contact_.multipliers();
+      lambda_trial_.resize(lambda_full_.size());
+    }
     apply_increment(u, t, predictor);
+    full_increment_ = last_increment_;
   }
   res.failure = "Newton's method did not converge";
   return res;

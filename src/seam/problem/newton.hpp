@@ -57,8 +57,11 @@ public:
         contact_(contact), out_(out), K_(disc.make_matrix()), r_(disc.make_vector()),
         r_full_(disc.make_vector()), rt_(disc.make_vector()), du_(disc.make_vector()),
         dut_(disc.make_vector()), g_(disc.make_vector()), f_ext_(disc.make_vector()),
+        u_base_(disc.make_vector()),
         solver_(disc.comm().get(),
-                linear_solver_kind(config, disc, saddle.active() || contact.saddle_point())) {
+                linear_solver_kind(config, disc, saddle.active() || contact.saddle_point())),
+        line_search_(config.solver.newton.line_search && contact.active() &&
+                     !contact.saddle_point() && !saddle.active()) {
     for (const auto& d : model_.dirichlet) dirichlet_rows_.push_back(d.dof);
     // Rows fixed in the Newton system: Dirichlet dofs and (with condensed tying) the
     // eliminated slave dofs, whose rows of T^T K T are empty.
@@ -150,6 +153,21 @@ public:
   }
 
 private:
+  /// The state of one Newton iterate.
+  struct State {
+    AssemblyStatus assembly;
+    int changes = 0;        ///< contact status changes against the previous evaluation, and frozen
+                            ///< frictional nodes whose status violates its condition
+    int status_changes = 0; ///< the status changes alone
+    double norm = 0.0;      ///< residual norm of the free dofs (and constraints)
+    double full_norm = 0.0; ///< with the reaction rows
+  };
+  /// Evaluates the iterate u: r_, K_, f_ext_ (condensed by the tying into rt_, Kt_), the
+  /// contact state with its statuses decided there (`first`: the first iteration of the step;
+  /// `retrial`: a shortened correction, ContactConstraint::evaluate), r_full_ and the norms.
+  /// Returns why the iterate is unusable, or "".
+  const char* evaluate_state(const la::Vector& u, double t, bool first, bool retrial,
+                             const Evaluator& evaluate, State& state);
   /// u += du_ (and the prescribed values made exact after a predictor); ghosts updated.
   void apply_increment(la::Vector& u, double t, bool predictor);
 
@@ -162,8 +180,15 @@ private:
   Output& out_;
   la::Matrix K_, Kt_;
   la::Vector r_, r_full_, rt_, du_, dut_, g_, f_ext_;
+  la::Vector u_base_; ///< the iterate a correction starts from (line search)
   std::vector<PetscInt> fixed_rows_;
   la::LinearSolver solver_;
+  /// Backtracking line search on condensed contact corrections (solver.newton.line_search;
+  /// not with saddle points).
+  bool line_search_ = false;
+  /// Contact multipliers before a correction, after it in full, and at a trial point.
+  std::vector<double> lambda_base_, lambda_full_, lambda_trial_;
+  double full_increment_ = 0.0; ///< |du_| of the last correction in full
   std::vector<PetscInt> dirichlet_rows_;
   double last_increment_ = 0.0;
   double last_norm_ = 0.0; // residual norm of the previous iteration

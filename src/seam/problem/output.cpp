@@ -213,6 +213,10 @@ void Output::warning(const std::string& message) const {
     std::fprintf(stderr, "seam: warning: %s\n", message.c_str());
 }
 
+void Output::note(const std::string& message) const {
+  if (disc_.comm().is_root() && !quiet_) std::printf("  %s\n", message.c_str());
+}
+
 void Output::newton(const NewtonRecord& r) {
   if (!disc_.comm().is_root()) return;
   newton_->add_row({r.step, r.iteration, r.residual, r.increment, r.active_set_changes});

@@ -106,6 +106,9 @@ public:
 
   /// "seam: warning: MESSAGE" on the terminal (stderr of rank 0) when it is not quiet.
   void warning(const std::string& message) const;
+  /// "  MESSAGE" on the terminal (stdout of rank 0, within the Newton iterations) when it is
+  /// not quiet: what an iteration did beyond its row, such as a shortened correction.
+  void note(const std::string& message) const;
   /// One Newton iteration (newton.csv; the terminal table when it is not quiet).
   void newton(const NewtonRecord& r);
   /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due

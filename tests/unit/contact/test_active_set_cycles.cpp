@@ -109,5 +109,33 @@ TEST(ActiveSetCycles, PeriodTwoKeepsTheFormerUnionOfTheLastTwoSets) {
   EXPECT_EQ(alternating, (Set{1, 1, 0}));
 }
 
+TEST(ActiveSetCycles, ARetractedTrialLeavesTheSequenceOfIterates) {
+  // A B C C A B: the statuses of six Newton iterates (the fourth kept C), a cycle seen with
+  // period 4 at the last one. With a line search the fourth iterate's correction is shortened
+  // and C decided again there: retracted first, the guard sees the same sequence and period;
+  // recorded twice, C stretches the cycle to period 5.
+  const Set A{1, 0, 0}, B{0, 1, 0}, C{0, 0, 1};
+  const auto last_period = [&](bool retrial, bool retract) {
+    ActiveSetCycles guard;
+    guard.start(A);
+    Set alternating;
+    std::vector<Set> sets{B, C, C};
+    if (retrial) sets.push_back(C);
+    sets.push_back(A);
+    std::size_t period = 0;
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      if (retrial && retract && i == 3) guard.retract();
+      Set next = sets[i];
+      period = guard.guard(next, alternating);
+      EXPECT_EQ(period, 0u) << "iterate " << i;
+    }
+    Set next = B;
+    return guard.guard(next, alternating);
+  };
+  EXPECT_EQ(last_period(false, false), 4u);
+  EXPECT_EQ(last_period(true, true), 4u);
+  EXPECT_EQ(last_period(true, false), 5u);
+}
+
 } // namespace
 } // namespace seam::contact

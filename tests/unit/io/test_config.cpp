@@ -275,6 +275,7 @@ TEST_F(ConfigTest, Minimal2dInputTakesDefaults) {
   EXPECT_EQ(config.time.max_step_cuts, 5);
   EXPECT_EQ(config.solver.newton.tolerance, 1e-10);
   EXPECT_EQ(config.solver.newton.max_iterations, 25);
+  EXPECT_TRUE(config.solver.newton.line_search);
   EXPECT_EQ(config.solver.linear, LinearSolverKind::automatic);
   EXPECT_EQ(config.output.every, 1);
   ASSERT_EQ(config.output.probes.size(), 1u);
@@ -291,6 +292,22 @@ time: {end: 1.0, dt: 0.3}
   EXPECT_EQ(config.time.n_steps, 4); // 0.3, 0.6, 0.9, 1.0
   EXPECT_DOUBLE_EQ(config.time.time_at(3), 0.9);
   EXPECT_EQ(config.time.time_at(4), 1.0);
+}
+
+TEST_F(ConfigTest, NewtonLineSearchIsReadAsABoolean) {
+  constexpr std::string_view head = R"yaml(dimension: 3
+mesh: {file: blocks.msh}
+materials: {m: {model: linear_elastic, young: 1, poisson: 0}}
+bodies: [{region: b, material: m}]
+time: {end: 1.0, steps: 1}
+)yaml";
+  for (const bool value : {false, true}) {
+    const Config config =
+        load(std::string(head) + "solver: {newton: {line_search: " + (value ? "true" : "false") +
+             "}}\n");
+    EXPECT_EQ(config.solver.newton.line_search, value);
+    EXPECT_EQ(config.solver.newton.max_iterations, 25); // the other keys keep their defaults
+  }
 }
 
 TEST_F(ConfigTest, AbsoluteMeshPathIsKept) {
