@@ -936,19 +936,20 @@ std::vector<std::string> ContactConstraint::held_whole() const {
     const auto n_slave = std::to_string(s.itf.slave().n_facets());
     std::string text = "interface " + s.itf.name() + ": held whole on every rank: ";
     const std::string arrays =
-        std::string("the averaged nodal normals, the nodal arrays per slave node (D, g~, "
-                    "multipliers, active set") +
+        std::string("the displacement of every interface node, the averaged nodal normals, the "
+                    "nodal arrays per slave node (D, g~, multipliers, active set") +
         (s.friction ? ", friction history" : "") + ")";
     if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.itf.n_master_facets()) +
               " master facets, their nodes and current positions), " + arrays +
               "; distributed: the search (own slave elements against the master facets "
-              "ghosted by bounding boxes) and the mortar integration";
+              "ghosted by bounding boxes) and the mortar integration of the own slave "
+              "elements (against the master side held whole)";
     else if (s.itf.self_contact())
       text += "the surface (" + n_slave +
               " facets, nodes, current positions) and its search (roles assigned on every "
               "rank), " +
-              arrays + "; distributed: the mortar integration";
+              arrays + "; distributed: the mortar integration of the own slave elements";
     else
       text += "the slave side (" + n_slave + " facets, nodes, current positions), the " +
               s.itf.obstacle().name() + ", " + arrays +
