@@ -6,8 +6,9 @@ and on their own (`independent`, rebalanced after every step whose max/min excee
 
 Printed per np and distribution, at the last step (from summary.json ranks_detail and
 parallel.csv): integration cells and candidate pairs per rank as max/mean, the ranks that
-have any, the redistributions made, and the mortar phase time (evaluation + linearization,
-max over ranks) with the wall time. On a machine with C cores, times are meaningful only at
+have any, the redistributions made, the mortar phase time (evaluation + linearization,
+max over ranks) with the wall time, and the master facets each rank received at the last
+search (ghosted to it by bounding boxes) of the master surface's. On a machine with C cores, times are meaningful only at
 np <= C; the counts are deterministic at any np.
 
 Usage: /usr/bin/python3 bench/contact_distribution.py [--seam build/bin/seam] [--max-np 8]
@@ -69,7 +70,7 @@ def main():
     print("Hertz sphere on a block, refine %g, balance measure %s" % (args.refine, args.work))
     print("%3s %-12s %6s %12s %12s %8s %6s %10s %8s" % (
         "np", "distribution", "dofs", "cells max/mn", "pairs max/mn", "ranks>0", "moves",
-        "mortar s", "wall s"))
+        "mortar s", "wall s") + "  master facets received per rank")
     for np in range(1, args.max_np + 1):
         for distribution in ("bulk", "independent"):
             if np == 1 and distribution == "independent":
@@ -79,10 +80,12 @@ def main():
             cells = [r["integration_cells"] for r in detail]
             pairs = [r["pairs"] for r in detail]
             moves = sum(int(float(r["redistributed"])) for r in rows)
-            print("%3d %-12s %6d %12.2f %12.2f %5d/%-2d %6d %10.3f %8.2f" % (
+            received = "/".join(str(r["contact_master_received"]) for r in detail)
+            print("%3d %-12s %6d %12.2f %12.2f %5d/%-2d %6d %10.3f %8.2f  %s of %d" % (
                 np, distribution if np > 1 else "-", summary["dofs"], max_over_mean(cells),
                 max_over_mean(pairs), sum(1 for c in cells if c > 0), np, moves,
-                summary["timings"]["mortar"], summary["wall_seconds"]))
+                summary["timings"]["mortar"], summary["wall_seconds"], received,
+                detail[0]["contact_master_facets"]))
 
 
 if __name__ == "__main__":

@@ -31,7 +31,12 @@ Each test can fail:
 - the tied interface distributed (two 3 x 1 x 1 blocks tied at z = 1, np = 3): every slave
   facet is integrated on exactly one rank, the ranks hold no cells for the interface sides, the
   interface elements they hold (slave facets integrated, master facets ghosted) add up to at
-  most 1.25 x the interface's and no rank holds 0.75 of it; results equal np = 1 to 1e-10.
+  most 1.25 x the interface's and no rank holds 0.75 of it; results equal np = 1 to 1e-10;
+- the two-body contact search distributed (Hertz sphere on a block in 3D, 2D ironing with
+  friction; np = 1, 2, 3): every rank receives strictly fewer master facets than the master
+  surface has (at np = 3 at most 0.6 / 0.5 of it), each rank every master facet its pairs
+  reach, the ranks together at least the master facets the np = 1 pairs reach; the ranks'
+  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10.
 """
 import os
 import sys
@@ -156,6 +161,9 @@ def test_hertz_held_never_redistributes():
 IRONING = (("time: {integrator: static, end: 2, steps: 140}",
             "time: {integrator: static, end: 1.3, steps: 52}\n"
             "parallel: {work: integration_cells}"), ("every: 10", "every: 1000"))
+
+IRONING_SHORT = (("time: {integrator: static, end: 2, steps: 140}",
+                  "time: {integrator: static, end: 1.1, steps: 22}"), ("every: 10", "every: 1000"))
 
 
 def test_ironing_rebalances_np4():
@@ -503,8 +511,90 @@ def test_contact_friction_part_np3():
     check_contact_part(friction=True)
 
 
+def compare_rows(a, b, name, keys, rtol, what, scale_of=None):
+    """The rows of `name` at np = k against np = 1: largest difference relative to the
+    largest value of each column (of column scale_of[k] for column k)."""
+    scale_of = scale_of or {}
+    ra, rb = rows_of(a, name), rows_of(b, name)
+    if len(ra) != len(rb):
+        raise AssertionError("%s: %s has %d rows against %d" % (what, name, len(ra), len(rb)))
+    worst = 0.0
+    for k in keys:
+        # A force column relative to the largest force (the tangential force of frictionless
+        # contact is round-off).
+        scale = max(abs(r[scale_of.get(k, k)]) for r in ra) or 1.0
+        worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(ra, rb)])
+    print("   %s: %s differs by %.2e (relative)" % (what, name, worst))
+    if worst > rtol:
+        raise AssertionError("%s: %s differs by %.3e" % (what, name, worst))
+
+
+def check_master_ghosted(name, yaml, replace, below):
+    """The two-body contact search distributed (docs/parallel.md, "Contact: master facets
+    ghosted"): at np = 1, 2, 3 each rank searches its slave elements against the master facets
+    ghosted to it by bounding boxes. Bounds: every rank receives strictly fewer master facets
+    than the master surface has, at np = 3 at most `below` of it; each rank received every
+    master facet its own pairs reach (master_ghosts), and the ranks together every master facet
+    the np = 1 pairs reach; the ranks' pairs add up to the np = 1 pairs, and reactions.csv and
+    interfaces.csv equal np = 1 to 1e-10."""
+    outs = {np: run_example(name, yaml, np, replace) for np in (1, 2, 3)}
+    one = ranks_detail(outs[1])[0]
+    for np in (1, 2, 3):
+        detail = ranks_detail(outs[np])
+        n_m = detail[0]["contact_master_facets"]
+        received = [r["contact_master_received"] for r in detail]
+        print("   %s np %d: master facets received per rank %s of %d; pairs %s, master facets "
+              "they reach %s" % (name, np, "/".join(map(str, received)), n_m,
+                                 [r["pairs"] for r in detail], [r["master_ghosts"] for r in detail]))
+        if n_m <= 0 or any(r["contact_master_facets"] != n_m for r in detail):
+            raise AssertionError("np %d: master surface sizes %s"
+                                 % (np, [r["contact_master_facets"] for r in detail]))
+        if max(received) >= n_m:
+            raise AssertionError("np %d: a rank received %d of the %d master facets"
+                                 % (np, max(received), n_m))
+        if np == 3 and max(received) > below * n_m:
+            raise AssertionError("np 3: a rank received %d of the %d master facets (> %g)"
+                                 % (max(received), n_m, below))
+        for r in detail:
+            if r["contact_master_received"] < r["master_ghosts"]:
+                raise AssertionError("np %d rank %d: pairs reach %d master facets, %d received"
+                                     % (np, r["rank"], r["master_ghosts"],
+                                        r["contact_master_received"]))
+        if sum(received) < one["master_ghosts"]:
+            raise AssertionError("np %d: %d master facets received over the ranks, the np 1 "
+                                 "pairs reach %d" % (np, sum(received), one["master_ghosts"]))
+        pairs = sum(r["pairs"] for r in detail)
+        if pairs != one["pairs"]:
+            raise AssertionError("np %d: %d pairs over the ranks, %d at np 1"
+                                 % (np, pairs, one["pairs"]))
+        if np == 1:
+            continue
+        what = "%s np %d vs np 1" % (name, np)
+        compare_reactions(outs[1], outs[np], 1e-10, what)
+        compare_rows(outs[1], outs[np], "interfaces.csv",
+                     ("normal_force", "tangential_force", "contact_area",
+                      "frictional_dissipation"), 1e-10, what,
+                     {"tangential_force": "normal_force"})
+        c1 = H.read_json(os.path.join(outs[1], "summary.json"))["interfaces"][0]
+        cn = H.read_json(os.path.join(outs[np], "summary.json"))["interfaces"][0]
+        if cn["candidate_pairs"] != c1["candidate_pairs"]:
+            raise AssertionError("%s: %d candidate pairs, %d at np 1"
+                                 % (what, cn["candidate_pairs"], c1["candidate_pairs"]))
+    H.cleanup(*_dirs)
+
+
+def test_hertz_master_ghosted():
+    """Hertz sphere on a block (3D, two bodies), two load steps."""
+    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.6)
+
+
+def test_ironing_master_ghosted():
+    """2D ironing with Coulomb friction: pressed in and slid a little, coarse steps."""
+    check_master_ghosted("ironing", "ironing_2d.yaml", IRONING_SHORT, 0.5)
+
+
 if __name__ == "__main__":
-    H.main([test_held_cells_np3, test_tied_interface_part_np3,
+    H.main([test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3, test_tied_interface_part_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])

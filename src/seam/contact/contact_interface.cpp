@@ -177,7 +177,7 @@ void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
     owned_offsets_.push_back(static_cast<local_index>(owned_nodes_.size()));
   }
   search_.reset();
-  if (!owned_.empty() && !self_ && !obstacle_.round())
+  if (!owned_.empty() && !self_ && !obstacle_.round() && !external_)
     search_ = std::make_unique<search::InterfaceSearch>(
         search::FacetSurface{dim(), slave_.coordinates, owned_offsets_, owned_nodes_},
         master_.surface(), search_options_);
@@ -227,7 +227,7 @@ std::int64_t ContactInterface::mesh_dof_of_master(local_index p) const {
   return static_cast<std::int64_t>(master_mesh_nodes_[static_cast<std::size_t>(p)]) * dim();
 }
 
-void ContactInterface::update(std::span<const double> u, double t) {
+void ContactInterface::place(std::span<const double> u, double t) {
   const int dim = this->dim();
   slave_.update_coordinates(*mesh_, u);
   if (rigid_) {
@@ -238,9 +238,57 @@ void ContactInterface::update(std::span<const double> u, double t) {
     for (std::size_t i = 0; i < plane_corners_.size(); ++i)
       master_.coordinates[i] =
           plane_corners_[i] + obstacle_displacement_[i % static_cast<std::size_t>(dim)];
-  } else {
-    master_.update_coordinates(*mesh_, u);
+    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
+    for (std::size_t j = 0; j < normals_.size() / static_cast<std::size_t>(dim); ++j)
+      current_.contact_normal(dim, &slave_.coordinates[j * dim], &normals_[j * dim], nullptr);
+    return;
   }
+  master_.update_coordinates(*mesh_, u);
+  // Self contact: the normals of the current slave patch, known after the search.
+  if (!self_) normals_ = mortar::averaged_nodal_normals(slave_set());
+}
+
+void ContactInterface::use_external_search() {
+  SEAM_CHECK(!rigid_ && !self_, InputError, "interface '", name_,
+             "': an external search is for two-body interfaces only");
+  external_ = true;
+  search_.reset();
+  pairs_.clear();
+  index_pairs();
+}
+
+void ContactInterface::set_candidates(std::span<const mortar::CandidatePair> pairs) {
+  SEAM_ASSERT(external_);
+  pairs_.clear();
+  keep_facing(pairs);
+  index_pairs();
+}
+
+void ContactInterface::keep_facing(std::span<const mortar::CandidatePair> pairs) {
+  // Only facets that face each other can come into contact.
+  std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
+  std::vector<char> has_normal(static_cast<std::size_t>(master_.n_facets()), 0);
+  for (const auto& p : pairs) {
+    SEAM_ASSERT(std::binary_search(owned_.begin(), owned_.end(), p.slave));
+    // Against a rigid plane the gap is the distance to the plane for any facet orientation,
+    // so every facet near it takes part (no jump in D when a facet turns past 90 degrees).
+    if (rigid_) {
+      pairs_.push_back(p);
+      continue;
+    }
+    const auto a = facet_normal(slave_, p.slave);
+    if (!has_normal[p.master]) {
+      nm[p.master] = facet_normal(master_, p.master);
+      has_normal[p.master] = 1;
+    }
+    const auto& b = nm[p.master];
+    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) pairs_.push_back(p);
+  }
+}
+
+void ContactInterface::update(std::span<const double> u, double t) {
+  place(u, t);
+  if (external_) return;
   pairs_.clear();
   if (obstacle_.round()) {
     collect_round_candidates();
@@ -252,24 +300,19 @@ void ContactInterface::update(std::span<const double> u, double t) {
     for (const auto& p : all)
       if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
     build_slave_patch(slave_, all, patch_);
+    normals_.assign(slave_.coordinates.size(), 0.0);
+    if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
   } else if (search_) {
     search_->update(slave_.coordinates, master_.coordinates);
-    // Only facets that face each other can come into contact.
-    std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
-    std::vector<char> has_normal(static_cast<std::size_t>(master_.n_facets()), 0);
-    for (const auto& p : search_->find_pairs()) {
-      const local_index f = owned_[static_cast<std::size_t>(p.slave)]; // owned -> slave facet
-      const auto a = facet_normal(slave_, f);
-      if (!has_normal[p.master]) {
-        nm[p.master] = facet_normal(master_, p.master);
-        has_normal[p.master] = 1;
-      }
-      const auto& b = nm[p.master];
-      // Against a rigid plane the gap is the distance to the plane for any facet orientation,
-      // so every facet near it takes part (no jump in D when a facet turns past 90 degrees).
-      if (rigid_ || a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) pairs_.push_back({f, p.master});
-    }
+    std::vector<mortar::CandidatePair> found;
+    for (const auto& p : search_->find_pairs()) // owned -> slave facet
+      found.push_back({owned_[static_cast<std::size_t>(p.slave)], p.master});
+    keep_facing(found);
   }
+  index_pairs();
+}
+
+void ContactInterface::index_pairs() {
   std::sort(pairs_.begin(), pairs_.end(), [](const auto& x, const auto& y) {
     return x.slave != y.slave ? x.slave < y.slave : x.master < y.master;
   });
@@ -277,14 +320,6 @@ void ContactInterface::update(std::span<const double> u, double t) {
   for (const auto& p : pairs_) ++pair_offsets_[static_cast<std::size_t>(p.slave) + 1];
   for (std::size_t f = 0; f < static_cast<std::size_t>(slave_.n_facets()); ++f)
     pair_offsets_[f + 1] += pair_offsets_[f];
-  if (rigid_) {
-    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
-    for (std::size_t j = 0; j < normals_.size() / static_cast<std::size_t>(dim); ++j)
-      current_.contact_normal(dim, &slave_.coordinates[j * dim], &normals_[j * dim], nullptr);
-  } else {
-    normals_.assign(slave_.coordinates.size(), 0.0);
-    if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
-  }
 }
 
 void ContactInterface::evaluate(NodalValues& out) const {

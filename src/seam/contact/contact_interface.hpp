@@ -144,8 +144,27 @@ public:
 
   /// Places both sides at the mesh displacement `u` (dim values per mesh node; only interface
   /// nodes are read) and the rigid plane at time t; refits the search trees and collects the
-  /// candidate pairs; recomputes the averaged nodal normals.
+  /// candidate pairs; recomputes the averaged nodal normals. place() and the own search, or
+  /// place() alone with an external search (use_external_search).
   void update(std::span<const double> u, double t);
+
+  /// The current configuration without a search: both sides (and the obstacle) placed at `u`
+  /// and t, the averaged nodal normals of a two-body or rigid interface recomputed. The
+  /// candidate pairs are those of the last search until set_candidates() or update().
+  void place(std::span<const double> u, double t);
+  /// Two-body interfaces: the candidate pairs come from outside (e.g. a search distributed over
+  /// the ranks, problem/contact_search.hpp) through set_candidates() after each place(); the
+  /// interface then keeps no search trees of its own. InputError on other interfaces.
+  void use_external_search();
+  bool external_search() const { return external_; }
+  /// Candidate pairs of the owned slave facets found outside (slave: side-local slave facet,
+  /// master: side-local master facet), at the configuration of the last place(); only facets
+  /// that face each other are kept, as the own search keeps them.
+  void set_candidates(std::span<const mortar::CandidatePair> pairs);
+  /// The absolute inflation of the search volumes (the same on every part).
+  double search_inflation() const { return search_options_.inflation; }
+  /// The master side at the last update / place() (empty for a rigid obstacle).
+  const meshtying::InterfaceSide& master() const { return master_; }
 
   /// The nodal transformation d = T d~ of a modified slave basis (dual multipliers on tri6 /
   /// quad8 facets; mortar::MortarOperators::T), side-local; empty when T = I. D, M and g~
@@ -222,6 +241,11 @@ private:
   void rigid_facet(local_index f, bool derivatives, RigidObstacleFacet& out) const;
   /// Round obstacle: the candidate slave facets, those within the inflation of its surface.
   void collect_round_candidates();
+  /// Appends to pairs_ those of `pairs` (owned slave facet, master facet) whose facets face
+  /// each other (all of them against a rigid plane).
+  void keep_facing(std::span<const mortar::CandidatePair> pairs);
+  /// pairs_ (of the owned slave facets) sorted, their offsets per slave facet.
+  void index_pairs();
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out) const;
@@ -243,6 +267,7 @@ private:
   bool rigid_ = false;
   bool frictional_ = false;
   bool self_ = false;
+  bool external_ = false; ///< use_external_search
   meshtying::InterfaceSide slave_, master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid obstacle: its reference and current surfaces, the motion (a plane's reference corners

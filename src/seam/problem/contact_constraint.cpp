@@ -112,6 +112,16 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
         disc.comm().size() > 1)
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
+    if (!s.itf.rigid() && !s.itf.self_contact()) {
+      // Two bodies: each rank searches the slave facets it evaluates against the master
+      // facets ghosted to it; it hands in those of its own cells.
+      const mesh::Region master = meshtying::side_region(disc.mesh(), *itf.master);
+      std::vector<local_index> held;
+      for (std::int32_t f = 0; f < master.n_facets(); ++f)
+        if (disc.is_local_cell(master.facet_cell[static_cast<std::size_t>(f)])) held.push_back(f);
+      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, std::move(held));
+      s.itf.set_owned_facets(s.bulk_facets);
+    }
     sides_.push_back(std::move(s));
   }
   if (saddle_point_)
@@ -222,14 +232,14 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     if (retrial) s.cycles.retract();
     {
       ScopedTimer timer(timers, "search");
-      s.itf.update(u_mesh, t);
+      search(s, u_mesh, t);
     }
     if (!s.distributed) {
-      // The first distribution needs the candidate pairs of the whole interface; the search
-      // then runs on this rank's slave elements only.
+      // The first distribution needs the candidate pairs of the slave elements each rank
+      // holds at the start; the search then runs on its new slave elements.
       distribute(s);
       ScopedTimer timer(timers, "search");
-      s.itf.update(u_mesh, t);
+      search(s, u_mesh, t);
     }
     ScopedTimer timer(timers, "mortar");
     const double cpu = cpu_seconds();
@@ -279,6 +289,15 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       changes += s.active[j] != s.active_previous[j];
   }
   return changes;
+}
+
+void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
+  if (!s.search) {
+    s.itf.update(u, t);
+    return;
+  }
+  s.itf.place(u, t);
+  s.search->find(s.itf);
 }
 
 void ContactConstraint::sum_nodal_values(Side& s) const {
@@ -838,6 +857,8 @@ void ContactConstraint::balance() {
         static_cast<int>(std::unique(masters.begin(), masters.end()) - masters.begin());
     s.share.candidates =
         static_cast<std::int64_t>(comm.sum(static_cast<double>(s.itf.n_candidates())));
+    // Without the distributed search a rank searches against the whole master surface.
+    s.share.master_received = s.search ? s.search->n_received() : s.itf.n_master_facets();
     s.work_seconds = 0.0;
     s.redistributed = false;
     if (!s.distribution || !s.balance.rebalance) continue;
@@ -911,6 +932,35 @@ std::vector<std::string> ContactConstraint::describe() const {
   return out;
 }
 
+std::vector<std::string> ContactConstraint::held_whole() const {
+  std::vector<std::string> out;
+  for (const auto& s : sides_) {
+    const auto n_slave = std::to_string(s.itf.slave().n_facets());
+    std::string text = "interface " + s.itf.name() + ": held whole on every rank: ";
+    const std::string arrays =
+        std::string("the displacement of every interface node, the averaged nodal normals, the "
+                    "nodal arrays per slave node (D, g~, multipliers, active set") +
+        (s.friction ? ", friction history" : "") + ")";
+    if (s.search)
+      text += "both sides (" + n_slave + " slave and " + std::to_string(s.itf.n_master_facets()) +
+              " master facets, their nodes and current positions), " + arrays +
+              "; distributed: the search (own slave elements against the master facets "
+              "ghosted by bounding boxes) and the mortar integration of the own slave "
+              "elements (against the master side held whole)";
+    else if (s.itf.self_contact())
+      text += "the surface (" + n_slave +
+              " facets, nodes, current positions) and its search (roles assigned on every "
+              "rank), " +
+              arrays + "; distributed: the mortar integration of the own slave elements";
+    else
+      text += "the slave side (" + n_slave + " facets, nodes, current positions), the " +
+              s.itf.obstacle().name() + ", " + arrays +
+              "; distributed: the search and the integration of the slave elements";
+    out.push_back(std::move(text));
+  }
+  return out;
+}
+
 std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {
   const int dim = disc_.dim();
   const auto u_mesh = interface_displacement(u);
@@ -972,6 +1022,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.redistributed = s.redistributed;
     rep.local_slave_elements = s.share.slave_elements;
     rep.local_master_ghosts = s.share.master_ghosts;
+    rep.local_master_received = s.share.master_received;
     rep.local_pairs = s.part.n_pairs;
     rep.local_integration_cells = s.part.n_cells;
     rep.local_contact_nodes = s.nodal.decided;

@@ -54,6 +54,7 @@
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/parallel/facet_distribution.hpp"
+#include "seam/problem/contact_search.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
@@ -145,6 +146,9 @@ public:
   bool set_changed() const;
   /// One line per interface for `seam check`.
   std::vector<std::string> describe() const;
+  /// One line per interface: what every rank still holds whole of it, and what is
+  /// distributed (printed at the start of a run).
+  std::vector<std::string> held_whole() const;
   /// Per interface, the state for the output files (replicated), after balance().
   std::vector<ContactReport> reports(const la::Vector& u) const;
   /// Active nodes in stick (friction) and in slip (every active node without friction).
@@ -212,13 +216,16 @@ private:
     // Distribution of the slave facets over the ranks.
     std::vector<local_index> bulk_facets; ///< slave facets whose cell this rank assembles
     std::unique_ptr<parallel::FacetDistribution> distribution; ///< independent only
-    bool distributed = false;                                  ///< the first distribution is done
+    /// Two-body interfaces: the search distributed over the ranks (master facets ghosted).
+    std::unique_ptr<ContactSearch> search;
+    bool distributed = false;  ///< the first distribution is done
     double work_seconds = 0.0; ///< CPU time of this rank's evaluation in the current step
     parallel::BalanceDecision balance;
     bool redistributed = false; ///< in the last balance()
     struct {
       int slave_elements = 0;      ///< this rank's, in the last balanced step
       int master_ghosts = 0;       ///< distinct master facets of its pairs
+      int master_received = 0;     ///< master facets it searched at the last search
       std::int64_t candidates = 0; ///< candidate pairs of all ranks
     } share;
 
@@ -330,6 +337,9 @@ private:
   /// contact zone only).
   la::Matrix transformation_delta() const;
 
+  /// Side s placed at the interface displacement u and time t, with its candidate pairs (the
+  /// distributed search, or the interface's own). Collective.
+  void search(Side& s, std::span<const double> u, double t);
   /// The first distribution of side s (at its first evaluation, when its candidate pairs are
   /// known), or a redistribution with the current pairs.
   void distribute(Side& s);

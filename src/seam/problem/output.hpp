@@ -69,6 +69,9 @@ struct ContactReport {
   // This rank's share (different on every rank; summary.json ranks_detail).
   int local_slave_elements = 0;
   int local_master_ghosts = 0; ///< distinct master facets its candidate pairs reach
+  /// Master facets this rank searched at the last search: those ghosted to it by the
+  /// distributed search, the whole master surface otherwise.
+  int local_master_received = 0;
   std::int64_t local_pairs = 0;
   std::int64_t local_integration_cells = 0;
   /// Slave nodes with nonzero mortar sums that this rank owns, sums and decides, and the nodal

@@ -242,6 +242,8 @@ int run(const RunOptions& options, int argc, char** argv) {
     std::printf(
         "  linear solver: %s\n",
         describe_linear_solver(config, disc, saddle.active() || contact.saddle_point()).c_str());
+  if (comm.is_root() && !options.quiet)
+    for (const auto& line : contact.held_whole()) std::printf("  %s\n", line.c_str());
   parallel::mark_memory(comm.get(), "output_setup");
   if (checkpoints.restarting() && comm.is_root() && !options.quiet)
     std::printf("  restarting from %s: step %d, t = %.17g\n", options.restart.c_str(),

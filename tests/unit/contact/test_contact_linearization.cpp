@@ -487,5 +487,62 @@ TEST(ContactParts, RigidSphere3D) {
   check_parts(3, false, true, Shape::sphere);
 }
 
+// The search split from the placement (ContactInterface::place / set_candidates): an
+// interface given the pairs of its own search from outside evaluates to the same D, g~ and M
+// bit for bit, and given every slave-master pair (the facing test applied inside) to the same
+// values up to round-off, since the extra pairs do not overlap.
+void check_external_search(int dim, bool tets) {
+  const auto mesh = two_blocks(dim, tets);
+  ContactInterface own(contact_config(false, dim, false), mesh);
+  ContactInterface outside(contact_config(false, dim, false), mesh);
+  outside.use_external_search();
+  EXPECT_TRUE(outside.external_search());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> perturb(-0.01, 0.01);
+  std::vector<double> u(mesh.x.size(), 0.0);
+  for (auto& v : u) v = perturb(rng);
+  own.update(u, 0.0);
+  outside.place(u, 0.0);
+  EXPECT_EQ(outside.normals(), own.normals());
+  std::vector<mortar::CandidatePair> pairs, every;
+  for (local_index f = 0; f < own.slave().n_facets(); ++f) {
+    for (const auto& p : own.pairs_of(f)) pairs.push_back(p);
+    for (local_index m = 0; m < outside.n_master_facets(); ++m) every.push_back({f, m});
+  }
+  ASSERT_GT(pairs.size(), 0u);
+  NodalValues a, b;
+  own.evaluate(a);
+  outside.set_candidates(pairs);
+  EXPECT_EQ(outside.n_candidates(), own.n_candidates());
+  outside.evaluate(b);
+  EXPECT_EQ(b.D, a.D);
+  EXPECT_EQ(b.gap, a.gap);
+  ASSERT_EQ(b.M.size(), a.M.size());
+  outside.set_candidates(every);
+  EXPECT_GT(outside.n_candidates(), own.n_candidates());
+  outside.evaluate(b);
+  double scale = 0.0;
+  for (const double d : a.D) scale = std::max(scale, d);
+  for (std::size_t j = 0; j < a.D.size(); ++j) {
+    EXPECT_NEAR(b.D[j], a.D[j], 1e-13 * scale);
+    EXPECT_NEAR(b.gap[j], a.gap[j], 1e-13 * scale);
+  }
+  std::map<std::pair<local_index, std::int32_t>, double> ma, mb;
+  for (const auto& e : a.M) ma[{e.slave, e.master_node}] += e.value;
+  for (const auto& e : b.M) mb[{e.slave, e.master_node}] += e.value;
+  for (const auto& [key, value] : ma) EXPECT_NEAR(mb[key], value, 1e-13 * scale);
+  for (const auto& [key, value] : mb) EXPECT_NEAR(ma[key], value, 1e-13 * scale);
+}
+
+TEST(ContactExternalSearch, SameValues2D) {
+  check_external_search(2, false);
+}
+TEST(ContactExternalSearch, SameValuesQuad4) {
+  check_external_search(3, false);
+}
+TEST(ContactExternalSearch, SameValuesTri3) {
+  check_external_search(3, true);
+}
+
 } // namespace
 } // namespace seam::contact
