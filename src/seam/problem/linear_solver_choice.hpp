@@ -4,6 +4,7 @@
 #include "seam/la/petsc.hpp"
 
 #include <string>
+#include <string_view>
 
 namespace seam::problem {
 
@@ -34,7 +35,7 @@ LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, P
                                         SystemKind system);
 
 /// The choice as the run's header prints it: "direct (MUMPS)", "iterative (GMRES + GAMG; auto:
-/// 3D, 107811 dofs >= 100000)".
-std::string describe(const LinearSolverChoice& choice);
+/// 3D, 107811 dofs >= 100000)"; `iterative`: the name of the iterative solver.
+std::string describe(const LinearSolverChoice& choice, std::string_view iterative = "GMRES + GAMG");
 
 } // namespace seam::problem
