@@ -17,12 +17,22 @@ namespace seam::problem {
 /// load steps) GAMG took 3.9 times MUMPS's CPU time: AMG converges slowly on thin walls. The
 /// threshold sits where MUMPS's fill starts to cost gigabytes, so that thin structures of
 /// moderate size keep the direct solver. 2D systems stay direct (nested dissection keeps their
-/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother, and
-/// fluids, whose fieldsplit preconditioner is not optimal yet (docs/fluid.md, "Solving").
+/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother.
 inline constexpr PetscInt auto_iterative_dofs = 100000;
 
+/// Fluids (bench/dfg_benchmark.py, docs/performance.md "Incompressible flow: direct against
+/// iterative"): steady flow stays direct at any size; on DFG 2D-1 the fieldsplit solver
+/// (BoomerAMG on the velocity block) took 2.4, 3.1, 5.0 and 9.5 times MUMPS's CPU time on
+/// 3.7k, 13.6k, 51.7k and 204k dofs, its Krylov iterations per Newton step growing on the
+/// finest mesh. Generalized-alpha flow is iterative from `auto_iterative_unsteady_fluid_dofs`
+/// on: its velocity block carries the mass term, ILU(0) preconditions it in some 10 FGMRES
+/// iterations per Newton step, and on 20 steps of DFG 2D-3 the fieldsplit solver took
+/// 0.75 of MUMPS's CPU time on 3.7k dofs and less on the finer meshes (MUMPS factorizes anew
+/// every Newton iteration).
+inline constexpr PetscInt auto_iterative_unsteady_fluid_dofs = 10000;
+
 /// What the Newton system is, as far as the choice goes.
-enum class SystemKind { solid, saddle_point, fluid };
+enum class SystemKind { solid, saddle_point, fluid, unsteady_fluid };
 
 struct LinearSolverChoice {
   la::SolverKind kind;
