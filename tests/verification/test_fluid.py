@@ -403,8 +403,9 @@ def test_dfg_2d1_fieldsplit():
     """`solver: {linear: iterative}`: FGMRES with the Schur-complement fieldsplit
     preconditioner (velocity | pressure) gives the MUMPS result to the Newton tolerance, on 1
     and 3 ranks, and its iterations per Newton step grow by less than 1.5 times when the
-    mesh is refined once (measured 67 -> 84, 1.26; the former ILU(0) Schur block took 146 ->
-    302, 2.07, and fails this bound)."""
+    mesh is refined once (measured 107.6 -> 98.4 with BoomerAMG on the velocity block,
+    0.91; with ILU(0) on it 67 -> 84, 1.26; the former ILU(0) Schur block took 146 -> 302, 2.07, and
+    fails this bound)."""
     direct = dfg(0.08, 0.012)
     per_solve = {}
     for np, h, hc in ((1, 0.08, 0.012), (3, 0.08, 0.012), (1, 0.04, 0.006)):
@@ -449,8 +450,8 @@ def linear_solver_of_run(yaml_path, np=1):
 def test_dfg_2d1_auto():
     """`solver.linear: auto` (the default) on DFG 2D-1, 13,578 dofs: the documented rule
     (linear_solver_choice.hpp; docs/performance.md, "Incompressible flow: direct against
-    iterative") keeps steady fluids on MUMPS, which took 0.33 of the fieldsplit solver's CPU
-    time on this mesh; the header line and summary.json name it, and c_D, c_L and the pressure
+    iterative") keeps fluids on MUMPS, which took 0.33 of the fieldsplit solver's CPU time on
+    this mesh; the header line and summary.json name it, and c_D, c_L and the pressure
     difference are within the benchmark's tolerances."""
     work = tempfile.mkdtemp(prefix="seam_dfg_auto_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
@@ -468,9 +469,9 @@ def test_dfg_2d1_auto():
     dp = probes[0]["pressure"] - probes[1]["pressure"]
     print("   %d dofs, linear solver: %s; c_D = %.6f, c_L = %.6f, dp = %.6f"
           % (dofs, name, cd, cl, dp))
-    if name != "direct (MUMPS; auto: a steady fluid)":
-        raise AssertionError("auto chose %r for a steady fluid; the rule says "
-                             "'direct (MUMPS; auto: a steady fluid)'" % name)
+    if name != "direct (MUMPS; auto: a fluid)":
+        raise AssertionError("auto chose %r for a fluid; the rule says "
+                             "'direct (MUMPS; auto: a fluid)'" % name)
     H.assert_close(cd, CD_REF, rtol=5e-3, what="c_D")
     H.assert_close(cl, CL_REF, rtol=5e-2, what="c_L")
     H.assert_close(dp, DP_REF, rtol=5e-3, what="pressure difference")
@@ -562,13 +563,12 @@ def test_dfg_2d3_coarse():
 def test_dfg_2d3_iterative():
     """20 steps of DFG 2D-3 (dt = 0.04, generalized-alpha, 3,736 dofs): the fieldsplit solver
     (ILU(0) on the velocity block) gives MUMPS's drag and lift at every step to 1e-8 (of the
-    largest drag) on 1 and 3 ranks; `auto` keeps this mesh (below 10,000 dofs) on MUMPS and
-    takes the iterative solver on the once refined one (13,578 dofs, 5 steps), as the rule of
-    linear_solver_choice.hpp says."""
+    largest drag) on 1 and 3 ranks (measured 1.7e-12 and 2.1e-12); `auto` keeps the run on
+    MUMPS, as the rule of linear_solver_choice.hpp says."""
     geo = (0.08, 0.012)
     info = {}
     t, cd, cl, dofs = dfg_2d3(0.8, dt=0.04, geo=geo, summary=info)
-    expected = "direct (MUMPS; auto: an unsteady fluid, %d dofs < 10000)" % dofs
+    expected = "direct (MUMPS; auto: a fluid)"
     if len(t) != 20 or info["linear_solver"] != expected:
         raise AssertionError("%d steps, auto chose %r on %d dofs; the rule says %r"
                              % (len(t), info["linear_solver"], dofs, expected))
@@ -584,12 +584,6 @@ def test_dfg_2d3_iterative():
         if t2 != t or worst > 1e-8 * scale:
             raise AssertionError("%s on %d ranks: c_D/c_L differ from MUMPS by %.3e (> %.3e)"
                                  % (solver, np, worst, 1e-8 * scale))
-    t, cd, cl, dofs = dfg_2d3(0.2, dt=0.04, geo=(0.04, 0.006), summary=info)
-    expected = "auto: an unsteady fluid, %d dofs >= 10000" % dofs
-    print("   %d dofs: %s" % (dofs, info["linear_solver"]))
-    if not (info["linear_solver"].startswith("iterative (") and expected in info["linear_solver"]):
-        raise AssertionError("auto chose %r on %d dofs; the rule says iterative (%s)"
-                             % (info["linear_solver"], dofs, expected))
 
 
 @H.full_only

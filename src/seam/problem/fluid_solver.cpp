@@ -299,9 +299,8 @@ CanonicalOrder fluid_order(const FluidLayout& layout) {
 }
 
 LinearSolverChoice fluid_linear_solver(const io::Config& config, const FluidLayout& layout) {
-  const bool unsteady = config.time.integrator == io::Integrator::generalized_alpha;
   return choose_linear_solver(config.solver.linear, layout.dim(), layout.n_global_dofs(),
-                              unsteady ? SystemKind::unsteady_fluid : SystemKind::fluid);
+                              SystemKind::fluid);
 }
 
 // The velocity block's preconditioner of the iterative solver (docs/fluid.md, "Solving"):

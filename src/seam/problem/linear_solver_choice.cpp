@@ -13,17 +13,10 @@ LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, P
     break;
   }
   // The rules in the order they are tested; the first that applies decides.
-  const auto n = std::to_string(dofs);
-  if (system == SystemKind::fluid) return {la::SolverKind::direct, "auto: a steady fluid"};
-  if (system == SystemKind::unsteady_fluid) {
-    const auto limit = std::to_string(auto_iterative_unsteady_fluid_dofs);
-    if (dofs >= auto_iterative_unsteady_fluid_dofs)
-      return {la::SolverKind::iterative, "auto: an unsteady fluid, " + n + " dofs >= " + limit};
-    return {la::SolverKind::direct, "auto: an unsteady fluid, " + n + " dofs < " + limit};
-  }
+  if (system == SystemKind::fluid) return {la::SolverKind::direct, "auto: a fluid"};
   if (system == SystemKind::saddle_point) return {la::SolverKind::direct, "auto: a saddle point"};
   if (dim == 2) return {la::SolverKind::direct, "auto: 2D"};
-  const auto limit = std::to_string(auto_iterative_dofs);
+  const auto n = std::to_string(dofs), limit = std::to_string(auto_iterative_dofs);
   if (dofs >= auto_iterative_dofs)
     return {la::SolverKind::iterative, "auto: 3D, " + n + " dofs >= " + limit};
   return {la::SolverKind::direct, "auto: " + n + " dofs < " + limit};

@@ -17,22 +17,20 @@ namespace seam::problem {
 /// load steps) GAMG took 3.9 times MUMPS's CPU time: AMG converges slowly on thin walls. The
 /// threshold sits where MUMPS's fill starts to cost gigabytes, so that thin structures of
 /// moderate size keep the direct solver. 2D systems stay direct (nested dissection keeps their
-/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother.
+/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother,
+/// and fluids (below).
 inline constexpr PetscInt auto_iterative_dofs = 100000;
 
-/// Fluids (bench/dfg_benchmark.py, docs/performance.md "Incompressible flow: direct against
-/// iterative"): steady flow stays direct at any size; on DFG 2D-1 the fieldsplit solver
-/// (BoomerAMG on the velocity block) took 2.4, 3.1, 5.0 and 9.5 times MUMPS's CPU time on
-/// 3.7k, 13.6k, 51.7k and 204k dofs, its Krylov iterations per Newton step growing on the
-/// finest mesh. Generalized-alpha flow is iterative from `auto_iterative_unsteady_fluid_dofs`
-/// on: its velocity block carries the mass term, ILU(0) preconditions it in some 10 FGMRES
-/// iterations per Newton step, and on 20 steps of DFG 2D-3 the fieldsplit solver took
-/// 0.75 of MUMPS's CPU time on 3.7k dofs and less on the finer meshes (MUMPS factorizes anew
-/// every Newton iteration).
-inline constexpr PetscInt auto_iterative_unsteady_fluid_dofs = 10000;
-
+/// Fluids stay direct at any size (bench/dfg_benchmark.py, docs/performance.md
+/// "Incompressible flow: direct against iterative"): on DFG 2D-1 the fieldsplit solver
+/// (BoomerAMG on the velocity block) took 2.43, 3.06, 4.96 times MUMPS's CPU time on 3.7k,
+/// 13.6k and 51.7k dofs, the ratio growing with the mesh; on 20 generalized-alpha steps of
+/// DFG 2D-3 (ILU(0) on the velocity block) 0.75, 0.82, 0.98 times, rising towards 1 as its
+/// Krylov iterations grow (10.6, 13.6, 23.7 per Newton step), a gain within the scatter of
+/// CPU times on this shared machine (some 30 %). auto takes the iterative solver only where it
+/// measured faster by more than that scatter, which no fluid did.
 /// What the Newton system is, as far as the choice goes.
-enum class SystemKind { solid, saddle_point, fluid, unsteady_fluid };
+enum class SystemKind { solid, saddle_point, fluid };
 
 struct LinearSolverChoice {
   la::SolverKind kind;

@@ -9,7 +9,6 @@ namespace {
 using seam::io::LinearSolverKind;
 using seam::la::SolverKind;
 using seam::problem::auto_iterative_dofs;
-using seam::problem::auto_iterative_unsteady_fluid_dofs;
 using seam::problem::choose_linear_solver;
 using seam::problem::describe;
 using seam::problem::SystemKind;
@@ -46,25 +45,13 @@ TEST(LinearSolverChoice, SaddlePointStaysDirect) {
   expect_choice(2, 100, SystemKind::saddle_point, SolverKind::direct, "auto: a saddle point");
 }
 
-TEST(LinearSolverChoice, SteadyFluidStaysDirect) {
-  expect_choice(3, 2000000, SystemKind::fluid, SolverKind::direct, "auto: a steady fluid");
-  expect_choice(2, 40000, SystemKind::fluid, SolverKind::direct, "auto: a steady fluid");
-}
-
-TEST(LinearSolverChoice, UnsteadyFluidAtTheThreshold) {
-  // bench/dfg_benchmark.py --case 2d3 (docs/performance.md, "Incompressible flow").
-  ASSERT_EQ(auto_iterative_unsteady_fluid_dofs, 10000);
-  expect_choice(2, 9999, SystemKind::unsteady_fluid, SolverKind::direct,
-                "auto: an unsteady fluid, 9999 dofs < 10000");
-  expect_choice(2, 10000, SystemKind::unsteady_fluid, SolverKind::iterative,
-                "auto: an unsteady fluid, 10000 dofs >= 10000");
-  expect_choice(3, 37105, SystemKind::unsteady_fluid, SolverKind::iterative,
-                "auto: an unsteady fluid, 37105 dofs >= 10000");
+TEST(LinearSolverChoice, FluidStaysDirect) {
+  expect_choice(3, 2000000, SystemKind::fluid, SolverKind::direct, "auto: a fluid");
+  expect_choice(2, 40000, SystemKind::fluid, SolverKind::direct, "auto: a fluid");
 }
 
 TEST(LinearSolverChoice, NamedSolverIsTakenAsGiven) {
-  for (const auto system : {SystemKind::solid, SystemKind::saddle_point, SystemKind::fluid,
-                            SystemKind::unsteady_fluid}) {
+  for (const auto system : {SystemKind::solid, SystemKind::saddle_point, SystemKind::fluid}) {
     const auto direct = choose_linear_solver(LinearSolverKind::direct, 3, 5000000, system);
     EXPECT_EQ(direct.kind, SolverKind::direct);
     EXPECT_EQ(describe(direct), "direct (MUMPS)");
