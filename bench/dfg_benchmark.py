@@ -1,16 +1,23 @@
 #!/usr/bin/env python3
 """DFG 2D-1 (Schaefer & Turek 1996, Re = 20) on the example's geometry (examples/dfg_cylinder)
 under uniform refinement of its cell sizes (h, hc) = (0.08, 0.012) / 2^k, Taylor-Hood P2/P1:
-the error of c_D against the reference 5.57954 with the number of dofs and the wall time, for
-the direct solver (MUMPS) and the iterative one (GMRES + velocity | pressure Schur fieldsplit),
-and the time per Newton iteration (assembly + linear solve, from summary.json timings over
-its linear_solves) against the dofs.
+the direct solver (MUMPS) against the iterative one (FGMRES + velocity | pressure Schur
+fieldsplit, BoomerAMG on both blocks), and what `solver.linear: auto` picks. With --case 2d3:
+the first 20 steps (dt = 0.04, generalized-alpha, up to t = 0.8) of DFG 2D-3 on the same
+meshes, whose iterative solver has ILU(0) on the velocity block; c_D is the last step's
+(no reference).
 
-Printed: one row per level and solver: dofs, c_D, its relative error, wall seconds, Newton
-iterations, GMRES iterations per solve, seconds per Newton iteration and that time per dof
-(constant for a solver that scales linearly).
+Printed: one row per level and solver: dofs, c_D and its relative error against 5.57954, the
+CPU time (user + system) and peak resident memory of the run (for np > 1: the CPU time of all
+ranks, the largest rank's memory), the 1-minute load average of the machine when the run
+started (the machine is shared: wall times mean little, CPU times are the measure), Newton's
+linear solves, the Krylov iterations per Newton step, and the linear solver the run names in
+summary.json; after the iterative row of a level, the ratio of its CPU time to the direct
+one's. The rule of `auto` for fluids (src/seam/problem/linear_solver_choice.hpp) rests on
+these ratios.
 
-Usage: /usr/bin/python3 bench/dfg_benchmark.py [--seam build/bin/seam] [--levels 3] [--np 1]
+Usage: /usr/bin/python3 bench/dfg_benchmark.py [--seam build/bin/seam] [--levels 0,1,2]
+           [--solvers direct,iterative] [--np 1] [--case 2d1|2d3]
 """
 import argparse
 import json
@@ -24,7 +31,7 @@ EXAMPLE = os.path.join(HERE, "..", "examples", "dfg_cylinder")
 CD_REF = 5.57954
 
 
-def run(seam, np, level, solver):
+def run(seam, np, level, solver, case):
     folder = tempfile.mkdtemp(prefix="seam_bench_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -32,8 +39,11 @@ def run(seam, np, level, solver):
     geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % (0.012 / 2 ** level))
     with open(os.path.join(folder, "dfg.geo"), "w") as f:
         f.write(geo)
-    with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
+    with open(os.path.join(EXAMPLE, "dfg_%s.yaml" % case)) as f:
         yaml = f.read() + "solver: {linear: %s}\n" % solver
+    if case == "2d3":
+        yaml = yaml.replace("geo: dfg_2d3.geo", "geo: dfg.geo").replace("end: 8", "end: 0.8")
+        yaml = yaml.replace("dt: 0.01", "dt: 0.04").replace("every: 10", "every: 100000")
     with open(os.path.join(folder, "case.yaml"), "w") as f:
         f.write(yaml)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
@@ -41,36 +51,59 @@ def run(seam, np, level, solver):
     cmd = [seam, "run", os.path.join(folder, "case.yaml"), "-o", out, "--quiet"]
     if np > 1:
         cmd = ["mpirun", "--oversubscribe", "-np", str(np)] + cmd
-    subprocess.run(cmd, check=True, env=env)
+    load = os.getloadavg()[0]
+    proc = subprocess.Popen(cmd, env=env)
+    # The rusage of the run and of its waited-for descendants (the ranks under mpirun).
+    _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    if proc.returncode != 0:
+        raise SystemExit("%s failed with exit code %d (case in %s)"
+                         % (" ".join(cmd), proc.returncode, folder))
     with open(os.path.join(out, "summary.json")) as f:
         info = json.load(f)
     shutil.rmtree(folder)
     fx = info["forces"][0]["fx"]
-    cd = 2 * fx / (1.0 * 0.2 ** 2 * 0.1)
-    t = info["timings"]
     solves = info["linear_solves"]
-    return {"dofs": info["dofs"], "cd": cd, "wall": info["wall_seconds"], "solves": solves,
-            "gmres": info["linear_iterations"] / solves,
-            "per_newton": (t["assembly"] + t["linear_solve"]) / solves}
+    u_mean = 0.2 if case == "2d1" else 1.0
+    return {"dofs": info["dofs"], "cd": 2 * fx / (1.0 * u_mean ** 2 * 0.1),
+            "cpu": usage.ru_utime + usage.ru_stime, "rss": usage.ru_maxrss / 1024.0,
+            "load": load, "solves": solves, "krylov": info["linear_iterations"] / solves,
+            "solver": info.get("linear_solver", "?")}
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seam", default=os.path.join(HERE, "..", "build", "bin", "seam"))
-    parser.add_argument("--levels", type=int, default=3)
+    parser.add_argument("--levels", default="0,1,2",
+                        help="comma-separated refinement levels k: (h, hc) = (0.08, 0.012) / 2^k")
+    parser.add_argument("--solvers", default="direct,iterative",
+                        help="comma-separated values of solver.linear (direct, iterative, auto)")
     parser.add_argument("--np", type=int, default=1)
+    parser.add_argument("--case", choices=("2d1", "2d3"), default="2d1")
     args = parser.parse_args()
-    print("DFG 2D-1, Taylor-Hood P2/P1, np = %d, c_D reference %.5f" % (args.np, CD_REF))
-    print("%5s %9s %-9s %10s %10s %9s %6s %7s %12s %14s" % (
-        "level", "dofs", "solver", "c_D", "error", "wall [s]", "newton", "gmres",
-        "s/newton it", "us/(it * dof)"))
-    for level in range(args.levels):
-        for solver in ("direct", "iterative"):
-            r = run(args.seam, args.np, level, solver)
-            print("%5d %9d %-9s %10.6f %+9.4f%% %9.2f %6d %7s %12.4f %14.3f" % (
-                level, r["dofs"], solver, r["cd"], 100 * (r["cd"] / CD_REF - 1), r["wall"],
-                r["solves"], "%.0f" % r["gmres"] if solver == "iterative" else "-",
-                r["per_newton"], 1e6 * r["per_newton"] / r["dofs"]), flush=True)
+    levels = [int(k) for k in args.levels.split(",")]
+    solvers = args.solvers.split(",")
+    if args.case == "2d1":
+        print("DFG 2D-1, Taylor-Hood P2/P1, np = %d, c_D reference %.5f" % (args.np, CD_REF))
+    else:
+        print("DFG 2D-3, 20 steps of dt = 0.04, Taylor-Hood P2/P1, np = %d" % args.np)
+    print("%5s %8s %-9s %9s %9s %9s %8s %5s %6s %7s  %s" % (
+        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "RSS [MB]", "load", "newton",
+        "krylov", "linear solver of the run"))
+    for level in levels:
+        cpu = {}
+        for solver in solvers:
+            r = run(args.seam, args.np, level, solver, args.case)
+            cpu[solver] = r["cpu"]
+            direct = r["solver"].startswith("direct")
+            error = "%+8.4f%%" % (100 * (r["cd"] / CD_REF - 1)) if args.case == "2d1" else "-"
+            print("%5d %8d %-9s %9.6f %9s %9.2f %8.0f %5.2f %6d %7s  %s" % (
+                level, r["dofs"], solver, r["cd"], error, r["cpu"],
+                r["rss"], r["load"], r["solves"], "-" if direct else "%.1f" % r["krylov"],
+                r["solver"]), flush=True)
+        if "direct" in cpu and "iterative" in cpu:
+            print("%5d %8s iterative / direct CPU time: %.2f" % (
+                level, "", cpu["iterative"] / cpu["direct"]), flush=True)
 
 
 if __name__ == "__main__":

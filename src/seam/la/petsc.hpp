@@ -193,13 +193,18 @@ public:
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
+  /// The preconditioner of the velocity block A of set_fields: one BoomerAMG V-cycle (hypre;
+  /// l1-scaled Jacobi smoothing, HMIS coarsening, extended+i interpolation) or block Jacobi
+  /// ILU(0) per rank.
+  enum class VelocityBlock { amg, ilu };
   /// A saddle-point system [A B^T; C D] (velocity | pressure) for the iterative kind: FGMRES
   /// preconditioned by PCFIELDSPLIT's lower-triangular Schur factorization with the
-  /// SIMPLE-type Schur approximation S = D - C diag(A)^-1 B^T assembled (selfp): block Jacobi
-  /// ILU(0) per rank on A, one BoomerAMG V-cycle (hypre) on S (Elman, Silvester & Wathen 2014,
-  /// ch. 9). `first`/`second`: the owned global rows of each field. Options with the prefixes
+  /// SIMPLE-type Schur approximation S = D - C diag(A)^-1 B^T assembled (selfp): `velocity` on
+  /// A, one BoomerAMG V-cycle (hypre) on S (Elman, Silvester & Wathen 2014, ch. 9).
+  /// `first`/`second`: the owned global rows of each field. Options with the prefixes
   /// -fieldsplit_u_, -fieldsplit_p_ and -pc_fieldsplit_ override the defaults. Collective.
-  void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second);
+  void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second,
+                  VelocityBlock velocity);
   /// The relative tolerance of the next solves, unless the command line set -ksp_rtol.
   void set_relative_tolerance(double rtol);
   /// Keeps the preconditioner (GAMG's hierarchy, a factorization) from one solve to the next

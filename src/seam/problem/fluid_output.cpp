@@ -225,6 +225,7 @@ void FluidOutput::finish(bool converged, int n_steps) {
   j["ranks"] = comm.size();
   j["wall_seconds"] = wall;
   // Newton's linear solves and their iterations (a direct solve counts one).
+  if (!linear_solver_.empty()) j["linear_solver"] = linear_solver_;
   j["linear_solves"] = linear_solves_;
   j["linear_iterations"] = linear_iterations_;
   auto& t = j["timings"];

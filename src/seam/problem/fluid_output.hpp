@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace seam::problem {
@@ -51,6 +52,8 @@ public:
   PhaseTimers& timers() { return timers_; }
   const std::filesystem::path& directory() const { return dir_; }
   void newton(int step, int iteration, double residual, double increment);
+  /// The linear solver as the run's header names it (summary.json's linear_solver).
+  void set_linear_solver(std::string name) { linear_solver_ = std::move(name); }
   /// The iterations of one linear solve (summed into summary.json's linear_iterations).
   void linear_iterations(int n) {
     linear_iterations_ += n;
@@ -94,6 +97,7 @@ private:
   std::vector<std::uint8_t> types_;
   std::optional<FluidErrors> last_errors_;
   long long linear_iterations_ = 0, linear_solves_ = 0;
+  std::string linear_solver_;
   std::vector<std::array<double, 3>> last_forces_;
 };
 

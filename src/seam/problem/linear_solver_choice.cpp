@@ -22,9 +22,10 @@ LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, P
   return {la::SolverKind::direct, "auto: " + n + " dofs < " + limit};
 }
 
-std::string describe(const LinearSolverChoice& choice) {
-  std::string text =
-      choice.kind == la::SolverKind::iterative ? "iterative (GMRES + GAMG" : "direct (MUMPS";
+std::string describe(const LinearSolverChoice& choice, std::string_view iterative) {
+  std::string text = choice.kind == la::SolverKind::iterative
+                         ? "iterative (" + std::string(iterative)
+                         : std::string("direct (MUMPS");
   if (!choice.reason.empty()) text += "; " + choice.reason;
   return text + ")";
 }
