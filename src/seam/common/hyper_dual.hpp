@@ -10,6 +10,7 @@
 // f'(v) H + f''(v) g g^T; of a product: H_ab = a H_b + b H_a + g_a g_b^T + g_b g_a^T.
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace seam {
 
@@ -128,6 +129,17 @@ template <int N> bool operator>(const Hyper<N>& a, double b) {
 
 template <int N> double value_of(const Hyper<N>& x) {
   return x.value;
+}
+
+/// Independent variable i of value v on the scalar type S: S::variable(v, i) for Dual<N> and
+/// Hyper<N>, v itself for double (so one kernel serves values, gradients and Hessians).
+template <class S> S independent_variable(double v, int i) {
+  if constexpr (std::is_same_v<S, double>) {
+    (void)i;
+    return v;
+  } else {
+    return S::variable(v, i);
+  }
 }
 
 } // namespace seam

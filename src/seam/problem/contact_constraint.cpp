@@ -236,7 +236,11 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     sum_nodal_values(s);
     s.area = comm.sum(s.part.area);
     // Replaces g~ by the gaps of the discrete-gradient blocks (replicated).
-    if (s.discrete_gradient) evaluate_discrete_gradient(s, u_mesh);
+    if (s.discrete_gradient) {
+      evaluate_discrete_gradient(s, u_mesh, false);
+      s.em_displacement.assign(u_mesh.begin(), u_mesh.end());
+      s.em_tangent_current = false;
+    }
     if (s.friction) {
       changes += evaluate_friction(s, u_mesh, first);
       continue;
@@ -542,6 +546,10 @@ void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vec
   // Energy-momentum contact: the gap rows and the tangent of the discrete-gradient force come
   // from the last evaluate().
   if (!s.discrete_gradient) s.itf.linearize(s.lambda, s.active, s.lin);
+  if (s.discrete_gradient && !s.em_tangent_current) {
+    evaluate_discrete_gradient(s, s.em_displacement, true);
+    s.em_tangent_current = true;
+  }
   s.work_seconds += cpu_seconds() - cpu;
   for (const auto& e : s.discrete_gradient ? s.em_tangent : s.lin.force_tangent) {
     rows.push_back(global_dof(e.row));
