@@ -91,11 +91,11 @@ struct Linearization {
 /// unused slot).
 struct GapBlock {
   int dim = 2;
-  std::vector<local_index> slave;  ///< side-local slave nodes of the rows
-  std::vector<std::int64_t> dofs;  ///< mesh dof of coordinate 0 of each slot
-  std::vector<double> gap;         ///< contribution to g~_j, one per row
-  std::vector<double> gradient;    ///< rows x n_variables (GapOrder::gradient and hessian)
-  std::vector<double> hessian;     ///< rows x n_variables^2, row-major (GapOrder::hessian)
+  std::vector<local_index> slave; ///< side-local slave nodes of the rows
+  std::vector<std::int64_t> dofs; ///< mesh dof of coordinate 0 of each slot
+  std::vector<double> gap;        ///< contribution to g~_j, one per row
+  std::vector<double> gradient;   ///< rows x n_variables (GapOrder::gradient and hessian)
+  std::vector<double> hessian;    ///< rows x n_variables^2, row-major (GapOrder::hessian)
   int n_variables() const { return dim * static_cast<int>(dofs.size()); }
   /// The mesh dof of variable v, -1 for an unused slot.
   std::int64_t dof(int v) const {

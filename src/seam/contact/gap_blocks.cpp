@@ -79,8 +79,9 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   g = {S(0.0), S(0.0)};
   std::array<V2<S>, 6> X;
   for (int i = 0; i < 6; ++i)
-    X[static_cast<std::size_t>(i)] = {independent_variable<S>(in.x[static_cast<std::size_t>(i)].x(), 2 * i),
-                                      independent_variable<S>(in.x[static_cast<std::size_t>(i)].y(), 2 * i + 1)};
+    X[static_cast<std::size_t>(i)] = {
+        independent_variable<S>(in.x[static_cast<std::size_t>(i)].x(), 2 * i),
+        independent_variable<S>(in.x[static_cast<std::size_t>(i)].y(), 2 * i + 1)};
   // Averaged nodal normals: s_k = sum of the unit facet normals (t_y, -t_x) / |t|, n = s / |s|.
   std::array<V2<S>, 2> nn;
   for (std::size_t k = 0; k < 2; ++k) {

@@ -38,18 +38,14 @@ namespace seam::contact {
 
 namespace {
 
-constexpr int pair_variables = 36;  ///< slave x (12), slave normals (12), master x (12)
-constexpr int normal_offset = 12;   ///< first variable of the slave normals
-constexpr int master_offset = 24;   ///< first variable of the master positions
-constexpr int max_ring_nodes = 16;  ///< nodes of the facets around one slave node
+constexpr int pair_variables = 36; ///< slave x (12), slave normals (12), master x (12)
+constexpr int normal_offset = 12;  ///< first variable of the slave normals
+constexpr int master_offset = 24;  ///< first variable of the master positions
+constexpr int max_ring_nodes = 16; ///< nodes of the facets around one slave node
 constexpr int ring_variables = 3 * max_ring_nodes;
 
-template <class S> struct V3 {
-  S x = S(0.0), y = S(0.0), z = S(0.0);
-};
-template <class S> struct V2 {
-  S x = S(0.0), y = S(0.0);
-};
+template <class S> struct V3 { S x = S(0.0), y = S(0.0), z = S(0.0); };
+template <class S> struct V2 { S x = S(0.0), y = S(0.0); };
 template <class S> V3<S> operator+(const V3<S>& a, const V3<S>& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
@@ -274,14 +270,15 @@ struct CellRule {
     for (int q = 0; q < rule.n_points; ++q) {
       const double xi = rule.points[static_cast<std::size_t>(2 * q)];
       const double eta = rule.points[static_cast<std::size_t>(2 * q + 1)];
-      points.push_back(
-          {1.0 - xi - eta, xi, eta, 2.0 * rule.weights[static_cast<std::size_t>(q)]});
+      points.push_back({1.0 - xi - eta, xi, eta, 2.0 * rule.weights[static_cast<std::size_t>(q)]});
     }
   }
 };
 
 /// Reference coordinates (s, t) of the plane point p on the facet with plane images u: the
-/// closed-form inverse in doubles, then Newton steps on S.
+/// closed-form inverse in doubles, then Newton steps on S with the Jacobian of the values (a
+/// chord step: from the exact value, each step makes one more order of derivatives exact, so
+/// one step serves the gradient, two the Hessian; the affine triangle map needs one).
 template <class S>
 bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInverse& inverse,
             const V2<S>& p, S& s, S& t) {
@@ -290,20 +287,28 @@ bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInv
   s = xi.x();
   t = xi.y();
   if constexpr (!std::is_same_v<S, double>) {
+    std::array<double, 4> N0;
+    std::array<double, 8> dN;
+    shape<double>(n, xi.x(), xi.y(), N0, dN);
+    Eigen::Vector2d j0 = Eigen::Vector2d::Zero(), j1 = Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
+      j0 += value(u[k]) * dN[2 * k];
+      j1 += value(u[k]) * dN[2 * k + 1];
+    }
+    const double det = j0.x() * j1.y() - j0.y() * j1.x();
+    const int steps = n == 3 ? 1 : is_dual<S> ? 1 : 2;
     std::array<S, 4> N;
-    std::array<S, 8> dN;
-    for (int it = 0; it < (n == 3 ? 1 : 2); ++it) {
-      shape<S>(n, s, t, N, dN);
-      V2<S> r = p * -1.0, j0, j1;
-      for (int k = 0; k < n; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        r = r + u[i] * N[i];
-        j0 = j0 + u[i] * dN[2 * i];
-        j1 = j1 + u[i] * dN[2 * i + 1];
+    std::array<S, 8> unused;
+    for (int it = 0; it < steps; ++it) {
+      shape<S>(n, s, t, N, unused);
+      S rx = -p.x, ry = -p.y;
+      for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
+        add_product(rx, u[k].x, N[k]);
+        add_product(ry, u[k].y, N[k]);
       }
-      const S det = cross(j0, j1);
-      s = s - cross(r, j1) / det;
-      t = t - cross(j0, r) / det;
+      // [s, t] -= J^-1 r with J = [j0 j1].
+      s = s - (rx * j1.y() - ry * j1.x()) * (1.0 / det);
+      t = t - (ry * j0.x() - rx * j0.y()) * (1.0 / det);
     }
   }
   return true;
@@ -362,9 +367,9 @@ void dual_coefficients(int n, const std::array<V3<S>, 4>& x, std::array<std::arr
 double longest_edge_squared(const std::array<Eigen::Vector3d, 4>& x, int n) {
   double longest = (x[0] - x[static_cast<std::size_t>(n - 1)]).squaredNorm();
   for (int i = 0; i + 1 < n; ++i)
-    longest = std::max(longest,
-                       (x[static_cast<std::size_t>(i + 1)] - x[static_cast<std::size_t>(i)])
-                           .squaredNorm());
+    longest = std::max(
+        longest,
+        (x[static_cast<std::size_t>(i + 1)] - x[static_cast<std::size_t>(i)]).squaredNorm());
   return longest;
 }
 
@@ -395,7 +400,8 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   V3<S> center;
   for (int k = 0; k < ns; ++k) center = center + xs[static_cast<std::size_t>(k)];
   center = center * (1.0 / ns);
-  const V3<S> raw = ns == 3 ? cross(xs[1] - xs[0], xs[2] - xs[0]) : cross(xs[2] - xs[0], xs[3] - xs[1]);
+  const V3<S> raw =
+      ns == 3 ? cross(xs[1] - xs[0], xs[2] - xs[0]) : cross(xs[2] - xs[0], xs[3] - xs[1]);
   const S raw_length = norm(raw);
   if (!(value_of(raw_length) > 0.0)) return;
   const V3<S> np = raw * (1.0 / raw_length);
@@ -471,21 +477,23 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
       V3<S> n;
       S h_s = 0.0, h_m = 0.0;
       for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) {
-        n = n + nn[k] * Ns[k];
-        h_s += hs[k] * Ns[k];
+        add_product(n.x, nn[k].x, Ns[k]);
+        add_product(n.y, nn[k].y, Ns[k]);
+        add_product(n.z, nn[k].z, Ns[k]);
+        add_product(h_s, hs[k], Ns[k]);
       }
-      for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) h_m += hm[l] * Nm[l];
+      for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) add_product(h_m, hm[l], Nm[l]);
       const S wg = point[3] * area * (h_m - h_s) * dot(n, np) / norm(n);
-      for (std::size_t j = 0; j < static_cast<std::size_t>(ns); ++j) {
-        if (!in.dual) {
-          g[j] += wg * Ns[j];
-          continue;
-        }
-        S phi = 0.0;
-        for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) phi += A[j][k] * Ns[k];
-        g[j] += wg * phi;
-      }
+      // Phi_j = A_jk N_k with A constant over the pair: sum w g N_k first, apply A once.
+      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) add_product(g[k], wg, Ns[k]);
     }
+  }
+  if (!in.dual) return;
+  const std::array<S, 4> weighted = g;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(ns); ++j) {
+    g[j] = 0.0;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k)
+      add_product(g[j], A[j][k], weighted[k]);
   }
 }
 
@@ -495,7 +503,8 @@ void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacen
                local_index node, const std::vector<Eigen::Vector3d>& ring_x,
                const std::vector<local_index>& ring, std::array<S, 3>& n) {
   std::vector<V3<S>> x(ring.size());
-  for (std::size_t r = 0; r < ring.size(); ++r) x[r] = seeded<S>(ring_x[r], 3 * static_cast<int>(r));
+  for (std::size_t r = 0; r < ring.size(); ++r)
+    x[r] = seeded<S>(ring_x[r], 3 * static_cast<int>(r));
   V3<S> sum;
   for (const auto f : adjacency.of(node)) {
     const auto nodes = slaves.facet_nodes(f);
@@ -537,8 +546,8 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
     for (const auto f : adjacency.of(node))
       for (const auto k : slaves.facet_nodes(f))
         if (std::find(ring.begin(), ring.end(), k) == ring.end()) ring.push_back(k);
-    SEAM_CHECK(static_cast<int>(ring.size()) <= max_ring_nodes, InputError, "interface '",
-               name_, "': energy-momentum contact: a slave node has more than ", max_ring_nodes,
+    SEAM_CHECK(static_cast<int>(ring.size()) <= max_ring_nodes, InputError, "interface '", name_,
+               "': energy-momentum contact: a slave node has more than ", max_ring_nodes,
                " nodes on its facets");
     std::vector<Eigen::Vector3d> ring_x;
     for (const auto k : ring) {
@@ -654,8 +663,8 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
         b.gradient.assign(sn.size() * nv, 0.0);
         for (std::size_t j = 0; j < sn.size(); ++j) {
           b.gap[j] = g[j].value;
-          const Eigen::VectorXd gx =
-              J.transpose() * Eigen::Map<const Eigen::VectorXd>(g[j].gradient.data(), pair_variables);
+          const Eigen::VectorXd gx = J.transpose() * Eigen::Map<const Eigen::VectorXd>(
+                                                         g[j].gradient.data(), pair_variables);
           for (std::size_t v = 0; v < nv; ++v) {
             b.gradient[j * nv + v] = gx(static_cast<Eigen::Index>(v));
             nonzero = nonzero || gx(static_cast<Eigen::Index>(v)) != 0.0;
@@ -669,8 +678,9 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
         for (std::size_t j = 0; j < sn.size(); ++j) {
           b.gap[j] = g[j].value;
           const auto gy = Eigen::Map<const Eigen::VectorXd>(g[j].gradient.data(), pair_variables);
-          const auto Hy = Eigen::Map<const Eigen::Matrix<double, pair_variables, pair_variables,
-                                                         Eigen::RowMajor>>(g[j].hessian.data());
+          const auto Hy = Eigen::Map<
+              const Eigen::Matrix<double, pair_variables, pair_variables, Eigen::RowMajor>>(
+              g[j].hessian.data());
           const Eigen::VectorXd gx = J.transpose() * gy;
           Eigen::MatrixXd Hx = J.transpose() * Hy * J;
           // sum_i dg/dn_i H(n_i): the normals' curvature in the ring positions.

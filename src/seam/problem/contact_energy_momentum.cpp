@@ -159,8 +159,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   s.itf.gap_blocks(u0, contact::GapOrder::value, start);
   s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
   // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built.
-  s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient,
-                   middle);
+  s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient, middle);
   const auto dof_of = [](const contact::GapBlock& b, int v) { return b.dof(v); };
   // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
   // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
@@ -170,15 +169,15 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
     for (std::size_t r = 0; r < b.slave.size(); ++r)
       for (int v = 0; v < nv; ++v)
         if (const auto dof = dof_of(b, v);
-            dof >= 0 && b.gradient[r * static_cast<std::size_t>(nv) + static_cast<std::size_t>(v)] != 0.0)
+            dof >= 0 &&
+            b.gradient[r * static_cast<std::size_t>(nv) + static_cast<std::size_t>(v)] != 0.0)
           s.lin.gap_gradient.push_back(
               {b.slave[r], dof,
                b.gradient[r * static_cast<std::size_t>(nv) + static_cast<std::size_t>(v)]});
   }
   std::vector<Entry> local;
   for (const auto& b : start)
-    for (std::size_t r = 0; r < b.slave.size(); ++r)
-      local.push_back({0, b.slave[r], g0, b.gap[r]});
+    for (std::size_t r = 0; r < b.slave.size(); ++r) local.push_back({0, b.slave[r], g0, b.gap[r]});
   for (const auto& b : end) {
     const auto nv = static_cast<std::size_t>(b.n_variables());
     for (std::size_t r = 0; r < b.slave.size(); ++r) {
