@@ -103,6 +103,12 @@ struct GapBlock {
     return slot < 0 ? std::int64_t{-1} : slot + v % dim;
   }
 };
+namespace detail {
+/// Tests only: leave the curvature of the averaged nodal normals out of the 3D gap Hessians
+/// (to show that the Newton matrix needs it).
+extern bool drop_normal_curvature;
+} // namespace detail
+
 /// What gap_blocks computes: values, first or second derivatives.
 enum class GapOrder { value, gradient, hessian };
 

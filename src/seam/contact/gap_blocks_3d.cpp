@@ -11,9 +11,9 @@
 // (h_m - h_s) n . n_p / |n| from the heights above the plane. Every decision (facing test,
 // boxes, clip classification, fan) is taken on values, which freezes the combinatorics at the
 // evaluation point. The back-projection's reference coordinates come from the closed-form
-// inverse in doubles and are polished by Newton steps on S (one for the affine triangle map,
-// two for the bilinear one: each step doubles the order of the derivatives that are exact at
-// the root). The dual coefficients A = D_e M_e^-1 of the slave facet are recomputed on S from
+// inverse in doubles and are polished by chord Newton steps on S (the Jacobian of the values:
+// from the exact value each step makes one more order of derivatives exact; one for Dual, two
+// for Hyper). The dual coefficients A = D_e M_e^-1 of the slave facet are recomputed on S from
 // its current Jacobian, as dual_basis.cpp does.
 //
 // The pair kernel's independents are the slave positions, the slave nodal normals and the
@@ -35,6 +35,8 @@
 #include <vector>
 
 namespace seam::contact {
+
+bool detail::drop_normal_curvature = false;
 
 namespace {
 
@@ -278,7 +280,7 @@ struct CellRule {
 /// Reference coordinates (s, t) of the plane point p on the facet with plane images u: the
 /// closed-form inverse in doubles, then Newton steps on S with the Jacobian of the values (a
 /// chord step: from the exact value, each step makes one more order of derivatives exact, so
-/// one step serves the gradient, two the Hessian; the affine triangle map needs one).
+/// one step serves the gradient, two the Hessian).
 template <class S>
 bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInverse& inverse,
             const V2<S>& p, S& s, S& t) {
@@ -296,7 +298,7 @@ bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInv
       j1 += value(u[k]) * dN[2 * k + 1];
     }
     const double det = j0.x() * j1.y() - j0.y() * j1.x();
-    const int steps = n == 3 ? 1 : is_dual<S> ? 1 : 2;
+    const int steps = is_dual<S> ? 1 : 2;
     std::array<S, 4> N;
     std::array<S, 8> unused;
     for (int it = 0; it < steps; ++it) {
@@ -684,7 +686,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
           const Eigen::VectorXd gx = J.transpose() * gy;
           Eigen::MatrixXd Hx = J.transpose() * Hy * J;
           // sum_i dg/dn_i H(n_i): the normals' curvature in the ring positions.
-          for (std::size_t k = 0; k < sn.size(); ++k) {
+          for (std::size_t k = 0; k < (detail::drop_normal_curvature ? 0 : sn.size()); ++k) {
             const NormalJet& jet = jet_of(sn[k]);
             const std::size_t nr = 3 * jet.ring.size();
             for (std::size_t a = 0; a < 3; ++a) {
