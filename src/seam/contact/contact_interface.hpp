@@ -104,9 +104,9 @@ struct GapBlock {
   }
 };
 namespace detail {
-/// Tests only: leave the curvature of the averaged nodal normals out of the 3D gap Hessians
-/// (to show that the Newton matrix needs it).
-extern bool drop_normal_curvature;
+/// Tests only: what the 3D gap Hessians leave out, to show that the Newton matrix needs it.
+enum class GapHessianTerms { all, without_normal_curvature, none };
+extern GapHessianTerms gap_hessian_terms;
 } // namespace detail
 
 /// What gap_blocks computes: values, first or second derivatives.

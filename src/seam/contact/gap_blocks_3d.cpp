@@ -36,7 +36,7 @@
 
 namespace seam::contact {
 
-bool detail::drop_normal_curvature = false;
+detail::GapHessianTerms detail::gap_hessian_terms = detail::GapHessianTerms::all;
 
 namespace {
 
@@ -686,7 +686,9 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
           const Eigen::VectorXd gx = J.transpose() * gy;
           Eigen::MatrixXd Hx = J.transpose() * Hy * J;
           // sum_i dg/dn_i H(n_i): the normals' curvature in the ring positions.
-          for (std::size_t k = 0; k < (detail::drop_normal_curvature ? 0 : sn.size()); ++k) {
+          const bool curvature = detail::gap_hessian_terms == detail::GapHessianTerms::all;
+          if (detail::gap_hessian_terms == detail::GapHessianTerms::none) Hx.setZero();
+          for (std::size_t k = 0; k < (curvature ? sn.size() : 0); ++k) {
             const NormalJet& jet = jet_of(sn[k]);
             const std::size_t nr = 3 * jet.ring.size();
             for (std::size_t a = 0; a < 3; ++a) {
