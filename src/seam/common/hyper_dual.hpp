@@ -10,17 +10,22 @@
 // f'(v) H + f''(v) g g^T; of a product: H_ab = a H_b + b H_a + g_a g_b^T + g_b g_a^T.
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace seam {
 
 template <int N> struct Hyper {
   static constexpr int n_variables = N;
-  double value = 0.0;
-  std::array<double, N> gradient{};
-  std::array<double, N * N> hessian{}; ///< row-major, symmetric
+  double value;
+  std::array<double, N> gradient;
+  std::array<double, N * N> hessian; ///< row-major, symmetric
 
-  Hyper() = default;
-  Hyper(double v) : value(v) {} // NOLINT(google-explicit-constructor): constants
+  Hyper() : value(0.0), gradient{}, hessian{} {}
+  Hyper(double v) : value(v), gradient{}, hessian{} {} // NOLINT(google-explicit-constructor)
+  /// A number whose gradient and Hessian the caller writes in full (no zero fill first: the
+  /// products of a kernel with many variables spend their time in memory traffic).
+  struct Uninitialized {};
+  Hyper(double v, Uninitialized) : value(v) {} // gradient and hessian are default-initialized
 
   static Hyper variable(double v, int i) {
     Hyper x(v);
@@ -31,11 +36,13 @@ template <int N> struct Hyper {
 
   /// f(this) for f with f(v) = f0, f'(v) = f1, f''(v) = f2.
   Hyper chain(double f0, double f1, double f2) const {
-    Hyper r(f0);
+    Hyper r(f0, Uninitialized{});
     for (int i = 0; i < N; ++i) r.gradient[i] = f1 * gradient[i];
-    for (int i = 0; i < N; ++i)
-      for (int k = 0; k < N; ++k)
-        r.hessian[i * N + k] = f1 * hessian[i * N + k] + f2 * gradient[i] * gradient[k];
+    for (int i = 0; i < N; ++i) {
+      const double gi = f2 * gradient[i];
+      for (int k = i; k < N; ++k)
+        r.hessian[i * N + k] = r.hessian[k * N + i] = f1 * hessian[i * N + k] + gi * gradient[k];
+    }
     return r;
   }
 
@@ -70,14 +77,41 @@ template <int N> Hyper<N> operator-(Hyper<N> a, const Hyper<N>& b) {
   return a -= b;
 }
 template <int N> Hyper<N> operator*(const Hyper<N>& a, const Hyper<N>& b) {
-  Hyper<N> r(a.value * b.value);
+  Hyper<N> r(a.value * b.value, typename Hyper<N>::Uninitialized{});
   for (int i = 0; i < N; ++i) r.gradient[i] = a.value * b.gradient[i] + b.value * a.gradient[i];
-  for (int i = 0; i < N; ++i)
-    for (int k = 0; k < N; ++k)
-      r.hessian[i * N + k] = a.value * b.hessian[i * N + k] + b.value * a.hessian[i * N + k] +
-                             a.gradient[i] * b.gradient[k] + b.gradient[i] * a.gradient[k];
+  // The Hessian is symmetric: the upper triangle, mirrored.
+  for (int i = 0; i < N; ++i) {
+    const double ai = a.gradient[i], bi = b.gradient[i];
+    for (int k = i; k < N; ++k)
+      r.hessian[i * N + k] = r.hessian[k * N + i] = a.value * b.hessian[i * N + k] +
+                                                    b.value * a.hessian[i * N + k] +
+                                                    ai * b.gradient[k] + bi * a.gradient[k];
+  }
   return r;
 }
+/// acc += a b without a temporary (the multiply-accumulate of the kernels' sums).
+template <int N> void add_product(Hyper<N>& acc, const Hyper<N>& a, const Hyper<N>& b) {
+  acc.value += a.value * b.value;
+  for (int i = 0; i < N; ++i) acc.gradient[i] += a.value * b.gradient[i] + b.value * a.gradient[i];
+  for (int i = 0; i < N; ++i) {
+    const double ai = a.gradient[i], bi = b.gradient[i];
+    for (int k = i; k < N; ++k) {
+      const double h = a.value * b.hessian[i * N + k] + b.value * a.hessian[i * N + k] +
+                       ai * b.gradient[k] + bi * a.gradient[k];
+      acc.hessian[i * N + k] += h;
+      if (k != i) acc.hessian[k * N + i] += h;
+    }
+  }
+}
+template <int N> void add_product(Hyper<N>& acc, const Hyper<N>& a, double b) {
+  acc.value += a.value * b;
+  for (int i = 0; i < N; ++i) acc.gradient[i] += b * a.gradient[i];
+  for (int i = 0; i < N * N; ++i) acc.hessian[i] += b * a.hessian[i];
+}
+template <int N> void add_product(Hyper<N>& acc, double a, const Hyper<N>& b) {
+  add_product(acc, b, a);
+}
+
 template <int N> Hyper<N> inverse(const Hyper<N>& b) {
   const double q = 1.0 / b.value;
   return b.chain(q, -q * q, 2.0 * q * q * q);
@@ -128,6 +162,17 @@ template <int N> bool operator>(const Hyper<N>& a, double b) {
 
 template <int N> double value_of(const Hyper<N>& x) {
   return x.value;
+}
+
+/// Independent variable i of value v on the scalar type S: S::variable(v, i) for Dual<N> and
+/// Hyper<N>, v itself for double (so one kernel serves values, gradients and Hessians).
+template <class S> S independent_variable(double v, int i) {
+  if constexpr (std::is_same_v<S, double>) {
+    (void)i;
+    return v;
+  } else {
+    return S::variable(v, i);
+  }
 }
 
 } // namespace seam

@@ -83,19 +83,32 @@ struct Linearization {
   std::vector<DofTriplet> operator_gradient;
 };
 
-/// One candidate pair's contributions to the weighted gaps of its two slave nodes, with their
-/// first or second derivatives (energy-momentum contact, docs/contact_dynamics.md §4). The
-/// variables are 6 nodes, 2 coordinates each: the slave facet's nodes, up to two more nodes
-/// of the facets that enter their averaged normals, the master facet's nodes; variable
-/// 2 * slot + c is coordinate c of mesh dof dofs[slot] / 2 (dofs[slot] < 0: unused slot).
+/// One candidate pair's contributions to the weighted gaps of its slave nodes, with their
+/// first or second derivatives (energy-momentum contact, docs/contact_dynamics.md §4, §5). The
+/// variables are the coordinates of the pair's slots: the slave facet's nodes, the master
+/// facet's nodes and the other nodes of the facets that enter the slave nodes' averaged
+/// normals; variable dim * slot + c is coordinate c of mesh dof dofs[slot] (dofs[slot] < 0:
+/// unused slot).
 struct GapBlock {
-  static constexpr int n_variables = 12;
-  std::array<local_index, 2> slave{}; ///< side-local slave nodes of the two rows
-  std::array<std::int64_t, 6> dofs{}; ///< mesh dof of coordinate 0 of each slot
-  std::array<double, 2> gap{};        ///< contribution to g~_j
-  std::array<std::array<double, 12>, 2> gradient{};
-  std::array<std::array<double, 144>, 2> hessian{}; ///< row-major
+  int dim = 2;
+  std::vector<local_index> slave; ///< side-local slave nodes of the rows
+  std::vector<std::int64_t> dofs; ///< mesh dof of coordinate 0 of each slot
+  std::vector<double> gap;        ///< contribution to g~_j, one per row
+  std::vector<double> gradient;   ///< rows x n_variables (GapOrder::gradient and hessian)
+  std::vector<double> hessian;    ///< rows x n_variables^2, row-major (GapOrder::hessian)
+  int n_variables() const { return dim * static_cast<int>(dofs.size()); }
+  /// The mesh dof of variable v, -1 for an unused slot.
+  std::int64_t dof(int v) const {
+    const auto slot = dofs[static_cast<std::size_t>(v / dim)];
+    return slot < 0 ? std::int64_t{-1} : slot + v % dim;
+  }
 };
+namespace detail {
+/// Tests only: what the 3D gap Hessians leave out, to show that the Newton matrix needs it.
+enum class GapHessianTerms { all, without_normal_curvature, none };
+extern GapHessianTerms gap_hessian_terms;
+} // namespace detail
+
 /// What gap_blocks computes: values, first or second derivatives.
 enum class GapOrder { value, gradient, hessian };
 
@@ -214,8 +227,8 @@ public:
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
                  Linearization& out) const;
 
-  /// Whether gap_blocks is available: 2D, line2 facets on both sides, two bodies or self
-  /// contact, no rigid obstacle.
+  /// Whether gap_blocks is available: line2 facets (2D) or tri3 and quad4 facets (3D) on both
+  /// sides, two bodies or self contact, no rigid obstacle.
   bool has_gap_blocks() const;
   /// The weighted gaps g~_j as functions of the positions: each candidate pair of the owned
   /// slave facets of the last update (same pairs, slave patch and nodal normal averaging),
@@ -232,6 +245,8 @@ public:
 
 private:
   std::int64_t mesh_dof_of_master(local_index p) const; ///< -1 for rigid nodes
+  /// gap_blocks of a 3D interface (gap_blocks_3d.cpp).
+  void gap_blocks_3d(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out) const;
   /// Slave node j has a nonzero multiplier (normal or Cartesian, see frictional()).
   bool carries_multiplier(std::span<const double> lambda, local_index j) const;
   /// Component c of the multiplier vector of slave node j.

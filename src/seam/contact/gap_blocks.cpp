@@ -18,6 +18,7 @@
 #include "seam/common/hyper_dual.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -47,14 +48,6 @@ template <class S> S length(const V2<S>& a) {
 }
 template <class S> Eigen::Vector2d value(const V2<S>& a) {
   return {value_of(a.x), value_of(a.y)};
-}
-template <class S> S seed(double v, int i) {
-  if constexpr (std::is_same_v<S, double>) {
-    (void)i;
-    return v;
-  } else {
-    return S::variable(v, i);
-  }
 }
 /// xi clamped to [-1, 1] with rounded corners: max(a, b) ~ (a + b + sqrt((a - b)^2 + d^2)) / 2.
 /// A segment end is a master node's projection until it passes the slave's end, and the slave
@@ -86,8 +79,9 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   g = {S(0.0), S(0.0)};
   std::array<V2<S>, 6> X;
   for (int i = 0; i < 6; ++i)
-    X[static_cast<std::size_t>(i)] = {seed<S>(in.x[static_cast<std::size_t>(i)].x(), 2 * i),
-                                      seed<S>(in.x[static_cast<std::size_t>(i)].y(), 2 * i + 1)};
+    X[static_cast<std::size_t>(i)] = {
+        independent_variable<S>(in.x[static_cast<std::size_t>(i)].x(), 2 * i),
+        independent_variable<S>(in.x[static_cast<std::size_t>(i)].y(), 2 * i + 1)};
   // Averaged nodal normals: s_k = sum of the unit facet normals (t_y, -t_x) / |t|, n = s / |s|.
   std::array<V2<S>, 2> nn;
   for (std::size_t k = 0; k < 2; ++k) {
@@ -203,11 +197,15 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
 } // namespace
 
 bool ContactInterface::has_gap_blocks() const {
-  if (rigid_ || dim() != 2) return false;
+  if (rigid_) return false;
+  const auto supported = [this](fem::CellType t) {
+    return dim() == 2 ? t == fem::CellType::line2
+                      : t == fem::CellType::tri3 || t == fem::CellType::quad4;
+  };
   for (const auto t : slave_.types)
-    if (t != fem::CellType::line2) return false;
+    if (!supported(t)) return false;
   for (const auto t : master_.types)
-    if (t != fem::CellType::line2) return false;
+    if (!supported(t)) return false;
   return true;
 }
 
@@ -215,6 +213,10 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
                                   std::vector<GapBlock>& out) const {
   SEAM_ASSERT(has_gap_blocks());
   out.clear();
+  if (dim() == 3) {
+    gap_blocks_3d(u, order, out);
+    return;
+  }
   const auto& X = mesh_->x;
   const auto position = [&](std::int32_t node) {
     const auto i = static_cast<std::size_t>(node) * 2;
@@ -230,7 +232,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
       const auto mn = masters.facet_nodes(pair.master);
       GapBlock b;
-      b.dofs.fill(-1);
+      b.dofs.assign(6, -1);
       std::array<local_index, 4> slave_slots{sn[0], sn[1], -1, -1};
       PairInput in;
       in.dual = options_.multiplier == mortar::Multiplier::dual;
@@ -270,33 +272,31 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
       const Eigen::Vector2d origin = in.x[0];
       for (auto& x : in.x) x -= origin;
       b.slave = {sn[0], sn[1]};
+      b.gap.assign(2, 0.0);
       if (order == GapOrder::value) {
         std::array<double, 2> g{};
         pair_gaps(in, options_.pair, g);
-        b.gap = g;
+        b.gap = {g[0], g[1]};
       } else if (order == GapOrder::gradient) {
         std::array<Dual<12>, 2> g;
         pair_gaps(in, options_.pair, g);
         for (std::size_t j = 0; j < 2; ++j) {
           b.gap[j] = g[j].value;
-          b.gradient[j] = g[j].gradient;
+          b.gradient.insert(b.gradient.end(), g[j].gradient.begin(), g[j].gradient.end());
         }
       } else {
         std::array<Hyper<12>, 2> g;
         pair_gaps(in, options_.pair, g);
         for (std::size_t j = 0; j < 2; ++j) {
           b.gap[j] = g[j].value;
-          b.gradient[j] = g[j].gradient;
-          b.hessian[j] = g[j].hessian;
+          b.gradient.insert(b.gradient.end(), g[j].gradient.begin(), g[j].gradient.end());
+          b.hessian.insert(b.hessian.end(), g[j].hessian.begin(), g[j].hessian.end());
         }
       }
-      if (b.gap[0] == 0.0 && b.gap[1] == 0.0) {
-        bool zero = true;
-        for (std::size_t j = 0; j < 2 && zero; ++j)
-          for (const double v : b.gradient[j]) zero = zero && v == 0.0;
-        if (zero) continue; // no overlap: the pair adds nothing
-      }
-      out.push_back(b);
+      if (b.gap[0] == 0.0 && b.gap[1] == 0.0 &&
+          std::all_of(b.gradient.begin(), b.gradient.end(), [](double v) { return v == 0.0; }))
+        continue; // no overlap: the pair adds nothing
+      out.push_back(std::move(b));
     }
 }
 

@@ -248,7 +248,11 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     sum_nodal_values(s);
     s.area = comm.sum(s.part.area);
     // Replaces g~ by the gaps of the discrete-gradient blocks (replicated).
-    if (s.discrete_gradient) evaluate_discrete_gradient(s, u_mesh);
+    if (s.discrete_gradient) {
+      evaluate_discrete_gradient(s, u_mesh, false);
+      s.em_displacement.assign(u_mesh.begin(), u_mesh.end());
+      s.em_tangent_current = false;
+    }
     if (s.friction) {
       changes += evaluate_friction(s, u_mesh, first);
       continue;
@@ -563,6 +567,10 @@ void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vec
   // Energy-momentum contact: the gap rows and the tangent of the discrete-gradient force come
   // from the last evaluate().
   if (!s.discrete_gradient) s.itf.linearize(s.lambda, s.active, s.lin);
+  if (s.discrete_gradient && !s.em_tangent_current) {
+    evaluate_discrete_gradient(s, s.em_displacement, true);
+    s.em_tangent_current = true;
+  }
   s.work_seconds += cpu_seconds() - cpu;
   for (const auto& e : s.discrete_gradient ? s.em_tangent : s.lin.force_tangent) {
     rows.push_back(global_dof(e.row));
@@ -918,8 +926,8 @@ std::vector<std::string> ContactConstraint::describe() const {
     if (s.discrete_gradient)
       text += ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
-      text += ", contact force of the end of the step (energy-momentum contact needs 2D line2 "
-              "faces, two bodies or self contact, no friction)";
+      text += ", contact force of the end of the step (energy-momentum contact needs line2 "
+              "faces in 2D or tri3/quad4 faces in 3D, two bodies or self contact, no friction)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",

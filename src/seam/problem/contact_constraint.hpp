@@ -264,6 +264,10 @@ private:
     };
     std::vector<GradientEntry> em_gradient;
     std::vector<contact::DofTriplet> em_tangent;
+    /// The interface displacement of the last evaluate() (the tangent is built from it when
+    /// a matrix is needed) and whether em_tangent belongs to it.
+    std::vector<double> em_displacement;
+    bool em_tangent_current = false;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
   /// This rank's part of D_jj, g~_j (and on a frictional side D_jj without coupling, in
@@ -276,8 +280,10 @@ private:
   /// The largest D_jj of the side (its owners' sums). Collective.
   double max_weight(const Side& s) const;
   /// The discrete gradients of side s at the interface displacement u (x_{n+1}) and the start
-  /// of the step, with the current multipliers (contact_energy_momentum.cpp). Collective.
-  void evaluate_discrete_gradient(Side& s, std::span<const double> u);
+  /// of the step, and with `tangent` the derivative of their force at the current multipliers
+  /// (em_tangent, from the Hessians of the weighted gaps: only when a matrix is built;
+  /// contact_energy_momentum.cpp). Collective.
+  void evaluate_discrete_gradient(Side& s, std::span<const double> u, bool tangent);
   // Friction (contact_friction.cpp).
   void init_friction(Side& s, const io::Interface& config, double c_n);
   /// Slip increments, stick/slip/inactive status with the cycling guard, complementarity

@@ -49,7 +49,8 @@ struct DiscreteGradient {
 /// times dx.
 DiscreteGradient discrete_gradient(int dim, const Eigen::VectorXd& dx, const Eigen::VectorXd& x_mid,
                                    double gap_start, double gap_end, const Eigen::VectorXd& G,
-                                   const Eigen::VectorXd& G1, const Eigen::VectorXd& Hdx) {
+                                   const Eigen::VectorXd& G1, const Eigen::VectorXd& Hdx,
+                                   bool jacobian) {
   const auto n = dx.size();
   const int n_nodes = static_cast<int>(n / dim);
   const int n_rotations = dim == 2 ? 1 : 3;
@@ -103,6 +104,7 @@ DiscreteGradient discrete_gradient(int dim, const Eigen::VectorXd& dx, const Eig
   const double N = gap_end - gap_start - G.dot(dx);
   const double ratio = N / den;
   out.value += ratio * w;
+  if (!jacobian) return out;
   // dw/dx_{n+1} = P (I - dR a) - R A^-1 dR^T w with dR = d R / d x_{n+1} (x_mid moves by half).
   Eigen::MatrixXd dw(n, n);
   for (int a = 0; a < n_nodes; ++a)
@@ -143,7 +145,8 @@ int ContactConstraint::n_end_of_step() const {
   return static_cast<int>(sides_.size()) - n_discrete_gradient();
 }
 
-void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const double> u) {
+void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const double> u,
+                                                   bool tangent) {
   const int dim = disc_.dim();
   const auto& X = disc_.mesh().x;
   s.em_gradient.clear();
@@ -155,41 +158,48 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   std::vector<contact::GapBlock> start, end, middle;
   s.itf.gap_blocks(u0, contact::GapOrder::value, start);
   s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
-  s.itf.gap_blocks(mid, contact::GapOrder::hessian, middle);
-  constexpr int nv = contact::GapBlock::n_variables;
-  const auto dof_of = [](const contact::GapBlock& b, int v) {
-    const auto slot = b.dofs[static_cast<std::size_t>(v / 2)];
-    return slot < 0 ? std::int64_t{-1} : slot + v % 2;
-  };
+  // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built.
+  s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient, middle);
+  const auto dof_of = [](const contact::GapBlock& b, int v) { return b.dof(v); };
   // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
   // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
   s.lin.gap_gradient.clear();
-  for (const auto& b : end)
-    for (std::size_t r = 0; r < 2; ++r)
+  for (const auto& b : end) {
+    const int nv = b.n_variables();
+    for (std::size_t r = 0; r < b.slave.size(); ++r)
       for (int v = 0; v < nv; ++v)
-        if (const auto dof = dof_of(b, v); dof >= 0 && b.gradient[r][v] != 0.0)
-          s.lin.gap_gradient.push_back({b.slave[r], dof, b.gradient[r][v]});
+        if (const auto dof = dof_of(b, v);
+            dof >= 0 &&
+            b.gradient[r * static_cast<std::size_t>(nv) + static_cast<std::size_t>(v)] != 0.0)
+          s.lin.gap_gradient.push_back(
+              {b.slave[r], dof,
+               b.gradient[r * static_cast<std::size_t>(nv) + static_cast<std::size_t>(v)]});
+  }
   std::vector<Entry> local;
   for (const auto& b : start)
-    for (std::size_t r = 0; r < 2; ++r) local.push_back({0, b.slave[r], g0, b.gap[r]});
-  for (const auto& b : end)
-    for (std::size_t r = 0; r < 2; ++r) {
+    for (std::size_t r = 0; r < b.slave.size(); ++r) local.push_back({0, b.slave[r], g0, b.gap[r]});
+  for (const auto& b : end) {
+    const auto nv = static_cast<std::size_t>(b.n_variables());
+    for (std::size_t r = 0; r < b.slave.size(); ++r) {
       local.push_back({0, b.slave[r], g1, b.gap[r]});
-      for (int v = 0; v < nv; ++v)
-        if (const auto dof = dof_of(b, v); dof >= 0)
-          local.push_back({dof, b.slave[r], end_gradient, b.gradient[r][v]});
+      for (std::size_t v = 0; v < nv; ++v)
+        if (const auto dof = dof_of(b, static_cast<int>(v)); dof >= 0)
+          local.push_back({dof, b.slave[r], end_gradient, b.gradient[r * nv + v]});
     }
-  for (const auto& b : middle)
-    for (std::size_t r = 0; r < 2; ++r) {
+  }
+  for (const auto& b : middle) {
+    const auto nv = static_cast<std::size_t>(b.n_variables());
+    for (std::size_t r = 0; r < b.slave.size(); ++r) {
       const auto j = static_cast<std::size_t>(b.slave[r]);
-      for (int v = 0; v < nv; ++v) {
-        const auto dof = dof_of(b, v);
+      for (std::size_t v = 0; v < nv; ++v) {
+        const auto dof = dof_of(b, static_cast<int>(v));
         if (dof < 0) continue;
-        local.push_back({dof, b.slave[r], mid_gradient, b.gradient[r][v]});
+        local.push_back({dof, b.slave[r], mid_gradient, b.gradient[r * nv + v]});
+        if (!tangent) continue;
         double hdx = 0.0;
-        for (int k = 0; k < nv; ++k)
-          if (const auto col = dof_of(b, k); col >= 0) {
-            const double h = b.hessian[r][static_cast<std::size_t>(v * nv + k)];
+        for (std::size_t k = 0; k < nv; ++k)
+          if (const auto col = dof_of(b, static_cast<int>(k)); col >= 0) {
+            const double h = b.hessian[(r * nv + v) * nv + k];
             hdx += h * (u[static_cast<std::size_t>(col)] - u0[static_cast<std::size_t>(col)]);
             // This rank's part of -lambda_j d(grad g~_j(x_mid))/dx_{n+1} = -lambda_j H / 2.
             if (s.lambda[j] != 0.0 && h != 0.0)
@@ -198,6 +208,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
         local.push_back({dof, b.slave[r], hessian_dx, hdx});
       }
     }
+  }
   // Every rank's entries; the owner of slave node j assembles its discrete gradient.
   std::vector<std::int64_t> offsets;
   std::vector<Entry> all =
@@ -242,11 +253,12 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       dx(i) = u[d] - u0[d];
       x_mid(i) = X[d] + mid[d];
     }
-    const DiscreteGradient dg = discrete_gradient(dim, dx, x_mid, gap_start, gap_end, G, G1, Hdx);
+    const DiscreteGradient dg =
+        discrete_gradient(dim, dx, x_mid, gap_start, gap_end, G, G1, Hdx, tangent);
     for (Eigen::Index i = 0; i < n; ++i)
       if (dg.value(i) != 0.0)
         s.em_gradient.push_back({j, dofs[static_cast<std::size_t>(i)], -dg.value(i)});
-    if (s.lambda[j] != 0.0)
+    if (tangent && s.lambda[j] != 0.0)
       for (Eigen::Index k = 0; k < n; ++k)
         for (Eigen::Index i = 0; i < n; ++i)
           if (const double v = dg.correction_jacobian(i, k); v != 0.0)

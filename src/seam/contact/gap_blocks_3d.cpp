@@ -1,0 +1,718 @@
+// The weighted gaps of 3D contact on tri3 and quad4 facets as functions of the nodal positions,
+// with exact first and second derivatives (energy-momentum contact, docs/contact_dynamics.md
+// §5).
+//
+// The kernel follows integrate_pair of mortar/integration_3d.cpp step by step on a scalar type
+// S (double, Dual<36> or Hyper<36>): the auxiliary plane of the slave facet (vertex mean,
+// normal from the edge or diagonal cross product), the projection of both facets into it, the
+// clip (Sutherland & Hodgman, as geometry::clip_polygons, its vertices kept on the heap: a
+// Hyper<36> takes 10 kB), the fan triangulation about the area centroid, the cell rule and,
+// per point, the back-projection onto both facets, the interpolated nodal normal n and the gap
+// (h_m - h_s) n . n_p / |n| from the heights above the plane. Every decision (facing test,
+// boxes, clip classification, fan) is taken on values, which freezes the combinatorics at the
+// evaluation point. The back-projection's reference coordinates come from the closed-form
+// inverse in doubles and are polished by chord Newton steps on S (the Jacobian of the values:
+// from the exact value each step makes one more order of derivatives exact; one for Dual, two
+// for Hyper). The dual coefficients A = D_e M_e^-1 of the slave facet are recomputed on S from
+// its current Jacobian, as dual_basis.cpp does.
+//
+// The pair kernel's independents are the slave positions, the slave nodal normals and the
+// master positions (36 with quad4 on both sides). The averaged unit nodal normal of a slave
+// node is a function of the nodes of the facets around it (up to 16 nodes, Hyper<48>); the
+// chain rule H_X = J^T H_y J + sum_i (dg/dy_i) H_X(y_i) takes both to the positions of the
+// pair's slots in doubles.
+#include "seam/contact/contact_interface.hpp"
+
+#include "seam/common/dual_number.hpp"
+#include "seam/common/error.hpp"
+#include "seam/common/hyper_dual.hpp"
+#include "seam/geometry/cell_quadrature.hpp"
+#include "seam/mortar/pair_integration_detail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace seam::contact {
+
+detail::GapHessianTerms detail::gap_hessian_terms = detail::GapHessianTerms::all;
+
+namespace {
+
+constexpr int pair_variables = 36; ///< slave x (12), slave normals (12), master x (12)
+constexpr int normal_offset = 12;  ///< first variable of the slave normals
+constexpr int master_offset = 24;  ///< first variable of the master positions
+constexpr int max_ring_nodes = 16; ///< nodes of the facets around one slave node
+constexpr int ring_variables = 3 * max_ring_nodes;
+
+template <class S> struct V3 { S x = S(0.0), y = S(0.0), z = S(0.0); };
+template <class S> struct V2 { S x = S(0.0), y = S(0.0); };
+template <class S> V3<S> operator+(const V3<S>& a, const V3<S>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class S> V3<S> operator-(const V3<S>& a, const V3<S>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class S, class T> V3<S> operator*(const V3<S>& a, const T& s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+template <class S> S dot(const V3<S>& a, const V3<S>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class S> V3<S> cross(const V3<S>& a, const V3<S>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class S> S norm(const V3<S>& a) {
+  using std::sqrt;
+  return sqrt(dot(a, a));
+}
+template <class S> V2<S> operator+(const V2<S>& a, const V2<S>& b) {
+  return {a.x + b.x, a.y + b.y};
+}
+template <class S> V2<S> operator-(const V2<S>& a, const V2<S>& b) {
+  return {a.x - b.x, a.y - b.y};
+}
+template <class S, class T> V2<S> operator*(const V2<S>& a, const T& s) {
+  return {a.x * s, a.y * s};
+}
+template <class S> S cross(const V2<S>& a, const V2<S>& b) {
+  return a.x * b.y - a.y * b.x;
+}
+template <class S> Eigen::Vector2d value(const V2<S>& a) {
+  return {value_of(a.x), value_of(a.y)};
+}
+template <class S> Eigen::Vector3d value(const V3<S>& a) {
+  return {value_of(a.x), value_of(a.y), value_of(a.z)};
+}
+template <class S> S component(const V3<S>& a, int c) {
+  return c == 0 ? a.x : c == 1 ? a.y : a.z;
+}
+template <class S> V3<S> seeded(const Eigen::Vector3d& x, int first) {
+  return {independent_variable<S>(x.x(), first), independent_variable<S>(x.y(), first + 1),
+          independent_variable<S>(x.z(), first + 2)};
+}
+
+/// Shape values and reference gradients of tri3 / quad4 (Gmsh order) at xi of type T.
+template <class T>
+void shape(int n, const T& s, const T& t, std::array<T, 4>& N, std::array<T, 8>& dN) {
+  if (n == 3) {
+    N = {1.0 - s - t, s, t, T(0.0)};
+    dN = {T(-1.0), T(-1.0), T(1.0), T(0.0), T(0.0), T(1.0), T(0.0), T(0.0)};
+    return;
+  }
+  const T sm = 1.0 - s, sp = 1.0 + s, tm = 1.0 - t, tp = 1.0 + t;
+  N = {0.25 * sm * tm, 0.25 * sp * tm, 0.25 * sp * tp, 0.25 * sm * tp};
+  dN = {-0.25 * tm, -0.25 * sm, 0.25 * tm, -0.25 * sp, 0.25 * tp, 0.25 * sp, -0.25 * tp, 0.25 * sm};
+}
+
+fem::CellType linear_type(int n) {
+  return n == 3 ? fem::CellType::tri3 : fem::CellType::quad4;
+}
+
+/// The unit normal x_xi x x_eta / |.| of a facet (positions x, n nodes) at its node i, as
+/// mortar::averaged_nodal_normals evaluates it.
+template <class S> V3<S> facet_unit_normal(const std::array<V3<S>, 4>& x, int n, int i) {
+  const double* reference = fem::reference_nodes(linear_type(n)).data();
+  std::array<double, 4> N;
+  std::array<double, 8> dN;
+  shape<double>(n, reference[2 * i], reference[2 * i + 1], N, dN);
+  V3<S> a, b;
+  for (int k = 0; k < n; ++k) {
+    a = a + x[static_cast<std::size_t>(k)] * dN[static_cast<std::size_t>(2 * k)];
+    b = b + x[static_cast<std::size_t>(k)] * dN[static_cast<std::size_t>(2 * k + 1)];
+  }
+  const V3<S> c = cross(a, b);
+  return c * (1.0 / norm(c));
+}
+
+/// The averaged unit normal of one slave node with its first (and second) derivatives with
+/// respect to the positions of the ring: the nodes of the facets around it.
+struct NormalJet {
+  std::vector<std::int32_t> ring; ///< mesh nodes
+  std::array<double, 3> value{};
+  std::vector<double> gradient; ///< 3 x (3 ring)
+  std::vector<double> hessian;  ///< 3 x (3 ring)^2
+};
+
+/// One pair in the frame of the slave facet's first node.
+struct PairInput {
+  int ns = 0, nm = 0;
+  std::array<Eigen::Vector3d, 4> xs, xm, normal;
+  bool dual = true;
+};
+
+/// The clip of geometry::clip_polygons on S (decisions on values), with heap storage.
+template <class S> using Polygon = std::vector<V2<S>>;
+
+template <class S> double distance(const V2<S>& a, const V2<S>& b) {
+  return (value(a) - value(b)).norm();
+}
+template <class S> S signed_area(const Polygon<S>& p) {
+  S twice = 0.0;
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) twice += cross(p[i] - p[0], p[i + 1] - p[0]);
+  return 0.5 * twice;
+}
+template <class S> double min_edge(const Polygon<S>& p) {
+  if (p.size() < 2) return 0.0;
+  double m = distance(p[0], p.back());
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) m = std::min(m, distance(p[i + 1], p[i]));
+  return m;
+}
+template <class S> double max_edge(const Polygon<S>& p) {
+  if (p.size() < 2) return 0.0;
+  double m = distance(p[0], p.back());
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) m = std::max(m, distance(p[i + 1], p[i]));
+  return m;
+}
+template <class S> void merge_close(Polygon<S>& p, double tol) {
+  Polygon<S> out;
+  for (const auto& x : p)
+    if (out.empty() || distance(x, out.back()) > tol) out.push_back(x);
+  while (out.size() > 1 && distance(out.back(), out[0]) <= tol) out.pop_back();
+  p.swap(out);
+}
+template <class S> void remove_collinear(Polygon<S>& p, double tol) {
+  bool changed = true;
+  while (changed && p.size() >= 3) {
+    changed = false;
+    const std::size_t n = p.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector2d prev = value(p[(i + n - 1) % n]), next = value(p[(i + 1) % n]);
+      const Eigen::Vector2d here = value(p[i]);
+      const Eigen::Vector2d chord = next - prev;
+      const double length = chord.norm();
+      const double d = length > tol ? std::abs(geometry::cross2(chord, here - prev)) / length
+                                    : (here - prev).norm();
+      if (d <= tol) {
+        p.erase(p.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+        break;
+      }
+    }
+  }
+}
+
+template <class S>
+Polygon<S> clip(Polygon<S> s, Polygon<S> c, const geometry::ClipOptions& options) {
+  using std::sqrt;
+  const double input_tol = options.merge_tolerance * std::min(max_edge(s), max_edge(c));
+  merge_close(s, input_tol);
+  merge_close(c, input_tol);
+  if (s.size() < 3 || c.size() < 3) return {};
+  const double subject_area = std::abs(value_of(signed_area(s)));
+  if (value_of(signed_area(s)) < 0.0) std::reverse(s.begin(), s.end());
+  if (value_of(signed_area(c)) < 0.0) std::reverse(c.begin(), c.end());
+  if (subject_area == 0.0 || value_of(signed_area(c)) == 0.0) return {};
+  const double tol = options.merge_tolerance * std::min(min_edge(s), min_edge(c));
+  std::vector<S> d;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const V2<S>& a = c[k];
+    const V2<S> edge = c[(k + 1) % c.size()] - a;
+    const S length = sqrt(edge.x * edge.x + edge.y * edge.y);
+    const std::size_t n = s.size();
+    d.assign(n, S(0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+      const S di = cross(edge, s[i] - a) / length;
+      if (!(std::abs(value_of(di)) <= tol)) d[i] = di;
+    }
+    Polygon<S> out;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t j = (i + 1) % n;
+      const double dc = value_of(d[i]), dn = value_of(d[j]);
+      if (dc >= 0.0) out.push_back(s[i]);
+      if ((dc > 0.0 && dn < 0.0) || (dc < 0.0 && dn > 0.0)) {
+        const S t = d[i] / (d[i] - d[j]);
+        out.push_back(s[i] + (s[j] - s[i]) * t);
+      }
+    }
+    merge_close(out, tol);
+    s.swap(out);
+    if (s.size() < 3) return {};
+  }
+  remove_collinear(s, tol);
+  if (s.size() < 3) return {};
+  if (value_of(signed_area(s)) <= options.min_relative_area * subject_area) return {};
+  SEAM_CHECK(static_cast<int>(s.size()) <= geometry::max_polygon_vertices, InternalError,
+             "gap blocks: clip result has ", s.size(), " vertices");
+  return s;
+}
+
+/// Area centroid (geometry::centroid); the vertex average when the area vanishes.
+template <class S> V2<S> centroid(const Polygon<S>& p) {
+  const V2<S> origin = p[0];
+  V2<S> vertex_sum, moment;
+  S twice_area = 0.0;
+  for (const auto& x : p) vertex_sum = vertex_sum + (x - origin);
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+    const V2<S> u = p[i] - origin, v = p[i + 1] - origin;
+    const S twice = cross(u, v);
+    twice_area += twice;
+    moment = moment + (u + v) * (twice / 3.0);
+  }
+  const double scale = std::max(max_edge(p), 1e-300);
+  if (std::abs(value_of(twice_area)) <= 1e-14 * scale * scale)
+    return origin + vertex_sum * (1.0 / static_cast<double>(p.size()));
+  return origin + moment * (1.0 / twice_area);
+}
+
+/// The triangle rule of integration_3d.cpp: barycentric points, weights summing to 1.
+struct CellRule {
+  std::vector<std::array<double, 4>> points;
+  explicit CellRule(int degree) {
+    if (degree <= 5) {
+      using Rule = geometry::TriangleRule7;
+      for (int q = 0; q < Rule::n_points; ++q) {
+        const auto& b = Rule::barycentric[static_cast<std::size_t>(q)];
+        points.push_back({b[0], b[1], b[2], Rule::weights[static_cast<std::size_t>(q)]});
+      }
+      return;
+    }
+    const fem::QuadratureRule rule = fem::quadrature(fem::CellType::tri3, degree);
+    for (int q = 0; q < rule.n_points; ++q) {
+      const double xi = rule.points[static_cast<std::size_t>(2 * q)];
+      const double eta = rule.points[static_cast<std::size_t>(2 * q + 1)];
+      points.push_back({1.0 - xi - eta, xi, eta, 2.0 * rule.weights[static_cast<std::size_t>(q)]});
+    }
+  }
+};
+
+/// Reference coordinates (s, t) of the plane point p on the facet with plane images u: the
+/// closed-form inverse in doubles, then Newton steps on S with the Jacobian of the values (a
+/// chord step: from the exact value, each step makes one more order of derivatives exact, so
+/// one step serves the gradient, two the Hessian).
+template <class S>
+bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInverse& inverse,
+            const V2<S>& p, S& s, S& t) {
+  Eigen::Vector2d xi;
+  if (!inverse.parent_coordinates(value(p), xi)) return false;
+  s = xi.x();
+  t = xi.y();
+  if constexpr (!std::is_same_v<S, double>) {
+    std::array<double, 4> N0;
+    std::array<double, 8> dN;
+    shape<double>(n, xi.x(), xi.y(), N0, dN);
+    Eigen::Vector2d j0 = Eigen::Vector2d::Zero(), j1 = Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
+      j0 += value(u[k]) * dN[2 * k];
+      j1 += value(u[k]) * dN[2 * k + 1];
+    }
+    const double det = j0.x() * j1.y() - j0.y() * j1.x();
+    const int steps = is_dual<S> ? 1 : 2;
+    std::array<S, 4> N;
+    std::array<S, 8> unused;
+    for (int it = 0; it < steps; ++it) {
+      shape<S>(n, s, t, N, unused);
+      S rx = -p.x, ry = -p.y;
+      for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
+        add_product(rx, u[k].x, N[k]);
+        add_product(ry, u[k].y, N[k]);
+      }
+      // [s, t] -= J^-1 r with J = [j0 j1].
+      s = s - (rx * j1.y() - ry * j1.x()) * (1.0 / det);
+      t = t - (ry * j0.x() - rx * j0.y()) * (1.0 / det);
+    }
+  }
+  return true;
+}
+
+/// The dual coefficients A = D_e M_e^-1 of the slave facet (dual_basis.cpp) on S.
+template <class S>
+void dual_coefficients(int n, const std::array<V3<S>, 4>& x, std::array<std::array<S, 4>, 4>& A) {
+  const fem::QuadratureRule rule = fem::quadrature(linear_type(n), 4);
+  std::array<std::array<S, 4>, 4> M;
+  std::array<S, 4> D;
+  for (int j = 0; j < 4; ++j) {
+    D[static_cast<std::size_t>(j)] = 0.0;
+    for (int k = 0; k < 4; ++k) M[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = 0.0;
+  }
+  for (int q = 0; q < rule.n_points; ++q) {
+    std::array<double, 4> N;
+    std::array<double, 8> dN;
+    shape<double>(n, rule.points[static_cast<std::size_t>(2 * q)],
+                  rule.points[static_cast<std::size_t>(2 * q + 1)], N, dN);
+    V3<S> a, b;
+    for (int k = 0; k < n; ++k) {
+      a = a + x[static_cast<std::size_t>(k)] * dN[static_cast<std::size_t>(2 * k)];
+      b = b + x[static_cast<std::size_t>(k)] * dN[static_cast<std::size_t>(2 * k + 1)];
+    }
+    const S jw = norm(cross(a, b)) * rule.weights[static_cast<std::size_t>(q)];
+    for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
+      D[j] += jw * N[j];
+      for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) M[j][k] += jw * (N[j] * N[k]);
+    }
+  }
+  // M^-1 by Gauss-Jordan (M is symmetric positive definite: no pivoting), then A = D M^-1.
+  std::array<std::array<S, 4>, 4> inv;
+  for (std::size_t j = 0; j < 4; ++j)
+    for (std::size_t k = 0; k < 4; ++k) inv[j][k] = j == k ? 1.0 : 0.0;
+  const auto m = static_cast<std::size_t>(n);
+  for (std::size_t p = 0; p < m; ++p) {
+    const S pivot = 1.0 / M[p][p];
+    for (std::size_t k = 0; k < m; ++k) {
+      M[p][k] = M[p][k] * pivot;
+      inv[p][k] = inv[p][k] * pivot;
+    }
+    for (std::size_t r = 0; r < m; ++r) {
+      if (r == p) continue;
+      const S f = M[r][p];
+      for (std::size_t k = 0; k < m; ++k) {
+        M[r][k] -= f * M[p][k];
+        inv[r][k] -= f * inv[p][k];
+      }
+    }
+  }
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t k = 0; k < m; ++k) A[j][k] = D[j] * inv[j][k];
+}
+
+double longest_edge_squared(const std::array<Eigen::Vector3d, 4>& x, int n) {
+  double longest = (x[0] - x[static_cast<std::size_t>(n - 1)]).squaredNorm();
+  for (int i = 0; i + 1 < n; ++i)
+    longest = std::max(
+        longest,
+        (x[static_cast<std::size_t>(i + 1)] - x[static_cast<std::size_t>(i)]).squaredNorm());
+  return longest;
+}
+
+template <class S>
+void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::array<S, 4>& g) {
+  g = {S(0.0), S(0.0), S(0.0), S(0.0)};
+  const int ns = in.ns, nm = in.nm;
+  // Centre distance against the reach (integrate_pair's pre-check), on values.
+  const double factor = options.max_center_distance_factor;
+  const double reach_squared =
+      factor * factor * std::max(longest_edge_squared(in.xs, ns), longest_edge_squared(in.xm, nm));
+  Eigen::Vector3d cs = Eigen::Vector3d::Zero(), cm = Eigen::Vector3d::Zero();
+  for (int k = 0; k < ns; ++k) cs += in.xs[static_cast<std::size_t>(k)] / ns;
+  for (int l = 0; l < nm; ++l) cm += in.xm[static_cast<std::size_t>(l)] / nm;
+  if ((cs - cm).squaredNorm() > reach_squared) return;
+
+  std::array<V3<S>, 4> xs, nn, xm;
+  for (int k = 0; k < ns; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    xs[i] = seeded<S>(in.xs[i], 3 * k);
+    nn[i] = seeded<S>(in.normal[i], normal_offset + 3 * k);
+  }
+  for (int l = 0; l < nm; ++l)
+    xm[static_cast<std::size_t>(l)] =
+        seeded<S>(in.xm[static_cast<std::size_t>(l)], master_offset + 3 * l);
+
+  // The auxiliary plane (geometry::make_plane through the vertex mean).
+  V3<S> center;
+  for (int k = 0; k < ns; ++k) center = center + xs[static_cast<std::size_t>(k)];
+  center = center * (1.0 / ns);
+  const V3<S> raw =
+      ns == 3 ? cross(xs[1] - xs[0], xs[2] - xs[0]) : cross(xs[2] - xs[0], xs[3] - xs[1]);
+  const S raw_length = norm(raw);
+  if (!(value_of(raw_length) > 0.0)) return;
+  const V3<S> np = raw * (1.0 / raw_length);
+  const Eigen::Vector3d npv = value(np);
+  int axis = 0;
+  npv.cwiseAbs().minCoeff(&axis);
+  V3<S> e = np * (-component(np, axis));
+  (axis == 0 ? e.x : axis == 1 ? e.y : e.z) += 1.0;
+  const V3<S> t1 = e * (1.0 / norm(e));
+  const V3<S> t2 = cross(np, t1);
+  std::array<V2<S>, 4> us, um;
+  std::array<S, 4> hs, hm;
+  const auto into_plane = [&](const V3<S>& x, V2<S>& u, S& h) {
+    const V3<S> r = x - center;
+    u = {dot(r, t1), dot(r, t2)};
+    h = dot(r, np);
+  };
+  for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) into_plane(xs[k], us[k], hs[k]);
+  for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) into_plane(xm[l], um[l], hm[l]);
+  // Boxes in the plane and the facing test, on values.
+  Eigen::Vector2d slo = value(us[0]), shi = slo, mlo = value(um[0]), mhi = mlo;
+  for (int k = 1; k < ns; ++k) {
+    slo = slo.cwiseMin(value(us[static_cast<std::size_t>(k)]));
+    shi = shi.cwiseMax(value(us[static_cast<std::size_t>(k)]));
+  }
+  for (int l = 1; l < nm; ++l) {
+    mlo = mlo.cwiseMin(value(um[static_cast<std::size_t>(l)]));
+    mhi = mhi.cwiseMax(value(um[static_cast<std::size_t>(l)]));
+  }
+  if ((mlo.array() > shi.array()).any() || (slo.array() > mhi.array()).any()) return;
+  {
+    const auto& m = in.xm;
+    const Eigen::Vector3d n = nm == 3 ? Eigen::Vector3d((m[1] - m[0]).cross(m[2] - m[0]))
+                                      : Eigen::Vector3d((m[2] - m[0]).cross(m[3] - m[1]));
+    const double length = n.norm();
+    if (!(length > 0.0) || !((n / length).dot(npv) < -1e-12)) return;
+  }
+  Polygon<S> subject(us.begin(), us.begin() + ns), clipper(um.begin(), um.begin() + nm);
+  const Polygon<S> polygon = clip(subject, clipper, options.clip);
+  if (polygon.empty()) return;
+  std::array<Eigen::Vector2d, 4> usv, umv;
+  for (std::size_t k = 0; k < 4; ++k) {
+    usv[k] = value(us[k]);
+    umv[k] = value(um[k]);
+  }
+  std::array<Eigen::Vector2d, 4> zero;
+  zero.fill(Eigen::Vector2d::Zero());
+  mortar::detail::PieceInverse slave_inverse, master_inverse;
+  const bool slave_valid = slave_inverse.set(ns, usv, zero, true);
+  const bool master_valid = master_inverse.set(nm, umv, zero, true);
+
+  std::array<std::array<S, 4>, 4> A;
+  if (in.dual) dual_coefficients(ns, xs, A);
+  const int degree = options.cell_quadrature_degree > 0 ? options.cell_quadrature_degree : 5;
+  const CellRule rule(degree);
+  // The fan about the area centroid (a triangle stays one cell).
+  const std::size_t nv = polygon.size();
+  const V2<S> c = nv == 3 ? polygon[0] : centroid(polygon);
+  for (std::size_t i = 0; i < (nv == 3 ? 1 : nv); ++i) {
+    const V2<S> a = nv == 3 ? polygon[0] : c, b = nv == 3 ? polygon[1] : polygon[i],
+                cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
+    const S area = 0.5 * cross(b - a, cc - a);
+    for (const auto& point : rule.points) {
+      const V2<S> u = a * point[0] + b * point[1] + cc * point[2];
+      S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
+      if (!slave_valid || !master_valid || !locate(ns, us, slave_inverse, u, s1, s2) ||
+          !locate(nm, um, master_inverse, u, m1, m2))
+        continue;
+      std::array<S, 4> Ns, Nm;
+      std::array<S, 8> dN;
+      shape<S>(ns, s1, s2, Ns, dN);
+      shape<S>(nm, m1, m2, Nm, dN);
+      V3<S> n;
+      S h_s = 0.0, h_m = 0.0;
+      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) {
+        add_product(n.x, nn[k].x, Ns[k]);
+        add_product(n.y, nn[k].y, Ns[k]);
+        add_product(n.z, nn[k].z, Ns[k]);
+        add_product(h_s, hs[k], Ns[k]);
+      }
+      for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) add_product(h_m, hm[l], Nm[l]);
+      const S wg = point[3] * area * (h_m - h_s) * dot(n, np) / norm(n);
+      // Phi_j = A_jk N_k with A constant over the pair: sum w g N_k first, apply A once.
+      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) add_product(g[k], wg, Ns[k]);
+    }
+  }
+  if (!in.dual) return;
+  const std::array<S, 4> weighted = g;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(ns); ++j) {
+    g[j] = 0.0;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k)
+      add_product(g[j], A[j][k], weighted[k]);
+  }
+}
+
+/// The averaged unit normal of slave node `node` (side-local) on S over its ring's positions.
+template <class S>
+void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacency,
+               local_index node, const std::vector<Eigen::Vector3d>& ring_x,
+               const std::vector<local_index>& ring, std::array<S, 3>& n) {
+  std::vector<V3<S>> x(ring.size());
+  for (std::size_t r = 0; r < ring.size(); ++r)
+    x[r] = seeded<S>(ring_x[r], 3 * static_cast<int>(r));
+  V3<S> sum;
+  for (const auto f : adjacency.of(node)) {
+    const auto nodes = slaves.facet_nodes(f);
+    std::array<V3<S>, 4> fx;
+    int here = -1;
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      const auto slot = std::find(ring.begin(), ring.end(), nodes[k]) - ring.begin();
+      fx[k] = x[static_cast<std::size_t>(slot)];
+      if (nodes[k] == node) here = static_cast<int>(k);
+    }
+    sum = sum + facet_unit_normal(fx, static_cast<int>(nodes.size()), here);
+  }
+  const S length = norm(sum);
+  SEAM_CHECK(value_of(length) > 1e-8, InputError, "slave node ", node,
+             ": the normals of its facets cancel (the surface folds back onto itself)");
+  n = {sum.x / length, sum.y / length, sum.z / length};
+}
+
+} // namespace
+
+void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
+                                     std::vector<GapBlock>& out) const {
+  const auto& X = mesh_->x;
+  const auto position = [&](std::int32_t node) {
+    const auto i = static_cast<std::size_t>(node) * 3;
+    return Eigen::Vector3d(X[i] + u[i], X[i + 1] + u[i + 1], X[i + 2] + u[i + 2]);
+  };
+  const mortar::FacetSet slaves = slave_set();
+  const mortar::FacetSet masters = master_.facet_set();
+  const mortar::NodeFacets& adjacency = slave_adjacency();
+  const bool dual = options_.multiplier == mortar::Multiplier::dual;
+  // The normal jets of the slave nodes met so far (side-local node of the slave set).
+  std::map<local_index, NormalJet> jets;
+  const auto jet_of = [&](local_index node) -> const NormalJet& {
+    auto it = jets.find(node);
+    if (it != jets.end()) return it->second;
+    NormalJet jet;
+    std::vector<local_index> ring;
+    for (const auto f : adjacency.of(node))
+      for (const auto k : slaves.facet_nodes(f))
+        if (std::find(ring.begin(), ring.end(), k) == ring.end()) ring.push_back(k);
+    SEAM_CHECK(static_cast<int>(ring.size()) <= max_ring_nodes, InputError, "interface '", name_,
+               "': energy-momentum contact: a slave node has more than ", max_ring_nodes,
+               " nodes on its facets");
+    std::vector<Eigen::Vector3d> ring_x;
+    for (const auto k : ring) {
+      const auto mesh_node = slave_.mesh_nodes[static_cast<std::size_t>(k)];
+      jet.ring.push_back(mesh_node);
+      ring_x.push_back(position(mesh_node));
+    }
+    const auto nr = static_cast<std::size_t>(3 * ring.size());
+    if (order == GapOrder::value) {
+      std::array<double, 3> n;
+      normal_of(slaves, adjacency, node, ring_x, ring, n);
+      jet.value = n;
+    } else if (order == GapOrder::gradient) {
+      std::array<Dual<ring_variables>, 3> n;
+      normal_of(slaves, adjacency, node, ring_x, ring, n);
+      jet.gradient.resize(3 * nr);
+      for (std::size_t a = 0; a < 3; ++a) {
+        jet.value[a] = n[a].value;
+        for (std::size_t v = 0; v < nr; ++v) jet.gradient[a * nr + v] = n[a].gradient[v];
+      }
+    } else {
+      std::array<Hyper<ring_variables>, 3> n;
+      normal_of(slaves, adjacency, node, ring_x, ring, n);
+      jet.gradient.resize(3 * nr);
+      jet.hessian.resize(3 * nr * nr);
+      for (std::size_t a = 0; a < 3; ++a) {
+        jet.value[a] = n[a].value;
+        for (std::size_t v = 0; v < nr; ++v) {
+          jet.gradient[a * nr + v] = n[a].gradient[v];
+          for (std::size_t w = 0; w < nr; ++w)
+            jet.hessian[(a * nr + v) * nr + w] = n[a].hessian[v * ring_variables + w];
+        }
+      }
+    }
+    return jets.emplace(node, std::move(jet)).first->second;
+  };
+
+  for (const auto f : owned_)
+    for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
+         i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i) {
+      const auto& pair = pairs_[static_cast<std::size_t>(i)];
+      const auto sn = slaves.facet_nodes(slave_index(pair.slave));
+      const auto mn = masters.facet_nodes(pair.master);
+      PairInput in;
+      in.ns = static_cast<int>(sn.size());
+      in.nm = static_cast<int>(mn.size());
+      in.dual = dual;
+      GapBlock b;
+      b.dim = 3;
+      // Slots: the slave facet's nodes, the master facet's nodes, then the other ring nodes.
+      std::vector<std::int32_t> slots;
+      const auto slot_of = [&](std::int32_t mesh_node) {
+        const auto it = std::find(slots.begin(), slots.end(), mesh_node);
+        if (it != slots.end()) return static_cast<int>(it - slots.begin());
+        slots.push_back(mesh_node);
+        return static_cast<int>(slots.size()) - 1;
+      };
+      std::array<int, 4> slave_slot{}, master_slot{};
+      for (std::size_t k = 0; k < sn.size(); ++k) {
+        const auto node = slave_.mesh_nodes[static_cast<std::size_t>(sn[k])];
+        slave_slot[k] = slot_of(node);
+        in.xs[k] = position(node);
+        in.normal[k] = Eigen::Vector3d(jet_of(sn[k]).value.data());
+      }
+      for (std::size_t l = 0; l < mn.size(); ++l) {
+        const auto node = master_mesh_nodes_[static_cast<std::size_t>(mn[l])];
+        master_slot[l] = slot_of(node);
+        in.xm[l] = position(node);
+      }
+      // The frame of the slave facet's first node (as integrate_pair's callers).
+      const Eigen::Vector3d origin = in.xs[0];
+      for (auto& x : in.xs) x -= origin;
+      for (auto& x : in.xm) x -= origin;
+      std::array<std::vector<int>, 4> ring_slots;
+      if (order != GapOrder::value)
+        for (std::size_t k = 0; k < sn.size(); ++k)
+          for (const auto node : jet_of(sn[k]).ring) ring_slots[k].push_back(slot_of(node));
+      const auto nv = static_cast<std::size_t>(3 * slots.size());
+      b.slave.assign(sn.begin(), sn.end());
+      b.dofs.resize(slots.size());
+      for (std::size_t s = 0; s < slots.size(); ++s)
+        b.dofs[s] = static_cast<std::int64_t>(slots[s]) * 3;
+      b.gap.assign(sn.size(), 0.0);
+      // y -> slot variables: J (pair_variables x nv) of positions and normals.
+      Eigen::MatrixXd J;
+      if (order != GapOrder::value) {
+        J = Eigen::MatrixXd::Zero(pair_variables, static_cast<Eigen::Index>(nv));
+        for (std::size_t k = 0; k < sn.size(); ++k) {
+          const NormalJet& jet = jet_of(sn[k]);
+          const std::size_t nr = 3 * jet.ring.size();
+          for (int a = 0; a < 3; ++a) {
+            J(3 * static_cast<int>(k) + a, 3 * slave_slot[k] + a) = 1.0;
+            for (std::size_t r = 0; r < jet.ring.size(); ++r)
+              for (int c = 0; c < 3; ++c)
+                J(normal_offset + 3 * static_cast<int>(k) + a, 3 * ring_slots[k][r] + c) =
+                    jet.gradient[static_cast<std::size_t>(a) * nr + 3 * r +
+                                 static_cast<std::size_t>(c)];
+          }
+        }
+        for (std::size_t l = 0; l < mn.size(); ++l)
+          for (int a = 0; a < 3; ++a)
+            J(master_offset + 3 * static_cast<int>(l) + a, 3 * master_slot[l] + a) = 1.0;
+      }
+      bool nonzero = false;
+      if (order == GapOrder::value) {
+        std::array<double, 4> g{};
+        pair_gaps(in, options_.pair, g);
+        for (std::size_t j = 0; j < sn.size(); ++j) b.gap[j] = g[j];
+        for (std::size_t j = 0; j < sn.size(); ++j) nonzero = nonzero || g[j] != 0.0;
+      } else if (order == GapOrder::gradient) {
+        std::array<Dual<pair_variables>, 4> g;
+        pair_gaps(in, options_.pair, g);
+        b.gradient.assign(sn.size() * nv, 0.0);
+        for (std::size_t j = 0; j < sn.size(); ++j) {
+          b.gap[j] = g[j].value;
+          const Eigen::VectorXd gx = J.transpose() * Eigen::Map<const Eigen::VectorXd>(
+                                                         g[j].gradient.data(), pair_variables);
+          for (std::size_t v = 0; v < nv; ++v) {
+            b.gradient[j * nv + v] = gx(static_cast<Eigen::Index>(v));
+            nonzero = nonzero || gx(static_cast<Eigen::Index>(v)) != 0.0;
+          }
+        }
+      } else {
+        std::array<Hyper<pair_variables>, 4> g;
+        pair_gaps(in, options_.pair, g);
+        b.gradient.assign(sn.size() * nv, 0.0);
+        b.hessian.assign(sn.size() * nv * nv, 0.0);
+        for (std::size_t j = 0; j < sn.size(); ++j) {
+          b.gap[j] = g[j].value;
+          const auto gy = Eigen::Map<const Eigen::VectorXd>(g[j].gradient.data(), pair_variables);
+          const auto Hy = Eigen::Map<
+              const Eigen::Matrix<double, pair_variables, pair_variables, Eigen::RowMajor>>(
+              g[j].hessian.data());
+          const Eigen::VectorXd gx = J.transpose() * gy;
+          Eigen::MatrixXd Hx = J.transpose() * Hy * J;
+          // sum_i dg/dn_i H(n_i): the normals' curvature in the ring positions.
+          const bool curvature = detail::gap_hessian_terms == detail::GapHessianTerms::all;
+          if (detail::gap_hessian_terms == detail::GapHessianTerms::none) Hx.setZero();
+          for (std::size_t k = 0; k < (curvature ? sn.size() : 0); ++k) {
+            const NormalJet& jet = jet_of(sn[k]);
+            const std::size_t nr = 3 * jet.ring.size();
+            for (std::size_t a = 0; a < 3; ++a) {
+              const double weight = gy(static_cast<Eigen::Index>(normal_offset + 3 * k + a));
+              if (weight == 0.0) continue;
+              for (std::size_t v = 0; v < nr; ++v)
+                for (std::size_t w = 0; w < nr; ++w)
+                  Hx(3 * ring_slots[k][v / 3] + static_cast<int>(v % 3),
+                     3 * ring_slots[k][w / 3] + static_cast<int>(w % 3)) +=
+                      weight * jet.hessian[(a * nr + v) * nr + w];
+            }
+          }
+          for (std::size_t v = 0; v < nv; ++v) {
+            b.gradient[j * nv + v] = gx(static_cast<Eigen::Index>(v));
+            nonzero = nonzero || gx(static_cast<Eigen::Index>(v)) != 0.0;
+            for (std::size_t w = 0; w < nv; ++w)
+              b.hessian[(j * nv + v) * nv + w] =
+                  Hx(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(w));
+          }
+        }
+      }
+      if (!nonzero) continue; // no overlap: the pair adds nothing
+      out.push_back(std::move(b));
+    }
+}
+
+} // namespace seam::contact
