@@ -1,7 +1,8 @@
 // The cycling guard of the active set (contact/active_set_cycles.hpp): sequences of node
 // statuses that cycle with periods 2 to 8 are caught (period 2 at its first return, longer ones
 // when the cycle repeats for two iterations), with the per-node maximum over the cycle; a
-// single return, a set kept, and a period of 9 are not.
+// single return, a set kept, and a period of 9 are not; a retracted trial (line search) leaves
+// the sequence of iterates as it was.
 #include "seam/contact/active_set_cycles.hpp"
 
 #include <gtest/gtest.h>
