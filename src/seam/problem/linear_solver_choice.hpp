@@ -24,11 +24,12 @@ inline constexpr PetscInt auto_iterative_dofs = 100000;
 /// Fluids stay direct at any size (bench/dfg_benchmark.py, docs/performance.md
 /// "Incompressible flow: direct against iterative"): on DFG 2D-1 the fieldsplit solver
 /// (BoomerAMG on the velocity block) took 2.43, 3.06, 4.96, 9.21 times MUMPS's CPU time on
-/// 3.7k, 13.6k, 51.7k and 204k dofs, the ratio growing with the mesh; on 20 generalized-alpha steps of
-/// DFG 2D-3 (ILU(0) on the velocity block) 0.75, 0.82, 0.98 times, rising towards 1 as its
-/// Krylov iterations grow (10.6, 13.6, 23.7 per Newton step), a gain within the scatter of
-/// CPU times on this shared machine (some 30 %). auto takes the iterative solver only where it
-/// measured faster by more than that scatter, which no fluid did.
+/// 3.7k, 13.6k, 51.7k and 204k dofs, the ratio growing with the mesh; on 20 generalized-alpha
+/// steps of DFG 2D-3 (ILU(0) on the velocity block) 0.75, 0.82, 0.98 times, rising towards 1
+/// as its Krylov iterations grow (10.6, 13.6, 23.7 per Newton step), a gain within the scatter
+/// of CPU times on this shared machine (some 30 %). auto takes the iterative solver only where
+/// it measured faster by more than that scatter, which no fluid did.
+
 /// What the Newton system is, as far as the choice goes.
 enum class SystemKind { solid, saddle_point, fluid };
 
