@@ -189,6 +189,17 @@ def check_free(r, integrator):
         raise AssertionError("angular momentum drift %.3e before the contact" % r["dl_free"])
 
 
+def check_np3_equals_np1(r3, r1):
+    """The contact force and the energy of every step at np = 3 equal np = 1's (1e-8 of the
+    largest force, 1e-10 of the initial energy)."""
+    worst = max(abs(a - b) for a, b in zip(r3["force"], r1["force"])) / max(r1["force"])
+    de = max(abs(a - b) for a, b in zip(r3["energy"], r1["energy"])) / r1["energy"][0]
+    print("   np 3 vs np 1: contact force max rel. diff %.2e, energy %.2e" % (worst, de))
+    if worst > 1e-8 or len(r3["force"]) != len(r1["force"]) or de > 1e-10:
+        raise AssertionError("np 3 differs from np 1 by %.3e (force), %.3e (energy)"
+                             % (worst, de))
+
+
 def test_free_bodies_2d():
     """Two rings (32 x 2 quads each). Linear momentum to 1e-12 (both integrators); with the
     energy-momentum scheme, whose contact force is the discrete gradient of the weighted gaps
@@ -205,12 +216,7 @@ def test_free_bodies_2d():
     r3 = free_bodies(2, "energy_momentum", n=8, np=3)
     check_free(r3, "energy_momentum")
     check_energy_momentum(r3, 2)
-    worst = max(abs(a - b) for a, b in zip(r3["force"], r1["force"])) / max(r1["force"])
-    de = max(abs(a - b) for a, b in zip(r3["energy"], r1["energy"])) / r1["energy"][0]
-    print("   np 3 vs np 1: contact force max rel. diff %.2e, energy %.2e" % (worst, de))
-    if worst > 1e-8 or len(r3["force"]) != len(r1["force"]) or de > 1e-10:
-        raise AssertionError("np 3 differs from np 1 by %.3e (force), %.3e (energy)"
-                             % (worst, de))
+    check_np3_equals_np1(r3, r1)
 
 
 def test_free_bodies_3d():
@@ -241,12 +247,7 @@ def test_free_bodies_3d():
     if r3["dl"] > MOMENTUM_BOUND or r3["rise"] > ENERGY_TOLERANCE:
         raise AssertionError("np 3: angular momentum drift %.3e, energy rise %.3e"
                              % (r3["dl"], r3["rise"]))
-    worst = max(abs(a - b) for a, b in zip(r3["force"], r1["force"])) / max(r1["force"])
-    de = max(abs(a - b) for a, b in zip(r3["energy"], r1["energy"])) / r1["energy"][0]
-    print("   np 3 vs np 1: contact force max rel. diff %.2e, energy %.2e" % (worst, de))
-    if worst > 1e-8 or len(r3["force"]) != len(r1["force"]) or de > 1e-10:
-        raise AssertionError("np 3 differs from np 1 by %.3e (force), %.3e (energy)"
-                             % (worst, de))
+    check_np3_equals_np1(r3, r1)
 
 
 # ---------------------------------------------------------------------------------------------

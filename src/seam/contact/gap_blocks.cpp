@@ -16,6 +16,7 @@
 #include "seam/common/dual_number.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/hyper_dual.hpp"
+#include "seam/contact/gap_vectors.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
 
 #include <algorithm>
@@ -26,29 +27,8 @@ namespace seam::contact {
 
 namespace {
 
-template <class S> struct V2 { S x = S(0.0), y = S(0.0); };
-template <class S> V2<S> operator+(const V2<S>& a, const V2<S>& b) {
-  return {a.x + b.x, a.y + b.y};
-}
-template <class S> V2<S> operator-(const V2<S>& a, const V2<S>& b) {
-  return {a.x - b.x, a.y - b.y};
-}
-template <class S, class T> V2<S> operator*(const V2<S>& a, const T& s) {
-  return {a.x * s, a.y * s};
-}
-template <class S> S dot(const V2<S>& a, const V2<S>& b) {
-  return a.x * b.x + a.y * b.y;
-}
-template <class S> S cross(const V2<S>& a, const V2<S>& b) {
-  return a.x * b.y - a.y * b.x;
-}
-template <class S> S length(const V2<S>& a) {
-  using std::sqrt;
-  return sqrt(dot(a, a));
-}
-template <class S> Eigen::Vector2d value(const V2<S>& a) {
-  return {value_of(a.x), value_of(a.y)};
-}
+using namespace gap_vectors;
+
 /// xi clamped to [-1, 1] with rounded corners: max(a, b) ~ (a + b + sqrt((a - b)^2 + d^2)) / 2.
 /// A segment end is a master node's projection until it passes the slave's end, and the slave
 /// end after: with a sharp clamp g~ has a kink where a master node meets a slave end node

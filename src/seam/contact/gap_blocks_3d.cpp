@@ -26,6 +26,7 @@
 #include "seam/common/dual_number.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/hyper_dual.hpp"
+#include "seam/contact/gap_vectors.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
 #include "seam/mortar/pair_integration_detail.hpp"
 
@@ -46,45 +47,8 @@ constexpr int master_offset = 24;  ///< first variable of the master positions
 constexpr int max_ring_nodes = 16; ///< nodes of the facets around one slave node
 constexpr int ring_variables = 3 * max_ring_nodes;
 
-template <class S> struct V3 { S x = S(0.0), y = S(0.0), z = S(0.0); };
-template <class S> struct V2 { S x = S(0.0), y = S(0.0); };
-template <class S> V3<S> operator+(const V3<S>& a, const V3<S>& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-template <class S> V3<S> operator-(const V3<S>& a, const V3<S>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class S, class T> V3<S> operator*(const V3<S>& a, const T& s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-template <class S> S dot(const V3<S>& a, const V3<S>& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-template <class S> V3<S> cross(const V3<S>& a, const V3<S>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-template <class S> S norm(const V3<S>& a) {
-  using std::sqrt;
-  return sqrt(dot(a, a));
-}
-template <class S> V2<S> operator+(const V2<S>& a, const V2<S>& b) {
-  return {a.x + b.x, a.y + b.y};
-}
-template <class S> V2<S> operator-(const V2<S>& a, const V2<S>& b) {
-  return {a.x - b.x, a.y - b.y};
-}
-template <class S, class T> V2<S> operator*(const V2<S>& a, const T& s) {
-  return {a.x * s, a.y * s};
-}
-template <class S> S cross(const V2<S>& a, const V2<S>& b) {
-  return a.x * b.y - a.y * b.x;
-}
-template <class S> Eigen::Vector2d value(const V2<S>& a) {
-  return {value_of(a.x), value_of(a.y)};
-}
-template <class S> Eigen::Vector3d value(const V3<S>& a) {
-  return {value_of(a.x), value_of(a.y), value_of(a.z)};
-}
+using namespace gap_vectors;
+
 template <class S> S component(const V3<S>& a, int c) {
   return c == 0 ? a.x : c == 1 ? a.y : a.z;
 }
