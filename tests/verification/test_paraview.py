@@ -18,7 +18,7 @@ must find
 and it renders the last step (mesh and von Mises stress) to a PNG that is not blank.
 
 Skipped, with a message, only where pvpython is missing (scripts/install-deps.sh installs
-python3-paraview and xvfb). Renders under xvfb-run.
+python3-paraview and xvfb). Renders in an Xvfb server started by the test.
 """
 import json
 import math
@@ -44,24 +44,60 @@ def pvpython():
     return shutil.which("pvpython")
 
 
+def virtual_display():
+    """Starts Xvfb (24-bit screen) on a free display number and returns (process, display)
+    once the server accepts clients (-displayfd: Xvfb writes the number when it is ready), or
+    (None, None) if it could not start."""
+    r, w = os.pipe()
+    try:
+        proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x1024x24",
+                                 "-nolisten", "tcp"], pass_fds=(w,),
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    except OSError:
+        os.close(r)
+        os.close(w)
+        return None, None
+    os.close(w)
+    with os.fdopen(r) as f:
+        number = f.readline().strip()
+    if not number:
+        proc.kill()
+        proc.wait()
+        return None, None
+    return proc, ":" + number
+
+
 def probe(pvd, png, color):
     """Runs paraview_probe.py under pvpython: in a virtual X server (Debian's ParaView has no
     offscreen rendering: --force-offscreen-rendering crashes it) with a 24-bit screen (the
-    default 8-bit one has no OpenGL visual), up to three times (on a loaded machine pvpython
-    may try the display before Xvfb is up), else offscreen (other ParaView builds)."""
-    xvfb = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -nolisten tcp"]
-    attempts = [xvfb + [pvpython(), PROBE, pvd, png, color]] * 3
-    if not shutil.which("xvfb-run"):
-        attempts = []
+    default 8-bit one has no OpenGL visual), started here and waited for before pvpython
+    opens it (xvfb-run -a raced on a loaded machine), up to three times, else offscreen
+    (other ParaView builds)."""
+    command = [pvpython(), PROBE, pvd, png, color]
+    attempts = [None] * 3 if shutil.which("Xvfb") else []
     attempts.append([pvpython(), "--force-offscreen-rendering", PROBE, pvd, png, color])
     errors = []
     for cmd in attempts:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        server, env = None, None
+        if cmd is None:
+            server, display = virtual_display()
+            if server is None:
+                errors.append("Xvfb did not start")
+                continue
+            env = dict(os.environ, DISPLAY=display)
+            cmd = command
+        try:
+            p = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env)
+        finally:
+            if server is not None:
+                server.terminate()
+                server.wait()
         for line in p.stdout.splitlines():
             if line.startswith("PARAVIEW_REPORT "):
                 return json.loads(line[len("PARAVIEW_REPORT "):])
-        errors.append("%s: exit %d\n%s\n%s" % (" ".join(cmd), p.returncode, p.stdout[-1500:],
-                                              p.stderr[-1500:]))
+        errors.append("%s (DISPLAY %s): exit %d\n%s\n%s"
+                      % (" ".join(cmd), env["DISPLAY"] if env else "none", p.returncode,
+                         p.stdout[-1500:], p.stderr[-1500:]))
     raise AssertionError("pvpython could not read %s:\n%s" % (pvd, "\n".join(errors)))
 
 
