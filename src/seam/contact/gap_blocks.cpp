@@ -206,9 +206,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
   const mortar::FacetSet masters = master_.facet_set();
   const mortar::NodeFacets& adjacency = slave_adjacency();
   for (const auto f : owned_)
-    for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
-         i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i) {
-      const auto& pair = pairs_[static_cast<std::size_t>(i)];
+    for (const auto& pair : pairs_of(f)) {
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
       const auto mn = masters.facet_nodes(pair.master);
       GapBlock b;

@@ -552,9 +552,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
   };
 
   for (const auto f : owned_)
-    for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
-         i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i) {
-      const auto& pair = pairs_[static_cast<std::size_t>(i)];
+    for (const auto& pair : pairs_of(f)) {
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
       const auto mn = masters.facet_nodes(pair.master);
       PairInput in;
