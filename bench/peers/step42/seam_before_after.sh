@@ -6,12 +6,16 @@
 # iterations, active nodes and contact force, then the ratio after / before of the smallest
 # CPU time of each binary.
 #   sh bench/peers/step42/seam_before_after.sh [n, default 32] [repeats, default 1] \
-#       [before, default /work/main/build/bin/seam] [after, default build/bin/seam] [linear]
+#       before-binary [after, default build/bin/seam] [linear]
 # `linear` (default iterative) is the solver.linear of the input.
 set -eu
 n=${1:-32}
 repeats=${2:-1}
-before=${3:-/work/main/build/bin/seam}
+before=${3:-}
+if [ -z "$before" ] || [ ! -x "$before" ]; then
+  echo "usage: $0 n repeats BEFORE_SEAM [AFTER_SEAM] [linear]: BEFORE_SEAM must be a seam binary (e.g. a build of an earlier commit)" >&2
+  exit 1
+fi
 after=${4:-build/bin/seam}
 linear=${5:-iterative}
 here=$(cd "$(dirname "$0")" && pwd)
