@@ -8,9 +8,22 @@
 //   nx, ny: the fluid's facets along the flag and across its tip; fluid_ratio: fluid facets
 //   per structure facet on the interface (1 = matching nodes; 2, 3 or 0.5 = non-matching),
 //   made by coarsening or refining the flag: the fluid mesh stays the same.
+//   quads: 1 makes every cell a quadrilateral (Blossom recombination, then each cell
+//   subdivided: quads into 4, the remaining triangles into 3; the flag's cells and facets
+//   double per direction). depth > 0 extrudes fluid and flag by a layer of that depth in z,
+//   with quads subdivided into two layers of hexahedra: the 3D case that equals the 2D one
+//   (fsi_extruded.geo, docs/fsi.md "3D"). Its groups: the 2D names for the extruded entities
+//   and the planes z = 0 and z = depth as `fluid_sides` and `flag_sides`. Both may be set
+//   before this file is included.
 // Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
 refine = 1;
 fluid_ratio = 1;
+If (!Exists(quads))
+  quads = 0;
+EndIf
+If (!Exists(depth))
+  depth = 0;
+EndIf
 nx = Round(20 * refine);
 ny = Round(2 * refine) > 1 ? Round(2 * refine) : 1;
 h = 0.05 / refine;                 // far from the obstacle
@@ -76,12 +89,51 @@ Transfinite Curve{22, 24} = nys + 1;
 Transfinite Surface{21};
 Recombine Surface{21};
 
-Physical Surface("fluid") = {1};
-Physical Curve("inflow") = {4};
-Physical Curve("outflow") = {2};
-Physical Curve("walls") = {1, 3};
-Physical Curve("cylinder") = {5, 6};
-Physical Curve("flag_wet_fluid") = {7, 8, 9};
-Physical Surface("flag") = {21};
-Physical Curve("clamped") = {24};
-Physical Curve("wet") = {21, 22, 23};
+If (quads)
+  Recombine Surface{1};
+  Mesh.SubdivisionAlgorithm = depth > 0 ? 2 : 1;
+EndIf
+If (depth == 0)
+  Physical Surface("fluid") = {1};
+  Physical Curve("inflow") = {4};
+  Physical Curve("outflow") = {2};
+  Physical Curve("walls") = {1, 3};
+  Physical Curve("cylinder") = {5, 6};
+  Physical Curve("flag_wet_fluid") = {7, 8, 9};
+  Physical Surface("flag") = {21};
+  Physical Curve("clamped") = {24};
+  Physical Curve("wet") = {21, 22, 23};
+Else
+  // A layer of cells in z. The flag's extruded entities lie on the fluid's but must stay
+  // separate (own nodes), and the extrusion merges coinciding entities: the flag is extruded
+  // away from the fluid (z in [-1, depth - 1]) and moved back with the merging off. The groups
+  // are found by bounding boxes (e), the fluid's while the flag is away.
+  e = 1e-4;
+  Translate {0, 0, -1} { Surface{21}; Point{25}; }
+  fl[] = Extrude {0, 0, depth} { Surface{1}; Layers{1}; Recombine; };
+  st[] = Extrude {0, 0, depth} { Surface{21}; Layers{1}; Recombine; };
+  z0 = -e; z1 = depth + e;
+  Physical Volume("fluid") = {fl[1]};
+  Physical Surface("walls") = {Surface In BoundingBox{-e, -e, z0, 2.5 + e, e, z1},
+                               Surface In BoundingBox{-e, 0.41 - e, z0, 2.5 + e, 0.41 + e, z1}};
+  Physical Surface("outflow") = {Surface In BoundingBox{2.5 - e, -e, z0, 2.5 + e, 0.41 + e, z1}};
+  Physical Surface("inflow") = {Surface In BoundingBox{-e, -e, z0, e, 0.41 + e, z1}};
+  Physical Surface("cylinder") = {Surface In BoundingBox{xc - r - e, yc - r - e, z0, xc + r + e,
+                                                         yc + r + e, z1}};
+  Physical Surface("flag_wet_fluid") = {Surface In BoundingBox{x0 - e, yc - th / 2 - e, z0,
+                                                               0.6 + e, yc + th / 2 + e, z1}};
+  Physical Surface("fluid_sides") = {1, fl[0]};
+  z0 = -1 - e; z1 = depth - 1 + e;
+  Physical Volume("flag") = {st[1]};
+  Physical Surface("wet") = {Surface In BoundingBox{x0 - e, yc - th / 2 - e, z0, 0.6 + e,
+                                                    yc - th / 2 + e, z1},
+                             Surface In BoundingBox{x0 - e, yc + th / 2 - e, z0, 0.6 + e,
+                                                    yc + th / 2 + e, z1},
+                             Surface In BoundingBox{0.6 - e, yc - th / 2 - e, z0, 0.6 + e,
+                                                    yc + th / 2 + e, z1}};
+  Physical Surface("clamped") = {Surface In BoundingBox{x0 - e, yc - th / 2 - e, z0, xc + r + e,
+                                                        yc + th / 2 + e, z1}};
+  Physical Surface("flag_sides") = {21, st[0]};
+  Geometry.AutoCoherence = 0;
+  Translate {0, 0, 1} { Volume{st[1]}; }
+EndIf

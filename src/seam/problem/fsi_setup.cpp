@@ -210,14 +210,29 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     }
   }
 
-  // Fluid boundary nodes off the interfaces hold their mesh position.
-  std::vector<char> boundary(n_nodes_, 0);
+  // Fluid boundary nodes off the interfaces hold their mesh position: in every component, but
+  // on the facets of a slip wall (a `velocity` condition on some of the components) only in the
+  // prescribed ones, so that the mesh slides along the wall as the flow does.
+  std::map<std::pair<std::int32_t, int>, unsigned> slip; // facet (cell, local) -> components
+  for (const auto& bc : config.boundary_conditions) {
+    if (bc.type != io::BoundaryType::velocity || static_cast<int>(bc.components.size()) == dim)
+      continue;
+    const auto& region = find_region(mesh, bc.region, {0, 1, 2, 3}, "a boundary condition");
+    unsigned mask = 0;
+    for (auto i : bc.components) mask |= 1u << i;
+    for (std::int32_t f = 0; f < region.n_facets(); ++f)
+      slip[{region.facet_cell[f], region.facet_local[f]}] |= mask;
+  }
+  const unsigned all = (1u << dim) - 1;
+  std::vector<unsigned> held(n_nodes_, 0); // per node: the components its mesh holds
   const auto exterior = mesh::exterior_facets(mesh);
   for (std::int32_t f = 0; f < exterior.size(); ++f) {
     const auto c = exterior.cell[f];
     if (cell_fluid_[c] < 0) continue;
+    const auto it = slip.find({c, exterior.local[f]});
+    const unsigned mask = it == slip.end() ? all : it->second;
     const auto nodes = mesh.cell(c);
-    for (int a : fem::facet_nodes(mesh.cell_type[c], exterior.local[f])) boundary[nodes[a]] = 1;
+    for (int a : fem::facet_nodes(mesh.cell_type[c], exterior.local[f])) held[nodes[a]] |= mask;
   }
 
   // Condensed numbering and the maps T_c (columns) and R (rows), raw dof by raw dof.
@@ -233,8 +248,9 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     if (pressure_node_[n]) own[f_dof(n, dim)] = next++;
   }
   for (std::size_t n = 0; n < n_nodes_; ++n)
-    if (fluid_node_[n] && on_interface[n].first < 0 && !boundary[n])
-      for (int i = 0; i < dim; ++i) own[m_dof(n, i)] = next++;
+    if (fluid_node_[n] && on_interface[n].first < 0)
+      for (int i = 0; i < dim; ++i)
+        if (!(held[n] >> i & 1u)) own[m_dof(n, i)] = next++;
   n_unknowns_ = next;
   const int size = comm.size(), rank = comm.rank();
   n_owned_ = next / size + (rank < next % size ? 1 : 0);

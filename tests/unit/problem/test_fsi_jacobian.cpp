@@ -11,7 +11,10 @@
 //
 // The case: a channel [0, 1] x [0, 0.4] whose bottom has an elastic block [0.3, 0.7] x
 // [-0.1, 0] (own nodes) under it; the fluid's bottom segment over the block and the block's
-// top are the fsi interface, with 6 fluid and 4 structure facets (non-matching).
+// top are the fsi interface, with 6 fluid and 4 structure facets (non-matching). In 3D: a
+// duct [0, 1] x [0, 0.4] x [0, 0.3] on an elastic slab [0, 1] x [-0.1, 0] x [0, 0.3] (own
+// nodes), the duct's whole floor wet: the slab tet10 (size 0.35), the duct tet10 (size 0.25) or
+// hex27 (3 x 3 x 3): non-matching tri6 : tri6 or quad9 : tri6 facets.
 #include "seam/common/mpi.hpp"
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
@@ -60,38 +63,76 @@ Physical Curve("base") = {11};
 Physical Curve("wet") = {13};
 )";
 
+// The 3D case: a box of fluid over an elastic slab, built apart (the slab at y - 1, so that the
+// groups can be told by bounding boxes) and moved into place; `hexes` is set before.
+const char* duct_geo = R"(
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 0.4, 0.3};
+Box(2) = {0, -1.1, 0, 1, 0.1, 0.3};
+MeshSize{PointsOf{Volume{1};}} = 0.25;
+MeshSize{PointsOf{Volume{2};}} = 0.35;
+e = 1e-6;
+If (hexes)
+  Transfinite Curve{Curve In BoundingBox{-e, -e, -e, 1 + e, 0.4 + e, 0.3 + e}} = 4;
+  Transfinite Surface{Surface In BoundingBox{-e, -e, -e, 1 + e, 0.4 + e, 0.3 + e}};
+  Recombine Surface{Surface In BoundingBox{-e, -e, -e, 1 + e, 0.4 + e, 0.3 + e}};
+  Transfinite Volume{1};
+EndIf
+Physical Volume("fluid") = {1};
+Physical Surface("inflow") = {Surface In BoundingBox{-e, -e, -e, e, 0.4 + e, 0.3 + e}};
+Physical Surface("walls") = {Surface In BoundingBox{-e, 0.4 - e, -e, 1 + e, 0.4 + e, 0.3 + e},
+                             Surface In BoundingBox{-e, -e, -e, 1 + e, 0.4 + e, e},
+                             Surface In BoundingBox{-e, -e, 0.3 - e, 1 + e, 0.4 + e, 0.3 + e}};
+Physical Surface("wet_fluid") = {Surface In BoundingBox{-e, -e, -e, 1 + e, e, 0.3 + e}};
+Physical Volume("block") = {2};
+Physical Surface("base") = {Surface In BoundingBox{-e, -1.1 - e, -e, 1 + e, -1.1 + e, 0.3 + e}};
+Physical Surface("wet") = {Surface In BoundingBox{-e, -1 - e, -e, 1 + e, -1 + e, 0.3 + e}};
+Translate {0, 1, 0} { Volume{2}; }
+)";
+
+enum class Shape { plane, tet, hex };
+
 struct Errors {
   double with_shape = 0.0, without_shape = 0.0, force = 0.0;
 };
 
-Errors check(int order, bool dynamic = false) {
+Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
   Comm comm;
-  const auto folder =
-      std::filesystem::temp_directory_path() /
-      ("seam_fsi_fd_" + std::to_string(order) + "_np" + std::to_string(comm.size()));
+  const int dim = shape_of == Shape::plane ? 2 : 3;
+  const char* tag[] = {"2d", "tet", "hex"};
+  const auto folder = std::filesystem::temp_directory_path() /
+                      ("seam_fsi_fd_" + std::to_string(order) + tag[static_cast<int>(shape_of)] +
+                       "_np" + std::to_string(comm.size()));
   const std::string yaml =
-      "dimension: 2\nplane: strain\nmesh: {geo: case.geo, order: " + std::to_string(order) +
+      "dimension: " + std::to_string(dim) + (dim == 2 ? "\nplane: strain" : "") +
+      "\nmesh: {geo: case.geo, order: " + std::to_string(order) +
       "}\n"
       "materials:\n"
       "  f: {model: newtonian_fluid, density: 1.0, viscosity: 0.05}\n"
       "  s: {model: saint_venant_kirchhoff, young: 50.0, poisson: 0.3}\n"
       "bodies:\n  - {region: fluid, material: f}\n  - {region: block, material: s}\n"
-      "boundary_conditions:\n"
-      "  - {region: inflow, type: velocity, value: ['y*(0.4-y)', 0]}\n"
-      "  - {region: walls, type: velocity, value: [0, 0]}\n"
-      "  - {region: base, type: dirichlet, value: [0, 0]}\n"
+      "boundary_conditions:\n" +
+      (dim == 2 ? "  - {region: inflow, type: velocity, value: ['y*(0.4-y)', 0]}\n"
+                  "  - {region: walls, type: velocity, value: [0, 0]}\n"
+                  "  - {region: base, type: dirichlet, value: [0, 0]}\n"
+                : "  - {region: inflow, type: velocity, value: ['30*y*(0.4-y)*z*(0.3-z)', 0, 0]}\n"
+                  "  - {region: walls, type: velocity, value: [0, 0, 0]}\n"
+                  "  - {region: base, type: dirichlet, value: [0, 0, 0]}\n") +
       "interfaces:\n  - {name: wall, type: fsi, fluid: wet_fluid, structure: wet}\n"
       "time: {integrator: static, end: 1, steps: 1}\n";
   if (comm.is_root()) {
     std::filesystem::remove_all(folder);
     std::filesystem::create_directories(folder);
-    std::ofstream(folder / "case.geo") << channel_geo;
+    std::ofstream(folder / "case.geo") << (dim == 2                 ? ""
+                                           : shape_of == Shape::hex ? "hexes = 1;\n"
+                                                                    : "hexes = 0;\n")
+                                       << (dim == 2 ? channel_geo : duct_geo);
     std::ofstream(folder / "case.yaml") << yaml;
   }
   comm.barrier();
   const auto config = io::load_config(folder / "case.yaml");
   mesh::ReadOptions opts;
-  opts.dim = 2;
+  opts.dim = dim;
   opts.order = order;
   auto mesh = mesh::read_mesh(folder / "case.geo", opts);
   PhaseTimers timers;
@@ -143,15 +184,16 @@ Errors check(int order, bool dynamic = false) {
     residual(x, &J, shape != 0, &res);
     if (shape) {
       // Force conservation through P^T.
-      double ff[2] = {0, 0}, fs[2] = {0, 0};
+      double ff[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
       for (const auto& cp : sys.couplings())
         for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
-          for (int i = 0; i < 2; ++i) {
+          for (int i = 0; i < dim; ++i) {
             const double f = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
             ff[i] += f;
             for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) fs[i] += cp.weights[q] * f;
           }
-      e.force = std::hypot(ff[0] - fs[0], ff[1] - fs[1]) / std::hypot(ff[0], ff[1]);
+      e.force =
+          std::hypot(ff[0] - fs[0], ff[1] - fs[1], ff[2] - fs[2]) / std::hypot(ff[0], ff[1], ff[2]);
     }
     double worst = 0.0;
     for (int dir = 0; dir < 3; ++dir) {
@@ -187,9 +229,10 @@ Errors check(int order, bool dynamic = false) {
     (shape ? e.with_shape : e.without_shape) = worst;
   }
   if (comm.is_root())
-    std::printf("fsi Jacobian, order %d%s: relative error %.3e with the shape derivatives, %.3e "
-                "without; force transfer %.3e\n",
-                order, dynamic ? ", dynamic" : "", e.with_shape, e.without_shape, e.force);
+    std::printf("fsi Jacobian, %s, order %d%s: %d unknowns, relative error %.3e with the shape "
+                "derivatives, %.3e without; force transfer %.3e\n",
+                tag[static_cast<int>(shape_of)], order, dynamic ? ", dynamic" : "",
+                static_cast<int>(N), e.with_shape, e.without_shape, e.force);
   return e;
 }
 
@@ -216,6 +259,22 @@ TEST(FsiJacobian, DynamicQuadraticAgreesWithFiniteDifferences) {
 
 TEST(FsiJacobian, DynamicLinearStabilizedAgreesWithFiniteDifferences) {
   const auto e = check(1, true);
+  EXPECT_LT(e.with_shape, 1e-6);
+  EXPECT_GT(e.without_shape, 1e-5);
+  EXPECT_LT(e.force, 1e-10);
+}
+
+// 3D: hex27 and tet10 fluid over a non-matching tet10 slab, static and in a
+// generalized-alpha step.
+TEST(FsiJacobian, Hex27NonMatching3dAgreesWithFiniteDifferences) {
+  const auto e = check(2, false, Shape::hex);
+  EXPECT_LT(e.with_shape, 1e-6);
+  EXPECT_GT(e.without_shape, 1e-5);
+  EXPECT_LT(e.force, 1e-10);
+}
+
+TEST(FsiJacobian, DynamicTet10NonMatching3dAgreesWithFiniteDifferences) {
+  const auto e = check(2, true, Shape::tet);
   EXPECT_LT(e.with_shape, 1e-6);
   EXPECT_GT(e.without_shape, 1e-5);
   EXPECT_LT(e.force, 1e-10);
