@@ -20,6 +20,10 @@
     of the two sides cancel to round-off.
   * Step cutting: a step whose Newton method fails is cut and retried; the run then equals the
     run with the smaller steps.
+  * 3D: FSI1 extruded (fsi1_extruded.yaml: two layers of hex27, u_z = 0 on the planes z = 0
+    and z = depth, the fluid's mesh sliding along them) equals the 2D run on the same
+    quadrilateral mesh (quad9): tip displacement and forces per unit depth to 1e-8, u_z and
+    f_z zero; the force transfer is exact in 3D; 3 ranks equal 1 rank (SEAM_FULL).
   * SEAM_FULL=1: refine 2, the errors fall toward the published values; the FSI3 start-up's
     u_y(A) converges at about second order in dt.
   * Bad input of an fsi run: exit 1 with a located message.
@@ -133,6 +137,101 @@ def test_fsi1_refinement():
         if not e2 < e1:
             raise AssertionError("%s: the error does not fall under refinement" % key)
         H.assert_close(r2[key], REFERENCE[key], rtol=rtol, what="FSI1 refine 2 " + key)
+
+
+DEPTH = 0.05  # fsi_extruded.geo
+
+
+def extruded_cases(work):
+    """fsi1.yaml on the quadrilateral mesh (fsi.geo with quads = 1) and fsi1_extruded.yaml, in
+    `work`, on the coarsest mesh (refine 0.25: the flag 10 x 2 quad9, 381 fluid quad9; in 3D
+    two layers of them, 802 hex27) and in one load step. Straight-sided cells (Gmsh's
+    Mesh.SecondOrderLinear): with curved ones Gmsh places the nodes of the extruded cylinder's
+    surface by a projection that differs from the 2D curve's by up to 1.2e-10, and the flag's
+    lift and u_y(A) then differ by 3e-7 (measured); straight cells make the cross-sections of
+    the 3D mesh the 2D mesh to round-off."""
+    geo = os.path.join(work, "fsi.geo")
+    with open(geo) as f:
+        text = f.read()
+    assert "refine = 1;" in text
+    with open(geo, "w") as f:
+        f.write("Mesh.SecondOrderLinear = 1;\n" + text.replace("refine = 1;", "refine = 0.25;"))
+    with open(os.path.join(work, "fsi_quads.geo"), "w") as f:
+        f.write('quads = 1;\nInclude "fsi.geo";\n')
+    paths = []
+    for name, old, new in (("fsi1.yaml", "geo: fsi.geo", "geo: fsi_quads.geo"),
+                           ("fsi1_extruded.yaml", "geo: fsi_extruded.geo", "geo: fsi_extruded.geo")):
+        path = os.path.join(work, name)
+        with open(path) as f:
+            text = f.read()
+        assert old in text and "steps: 2}" in text
+        with open(path, "w") as f:
+            f.write(text.replace(old, new).replace("steps: 2}", "steps: 1}"))
+        paths.append(path)
+    return paths
+
+
+def extruded_results(out):
+    r = results(out)
+    tip = H.read_csv(os.path.join(out, "probes.csv"))[-1]
+    last = H.last_step_rows(H.read_csv(os.path.join(out, "forces.csv")))
+    r["uz"] = tip["uz"]
+    r["fz"] = [x for x in last if x["name"] == "obstacle"][0]["fz"]
+    r["flag_lift"] = [x for x in last if x["name"] == "flag"][0]["fy"]
+    return r
+
+
+def check_force_transfer(steps, what):
+    for row in steps:
+        for c in ("x", "y", "z"):
+            H.assert_close(row["interface_force_structure_" + c], row["interface_force_fluid_" + c],
+                           atol=1e-10 * max(1.0, abs(row["interface_force_fluid_" + c])),
+                           what="%s: force transfer, step %d, %s" % (what, row["step"], c))
+
+
+def test_fsi1_extruded():
+    """FSI1 in 3D equals FSI1 in 2D: the extruded case (802 hex27) against the 2D run on the
+    same quad9 mesh. With u_z = 0 on both z-planes for fluid and flag, and the fluid's mesh
+    sliding along them, the 2D solution extended constantly in z solves the 3D problem, so tip
+    displacement and forces per unit depth agree to solver tolerance (measured: 1e-13), u_z and
+    f_z vanish. Without the sliding mesh (the planes' mesh held, as on any other fluid boundary
+    before) the 3D fluid mesh cannot follow the flag and the results differ."""
+    work, _ = H.copy_example("turek_hron", "fsi1.yaml")
+    try:
+        p2, p3 = extruded_cases(work)
+        r2 = extruded_results(H.solve(p2))
+        r3 = extruded_results(H.solve(p3))
+    finally:
+        H.cleanup(work)
+    for key in ("drag", "lift", "flag_lift"):
+        r3[key] /= DEPTH
+    print("   FSI1 2D (quad9): u_x(A) %.12e, u_y(A) %.12e, drag %.12f, lift %.12f"
+          % (r2["ux"], r2["uy"], r2["drag"], r2["lift"]))
+    print("   FSI1 3D (hex27): u_x(A) %.12e, u_y(A) %.12e, drag %.12f, lift %.12f per unit depth;"
+          " u_z(A) %.1e, f_z %.1e" % (r3["ux"], r3["uy"], r3["drag"], r3["lift"], r3["uz"],
+                                     r3["fz"]))
+    for key in ("ux", "uy", "drag", "lift", "flag_lift"):
+        H.assert_close(r3[key], r2[key], rtol=1e-8, what="FSI1 3D against 2D: " + key)
+    if not (abs(r3["uz"]) < 1e-10 * abs(r3["uy"]) and abs(r3["fz"]) < 1e-10 * abs(r2["drag"])):
+        raise AssertionError("FSI1 3D: u_z(A) = %g, f_z = %g, expected 0" % (r3["uz"], r3["fz"]))
+    check_force_transfer(r3["steps"], "FSI1 3D")
+
+
+@H.full_only
+def test_fsi1_extruded_parallel():
+    """The extruded FSI1 on 3 ranks equals 1 rank (to 1e-8; the force transfer exact)."""
+    work, _ = H.copy_example("turek_hron", "fsi1.yaml")
+    try:
+        p3 = extruded_cases(work)[1]
+        r1 = extruded_results(H.solve(p3))
+        r3 = extruded_results(H.solve(p3, np=3))
+    finally:
+        H.cleanup(work)
+    print("   FSI1 3D, 3 ranks: u_y(A) %.12e (1 rank %.12e), drag %.12f (%.12f)"
+          % (r3["uy"], r1["uy"], r3["drag"], r1["drag"]))
+    for key in ("ux", "uy", "drag", "lift", "flag_lift"):
+        H.assert_close(r3[key], r1[key], rtol=1e-8, what="FSI1 3D np 3 against np 1: " + key)
+    check_force_transfer(r3["steps"], "FSI1 3D, 3 ranks")
 
 
 def fsi3_case(end, dt, replace=()):
@@ -322,6 +421,6 @@ def test_bad_input():
 
 if __name__ == "__main__":
     tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_nonmatching,
-             test_fsi3_startup, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
+             test_fsi1_extruded, test_fsi1_extruded_parallel, test_fsi3_startup, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
              test_fsi3_time_order]
     H.main(tests)

@@ -145,18 +145,57 @@ fluid::EnergyIntegrals FsiSystem::fluid_energy(std::span<const double> raw,
 void FsiSystem::add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
                           std::span<const double> K, std::vector<PetscInt>* I,
                           std::vector<PetscInt>* J, std::vector<double>& V) const {
-  // Zeros are kept: the pattern must not depend on the state.
+  // R^T K T_c is summed within the block, over its condensed rows and columns (each once,
+  // sorted), before it becomes triplets: the P^T and P weights of an interface node would
+  // otherwise multiply the triplet count (a fluid cell on a non-matching 3D interface). Zeros
+  // are kept: the pattern must not depend on the state.
+  thread_local std::vector<PetscInt> ri, ci;
+  thread_local std::vector<std::int64_t> col_offsets;
+  thread_local std::vector<std::size_t> col_pos;
+  thread_local std::vector<double> col_weight, L;
+  const auto unique_of = [](const DofMap& map, std::span<const std::size_t> raw,
+                            std::vector<PetscInt>& out) {
+    out.clear();
+    for (auto a : raw)
+      for (auto p = map.offsets[a]; p < map.offsets[a + 1]; ++p) out.push_back(map.index[p]);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  };
+  unique_of(rows_, rows, ri);
+  unique_of(columns_, cols, ci);
+  if (ri.empty() || ci.empty()) return;
+  const auto local = [](const std::vector<PetscInt>& u, PetscInt i) {
+    return static_cast<std::size_t>(std::lower_bound(u.begin(), u.end(), i) - u.begin());
+  };
+  col_offsets.assign(1, 0);
+  col_pos.clear();
+  col_weight.clear();
+  for (auto c : cols) {
+    for (auto q = columns_.offsets[c]; q < columns_.offsets[c + 1]; ++q) {
+      col_pos.push_back(local(ci, columns_.index[q]));
+      col_weight.push_back(columns_.weight[q] * column_scale(c));
+    }
+    col_offsets.push_back(static_cast<std::int64_t>(col_pos.size()));
+  }
+  const auto nc = ci.size();
+  L.assign(ri.size() * nc, 0.0);
   for (std::size_t a = 0; a < rows.size(); ++a)
-    for (auto p = rows_.offsets[rows[a]]; p < rows_.offsets[rows[a] + 1]; ++p)
+    for (auto p = rows_.offsets[rows[a]]; p < rows_.offsets[rows[a] + 1]; ++p) {
+      double* row = L.data() + local(ri, rows_.index[p]) * nc;
+      const double wp = rows_.weight[p];
       for (std::size_t b = 0; b < cols.size(); ++b) {
-        const double k = K[a * cols.size() + b] * column_scale(cols[b]);
-        for (auto q = columns_.offsets[cols[b]]; q < columns_.offsets[cols[b] + 1]; ++q) {
-          V.push_back(rows_.weight[p] * columns_.weight[q] * k);
-          if (!I) continue;
-          I->push_back(rows_.index[p]);
-          J->push_back(columns_.index[q]);
-        }
+        const double k = wp * K[a * cols.size() + b];
+        for (auto q = col_offsets[b]; q < col_offsets[b + 1]; ++q)
+          row[col_pos[q]] += k * col_weight[q];
       }
+    }
+  V.insert(V.end(), L.begin(), L.end());
+  if (!I) return;
+  for (auto r : ri)
+    for (auto c : ci) {
+      I->push_back(r);
+      J->push_back(c);
+    }
 }
 
 FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/, la::Vector& r,
