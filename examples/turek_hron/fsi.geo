@@ -12,11 +12,13 @@
 //   subdivided: quads into 4, the remaining triangles into 3; the flag's cells and facets
 //   double per direction). depth > 0 extrudes fluid and flag by a layer of that depth in z,
 //   with quads subdivided into two layers of hexahedra: the 3D case that equals the 2D one
-//   (fsi_extruded.geo, docs/fsi.md "3D"). Its groups: the 2D names for the extruded entities
-//   and the planes z = 0 and z = depth as `fluid_sides` and `flag_sides`. Both may be set
-//   before this file is included.
+//   (fsi_extruded.geo; docs/fsi.md, "Three dimensions"). Its groups: the 2D names for the
+//   extruded entities and the planes z = 0 and z = depth as `fluid_sides` and `flag_sides`.
+//   refine, quads and depth may be set before this file is included.
 // Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
-refine = 1;
+If (!Exists(refine))
+  refine = 1;
+EndIf
 fluid_ratio = 1;
 If (!Exists(quads))
   quads = 0;

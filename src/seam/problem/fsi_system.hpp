@@ -9,7 +9,8 @@
 //     generalized-alpha step, a function of d_{n+1} (steady: the structure rests, u_G = 0);
 //   - the fluid interface mesh displacement: m_G = P d_G, P = D^-1 M (dual mortar, fluid side
 //     slave, structure master, integrated once on the reference interface);
-//   - the mesh displacement of the other fluid boundary nodes: held at 0.
+//   - the mesh displacement of the other fluid boundary nodes: held at 0 (on the facets of a
+//     slip wall, a `velocity` condition on some components, only in those: the mesh slides).
 // So raw = T_c x + g. The residual rows are gathered by another map R: the fluid momentum
 // rows of interface nodes go to the structure's rows through P^T (force and energy
 // conserving), the mesh rows of interface nodes and all rows of prescribed dofs are dropped.
