@@ -247,8 +247,9 @@ def fsi3_case(end, dt, replace=()):
     return work, path
 
 
-def fsi3_startup(np, end=0.1, dt=0.01):
-    work, path = fsi3_case(end, dt)
+def solve_tables(work, path, np):
+    """Runs `path` (in the example copy `work`, removed after): steps.csv, probes.csv and
+    forces.csv."""
     try:
         out = H.solve(path, np=np)
         return (H.read_csv(os.path.join(out, "steps.csv")),
@@ -256,6 +257,11 @@ def fsi3_startup(np, end=0.1, dt=0.01):
                 H.read_csv(os.path.join(out, "forces.csv")))
     finally:
         H.cleanup(work)
+
+
+def fsi3_startup(np, end=0.1, dt=0.01):
+    work, path = fsi3_case(end, dt)
+    return solve_tables(work, path, np)
 
 
 def test_fsi3_startup():
@@ -350,6 +356,18 @@ def energy_closure(steps):
     return fluid, structure, cancel
 
 
+def check_second_order(misfits, fluid_ratio, structure_ratio, what):
+    """The (fluid, structure) energy misfits of successive halvings of dt fall by more than
+    the given ratios."""
+    for k in range(len(misfits) - 1):
+        f = misfits[k][0] / misfits[k + 1][0]
+        s = misfits[k][1] / misfits[k + 1][1]
+        print("   %s: misfit ratios fluid %.2f, structure %.2f" % (what, f, s))
+        if not (f > fluid_ratio and s > structure_ratio):
+            raise AssertionError("%s: energy misfits %s do not fall at second order (ratios %.2f, "
+                                 "%.2f)" % (what, misfits, f, s))
+
+
 def test_fsi3_energy():
     """The energy budget of the coupled system on the FSI3 start-up to t = 0.1 (coarse mesh)
     with dt = 0.02, 0.01, 0.005. The interface works of the two sides cancel to round-off (the
@@ -370,12 +388,7 @@ def test_fsi3_energy():
         if not cancel < 1e-12:
             raise AssertionError("dt = %g: the interface works differ by %.3e" % (dt, cancel))
         misfits.append((fluid, structure))
-    for k in range(2):
-        f = misfits[k][0] / misfits[k + 1][0]
-        s = misfits[k][1] / misfits[k + 1][1]
-        if not (f > 3.5 and s > 2.8):
-            raise AssertionError("energy misfits %s do not fall at second order (ratios %.2f, %.2f)"
-                                 % (misfits, f, s))
+    check_second_order(misfits, 3.5, 2.8, "FSI3")
     if not misfits[-1][0] < 4e-3:
         raise AssertionError("fluid energy misfit %.3e at dt = 0.005" % misfits[-1][0])
 
@@ -391,13 +404,7 @@ def flap_startup(end, dt, np=1):
     assert "h = 0.1;" in text and "hf = 0.05;" in text
     with open(geo, "w") as f:
         f.write(text.replace("h = 0.1;", "h = 0.15;").replace("hf = 0.05;", "hf = 0.07;"))
-    try:
-        out = H.solve(path, np=np)
-        return (H.read_csv(os.path.join(out, "steps.csv")),
-                H.read_csv(os.path.join(out, "probes.csv")),
-                H.read_csv(os.path.join(out, "forces.csv")))
-    finally:
-        H.cleanup(work)
+    return solve_tables(work, path, np)
 
 
 @H.full_only
@@ -424,13 +431,7 @@ def test_flap3d_energy():
         if not cancel < 1e-12:
             raise AssertionError("flap dt = %g: the interface works differ by %.3e" % (dt, cancel))
         misfits.append((fluid, structure))
-    for k in range(2):
-        f = misfits[k][0] / misfits[k + 1][0]
-        s = misfits[k][1] / misfits[k + 1][1]
-        print("   ratios: fluid %.2f, structure %.2f" % (f, s))
-        if not (f > 3.0 and s > 3.0):
-            raise AssertionError("flap energy misfits %s do not fall at second order (ratios %.2f, "
-                                 "%.2f)" % (misfits, f, s))
+    check_second_order(misfits, 3.0, 3.0, "flap")
 
 
 def expect_bad(what, replace, must, line):
