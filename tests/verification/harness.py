@@ -13,6 +13,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 SEAM = os.environ.get("SEAM", "seam")
 FULL = os.environ.get("SEAM_FULL") == "1"
@@ -145,12 +146,14 @@ def main(tests):
     """Runs the given test functions; prints a summary line; exits non-zero on failure."""
     failed = 0
     for t in tests:
+        start = time.monotonic()
         try:
             t()
-            print("PASS", t.__name__)
+            print("PASS %s (%.1f s)" % (t.__name__, time.monotonic() - start))
         except Exception as e:  # noqa: BLE001 - report every failure, keep going
             failed += 1
-            print("FAIL", t.__name__, "\n   ", str(e).replace("\n", "\n    "))
+            print("FAIL %s (%.1f s)" % (t.__name__, time.monotonic() - start),
+                  "\n   ", str(e).replace("\n", "\n    "))
     print("%d passed, %d failed" % (len(tests) - failed, failed))
     sys.stdout.flush()
     sys.exit(1 if failed else 0)
