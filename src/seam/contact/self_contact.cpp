@@ -101,7 +101,8 @@ void keep_facing_pairs(const meshtying::InterfaceSide& side, double inflation,
   }
 }
 
-void orient_pairs(const meshtying::InterfaceSide& side, std::span<const search::CandidatePair> pairs,
+void orient_pairs(const meshtying::InterfaceSide& side,
+                  std::span<const search::CandidatePair> pairs,
                   std::vector<mortar::CandidatePair>& out) {
   std::vector<search::CandidatePair> sorted;
   sorted.reserve(pairs.size());

@@ -53,7 +53,8 @@ void keep_facing_pairs(const meshtying::InterfaceSide& side, double inflation,
 /// once, in any order and either orientation): search::assign_roles on the pairs sorted as
 /// (lower, higher) facet, so that the roles depend only on which pairs there are. The oriented
 /// pairs, sorted by (slave, master).
-void orient_pairs(const meshtying::InterfaceSide& side, std::span<const search::CandidatePair> pairs,
+void orient_pairs(const meshtying::InterfaceSide& side,
+                  std::span<const search::CandidatePair> pairs,
                   std::vector<mortar::CandidatePair>& out);
 
 /// The slave facets of the current pairs as a facet set over the surface's nodes. The mortar

@@ -872,8 +872,8 @@ void ContactConstraint::balance() {
         static_cast<std::int64_t>(comm.sum(static_cast<double>(s.itf.n_candidates())));
     // Without the distributed search a rank searches against the whole master surface.
     s.share.master_received = s.itf.self_contact() ? 0
-                              : s.search             ? s.search->n_received()
-                                                     : s.itf.n_master_facets();
+                              : s.search           ? s.search->n_received()
+                                                   : s.itf.n_master_facets();
     s.share.surface_received = s.itf.self_contact() ? s.search->n_received() : 0;
     if (s.search) {
       s.share.ghost_exchanges = s.search->n_exchanges();

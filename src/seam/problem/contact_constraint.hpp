@@ -224,13 +224,13 @@ private:
     parallel::BalanceDecision balance;
     bool redistributed = false; ///< in the last balance()
     struct {
-      int slave_elements = 0;      ///< this rank's, in the last balanced step
-      int master_ghosts = 0;       ///< distinct master facets of its pairs
-      int master_received = 0;     ///< master facets it searched at the last search
-      int surface_received = 0;    ///< self contact: surface facets it searched then
+      int slave_elements = 0;           ///< this rank's, in the last balanced step
+      int master_ghosts = 0;            ///< distinct master facets of its pairs
+      int master_received = 0;          ///< master facets it searched at the last search
+      int surface_received = 0;         ///< self contact: surface facets it searched then
       std::int64_t ghost_exchanges = 0; ///< of the distributed search, so far
       std::int64_t searches = 0;        ///< of the distributed search, so far
-      std::int64_t candidates = 0; ///< candidate pairs of all ranks
+      std::int64_t candidates = 0;      ///< candidate pairs of all ranks
     } share;
 
     // Friction: lambda holds dim values per slave node (Cartesian), status the

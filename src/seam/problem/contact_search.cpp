@@ -52,7 +52,8 @@ double ContactSearch::skin_factor() {
   char* end = nullptr;
   const double value = std::strtod(text, &end);
   SEAM_CHECK(end != text && *end == '\0' && value >= 0.0 && std::isfinite(value), InputError,
-             "SEAM_GHOST_SKIN='", text, "': expected a number >= 0 (the ghosting skin as a "
+             "SEAM_GHOST_SKIN='", text,
+             "': expected a number >= 0 (the ghosting skin as a "
              "fraction of the mean slave edge)");
   return value;
 }
