@@ -34,7 +34,7 @@ Each test can fail:
   most 1.25 x the interface's and no rank holds 0.75 of it; results equal np = 1 to 1e-10;
 - the two-body contact search distributed (Hertz sphere on a block in 3D, 2D ironing with
   friction; np = 1, 2, 3): every rank receives strictly fewer master facets than the master
-  surface has (at np = 3 at most 0.6 / 0.5 of it), each rank every master facet its pairs
+  surface has (at np = 3 at most 0.65 / 0.5 of it), each rank every master facet its pairs
   reach, the ranks together at least the master facets the np = 1 pairs reach; the ranks'
   pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10;
 - the self-contact search distributed (a pile of 7 rings from examples/rings, 2D, until the
@@ -594,7 +594,9 @@ def check_master_ghosted(name, yaml, replace, below):
 
 def test_hertz_master_ghosted():
     """Hertz sphere on a block (3D, two bodies), two load steps."""
-    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.6)
+    # 0.65: the boxes are widened by the ghosting's skin (docs/parallel.md, "Reused ghosting");
+    # 209 / 212 / 234 of 402 measured with it, 180 / 176 / 189 without.
+    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.65)
 
 
 def test_ironing_master_ghosted():
