@@ -1,12 +1,14 @@
 #pragma once
 // Self and multi-body contact (`surface: [groups...]`; ALGORITHMS.md §6 and §10): one surface
 // made of one or more boundary groups is both the slave and the master side of a contact
-// interface. At every search the facet pairs that face each other are found on one tree over
-// the whole surface (search::find_self_pairs: normal cones, no pairs of neighbours sharing a
-// node) and each pair is given a slave and a master facet (search::assign_roles: roles
-// alternate across the contact pairs, as in 4C's self-contact binary tree; in each connected
-// group of pairs the lowest facet is slave). The multipliers live on the slave nodes of the
-// current search; every other node of the surface has D_jj = 0 and stays inactive.
+// interface. At every search the facet pairs that face each other are found on a self-contact
+// tree (search::find_self_pairs: normal cones, no pairs of neighbours sharing a node; over the
+// whole surface, or in a run over the ranks over each rank's facets and those ghosted to it,
+// problem/contact_search.hpp) and each pair is given a slave and a master facet
+// (search::assign_roles: roles alternate across the contact pairs, as in 4C's self-contact binary
+// tree; in each connected group of pairs the lowest facet is slave). The multipliers live on the
+// slave nodes of the current search; every other node of the surface has D_jj = 0 and stays
+// inactive.
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
