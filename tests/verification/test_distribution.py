@@ -34,9 +34,18 @@ Each test can fail:
   most 1.25 x the interface's and no rank holds 0.75 of it; results equal np = 1 to 1e-10;
 - the two-body contact search distributed (Hertz sphere on a block in 3D, 2D ironing with
   friction; np = 1, 2, 3): every rank receives strictly fewer master facets than the master
-  surface has (at np = 3 at most 0.6 / 0.5 of it), each rank every master facet its pairs
+  surface has (at np = 3 at most 0.65 / 0.5 of it), each rank every master facet its pairs
   reach, the ranks together at least the master facets the np = 1 pairs reach; the ranks'
-  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10.
+  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10;
+- the self-contact search distributed (a pile of 7 rings from examples/rings, 2D, until the
+  rings touch; the two blocks of test_self_contact.py as one `surface:` interface, 3D
+  tetrahedra): at np = 3 every rank receives strictly fewer surface facets than the surface
+  has, and the results (steps.csv energies and momenta, interfaces.csv, reactions.csv,
+  interface_*.csv, probes.csv) equal np = 1 to 1e-10;
+- the ghosting reused (Verlet skin): on the two blocks and on the Hertz sphere (bodies that
+  move little) at np = 3 the ghosts are exchanged at fewer searches than there are searches,
+  and the results equal those of a run that exchanges at every search (SEAM_GHOST_SKIN=0,
+  which then reports as many exchanges as searches) to 1e-12.
 """
 import os
 import sys
@@ -585,7 +594,9 @@ def check_master_ghosted(name, yaml, replace, below):
 
 def test_hertz_master_ghosted():
     """Hertz sphere on a block (3D, two bodies), two load steps."""
-    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.6)
+    # 0.65: the boxes are widened by the ghosting's skin (docs/parallel.md, "Reused ghosting");
+    # 209 / 212 / 234 of 402 measured with it, 180 / 176 / 189 without.
+    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.65)
 
 
 def test_ironing_master_ghosted():
@@ -593,8 +604,179 @@ def test_ironing_master_ghosted():
     check_master_ghosted("ironing", "ironing_2d.yaml", IRONING_SHORT, 0.5)
 
 
+# Columns compared against the largest value of their group (a tangential force or a gap of
+# closed contact is round-off next to the normal force or the displacements).
+SCALE_GROUPS = (("ux", "uy", "uz", "gap"), ("normal_traction", "tangential_traction"),
+                ("fx", "fy", "fz"), ("normal_force", "tangential_force"),
+                ("momentum_x", "momentum_y", "momentum_z"),
+                ("angular_momentum_x", "angular_momentum_y", "angular_momentum_z"),
+                ("kinetic_energy", "internal_energy", "external_work", "total_energy"))
+NOT_COMPARED = ("residual", "newton_iterations", "wall_seconds")
+
+
+def compare_outputs(a, b, rtol, what):
+    """steps.csv (energies, momenta, active nodes), interfaces.csv, reactions.csv, probes.csv
+    and interface_*.csv of two runs: every numeric column to rtol relative to the largest value
+    of its group (SCALE_GROUPS) or of itself, every other column equal."""
+    names = sorted(n for n in os.listdir(a) if n in ("steps.csv", "interfaces.csv",
+                                                     "reactions.csv", "probes.csv")
+                   or (n.startswith("interface_") and n.endswith(".csv")))
+    worst_all = 0.0
+    for name in names:
+        ra, rb = rows_of(a, name), rows_of(b, name)
+        if len(ra) != len(rb):
+            raise AssertionError("%s: %s has %d rows against %d" % (what, name, len(ra), len(rb)))
+        if not ra:
+            continue
+        worst = 0.0
+        for k, v in ra[0].items():
+            if k in NOT_COMPARED:
+                continue
+            if not isinstance(v, float):
+                if any(x[k] != y[k] for x, y in zip(ra, rb)):
+                    raise AssertionError("%s: %s column %s differs" % (what, name, k))
+                continue
+            group = [g for g in SCALE_GROUPS if k in g]
+            group = [c for c in group[0] if c in ra[0]] if group else [k]
+            scale = max(abs(r[c]) for r in ra for c in group) or 1.0
+            worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(ra, rb)])
+        worst_all = max(worst_all, worst)
+        if worst > rtol:
+            raise AssertionError("%s: %s differs by %.3e (relative)" % (what, name, worst))
+    print("   %s: %s equal, largest difference %.2e (relative)" % (what, ", ".join(names),
+                                                                 worst_all))
+    if "steps.csv" not in names or len(names) < 3:
+        raise AssertionError("%s: too few outputs compared: %s" % (what, names))
+
+
+def check_surface_received(out, what):
+    """At np > 1 every rank receives strictly fewer surface facets than the surface has."""
+    detail = ranks_detail(out)
+    n = detail[0]["contact_surface_facets"]
+    received = [r["contact_surface_received"] for r in detail]
+    print("   %s: surface facets received per rank %s of %d; ghost exchanges %s at %s searches"
+          % (what, "/".join(map(str, received)), n, detail[0]["contact_ghost_exchanges"],
+             detail[0]["contact_searches"]))
+    if n <= 0 or any(r["contact_surface_facets"] != n for r in detail):
+        raise AssertionError("%s: surface sizes %s" % (what, [r["contact_surface_facets"]
+                                                              for r in detail]))
+    if min(received) <= 0 or max(received) >= n:
+        raise AssertionError("%s: a rank received %d (another %d) of the %d surface facets"
+                             % (what, max(received), min(received), n))
+    return detail
+
+
+def pile_case(np, env=None):
+    """7 rings of examples/rings (rows of 4 and 3) to t = 0.3: the second row lands on the
+    first at t = 0.25, so the last 20 steps have ring-ring contact."""
+    work, path = H.copy_example("rings", "rings.yaml", (
+        ("point: [22.2, 0]", "point: [9.0, 0]"), ("end: 1.5", "end: 0.3"),
+        ("every: 20", "every: 1000")))
+    _dirs.append(work)
+    geo = os.path.join(work, "rings.geo")
+    with open(geo) as f:
+        text = f.read()
+    if "N = 200; k = 10;" not in text:
+        raise AssertionError("rings.geo: 'N = 200; k = 10;' not found")
+    with open(geo, "w") as f:
+        f.write(text.replace("N = 200; k = 10;", "N = 7; k = 4;"))
+    out = H.solve(path, np=np)
+    _dirs.append(out)
+    return out
+
+
+def test_rings_self_search_np3():
+    """The self-contact search distributed (docs/parallel.md, "Self contact searched
+    distributed"): each rank searches the surface facets it evaluates against those ghosted
+    to it, every pair once, roles from the gathered pairs."""
+    one, three = pile_case(1), pile_case(3)
+    touching = [r for r in rows_of(one, "interfaces.csv")
+                if r["interface"] == "rings" and r["active_nodes"] > 0]
+    print("   ring-ring contact in %d of the steps" % len(touching))
+    if len(touching) < 5:
+        raise AssertionError("the rings touch in %d steps only" % len(touching))
+    if ranks_detail(one)[0]["contact_surface_received"] != ranks_detail(one)[0][
+            "contact_surface_facets"]:
+        raise AssertionError("np 1 searched a part of the surface: %s" % ranks_detail(one)[0])
+    check_surface_received(three, "rings np 3")
+    compare_outputs(one, three, 1e-10, "rings np 3 vs np 1")
+    H.cleanup(*_dirs)
+
+
+def two_blocks_case(np):
+    """The two blocks of test_self_contact.py (3D tetrahedra, tilted top) as one surface,
+    stretched to 3 x 1 x 1 so that the partition cuts the contact faces (stacked unit cubes
+    are cut across z: one rank then evaluates both faces whole)."""
+    import geometry
+    import test_self_contact as S
+    geo = geometry.tied_boxes(0.35, 0.25, kind="tet")
+    for z in ("0", "1"):
+        box = "{0, 0, %s, 1, 1, 1};" % z
+        if box not in geo:
+            raise AssertionError("tied_boxes: '%s' not found" % box)
+        geo = geo.replace(box, "{0, 0, %s, 3, 1, 1};" % z)
+    work, out = S.T.run_case(geo, S.blocks_yaml(
+        3, "{name: contact, type: contact, surface: [lower_top, upper_bottom]}", True), np=np)
+    _dirs.extend([work, out])
+    return out
+
+
+def test_two_blocks_self_search_np3():
+    one, three = two_blocks_case(1), two_blocks_case(3)
+    import contact_analysis
+    active = sum(contact_analysis.is_active(r) for r in rows_of(one, "interface_contact.csv"))
+    print("   %d active nodes" % active)
+    if active == 0:
+        raise AssertionError("no active contact node")
+    check_surface_received(three, "two blocks np 3")
+    compare_outputs(one, three, 1e-10, "two blocks np 3 vs np 1")
+    H.cleanup(*_dirs)
+
+
+def with_env(name, value, run):
+    old = os.environ.get(name)
+    os.environ[name] = value
+    try:
+        return run()
+    finally:
+        if old is None:
+            del os.environ[name]
+        else:
+            os.environ[name] = old
+
+
+def test_ghosting_reused_np3():
+    """The ghosting reused between searches (docs/parallel.md, "Reused ghosting"): the blocks
+    (self contact) and the Hertz sphere (two bodies) move little within a step, so most
+    searches reuse the ghosts; they equal runs that exchange at every search."""
+    cases = (("two blocks", lambda: two_blocks_case(3)),
+             ("hertz", lambda: run_example("hertz_3d", "sphere_block.yaml", 3,
+                                           (("steps: 5", "steps: 2"),))))
+    for what, case in cases:
+        reused = case()
+        every = with_env("SEAM_GHOST_SKIN", "0", case)
+        for out, kind in ((reused, "reused"), (every, "every search")):
+            counts = {(r["contact_ghost_exchanges"], r["contact_searches"])
+                      for r in ranks_detail(out)}
+            print("   %s, %s: ghost exchanges / searches per rank %s" % (what, kind, counts))
+            if len(counts) != 1:
+                raise AssertionError("%s: ranks disagree on the exchanges: %s" % (what, counts))
+            exchanges, searches = counts.pop()
+            if searches < 2 or exchanges < 1:
+                raise AssertionError("%s: %d searches, %d exchanges" % (what, searches, exchanges))
+            if kind == "reused" and not exchanges < searches:
+                raise AssertionError("%s: ghosts exchanged at %d of %d searches"
+                                     % (what, exchanges, searches))
+            if kind != "reused" and exchanges != searches:
+                raise AssertionError("%s, SEAM_GHOST_SKIN=0: %d exchanges at %d searches"
+                                     % (what, exchanges, searches))
+        compare_outputs(every, reused, 1e-12, what + " reused vs every search")
+    H.cleanup(*_dirs)
+
+
 if __name__ == "__main__":
-    H.main([test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3, test_tied_interface_part_np3,
+    H.main([test_rings_self_search_np3, test_two_blocks_self_search_np3,
+            test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3, test_tied_interface_part_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])

@@ -148,8 +148,8 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   } else if (self_) {
     search_options_.inflation =
         search_options_.inflation_factor * search::min_edge_length(slave_.surface());
-    self_tree_ =
-        std::make_unique<search::Tree>(self_contact_tree(slave_, search_options_.inflation));
+    self_tree_ = std::make_unique<search::Tree>(
+        self_contact_tree(slave_.surface(), search_options_.inflation));
   } else {
     search_ = std::make_unique<search::InterfaceSearch>(slave_.surface(), master_.surface(),
                                                         search_options_);
@@ -249,10 +249,11 @@ void ContactInterface::place(std::span<const double> u, double t) {
 }
 
 void ContactInterface::use_external_search() {
-  SEAM_CHECK(!rigid_ && !self_, InputError, "interface '", name_,
-             "': an external search is for two-body interfaces only");
+  SEAM_CHECK(!rigid_, InputError, "interface '", name_,
+             "': an external search is for two-body and self-contact interfaces only");
   external_ = true;
   search_.reset();
+  self_tree_.reset();
   pairs_.clear();
   index_pairs();
 }
@@ -260,8 +261,21 @@ void ContactInterface::use_external_search() {
 void ContactInterface::set_candidates(std::span<const mortar::CandidatePair> pairs) {
   SEAM_ASSERT(external_);
   pairs_.clear();
-  keep_facing(pairs);
+  if (self_)
+    take_self_pairs(pairs);
+  else
+    keep_facing(pairs);
   index_pairs();
+}
+
+void ContactInterface::take_self_pairs(std::span<const mortar::CandidatePair> all) {
+  // Each part keeps the pairs of its own slave facets; the slave patch and its normals are
+  // those of all pairs.
+  for (const auto& p : all)
+    if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
+  build_slave_patch(slave_, all, patch_);
+  normals_.assign(slave_.coordinates.size(), 0.0);
+  if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
 }
 
 void ContactInterface::keep_facing(std::span<const mortar::CandidatePair> pairs) {
@@ -293,15 +307,10 @@ void ContactInterface::update(std::span<const double> u, double t) {
   if (obstacle_.round()) {
     collect_round_candidates();
   } else if (self_) {
-    // The whole surface is searched on every part, so that all parts assign the same roles;
-    // each keeps the pairs of its own slave facets.
+    // The whole surface is searched on every part, so that all parts assign the same roles.
     std::vector<mortar::CandidatePair> all;
     self_contact_pairs(*self_tree_, slave_, all);
-    for (const auto& p : all)
-      if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
-    build_slave_patch(slave_, all, patch_);
-    normals_.assign(slave_.coordinates.size(), 0.0);
-    if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
+    take_self_pairs(all);
   } else if (search_) {
     search_->update(slave_.coordinates, master_.coordinates);
     std::vector<mortar::CandidatePair> found;

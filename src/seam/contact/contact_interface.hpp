@@ -165,14 +165,18 @@ public:
   /// and t, the averaged nodal normals of a two-body or rigid interface recomputed. The
   /// candidate pairs are those of the last search until set_candidates() or update().
   void place(std::span<const double> u, double t);
-  /// Two-body interfaces: the candidate pairs come from outside (e.g. a search distributed over
-  /// the ranks, problem/contact_search.hpp) through set_candidates() after each place(); the
-  /// interface then keeps no search trees of its own. InputError on other interfaces.
+  /// Two-body and self-contact interfaces: the candidate pairs come from outside (e.g. a search
+  /// distributed over the ranks, problem/contact_search.hpp) through set_candidates() after
+  /// each place(); the interface then keeps no search trees of its own. InputError on a rigid
+  /// obstacle.
   void use_external_search();
   bool external_search() const { return external_; }
-  /// Candidate pairs of the owned slave facets found outside (slave: side-local slave facet,
-  /// master: side-local master facet), at the configuration of the last place(); only facets
-  /// that face each other are kept, as the own search keeps them.
+  /// Two bodies: the candidate pairs of the owned slave facets found outside (slave: side-local
+  /// slave facet, master: side-local master facet), at the configuration of the last place();
+  /// only facets that face each other are kept, as the own search keeps them. Self contact:
+  /// the oriented pairs of the whole surface (self_contact.hpp: facing, roles assigned; the
+  /// same on every part), of which the pairs of the owned slave facets are kept; the slave
+  /// patch and the nodal normals are rebuilt from them.
   void set_candidates(std::span<const mortar::CandidatePair> pairs);
   /// The absolute inflation of the search volumes (the same on every part).
   double search_inflation() const { return search_options_.inflation; }
@@ -259,6 +263,9 @@ private:
   /// Appends to pairs_ those of `pairs` (owned slave facet, master facet) whose facets face
   /// each other (all of them against a rigid plane).
   void keep_facing(std::span<const mortar::CandidatePair> pairs);
+  /// Self contact: appends to pairs_ those of `all` (the oriented pairs of the whole surface)
+  /// of the owned slave facets; rebuilds the slave patch and the nodal normals.
+  void take_self_pairs(std::span<const mortar::CandidatePair> all);
   /// pairs_ (of the owned slave facets) sorted, their offsets per slave facet.
   void index_pairs();
   void evaluate_rigid(NodalValues& out) const;

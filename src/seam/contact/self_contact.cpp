@@ -2,6 +2,7 @@
 
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/search/interface_search.hpp"
+#include "seam/search/normal_cone.hpp"
 #include "seam/search/traversal.hpp"
 
 #include <algorithm>
@@ -47,11 +48,11 @@ meshtying::InterfaceSide extract_surface(const mesh::Mesh& mesh,
   return meshtying::extract_side(mesh, surface_region(mesh, groups));
 }
 
-search::Tree self_contact_tree(const meshtying::InterfaceSide& side, double inflation) {
+search::Tree self_contact_tree(const search::FacetSurface& surface, double inflation) {
   search::TreeOptions options;
   options.inflation = inflation;
   options.normal_cones = true;
-  return search::Tree(side.surface(), options);
+  return search::Tree(surface, options);
 }
 
 namespace {
@@ -78,10 +79,16 @@ double dot(const std::array<double, 3>& a, const std::array<double, 3>& b) {
 void self_contact_pairs(search::Tree& tree, const meshtying::InterfaceSide& side,
                         std::vector<mortar::CandidatePair>& out) {
   tree.update(side.coordinates);
-  std::vector<search::CandidatePair> found;
+  std::vector<search::CandidatePair> found, facing;
   search::find_self_pairs(tree, found);
-  const double behind = 0.5 * tree.inflation();
-  std::vector<search::CandidatePair> facing;
+  keep_facing_pairs(side, tree.inflation(), found, facing);
+  orient_pairs(side, facing, out);
+}
+
+void keep_facing_pairs(const meshtying::InterfaceSide& side, double inflation,
+                       std::span<const search::CandidatePair> found,
+                       std::vector<search::CandidatePair>& out) {
+  const double behind = 0.5 * inflation;
   for (const auto& p : found) {
     auto na = facet_normal(side, p.slave), nb = facet_normal(side, p.master);
     if (dot(na, nb) >= 0.0) continue;
@@ -90,9 +97,34 @@ void self_contact_pairs(search::Tree& tree, const meshtying::InterfaceSide& side
     const auto ca = centroid(side, p.slave), cb = centroid(side, p.master);
     const std::array<double, 3> d{cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]};
     if (dot(d, na) / la < -behind || -dot(d, nb) / lb < -behind) continue;
-    facing.push_back(p);
+    out.push_back(p);
   }
-  const auto oriented = search::assign_roles(tree, facing);
+}
+
+void orient_pairs(const meshtying::InterfaceSide& side,
+                  std::span<const search::CandidatePair> pairs,
+                  std::vector<mortar::CandidatePair>& out) {
+  std::vector<search::CandidatePair> sorted;
+  sorted.reserve(pairs.size());
+  for (const auto& p : pairs)
+    sorted.push_back({std::min(p.slave, p.master), std::max(p.slave, p.master)});
+  std::sort(sorted.begin(), sorted.end());
+  // The axes of the facets' normal cones, as the self-contact tree has them.
+  std::vector<std::array<double, 3>> axis(static_cast<std::size_t>(side.n_facets()));
+  const auto surface = side.surface();
+  const auto normal_axis = [&](local_index f) {
+    const auto begin = static_cast<std::size_t>(surface.offsets[f]);
+    const auto end = static_cast<std::size_t>(surface.offsets[f + 1]);
+    axis[static_cast<std::size_t>(f)] =
+        search::facet_normal_cone(side.dim, surface.coords,
+                                  surface.connectivity.subspan(begin, end - begin))
+            .axis;
+  };
+  for (const auto& p : sorted) {
+    normal_axis(p.slave);
+    normal_axis(p.master);
+  }
+  const auto oriented = search::assign_roles(axis, sorted);
   out.clear();
   for (const auto& p : oriented) out.push_back({p.slave, p.master});
   std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) {

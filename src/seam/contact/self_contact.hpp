@@ -1,17 +1,20 @@
 #pragma once
 // Self and multi-body contact (`surface: [groups...]`; ALGORITHMS.md §6 and §10): one surface
 // made of one or more boundary groups is both the slave and the master side of a contact
-// interface. At every search the facet pairs that face each other are found on one tree over
-// the whole surface (search::find_self_pairs: normal cones, no pairs of neighbours sharing a
-// node) and each pair is given a slave and a master facet (search::assign_roles: roles
-// alternate across the contact pairs, as in 4C's self-contact binary tree; in each connected
-// group of pairs the lowest facet is slave). The multipliers live on the slave nodes of the
-// current search; every other node of the surface has D_jj = 0 and stays inactive.
+// interface. At every search the facet pairs that face each other are found on a self-contact
+// tree (search::find_self_pairs: normal cones, no pairs of neighbours sharing a node; over the
+// whole surface, or in a run over the ranks over each rank's facets and those ghosted to it,
+// problem/contact_search.hpp) and each pair is given a slave and a master facet
+// (search::assign_roles: roles alternate across the contact pairs, as in 4C's self-contact binary
+// tree; in each connected group of pairs the lowest facet is slave). The multipliers live on the
+// slave nodes of the current search; every other node of the surface has D_jj = 0 and stays
+// inactive.
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
 #include "seam/mortar/interface.hpp"
 #include "seam/mortar/linearization.hpp"
+#include "seam/search/traversal.hpp"
 #include "seam/search/tree.hpp"
 
 #include <array>
@@ -31,17 +34,30 @@ mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRe
 meshtying::InterfaceSide extract_surface(const mesh::Mesh& mesh,
                                          std::span<const io::RegionRef> groups);
 
-/// The self-contact search tree of `side` (normal cones on), its volumes widened by
+/// The self-contact search tree of `surface` (normal cones on), its volumes widened by
 /// `inflation`.
-search::Tree self_contact_tree(const meshtying::InterfaceSide& side, double inflation);
+search::Tree self_contact_tree(const search::FacetSurface& surface, double inflation);
 
 /// The oriented (slave, master) candidate pairs of `side` at its current coordinates, sorted:
-/// the tree is refitted, the self pairs found, pairs whose facets do not face each other are
-/// dropped (normals not opposed, or either facet's centroid more than half the inflation
-/// behind the other facet: the two faces of a thin wall are not a contact pair), and the
-/// roles assigned.
+/// the tree (over the whole side) is refitted, the self pairs found, those that face each
+/// other kept (keep_facing_pairs) and the roles assigned (orient_pairs).
 void self_contact_pairs(search::Tree& tree, const meshtying::InterfaceSide& side,
                         std::vector<mortar::CandidatePair>& out);
+
+/// Appends to `out` the self pairs of `found` (facets of `side`) whose facets face each other:
+/// normals opposed, and neither facet's centroid more than half the search inflation behind
+/// the other facet (the two faces of a thin wall are not a contact pair).
+void keep_facing_pairs(const meshtying::InterfaceSide& side, double inflation,
+                       std::span<const search::CandidatePair> found,
+                       std::vector<search::CandidatePair>& out);
+
+/// The roles of the facing self pairs `pairs` of the whole surface (facets of `side`, each pair
+/// once, in any order and either orientation): search::assign_roles on the pairs sorted as
+/// (lower, higher) facet, so that the roles depend only on which pairs there are. The oriented
+/// pairs, sorted by (slave, master).
+void orient_pairs(const meshtying::InterfaceSide& side,
+                  std::span<const search::CandidatePair> pairs,
+                  std::vector<mortar::CandidatePair>& out);
 
 /// The slave facets of the current pairs as a facet set over the surface's nodes. The mortar
 /// integration and the averaged nodal normals use these facets only, so that the normal of a

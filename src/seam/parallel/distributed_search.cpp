@@ -28,31 +28,35 @@ double global_inflation(MPI_Comm comm, const SurfacePart& slave, const SurfacePa
 
 DistributedSearch::DistributedSearch(MPI_Comm comm, double inflation,
                                      const DistributedSearchOptions& options)
-    : comm_(comm), inflation_(inflation), options_(options) {
+    : comm_(comm), inflation_(inflation), options_(options),
+      ghosting_(comm, inflation, options.skin, options.ghosting) {
   SEAM_CHECK(inflation >= 0.0, InputError, "distributed search: inflation must be >= 0");
 }
 
-void DistributedSearch::find_pairs(const SurfacePart& slave, const SurfacePart& master) {
+void DistributedSearch::find_pairs(const SurfacePart& slave, const SurfacePart& master,
+                                   std::span<const double> master_positions) {
   stats_ = {};
   const double t0 = wall_seconds();
-  ghosts_ = ghost_masters(comm_, slave, master, inflation_, options_.ghosting, &stats_.ghosting);
+  stats_.exchanged = ghosting_.update(slave, master, master_positions);
+  if (stats_.exchanged) stats_.ghosting = ghosting_.exchange_stats();
+  const auto& ghosts = ghosting_.ghosts();
   const double t1 = wall_seconds();
 
   // Trees kept while both sides are the same facets (the usual Newton iteration).
   const bool same = search_ && slave.facet_ids == slave_ids_ &&
-                    slave.connectivity == slave_connectivity_ && ghosts_.facet_ids == ghost_ids_;
+                    slave.connectivity == slave_connectivity_ && ghosts.facet_ids == ghost_ids_;
   pairs_.clear();
-  if (slave.n_facets() > 0 && ghosts_.n_facets() > 0) {
+  if (slave.n_facets() > 0 && ghosts.n_facets() > 0) {
     if (same) {
-      search_->update(slave.coords, ghosts_.coords);
+      search_->update(slave.coords, ghosts.coords);
     } else {
       search::SearchOptions so;
       so.volume = options_.volume;
       so.rebuild_factor = options_.rebuild_factor;
       so.inflation = inflation_;
-      search_.emplace(slave.view(), ghosts_.view(), so);
+      search_.emplace(slave.view(), ghosts.view(), so);
       slave_connectivity_ = slave.connectivity;
-      ghost_ids_ = ghosts_.facet_ids;
+      ghost_ids_ = ghosts.facet_ids;
       stats_.rebuilt = true;
     }
     pairs_ = search_->find_pairs();
@@ -63,14 +67,15 @@ void DistributedSearch::find_pairs(const SurfacePart& slave, const SurfacePart& 
   stats_.search_seconds = wall_seconds() - t1;
   stats_.ghost_seconds = t1 - t0;
   stats_.n_slave = slave.n_facets();
-  stats_.n_ghosts = ghosts_.n_facets();
+  stats_.n_ghosts = ghosts.n_facets();
   stats_.n_pairs = static_cast<std::int64_t>(pairs_.size());
 }
 
 std::vector<GlobalPair> DistributedSearch::global_pairs() const {
   std::vector<GlobalPair> out;
   out.reserve(pairs_.size());
-  for (const auto& p : pairs_) out.push_back({slave_ids_[p.slave], ghosts_.facet_ids[p.master]});
+  const auto& ghosts = ghosting_.ghosts();
+  for (const auto& p : pairs_) out.push_back({slave_ids_[p.slave], ghosts.facet_ids[p.master]});
   std::sort(out.begin(), out.end());
   return out;
 }

@@ -13,6 +13,7 @@
 #include <compare>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace seam::parallel {
@@ -35,6 +36,8 @@ struct DistributedSearchOptions {
   search::BoundingVolume volume = search::BoundingVolume::kdop;
   double rebuild_factor = 1.5; ///< see search::TreeOptions
   GhostingOptions ghosting;
+  /// Verlet skin of the ghosting (VerletGhosts): 0 ghosts anew at every find_pairs().
+  double skin = 0.0;
 };
 
 /// What the last find_pairs() did on this rank.
@@ -44,6 +47,7 @@ struct SearchStats {
   std::int64_t n_pairs = 0;
   ExchangeStats ghosting;
   bool rebuilt = false;        ///< trees built anew (the slave part or the ghosts changed)
+  bool exchanged = false;      ///< the ghosts were exchanged anew (not reused)
   double ghost_seconds = 0.0;  ///< boxes, Allgatherv and Alltoallv
   double search_seconds = 0.0; ///< tree build or refit, and traversal
 };
@@ -57,14 +61,20 @@ public:
   /// Collective. Ghosts the master facets that can meet `slave` (this rank's slave part) from
   /// `master` (the master facets this rank holds; any distribution) and finds the pairs. The
   /// trees are refitted if the slave part and the ghost set are the same facets as in the
-  /// previous call, built anew otherwise.
-  void find_pairs(const SurfacePart& slave, const SurfacePart& master);
+  /// previous call, built anew otherwise. With a skin the ghosts of an earlier call are reused
+  /// while they can be (VerletGhosts), their nodes placed at `master_positions` (indexed by
+  /// master node id).
+  void find_pairs(const SurfacePart& slave, const SurfacePart& master,
+                  std::span<const double> master_positions = {});
 
   /// Pairs of the last call: slave = facet index in the slave part passed, master = facet
   /// index in ghosts().
   const std::vector<search::CandidatePair>& pairs() const { return pairs_; }
-  const SurfacePart& ghosts() const { return ghosts_; }
+  const SurfacePart& ghosts() const { return ghosting_.ghosts(); }
   const SearchStats& stats() const { return stats_; }
+  /// Ghost exchanges and find_pairs() calls so far.
+  std::int64_t n_exchanges() const { return ghosting_.n_exchanges(); }
+  std::int64_t n_searches() const { return ghosting_.n_updates(); }
   double inflation() const { return inflation_; }
 
   /// The pairs of the last call in global ids, sorted.
@@ -74,7 +84,7 @@ private:
   MPI_Comm comm_;
   double inflation_;
   DistributedSearchOptions options_;
-  SurfacePart ghosts_;
+  VerletGhosts ghosting_;
   std::vector<global_index> slave_ids_;
   std::vector<local_index> slave_connectivity_; // what the trees were built on
   std::vector<global_index> ghost_ids_;

@@ -143,4 +143,54 @@ SurfacePart ghost_masters(MPI_Comm comm, const SurfacePart& slave, const Surface
   return ghost_overlapping(comm, region, master, inflation, stats);
 }
 
+VerletGhosts::VerletGhosts(MPI_Comm comm, double inflation, double skin,
+                           const GhostingOptions& options)
+    : comm_(comm), inflation_(inflation), skin_(std::max(skin, 0.0)), options_(options) {
+  SEAM_CHECK(inflation >= 0.0, InputError, "ghosting: inflation must be >= 0");
+}
+
+bool VerletGhosts::still_valid(const SurfacePart& part, const std::vector<global_index>& ids,
+                               const std::vector<double>& coords) const {
+  if (part.facet_ids != ids || part.coords.size() != coords.size()) return false;
+  // Half the skin, less a margin for the round-off of positions and boxes.
+  const double half = 0.5 * skin_ * (1.0 - 1e-6), limit = half * half;
+  const auto dim = static_cast<std::size_t>(part.dim);
+  for (std::size_t i = 0; i < coords.size(); i += dim) {
+    double d2 = 0.0;
+    for (std::size_t c = 0; c < dim; ++c) {
+      const double d = part.coords[i + c] - coords[i + c];
+      d2 += d * d;
+    }
+    if (d2 > limit) return false;
+  }
+  return true;
+}
+
+bool VerletGhosts::update(const SurfacePart& slave, const SurfacePart& master,
+                          std::span<const double> positions) {
+  ++n_updates_;
+  int reuse = exchanged_ && skin_ > 0.0 && still_valid(slave, slave_ids_, slave_coords_) &&
+              still_valid(master, master_ids_, master_coords_);
+  MPI_Allreduce(MPI_IN_PLACE, &reuse, 1, MPI_INT, MPI_LAND, comm_);
+  if (reuse) {
+    SEAM_CHECK(!positions.empty(), InputError,
+               "ghosting: reused ghosts need the current node positions");
+    const auto dim = static_cast<std::size_t>(ghosts_.dim);
+    for (std::size_t i = 0; i < ghosts_.node_ids.size(); ++i)
+      for (std::size_t c = 0; c < dim; ++c)
+        ghosts_.coords[i * dim + c] =
+            positions[static_cast<std::size_t>(ghosts_.node_ids[i]) * dim + c];
+    return false;
+  }
+  // Half the skin on each side: the boxes of two facets may then approach by the whole skin.
+  ghosts_ = ghost_masters(comm_, slave, master, inflation_ + 0.5 * skin_, options_, &stats_);
+  exchanged_ = true;
+  ++n_exchanges_;
+  slave_ids_ = slave.facet_ids;
+  master_ids_ = master.facet_ids;
+  slave_coords_ = slave.coords;
+  master_coords_ = master.coords;
+  return true;
+}
+
 } // namespace seam::parallel

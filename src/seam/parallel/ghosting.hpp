@@ -55,4 +55,49 @@ SurfacePart ghost_masters(MPI_Comm comm, const SurfacePart& slave, const Surface
                           double inflation, const GhostingOptions& options = {},
                           ExchangeStats* stats = nullptr);
 
+/// Ghosting reused between searches, a Verlet list (docs/parallel.md, "Reused ghosting"): the
+/// master facets are ghosted with volumes widened by inflation + skin / 2, and the exchange is
+/// redone only when a rank's slave or master part is not the same facets as at the last
+/// exchange or one of their nodes has moved more than skin / 2 since then (one collective
+/// decision). While no node moved more than skin / 2, a slave and a master facet whose volumes
+/// (widened by the inflation) overlap now had overlapping boxes widened by inflation + skin / 2
+/// then, so the ghosts still hold every master facet the search can pair. In between, the
+/// ghosts keep their facets and take their nodes' current positions from the caller. skin <= 0:
+/// an exchange at every update.
+class VerletGhosts {
+public:
+  VerletGhosts(MPI_Comm comm, double inflation, double skin, const GhostingOptions& options = {});
+
+  /// Collective. The ghosts of `master` (the master facets this rank holds) for `slave` (this
+  /// rank's slave part), exchanged anew or reused. `positions`: the current coordinates of
+  /// every node id (dim per id; e.g. a side held whole), read for the nodes of reused ghosts;
+  /// with a positive skin it must not be empty. Returns true if it exchanged.
+  bool update(const SurfacePart& slave, const SurfacePart& master,
+              std::span<const double> positions);
+
+  const SurfacePart& ghosts() const { return ghosts_; }
+  double skin() const { return skin_; }
+  std::int64_t n_exchanges() const { return n_exchanges_; }
+  std::int64_t n_updates() const { return n_updates_; }
+  /// Counts of the last exchange on this rank.
+  const ExchangeStats& exchange_stats() const { return stats_; }
+
+private:
+  /// Whether `part` is the same facets and nodes as `ids` / `coords` and no node moved more
+  /// than skin / 2 from `coords`.
+  bool still_valid(const SurfacePart& part, const std::vector<global_index>& ids,
+                   const std::vector<double>& coords) const;
+
+  MPI_Comm comm_;
+  double inflation_, skin_;
+  GhostingOptions options_;
+  SurfacePart ghosts_;
+  bool exchanged_ = false;
+  // The parts at the last exchange: their facets and node positions.
+  std::vector<global_index> slave_ids_, master_ids_;
+  std::vector<double> slave_coords_, master_coords_;
+  std::int64_t n_exchanges_ = 0, n_updates_ = 0;
+  ExchangeStats stats_;
+};
+
 } // namespace seam::parallel

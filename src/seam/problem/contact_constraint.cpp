@@ -112,7 +112,12 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
         disc.comm().size() > 1)
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
-    if (!s.itf.rigid() && !s.itf.self_contact()) {
+    if (s.itf.self_contact()) {
+      // Self contact: each rank searches the surface facets it evaluates against the surface
+      // facets ghosted to it; it hands in those of its own cells.
+      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, s.bulk_facets);
+      s.itf.set_owned_facets(s.bulk_facets);
+    } else if (!s.itf.rigid()) {
       // Two bodies: each rank searches the slave facets it evaluates against the master
       // facets ghosted to it; it hands in those of its own cells.
       const mesh::Region master = meshtying::side_region(disc.mesh(), *itf.master);
@@ -866,7 +871,14 @@ void ContactConstraint::balance() {
     s.share.candidates =
         static_cast<std::int64_t>(comm.sum(static_cast<double>(s.itf.n_candidates())));
     // Without the distributed search a rank searches against the whole master surface.
-    s.share.master_received = s.search ? s.search->n_received() : s.itf.n_master_facets();
+    s.share.master_received = s.itf.self_contact() ? 0
+                              : s.search           ? s.search->n_received()
+                                                   : s.itf.n_master_facets();
+    s.share.surface_received = s.itf.self_contact() ? s.search->n_received() : 0;
+    if (s.search) {
+      s.share.ghost_exchanges = s.search->n_exchanges();
+      s.share.searches = s.search->n_searches();
+    }
     s.work_seconds = 0.0;
     s.redistributed = false;
     if (!s.distribution || !s.balance.rebalance) continue;
@@ -949,17 +961,27 @@ std::vector<std::string> ContactConstraint::held_whole() const {
         std::string("the displacement of every interface node, the averaged nodal normals, the "
                     "nodal arrays per slave node (D, g~, multipliers, active set") +
         (s.friction ? ", friction history" : "") + ")";
-    if (s.search)
+    char skin[64];
+    if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
+    const std::string reused =
+        s.search ? std::string(", the ghosts reused while no node moved half the skin ") + skin
+                 : std::string();
+    if (s.itf.self_contact())
+      text += "the surface (" + n_slave +
+              " facets, nodes, current positions), the facing pairs of each search (gathered "
+              "for the roles and the slave patch), " +
+              arrays +
+              "; distributed: the search (own surface facets against the surface facets "
+              "ghosted by bounding boxes" +
+              reused + ") and the mortar integration of the own slave elements";
+    else if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.itf.n_master_facets()) +
               " master facets, their nodes and current positions), " + arrays +
               "; distributed: the search (own slave elements against the master facets "
-              "ghosted by bounding boxes) and the mortar integration of the own slave "
+              "ghosted by bounding boxes" +
+              reused +
+              ") and the mortar integration of the own slave "
               "elements (against the master side held whole)";
-    else if (s.itf.self_contact())
-      text += "the surface (" + n_slave +
-              " facets, nodes, current positions) and its search (roles assigned on every "
-              "rank), " +
-              arrays + "; distributed: the mortar integration of the own slave elements";
     else
       text += "the slave side (" + n_slave + " facets, nodes, current positions), the " +
               s.itf.obstacle().name() + ", " + arrays +
@@ -1031,6 +1053,10 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.local_slave_elements = s.share.slave_elements;
     rep.local_master_ghosts = s.share.master_ghosts;
     rep.local_master_received = s.share.master_received;
+    rep.local_surface_received = s.share.surface_received;
+    rep.surface_facets = s.itf.self_contact() ? static_cast<int>(s.itf.slave().n_facets()) : 0;
+    rep.local_ghost_exchanges = s.share.ghost_exchanges;
+    rep.local_searches = s.share.searches;
     rep.local_pairs = s.part.n_pairs;
     rep.local_integration_cells = s.part.n_cells;
     rep.local_contact_nodes = s.nodal.decided;

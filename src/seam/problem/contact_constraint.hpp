@@ -216,17 +216,21 @@ private:
     // Distribution of the slave facets over the ranks.
     std::vector<local_index> bulk_facets; ///< slave facets whose cell this rank assembles
     std::unique_ptr<parallel::FacetDistribution> distribution; ///< independent only
-    /// Two-body interfaces: the search distributed over the ranks (master facets ghosted).
+    /// Two-body and self-contact interfaces: the search distributed over the ranks (facets
+    /// ghosted).
     std::unique_ptr<ContactSearch> search;
     bool distributed = false;  ///< the first distribution is done
     double work_seconds = 0.0; ///< CPU time of this rank's evaluation in the current step
     parallel::BalanceDecision balance;
     bool redistributed = false; ///< in the last balance()
     struct {
-      int slave_elements = 0;      ///< this rank's, in the last balanced step
-      int master_ghosts = 0;       ///< distinct master facets of its pairs
-      int master_received = 0;     ///< master facets it searched at the last search
-      std::int64_t candidates = 0; ///< candidate pairs of all ranks
+      int slave_elements = 0;           ///< this rank's, in the last balanced step
+      int master_ghosts = 0;            ///< distinct master facets of its pairs
+      int master_received = 0;          ///< master facets it searched at the last search
+      int surface_received = 0;         ///< self contact: surface facets it searched then
+      std::int64_t ghost_exchanges = 0; ///< of the distributed search, so far
+      std::int64_t searches = 0;        ///< of the distributed search, so far
+      std::int64_t candidates = 0;      ///< candidate pairs of all ranks
     } share;
 
     // Friction: lambda holds dim values per slave node (Cartesian), status the

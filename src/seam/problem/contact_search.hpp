@@ -1,41 +1,79 @@
 #pragma once
-// The search of a two-body contact interface distributed over the ranks (seed paper Sect. 3;
-// docs/parallel.md, "Contact: master facets ghosted"): at every search each rank sends the
-// master facets of the cells it assembles to the ranks whose slave elements their bounding
-// boxes can meet (parallel::ghost_masters), and searches its own slave elements against the
-// master facets it received (parallel::DistributedSearch). The pairs go to the interface
-// (ContactInterface::set_candidates); together the ranks' pairs are those of one whole search.
+// The search of a contact interface distributed over the ranks (seed paper Sect. 3;
+// docs/parallel.md, "Contact: master facets ghosted" and "Self contact searched distributed").
 //
-// The interface still holds both sides whole on every rank (the placement reads them); what
-// this removes is every rank's search against the whole master surface.
+// Two bodies: each rank sends the master facets of the cells it assembles to the ranks whose
+// slave elements their bounding boxes can meet (parallel::ghost_masters), and searches its own
+// slave elements against the master facets it received (parallel::DistributedSearch). The
+// pairs go to the interface (ContactInterface::set_candidates); together the ranks' pairs are
+// those of one whole search.
+//
+// Self and multi-body contact (`surface:`): each rank searches the surface facets it evaluates
+// against the surface facets ghosted to it by bounding boxes, with the self-contact tests of
+// one whole search (normal cones, no neighbouring facets, facing); a pair is kept by the rank
+// of its lower facet, so that every pair is found once. The facing pairs of all ranks are
+// gathered (the contact graph, O(pairs)) and every rank assigns the roles as one whole search
+// does (contact::orient_pairs).
+//
+// The ghosting is reused between searches (parallel::VerletGhosts): boxes widened by a skin of
+// a fraction of the mean facet size, exchanged anew only when a surface node has moved more
+// than half the skin since the last exchange.
+//
+// The interface still holds its sides whole on every rank (the placement reads them, and the
+// reused ghosts take their positions from them); what this removes is every rank's search
+// against the whole surface.
 #include "seam/contact/contact_interface.hpp"
 #include "seam/parallel/distributed_search.hpp"
+#include "seam/parallel/ghosting.hpp"
+#include "seam/search/tree.hpp"
 
 #include <mpi.h>
 
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace seam::problem {
 
 class ContactSearch {
 public:
-  /// `held_masters`: the master facets (side-local) this rank hands in, each on one rank (e.g.
-  /// those of the cells it assembles). Switches `itf` to the external search.
-  ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
-                std::vector<local_index> held_masters);
+  /// The skin of the reused ghosting as a fraction of the slave side's mean edge: 0.25, or the
+  /// value of SEAM_GHOST_SKIN in the environment (0: a ghost exchange at every search; for
+  /// tests). InputError for a value that is not a number >= 0.
+  static double skin_factor();
+
+  /// `held`: the facets (side-local: master facets of two bodies, surface facets of self
+  /// contact) this rank hands in to the ghosting, each on one rank (e.g. those of the cells it
+  /// assembles). Switches `itf` to the external search.
+  ContactSearch(MPI_Comm comm, contact::ContactInterface& itf, std::vector<local_index> held);
 
   /// Collective. The candidate pairs of the owned slave facets of `itf` at its last place().
   void find(contact::ContactInterface& itf);
 
-  /// Master facets this rank received at the last find() (its own ones included).
-  local_index n_received() const { return search_.stats().n_ghosts; }
-  const parallel::SearchStats& stats() const { return search_.stats(); }
+  /// Facets this rank received at the last find() (master facets, or surface facets of self
+  /// contact; its own ones included).
+  local_index n_received() const;
+  /// Ghost exchanges and searches so far (the same on every rank).
+  std::int64_t n_exchanges() const;
+  std::int64_t n_searches() const;
+  /// The absolute skin of the ghosting.
+  double skin() const { return skin_; }
 
 private:
-  std::vector<local_index> held_masters_;
-  parallel::DistributedSearch search_;
+  void find_self(contact::ContactInterface& itf);
+
+  MPI_Comm comm_;
+  double skin_;
+  std::vector<local_index> held_;
+  std::vector<local_index> local_; // side node -> part node, scratch
   parallel::SurfacePart slave_part_, master_part_;
   std::vector<mortar::CandidatePair> pairs_;
+  // Two bodies.
+  std::optional<parallel::DistributedSearch> search_;
+  // Self contact: the ghosts, the tree over them (and the facets it was built on).
+  std::optional<parallel::VerletGhosts> ghosts_;
+  std::optional<search::Tree> tree_;
+  std::vector<global_index> tree_facets_;
 };
 
 } // namespace seam::problem

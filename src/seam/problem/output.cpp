@@ -609,7 +609,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 15;
+  constexpr std::size_t n_counts = 19;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -630,7 +630,12 @@ void Output::finish(bool converged, int n_steps) {
       mine[11] += static_cast<double>(c.local_contact_nodes);
       mine[12] += static_cast<double>(c.local_nodal_records);
       mine[13] += c.local_master_received;
-      mine[14] += c.master_elements;
+      // Master sides of two bodies; a self-contact surface is counted as the surface.
+      if (c.surface_facets == 0) mine[14] += c.master_elements;
+      mine[15] += c.local_surface_received;
+      mine[16] += c.surface_facets;
+      mine[17] += static_cast<double>(c.local_ghost_exchanges);
+      mine[18] += static_cast<double>(c.local_searches);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -705,6 +710,10 @@ void Output::finish(bool converged, int n_steps) {
     e["contact_nodal_records"] = static_cast<std::int64_t>(d[12]);
     e["contact_master_received"] = static_cast<std::int64_t>(d[13]);
     e["contact_master_facets"] = static_cast<std::int64_t>(d[14]);
+    e["contact_surface_received"] = static_cast<std::int64_t>(d[15]);
+    e["contact_surface_facets"] = static_cast<std::int64_t>(d[16]);
+    e["contact_ghost_exchanges"] = static_cast<std::int64_t>(d[17]);
+    e["contact_searches"] = static_cast<std::int64_t>(d[18]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

@@ -72,6 +72,13 @@ struct ContactReport {
   /// Master facets this rank searched at the last search: those ghosted to it by the
   /// distributed search, the whole master surface otherwise.
   int local_master_received = 0;
+  /// Self contact: surface facets this rank searched at the last search (its own and those
+  /// ghosted to it), and the surface's facets.
+  int local_surface_received = 0;
+  int surface_facets = 0;
+  /// Ghost exchanges and searches of the distributed search so far.
+  std::int64_t local_ghost_exchanges = 0;
+  std::int64_t local_searches = 0;
   std::int64_t local_pairs = 0;
   std::int64_t local_integration_cells = 0;
   /// Slave nodes with nonzero mortar sums that this rank owns, sums and decides, and the nodal

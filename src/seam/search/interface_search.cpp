@@ -84,19 +84,25 @@ std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const Candid
              "search: assign_roles needs a tree built with normal_cones = true");
   const local_index n = tree.n_facets();
   // Facet normal (axis of the leaf cone) of every facet.
-  std::vector<NormalCone> normal(n);
+  std::vector<std::array<double, 3>> axis(n);
   std::visit(
       [&](const auto& b) {
-        for (local_index s = 0; s < n; ++s) normal[b.facet_of_slot[s]] = b.facet_cones[s];
+        for (local_index s = 0; s < n; ++s) axis[b.facet_of_slot[s]] = b.facet_cones[s].axis;
       },
       tree.bvh());
+  return assign_roles(axis, pairs);
+}
+
+std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> axis,
+                                        std::span<const CandidatePair> pairs) {
+  const auto n = static_cast<local_index>(axis.size());
   std::vector<std::pair<double, std::size_t>> order(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const auto& p = pairs[k];
     SEAM_CHECK(p.slave >= 0 && p.slave < n && p.master >= 0 && p.master < n, InputError,
                "search: pair (", p.slave, ", ", p.master, ") outside ", n, " facets");
-    const auto& a = normal[p.slave].axis;
-    const auto& b = normal[p.master].axis;
+    const auto& a = axis[p.slave];
+    const auto& b = axis[p.master];
     order[k] = {a[0] * b[0] + a[1] * b[1] + a[2] * b[2], k}; // most opposed first
   }
   std::sort(order.begin(), order.end());

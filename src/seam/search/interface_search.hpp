@@ -6,6 +6,7 @@
 #include "seam/search/traversal.hpp"
 #include "seam/search/tree.hpp"
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -75,5 +76,9 @@ std::vector<BodyPair> find_body_pairs(std::span<const Tree> bodies, bool include
 /// the lower facet number as slave. In each connected group of pairs the lowest facet number
 /// is slave. `tree` is the self-contact tree (with normal cones) that produced the pairs.
 std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const CandidatePair> pairs);
+/// The same with the facet normals given instead of the tree: axis[f] is the axis of facet f's
+/// normal cone (facet_normal_cone) for every facet f of the pairs; axis.size() facets in all.
+std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> axis,
+                                        std::span<const CandidatePair> pairs);
 
 } // namespace seam::search

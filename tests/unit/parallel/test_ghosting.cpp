@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 namespace seam::parallel::test {
@@ -95,6 +96,68 @@ TEST(Ghosting, EachRankGetsExactlyTheMastersMeetingItsRegion) {
       EXPECT_LT(ghosts.n_facets(), static_cast<local_index>(all.size()));
     }
     EXPECT_EQ(stats.facets_received, ghosts.n_facets());
+  }
+}
+
+// Every node moved by `length` in a direction of its own.
+void move_nodes(Mesh& mesh, double length) {
+  const auto n = mesh.coords.size() / static_cast<std::size_t>(mesh.dim);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = 1.3 * static_cast<double>(i), b = 0.7 * static_cast<double>(i);
+    double d[3] = {std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b)};
+    if (mesh.dim == 2) d[0] = std::sin(a), d[1] = std::cos(a);
+    double norm = 0.0;
+    for (int c = 0; c < mesh.dim; ++c) norm += d[c] * d[c];
+    for (int c = 0; c < mesh.dim; ++c)
+      mesh.coords[i * mesh.dim + c] += length * d[c] / std::sqrt(norm);
+  }
+}
+
+TEST(Ghosting, VerletGhostsAreReusedWhileNodesMoveLessThanHalfTheSkin) {
+  for (int dim : {2, 3}) {
+    Mesh slave_mesh = search::test::random_facets(dim, 600, 0.03, 31u);
+    Mesh master_mesh = search::test::random_facets(dim, 700, 0.03, 32u);
+    SurfacePart slave = rcb_part(slave_mesh);
+    SurfacePart master = block_part(master_mesh);
+    const double inflation = 0.004, skin = 0.01;
+    VerletGhosts ghosts(world(), inflation, skin);
+    VerletGhosts every(world(), inflation, 0.0);
+    EXPECT_TRUE(ghosts.update(slave, master, master_mesh.coords));
+    // Moved by 0.45 skin: reused, at the new positions, and still holding every master a
+    // local slave pairs with now (brute force on the whole moved surfaces).
+    move_nodes(slave_mesh, 0.45 * skin);
+    move_nodes(master_mesh, 0.45 * skin);
+    refresh_coords(slave, slave_mesh);
+    refresh_coords(master, master_mesh);
+    EXPECT_FALSE(ghosts.update(slave, master, master_mesh.coords)) << dim << "D";
+    const SurfacePart& g = ghosts.ghosts();
+    for (local_index n = 0; n < g.n_nodes(); ++n)
+      for (int d = 0; d < dim; ++d)
+        EXPECT_EQ(g.coords[n * dim + d], master_mesh.coords[g.node_ids[n] * dim + d]);
+    const std::set<global_index> have(g.facet_ids.begin(), g.facet_ids.end());
+    const std::set<global_index> mine(slave.facet_ids.begin(), slave.facet_ids.end());
+    std::int64_t checked = 0;
+    for (const auto& p : brute_force_pairs(slave_mesh, master_mesh, inflation))
+      if (mine.count(p.slave)) {
+        EXPECT_TRUE(have.count(p.master)) << p.slave << " " << p.master;
+        ++checked;
+      }
+    EXPECT_GT(checked, 0);
+    // Without a skin every update exchanges.
+    EXPECT_TRUE(every.update(slave, master, master_mesh.coords));
+    EXPECT_TRUE(every.update(slave, master, master_mesh.coords));
+    // Moved by 0.45 skin more (0.9 from the exchange, on some node more than half): exchanged.
+    move_nodes(master_mesh, 0.45 * skin);
+    refresh_coords(master, master_mesh);
+    EXPECT_TRUE(ghosts.update(slave, master, master_mesh.coords)) << dim << "D";
+    // Another slave part (a redistribution): exchanged.
+    EXPECT_FALSE(ghosts.update(slave, master, master_mesh.coords));
+    SurfacePart other = round_robin_part(slave_mesh);
+    if (size() > 1) {
+      EXPECT_TRUE(ghosts.update(other, master, master_mesh.coords));
+    }
+    EXPECT_EQ(ghosts.n_updates(), size() > 1 ? 5 : 4);
+    EXPECT_EQ(ghosts.n_exchanges(), size() > 1 ? 3 : 2);
   }
 }
 
