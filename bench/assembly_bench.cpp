@@ -396,12 +396,45 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
     insert = {std::min(insert.wall, ins.wall), std::min(insert.cpu, ins.cpu)};
     final = {std::min(final.wall, fin.wall), std::min(final.cpu, fin.cpu)};
   }
+  // seam's insertion (problem::assemble): by 3x3 blocks straight into the AIJ arrays
+  // (la::BlockAdder), against MatSetValues above (the insertion before it) and PETSc's own
+  // MatSetValuesBlocked into the same AIJ matrix of block size 3.
+  Cost insert_adder{1e300, 1e300};
+  for (int i = 0; i < repeat; ++i) {
+    const Cost ins = measure(comm, [&] {
+      la::Vector::LocalView v(u, false);
+      la::BlockAdder adder(K);
+      for (auto c : disc.local_cells()) {
+        b.gather(disc, v.values(), c);
+        r.add_values(b.dof_span(), b.r_span());
+        adder.add(b.dof_span(), b.K_span());
+      }
+      adder.finish();
+    });
+    r.assemble();
+    K.assemble();
+    insert_adder = {std::min(insert_adder.wall, ins.wall), std::min(insert_adder.cpu, ins.cpu)};
+  }
+  std::array<PetscInt, fem::max_cell_nodes> block{};
+  const Cost insert_aij_blocked = best_of(comm, repeat, [&] {
+    la::Vector::LocalView v(u, false);
+    for (auto c : disc.local_cells()) {
+      b.gather(disc, v.values(), c);
+      const int nn = b.nd / 3;
+      for (int a = 0; a < nn; ++a) block[std::size_t(a)] = b.dofs[std::size_t(a) * 3] / 3;
+      r.add_values(b.dof_span(), b.r_span());
+      la::check(
+          MatSetValuesBlocked(K.get(), nn, block.data(), nn, block.data(), b.K.data(), ADD_VALUES),
+          "MatSetValuesBlocked");
+    }
+  });
+  r.assemble();
+  K.assemble();
   // Not seam's path: the same insertion into a block AIJ copy of the matrix (MATBAIJ, 3x3
   // blocks) with MatSetValuesBlocked, which searches once per node pair instead of once per
   // entry. Only the insertion is timed; the copy exists for this comparison alone.
   Mat Kb = nullptr;
   la::check(MatConvert(K.get(), MATBAIJ, MAT_INITIAL_MATRIX, &Kb), "MatConvert");
-  std::array<PetscInt, fem::max_cell_nodes> block{};
   const Cost insert_blocked = best_of(comm, repeat, [&] {
     la::Vector::LocalView v(u, false);
     for (auto c : disc.local_cells()) {
@@ -437,6 +470,24 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
   MatNorm(K.get(), NORM_FROBENIUS, &norm_aij);
   MatNorm(Kb, NORM_FROBENIUS, &norm_baij);
   MatDestroy(&Kb);
+  // The block insertion must build the same matrix as MatSetValues: K - K_blocks, entry by
+  // entry (the largest difference against the largest entry).
+  la::Matrix K_blocks = K.copy();
+  K_blocks.zero();
+  {
+    la::Vector::LocalView v(u, false);
+    la::BlockAdder adder(K_blocks);
+    for (auto c : disc.local_cells()) {
+      b.gather(disc, v.values(), c);
+      adder.add(b.dof_span(), b.K_span());
+    }
+    adder.finish();
+  }
+  K_blocks.assemble();
+  PetscReal max_entry = 0, max_diff = 0;
+  MatNorm(K.get(), NORM_MAX, &max_entry);
+  K_blocks.axpy(-1.0, K);
+  MatNorm(K_blocks.get(), NORM_MAX, &max_diff);
   // A second assembly after the timing loops must give the same matrix (problem::assemble
   // zeroes what it assembles into).
   problem::assemble(model, disc, u, 0.0, r, &K);
@@ -467,6 +518,8 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
     row("  phase: gather + element kernel", kernel);
     row("  phase: gather + Vec/MatSetValues", insert);
     row("  phase: Vec/MatAssemblyBegin/End", final);
+    row("  phase: gather + VecSetValues + blocks", insert_adder);
+    row("  AIJ (bs 3), MatSetValuesBlocked", insert_aij_blocked);
     row("  what-if: BAIJ, MatSetValuesBlocked", insert_blocked);
     row("  sum of the phases", sum);
     std::printf(
@@ -474,10 +527,13 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
         "AIJ insertion = %.2f\n  heap allocations in one problem::assemble r+K: %lld (max over "
         "ranks)\n  checks: |K|_F of a repeated assembly, rel. diff %.1e; of "
         "BAIJ vs AIJ "
-        "insertion %.1e\n",
+        "insertion %.1e\n  insertion by blocks (seam) / MatSetValues (before) = %.2f / %.2f = "
+        "%.3f (CPU); AIJ MatSetValuesBlocked / MatSetValues = %.3f; max |K_blocks - K| / max "
+        "|K| = %.1e\n",
         rK.cpu / kernel.cpu, insert.cpu / kernel.cpu, insert_blocked.cpu / insert.cpu,
         (long long)n_allocations, std::abs(norm_K2 - norm_K) / norm_K,
-        std::abs(norm_baij - norm_aij) / norm_aij);
+        std::abs(norm_baij - norm_aij) / norm_aij, insert_adder.cpu, insert.cpu,
+        insert_adder.cpu / insert.cpu, insert_aij_blocked.cpu / insert.cpu, max_diff / max_entry);
   }
   json.add("assembly_cell", type);
   json.add("assembly_cells", n_cells);
@@ -493,6 +549,9 @@ void run_assembly(const problem::Discretization& disc, const problem::Model& mod
   json.add("phase_insert_cpu_s", insert.cpu);
   json.add("phase_final_cpu_s", final.cpu);
   json.add("whatif_baij_insert_cpu_s", insert_blocked.cpu);
+  json.add("phase_insert_blocks_cpu_s", insert_adder.cpu);
+  json.add("aij_blocked_insert_cpu_s", insert_aij_blocked.cpu);
+  json.add("blocks_vs_matsetvalues_max_diff", max_diff / max_entry);
 }
 
 // ----------------------------------------------------------------------- Newton iteration

@@ -12,8 +12,11 @@ the top), in one load step.
   seam:    the same mesh from gmsh (transfinite hexahedra), linear_elastic, the rigid_sphere,
            one static step, `linear` as chosen (--linear, default: seam's default).
 
-Both codes write their graphical output once; the wall times are those of the whole processes
-(mesh generation, set-up, solve and output included) measured here, and the codes' own totals.
+Both codes write their graphical output once; the wall and CPU times (user + system) are those
+of the whole processes (mesh generation, set-up, solve and output included) measured here, and
+the codes' own totals; "asm" and "solve" are the CPU seconds of each code's own timers
+(step-42's TimerOutput sections "Assembling" and "Solve", seam's summary.json cpu_timings
+"assembly" and "linear_solve"; seam's "condensation" of the contact constraints is separate).
 
   python3 bench/peers/step42/compare.py --step42 build/peers/step42/step-42 \\
       --seam build/bin/seam [--sizes 16 32] [--linear direct|iterative|auto] [--np 1]
@@ -24,6 +27,7 @@ import argparse
 import csv
 import json
 import os
+import resource
 import re
 import subprocess
 import sys
@@ -84,14 +88,34 @@ def mpi_env():
     return env
 
 
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def timed(cmd, cwd):
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), children_cpu()
     p = subprocess.run(cmd, cwd=cwd, env=mpi_env(), capture_output=True, text=True)
     wall = time.perf_counter() - start
+    cpu = children_cpu() - cpu
     if p.returncode != 0:
         sys.exit("failed (%d): %s\n%s\n%s" % (p.returncode, " ".join(cmd), p.stdout[-3000:],
                                               p.stderr[-3000:]))
-    return p.stdout, wall
+    return p.stdout, wall, cpu
+
+
+def timer_sections(text, title):
+    """Seconds per section of the deal.II TimerOutput table headed by `title`."""
+    at = text.find(title)
+    if at < 0:
+        return {}
+    end = text.find("Total ", at + len(title))
+    out = {}
+    for line in text[at:end if end > 0 else len(text)].splitlines():
+        m = re.match(r"\|\s*([^|]*?)\s*\|\s*\d+\s*\|\s*([0-9.e+-]+)s\s*\|", line)
+        if m:
+            out[m.group(1)] = float(m.group(2))
+    return out
 
 
 def run_step42(exe, n, np, work):
@@ -103,11 +127,12 @@ def run_step42(exe, n, np, work):
     cmd = [exe, prm]
     if np > 1:
         cmd = ["mpirun", "-np", str(np)] + cmd
-    text, wall = timed(cmd, work)
+    text, wall, cpu = timed(cmd, work)
     with open(os.path.join(work, "step42_%d.log" % n), "w") as f:
         f.write(text)
     newton = len(re.findall(r"Newton iteration \d+", text))
     active = [int(v) for v in re.findall(r"Size of active set: (\d+)", text)]
+    sections = timer_sections(text, "Total CPU time elapsed since start")
     return {
         "dofs": int(re.search(r"Number of degrees of freedom: (\d+)", text).group(1)),
         "newton": newton,
@@ -116,6 +141,9 @@ def run_step42(exe, n, np, work):
         "own_total": float(re.search(r"Total wallclock time elapsed since start\s*\|\s*(\S+)s",
                                      text).group(1)),
         "wall": wall,
+        "cpu": cpu,
+        "asm": sections.get("Assembling", float("nan")),
+        "solve": sections.get("Solve", float("nan")),
     }
 
 
@@ -130,7 +158,7 @@ def run_seam(exe, n, np, linear, work):
     cmd = [exe, "run", os.path.join(case, "cube.yaml"), "-o", out, "--quiet"]
     if np > 1:
         cmd = ["mpirun", "-np", str(np)] + cmd
-    _, wall = timed(cmd, case)
+    _, wall, cpu = timed(cmd, case)
     summary = json.load(open(os.path.join(out, "summary.json")))
     step = list(csv.DictReader(open(os.path.join(out, "steps.csv"))))[-1]
     itf = list(csv.DictReader(open(os.path.join(out, "interfaces.csv"))))[-1]
@@ -141,6 +169,9 @@ def run_seam(exe, n, np, linear, work):
         "force": float(itf["normal_force"]),
         "own_total": float(summary["wall_seconds"]),
         "wall": wall,
+        "cpu": cpu,
+        "asm": summary.get("cpu_timings", {}).get("assembly", float("nan")),
+        "solve": summary.get("cpu_timings", {}).get("linear_solve", float("nan")),
     }
 
 
@@ -157,20 +188,22 @@ def main():
     os.makedirs(work, exist_ok=True)
     step42, seam = os.path.abspath(args.step42), os.path.abspath(args.seam)
     print("runs in %s; np = %d; seam linear: %s" % (work, args.np, args.linear or "default"))
-    header = ("%-6s %-8s %9s %7s %7s %12s %9s %9s"
-              % ("mesh", "code", "dofs", "newton", "active", "force", "wall [s]", "own [s]"))
+    header = ("%-6s %-8s %9s %7s %7s %12s %9s %9s %9s %9s %9s"
+              % ("mesh", "code", "dofs", "newton", "active", "force", "wall [s]", "own [s]",
+                 "CPU [s]", "asm CPU", "solve CPU"))
     print(header)
     for n in args.sizes:
         d = run_step42(step42, n, args.np, work)
         s = run_seam(seam, n, args.np, args.linear, work)
         for name, r in (("step-42", d), ("seam", s)):
-            print("%-6s %-8s %9d %7d %7d %12.6g %9.2f %9.2f"
+            print("%-6s %-8s %9d %7d %7d %12.6g %9.2f %9.2f %9.2f %9.2f %9.2f"
                   % ("%d^3" % n, name, r["dofs"], r["newton"], r["active"], r["force"],
-                     r["wall"], r["own_total"]))
-        print("%-6s %-8s %9s %7.2f %7.2f %12.4f %9.3f %9.3f"
+                     r["wall"], r["own_total"], r["cpu"], r["asm"], r["solve"]))
+        print("%-6s %-8s %9s %7.2f %7.2f %12.4f %9.3f %9.3f %9.3f %9.3f %9.3f"
               % ("%d^3" % n, "ratio", "", s["newton"] / max(d["newton"], 1),
                  s["active"] / max(d["active"], 1), s["force"] / d["force"],
-                 s["wall"] / d["wall"], s["own_total"] / d["own_total"]))
+                 s["wall"] / d["wall"], s["own_total"] / d["own_total"], s["cpu"] / d["cpu"],
+                 s["asm"] / d["asm"], s["solve"] / d["solve"]))
         sys.stdout.flush()
 
 

@@ -1,5 +1,6 @@
 #pragma once
-// Wall-clock phase timers for summary.json (assembly, mortar, search, linear_solve, output).
+// Phase timers for summary.json (assembly, mortar, search, linear_solve, output): wall-clock
+// seconds, and the CPU seconds of the calling thread where a ScopedTimer measured them.
 #include <chrono>
 #include <ctime>
 #include <map>
@@ -23,30 +24,36 @@ inline double cpu_seconds() {
 
 class PhaseTimers {
 public:
-  void add(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
-  double get(const std::string& phase) const {
-    auto it = seconds_.find(phase);
-    return it == seconds_.end() ? 0.0 : it->second;
+  void add(const std::string& phase, double seconds, double cpu = 0.0) {
+    seconds_[phase] += seconds;
+    cpu_[phase] += cpu;
   }
+  double get(const std::string& phase) const { return find(seconds_, phase); }
+  double get_cpu(const std::string& phase) const { return find(cpu_, phase); }
   const std::map<std::string, double>& all() const { return seconds_; }
 
 private:
-  std::map<std::string, double> seconds_;
+  static double find(const std::map<std::string, double>& m, const std::string& phase) {
+    auto it = m.find(phase);
+    return it == m.end() ? 0.0 : it->second;
+  }
+  std::map<std::string, double> seconds_, cpu_;
 };
 
 /// Adds the time between construction and destruction to one phase.
 class ScopedTimer {
 public:
   ScopedTimer(PhaseTimers& timers, std::string phase)
-      : timers_(timers), phase_(std::move(phase)), start_(wall_seconds()) {}
-  ~ScopedTimer() { timers_.add(phase_, wall_seconds() - start_); }
+      : timers_(timers), phase_(std::move(phase)), start_(wall_seconds()),
+        start_cpu_(cpu_seconds()) {}
+  ~ScopedTimer() { timers_.add(phase_, wall_seconds() - start_, cpu_seconds() - start_cpu_); }
   ScopedTimer(const ScopedTimer&) = delete;
   ScopedTimer& operator=(const ScopedTimer&) = delete;
 
 private:
   PhaseTimers& timers_;
   std::string phase_;
-  double start_;
+  double start_, start_cpu_;
 };
 
 } // namespace seam

@@ -414,6 +414,155 @@ void Matrix::set_near_null_space(const Vector& coordinates) {
   check(VecDestroy(&blocked), "VecDestroy");
 }
 
+BlockAdder::BlockAdder(Matrix& m) : m_(m.get()) {
+  check(MatGetBlockSize(m_, &bs_), "MatGetBlockSize");
+  check(MatGetOwnershipRange(m_, &row_begin_, &row_end_), "MatGetOwnershipRange");
+  check(MatGetOwnershipRangeColumn(m_, &col_begin_, &col_end_), "MatGetOwnershipRangeColumn");
+  PetscBool assembled = PETSC_FALSE, seq = PETSC_FALSE, mpi = PETSC_FALSE;
+  check(MatAssembled(m_, &assembled), "MatAssembled");
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m_), MATSEQAIJ, &seq),
+        "PetscObjectTypeCompare");
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m_), MATMPIAIJ, &mpi),
+        "PetscObjectTypeCompare");
+  // Before its first assembly an MPIAIJ matrix keeps global column indices off the diagonal
+  // block: then every block goes through MatSetValues.
+  if (!assembled || !(seq || mpi)) return;
+  if (mpi) {
+    check(MatMPIAIJGetSeqAIJ(m_, &diag_.mat, &off_.mat, &col_map_), "MatMPIAIJGetSeqAIJ");
+    PetscInt rows = 0;
+    check(MatGetLocalSize(off_.mat, &rows, &n_col_map_), "MatGetLocalSize");
+    if (n_col_map_ > 0 && !col_map_) return;
+    for (PetscInt k = 1; k < n_col_map_; ++k)
+      if (col_map_[k] <= col_map_[k - 1]) return;
+  } else {
+    diag_.mat = m_;
+  }
+  for (Part* p : {&diag_, &off_}) {
+    if (!p->mat) continue;
+    PetscBool done = PETSC_FALSE;
+    check(MatGetRowIJ(p->mat, 0, PETSC_FALSE, PETSC_FALSE, &p->n_rows, &p->ia, &p->ja, &done),
+          "MatGetRowIJ");
+    SEAM_CHECK(done, InternalError, "MatGetRowIJ gave no row structure");
+    check(MatSeqAIJGetArray(p->mat, &p->values), "MatSeqAIJGetArray");
+  }
+  direct_ = true;
+}
+
+BlockAdder::~BlockAdder() {
+  try {
+    if (direct_) release();
+  } catch (...) {
+    // A destructor does not throw; finish() reports the error where it can be handled.
+  }
+}
+
+void BlockAdder::release() {
+  for (Part* p : {&diag_, &off_}) {
+    if (!p->mat) continue;
+    PetscBool done = PETSC_FALSE;
+    check(MatSeqAIJRestoreArray(p->mat, &p->values), "MatSeqAIJRestoreArray");
+    check(MatRestoreRowIJ(p->mat, 0, PETSC_FALSE, PETSC_FALSE, &p->n_rows, &p->ia, &p->ja, &done),
+          "MatRestoreRowIJ");
+  }
+  direct_ = false;
+}
+
+void BlockAdder::finish() {
+  if (direct_) release();
+  for (std::size_t k = 0; k < deferred_values_.size(); ++k)
+    check(MatSetValues(m_, 1, &deferred_rows_[k], 1, &deferred_cols_[k], &deferred_values_[k],
+                       ADD_VALUES),
+          "MatSetValues");
+  deferred_rows_.clear();
+  deferred_cols_.clear();
+  deferred_values_.clear();
+}
+
+void BlockAdder::defer(std::span<const PetscInt> rows, std::span<const PetscInt> cols,
+                       const double* values, std::size_t stride) {
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      deferred_rows_.push_back(rows[i]);
+      deferred_cols_.push_back(cols[j]);
+      deferred_values_.push_back(values[i * stride + j]);
+    }
+}
+
+PetscInt BlockAdder::find(const Part& p, PetscInt row, PetscInt col) {
+  // The columns of a row of an assembled SeqAIJ matrix are sorted.
+  const PetscInt* begin = p.ja + p.ia[row];
+  const PetscInt* end = p.ja + p.ia[row + 1];
+  const PetscInt* at = std::lower_bound(begin, end, col);
+  return at != end && *at == col ? static_cast<PetscInt>(at - p.ja) : -1;
+}
+
+void BlockAdder::add(std::span<const PetscInt> dofs, std::span<const double> values) {
+  const auto nd = dofs.size();
+  const auto bs = static_cast<std::size_t>(bs_);
+  bool blocked = direct_ && nd % bs == 0;
+  for (std::size_t a = 0; blocked && a < nd; a += bs) {
+    blocked = dofs[a] % bs_ == 0;
+    for (std::size_t i = 1; blocked && i < bs; ++i) blocked = dofs[a + i] == dofs[a] + PetscInt(i);
+  }
+  if (!blocked) {
+    if (direct_) {
+      defer(dofs, dofs, values.data(), nd);
+    } else {
+      check(MatSetValues(m_, PetscInt(nd), dofs.data(), PetscInt(nd), dofs.data(), values.data(),
+                         ADD_VALUES),
+            "MatSetValues");
+    }
+    return;
+  }
+  for (std::size_t a = 0; a < nd; a += bs) {
+    const PetscInt row = dofs[a];
+    const double* block_rows = values.data() + a * nd;
+    if (row < row_begin_ || row >= row_end_) {
+      // Another rank's rows: PETSc's stash, which leaves the arrays alone.
+      check(MatSetValues(m_, bs_, &dofs[a], PetscInt(nd), dofs.data(), block_rows, ADD_VALUES),
+            "MatSetValues");
+      continue;
+    }
+    const PetscInt lr = row - row_begin_;
+    for (std::size_t b = 0; b < nd; b += bs) {
+      const PetscInt col = dofs[b];
+      const Part* part = &diag_;
+      PetscInt lc = col - col_begin_;
+      if (col < col_begin_ || col >= col_end_) {
+        part = &off_;
+        const PetscInt* at = std::lower_bound(col_map_, col_map_ + n_col_map_, col);
+        lc = at != col_map_ + n_col_map_ && *at == col ? PetscInt(at - col_map_) : -1;
+      }
+      PetscInt first = lc < 0 || !part->mat ? -1 : find(*part, lr, lc);
+      // The block's bs columns must follow each other in the row.
+      if (first >= 0 &&
+          (first + bs_ > part->ia[lr + 1] || part->ja[first + bs_ - 1] != lc + bs_ - 1))
+        first = -1;
+      if (first < 0) {
+        defer(dofs.subspan(a, bs), dofs.subspan(b, bs), block_rows + b, nd);
+        continue;
+      }
+      const PetscInt offset = first - part->ia[lr];
+      for (std::size_t i = 0; i < bs; ++i) {
+        const PetscInt r = lr + PetscInt(i);
+        // The rows of a node share their columns; otherwise search this row.
+        PetscInt at = part->ia[r] + offset;
+        if (at + bs_ > part->ia[r + 1] || part->ja[at] != lc ||
+            part->ja[at + bs_ - 1] != lc + bs_ - 1) {
+          at = find(*part, r, lc);
+          if (at < 0 || at + bs_ > part->ia[r + 1] || part->ja[at + bs_ - 1] != lc + bs_ - 1) {
+            defer(dofs.subspan(a + i, 1), dofs.subspan(b, bs), block_rows + i * nd + b, nd);
+            continue;
+          }
+        }
+        const double* v = block_rows + i * nd + b;
+        double* target = part->values + at;
+        for (std::size_t j = 0; j < bs; ++j) target[j] += v[j];
+      }
+    }
+  }
+}
+
 LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
   check(KSPCreate(comm, &ksp_), "KSPCreate");
   PC pc = nullptr;

@@ -183,6 +183,51 @@ private:
   bool sum_same_pattern_ = false;
 };
 
+/// Adds dense element matrices to an assembled AIJ matrix by nodes: blocks of the matrix's
+/// block size bs (the dimension), each node's bs dofs consecutive from a multiple of bs (seam's
+/// numbering). For every block it searches the column once in the first of its bs rows (they
+/// share their columns) and adds the bs x bs values straight into the owned rows
+/// (MatSeqAIJGetArray of the diagonal and off-diagonal parts), where MatSetValues searches
+/// every entry. Rows of other ranks go through MatSetValues (PETSc's stash); a block outside
+/// the pattern, or dofs not in this layout, too, after the arrays are returned. For one pass
+/// of insertions into a matrix nothing else writes to meanwhile: finish() (or the destructor)
+/// returns the arrays; then Matrix::assemble() as after add_values.
+class BlockAdder {
+public:
+  explicit BlockAdder(Matrix& m);
+  ~BlockAdder();
+  BlockAdder(const BlockAdder&) = delete;
+  BlockAdder& operator=(const BlockAdder&) = delete;
+  /// K (dofs.size() squared, row-major) added at (dofs, dofs), as Matrix::add_values.
+  void add(std::span<const PetscInt> dofs, std::span<const double> values);
+  /// Returns the arrays and inserts the deferred blocks. Collective only as MatSetValues is.
+  void finish();
+
+private:
+  /// One part (diagonal or off-diagonal columns) of the owned rows in CSR form.
+  struct Part {
+    Mat mat = nullptr;
+    const PetscInt *ia = nullptr, *ja = nullptr;
+    double* values = nullptr;
+    PetscInt n_rows = 0;
+  };
+  /// The position in `p` of local column `col` in local row `row`, or -1.
+  static PetscInt find(const Part& p, PetscInt row, PetscInt col);
+  void release();
+  /// Keeps the entries (rows x cols, row-major with the given row stride) for finish().
+  void defer(std::span<const PetscInt> rows, std::span<const PetscInt> cols, const double* values,
+             std::size_t stride);
+
+  Mat m_ = nullptr;
+  PetscInt bs_ = 1, row_begin_ = 0, row_end_ = 0, col_begin_ = 0, col_end_ = 0;
+  Part diag_, off_;
+  const PetscInt* col_map_ = nullptr; ///< global column of each off-diagonal column (sorted)
+  PetscInt n_col_map_ = 0;
+  bool direct_ = false; ///< the arrays are held: blocks go straight into them
+  std::vector<PetscInt> deferred_rows_, deferred_cols_; ///< one entry each
+  std::vector<double> deferred_values_;
+};
+
 enum class SolverKind { direct, iterative };
 
 /// KSP wrapper: MUMPS LU (direct) or GMRES + GAMG with the rigid-body near-null space

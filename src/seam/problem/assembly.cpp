@@ -8,6 +8,7 @@
 #include "seam/solid/mass.hpp"
 
 #include <array>
+#include <optional>
 
 namespace seam::problem {
 
@@ -138,6 +139,8 @@ AssemblyStatus assemble(const Model& model, const Discretization& disc, const la
   const auto u_local = u_view.values();
   CellData d;
 
+  std::optional<la::BlockAdder> blocks;
+  if (tangent) blocks.emplace(*tangent);
   for (auto c : disc.local_cells()) {
     const auto type = mesh.cell_type[c];
     gather(disc, u_local, mesh.cell(c), d);
@@ -160,10 +163,10 @@ AssemblyStatus assemble(const Model& model, const Discretization& disc, const la
     status.strain_energy += res.energy;
     const std::span<const PetscInt> dofs(d.dofs.data(), nd);
     residual.add_values(dofs, std::span<const double>(d.r.data(), nd));
-    if (tangent)
-      tangent->add_values(dofs, dofs,
-                          std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+    if (blocks)
+      blocks->add(dofs, std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
   }
+  if (blocks) blocks->finish();
 
   status.inverted =
       status.inverted || add_loads(model, disc, u_local, t, residual, tangent, 1.0, external);
@@ -180,6 +183,7 @@ void assemble_mass(const Model& model, const Discretization& disc, la::Matrix& M
   CellData d;
   const std::vector<double> no_displacement(
       static_cast<std::size_t>(disc.n_owned_dofs()) + disc.local_nodes().size() * dim, 0.0);
+  la::BlockAdder blocks(M);
   for (auto c : disc.local_cells()) {
     gather(disc, no_displacement, mesh.cell(c), d);
     const int nd = d.n * dim;
@@ -190,9 +194,9 @@ void assemble_mass(const Model& model, const Discretization& disc, la::Matrix& M
     if (status != solid::KernelStatus::ok)
       SEAM_THROW(InputError, "cell ", c, " of the mesh is inverted (det dX/dxi <= 0)");
     const std::span<const PetscInt> dofs(d.dofs.data(), nd);
-    M.add_values(dofs, dofs,
-                 std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+    blocks.add(dofs, std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
   }
+  blocks.finish();
   M.assemble();
 }
 
@@ -210,6 +214,8 @@ AssemblyStatus assemble_algorithmic(const Model& model, const Discretization& di
   const auto un = n_view.values();
   const auto unext = next_view.values();
   CellData d, d_next;
+  std::optional<la::BlockAdder> blocks;
+  if (tangent) blocks.emplace(*tangent);
   for (auto c : disc.local_cells()) {
     gather(disc, un, mesh.cell(c), d);
     gather(disc, unext, mesh.cell(c), d_next);
@@ -233,10 +239,10 @@ AssemblyStatus assemble_algorithmic(const Model& model, const Discretization& di
     status.strain_energy += res.energy_next;
     const std::span<const PetscInt> dofs(d.dofs.data(), nd);
     residual.add_values(dofs, std::span<const double>(d.r.data(), nd));
-    if (tangent)
-      tangent->add_values(dofs, dofs,
-                          std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
+    if (blocks)
+      blocks->add(dofs, std::span<const double>(d.K.data(), static_cast<std::size_t>(nd) * nd));
   }
+  if (blocks) blocks->finish();
   // Loads at the midpoint configuration; d(u_mid)/d(u_next) = 1/2.
   std::vector<double> mid(un.size());
   for (std::size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5 * (un[i] + unext[i]);

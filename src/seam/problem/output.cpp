@@ -600,9 +600,12 @@ void Output::write_checkpoint(RecordWriter& out) const {
 void Output::finish(bool converged, int n_steps) {
   const auto& comm = disc_.comm();
   const double wall = comm.max(wall_seconds() - start_wall_);
-  std::vector<double> phases;
+  std::vector<double> phases, cpu;
   const char* names[] = {"assembly", "mortar", "search", "linear_solve", "output", "condensation"};
-  for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
+  for (const char* n : names) {
+    phases.push_back(comm.max(timers_.get(n)));
+    cpu.push_back(comm.max(timers_.get_cpu(n)));
+  }
   // Every rank's share (CONTRACT.md, ranks_detail): the cells it assembles, and the cells it
   // holds without assembling them (ghost layer and interface cells of a distributed mesh; all
   // the others when the mesh is replicated).
@@ -659,6 +662,8 @@ void Output::finish(bool converged, int n_steps) {
   j["wall_seconds"] = wall;
   auto& t = j["timings"];
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
+  auto& tc = j["cpu_timings"];
+  for (std::size_t k = 0; k < cpu.size(); ++k) tc[names[k]] = cpu[k];
   j["nodes"] = disc_.n_global_nodes();
   j["cells"] = disc_.n_global_cells();
   auto& itfs = j["interfaces"];
