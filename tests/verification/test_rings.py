@@ -105,17 +105,24 @@ MOMENTUM_BOUND = 1e-12
 # energy by up to 1.5e-11 of it per step (2D rings, before they touch).
 ENERGY_TOLERANCE = 1e-10
 
-def free_bodies(dimension, integrator, np=1, n=4, steps=40):
-    va, vb = VELOCITIES[dimension]
-    yaml = (FREE_YAML.replace("DIM", str(dimension)).replace("VA", va).replace("VB", vb)
-            .replace("INTEGRATOR", integrator).replace("STEPS", str(steps))
-            .replace("SETFACTORY\n", ""))
-    geo = ring_geo(CENTRES, n, 2) if dimension == 2 else ring_geo_3d(CENTRES, n, 2)
+def run_rings(dimension, centres, n, yaml, np):
+    """Rings at `centres` (n cells per quarter circle, 2 through the wall; 3D extruded):
+    the rows of steps.csv, interfaces.csv and newton.csv of the run of `yaml`."""
+    geo = ring_geo(centres, n, 2) if dimension == 2 else ring_geo_3d(centres, n, 2)
     work, out = T.run_case(geo, yaml, np=np)
     rows = H.read_csv(os.path.join(out, "steps.csv"))
     itf = H.read_csv(os.path.join(out, "interfaces.csv"))
     newton = H.read_csv(os.path.join(out, "newton.csv"))
     H.cleanup(work, out)
+    return rows, itf, newton
+
+
+def free_bodies(dimension, integrator, np=1, n=4, steps=40):
+    va, vb = VELOCITIES[dimension]
+    yaml = (FREE_YAML.replace("DIM", str(dimension)).replace("VA", va).replace("VB", vb)
+            .replace("INTEGRATOR", integrator).replace("STEPS", str(steps))
+            .replace("SETFACTORY\n", ""))
+    rows, itf, newton = run_rings(dimension, CENTRES, n, yaml, np)
     first = rows[0]
     p0 = [first["momentum_%s" % c] for c in "xyz"]
     l0 = [first["angular_momentum_%s" % c] for c in "xyz"]
@@ -288,13 +295,7 @@ def ring_on_obstacle(dimension, obstacle, multiplier="dual", np=1, n=8, steps=60
             .replace("MULTIPLIER", "multiplier: %s," % multiplier)
             .replace("OBSTACLE", OBSTACLES[obstacle][dimension]).replace("STEPS", str(steps))
             .replace("END", str(end)))
-    centres = ((0.0, 1.05),)
-    geo = ring_geo(centres, n, 2) if dimension == 2 else ring_geo_3d(centres, n, 2)
-    work, out = T.run_case(geo, yaml, np=np)
-    rows = H.read_csv(os.path.join(out, "steps.csv"))
-    itf = H.read_csv(os.path.join(out, "interfaces.csv"))
-    newton = H.read_csv(os.path.join(out, "newton.csv"))
-    H.cleanup(work, out)
+    rows, itf, newton = run_rings(dimension, ((0.0, 1.05),), n, yaml, np)
     e = [r["total_energy"] for r in rows]
     force = [r["normal_force"] for r in itf]
     persistent = persistent_steps(rows, newton)
