@@ -314,8 +314,9 @@ def ring_on_obstacle(dimension, obstacle, multiplier="dual", np=1, n=8, steps=60
 def check_ring_on_obstacle(r, dimension, obstacle):
     """The discrete-gradient force against a rigid obstacle (docs/contact_dynamics.md §5):
     no step gains more than 1e-8 of the energy and, in persistent contact, it changes by less
-    than 1e-8; the ring bounces off. The plane's reaction is along its normal: the momentum
-    along the plane (x; 3D also z) stays that of the start to 1e-12 of m |v|. Against the
+    than 1e-8. The plane's reaction is along its normal: the momentum along the plane (x; 3D
+    also z) stays that of the start to 1e-12 of m |v|, and normal to it changes in every step
+    by the impulse of the reaction (to 1e-10 of m |v|). Against the
     sphere the angular momentum about its centre stays (its reaction points through the
     centre): the ring's about the centre to 1e-12 of m |v| R."""
     rows = r["rows"]
@@ -332,6 +333,15 @@ def check_ring_on_obstacle(r, dimension, obstacle):
         drift = max(abs(q["momentum_%s" % c] - rows[0]["momentum_%s" % c])
                     for q in rows for c in ("xz" if dimension == 3 else "x")) / scale
         what = "momentum along the plane"
+        # Normal to the plane (y) the momentum changes by the impulse of its reaction, the
+        # resultant of the discrete-gradient force (interfaces.csv, normal_force) times dt.
+        impulse = max(abs(b["momentum_y"] - a["momentum_y"] - (b["time"] - a["time"]) * f)
+                      for a, b, f in zip(rows, rows[1:], r["force"][1:])) / scale
+        print("   momentum change normal to the plane = impulse of its reaction to %.2e"
+              % impulse)
+        if impulse > 1e-10:
+            raise AssertionError("the normal momentum changed by the plane's impulse only to "
+                                 "%.3e" % impulse)
     else:
         # L about the centre c = (0, -6, z0): L_c = L_0 - c x p; its z component in 2D
         # (and the x and y ones in 3D, with c_z = 0.25).
