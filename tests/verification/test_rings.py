@@ -505,8 +505,8 @@ def check_rings(rows, planes, out, rings, k, width):
     if free > 1e-12:
         raise AssertionError("free fall: p_y differs from -m g t by %.3e" % free)
     # The balance holds to the sum of the Newton residual: with the energy-momentum contact's
-    # saddle point 2.3e-10 at the example's tolerance 1e-10 (1.5e-13 at 1e-12; the condensed
-    # end-of-step force gave 1.2e-13 at 1e-10).
+    # saddle point 4.8e-12 at the example's tolerance 1e-10 (the plane forces the resultants of
+    # the discrete-gradient force; 2.3e-10 with the end-of-step force on the planes).
     if worst > 1e-9:
         raise AssertionError("momentum balance residual %.3e of m g dt" % worst)
     if above > 1e-10 * energy[-1][2]:
