@@ -628,7 +628,8 @@ TEST(EnergyMomentumTangent, RigidPlane3dQuad4Dual) {
 }
 
 /// The sphere's gap |x - c| - R loses about log10(R / gap) digits to cancellation, which the
-/// differences of the constraint rows (the few active nodes' gaps) then show: 1e-8 for them.
+/// differences of the constraint rows (the three active nodes' gaps) then show: 1.8e-9 at
+/// np 1, 7.3e-9 at np 3 (the summation order); 3e-8 for them.
 TEST(EnergyMomentumTangent, RigidSphere3dTri3Dual) {
   const Errors e = check(
       energy_momentum_obstacle_case("em_sphere_3d_tri3_dual", 3, box_geo(0.25, 1, false, true),
@@ -637,7 +638,7 @@ TEST(EnergyMomentumTangent, RigidSphere3dTri3Dual) {
   EXPECT_GT(e.inactive, 0);
   EXPECT_GT(e.slip, 0);
   EXPECT_LT(e.displacement, tolerance_3d);
-  EXPECT_LT(e.constraint, 1e-8);
+  EXPECT_LT(e.constraint, 3e-8);
 }
 
 /// Without the Hessians of the weighted gaps (the term -lambda_j H / 2 of the matrix and H dx
