@@ -9,6 +9,11 @@
   one ring) through the impact, the angular momentum within 1e-12 before it (in 2D with the
   energy-momentum scheme through the impact too, and the energy never rising and constant
   in persistent contact); the bodies must touch; np = 3 equals np = 1.
+- A ring thrown obliquely and spinning onto a rigid plane or sphere with energy_momentum (the
+  discrete-gradient force against the obstacle): no step gains more than 1e-8 of the energy,
+  the momentum along the plane (or the angular momentum about the sphere's centre) stays to
+  1e-12, the normal momentum changes by the plane's impulse in every step; np = 3 equals
+  np = 1 (2D).
 """
 import math
 import os
