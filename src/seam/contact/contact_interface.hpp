@@ -232,7 +232,7 @@ public:
                  Linearization& out) const;
 
   /// Whether gap_blocks is available: line2 facets (2D) or tri3 and quad4 facets (3D) on both
-  /// sides, two bodies or self contact, no rigid obstacle.
+  /// sides, two bodies or self contact, or the slave side against a rigid plane or sphere.
   bool has_gap_blocks() const;
   /// The weighted gaps g~_j as functions of the positions: each candidate pair of the owned
   /// slave facets of the last update (same pairs, slave patch and nodal normal averaging),

@@ -17,6 +17,7 @@
 #include "seam/common/error.hpp"
 #include "seam/common/hyper_dual.hpp"
 #include "seam/contact/gap_vectors.hpp"
+#include "seam/contact/rigid_obstacle_gaps.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
 
 #include <algorithm>
@@ -177,13 +178,13 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
 } // namespace
 
 bool ContactInterface::has_gap_blocks() const {
-  if (rigid_) return false;
   const auto supported = [this](fem::CellType t) {
     return dim() == 2 ? t == fem::CellType::line2
                       : t == fem::CellType::tri3 || t == fem::CellType::quad4;
   };
   for (const auto t : slave_.types)
     if (!supported(t)) return false;
+  if (rigid_) return obstacle_.shape != Obstacle::Shape::cylinder;
   for (const auto t : master_.types)
     if (!supported(t)) return false;
   return true;
@@ -193,6 +194,51 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
                                   std::vector<GapBlock>& out) const {
   SEAM_ASSERT(has_gap_blocks());
   out.clear();
+  if (rigid_) {
+    // One block per owned candidate slave facet: its nodes' weighted gaps as functions of its
+    // nodal positions (the obstacle where the last update put it).
+    const int dim = this->dim();
+    mortar::FacetSet facets = slave_.facet_set();
+    std::vector<double> x(slave_.mesh_nodes.size() * static_cast<std::size_t>(dim));
+    for (std::size_t k = 0; k < slave_.mesh_nodes.size(); ++k)
+      for (int a = 0; a < dim; ++a) {
+        const auto i = static_cast<std::size_t>(slave_.mesh_nodes[k]) * dim + a;
+        x[k * dim + a] = mesh_->x[i] + u[i];
+      }
+    facets.coordinates = x;
+    RigidObstacleFacet rf;
+    for (const auto f : owned_) {
+      if (n_pairs_of(f) == 0) continue;
+      const auto nodes = facets.facet_nodes(f);
+      GapBlock b;
+      b.dim = dim;
+      for (const auto k : nodes) {
+        b.slave.push_back(k);
+        b.dofs.push_back(static_cast<std::int64_t>(slave_.mesh_nodes[static_cast<std::size_t>(k)]) *
+                         dim);
+      }
+      if (order == GapOrder::hessian) {
+        if (dim == 2)
+          rigid_obstacle_gap_hessians<2>(mortar::gather_facet<2>(facets, f), current_,
+                                         options_.multiplier, b.gap, b.gradient, b.hessian);
+        else
+          rigid_obstacle_gap_hessians<3>(mortar::gather_facet<3>(facets, f), current_,
+                                         options_.multiplier, b.gap, b.gradient, b.hessian);
+      } else {
+        const bool derivatives = order == GapOrder::gradient;
+        if (dim == 2)
+          rigid_obstacle_facet<2>(mortar::gather_facet<2>(facets, f), current_, options_.multiplier,
+                                  derivatives, rf);
+        else
+          rigid_obstacle_facet<3>(mortar::gather_facet<3>(facets, f), current_, options_.multiplier,
+                                  derivatives, rf);
+        b.gap.assign(rf.gap.begin(), rf.gap.begin() + rf.n);
+        if (derivatives) b.gradient = rf.dgap;
+      }
+      out.push_back(std::move(b));
+    }
+    return;
+  }
   if (dim() == 3) {
     gap_blocks_3d(u, order, out);
     return;

@@ -5,7 +5,7 @@
 // The kernel follows integrate_pair of mortar/integration_3d.cpp step by step on a scalar type
 // S (double, Dual<36> or Hyper<36>): the auxiliary plane of the slave facet (vertex mean,
 // normal from the edge or diagonal cross product), the projection of both facets into it, the
-// clip (Sutherland & Hodgman, as geometry::clip_polygons, its vertices kept on the heap: a
+// clip (Sutherland & Hodgman, mortar/linearization_clip.hpp on polygons kept on the heap: a
 // Hyper<36> takes 10 kB), the fan triangulation about the area centroid, the cell rule and,
 // per point, the back-projection onto both facets, the interpolated nodal normal n and the gap
 // (h_m - h_s) n . n_p / |n| from the heights above the plane. Every decision (facing test,
@@ -28,6 +28,7 @@
 #include "seam/common/hyper_dual.hpp"
 #include "seam/contact/gap_vectors.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
+#include "seam/mortar/linearization_clip.hpp"
 #include "seam/mortar/pair_integration_detail.hpp"
 
 #include <algorithm>
@@ -106,119 +107,8 @@ struct PairInput {
   bool dual = true;
 };
 
-/// The clip of geometry::clip_polygons on S (decisions on values), with heap storage.
+/// The polygons of the clip (mortar/linearization_clip.hpp) on the heap.
 template <class S> using Polygon = std::vector<V2<S>>;
-
-template <class S> double distance(const V2<S>& a, const V2<S>& b) {
-  return (value(a) - value(b)).norm();
-}
-template <class S> S signed_area(const Polygon<S>& p) {
-  S twice = 0.0;
-  for (std::size_t i = 1; i + 1 < p.size(); ++i) twice += cross(p[i] - p[0], p[i + 1] - p[0]);
-  return 0.5 * twice;
-}
-template <class S> double min_edge(const Polygon<S>& p) {
-  if (p.size() < 2) return 0.0;
-  double m = distance(p[0], p.back());
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) m = std::min(m, distance(p[i + 1], p[i]));
-  return m;
-}
-template <class S> double max_edge(const Polygon<S>& p) {
-  if (p.size() < 2) return 0.0;
-  double m = distance(p[0], p.back());
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) m = std::max(m, distance(p[i + 1], p[i]));
-  return m;
-}
-template <class S> void merge_close(Polygon<S>& p, double tol) {
-  Polygon<S> out;
-  for (const auto& x : p)
-    if (out.empty() || distance(x, out.back()) > tol) out.push_back(x);
-  while (out.size() > 1 && distance(out.back(), out[0]) <= tol) out.pop_back();
-  p.swap(out);
-}
-template <class S> void remove_collinear(Polygon<S>& p, double tol) {
-  bool changed = true;
-  while (changed && p.size() >= 3) {
-    changed = false;
-    const std::size_t n = p.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector2d prev = value(p[(i + n - 1) % n]), next = value(p[(i + 1) % n]);
-      const Eigen::Vector2d here = value(p[i]);
-      const Eigen::Vector2d chord = next - prev;
-      const double length = chord.norm();
-      const double d = length > tol ? std::abs(geometry::cross2(chord, here - prev)) / length
-                                    : (here - prev).norm();
-      if (d <= tol) {
-        p.erase(p.begin() + static_cast<std::ptrdiff_t>(i));
-        changed = true;
-        break;
-      }
-    }
-  }
-}
-
-template <class S>
-Polygon<S> clip(Polygon<S> s, Polygon<S> c, const geometry::ClipOptions& options) {
-  using std::sqrt;
-  const double input_tol = options.merge_tolerance * std::min(max_edge(s), max_edge(c));
-  merge_close(s, input_tol);
-  merge_close(c, input_tol);
-  if (s.size() < 3 || c.size() < 3) return {};
-  const double subject_area = std::abs(value_of(signed_area(s)));
-  if (value_of(signed_area(s)) < 0.0) std::reverse(s.begin(), s.end());
-  if (value_of(signed_area(c)) < 0.0) std::reverse(c.begin(), c.end());
-  if (subject_area == 0.0 || value_of(signed_area(c)) == 0.0) return {};
-  const double tol = options.merge_tolerance * std::min(min_edge(s), min_edge(c));
-  std::vector<S> d;
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    const V2<S>& a = c[k];
-    const V2<S> edge = c[(k + 1) % c.size()] - a;
-    const S length = sqrt(edge.x * edge.x + edge.y * edge.y);
-    const std::size_t n = s.size();
-    d.assign(n, S(0.0));
-    for (std::size_t i = 0; i < n; ++i) {
-      const S di = cross(edge, s[i] - a) / length;
-      if (!(std::abs(value_of(di)) <= tol)) d[i] = di;
-    }
-    Polygon<S> out;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t j = (i + 1) % n;
-      const double dc = value_of(d[i]), dn = value_of(d[j]);
-      if (dc >= 0.0) out.push_back(s[i]);
-      if ((dc > 0.0 && dn < 0.0) || (dc < 0.0 && dn > 0.0)) {
-        const S t = d[i] / (d[i] - d[j]);
-        out.push_back(s[i] + (s[j] - s[i]) * t);
-      }
-    }
-    merge_close(out, tol);
-    s.swap(out);
-    if (s.size() < 3) return {};
-  }
-  remove_collinear(s, tol);
-  if (s.size() < 3) return {};
-  if (value_of(signed_area(s)) <= options.min_relative_area * subject_area) return {};
-  SEAM_CHECK(static_cast<int>(s.size()) <= geometry::max_polygon_vertices, InternalError,
-             "gap blocks: clip result has ", s.size(), " vertices");
-  return s;
-}
-
-/// Area centroid (geometry::centroid); the vertex average when the area vanishes.
-template <class S> V2<S> centroid(const Polygon<S>& p) {
-  const V2<S> origin = p[0];
-  V2<S> vertex_sum, moment;
-  S twice_area = 0.0;
-  for (const auto& x : p) vertex_sum = vertex_sum + (x - origin);
-  for (std::size_t i = 1; i + 1 < p.size(); ++i) {
-    const V2<S> u = p[i] - origin, v = p[i + 1] - origin;
-    const S twice = cross(u, v);
-    twice_area += twice;
-    moment = moment + (u + v) * (twice / 3.0);
-  }
-  const double scale = std::max(max_edge(p), 1e-300);
-  if (std::abs(value_of(twice_area)) <= 1e-14 * scale * scale)
-    return origin + vertex_sum * (1.0 / static_cast<double>(p.size()));
-  return origin + moment * (1.0 / twice_area);
-}
 
 /// The triangle rule of integration_3d.cpp: barycentric points, weights summing to 1.
 struct CellRule {
@@ -406,7 +296,8 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
     if (!(length > 0.0) || !((n / length).dot(npv) < -1e-12)) return;
   }
   Polygon<S> subject(us.begin(), us.begin() + ns), clipper(um.begin(), um.begin() + nm);
-  const Polygon<S> polygon = clip(subject, clipper, options.clip);
+  const Polygon<S> polygon =
+      mortar::ad::clip_polygons_in<Polygon<S>>(subject, clipper, options.clip);
   if (polygon.empty()) return;
   std::array<Eigen::Vector2d, 4> usv, umv;
   for (std::size_t k = 0; k < 4; ++k) {
@@ -425,7 +316,7 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   const CellRule rule(degree);
   // The fan about the area centroid (a triangle stays one cell).
   const std::size_t nv = polygon.size();
-  const V2<S> c = nv == 3 ? polygon[0] : centroid(polygon);
+  const V2<S> c = nv == 3 ? polygon[0] : mortar::ad::centroid_of(polygon);
   for (std::size_t i = 0; i < (nv == 3 ? 1 : nv); ++i) {
     const V2<S> a = nv == 3 ? polygon[0] : c, b = nv == 3 ? polygon[1] : polygon[i],
                 cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];

@@ -10,7 +10,12 @@
 
 namespace seam::contact::gap_vectors {
 
-template <class S> struct V2 { S x = S(0.0), y = S(0.0); };
+/// A 2-vector; v(0), v(1), s * v and v / s make it a vertex of the polygon clip of
+/// mortar/linearization_clip.hpp.
+template <class S> struct V2 {
+  S x = S(0.0), y = S(0.0);
+  const S& operator()(int i) const { return i == 0 ? x : y; }
+};
 template <class S> struct V3 { S x = S(0.0), y = S(0.0), z = S(0.0); };
 
 template <class S> V2<S> operator+(const V2<S>& a, const V2<S>& b) {
@@ -21,6 +26,12 @@ template <class S> V2<S> operator-(const V2<S>& a, const V2<S>& b) {
 }
 template <class S, class T> V2<S> operator*(const V2<S>& a, const T& s) {
   return {a.x * s, a.y * s};
+}
+template <class S, class T> V2<S> operator*(const T& s, const V2<S>& a) {
+  return {s * a.x, s * a.y};
+}
+template <class S, class T> V2<S> operator/(const V2<S>& a, const T& s) {
+  return {a.x / s, a.y / s};
 }
 template <class S> S dot(const V2<S>& a, const V2<S>& b) {
   return a.x * b.x + a.y * b.y;

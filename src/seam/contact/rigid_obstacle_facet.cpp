@@ -1,6 +1,40 @@
 #include "seam/contact/rigid_obstacle_facet.hpp"
 
+#include "seam/common/hyper_dual.hpp"
+#include "seam/contact/rigid_obstacle_gaps.hpp"
 #include "seam/mortar/linearization_kernels.hpp"
+
+namespace Eigen {
+
+// Hyper<N> in the small Eigen matrices of the kernel (as dual_number.hpp does for Dual<N>).
+template <int N> struct NumTraits<seam::Hyper<N>> : GenericNumTraits<double> {
+  using Real = seam::Hyper<N>;
+  using NonInteger = seam::Hyper<N>;
+  using Nested = seam::Hyper<N>;
+  using Literal = seam::Hyper<N>;
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 1,
+    ReadCost = N * N + N + 1,
+    AddCost = N * N + N + 1,
+    MulCost = 3 * N * N + 2 * N + 1
+  };
+  static Real epsilon() { return Real(std::numeric_limits<double>::epsilon()); }
+  static Real dummy_precision() { return Real(1e-12); }
+  static Real highest() { return Real(std::numeric_limits<double>::max()); }
+  static Real lowest() { return Real(std::numeric_limits<double>::lowest()); }
+  static int digits10() { return std::numeric_limits<double>::digits10; }
+};
+template <int N, class BinaryOp> struct ScalarBinaryOpTraits<seam::Hyper<N>, double, BinaryOp> {
+  using ReturnType = seam::Hyper<N>;
+};
+template <int N, class BinaryOp> struct ScalarBinaryOpTraits<double, seam::Hyper<N>, BinaryOp> {
+  using ReturnType = seam::Hyper<N>;
+};
+
+} // namespace Eigen
 
 namespace seam::contact {
 
@@ -71,7 +105,63 @@ void with_derivatives(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
   }
 }
 
+/// The gaps on Hyper<K> (K = Dim * nodes): values, gradients and Hessians.
+template <int Dim, int K>
+void with_hessians(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
+                   mortar::Multiplier multiplier, std::vector<double>& gap,
+                   std::vector<double>& gradient, std::vector<double>& hessian) {
+  using S = Hyper<K>;
+  const int n = facet.n_nodes;
+  SEAM_ASSERT(Dim * n == K);
+  ad::FacetT<S, Dim> f;
+  f.type = facet.type;
+  f.n_nodes = n;
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < Dim; ++a) f.x(a, i) = S::variable(facet.x(a, i), Dim * i + a);
+  ad::SmallMatrixT<S> D;
+  ad::NodalVectorT<S> g;
+  double area = 0.0;
+  kernel<S, Dim>(f, obstacle, multiplier, D, g, area);
+  gap.resize(static_cast<std::size_t>(n));
+  gradient.resize(static_cast<std::size_t>(n * K));
+  hessian.resize(static_cast<std::size_t>(n * K * K));
+  for (int j = 0; j < n; ++j) {
+    gap[static_cast<std::size_t>(j)] = g(j).value;
+    std::copy_n(g(j).gradient.begin(), K, gradient.begin() + static_cast<std::ptrdiff_t>(j * K));
+    std::copy_n(g(j).hessian.begin(), K * K,
+                hessian.begin() + static_cast<std::ptrdiff_t>(j * K * K));
+  }
+}
+
 } // namespace
+
+template <int Dim>
+void rigid_obstacle_gap_hessians(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
+                                 mortar::Multiplier multiplier, std::vector<double>& gap,
+                                 std::vector<double>& gradient, std::vector<double>& hessian) {
+  const int nv = Dim * facet.n_nodes;
+  if constexpr (Dim == 2) {
+    SEAM_CHECK(nv == 4, InputError,
+               "energy-momentum contact against a rigid obstacle: line2 slave facets only");
+    with_hessians<2, 4>(facet, obstacle, multiplier, gap, gradient, hessian);
+  } else {
+    SEAM_CHECK(nv == 9 || nv == 12, InputError,
+               "energy-momentum contact against a rigid obstacle: tri3 and quad4 slave facets "
+               "only");
+    if (nv == 9) {
+      with_hessians<3, 9>(facet, obstacle, multiplier, gap, gradient, hessian);
+    } else {
+      with_hessians<3, 12>(facet, obstacle, multiplier, gap, gradient, hessian);
+    }
+  }
+}
+
+template void rigid_obstacle_gap_hessians(const mortar::Facet<2>&, const Obstacle&,
+                                          mortar::Multiplier, std::vector<double>&,
+                                          std::vector<double>&, std::vector<double>&);
+template void rigid_obstacle_gap_hessians(const mortar::Facet<3>&, const Obstacle&,
+                                          mortar::Multiplier, std::vector<double>&,
+                                          std::vector<double>&, std::vector<double>&);
 
 template <int Dim>
 void rigid_obstacle_facet(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,

@@ -939,7 +939,8 @@ std::vector<std::string> ContactConstraint::describe() const {
       text += ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
       text += ", contact force of the end of the step (energy-momentum contact needs line2 "
-              "faces in 2D or tri3/quad4 faces in 3D, two bodies or self contact, no friction)";
+              "faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a rigid plane or "
+              "sphere, no friction)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",
@@ -1040,6 +1041,17 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
         ++rep.active_nodes;
       }
       rep.slip_nodes += rep.status[j] == 2;
+    }
+    // Energy-momentum contact against a rigid plane: its reaction is the resultant of the
+    // discrete-gradient force along the normal (the nodal weights of the midpoint gradient and
+    // the correction, not D_j of the end of the step); the momentum balance needs that one.
+    if (s.discrete_gradient && s.itf.rigid() &&
+        s.itf.obstacle().shape == contact::Obstacle::Shape::plane) {
+      const auto& normal = s.itf.obstacle().direction;
+      double f = 0.0;
+      for (const auto& e : s.em_gradient)
+        f -= s.lambda[e.j] * e.value * normal[static_cast<std::size_t>(e.dof % dim)];
+      rep.normal_force = disc_.comm().sum(f);
     }
     // The frictional work including this step (save() adds it once the step is accepted).
     rep.frictional_dissipation = s.friction ? s.dissipation + dissipation_increment(s) : 0.0;

@@ -85,7 +85,7 @@ public:
   /// evaluate() of the step. Collective.
   void start_step(const la::Vector& u_n);
   /// Interfaces with the discrete-gradient force, and those that keep the force of the end of
-  /// the step (friction, quadratic faces, rigid obstacles, 3D).
+  /// the step (friction, quadratic faces, rigid cylinders).
   int n_discrete_gradient() const;
   int n_end_of_step() const;
 

@@ -44,43 +44,98 @@ struct DiscreteGradient {
   Eigen::MatrixXd correction_jacobian;
 };
 
+/// The motions that change no weighted gap of a side, removed from the increment to make the
+/// correction's direction w: translations along `translations` and rotations about `axes`
+/// through `centre` (through the centroid of the nodes if `about_centroid`). Two bodies: all
+/// rigid motions; a rigid plane: the translations along it and (3D) the rotation about its
+/// normal; a rigid sphere: the rotations about its centre. The discrete gradient is then free
+/// of force along those translations and of moment about those axes, as the gradient of a
+/// function invariant under them is.
+struct Invariance {
+  std::vector<Eigen::Vector3d> translations, axes;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  bool about_centroid = true;
+};
+
+Invariance invariance_of(const contact::ContactInterface& itf, int dim) {
+  Invariance inv;
+  const auto unit = [](int k) {
+    Eigen::Vector3d e = Eigen::Vector3d::Zero();
+    e(k) = 1.0;
+    return e;
+  };
+  if (!itf.rigid()) {
+    for (int k = 0; k < dim; ++k) inv.translations.push_back(unit(k));
+    if (dim == 2)
+      inv.axes.push_back(unit(2));
+    else
+      for (int k = 0; k < 3; ++k) inv.axes.push_back(unit(k));
+    return inv;
+  }
+  const contact::Obstacle& o = itf.obstacle();
+  if (o.shape == contact::Obstacle::Shape::plane) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (int k = 0; k < dim; ++k) n(k) = o.direction[static_cast<std::size_t>(k)];
+    if (dim == 2) {
+      inv.translations.push_back(Eigen::Vector3d(-n(1), n(0), 0.0));
+    } else {
+      int axis = 0;
+      n.cwiseAbs().minCoeff(&axis);
+      const Eigen::Vector3d t1 = n.cross(unit(axis)).normalized();
+      inv.translations = {t1, n.cross(t1)};
+      inv.axes.push_back(n);
+    }
+    return inv;
+  }
+  // A sphere (a circle in 2D): the rotations about its centre.
+  inv.about_centroid = false;
+  for (int k = 0; k < dim; ++k) inv.centre(k) = o.point[static_cast<std::size_t>(k)];
+  if (dim == 2)
+    inv.axes.push_back(unit(2));
+  else
+    for (int k = 0; k < 3; ++k) inv.axes.push_back(unit(k));
+  return inv;
+}
+
 /// dx, x_mid: the step's increment and midpoint positions on the dofs (node-major, dim per
 /// node); G, G1: the gradients at the midpoint and the end; Hdx: the Hessian at the midpoint
 /// times dx.
-DiscreteGradient discrete_gradient(int dim, const Eigen::VectorXd& dx, const Eigen::VectorXd& x_mid,
-                                   double gap_start, double gap_end, const Eigen::VectorXd& G,
-                                   const Eigen::VectorXd& G1, const Eigen::VectorXd& Hdx,
-                                   bool jacobian) {
+DiscreteGradient discrete_gradient(int dim, const Invariance& inv, const Eigen::VectorXd& dx,
+                                   const Eigen::VectorXd& x_mid, double gap_start, double gap_end,
+                                   const Eigen::VectorXd& G, const Eigen::VectorXd& G1,
+                                   const Eigen::VectorXd& Hdx, bool jacobian) {
   const auto n = dx.size();
   const int n_nodes = static_cast<int>(n / dim);
-  const int n_rotations = dim == 2 ? 1 : 3;
-  const int r = dim + n_rotations;
+  const int n_translations = static_cast<int>(inv.translations.size());
+  const int n_rotations = static_cast<int>(inv.axes.size());
+  const int r = n_translations + n_rotations;
   DiscreteGradient out;
   out.value = G;
   out.correction_jacobian = Eigen::MatrixXd::Zero(n, n);
-  // Rigid modes: translations, rotations e_k x (x_a - c) about the centroid c of x_mid.
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int a = 0; a < n_nodes; ++a)
-    for (int b = 0; b < dim; ++b) c(b) += x_mid(a * dim + b) / n_nodes;
+  // The invariant motions: translations t, rotations a_k x (x_a - c) about the centre c (the
+  // centroid of x_mid where the translations make the choice free).
+  Eigen::Vector3d c = inv.centre;
+  if (inv.about_centroid) {
+    c.setZero();
+    for (int a = 0; a < n_nodes; ++a)
+      for (int b = 0; b < dim; ++b) c(b) += x_mid(a * dim + b) / n_nodes;
+  }
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(n, r);
-  // e_k x e_b, the derivative of rotation mode k at a node along coordinate b.
-  const auto spin = [dim](int k, int b) {
-    Eigen::Vector3d e = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::Zero();
+  // a_k x e_b, the derivative of rotation mode k at a node along coordinate b.
+  const auto spin = [&inv](int k, int b) {
+    Eigen::Vector3d e = Eigen::Vector3d::Zero();
     e(b) = 1.0;
-    axis(dim == 2 ? 2 : k) = 1.0;
-    return Eigen::Vector3d(axis.cross(e));
+    return Eigen::Vector3d(inv.axes[static_cast<std::size_t>(k)].cross(e));
   };
   for (int a = 0; a < n_nodes; ++a) {
     Eigen::Vector3d y = Eigen::Vector3d::Zero();
-    for (int b = 0; b < dim; ++b) {
-      R(a * dim + b, b) = 1.0;
-      y(b) = x_mid(a * dim + b) - c(b);
-    }
+    for (int b = 0; b < dim; ++b) y(b) = x_mid(a * dim + b) - c(b);
+    for (int k = 0; k < n_translations; ++k)
+      for (int b = 0; b < dim; ++b)
+        R(a * dim + b, k) = inv.translations[static_cast<std::size_t>(k)](b);
     for (int k = 0; k < n_rotations; ++k) {
-      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-      axis(dim == 2 ? 2 : k) = 1.0;
-      const Eigen::Vector3d v = axis.cross(y);
-      for (int b = 0; b < dim; ++b) R(a * dim + b, dim + k) = v(b);
+      const Eigen::Vector3d v = inv.axes[static_cast<std::size_t>(k)].cross(y);
+      for (int b = 0; b < dim; ++b) R(a * dim + b, n_translations + k) = v(b);
     }
   }
   // At most 6 x 6 (3 translations, 3 rotations). A fixed-capacity type: inverting a MatrixXd
@@ -117,8 +172,9 @@ DiscreteGradient discrete_gradient(int dim, const Eigen::VectorXd& dx, const Eig
       for (int e = 0; e < dim; ++e) wa(e) = w(a * dim + e);
       for (int k = 0; k < n_rotations; ++k) {
         const Eigen::Vector3d s = spin(k, b);
-        for (int e = 0; e < dim; ++e) y(a * dim + e) -= 0.5 * coefficients(dim + k) * s(e);
-        rotation_rows(dim + k) = 0.5 * s.dot(wa);
+        for (int e = 0; e < dim; ++e)
+          y(a * dim + e) -= 0.5 * coefficients(n_translations + k) * s(e);
+        rotation_rows(n_translations + k) = 0.5 * s.dot(wa);
       }
       dw.col(v) = y - R * (A_inv * (R.transpose() * y)) - R * (A_inv * rotation_rows);
     }
@@ -214,6 +270,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   std::vector<Entry> all =
       parallel::allgatherv<Entry>(disc_.comm().get(), std::span<const Entry>(local), offsets);
   const auto& nodes = s.itf.slave().mesh_nodes;
+  const Invariance invariance = invariance_of(s.itf, dim);
   // The weighted gaps at x_{n+1} that the active set and the gap rows use.
   std::fill(s.gap.begin(), s.gap.end(), 0.0);
   for (const auto& e : all)
@@ -254,7 +311,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       x_mid(i) = X[d] + mid[d];
     }
     const DiscreteGradient dg =
-        discrete_gradient(dim, dx, x_mid, gap_start, gap_end, G, G1, Hdx, tangent);
+        discrete_gradient(dim, invariance, dx, x_mid, gap_start, gap_end, G, G1, Hdx, tangent);
     for (Eigen::Index i = 0; i < n; ++i)
       if (dg.value(i) != 0.0)
         s.em_gradient.push_back({j, dofs[static_cast<std::size_t>(i)], -dg.value(i)});

@@ -589,6 +589,58 @@ TEST(EnergyMomentumTangent, SelfContact3dTri3Dual) {
                       tolerance_3d);
 }
 
+/// Against a rigid obstacle: the block pressed onto a plane or a round obstacle (tilted, so
+/// that part of its bottom lifts) and dragged along it. The weighted gaps are functions of the
+/// slave positions only; the correction's direction leaves out the motions along the plane
+/// (translations, 3D: the rotation about its normal) or about the sphere's centre.
+Case energy_momentum_obstacle_case(std::string name, int dimension, std::string geo,
+                                   const std::string& obstacle) {
+  Case c = plane_case(std::move(name), dimension, std::move(geo), "");
+  c.interface = "{name: floor, type: contact, slave: bottom, " + obstacle + "}";
+  c.integrator = "energy_momentum";
+  c.top_x = "0.02";
+  return c;
+}
+
+TEST(EnergyMomentumTangent, RigidPlane2dLine2Dual) {
+  expect_frictionless(check(energy_momentum_obstacle_case(
+                                "em_plane_2d_line2_dual", 2, rectangle_geo(0.0625, 1, false),
+                                "rigid_plane: {point: [0, 0], normal: [0, 1]}"),
+                            3),
+                      tolerance_3d);
+}
+
+TEST(EnergyMomentumTangent, RigidCircle2dLine2Standard) {
+  expect_frictionless(check(energy_momentum_obstacle_case(
+                                "em_circle_2d_line2_standard", 2, rectangle_geo(0.0625, 1, false),
+                                "rigid_sphere: {center: [0.5, -1], radius: 1}, multiplier: "
+                                "standard"),
+                            3),
+                      tolerance_3d);
+}
+
+TEST(EnergyMomentumTangent, RigidPlane3dQuad4Dual) {
+  expect_frictionless(check(energy_momentum_obstacle_case(
+                                "em_plane_3d_quad4_dual", 3, box_geo(0.25, 1, false, false),
+                                "rigid_plane: {point: [0, 0, 0], normal: [0, 0, 1]}"),
+                            2),
+                      tolerance_3d);
+}
+
+/// The sphere's gap |x - c| - R loses about log10(R / gap) digits to cancellation, which the
+/// differences of the constraint rows (the three active nodes' gaps) then show: 1.8e-9 at
+/// np 1, 7.3e-9 at np 3 (the summation order); 3e-8 for them.
+TEST(EnergyMomentumTangent, RigidSphere3dTri3Dual) {
+  const Errors e = check(
+      energy_momentum_obstacle_case("em_sphere_3d_tri3_dual", 3, box_geo(0.25, 1, false, true),
+                                    "rigid_sphere: {center: [0.5, 0.25, -2], radius: 2}"),
+      2);
+  EXPECT_GT(e.inactive, 0);
+  EXPECT_GT(e.slip, 0);
+  EXPECT_LT(e.displacement, tolerance_3d);
+  EXPECT_LT(e.constraint, 3e-8);
+}
+
 /// Without the Hessians of the weighted gaps (the term -lambda_j H / 2 of the matrix and H dx
 /// in the derivative of the correction) the Newton system is no longer the derivative of the
 /// discretized equations: the check fails. (Without only the normals' curvature
