@@ -25,8 +25,10 @@ constexpr double max_floor_residual = 1e-8;
 constexpr double sufficient_decrease = 1e-4;
 constexpr double min_step = 1.0 / 16.0;
 // A correction whose trial point is unusable (an inverted element, a residual that is not
-// finite) is halved until it is usable, down to this fraction; the iterate is then a failure.
-constexpr double min_usable_step = 1.0 / 1024.0;
+// finite) is halved until it is usable and reduces the residual, down to this fraction; the
+// attempt then fails. Shorter corrections only creep (a 2D ironing step taken in full: 1/1024
+// of a correction per iteration and no convergence).
+constexpr double min_usable_step = min_step;
 } // namespace
 
 /// g = (prescribed values at time t) - u on the Dirichlet dofs, 0 elsewhere. Returns whether
@@ -192,11 +194,20 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       for (;;) {
         if (!*failure) {
           conv = assess(state);
-          const bool decreased = state.status_changes != 0 || conv.converged ||
-                                 state.norm <= max_floor_residual * reference ||
-                                 state.norm <= (1.0 - sufficient_decrease * alpha) * last_norm_;
-          if (decreased || alpha <= min_step) break;
-        } else if (alpha <= min_usable_step) {
+          const bool armijo = state.norm <= (1.0 - sufficient_decrease * alpha) * last_norm_;
+          if (*full_failure) {
+            // The full correction left the region where Newton's model holds: a shortened one
+            // is taken only where it reduces the residual, status changes or not.
+            if (armijo || conv.converged) break;
+          } else {
+            const bool decreased = state.status_changes != 0 || conv.converged ||
+                                   state.norm <= max_floor_residual * reference || armijo;
+            if (decreased || alpha <= min_step) break;
+          }
+        }
+        if (alpha <= min_usable_step) {
+          // No usable point reduces the residual: the attempt fails as the full correction did.
+          if (*full_failure) failure = full_failure;
           break;
         }
         // The statuses decided at this trial point stand for the iteration until replaced.
