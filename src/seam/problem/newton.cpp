@@ -179,9 +179,11 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     Convergence conv;
     if (search) {
       // Backtracking of the last correction (docs/input.md §6.1). A trial point that is
-      // unusable (an element inverted, a residual that is not finite) is never taken: the
-      // correction is halved (the multipliers with it) until it is usable, whatever statuses
-      // it changes, down to min_usable_step. At a usable point where the statuses it was
+      // unusable (an element inverted, a residual that is not finite) is never taken: if the
+      // full correction's is, the correction is halved (the multipliers with it), whatever
+      // statuses it changes, until its trial point is usable and reduces the residual norm by
+      // the fraction sufficient_decrease * alpha, down to min_usable_step (else the attempt
+      // fails). Otherwise, at a usable point where the statuses it was
       // computed with still hold and the residual norm did not fall by the fraction
       // sufficient_decrease * alpha, the correction is halved further and the statuses are
       // decided again there, down to min_step; a trial point at which a status changes ends
