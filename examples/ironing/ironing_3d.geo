@@ -4,7 +4,8 @@
 // half of each is meshed (slab y in [0, 2], die y in [0, 2.6]). Both bodies are structured
 // hexahedra, meshed independently (non-matching), the die finer along its arc.
 // refine = 1 (h = 0.5, 4.1k dofs) is the example; at refine = 2 (20.6k dofs) the run stops at
-// t = 1.335 after its step cuts (examples/ironing/README.md: why).
+// t = 1.33 after its step cuts: lateral-edge nodes hold neither stick nor slip there
+// (examples/ironing/README.md).
 refine = 1;            // 2 halves every element size
 h = 0.5 / refine;      // slab
 hd = 0.25 / refine;    // die, along its arc

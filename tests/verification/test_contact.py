@@ -670,6 +670,70 @@ def test_torus_hex20_parallel():
                              % (a["active_nodes"], b["active_nodes"]))
 
 
+# ---------------------------------------------------------------------------------------------
+# Globalization: a correction that inverts an element
+
+
+def indentation(steps, np=1):
+    """A rigid circle (R = 0.5, centre 0.03 off the middle) pressed 0.4 into a Neo-Hookean block
+    2 x 1 (structured quads, h = 0.1, clamped base) in `steps` load steps without a step cut.
+    Returns (exit code, stdout, stderr, output directory)."""
+    work = tempfile.mkdtemp(prefix="seam_contact_")
+    _dirs.append(work)
+    H.write_case(work, "case.geo", G.rectangle("quad_structured", 0.1))
+    yaml = "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 1, poisson: 0.3}}",
+        "bodies: [{region: body, material: m}]",
+        "boundary_conditions:",
+        "  - {region: bottom, type: dirichlet, components: [x, y], value: [0, 0]}",
+        "interfaces:",
+        "  - {name: contact, type: contact, slave: top,",
+        "     rigid_sphere: {center: [1.03, 1.5], radius: 0.5, motion: [0, \"-0.4*t\"]}}",
+        "time: {integrator: static, end: 1, steps: %d, max_step_cuts: 0}" % steps,
+        "solver: {newton: {tolerance: 1.0e-10, max_iterations: 30}}"]) + "\n"
+    path = H.write_case(work, "case.yaml", yaml)
+    out = tempfile.mkdtemp(prefix="seam_verif_")
+    _dirs.append(out)
+    code, stdout, err = H.run(["run", path, "-o", out], np=np, check=False)
+    return code, stdout, err, out
+
+
+def test_inverting_correction_shortened():
+    """A correction whose trial point inverts an element is shortened (halved) instead of
+    failing the step (docs/input.md §6.1). The circle pressed 0.4 into the block in one load
+    step: the first correction after the start inverts an element at the rim of the contact
+    zone (without the shortening the run exits 2, "an element is inverted", as max_step_cuts
+    is 0). With it the step converges without a cut, quadratically at the end, to the contact
+    force of the same indentation in 8 load steps (path independent: frictionless,
+    hyperelastic) within 1e-9, and np = 3 gives the np = 1 force and iterations."""
+    code, stdout, err, out = indentation(1)
+    if code != 0:
+        raise AssertionError("one load step: exit %d\n%s" % (code, err[-2000:]))
+    inverted = [line for line in stdout.splitlines()
+                if "line search" in line and "inverted" in line]
+    print("   " + "\n   ".join(inverted))
+    if not inverted:
+        raise AssertionError("set-up: no correction inverted an element")
+    check_quadratic(out)
+    code8, _, err8, out8 = indentation(8)
+    if code8 != 0:
+        raise AssertionError("8 load steps: exit %d\n%s" % (code8, err8[-2000:]))
+    code3, _, err3, out3 = indentation(1, np=3)
+    if code3 != 0:
+        raise AssertionError("np = 3: exit %d\n%s" % (code3, err3[-2000:]))
+    force = [H.last_step_rows(H.read_csv(os.path.join(o, "interfaces.csv")))[0]["normal_force"]
+             for o in (out, out8, out3)]
+    iterations = [len(C.newton_table(o)[1]) - 1 for o in (out, out3)]
+    print("   normal force %.12g (1 step), %.12g (8 steps), %.12g (np = 3); %d and %d corrections"
+          % (force[0], force[1], force[2], iterations[0], iterations[1]))
+    H.assert_close(force[0], force[1], rtol=1e-9, what="force in 1 against 8 load steps")
+    H.assert_close(force[2], force[0], rtol=1e-9, what="force at np = 3 against np = 1")
+    if iterations[0] != iterations[1]:
+        raise AssertionError("np = 3 made %d corrections, np = 1 %d" % (iterations[1], iterations[0]))
+    H.cleanup(*_dirs)
+
+
 def cleanup_runs():
     H.cleanup(*_dirs)
 
@@ -688,6 +752,7 @@ if __name__ == "__main__":
                 test_hertz_2d_standard, test_drop_energy_momentum, test_drop_generalized_alpha,
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
+                test_inverting_correction_shortened,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
                 test_hertz_3d_sphere_on_block,
                 test_torus_coarse, test_torus_hex20_coarse, test_torus_hex20_parallel])

@@ -859,6 +859,39 @@ def test_ironing_2d():
     H.cleanup(*_dirs)
 
 
+def test_retry_starts_from_converged_statuses():
+    """A cut attempt restarts from the contact statuses of the last converged step
+    (docs/input.md §6.3), not from those the failed attempt left: the pressing stage of the 2D
+    ironing in 4 load steps is cut (the full steps invert elements), and every retry's first
+    evaluation, at the same converged state as the first attempt's, must find the same number
+    of status changes (measured: 1 in both attempts of step 1, 0 in those of steps 2 and 5).
+    When the failed attempt's statuses were kept, the retries of steps 1, 2 and 4 found 8, 14
+    and 23 changes where the first attempts found 1, 0 and 0, and the cone rule (a node on its
+    cone keeps its status) then started them from the failed attempt's statuses."""
+    work = tempfile.mkdtemp(prefix="seam_ironing_2d_")
+    _dirs.append(work)
+    with open(os.path.join(EXAMPLES, "ironing", "ironing_2d.geo")) as src:
+        H.write_case(work, "ironing_2d.geo", src.read())
+    with open(os.path.join(EXAMPLES, "ironing", "ironing_2d.yaml")) as src:
+        text = src.read().replace("end: 2, steps: 140", "end: 1, steps: 4")
+    assert "steps: 4" in text
+    out = H.solve(H.write_case(work, "ironing_2d.yaml", text))
+    _dirs.append(out)
+    first = {}  # step -> [status changes at iteration 0 of each attempt]
+    for r in rows_of(out, "newton.csv"):
+        if int(r["iteration"]) == 0:
+            first.setdefault(int(r["step"]), []).append(int(r["active_set_changes"]))
+    print("   status changes at the start of each attempt, per step: %s"
+          % "  ".join("%d: %s" % (k, v) for k, v in sorted(first.items())))
+    retried = [k for k, v in first.items() if len(v) > 1]
+    if not retried:
+        raise AssertionError("set-up: no step was cut")
+    other = {k: v for k, v in first.items() if len(set(v)) > 1}
+    if other:
+        raise AssertionError("retries start from other statuses than the first attempt: %s" % other)
+    H.cleanup(*_dirs)
+
+
 def ironing_press(np=1, c_t=None, line_search=None, max_step_cuts=None, check=True):
     """The pressing stage of the 3D ironing example (h = 0.5, t <= 0.4 in 10 steps), with
     `c_t`, `solver.newton.line_search` and `time.max_step_cuts` if given; returns the output
@@ -1662,7 +1695,8 @@ if __name__ == "__main__":
             test_energy_balance_energy_momentum,
             test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
             test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
-            test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_ironing_3d_press,
+            test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_retry_starts_from_converged_statuses,
+            test_ironing_3d_press,
             test_ironing_3d_press_parallel,
             test_ironing_3d, test_ironing_2d_parallel,
             test_drag_2d_standard, test_drag_2d_standard_quadratic, test_stick_2d_standard,

@@ -99,6 +99,7 @@ void ContactConstraint::read_checkpoint(const RecordReader& in) {
     for (std::size_t j = 0; const auto a : in.integers(p + "status", n))
       s.status[j++] = static_cast<char>(a);
     s.status_previous = s.status;
+    s.status_accepted = s.status;
     s.D_diag_old = in.reals(p + "D_old", n);
     s.x_old = in.reals(p + "x_old", n * dim);
     const auto plane = in.reals(p + "plane_old", 3);

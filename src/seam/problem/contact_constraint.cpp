@@ -894,7 +894,10 @@ void ContactConstraint::save() {
   for (auto& s : sides_) {
     s.lambda_saved = s.lambda;
     s.active_accepted = s.active;
-    if (s.friction) save_friction(s);
+    if (s.friction) {
+      s.status_accepted = s.status;
+      save_friction(s);
+    }
   }
 }
 
@@ -905,7 +908,14 @@ bool ContactConstraint::set_changed() const {
 }
 
 void ContactConstraint::restore() {
-  for (auto& s : sides_) s.lambda = s.lambda_saved;
+  // A new attempt starts from the statuses of the last converged step, as the first attempt
+  // did: a node on its friction cone keeps the status it has (contact_friction.cpp), which
+  // must not be the one a failed attempt left.
+  for (auto& s : sides_) {
+    s.lambda = s.lambda_saved;
+    s.active = s.active_accepted;
+    if (s.friction) s.status = s.status_accepted;
+  }
 }
 
 int ContactConstraint::n_active() const {

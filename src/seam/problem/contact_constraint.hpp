@@ -238,8 +238,9 @@ private:
     bool friction = false;
     contact::FrictionLaw law;
     std::vector<char> status, status_previous;
-    std::vector<char> frozen_nodes; ///< nodes whose status the cycling guard fixed in this step
-    std::vector<double> slip;       ///< weighted slip increment u~ of the step, dim per node
+    std::vector<char> status_accepted; ///< the statuses of the last converged step
+    std::vector<char> frozen_nodes;    ///< nodes whose status the cycling guard fixed in this step
+    std::vector<double> slip;          ///< weighted slip increment u~ of the step, dim per node
     /// Current slave node positions in the modified basis (x~ = T^-1 x; x without one), dim
     /// per node, and the same at the last converged step.
     std::vector<double> x;

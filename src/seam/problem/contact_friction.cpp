@@ -57,6 +57,7 @@ void ContactConstraint::init_friction(Side& s, const io::Interface& config, doub
   s.lambda_saved = s.lambda;
   s.status.assign(n, 0);
   s.status_previous = s.status;
+  s.status_accepted = s.status;
   s.frozen_nodes = s.status;
   s.slip.assign(n * dim, 0.0);
   s.D_diag_old.assign(n, 0.0);

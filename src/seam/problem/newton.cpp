@@ -24,6 +24,11 @@ constexpr double max_floor_residual = 1e-8;
 // as it is.
 constexpr double sufficient_decrease = 1e-4;
 constexpr double min_step = 1.0 / 16.0;
+// A correction whose trial point is unusable (an inverted element, a residual that is not
+// finite) is halved until it is usable and reduces the residual, down to this fraction; the
+// attempt then fails. Shorter corrections only creep (a 2D ironing step taken in full: 1/1024
+// of a correction per iteration and no convergence).
+constexpr double min_usable_step = min_step;
 } // namespace
 
 /// g = (prescribed values at time t) - u on the Dirichlet dofs, 0 elsewhere. Returns whether
@@ -98,6 +103,7 @@ const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool fir
   if (contact_.active()) {
     state.changes = contact_.evaluate(u, t, first, out_.timers(), retrial);
     state.status_changes = state.changes - contact_.n_inconsistent();
+    state.decided = true;
   }
   // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
   la::Vector* r_sys = &r_;
@@ -138,17 +144,14 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
   solver_.rebuild_preconditioner();
   for (int it = 0; it <= nc.max_iterations; ++it) {
     State state;
-    if (const char* failure = evaluate_state(u, t, it == 0, false, evaluate, state); *failure) {
-      res.failure = failure;
-      return res;
-    }
+    const char* failure = evaluate_state(u, t, it == 0, false, evaluate, state);
     // Relative residual: against the first residual of the step and the force level of
     // the system (reactions and external loads), so that a step with a tiny increment is
     // not asked to go below round-off.
     // After a predictor the reference is taken from the first corrector, whose residual
     // reflects the prescribed motion.
     const bool predictor = it == 0 && moving_boundary;
-    if (it == 0 || (it == 1 && moving_boundary))
+    if (!*failure && (it == 0 || (it == 1 && moving_boundary)))
       reference = std::max({reference, state.norm, state.full_norm, f_ext_.norm()});
     // Or the residual has reached its round-off floor: the tolerance lies below what the
     // arithmetic resolves (the floor grows with |u| and, in dynamics, with M/dt^2, so a step
@@ -173,19 +176,44 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       c.converged = !predictor && s.changes == 0 && (c.meets_tolerance || c.at_floor);
       return c;
     };
-    Convergence conv = assess(state);
+    Convergence conv;
     if (search) {
-      // Backtracking of the last correction (docs/input.md §6.1): where the statuses it was
+      // Backtracking of the last correction (docs/input.md §6.1). A trial point that is
+      // unusable (an element inverted, a residual that is not finite) is never taken: if the
+      // full correction's is, the correction is halved (the multipliers with it), whatever
+      // statuses it changes, until its trial point is usable and reduces the residual norm by
+      // the fraction sufficient_decrease * alpha, down to min_usable_step (else the attempt
+      // fails). Otherwise, at a usable point where the statuses it was
       // computed with still hold and the residual norm did not fall by the fraction
-      // sufficient_decrease * alpha, the correction is halved (the multipliers with it) and
-      // the statuses are decided again there; a trial point at which a status changes ends
-      // the search, so status-changing corrections go in full, as the semi-smooth Newton
-      // method has them. Not below the residual where round-off floors lie (§6.1).
+      // sufficient_decrease * alpha, the correction is halved further and the statuses are
+      // decided again there, down to min_step; a trial point at which a status changes ends
+      // the search, so status-changing corrections go in full (or as far as they stay usable),
+      // as the semi-smooth Newton method has them. Not below the residual where round-off
+      // floors lie (§6.1).
+      const char* full_failure = failure;
       const double full_norm = state.norm;
       double alpha = 1.0;
-      while (state.status_changes == 0 && !conv.converged && alpha > min_step &&
-             state.norm > max_floor_residual * reference &&
-             state.norm > (1.0 - sufficient_decrease * alpha) * last_norm_) {
+      for (;;) {
+        if (!*failure) {
+          conv = assess(state);
+          const bool armijo = state.norm <= (1.0 - sufficient_decrease * alpha) * last_norm_;
+          if (*full_failure) {
+            // The full correction left the region where Newton's model holds: a shortened one
+            // is taken only where it reduces the residual, status changes or not.
+            if (armijo || conv.converged) break;
+          } else {
+            const bool decreased = state.status_changes != 0 || conv.converged ||
+                                   state.norm <= max_floor_residual * reference || armijo;
+            if (decreased || alpha <= min_step) break;
+          }
+        }
+        if (alpha <= min_usable_step) {
+          // No usable point reduces the residual: the attempt fails as the full correction did.
+          if (*full_failure) failure = full_failure;
+          break;
+        }
+        // The statuses decided at this trial point stand for the iteration until replaced.
+        const bool retrial = state.decided;
         alpha *= 0.5;
         u.copy_from(u_base_);
         u.axpy(alpha, du_);
@@ -194,21 +222,30 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
           lambda_trial_[i] = lambda_base_[i] + alpha * (lambda_full_[i] - lambda_base_[i]);
         contact_.set_multipliers(lambda_trial_);
         last_increment_ = alpha * full_increment_;
-        if (const char* failure = evaluate_state(u, t, false, true, evaluate, state); *failure) {
-          res.failure = failure;
-          return res;
-        }
-        conv = assess(state);
+        state = State{};
+        failure = evaluate_state(u, t, false, retrial, evaluate, state);
       }
       if (alpha < 1.0 && logging_) {
-        char line[200];
-        std::snprintf(line, sizeof line,
-                      "step %5d  iteration %3d  line search: correction shortened to %g "
-                      "(residual %9.3e, %9.3e with the full correction, %9.3e before)",
-                      step, it, alpha, state.norm, full_norm, last_norm_);
+        char line[240];
+        if (*full_failure)
+          std::snprintf(line, sizeof line,
+                        "step %5d  iteration %3d  line search: correction shortened to %g "
+                        "(residual %9.3e; with the full correction %s; %9.3e before)",
+                        step, it, alpha, *failure ? std::nan("") : state.norm, full_failure,
+                        last_norm_);
+        else
+          std::snprintf(line, sizeof line,
+                        "step %5d  iteration %3d  line search: correction shortened to %g "
+                        "(residual %9.3e, %9.3e with the full correction, %9.3e before)",
+                        step, it, alpha, state.norm, full_norm, last_norm_);
         out_.note(line);
       }
     }
+    if (*failure) {
+      res.failure = failure;
+      return res;
+    }
+    if (!search) conv = assess(state);
     // Frictional nodes frozen by the cycling guard whose status holds its condition in neither
     // stick nor slip (beyond the hysteresis band) count as changes. Once they are the only
     // changes left at a converged residual, nothing can change any more in this step (their

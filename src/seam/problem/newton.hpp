@@ -161,6 +161,7 @@ private:
     int status_changes = 0; ///< the status changes alone
     double norm = 0.0;      ///< residual norm of the free dofs (and constraints)
     double full_norm = 0.0; ///< with the reaction rows
+    bool decided = false;   ///< the contact statuses were decided at this iterate
   };
   /// Evaluates the iterate u: r_, K_, f_ext_ (condensed by the tying into rt_, Kt_), the
   /// contact state with its statuses decided there (`first`: the first iteration of the step;
