@@ -734,6 +734,71 @@ def test_inverting_correction_shortened():
     H.cleanup(*_dirs)
 
 
+INEXACT_CUBE_GEO = """SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Transfinite Curve{:} = 9;
+Transfinite Surface{:}; Recombine Surface{:}; Transfinite Volume{1};
+Physical Surface("sides") = {1, 2, 3, 4};
+Physical Surface("bottom") = {5};
+Physical Surface("top") = {6};
+Physical Volume("cube") = {1};
+"""
+
+INEXACT_CUBE_YAML = """dimension: 3
+mesh: {geo: cube.geo}
+materials:
+  steel: {model: linear_elastic, young: 2.0e5, poisson: 0.3}
+bodies:
+  - {region: cube, material: steel}
+boundary_conditions:
+  - {region: bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}
+  - {region: sides, type: dirichlet, components: [x, y], value: [0, 0]}
+interfaces:
+  - name: plane
+    type: contact
+    slave: top
+    rigid_plane: {point: [0, 0, 0.99], normal: [0, 0, -1]}
+time: {integrator: static, end: 1, steps: 1}
+solver:
+  newton: {tolerance: 1.0e-10}
+  linear: iterative
+"""
+
+
+def test_inexact_solves_keep_prescribed_values():
+    """A unit cube on rollers (sides: u_x = u_y = 0, bottom fixed) pressed 0.01 by a rigid
+    plane, solved with GMRES at a Krylov tolerance of 1e-3 in every Newton iteration
+    (`-- -ksp_rtol 1e-3`). The exact solution is uniaxial strain, with the plane's force
+    E (1 - nu) / ((1 + nu)(1 - 2 nu)) * 0.01 on the unit area and no lateral displacement, and
+    the hex8 mesh reproduces it. A corrector must leave the prescribed values as they are:
+    when the constrained rows of the inexact solves moved them (by up to the Krylov
+    tolerance), Newton converged to that other problem (force off by 4e-5, lateral
+    displacements of 4e-6 on 16^3) with a residual of 1e-12 of the first."""
+    young, nu, depth = 2.0e5, 0.3, 0.01
+    exact = young * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) * depth
+    work = tempfile.mkdtemp(prefix="seam_inexact_")
+    _dirs.append(work)
+    H.write_case(work, "cube.geo", INEXACT_CUBE_GEO)
+    path = H.write_case(work, "cube.yaml", INEXACT_CUBE_YAML)
+    for np in (1, 3):
+        out = H.solve(path, np=np, extra=["--", "-ksp_rtol", "1e-3"])
+        _dirs.append(out)
+        its = [r for r in H.read_csv(os.path.join(out, "newton.csv"))]
+        force = H.read_csv(os.path.join(out, "interfaces.csv"))[-1]["normal_force"]
+        nodes = H.read_csv(os.path.join(out, "interface_plane.csv"))
+        lateral = max(max(abs(r["ux"]), abs(r["uy"])) for r in nodes)
+        print("   np %d: %d Newton iterations, force %.12g (exact %.12g, %.2e), largest lateral "
+              "displacement of the top %.2e" % (np, len(its) - 1, force, exact,
+                                                 abs(force - exact) / exact, lateral))
+        if len(its) < 3:
+            raise AssertionError("np %d: %d Newton iterations: the inexact solves were not "
+                                 "exercised" % (np, len(its) - 1))
+        H.assert_close(force, exact, rtol=1e-9, what="np %d: force of the plane" % np)
+        if lateral > 1e-12:
+            raise AssertionError("np %d: lateral displacement %.3e of the top (exact 0)"
+                                 % (np, lateral))
+
+
 def cleanup_runs():
     H.cleanup(*_dirs)
 
@@ -755,6 +820,7 @@ if __name__ == "__main__":
                 test_inverting_correction_shortened,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
                 test_hertz_3d_sphere_on_block,
-                test_torus_coarse, test_torus_hex20_coarse, test_torus_hex20_parallel])
+                test_torus_coarse, test_torus_hex20_coarse, test_torus_hex20_parallel,
+                test_inexact_solves_keep_prescribed_values])
     finally:
         cleanup_runs()

@@ -454,6 +454,13 @@ public:
         res.failure = "the linear solver failed";
         return res;
       }
+      {
+        // The prescribed values stay as impose() set them: the constrained rows of an
+        // iterative solve return zero only up to its tolerance.
+        la::Vector::LocalView view(dw_, true);
+        auto v = view.values();
+        for (const auto dof : fixed_) v[dof - layout_.first_owned_dof()] = 0.0;
+      }
       last_increment = dw_.norm();
       w.axpy(1.0, dw_);
       w.update_ghosts();

@@ -302,6 +302,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         res.failure = "the linear solver failed";
         return res;
       }
+      if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
       apply_increment(u, t, predictor);
       continue;
     }
@@ -327,6 +328,11 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
     }
     if (solved && tying_.active()) tying_.expand(dut_, du_);
+    // A corrector leaves the prescribed values as they are. Its constrained rows return zero
+    // only up to the Krylov tolerance of an iterative solve; left in, those errors would move
+    // the prescribed values in every iteration without the residual (whose constrained rows
+    // hold the reactions) ever seeing it, and the step would converge to another problem.
+    if (solved && !predictor) zero_dirichlet_rows(model_, disc_, du_);
     search = solved && line_search_ && !predictor;
     if (search) {
       u_base_.copy_from(u);
