@@ -594,9 +594,11 @@ def check_master_ghosted(name, yaml, replace, below):
 
 def test_hertz_master_ghosted():
     """Hertz sphere on a block (3D, two bodies), two load steps."""
-    # 0.65: the boxes are widened by the ghosting's skin (docs/parallel.md, "Reused ghosting");
-    # 209 / 212 / 234 of 402 measured with it, 180 / 176 / 189 without.
-    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.65)
+    # 0.8: the boxes are widened by the ghosting's skin (docs/parallel.md, "Reused ghosting"),
+    # and the slave parts follow the rebalancing by measured times, so the counts vary from run
+    # to run: 209 / 212 / 234 and 206 / 216 / 290 of 402 measured with the skin, 180 / 176 /
+    # 189 without. Every rank receiving the whole surface gives 402 and fails.
+    check_master_ghosted("hertz_3d", "sphere_block.yaml", (("steps: 5", "steps: 2"),), 0.8)
 
 
 def test_ironing_master_ghosted():
