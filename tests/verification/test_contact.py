@@ -734,25 +734,18 @@ def test_inverting_correction_shortened():
     H.cleanup(*_dirs)
 
 
-INEXACT_CUBE_GEO = """SetFactory("OpenCASCADE");
-Box(1) = {0, 0, 0, 1, 1, 1};
-Transfinite Curve{:} = 9;
-Transfinite Surface{:}; Recombine Surface{:}; Transfinite Volume{1};
-Physical Surface("sides") = {1, 2, 3, 4};
-Physical Surface("bottom") = {5};
-Physical Surface("top") = {6};
-Physical Volume("cube") = {1};
-"""
-
 INEXACT_CUBE_YAML = """dimension: 3
 mesh: {geo: cube.geo}
 materials:
   steel: {model: linear_elastic, young: 2.0e5, poisson: 0.3}
 bodies:
-  - {region: cube, material: steel}
+  - {region: body, material: steel}
 boundary_conditions:
   - {region: bottom, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}
-  - {region: sides, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: left, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: right, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: front, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: back, type: dirichlet, components: [x, y], value: [0, 0]}
 interfaces:
   - name: plane
     type: contact
@@ -778,7 +771,7 @@ def test_inexact_solves_keep_prescribed_values():
     exact = young * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) * depth
     work = tempfile.mkdtemp(prefix="seam_inexact_")
     _dirs.append(work)
-    H.write_case(work, "cube.geo", INEXACT_CUBE_GEO)
+    H.write_case(work, "cube.geo", G.box("hex_structured", 0.125, lx=1.0, ly=1.0, lz=1.0))
     path = H.write_case(work, "cube.yaml", INEXACT_CUBE_YAML)
     for np in (1, 3):
         out = H.solve(path, np=np, extra=["--", "-ksp_rtol", "1e-3"])

@@ -227,19 +227,21 @@ template <int N> inline constexpr bool is_dual<Dual<N>> = true;
 
 namespace Eigen {
 
-template <int N> struct NumTraits<seam::Dual<N>> : GenericNumTraits<double> {
-  using Real = seam::Dual<N>;
-  using NonInteger = seam::Dual<N>;
-  using Nested = seam::Dual<N>;
-  using Literal = seam::Dual<N>;
+// The traits of a number type built on double (forward-mode AD: Dual<N> here, Hyper<N> where
+// a kernel uses it in Eigen), with the cost of reading, adding and multiplying one.
+template <class S, int Read, int Add, int Mul> struct AdNumTraits : GenericNumTraits<double> {
+  using Real = S;
+  using NonInteger = S;
+  using Nested = S;
+  using Literal = S;
   enum {
     IsComplex = 0,
     IsInteger = 0,
     IsSigned = 1,
     RequireInitialization = 1,
-    ReadCost = N + 1,
-    AddCost = N + 1,
-    MulCost = 2 * N + 1
+    ReadCost = Read,
+    AddCost = Add,
+    MulCost = Mul
   };
   static Real epsilon() { return Real(std::numeric_limits<double>::epsilon()); }
   static Real dummy_precision() { return Real(1e-12); }
@@ -247,6 +249,9 @@ template <int N> struct NumTraits<seam::Dual<N>> : GenericNumTraits<double> {
   static Real lowest() { return Real(std::numeric_limits<double>::lowest()); }
   static int digits10() { return std::numeric_limits<double>::digits10; }
 };
+
+template <int N>
+struct NumTraits<seam::Dual<N>> : AdNumTraits<seam::Dual<N>, N + 1, N + 1, 2 * N + 1> {};
 
 template <int N, class BinaryOp> struct ScalarBinaryOpTraits<seam::Dual<N>, double, BinaryOp> {
   using ReturnType = seam::Dual<N>;

@@ -7,26 +7,9 @@
 namespace Eigen {
 
 // Hyper<N> in the small Eigen matrices of the kernel (as dual_number.hpp does for Dual<N>).
-template <int N> struct NumTraits<seam::Hyper<N>> : GenericNumTraits<double> {
-  using Real = seam::Hyper<N>;
-  using NonInteger = seam::Hyper<N>;
-  using Nested = seam::Hyper<N>;
-  using Literal = seam::Hyper<N>;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = N * N + N + 1,
-    AddCost = N * N + N + 1,
-    MulCost = 3 * N * N + 2 * N + 1
-  };
-  static Real epsilon() { return Real(std::numeric_limits<double>::epsilon()); }
-  static Real dummy_precision() { return Real(1e-12); }
-  static Real highest() { return Real(std::numeric_limits<double>::max()); }
-  static Real lowest() { return Real(std::numeric_limits<double>::lowest()); }
-  static int digits10() { return std::numeric_limits<double>::digits10; }
-};
+template <int N>
+struct NumTraits<seam::Hyper<N>>
+    : AdNumTraits<seam::Hyper<N>, N * N + N + 1, N * N + N + 1, 3 * N * N + 2 * N + 1> {};
 template <int N, class BinaryOp> struct ScalarBinaryOpTraits<seam::Hyper<N>, double, BinaryOp> {
   using ReturnType = seam::Hyper<N>;
 };
