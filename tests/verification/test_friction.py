@@ -859,6 +859,34 @@ def test_ironing_2d():
     H.cleanup(*_dirs)
 
 
+def retry_statuses(np):
+    """The 2D ironing's pressing stage in 4 load steps, which are cut (the full steps invert
+    elements), on np ranks: the status changes found by the first evaluation of each attempt,
+    per step, and the output directory."""
+    work = tempfile.mkdtemp(prefix="seam_ironing_2d_")
+    _dirs.append(work)
+    with open(os.path.join(EXAMPLES, "ironing", "ironing_2d.geo")) as src:
+        H.write_case(work, "ironing_2d.geo", src.read())
+    with open(os.path.join(EXAMPLES, "ironing", "ironing_2d.yaml")) as src:
+        text = src.read().replace("end: 2, steps: 140", "end: 1, steps: 4")
+    assert "steps: 4" in text
+    out = H.solve(H.write_case(work, "ironing_2d.yaml", text), np=np)
+    _dirs.append(out)
+    first = {}  # step -> [status changes at iteration 0 of each attempt]
+    for r in rows_of(out, "newton.csv"):
+        if int(r["iteration"]) == 0:
+            first.setdefault(int(r["step"]), []).append(int(r["active_set_changes"]))
+    print("   np = %d, status changes at the start of each attempt, per step: %s"
+          % (np, "  ".join("%d: %s" % (k, v) for k, v in sorted(first.items()))))
+    retried = [k for k, v in first.items() if len(v) > 1]
+    if not retried:
+        raise AssertionError("set-up: no step was cut")
+    other = {k: v for k, v in first.items() if len(set(v)) > 1}
+    if other:
+        raise AssertionError("retries start from other statuses than the first attempt: %s" % other)
+    return first, out
+
+
 def test_retry_starts_from_converged_statuses():
     """A cut attempt restarts from the contact statuses of the last converged step
     (docs/input.md §6.3), not from those the failed attempt left: the pressing stage of the 2D
@@ -868,27 +896,18 @@ def test_retry_starts_from_converged_statuses():
     When the failed attempt's statuses were kept, the retries of steps 1, 2 and 4 found 8, 14
     and 23 changes where the first attempts found 1, 0 and 0, and the cone rule (a node on its
     cone keeps its status) then started them from the failed attempt's statuses."""
-    work = tempfile.mkdtemp(prefix="seam_ironing_2d_")
-    _dirs.append(work)
-    with open(os.path.join(EXAMPLES, "ironing", "ironing_2d.geo")) as src:
-        H.write_case(work, "ironing_2d.geo", src.read())
-    with open(os.path.join(EXAMPLES, "ironing", "ironing_2d.yaml")) as src:
-        text = src.read().replace("end: 2, steps: 140", "end: 1, steps: 4")
-    assert "steps: 4" in text
-    out = H.solve(H.write_case(work, "ironing_2d.yaml", text))
-    _dirs.append(out)
-    first = {}  # step -> [status changes at iteration 0 of each attempt]
-    for r in rows_of(out, "newton.csv"):
-        if int(r["iteration"]) == 0:
-            first.setdefault(int(r["step"]), []).append(int(r["active_set_changes"]))
-    print("   status changes at the start of each attempt, per step: %s"
-          % "  ".join("%d: %s" % (k, v) for k, v in sorted(first.items())))
-    retried = [k for k, v in first.items() if len(v) > 1]
-    if not retried:
-        raise AssertionError("set-up: no step was cut")
-    other = {k: v for k, v in first.items() if len(set(v)) > 1}
-    if other:
-        raise AssertionError("retries start from other statuses than the first attempt: %s" % other)
+    retry_statuses(1)
+    H.cleanup(*_dirs)
+
+
+def test_retry_starts_from_converged_statuses_parallel():
+    """The same at np = 3, where the statuses are decided by the owners of the slave nodes and
+    published to the other ranks: every retry's first evaluation finds the status changes of
+    the first attempt, and the attempts, cuts and changes per step are those of np = 1."""
+    three, _ = retry_statuses(3)
+    one, _ = retry_statuses(1)
+    if one != three:
+        raise AssertionError("np = 3 attempts differ from np = 1: %s against %s" % (three, one))
     H.cleanup(*_dirs)
 
 
@@ -1696,6 +1715,7 @@ if __name__ == "__main__":
             test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
             test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
             test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_retry_starts_from_converged_statuses,
+            test_retry_starts_from_converged_statuses_parallel,
             test_ironing_3d_press,
             test_ironing_3d_press_parallel,
             test_ironing_3d, test_ironing_2d_parallel,
