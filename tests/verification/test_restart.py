@@ -12,6 +12,7 @@ interface is redistributed at a restart, which changes sums at round-off).
 - frictionless dynamic contact with generalized-alpha (a block dropped on a plane,
   checkpoint in the contact, where each step projects the velocity onto the persistent contacts),
 - self and multi-body contact (`surface:`) with friction,
+- 3D: a hex block dragged over a rigid plane with Coulomb friction,
 - static friction continued from a checkpoint written while the step was cut (the halved step
   size and the cut count in effect), and a rigid circle moved along a block (its position is
   a function of the restart time),
@@ -322,7 +323,16 @@ def test_energy_momentum_tied_condensed():
 
 def test_energy_momentum_tied_saddle_point():
     check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("saddle_point", e), 10,
-               "energy-momentum, saddle-point tying", cross_np=False)
+               "energy-momentum, saddle-point tying", cross_np="1 -> 3")
+
+
+def test_friction_3d_rigid_plane():
+    """3D: test_friction.py's hex block pressed on a rigid plane and dragged diagonally with
+    Coulomb friction (quad4 slave faces, the 3D slip history), restarted after step 3, in the
+    drag."""
+    geo, yaml = F.drag_3d(np=0)
+    check_case(geo, lambda e: yaml + "output: {checkpoint_every: %d}\n" % e, 3,
+               "3D friction on a rigid plane", cross_np="1 -> 3")
 
 
 def test_fluid_generalized_alpha():
@@ -566,6 +576,7 @@ if __name__ == "__main__":
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
+                test_friction_3d_rigid_plane,
                 test_fluid_generalized_alpha, test_fluid_moving_mesh, test_fsi_generalized_alpha,
                 test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,
                 test_after_step_cuts, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
