@@ -13,6 +13,7 @@
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fsi_system.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/progress.hpp"
 #include "seam/problem/step_control.hpp"
 
 #include <algorithm>
@@ -417,6 +418,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                   control.time());
   }
   std::vector<double> x_converged = x;
+  const double progress_wall = wall_seconds(), progress_time = control.time();
   while (control.running()) {
     const double t_old = control.time();
     const double t = control.next();
@@ -592,6 +594,10 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                         work_sum.dissipation, work_sum.boundary, work_sum.interface_fluid,
                         work_sum.interface_structure});
       // clang-format on
+      if (!quiet)
+        print_step_line(
+            step, t, it, rn / std::max(reference, 1e-300), wall,
+            time_left(wall_seconds() - progress_wall, t - progress_time, config.time.end - t));
       ScopedTimer timer(timers, "output");
       if (w.probes) write_probes(sys, raw, step, t, w);
       // Fields every `output.every` steps and at the end.
