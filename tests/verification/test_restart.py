@@ -19,7 +19,8 @@ interface is redistributed at a restart, which changes sums at round-off).
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
   mesh tying),
 - pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
-  rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE),
+  rates, the forces of the last step), two fluid subdomains tied by mortar (the flow through
+  them started from rest), and a flow over a bulging wall on a moving mesh (ALE),
 - fluid-structure interaction (the Turek-Hron FSI3 start-up with generalized-alpha: structure
   displacement, velocity and acceleration, fluid velocity, pressure and rates, mesh
   displacement and its rate, the interface forces, the energy budget's works; and the steady
@@ -340,6 +341,25 @@ def test_fluid_generalized_alpha():
                "fluid, generalized-alpha", cross_np="1 -> 3")
 
 
+def tied_flow_yaml(every):
+    """test_fluid_tying.py's two fluid squares tied non-matching (dual mortar on the velocity),
+    the flow through them started from rest with generalized-alpha."""
+    import test_fluid_tying as FT
+    text = FT.TIED_POISEUILLE
+    for a, b in (('  exact_velocity: [0, "4*x*(1-x)"]\n', ""), ('  exact_pressure: "0.8*(2-y)"\n', ""),
+                 ('"4*x*(1-x)"]', '"4*x*(1-x)*(1-cos(3*t))"]'), ("geo: body.geo", "geo: case.geo"),
+                 ("time: {integrator: static, end: 1, steps: 1}",
+                  "time: {integrator: generalized_alpha, rho_inf: 0.5, end: 1, steps: 8}")):
+        assert a in text, a
+        text = text.replace(a, b)
+    return text + "  checkpoint_every: %d\n" % every
+
+
+def test_fluid_tied():
+    check_case(G.tied_rectangles(0.25, 0.2, order=2, kind="quad"), tied_flow_yaml, 4,
+               "fluid, tied subdomains", cross_np="1 -> 3")
+
+
 def test_fluid_moving_mesh():
     """ALE: a wall bulging in and out (test_ale.py); the mesh displacement and its rate are
     part of the state."""
@@ -577,7 +597,7 @@ if __name__ == "__main__":
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
                 test_friction_3d_rigid_plane,
-                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_fsi_generalized_alpha,
+                test_fluid_generalized_alpha, test_fluid_tied, test_fluid_moving_mesh, test_fsi_generalized_alpha,
                 test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,
                 test_after_step_cuts, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
     finally:
