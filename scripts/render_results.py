@@ -3,7 +3,7 @@ examples' READMEs: the deformed mesh coloured by a point or cell field.
 
     xvfb-run -a -s "-screen 0 1280x1024x24" pvpython scripts/render_results.py \\
         ironing_3d_out/results.pvd von_mises -o docs/figures/ironing_3d_paraview.png \\
-        [--view x,y,z] [--up x,y,z] [--time T]
+        [--view x,y,z] [--up x,y,z] [--time T] [--clip x,y,z,nx,ny,nz] [--no-edges]
 
 (Debian's ParaView renders through X: xvfb-run provides a virtual screen.)"""
 import argparse
@@ -24,6 +24,9 @@ def main():
                    help="direction from the focal point to the camera")
     p.add_argument("--up", type=vector, default=[0.0, 0.0, 1.0])
     p.add_argument("--time", type=float, help="the step to show (default: the last)")
+    p.add_argument("--clip", type=vector, help="point and normal of a plane: the part on the "
+                   "normal's side is cut away, to look inside (e.g. a channel around a flap)")
+    p.add_argument("--no-edges", action="store_true", help="draw the surface without the cell edges")
     args = p.parse_args()
 
     reader = pv.PVDReader(FileName=args.pvd)
@@ -34,8 +37,17 @@ def main():
     view.ViewSize = [1000, 700]
     view.ViewTime = time
     view.OrientationAxesVisibility = 1
-    display = pv.Show(reader, view)
-    display.SetRepresentationType("Surface With Edges")
+    source = reader
+    if args.clip:
+        if len(args.clip) != 6:
+            p.error("--clip takes six numbers: x,y,z,nx,ny,nz")
+        source = pv.Clip(Input=reader)
+        source.ClipType = "Plane"
+        source.ClipType.Origin = args.clip[:3]
+        source.ClipType.Normal = args.clip[3:]
+        source.Invert = 1
+    display = pv.Show(source, view)
+    display.SetRepresentationType("Surface" if args.no_edges else "Surface With Edges")
     points = [a.GetName() for a in reader.PointData]
     pv.ColorBy(display, ("POINTS" if args.field in points else "CELLS", args.field))
     display.RescaleTransferFunctionToDataRange(True, False)

@@ -329,6 +329,37 @@ def test_expression_unknown_variable():
                        at=position(text, "q*t", '"q'))
 
 
+def test_dirichlet_value_not_finite():
+    """'-0.01*t/(1-t)' compiles and is finite until t = 1, where the last step would prescribe
+    an infinite displacement: `seam run` stops there with exit 1 and a message located at the
+    condition that names the expression and t, on every rank (before, the run went on with
+    infinite values: a step cut and exit 2, or in a contact run an unlocated "degenerate
+    facet" error)."""
+    text = mutate("components: [x, y], value: [0, 0]", 'components: [x, y], value: [0, "-0.01*t/(1-t)"]')
+    work = workdir()
+    H.write_case(work, "case.yaml", text)
+    try:
+        for np in (1, 3):
+            args = ["run", "case.yaml", "-o", "out", "--quiet"]
+            code, out, err = H.run(args, np=np, cwd=work, check=False, timeout=300)
+            check_clean(out + err, "np %d" % np)
+            prefix = "seam: input error: case.yaml:"
+            message = err[err.find(prefix):].strip()
+            if code != 1 or err.count("seam: input error: ") != 1 or not message.startswith(prefix) \
+                    or "boundary_conditions[0]" not in message \
+                    or "'-0.01*t/(1-t)' is not finite at t = 1" not in message:
+                raise AssertionError("np %d: exit %d\n%s" % (np, code, err[-2000:]))
+            print("   np %d: %s" % (np, message.splitlines()[0]))
+            rows = H.read_csv(os.path.join(work, "out", "steps.csv"))
+            if len(rows) != 1:
+                raise AssertionError("np %d: %d steps written, expected the one before t = 1"
+                                     % (np, len(rows)))
+            if np > 1:
+                expect_every_rank(args, np, work, 1)
+    finally:
+        H.cleanup(work)
+
+
 # --- non-physical material constants ---------------------------------------------------
 
 def material_case(old, new, key, expected):
@@ -705,7 +736,7 @@ if __name__ == "__main__":
         test_yaml_unclosed_bracket, test_yaml_bad_indentation, test_yaml_tab_indentation,
         test_mesh_file_missing, test_geo_gmsh_cannot_parse, test_msh_garbage,
         test_msh_truncated, test_msh_unsupported_element, test_3d_mesh_with_dimension_2,
-        test_expression_syntax, test_expression_unknown_variable,
+        test_expression_syntax, test_expression_unknown_variable, test_dirichlet_value_not_finite,
         test_young_zero, test_young_negative, test_poisson_half, test_poisson_minus_one,
         test_density_negative,
         test_zero_steps, test_negative_end, test_dt_and_steps, test_checkpoint_every_zero, test_unknown_integrator,

@@ -13,6 +13,8 @@ Every reference value is computed here from the data of the case.
 """
 import math
 import os
+import re
+import subprocess
 import sys
 import tempfile
 
@@ -678,7 +680,36 @@ def test_cattaneo_mindlin_2d():
     if max(abs(v) for v in stick) > c + 2 * h or min(abs(v) for v in slip) < c - 2 * h:
         raise AssertionError("stick nodes outside or slip nodes inside the stick zone")
     check_quadratic(out)
+    check_flagship_report(out, width, c)
     H.cleanup(*_dirs)
+
+
+def check_flagship_report(out, width, c):
+    """What `make run` shows after the flagship (this example): scripts/plot_contact.py
+    cattaneo prints a, p0 and c against Hertz and Cattaneo with their relative errors, each
+    within 5 %, the stick half-width equal to the one measured above, and writes the PNG."""
+    if not os.path.exists("/usr/bin/python3"):
+        print("   flagship report skipped: no /usr/bin/python3")
+        return
+    png = os.path.join(out, "cattaneo.png")
+    script = os.path.join(H.HERE, "..", "..", "scripts", "plot_contact.py")
+    p = subprocess.run(["/usr/bin/python3", script, "cattaneo", out, "--mu", "0.3", "-o", png],
+                       capture_output=True, text=True, timeout=120)
+    if p.returncode != 0:
+        raise AssertionError("plot_contact.py cattaneo: exit %d\n%s" % (p.returncode, p.stderr))
+    rows = {}
+    for line in p.stdout.splitlines():
+        m = re.match(r"^\s+(.+?)\s+(\S+)\s+(\S+)\s+([-+]\d+\.\d+) %$", line)
+        if m:
+            rows[m.group(1)] = (float(m.group(2)), float(m.group(3)), float(m.group(4)))
+    print("   flagship report: " + "; ".join("%s %+.2f %%" % (k, v[2]) for k, v in rows.items()))
+    if len(rows) != 3 or any(abs(v[2]) > 5.0 for v in rows.values()):
+        raise AssertionError("flagship report: expected a, p0, c within 5 %%:\n%s" % p.stdout)
+    stick = [v for k, v in rows.items() if "stick" in k][0]
+    H.assert_close(stick[1], width, rtol=1e-3, what="printed stick half-width")
+    H.assert_close(stick[0], c, rtol=1e-3, what="printed Cattaneo c")
+    if not os.path.exists(png) or os.path.getsize(png) < 10000:
+        raise AssertionError("flagship report: no PNG written")
 
 
 def test_cattaneo_mindlin_parallel():
@@ -911,11 +942,22 @@ def test_retry_starts_from_converged_statuses_parallel():
     H.cleanup(*_dirs)
 
 
+_press_runs = {}  # the default pressing stage per rank count, shared by the tests below
+_press_dirs = []
+
+
 def ironing_press(np=1, c_t=None, line_search=None, max_step_cuts=None, check=True):
     """The pressing stage of the 3D ironing example (h = 0.5, t <= 0.4 in 10 steps), with
     `c_t`, `solver.newton.line_search` and `time.max_step_cuts` if given; returns the output
     directory and seam's standard error (its warnings). Without `check` a failed run is kept:
-    then (output directory, exit code, stdout, stderr)."""
+    then (output directory, exit code, stdout, stderr). The run with the defaults is made once
+    per rank count (test_ironing_3d_press, _parallel and _c_t read the same one)."""
+    default = c_t is None and line_search is None and max_step_cuts is None
+    if default and np in _press_runs:
+        out, code, stdout, err = _press_runs[np]
+        if check and code != 0:
+            raise AssertionError("ironing press np %d: exit %d\n%s" % (np, code, err[-2000:]))
+        return (out, err) if check else (out, code, stdout, err)
     work = tempfile.mkdtemp(prefix="seam_ironing_press_")
     with open(os.path.join(EXAMPLES, "ironing", "ironing_3d.geo")) as src:
         H.write_case(work, "ironing_3d.geo", src.read())
@@ -935,7 +977,11 @@ def ironing_press(np=1, c_t=None, line_search=None, max_step_cuts=None, check=Tr
     path = H.write_case(work, "ironing_3d.yaml", text)
     out = tempfile.mkdtemp(prefix="seam_verif_")
     code, stdout, err = H.run(["run", path, "-o", out], np=np, check=check)
-    _dirs.extend([work, out])
+    if default:
+        _press_runs[np] = (out, code, stdout, err)
+        _press_dirs.extend([work, out])
+    else:
+        _dirs.extend([work, out])
     return (out, err) if check else (out, code, stdout, err)
 
 
@@ -1007,8 +1053,8 @@ def test_ironing_3d_press_parallel():
 
 def test_ironing_3d_press_c_t():
     """The converged pressing stage of the 3D ironing does not depend on c_t: the default
-    (c_t = c_n = E_slab / h) against c_t = 5, 10 and 20 (20 times c_n), each run all 10 steps
-    without a step cut, the die's reactions in every step to 1e-8 of max |F_z|, the same
+    (c_t = c_n = E_slab / h) against c_t = 10 and 20 (20 times c_n; also 5 with SEAM_FULL=1),
+    each run all 10 steps without a step cut, the die's reactions in every step to 1e-8 of max |F_z|, the same
     stick/slip/inactive status at every slave node at the end. With the larger c_t the sliding
     nodes' slip, not their traction, sets the direction of z, and Newton's method without the
     line search alternates between two iterates (docs/input.md §6.1): with `line_search: false`
@@ -1016,7 +1062,8 @@ def test_ironing_3d_press_c_t():
     its 5 cuts the run gives up at t = 0.0475). The default run shortens no correction (its
     iterations are those without the line search; SEAM_FULL compares its newton.csv with one
     of `line_search: false` byte for byte)."""
-    values = (None, 5.0, 10.0, 20.0)
+    # c_t = 5 lies between the default and 10: SEAM_FULL only.
+    values = (None, 5.0, 10.0, 20.0) if H.FULL else (None, 10.0, 20.0)
     runs = [ironing_press(c_t=c, check=False) for c in values]
     for c, (out, code, _, err) in zip(values, runs):
         if code != 0:
@@ -1049,7 +1096,7 @@ def test_ironing_3d_press_c_t():
         raise AssertionError("the converged pressing stage depends on c_t")
     if shortened[0] != 0:
         raise AssertionError("the default run shortened %d corrections" % shortened[0])
-    if shortened[2] == 0:
+    if shortened[values.index(10.0)] == 0:
         raise AssertionError("set-up: c_t = 10 shortened no correction")
     # Without the line search c_t = 10 does not converge at t = 0.08.
     out, code, _, err = ironing_press(c_t=10.0, line_search=False, max_step_cuts=0, check=False)
@@ -1708,22 +1755,25 @@ def test_generalized_alpha_standard_energy():
 
 
 if __name__ == "__main__":
-    H.main([test_drag_2d_coulomb, test_moving_plane_2d, test_drag_2d_quadratic, test_drag_2d_tresca,
-            test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
-            test_drag_3d_coulomb, test_drag_3d_quadratic_np3, test_drag_2d_two_bodies, test_frame_indifference,
-            test_energy_balance_energy_momentum,
-            test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
-            test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
-            test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_retry_starts_from_converged_statuses,
-            test_retry_starts_from_converged_statuses_parallel,
-            test_ironing_3d_press,
-            test_ironing_3d_press_parallel,
-            test_ironing_3d, test_ironing_2d_parallel,
-            test_drag_2d_standard, test_drag_2d_standard_quadratic, test_stick_2d_standard,
-            test_drag_2d_standard_parallel, test_drag_3d_standard,
-            test_drag_2d_two_bodies_standard, test_drag_3d_quad8, test_drag_3d_quad8_parallel,
-            test_drag_3d_tri6, test_drag_3d_two_bodies_tri6, test_frame_indifference_tri6,
-            test_stuck_pair_hex20, test_stuck_pair_hex20_parallel, test_drag_2d_tresca_standard,
-            test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy,
-            test_drag_3d_quad9_standard, test_drag_3d_tri3, test_drag_3d_tresca,
-            test_cattaneo_mindlin_3d_parallel, test_bench_contact, test_ironing_3d_press_c_t])
+    try:
+        H.main([test_drag_2d_coulomb, test_moving_plane_2d, test_drag_2d_quadratic, test_drag_2d_tresca,
+                test_independent_of_c_t, test_stick_2d, test_drag_2d_parallel,
+                test_drag_3d_coulomb, test_drag_3d_quadratic_np3, test_drag_2d_two_bodies, test_frame_indifference,
+                test_energy_balance_energy_momentum,
+                test_sliding_block_generalized_alpha, test_sliding_block_energy_momentum,
+                test_cattaneo_mindlin_2d, test_cattaneo_mindlin_parallel, test_cattaneo_mindlin_3d,
+                test_cattaneo_mindlin_3d_compliance, test_ironing_2d, test_retry_starts_from_converged_statuses,
+                test_retry_starts_from_converged_statuses_parallel,
+                test_ironing_3d_press,
+                test_ironing_3d_press_parallel,
+                test_ironing_3d, test_ironing_2d_parallel,
+                test_drag_2d_standard, test_drag_2d_standard_quadratic, test_stick_2d_standard,
+                test_drag_2d_standard_parallel, test_drag_3d_standard,
+                test_drag_2d_two_bodies_standard, test_drag_3d_quad8, test_drag_3d_quad8_parallel,
+                test_drag_3d_tri6, test_drag_3d_two_bodies_tri6, test_frame_indifference_tri6,
+                test_stuck_pair_hex20, test_stuck_pair_hex20_parallel, test_drag_2d_tresca_standard,
+                test_mixed_multiplier_kinds, test_generalized_alpha_standard_energy,
+                test_drag_3d_quad9_standard, test_drag_3d_tri3, test_drag_3d_tresca,
+                test_cattaneo_mindlin_3d_parallel, test_bench_contact, test_ironing_3d_press_c_t])
+    finally:
+        H.cleanup(*_press_dirs)

@@ -1,7 +1,8 @@
 """Fuzzed input (issue 17): mutated example inputs and meshes never crash seam.
 
-A deterministic generator (fixed seed) takes the small example inputs of examples/ and the
-meshes Gmsh writes from their .geo files, and breaks them: keys dropped, renamed or
+A deterministic generator (fixed seed) takes the small example inputs of examples/ (solids,
+mesh tying, contact, friction, dynamics, fluid-structure interaction) and the meshes Gmsh
+writes from their .geo files, and breaks them: keys dropped, renamed or
 duplicated, values of the wrong type, numbers out of range (negative young, poisson >= 0.5,
 steps 0, ...), unknown regions, empty lists and sections, vectors of the wrong length,
 broken expressions and YAML syntax, and .msh files truncated or corrupted (counts, element
@@ -48,6 +49,8 @@ EXAMPLES = [
     ("twisted_bar", "twist.yaml", False),
     ("cylinder_inclusion", "inclusion.yaml", False),
     ("l_block", "l_block.yaml", False),
+    ("cattaneo_mindlin", "cattaneo.yaml", False),  # friction (the flagship)
+    ("turek_hron", "fsi1.yaml", False),  # fluid-structure interaction: fluid keys, fsi interface
 ]
 
 FORBIDDEN = ("PETSc", "Traceback", "terminate called", "Segmentation", "core dumped",
@@ -66,7 +69,7 @@ class Example:
             self.text = f.read()
         self.dim = int(re.search(r"^dimension: (\d)", self.text, re.M).group(1))
         self.geo = re.search(r"geo: (\w+\.geo)", self.text).group(1)
-        self.order = 2 if re.search(r"^\s*order: 2", self.text, re.M) else 1
+        self.order = 2 if re.search(r"^(\s*|mesh: \{.*)order: 2", self.text, re.M) else 1
         self.msh = self.geo.replace(".geo", ".msh")
 
     def with_mesh_file(self, msh):

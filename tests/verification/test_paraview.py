@@ -1,4 +1,5 @@
-"""ParaView as the client (issue 17): results.pvd of a contact run, opened by ParaView itself.
+"""ParaView as the client (issue 17): results.pvd of a contact run and of a fluid-structure run,
+opened by ParaView itself.
 
 examples/hertz_2d on its coarse CI mesh, serially and on 3 ranks (.vtu and .pvtu pieces): pvpython
 (Debian's python3-paraview) reads results.pvd through its PVD reader (paraview_probe.py) and
@@ -16,6 +17,9 @@ must find
     where the quads are coarse), one material, rank 0 serially and 0..2 on 3 ranks;
   * the same numbers of cells serially and on 3 ranks, and the same ranges of the fields;
 and it renders the last step (mesh and von Mises stress) to a PNG that is not blank.
+The Turek-Hron FSI1 flag (coarse, 2 load steps), serially and on 3 ranks: the fluid fields of
+CONTRACT.md (velocity, pressure, mesh_displacement) and the displacement, vectors with 3
+components, plausible ranges (check_fsi_report), the same ranges on 1 and 3 ranks, a PNG.
 
 Skipped, with a message, only where pvpython is missing (scripts/install-deps.sh installs
 python3-paraview and xvfb). Renders in an Xvfb server started by the test.
@@ -189,5 +193,88 @@ def test_paraview_reads_contact_results():
         TC.cleanup_runs()
 
 
+FSI_POINT_FIELDS = {"displacement": 3, "velocity": 3, "pressure": 1, "mesh_displacement": 3}
+
+
+def fsi_run(np):
+    """Turek-Hron FSI1 (examples/turek_hron/fsi1.yaml) on the coarse mesh of test_fsi.py
+    (refine 0.5), its 2 load steps; returns the output directory."""
+    import test_restart as TR
+    work = tempfile.mkdtemp(prefix="seam_paraview_fsi_")
+    H.write_case(work, "case.geo", TR.fsi_geo(0.5))
+    path = H.write_case(work, "case.yaml", TR.fsi_yaml("fsi1.yaml", 100, ("steps: 2", "steps: 2")))
+    out = H.solve(path, np=np)
+    return work, out
+
+
+def check_fsi_report(report, out, np):
+    """A 2D fluid-structure run as ParaView sees it: both load steps, the fields of CONTRACT.md
+    for fluid cells with 3-component vectors (ParaView warps by 3-vectors), velocities of the
+    inflow's size (mean 0.2, peak 0.3 at the inlet, faster beside the cylinder), the
+    displacement's largest size that of the flag's tip in probes.csv, the mesh displacement
+    within it, a pressure that rises ahead of the cylinder."""
+    where = "FSI np = %d" % np
+    if [round(t, 12) for t in report["times"]] != [0.5, 1.0]:
+        raise AssertionError("%s: time steps %s, expected [0.5, 1]" % (where, report["times"]))
+    pts = report["points"]
+    for name, n in FSI_POINT_FIELDS.items():
+        if name not in pts:
+            raise AssertionError("%s: ParaView finds no point field %r (it has %s)"
+                                 % (where, name, sorted(pts)))
+        if pts[name]["components"] != n:
+            raise AssertionError("%s: %r has %d components, expected %d"
+                                 % (where, name, pts[name]["components"], n))
+    for name in ("displacement", "velocity", "mesh_displacement"):
+        if pts[name]["ranges"][2] != [0.0, 0.0]:
+            raise AssertionError("%s: %s has a z component %s in 2D" % (where, name,
+                                                                     pts[name]["ranges"][2]))
+    speed = pts["velocity"]["magnitude"][1]
+    if not 0.3 <= speed <= 0.6:
+        raise AssertionError("%s: largest |velocity| %.4g, expected 0.3 .. 0.6" % (where, speed))
+    tip = H.read_csv(os.path.join(out, "probes.csv"))[-1]
+    tip_u = math.hypot(tip["ux"], tip["uy"])
+    largest = pts["displacement"]["magnitude"][1]
+    if not tip_u <= largest <= 1.1 * tip_u:
+        raise AssertionError("%s: largest |displacement| %.4g, the flag's tip moved %.4g"
+                             % (where, largest, tip_u))
+    if pts["mesh_displacement"]["magnitude"][1] > largest * (1 + 1e-12):
+        raise AssertionError("%s: the fluid mesh moves more than the flag" % where)
+    low, high = pts["pressure"]["ranges"][0]
+    if not (high > 10.0 and low < high / 10.0):
+        raise AssertionError("%s: pressure in [%.4g, %.4g]" % (where, low, high))
+    image = report["image"]
+    if image["size"] != [800, 600] or image["colours"] < 20:
+        raise AssertionError("%s: the rendered image is %s with %d colours"
+                             % (where, image["size"], image["colours"]))
+    print("   %s: %d points, %d cells; max |v| %.4f, pressure in [%.3f, %.3f], max |u| %.4e "
+          "(tip %.4e); PNG with %d colours" % (where, report["n_points"], report["n_cells"],
+                                               speed, low, high, largest, tip_u,
+                                               image["colours"]))
+
+
+def test_paraview_reads_fsi_results():
+    """results.pvd of a fluid-structure run (FSI1, coarse), serially and on 3 ranks."""
+    if not pvpython():
+        print("   SKIPPED: pvpython not found (install python3-paraview: scripts/install-deps.sh)")
+        return
+    dirs, reports = [], {}
+    try:
+        for np in (1, 3):
+            work, out = fsi_run(np)
+            dirs += [work, out]
+            png = os.path.join(work, "fsi1_np%d.png" % np)
+            reports[np] = probe(os.path.join(out, "results.pvd"), png, "velocity")
+            check_fsi_report(reports[np], out, np)
+            if KEEP:
+                shutil.copy(png, KEEP)
+        for name in FSI_POINT_FIELDS:
+            for x, y in zip(reports[1]["points"][name]["magnitude"],
+                            reports[3]["points"][name]["magnitude"]):
+                H.assert_close(y, x, rtol=1e-6, atol=1e-12,
+                               what="range of |%s|, np = 3 vs np = 1" % name)
+    finally:
+        H.cleanup(*dirs)
+
+
 if __name__ == "__main__":
-    H.main([test_paraview_reads_contact_results])
+    H.main([test_paraview_reads_contact_results, test_paraview_reads_fsi_results])

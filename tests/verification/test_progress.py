@@ -8,6 +8,8 @@ run goes on.
 2. steps.csv is written row by row: read while a long run is going (as `tail -f` would), it
    holds complete rows of consecutive steps; after the run is ended by SIGTERM every row it
    wrote is still there and complete.
+3. Fluid and fluid-structure runs print the same step lines, with the time left (0 s at the
+   last step).
 """
 import csv
 import os
@@ -151,5 +153,40 @@ def test_steps_csv_while_running():
         H.cleanup(work)
 
 
+def check_step_lines(stdout, n, what):
+    """n step lines, each with a readable time left, the last one 0 s; returns them."""
+    lines = [l for l in stdout.splitlines() if l.startswith("step ")]
+    if len(lines) != n:
+        raise AssertionError("%s: expected %d step lines, got:\n%s" % (what, n, stdout[-3000:]))
+    for line in lines:
+        if not STEP_LINE.match(line):
+            raise AssertionError("%s: step line without a readable time left: %r" % (what, line))
+    if not lines[-1].endswith("left 0 s"):
+        raise AssertionError("%s: the last step leaves %r, expected 0 s" % (what, lines[-1]))
+    print("   %s: %s\n   ...\n   %s" % (what, lines[0], lines[-1]))
+    return lines
+
+
+def test_time_left_fluid_and_fsi():
+    """The step lines of a fluid run (pulsating Poiseuille flow, 6 steps with generalized-alpha)
+    and of a fluid-structure run (Turek-Hron FSI1, coarse, 2 load steps) have the same form,
+    with the time left."""
+    import test_fluid as TF
+    import test_restart as TR
+    work = tempfile.mkdtemp(prefix="seam_progress_")
+    try:
+        H.write_case(work, "body.geo", geometry.rectangle("quad_structured", 0.25, 2))
+        fluid = H.write_case(work, "fluid.yaml", TF.pulsating_yaml(6))
+        _, out, _ = H.run(["run", fluid, "-o", os.path.join(work, "fluid_out")])
+        check_step_lines(out, 6, "fluid")
+        H.write_case(work, "case.geo", TR.fsi_geo(0.5))
+        fsi = H.write_case(work, "fsi.yaml", TR.fsi_yaml("fsi1.yaml", 100, ("steps: 2", "steps: 2")))
+        _, out, _ = H.run(["run", fsi, "-o", os.path.join(work, "fsi_out")])
+        check_step_lines(out, 2, "fluid-structure")
+    finally:
+        H.cleanup(work)
+
+
 if __name__ == "__main__":
-    H.main([test_time_left_on_every_step_line, test_steps_csv_while_running])
+    H.main([test_time_left_on_every_step_line, test_steps_csv_while_running,
+            test_time_left_fluid_and_fsi])

@@ -12,13 +12,15 @@ interface is redistributed at a restart, which changes sums at round-off).
 - frictionless dynamic contact with generalized-alpha (a block dropped on a plane,
   checkpoint in the contact, where each step projects the velocity onto the persistent contacts),
 - self and multi-body contact (`surface:`) with friction,
+- 3D: a hex block dragged over a rigid plane with Coulomb friction,
 - static friction continued from a checkpoint written while the step was cut (the halved step
   size and the cut count in effect), and a rigid circle moved along a block (its position is
   a function of the restart time),
 - free flight of two tied bodies with the energy-momentum method (condensed and saddle-point
   mesh tying),
 - pulsating Poiseuille flow with generalized-alpha for the fluid (velocity, pressure, their
-  rates, the forces of the last step), and a flow over a bulging wall on a moving mesh (ALE),
+  rates, the forces of the last step), two fluid subdomains tied by mortar (the flow through
+  them started from rest), and a flow over a bulging wall on a moving mesh (ALE),
 - fluid-structure interaction (the Turek-Hron FSI3 start-up with generalized-alpha: structure
   displacement, velocity and acceleration, fluid velocity, pressure and rates, mesh
   displacement and its rate, the interface forces, the energy budget's works; and the steady
@@ -322,12 +324,40 @@ def test_energy_momentum_tied_condensed():
 
 def test_energy_momentum_tied_saddle_point():
     check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("saddle_point", e), 10,
-               "energy-momentum, saddle-point tying", cross_np=False)
+               "energy-momentum, saddle-point tying", cross_np="1 -> 3")
+
+
+def test_friction_3d_rigid_plane():
+    """3D: test_friction.py's hex block pressed on a rigid plane and dragged diagonally with
+    Coulomb friction (quad4 slave faces, the 3D slip history), restarted after step 3, in the
+    drag."""
+    geo, yaml = F.drag_3d(np=0)
+    check_case(geo, lambda e: yaml + "output: {checkpoint_every: %d}\n" % e, 3,
+               "3D friction on a rigid plane", cross_np="1 -> 3")
 
 
 def test_fluid_generalized_alpha():
     check_case(G.rectangle("quad_structured", 0.25, 2), pulsating_flow_yaml, 4,
                "fluid, generalized-alpha", cross_np="1 -> 3")
+
+
+def tied_flow_yaml(every):
+    """test_fluid_tying.py's two fluid squares tied non-matching (dual mortar on the velocity),
+    the flow through them started from rest with generalized-alpha."""
+    import test_fluid_tying as FT
+    text = FT.TIED_POISEUILLE
+    for a, b in (('  exact_velocity: [0, "4*x*(1-x)"]\n', ""), ('  exact_pressure: "0.8*(2-y)"\n', ""),
+                 ('"4*x*(1-x)"]', '"4*x*(1-x)*(1-cos(3*t))"]'), ("geo: body.geo", "geo: case.geo"),
+                 ("time: {integrator: static, end: 1, steps: 1}",
+                  "time: {integrator: generalized_alpha, rho_inf: 0.5, end: 1, steps: 8}")):
+        assert a in text, a
+        text = text.replace(a, b)
+    return text + "  checkpoint_every: %d\n" % every
+
+
+def test_fluid_tied():
+    check_case(G.tied_rectangles(0.25, 0.2, order=2, kind="quad"), tied_flow_yaml, 4,
+               "fluid, tied subdomains", cross_np="1 -> 3")
 
 
 def test_fluid_moving_mesh():
@@ -566,7 +596,8 @@ if __name__ == "__main__":
         H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
-                test_fluid_generalized_alpha, test_fluid_moving_mesh, test_fsi_generalized_alpha,
+                test_friction_3d_rigid_plane,
+                test_fluid_generalized_alpha, test_fluid_tied, test_fluid_moving_mesh, test_fsi_generalized_alpha,
                 test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,
                 test_after_step_cuts, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
     finally:

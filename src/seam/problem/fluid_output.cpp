@@ -7,6 +7,7 @@
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
 #include "seam/problem/output.hpp"
+#include "seam/problem/progress.hpp"
 
 #include <cstdio>
 
@@ -16,7 +17,7 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
                          const FluidModel& model, std::filesystem::path dir, bool quiet,
                          const Checkpoints* restart)
     : config_(config), layout_(layout), model_(model), dir_(std::move(dir)), quiet_(quiet),
-      start_wall_(wall_seconds()) {
+      start_wall_(wall_seconds()), start_time_(restart ? restart->restart_time() : 0.0) {
   // A restart's tables may refuse to continue (another header): every rank stops.
   on_root_collectively(layout.comm(), [&] {
     // A restart continues the tables (rows after its step dropped).
@@ -160,8 +161,9 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
   if (errors_ && r.errors)
     errors_->add_row({r.step, r.time, r.errors->velocity_l2, r.errors->pressure_l2});
   if (!quiet_)
-    std::printf("  step %5d  t = %-10.4g  Newton iterations %2d  residual %9.3e\n", r.step, r.time,
-                r.newton_iterations, r.residual);
+    print_step_line(
+        r.step, r.time, r.newton_iterations, r.residual, wall,
+        time_left(wall_seconds() - start_wall_, r.time - start_time_, config_.time.end - r.time));
 }
 
 std::vector<double> FluidOutput::nodal_pressure(std::span<const double> local) const {

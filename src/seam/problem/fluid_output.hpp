@@ -83,6 +83,7 @@ private:
   bool quiet_;
   PhaseTimers timers_;
   double start_wall_;
+  double start_time_; // the simulated time where the stepping began (the time left)
   std::unique_ptr<io::CsvTable> steps_, newton_, forces_, errors_, probes_;
   struct Probe {
     std::array<double, 3> point;

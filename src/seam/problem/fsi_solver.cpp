@@ -13,6 +13,7 @@
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fsi_system.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/progress.hpp"
 #include "seam/problem/step_control.hpp"
 
 #include <algorithm>
@@ -69,15 +70,16 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
   const auto nn = static_cast<std::size_t>(mesh.n_nodes());
-  std::vector<double> disp(nn * dim, 0.0), mdisp(nn * dim, 0.0), vel(nn * dim, 0.0), pres(nn, 0.0);
+  // Vectors with 3 components also in 2D (docs/input.md §5.2: ParaView warps by 3-vectors).
+  std::vector<double> disp(nn * 3, 0.0), mdisp(nn * 3, 0.0), vel(nn * 3, 0.0), pres(nn, 0.0);
   for (std::size_t n = 0; n < nn; ++n)
     for (int i = 0; i < dim; ++i) {
       const auto node = static_cast<std::int32_t>(n);
-      if (sys.is_solid_node(node)) disp[n * dim + i] = raw[sys.d_dof(node, i)];
+      if (sys.is_solid_node(node)) disp[n * 3 + i] = raw[sys.d_dof(node, i)];
       if (sys.is_fluid_node(node)) {
-        mdisp[n * dim + i] = raw[sys.m_dof(node, i)];
-        disp[n * dim + i] = mdisp[n * dim + i];
-        vel[n * dim + i] = raw[sys.f_dof(node, i)];
+        mdisp[n * 3 + i] = raw[sys.m_dof(node, i)];
+        disp[n * 3 + i] = mdisp[n * 3 + i];
+        vel[n * 3 + i] = raw[sys.f_dof(node, i)];
       }
     }
   std::vector<std::int32_t> conn, offsets;
@@ -106,10 +108,10 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
   piece.connectivity = conn;
   piece.offsets = offsets;
   piece.types = types;
-  piece.point_data.emplace_back("displacement", dim, std::span<const double>(disp));
-  piece.point_data.emplace_back("velocity", dim, std::span<const double>(vel));
+  piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
+  piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
   piece.point_data.emplace_back("pressure", 1, std::span<const double>(pres));
-  piece.point_data.emplace_back("mesh_displacement", dim, std::span<const double>(mdisp));
+  piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(mdisp));
   piece.time = t;
   piece.cycle = step;
   const auto file = io::step_file_name("results", step, ".vtu");
@@ -416,6 +418,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                   control.time());
   }
   std::vector<double> x_converged = x;
+  const double progress_wall = wall_seconds(), progress_time = control.time();
   while (control.running()) {
     const double t_old = control.time();
     const double t = control.next();
@@ -591,6 +594,10 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                         work_sum.dissipation, work_sum.boundary, work_sum.interface_fluid,
                         work_sum.interface_structure});
       // clang-format on
+      if (!quiet)
+        print_step_line(
+            step, t, it, rn / std::max(reference, 1e-300), wall,
+            time_left(wall_seconds() - progress_wall, t - progress_time, config.time.end - t));
       ScopedTimer timer(timers, "output");
       if (w.probes) write_probes(sys, raw, step, t, w);
       // Fields every `output.every` steps and at the end.

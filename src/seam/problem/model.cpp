@@ -166,6 +166,7 @@ Model build_model(const io::Config& config, const Discretization& disc) {
       for (std::size_t k = 0; k < bc.components.size(); ++k) {
         const int expr = static_cast<int>(model.dirichlet_values.size());
         model.dirichlet_values.push_back(bc.value[k]);
+        model.dirichlet_marks.push_back(bc.mark);
         for (auto n : region.nodes)
           if (disc.owns_node(n))
             dirichlet.push_back({disc.global_dof(n, bc.components[k]), n, expr});

@@ -55,7 +55,8 @@ struct Model {
   std::vector<SurfaceLoad> surface_loads;
   std::vector<BodyLoad> body_loads;
   std::vector<io::Expression> dirichlet_values;
-  std::vector<DirichletDof> dirichlet; ///< sorted by dof, unique (a later condition wins)
+  std::vector<io::Mark> dirichlet_marks; ///< per value: where the input gave it
+  std::vector<DirichletDof> dirichlet;   ///< sorted by dof, unique (a later condition wins)
   std::vector<ReactionRegion> reaction_regions;
 };
 

@@ -36,6 +36,7 @@ constexpr double min_usable_step = min_step;
 bool dirichlet_increment(const Model& model, const Discretization& disc, const la::Vector& u,
                          double t, la::Vector& g) {
   bool nonzero = false;
+  int bad = -1; // the first expression whose value is not finite
   {
     la::Vector::LocalView gv(g, true);
     la::Vector::LocalView uv(u, false);
@@ -48,9 +49,22 @@ bool dirichlet_increment(const Model& model, const Discretization& disc, const l
     for (const auto& d : model.dirichlet) {
       const double* p = &x[static_cast<std::size_t>(d.node) * dim];
       const auto i = d.dof - first;
-      gl[i] = model.dirichlet_values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0) - ul[i];
+      const double value =
+          model.dirichlet_values[d.expression](t, p[0], p[1], dim == 3 ? p[2] : 0.0);
+      if (!std::isfinite(value) && bad < 0) bad = d.expression;
+      gl[i] = value - ul[i];
       nonzero = nonzero || gl[i] != 0.0;
     }
+  }
+  // A value that is not finite (1/0, sqrt(-1)) is an input error at the condition, on every rank.
+  const int first_bad = disc.comm().max(bad);
+  if (first_bad >= 0) {
+    char when[32];
+    std::snprintf(when, sizeof when, "%.6g", t);
+    const auto k = static_cast<std::size_t>(first_bad);
+    io::fail_at(model.dirichlet_marks[k], "the Dirichlet value '" +
+                                              model.dirichlet_values[k].source() +
+                                              "' is not finite at t = " + when);
   }
   return disc.comm().any(nonzero);
 }

@@ -1,4 +1,5 @@
 #include "seam/problem/output.hpp"
+#include "seam/problem/progress.hpp"
 
 #include "seam/common/collective.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -42,8 +43,12 @@ std::vector<std::string> columns(std::initializer_list<const char*> names) {
   return {names.begin(), names.end()};
 }
 
-/// A duration for the terminal, to the precision a user plans with: "42 s", "3 min 05 s",
-/// "2 h 07 min"; "?" before there is anything to estimate from.
+} // namespace
+
+double time_left(double elapsed, double simulated, double remaining) {
+  return simulated > 0.0 ? elapsed / simulated * std::max(remaining, 0.0) : -1.0;
+}
+
 std::string duration_text(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0.0) return "?";
   char buf[32];
@@ -57,7 +62,12 @@ std::string duration_text(double seconds) {
   return buf;
 }
 
-} // namespace
+void print_step_line(int step, double t, int newton_iterations, double residual, double wall,
+                     double left) {
+  std::printf("step %5d  t = %-12.6g newton %3d  residual %9.3e  wall %8.2f s  left %s\n", step, t,
+              newton_iterations, residual, wall, duration_text(left).c_str());
+  std::fflush(stdout);
+}
 
 std::string write_step_fields(const std::filesystem::path& dir, int step, const io::VtuPiece& piece,
                               Comm comm) {
@@ -451,12 +461,9 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
     }
     if (!quiet_) {
       // Time left from the mean wall time per unit of simulated time since the first step.
-      const double elapsed = wall_seconds() - progress_wall_, simulated = r.time - progress_time_;
-      const double left =
-          simulated > 0.0 ? elapsed / simulated * std::max(config_.time.end - r.time, 0.0) : -1.0;
-      std::printf("step %5d  t = %-12.6g newton %3d  residual %9.3e  wall %8.2f s  left %s\n",
-                  r.step, r.time, r.newton_iterations, r.residual, wall,
-                  duration_text(left).c_str());
+      print_step_line(r.step, r.time, r.newton_iterations, r.residual, wall,
+                      time_left(wall_seconds() - progress_wall_, r.time - progress_time_,
+                                config_.time.end - r.time));
     }
     std::fflush(stdout);
   }
