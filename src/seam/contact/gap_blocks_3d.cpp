@@ -71,6 +71,17 @@ void shape(int n, const T& s, const T& t, std::array<T, 4>& N, std::array<T, 8>&
   dN = {-0.25 * tm, -0.25 * sm, 0.25 * tm, -0.25 * sp, 0.25 * tp, 0.25 * sp, -0.25 * tp, 0.25 * sm};
 }
 
+/// The shape values of shape() alone (the kernel's points need no gradients on S; each
+/// Hyper<36> temporary is 10 kB).
+template <class T> void shape_values(int n, const T& s, const T& t, std::array<T, 4>& N) {
+  if (n == 3) {
+    N = {1.0 - s - t, s, t, T(0.0)};
+    return;
+  }
+  const T sm = 1.0 - s, sp = 1.0 + s, tm = 1.0 - t, tp = 1.0 + t;
+  N = {0.25 * sm * tm, 0.25 * sp * tm, 0.25 * sp * tp, 0.25 * sm * tp};
+}
+
 fem::CellType linear_type(int n) {
   return n == 3 ? fem::CellType::tri3 : fem::CellType::quad4;
 }
@@ -155,9 +166,8 @@ bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInv
     const double det = j0.x() * j1.y() - j0.y() * j1.x();
     const int steps = is_dual<S> ? 1 : 2;
     std::array<S, 4> N;
-    std::array<S, 8> unused;
     for (int it = 0; it < steps; ++it) {
-      shape<S>(n, s, t, N, unused);
+      shape_values<S>(n, s, t, N);
       S rx = -p.x, ry = -p.y;
       for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
         add_product(rx, u[k].x, N[k]);
@@ -329,9 +339,8 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
           !locate(nm, um, master_inverse, u, m1, m2))
         continue;
       std::array<S, 4> Ns, Nm;
-      std::array<S, 8> dN;
-      shape<S>(ns, s1, s2, Ns, dN);
-      shape<S>(nm, m1, m2, Nm, dN);
+      shape_values<S>(ns, s1, s2, Ns);
+      shape_values<S>(nm, m1, m2, Nm);
       V3<S> n;
       S h_s = 0.0, h_m = 0.0;
       for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) {
