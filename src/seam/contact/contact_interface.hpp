@@ -239,8 +239,11 @@ public:
   /// evaluated at the mesh displacement `u` (dim values per mesh node; interface nodes read)
   /// with exact derivatives up to `order`. Summed over the blocks (and the parts), the values
   /// at the displacement of the last update are those of evaluate() to the projections'
-  /// Newton tolerance.
-  void gap_blocks(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out) const;
+  /// Newton tolerance. With GapOrder::hessian and a nonempty `hessian_rows` (one flag per
+  /// slave node), a block none of whose slave nodes is flagged gets gradients only (an empty
+  /// `hessian`): the Newton matrix needs the Hessians of the gaps with a nonzero multiplier.
+  void gap_blocks(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out,
+                  std::span<const char> hessian_rows = {}) const;
 
   /// d n_j / d(displacement) of the averaged normal of slave node j at the last update: row =
   /// component, column = mesh dof, appended to `out`. Nothing for a rigid plane (its normal is
@@ -250,7 +253,8 @@ public:
 private:
   std::int64_t mesh_dof_of_master(local_index p) const; ///< -1 for rigid nodes
   /// gap_blocks of a 3D interface (gap_blocks_3d.cpp).
-  void gap_blocks_3d(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out) const;
+  void gap_blocks_3d(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out,
+                     std::span<const char> hessian_rows) const;
   /// Slave node j has a nonzero multiplier (normal or Cartesian, see frictional()).
   bool carries_multiplier(std::span<const double> lambda, local_index j) const;
   /// Component c of the multiplier vector of slave node j.

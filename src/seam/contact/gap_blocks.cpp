@@ -191,9 +191,18 @@ bool ContactInterface::has_gap_blocks() const {
 }
 
 void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
-                                  std::vector<GapBlock>& out) const {
+                                  std::vector<GapBlock>& out,
+                                  std::span<const char> hessian_rows) const {
   SEAM_ASSERT(has_gap_blocks());
   out.clear();
+  // The order of a block with slave nodes `nodes`: gradients instead of Hessians where no
+  // node asks for them.
+  const auto order_of = [&](const auto& nodes) {
+    if (order != GapOrder::hessian || hessian_rows.empty()) return order;
+    for (const auto k : nodes)
+      if (hessian_rows[static_cast<std::size_t>(k)]) return order;
+    return GapOrder::gradient;
+  };
   if (rigid_) {
     // One block per owned candidate slave facet: its nodes' weighted gaps as functions of its
     // nodal positions (the obstacle where the last update put it).
@@ -217,7 +226,8 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
         b.dofs.push_back(static_cast<std::int64_t>(slave_.mesh_nodes[static_cast<std::size_t>(k)]) *
                          dim);
       }
-      if (order == GapOrder::hessian) {
+      const GapOrder block_order = order_of(nodes);
+      if (block_order == GapOrder::hessian) {
         if (dim == 2)
           rigid_obstacle_gap_hessians<2>(mortar::gather_facet<2>(facets, f), current_,
                                          options_.multiplier, b.gap, b.gradient, b.hessian);
@@ -225,7 +235,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
           rigid_obstacle_gap_hessians<3>(mortar::gather_facet<3>(facets, f), current_,
                                          options_.multiplier, b.gap, b.gradient, b.hessian);
       } else {
-        const bool derivatives = order == GapOrder::gradient;
+        const bool derivatives = block_order == GapOrder::gradient;
         if (dim == 2)
           rigid_obstacle_facet<2>(mortar::gather_facet<2>(facets, f), current_, options_.multiplier,
                                   derivatives, rf);
@@ -240,7 +250,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
     return;
   }
   if (dim() == 3) {
-    gap_blocks_3d(u, order, out);
+    gap_blocks_3d(u, order, out, hessian_rows);
     return;
   }
   const auto& X = mesh_->x;
@@ -297,11 +307,12 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
       for (auto& x : in.x) x -= origin;
       b.slave = {sn[0], sn[1]};
       b.gap.assign(2, 0.0);
-      if (order == GapOrder::value) {
+      const GapOrder block_order = order_of(b.slave);
+      if (block_order == GapOrder::value) {
         std::array<double, 2> g{};
         pair_gaps(in, options_.pair, g);
         b.gap = {g[0], g[1]};
-      } else if (order == GapOrder::gradient) {
+      } else if (block_order == GapOrder::gradient) {
         std::array<Dual<12>, 2> g;
         pair_gaps(in, options_.pair, g);
         for (std::size_t j = 0; j < 2; ++j) {

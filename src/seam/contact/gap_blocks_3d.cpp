@@ -71,6 +71,17 @@ void shape(int n, const T& s, const T& t, std::array<T, 4>& N, std::array<T, 8>&
   dN = {-0.25 * tm, -0.25 * sm, 0.25 * tm, -0.25 * sp, 0.25 * tp, 0.25 * sp, -0.25 * tp, 0.25 * sm};
 }
 
+/// The shape values of shape() alone (the kernel's points need no gradients on S; each
+/// Hyper<36> temporary is 10 kB).
+template <class T> void shape_values(int n, const T& s, const T& t, std::array<T, 4>& N) {
+  if (n == 3) {
+    N = {1.0 - s - t, s, t, T(0.0)};
+    return;
+  }
+  const T sm = 1.0 - s, sp = 1.0 + s, tm = 1.0 - t, tp = 1.0 + t;
+  N = {0.25 * sm * tm, 0.25 * sp * tm, 0.25 * sp * tp, 0.25 * sm * tp};
+}
+
 fem::CellType linear_type(int n) {
   return n == 3 ? fem::CellType::tri3 : fem::CellType::quad4;
 }
@@ -94,7 +105,8 @@ template <class S> V3<S> facet_unit_normal(const std::array<V3<S>, 4>& x, int n,
 /// The averaged unit normal of one slave node with its first (and second) derivatives with
 /// respect to the positions of the ring: the nodes of the facets around it.
 struct NormalJet {
-  std::vector<std::int32_t> ring; ///< mesh nodes
+  GapOrder order = GapOrder::value; ///< the derivatives it holds
+  std::vector<std::int32_t> ring;   ///< mesh nodes
   std::array<double, 3> value{};
   std::vector<double> gradient; ///< 3 x (3 ring)
   std::vector<double> hessian;  ///< 3 x (3 ring)^2
@@ -154,9 +166,8 @@ bool locate(int n, const std::array<V2<S>, 4>& u, const mortar::detail::PieceInv
     const double det = j0.x() * j1.y() - j0.y() * j1.x();
     const int steps = is_dual<S> ? 1 : 2;
     std::array<S, 4> N;
-    std::array<S, 8> unused;
     for (int it = 0; it < steps; ++it) {
-      shape<S>(n, s, t, N, unused);
+      shape_values<S>(n, s, t, N);
       S rx = -p.x, ry = -p.y;
       for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
         add_product(rx, u[k].x, N[k]);
@@ -328,9 +339,8 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
           !locate(nm, um, master_inverse, u, m1, m2))
         continue;
       std::array<S, 4> Ns, Nm;
-      std::array<S, 8> dN;
-      shape<S>(ns, s1, s2, Ns, dN);
-      shape<S>(nm, m1, m2, Nm, dN);
+      shape_values<S>(ns, s1, s2, Ns);
+      shape_values<S>(nm, m1, m2, Nm);
       V3<S> n;
       S h_s = 0.0, h_m = 0.0;
       for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) {
@@ -382,8 +392,9 @@ void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacen
 
 } // namespace
 
-void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
-                                     std::vector<GapBlock>& out) const {
+void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder requested,
+                                     std::vector<GapBlock>& out,
+                                     std::span<const char> hessian_rows) const {
   const auto& X = mesh_->x;
   const auto position = [&](std::int32_t node) {
     const auto i = static_cast<std::size_t>(node) * 3;
@@ -395,10 +406,11 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
   const bool dual = options_.multiplier == mortar::Multiplier::dual;
   // The normal jets of the slave nodes met so far (side-local node of the slave set).
   std::map<local_index, NormalJet> jets;
-  const auto jet_of = [&](local_index node) -> const NormalJet& {
+  const auto jet_of = [&](local_index node, GapOrder need) -> const NormalJet& {
     auto it = jets.find(node);
-    if (it != jets.end()) return it->second;
+    if (it != jets.end() && it->second.order >= need) return it->second;
     NormalJet jet;
+    jet.order = need;
     std::vector<local_index> ring;
     for (const auto f : adjacency.of(node))
       for (const auto k : slaves.facet_nodes(f))
@@ -413,11 +425,11 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
       ring_x.push_back(position(mesh_node));
     }
     const auto nr = static_cast<std::size_t>(3 * ring.size());
-    if (order == GapOrder::value) {
+    if (need == GapOrder::value) {
       std::array<double, 3> n;
       normal_of(slaves, adjacency, node, ring_x, ring, n);
       jet.value = n;
-    } else if (order == GapOrder::gradient) {
+    } else if (need == GapOrder::gradient) {
       std::array<Dual<ring_variables>, 3> n;
       normal_of(slaves, adjacency, node, ring_x, ring, n);
       jet.gradient.resize(3 * nr);
@@ -439,13 +451,19 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
         }
       }
     }
-    return jets.emplace(node, std::move(jet)).first->second;
+    return jets.insert_or_assign(node, std::move(jet)).first->second;
   };
 
   for (const auto f : owned_)
     for (const auto& pair : pairs_of(f)) {
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
       const auto mn = masters.facet_nodes(pair.master);
+      GapOrder order = requested;
+      if (order == GapOrder::hessian && !hessian_rows.empty() &&
+          std::none_of(sn.begin(), sn.end(), [&](local_index k) {
+            return hessian_rows[static_cast<std::size_t>(k)] != 0;
+          }))
+        order = GapOrder::gradient;
       PairInput in;
       in.ns = static_cast<int>(sn.size());
       in.nm = static_cast<int>(mn.size());
@@ -465,7 +483,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
         const auto node = slave_.mesh_nodes[static_cast<std::size_t>(sn[k])];
         slave_slot[k] = slot_of(node);
         in.xs[k] = position(node);
-        in.normal[k] = Eigen::Vector3d(jet_of(sn[k]).value.data());
+        in.normal[k] = Eigen::Vector3d(jet_of(sn[k], order).value.data());
       }
       for (std::size_t l = 0; l < mn.size(); ++l) {
         const auto node = master_mesh_nodes_[static_cast<std::size_t>(mn[l])];
@@ -479,7 +497,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
       std::array<std::vector<int>, 4> ring_slots;
       if (order != GapOrder::value)
         for (std::size_t k = 0; k < sn.size(); ++k)
-          for (const auto node : jet_of(sn[k]).ring) ring_slots[k].push_back(slot_of(node));
+          for (const auto node : jet_of(sn[k], order).ring) ring_slots[k].push_back(slot_of(node));
       const auto nv = static_cast<std::size_t>(3 * slots.size());
       b.slave.assign(sn.begin(), sn.end());
       b.dofs.resize(slots.size());
@@ -491,7 +509,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
       if (order != GapOrder::value) {
         J = Eigen::MatrixXd::Zero(pair_variables, static_cast<Eigen::Index>(nv));
         for (std::size_t k = 0; k < sn.size(); ++k) {
-          const NormalJet& jet = jet_of(sn[k]);
+          const NormalJet& jet = jet_of(sn[k], order);
           const std::size_t nr = 3 * jet.ring.size();
           for (int a = 0; a < 3; ++a) {
             J(3 * static_cast<int>(k) + a, 3 * slave_slot[k] + a) = 1.0;
@@ -542,7 +560,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder order,
           const bool curvature = detail::gap_hessian_terms == detail::GapHessianTerms::all;
           if (detail::gap_hessian_terms == detail::GapHessianTerms::none) Hx.setZero();
           for (std::size_t k = 0; k < (curvature ? sn.size() : 0); ++k) {
-            const NormalJet& jet = jet_of(sn[k]);
+            const NormalJet& jet = jet_of(sn[k], order);
             const std::size_t nr = 3 * jet.ring.size();
             for (std::size_t a = 0; a < 3; ++a) {
               const double weight = gy(static_cast<Eigen::Index>(normal_offset + 3 * k + a));

@@ -60,6 +60,7 @@
 #include "seam/problem/output.hpp"
 
 #include <algorithm>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <span>
@@ -219,6 +220,12 @@ private:
     /// Two-body and self-contact interfaces: the search distributed over the ranks (facets
     /// ghosted).
     std::unique_ptr<ContactSearch> search;
+    /// Self contact: the oriented pairs of the searches of the current step (newest last, at
+    /// most ContactSearch::max_pair_period + 1) and the pairs held for the rest of the step
+    /// once the search returned to an earlier set (pair cycling guard, see search()).
+    std::deque<std::vector<mortar::CandidatePair>> pair_history;
+    std::vector<mortar::CandidatePair> held_pairs;
+    bool pairs_held = false;
     bool distributed = false;  ///< the first distribution is done
     double work_seconds = 0.0; ///< CPU time of this rank's evaluation in the current step
     parallel::BalanceDecision balance;

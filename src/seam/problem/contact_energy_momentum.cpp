@@ -214,8 +214,13 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   std::vector<contact::GapBlock> start, end, middle;
   s.itf.gap_blocks(u0, contact::GapOrder::value, start);
   s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
-  // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built.
-  s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient, middle);
+  // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built,
+  // and only of the blocks with a slave node that carries a multiplier: the Hessian enters
+  // the matrix times lambda_j (H / 2 and, through H dx, the correction's derivative).
+  std::vector<char> carries(s.lambda.size(), 0);
+  for (std::size_t j = 0; j < carries.size(); ++j) carries[j] = s.lambda[j] != 0.0;
+  s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient, middle,
+                   carries);
   const auto dof_of = [](const contact::GapBlock& b, int v) { return b.dof(v); };
   // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
   // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
@@ -251,7 +256,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
         const auto dof = dof_of(b, static_cast<int>(v));
         if (dof < 0) continue;
         local.push_back({dof, b.slave[r], mid_gradient, b.gradient[r * nv + v]});
-        if (!tangent) continue;
+        if (!tangent || b.hessian.empty()) continue;
         double hdx = 0.0;
         for (std::size_t k = 0; k < nv; ++k)
           if (const auto col = dof_of(b, static_cast<int>(k)); col >= 0) {

@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace seam::problem {
@@ -58,6 +59,12 @@ public:
   std::int64_t n_searches() const;
   /// The absolute skin of the ghosting.
   double skin() const { return skin_; }
+  /// Self contact: the oriented pairs of all ranks found by the last find() (the same on every
+  /// rank).
+  std::span<const mortar::CandidatePair> self_pairs() const { return pairs_; }
+  bool self() const { return ghosts_.has_value(); }
+  /// Periods of the search's pair set that the pair cycling guard recognizes (2 .. 8).
+  static constexpr std::size_t max_pair_period = 8;
 
 private:
   void find_self(contact::ContactInterface& itf);
