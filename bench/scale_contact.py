@@ -21,7 +21,6 @@ import argparse
 import csv
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -30,30 +29,23 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "peers", "step42"))
 import compare  # noqa: E402  (the step-42 comparison's geometry and input)
+import memory_per_rank  # noqa: E402  (time_v, phase_table)
 
 
 def write_case(n, linear, folder):
-    """cube.msh (gmsh, binary MSH 4.1) and cube.yaml reading it."""
+    """cube.msh (gmsh, binary MSH 4.1; kept from an earlier run in the same folder) and
+    cube.yaml reading it."""
     os.makedirs(folder, exist_ok=True)
-    geo = os.path.join(folder, "cube.geo")
-    with open(geo, "w") as f:
-        f.write(compare.GEO.format(nodes=n + 1))
-    subprocess.run(["gmsh", "-3", "-bin", "-format", "msh41", geo, "-o",
-                    os.path.join(folder, "cube.msh")], check=True, capture_output=True)
+    geo, msh = os.path.join(folder, "cube.geo"), os.path.join(folder, "cube.msh")
+    if not os.path.exists(msh):
+        with open(geo, "w") as f:
+            f.write(compare.GEO.format(nodes=n + 1))
+        subprocess.run(["gmsh", "-3", "-bin", "-format", "msh41", geo, "-o", msh + ".part"],
+                       check=True, capture_output=True)
+        os.rename(msh + ".part", msh)
     text = compare.YAML.format(n=n, linear="  linear: %s\n" % linear if linear else "")
     with open(os.path.join(folder, "cube.yaml"), "w") as f:
         f.write(text.replace("geo: cube.geo", "file: cube.msh"))
-
-
-def time_v(stderr):
-    """Max RSS (MB), user + system CPU (s) and wall (s) from /usr/bin/time -v."""
-    def field(name):
-        return re.search(re.escape(name) + r":\s*(\S+)", stderr).group(1)
-    wall = 0.0
-    for part in field("Elapsed (wall clock) time (h:mm:ss or m:ss)").split(":"):
-        wall = 60 * wall + float(part)
-    return (float(field("Maximum resident set size (kbytes)")) / 1024,
-            float(field("User time (seconds)")) + float(field("System time (seconds)")), wall)
 
 
 def run(seam, n, np, folder):
@@ -65,7 +57,7 @@ def run(seam, n, np, folder):
     if p.returncode != 0:
         sys.exit("n %d np %d failed (%d):\n%s\n%s" % (n, np, p.returncode, p.stdout[-3000:],
                                                      p.stderr[-3000:]))
-    rss, cpu, wall = time_v(p.stderr)
+    rss, cpu, wall = memory_per_rank.time_v(p.stderr)
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
     with open(os.path.join(out, "steps.csv")) as f:
@@ -98,9 +90,10 @@ def main():
     for n in args.sizes:
         folder = os.path.join(work, "n%d" % n)
         write_case(n, args.linear, folder)
-        first = None
+        first, runs = None, []
         for np in args.ranks:
             r = run(seam, n, np, folder)
+            runs.append((np, r["summary"]))
             first = first or max(r["rss"])
             it = max(r["newton"], 1)
             print("%4d %3d %9d %6d %9.1f %9.1f %6.3f %9.1f %9.1f %9.2f %9.2f %9.1f %7.1f %7.1f "
@@ -109,6 +102,7 @@ def main():
                       max(r["rss"]) / first, r["cpu"], r["wall"], r["cpu"] / it, r["wall"] / it,
                       r["own_wall"] / r["steps"], r["tc"]["assembly"], r["tc"]["condensation"],
                       r["tc"]["linear_solve"], r["force"], r["active"]), flush=True)
+        memory_per_rank.phase_table(runs)
     if not args.work:
         shutil.rmtree(work, ignore_errors=True)
 
