@@ -353,8 +353,64 @@ bool Matrix::assign_sum(const Matrix& A, const Matrix& B) {
     check(MatGetNonzeroState(m_, &sum_state_), "MatGetNonzeroState");
     return true;
   }
-  *this = A.copy();
-  axpy_any_pattern(1.0, B);
+  // The union pattern is built directly: a copy of A followed by MatAXPY with a different
+  // pattern would hold three matrices of A's size at once (A, the copy and the sum MatAXPY
+  // builds before it replaces the copy), the peak of a contact run (docs/performance.md).
+  Mat C = nullptr;
+  check(MatCreate(PetscObjectComm(reinterpret_cast<PetscObject>(A.m_)), &C), "MatCreate");
+  PetscInt lo = 0, hi = 0, clo = 0, chi = 0, m = 0, n = 0;
+  check(MatGetOwnershipRange(A.m_, &lo, &hi), "MatGetOwnershipRange");
+  check(MatGetOwnershipRangeColumn(A.m_, &clo, &chi), "MatGetOwnershipRangeColumn");
+  check(MatGetLocalSize(A.m_, &m, &n), "MatGetLocalSize");
+  check(MatSetSizes(C, m, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetBlockSizesFromMats(C, A.m_, A.m_), "MatSetBlockSizesFromMats");
+  check(MatSetType(C, MATAIJ), "MatSetType");
+  std::vector<PetscInt> d_nnz(static_cast<std::size_t>(m), 0), o_nnz(d_nnz), cols;
+  std::vector<double> vals;
+  // Row i of A + B, merged by column (MatGetRow gives sorted global columns); `emit` sees the
+  // merged columns and values.
+  const auto merged_row = [&](PetscInt i, auto&& emit) {
+    PetscInt na = 0, nb = 0;
+    const PetscInt *ca = nullptr, *cb = nullptr;
+    const PetscScalar *va = nullptr, *vb = nullptr;
+    check(MatGetRow(A.m_, i, &na, &ca, &va), "MatGetRow");
+    check(MatGetRow(B.m_, i, &nb, &cb, &vb), "MatGetRow");
+    cols.clear();
+    vals.clear();
+    PetscInt a = 0, b = 0;
+    while (a < na || b < nb) {
+      if (b == nb || (a < na && ca[a] < cb[b])) {
+        cols.push_back(ca[a]);
+        vals.push_back(va[a++]);
+      } else if (a == na || cb[b] < ca[a]) {
+        cols.push_back(cb[b]);
+        vals.push_back(vb[b++]);
+      } else {
+        cols.push_back(ca[a]);
+        vals.push_back(va[a++] + vb[b++]);
+      }
+    }
+    check(MatRestoreRow(B.m_, i, &nb, &cb, &vb), "MatRestoreRow");
+    check(MatRestoreRow(A.m_, i, &na, &ca, &va), "MatRestoreRow");
+    emit();
+  };
+  for (PetscInt i = lo; i < hi; ++i)
+    merged_row(i, [&] {
+      for (PetscInt c : cols)
+        ++(c >= clo && c < chi ? d_nnz : o_nnz)[static_cast<std::size_t>(i - lo)];
+    });
+  check(MatSeqAIJSetPreallocation(C, 0, d_nnz.data()), "MatSeqAIJSetPreallocation");
+  check(MatMPIAIJSetPreallocation(C, 0, d_nnz.data(), 0, o_nnz.data()),
+        "MatMPIAIJSetPreallocation");
+  for (PetscInt i = lo; i < hi; ++i)
+    merged_row(i, [&] {
+      check(MatSetValues(C, 1, &i, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(),
+                         INSERT_VALUES),
+            "MatSetValues");
+    });
+  check(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  *this = adopt(C);
   MatInfo a_info, info;
   check(MatGetInfo(A.m_, MAT_GLOBAL_SUM, &a_info), "MatGetInfo");
   check(MatGetInfo(m_, MAT_GLOBAL_SUM, &info), "MatGetInfo");
