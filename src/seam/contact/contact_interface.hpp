@@ -178,6 +178,21 @@ public:
   /// same on every part), of which the pairs of the owned slave facets are kept; the slave
   /// patch and the nodal normals are rebuilt from them.
   void set_candidates(std::span<const mortar::CandidatePair> pairs);
+  /// With an external search, the master facets this part's mortar integration, linearization
+  /// and gap blocks read: those the distributed search ghosted to it (parallel::SurfacePart
+  /// layout; facet and node ids side-local, i.e. master facets and nodes of two bodies,
+  /// surface facets and nodes of self contact; facet ids sorted; coordinates current, dim per
+  /// node). Given before each set_candidates(); every master facet of an owned candidate pair
+  /// must be among them (InputError otherwise). Without it the whole master side is read.
+  void set_master_facets(std::span<const std::int64_t> facet_ids,
+                         std::span<const local_index> offsets,
+                         std::span<const local_index> connectivity,
+                         std::span<const std::int64_t> node_ids, std::span<const double> coords);
+  /// Master facets and nodes the integration reads (the ghosted ones, or the whole side).
+  local_index n_master_facets_read() const { return integration_master().n_facets(); }
+  local_index n_master_nodes_read() const {
+    return static_cast<local_index>(integration_master().mesh_nodes.size());
+  }
   /// The absolute inflation of the search volumes (the same on every part).
   double search_inflation() const { return search_options_.inflation; }
   /// The master side at the last update / place() (empty for a rigid obstacle).
@@ -284,6 +299,18 @@ private:
     return self_ ? patch_.index[static_cast<std::size_t>(f)] : f;
   }
 
+  /// The master facets the integration reads: the ghosted ones (set_master_facets) or the
+  /// whole master side; their mesh_nodes give the mesh node of each of their nodes.
+  const meshtying::InterfaceSide& integration_master() const {
+    return ghosted_ ? ghost_master_ : master_;
+  }
+  /// Side-local master facet f as a facet of integration_master().
+  local_index integration_facet(local_index f) const;
+  /// The mesh node of node p of integration_master().
+  std::int32_t integration_node(local_index p) const {
+    return integration_master().mesh_nodes[static_cast<std::size_t>(p)];
+  }
+
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
   bool rigid_ = false;
@@ -291,6 +318,12 @@ private:
   bool self_ = false;
   bool external_ = false; ///< use_external_search
   meshtying::InterfaceSide slave_, master_;
+  // The master facets ghosted to this part (set_master_facets): their side-local ids (sorted)
+  // and, as a side, their nodes (mesh_nodes: the mesh node of each, not sorted) and current
+  // coordinates.
+  bool ghosted_ = false;
+  std::vector<std::int64_t> ghost_ids_;
+  meshtying::InterfaceSide ghost_master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid obstacle: its reference and current surfaces, the motion (a plane's reference corners
   // too) and the displacement at the last update.

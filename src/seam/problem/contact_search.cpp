@@ -44,6 +44,11 @@ void side_part(const meshtying::InterfaceSide& side, std::span<const local_index
 
 constexpr double default_skin_factor = 0.25;
 
+void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts) {
+  itf.set_master_facets(ghosts.facet_ids, ghosts.offsets, ghosts.connectivity, ghosts.node_ids,
+                        ghosts.coords);
+}
+
 } // namespace
 
 double ContactSearch::skin_factor() {
@@ -97,6 +102,8 @@ void ContactSearch::find(contact::ContactInterface& itf) {
   for (const auto& p : search_->pairs())
     pairs_.push_back({static_cast<local_index>(slave_part_.facet_ids[p.slave]),
                       static_cast<local_index>(ghosts.facet_ids[p.master])});
+  // The integration reads the master facets from the ghosts, not from the side held whole.
+  hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }
 
@@ -134,6 +141,7 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
   std::vector<std::int64_t> offsets;
   const auto all = parallel::allgatherv<search::CandidatePair>(comm_, facing, offsets);
   contact::orient_pairs(side, all, pairs_);
+  hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }
 
