@@ -576,10 +576,13 @@ def check_master_ghosted(name, yaml, replace, below):
         if pairs != one["pairs"]:
             raise AssertionError("np %d: %d pairs over the ranks, %d at np 1"
                                  % (np, pairs, one["pairs"]))
+        check_nodes_read(detail, np, name)
         if np == 1:
             continue
         what = "%s np %d vs np 1" % (name, np)
         compare_reactions(outs[1], outs[np], 1e-10, what)
+        # Every output of the run, the nodes' statuses (active sets) and gaps included.
+        compare_outputs(outs[1], outs[np], 1e-10, what)
         compare_rows(outs[1], outs[np], "interfaces.csv",
                      ("normal_force", "tangential_force", "contact_area",
                       "frictional_dissipation"), 1e-10, what,
@@ -590,6 +593,29 @@ def check_master_ghosted(name, yaml, replace, below):
             raise AssertionError("%s: %d candidate pairs, %d at np 1"
                                  % (what, cn["candidate_pairs"], c1["candidate_pairs"]))
     H.cleanup(*_dirs)
+
+
+def check_nodes_read(detail, np, name):
+    """What each rank reads of the interface (docs/parallel.md, "What is still replicated"):
+    the mortar integration reads the master facets ghosted to it (as many as it received), and
+    at np > 1 the displacement scatter brings strictly fewer nodes than the interface has
+    (the averaged normals are computed for the slave nodes of its elements and those it owns;
+    printed, not bounded: the bulk partition may give one rank every slave node)."""
+    n = detail[0]["contact_interface_nodes"]
+    gathered = [r["contact_interface_nodes_gathered"] for r in detail]
+    normals = [r["contact_normals_computed"] for r in detail]
+    read = [r["contact_master_facets_read"] for r in detail]
+    print("   %s np %d: interface nodes gathered per rank %s of %d; normals computed %s; master "
+          "facets read %s" % (name, np, "/".join(map(str, gathered)), n,
+                              "/".join(map(str, normals)), "/".join(map(str, read))))
+    if n <= 0 or min(gathered) <= 0:
+        raise AssertionError("np %d: interface nodes %d, gathered %s" % (np, n, gathered))
+    if read != [r["contact_master_received"] for r in detail]:
+        raise AssertionError("np %d: master facets read %s, received %s"
+                             % (np, read, [r["contact_master_received"] for r in detail]))
+    if np > 1 and max(gathered) >= n:
+        raise AssertionError("np %d: a rank gathered %d of the %d interface nodes"
+                             % (np, max(gathered), n))
 
 
 def test_hertz_master_ghosted():

@@ -286,14 +286,73 @@ void ContactInterface::place(std::span<const double> u, double t) {
     for (std::size_t i = 0; i < plane_corners_.size(); ++i)
       master_.coordinates[i] =
           plane_corners_[i] + obstacle_displacement_[i % static_cast<std::size_t>(dim)];
-    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
-    for (std::size_t j = 0; j < normals_.size() / static_cast<std::size_t>(dim); ++j)
-      current_.contact_normal(dim, &slave_.coordinates[j * dim], &normals_[j * dim], nullptr);
+    normals_ = averaged_normals(slave_, all_normals_);
     return;
   }
   master_.update_coordinates(*mesh_, u);
   // Self contact: the normals of the current slave patch, known after the search.
-  if (!self_) normals_ = mortar::averaged_nodal_normals(slave_set());
+  if (!self_) normals_ = averaged_normals(slave_, all_normals_);
+}
+
+void ContactInterface::set_normal_nodes(std::vector<local_index> nodes) {
+  SEAM_ASSERT(std::is_sorted(nodes.begin(), nodes.end()));
+  all_normals_ = false;
+  normal_nodes_ = std::move(nodes);
+}
+
+void ContactInterface::set_normals_from_owners(std::span<const double> normals) {
+  SEAM_ASSERT(normals.size() == normals_.size());
+  if (all_normals_) return;
+  const auto dim = static_cast<std::size_t>(this->dim());
+  for (std::size_t j = 0; j < normals.size() / dim; ++j) {
+    if (std::binary_search(normal_nodes_.begin(), normal_nodes_.end(), static_cast<local_index>(j)))
+      continue;
+    for (std::size_t c = 0; c < dim; ++c) normals_[j * dim + c] = normals[j * dim + c];
+  }
+}
+
+std::vector<local_index> ContactInterface::normal_ring(std::span<const local_index> nodes) const {
+  std::vector<local_index> ring(nodes.begin(), nodes.end());
+  const auto set = slave_.facet_set();
+  for (const auto j : nodes)
+    for (const auto f : slave_adjacency_.of(j))
+      for (const auto k : set.facet_nodes(f)) ring.push_back(k);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  return ring;
+}
+
+std::vector<double> ContactInterface::averaged_normals(const meshtying::InterfaceSide& side,
+                                                       bool all) const {
+  const int dim = this->dim();
+  if (rigid_) {
+    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
+    std::vector<double> n(side.coordinates.size(), 0.0);
+    const auto n_nodes = side.mesh_nodes.size();
+    for (std::size_t j = 0; j < n_nodes; ++j)
+      if (all || std::binary_search(normal_nodes_.begin(), normal_nodes_.end(),
+                                    static_cast<local_index>(j)))
+        current_.contact_normal(dim, &side.coordinates[j * dim], &n[j * dim], nullptr);
+    return n;
+  }
+  const mortar::FacetSet set = self_ ? patch_.facet_set(side) : side.facet_set();
+  if (set.n_facets() == 0) return std::vector<double>(side.coordinates.size(), 0.0);
+  if (all) return mortar::averaged_nodal_normals(set);
+  // Only the facets around the nodes asked for (of the slave set: the patch on self contact).
+  std::vector<local_index> adjacent;
+  const auto& adjacency = slave_adjacency();
+  for (const auto j : normal_nodes_)
+    for (const auto f : adjacency.of(j)) adjacent.push_back(f);
+  std::sort(adjacent.begin(), adjacent.end());
+  adjacent.erase(std::unique(adjacent.begin(), adjacent.end()), adjacent.end());
+  return mortar::averaged_nodal_normals(set, adjacent, normal_nodes_);
+}
+
+std::vector<double> ContactInterface::normals_at(std::span<const double> u) const {
+  if (all_normals_) return normals_;
+  meshtying::InterfaceSide side = slave_;
+  side.update_coordinates(*mesh_, u);
+  return averaged_normals(side, true);
 }
 
 void ContactInterface::use_external_search() {
@@ -322,8 +381,7 @@ void ContactInterface::take_self_pairs(std::span<const mortar::CandidatePair> al
   for (const auto& p : all)
     if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
   build_slave_patch(slave_, all, patch_);
-  normals_.assign(slave_.coordinates.size(), 0.0);
-  if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
+  normals_ = averaged_normals(slave_, all_normals_);
 }
 
 void ContactInterface::keep_facing(std::span<const mortar::CandidatePair> pairs) {

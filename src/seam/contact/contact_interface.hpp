@@ -207,8 +207,28 @@ public:
   /// x itself when T = I): the objective slip increment is built from them.
   std::vector<double> transformed_slave_positions() const;
 
-  /// Averaged unit nodal normals of the slave side at the last update (dim per slave node).
+  /// Averaged unit nodal normals of the slave side at the last update (dim per slave node):
+  /// those of the nodes set_normal_nodes() asked for, zero at the others.
   const std::vector<double>& normals() const { return normals_; }
+  /// The slave nodes whose averaged normals place() (and set_candidates() on self contact)
+  /// computes: side-local, sorted; every node by default. Their normals read the positions
+  /// of normal_ring(nodes) only.
+  void set_normal_nodes(std::vector<local_index> nodes);
+  /// Takes the nonzero normals of `normals` (dim per slave node, e.g. published by the nodes'
+  /// owners, which computed them from the same facets) for the nodes whose normal this part
+  /// did not compute; the others keep theirs.
+  void set_normals_from_owners(std::span<const double> normals);
+  /// The slave nodes whose normals place() computes.
+  local_index n_normals_computed() const {
+    return all_normals_ ? n_slave_nodes() : static_cast<local_index>(normal_nodes_.size());
+  }
+  /// The slave nodes of the facets around `nodes` (side-local, sorted, `nodes` included): the
+  /// positions their averaged normals read.
+  std::vector<local_index> normal_ring(std::span<const local_index> nodes) const;
+  /// The averaged normals of every slave node at the mesh displacement `u` (dim values per
+  /// mesh node, every slave node read), with the slave patch and the obstacle of the last
+  /// update; the state is not changed (for the output).
+  std::vector<double> normals_at(std::span<const double> u) const;
   /// Standard (not dual) multipliers: D is not diagonal.
   bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
   /// Candidate pairs of the owned slave facets at the last update (after the facing test).
@@ -345,6 +365,11 @@ private:
   std::vector<local_index> owned_offsets_, owned_nodes_;
   search::SearchOptions search_options_;
   std::vector<double> normals_;
+  bool all_normals_ = true;               ///< set_normal_nodes not called
+  std::vector<local_index> normal_nodes_; ///< set_normal_nodes
+  /// The averaged normals of `side` (slave_ or a copy at other positions) at the nodes of
+  /// set_normal_nodes(), or at every node.
+  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all) const;
   std::vector<mortar::Triplet> transformation_;
   std::vector<mortar::Triplet> transformation_inverse_;
 };

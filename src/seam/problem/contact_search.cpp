@@ -89,6 +89,16 @@ std::int64_t ContactSearch::n_searches() const {
   return search_ ? search_->n_searches() : ghosts_->n_updates();
 }
 
+void ContactSearch::nodes_read(const contact::ContactInterface& itf,
+                               std::vector<local_index>& out) const {
+  const auto& side = itf.self_contact() ? itf.slave() : itf.master();
+  const auto set = side.facet_set();
+  for (const auto f : held_)
+    for (const auto n : set.facet_nodes(f)) out.push_back(n);
+  const auto& ghosts = search_ ? search_->ghosts() : ghosts_->ghosts();
+  for (const auto id : ghosts.node_ids) out.push_back(static_cast<local_index>(id));
+}
+
 void ContactSearch::find(contact::ContactInterface& itf) {
   if (ghosts_) {
     find_self(itf);
