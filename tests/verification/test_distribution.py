@@ -36,7 +36,11 @@ Each test can fail:
   friction; np = 1, 2, 3): every rank receives strictly fewer master facets than the master
   surface has (at np = 3 at most 0.65 / 0.5 of it), each rank every master facet its pairs
   reach, the ranks together at least the master facets the np = 1 pairs reach; the ranks'
-  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10;
+  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10; the same
+  runs check what a rank reads: its mortar integration as many master facets as were ghosted
+  to it, its displacement scatter at np > 1 strictly fewer nodes than the interface has
+  (ranks_detail contact_interface_nodes_gathered), every output (active sets included) equal
+  to np = 1 to 1e-10;
 - the self-contact search distributed (a pile of 7 rings from examples/rings, 2D, until the
   rings touch; the two blocks of test_self_contact.py as one `surface:` interface, 3D
   tetrahedra): at np = 3 every rank receives strictly fewer surface facets than the surface
