@@ -50,7 +50,12 @@ std::vector<double> averaged_normals(const FacetSet& facets, const std::vector<l
   }
   std::vector<char> on_surface(normals.size() / dim, 0);
   if (nodes) {
-    for (const local_index node : *nodes) on_surface[static_cast<std::size_t>(node)] = 1;
+    // The listed nodes on one of the facets (a listed node on none keeps a zero normal).
+    std::vector<char> listed(on_surface.size(), 0);
+    for (const local_index node : *nodes) listed[static_cast<std::size_t>(node)] = 1;
+    for (const local_index f : *which)
+      for (const local_index node : facets.facet_nodes(f))
+        on_surface[static_cast<std::size_t>(node)] = listed[static_cast<std::size_t>(node)];
     // The other nodes of the facets have partial sums only.
     for (std::size_t node = 0; node < on_surface.size(); ++node)
       if (!on_surface[node])
