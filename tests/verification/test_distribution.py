@@ -36,7 +36,11 @@ Each test can fail:
   friction; np = 1, 2, 3): every rank receives strictly fewer master facets than the master
   surface has (at np = 3 at most 0.65 / 0.5 of it), each rank every master facet its pairs
   reach, the ranks together at least the master facets the np = 1 pairs reach; the ranks'
-  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10;
+  pairs add up to np = 1's, reactions.csv and interfaces.csv equal np = 1 to 1e-10; the same
+  runs check what a rank reads: its mortar integration as many master facets as were ghosted
+  to it, its displacement scatter at np > 1 strictly fewer nodes than the interface has
+  (ranks_detail contact_interface_nodes_gathered), every output (active sets included) equal
+  to np = 1 to 1e-10;
 - the self-contact search distributed (a pile of 7 rings from examples/rings, 2D, until the
   rings touch; the two blocks of test_self_contact.py as one `surface:` interface, 3D
   tetrahedra): at np = 3 every rank receives strictly fewer surface facets than the surface
@@ -576,10 +580,13 @@ def check_master_ghosted(name, yaml, replace, below):
         if pairs != one["pairs"]:
             raise AssertionError("np %d: %d pairs over the ranks, %d at np 1"
                                  % (np, pairs, one["pairs"]))
+        check_nodes_read(detail, np, name)
         if np == 1:
             continue
         what = "%s np %d vs np 1" % (name, np)
         compare_reactions(outs[1], outs[np], 1e-10, what)
+        # Every output of the run, the nodes' statuses (active sets) and gaps included.
+        compare_outputs(outs[1], outs[np], 1e-10, what)
         compare_rows(outs[1], outs[np], "interfaces.csv",
                      ("normal_force", "tangential_force", "contact_area",
                       "frictional_dissipation"), 1e-10, what,
@@ -590,6 +597,29 @@ def check_master_ghosted(name, yaml, replace, below):
             raise AssertionError("%s: %d candidate pairs, %d at np 1"
                                  % (what, cn["candidate_pairs"], c1["candidate_pairs"]))
     H.cleanup(*_dirs)
+
+
+def check_nodes_read(detail, np, name):
+    """What each rank reads of the interface (docs/parallel.md, "What is still replicated"):
+    the mortar integration reads the master facets ghosted to it (as many as it received), and
+    at np > 1 the displacement scatter brings strictly fewer nodes than the interface has
+    (the averaged normals are computed for the slave nodes of its elements and those it owns;
+    printed, not bounded: the bulk partition may give one rank every slave node)."""
+    n = detail[0]["contact_interface_nodes"]
+    gathered = [r["contact_interface_nodes_gathered"] for r in detail]
+    normals = [r["contact_normals_computed"] for r in detail]
+    read = [r["contact_master_facets_read"] for r in detail]
+    print("   %s np %d: interface nodes gathered per rank %s of %d; normals computed %s; master "
+          "facets read %s" % (name, np, "/".join(map(str, gathered)), n,
+                              "/".join(map(str, normals)), "/".join(map(str, read))))
+    if n <= 0 or min(gathered) <= 0:
+        raise AssertionError("np %d: interface nodes %d, gathered %s" % (np, n, gathered))
+    if read != [r["contact_master_received"] for r in detail]:
+        raise AssertionError("np %d: master facets read %s, received %s"
+                             % (np, read, [r["contact_master_received"] for r in detail]))
+    if np > 1 and max(gathered) >= n:
+        raise AssertionError("np %d: a rank gathered %d of the %d interface nodes"
+                             % (np, max(gathered), n))
 
 
 def test_hertz_master_ghosted():

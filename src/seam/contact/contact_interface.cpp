@@ -224,7 +224,55 @@ std::span<const std::int32_t> ContactInterface::master_nodes() const {
 
 std::int64_t ContactInterface::mesh_dof_of_master(local_index p) const {
   if (rigid_) return -1;
-  return static_cast<std::int64_t>(master_mesh_nodes_[static_cast<std::size_t>(p)]) * dim();
+  return static_cast<std::int64_t>(integration_node(p)) * dim();
+}
+
+void ContactInterface::set_master_facets(std::span<const std::int64_t> facet_ids,
+                                         std::span<const local_index> offsets,
+                                         std::span<const local_index> connectivity,
+                                         std::span<const std::int64_t> node_ids,
+                                         std::span<const double> coords) {
+  SEAM_ASSERT(external_ && !rigid_);
+  SEAM_ASSERT(offsets.size() == facet_ids.size() + 1);
+  SEAM_ASSERT(std::is_sorted(facet_ids.begin(), facet_ids.end()));
+  const int dim = this->dim();
+  ghosted_ = true;
+  ghost_ids_.assign(facet_ids.begin(), facet_ids.end());
+  auto& g = ghost_master_;
+  g.dim = dim;
+  g.offsets.assign(offsets.begin(), offsets.end());
+  g.nodes.assign(connectivity.begin(), connectivity.end());
+  g.coordinates.assign(coords.begin(), coords.end());
+  g.mesh_nodes.resize(node_ids.size());
+  for (std::size_t i = 0; i < node_ids.size(); ++i)
+    g.mesh_nodes[i] = master_mesh_nodes_[static_cast<std::size_t>(node_ids[i])];
+  // The facet type from its node count (dim - 1 dimensional facets of one order each).
+  g.types.resize(facet_ids.size());
+  for (std::size_t f = 0; f < facet_ids.size(); ++f) {
+    const auto n = offsets[f + 1] - offsets[f];
+    using fem::CellType;
+    CellType t = CellType::point1;
+    if (dim == 2)
+      t = n == 2 ? CellType::line2 : n == 3 ? CellType::line3 : t;
+    else
+      t = n == 3   ? CellType::tri3
+          : n == 4 ? CellType::quad4
+          : n == 6 ? CellType::tri6
+          : n == 8 ? CellType::quad8
+          : n == 9 ? CellType::quad9
+                   : t;
+    SEAM_CHECK(t != CellType::point1, InputError, "interface '", name_,
+               "': a ghosted master facet has ", n, " nodes");
+    g.types[f] = t;
+  }
+}
+
+local_index ContactInterface::integration_facet(local_index f) const {
+  if (!ghosted_) return f;
+  const auto it = std::lower_bound(ghost_ids_.begin(), ghost_ids_.end(), std::int64_t{f});
+  SEAM_CHECK(it != ghost_ids_.end() && *it == f, InputError, "interface '", name_,
+             "': master facet ", f, " of a candidate pair was not ghosted to this rank");
+  return static_cast<local_index>(it - ghost_ids_.begin());
 }
 
 void ContactInterface::place(std::span<const double> u, double t) {
@@ -238,14 +286,73 @@ void ContactInterface::place(std::span<const double> u, double t) {
     for (std::size_t i = 0; i < plane_corners_.size(); ++i)
       master_.coordinates[i] =
           plane_corners_[i] + obstacle_displacement_[i % static_cast<std::size_t>(dim)];
-    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
-    for (std::size_t j = 0; j < normals_.size() / static_cast<std::size_t>(dim); ++j)
-      current_.contact_normal(dim, &slave_.coordinates[j * dim], &normals_[j * dim], nullptr);
+    normals_ = averaged_normals(slave_, all_normals_);
     return;
   }
   master_.update_coordinates(*mesh_, u);
   // Self contact: the normals of the current slave patch, known after the search.
-  if (!self_) normals_ = mortar::averaged_nodal_normals(slave_set());
+  if (!self_) normals_ = averaged_normals(slave_, all_normals_);
+}
+
+void ContactInterface::set_normal_nodes(std::vector<local_index> nodes) {
+  SEAM_ASSERT(std::is_sorted(nodes.begin(), nodes.end()));
+  all_normals_ = false;
+  normal_nodes_ = std::move(nodes);
+}
+
+void ContactInterface::set_normals_from_owners(std::span<const double> normals) {
+  SEAM_ASSERT(normals.size() == normals_.size());
+  if (all_normals_) return;
+  const auto dim = static_cast<std::size_t>(this->dim());
+  for (std::size_t j = 0; j < normals.size() / dim; ++j) {
+    if (std::binary_search(normal_nodes_.begin(), normal_nodes_.end(), static_cast<local_index>(j)))
+      continue;
+    for (std::size_t c = 0; c < dim; ++c) normals_[j * dim + c] = normals[j * dim + c];
+  }
+}
+
+std::vector<local_index> ContactInterface::normal_ring(std::span<const local_index> nodes) const {
+  std::vector<local_index> ring(nodes.begin(), nodes.end());
+  const auto set = slave_.facet_set();
+  for (const auto j : nodes)
+    for (const auto f : slave_adjacency_.of(j))
+      for (const auto k : set.facet_nodes(f)) ring.push_back(k);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  return ring;
+}
+
+std::vector<double> ContactInterface::averaged_normals(const meshtying::InterfaceSide& side,
+                                                       bool all) const {
+  const int dim = this->dim();
+  if (rigid_) {
+    // The obstacle's normal at the node's closest point, reversed (out of the slave body).
+    std::vector<double> n(side.coordinates.size(), 0.0);
+    const auto n_nodes = side.mesh_nodes.size();
+    for (std::size_t j = 0; j < n_nodes; ++j)
+      if (all || std::binary_search(normal_nodes_.begin(), normal_nodes_.end(),
+                                    static_cast<local_index>(j)))
+        current_.contact_normal(dim, &side.coordinates[j * dim], &n[j * dim], nullptr);
+    return n;
+  }
+  const mortar::FacetSet set = self_ ? patch_.facet_set(side) : side.facet_set();
+  if (set.n_facets() == 0) return std::vector<double>(side.coordinates.size(), 0.0);
+  if (all) return mortar::averaged_nodal_normals(set);
+  // Only the facets around the nodes asked for (of the slave set: the patch on self contact).
+  std::vector<local_index> adjacent;
+  const auto& adjacency = slave_adjacency();
+  for (const auto j : normal_nodes_)
+    for (const auto f : adjacency.of(j)) adjacent.push_back(f);
+  std::sort(adjacent.begin(), adjacent.end());
+  adjacent.erase(std::unique(adjacent.begin(), adjacent.end()), adjacent.end());
+  return mortar::averaged_nodal_normals(set, adjacent, normal_nodes_);
+}
+
+std::vector<double> ContactInterface::normals_at(std::span<const double> u) const {
+  if (all_normals_) return normals_;
+  meshtying::InterfaceSide side = slave_;
+  side.update_coordinates(*mesh_, u);
+  return averaged_normals(side, true);
 }
 
 void ContactInterface::use_external_search() {
@@ -274,14 +381,14 @@ void ContactInterface::take_self_pairs(std::span<const mortar::CandidatePair> al
   for (const auto& p : all)
     if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
   build_slave_patch(slave_, all, patch_);
-  normals_.assign(slave_.coordinates.size(), 0.0);
-  if (slave_set().n_facets() > 0) normals_ = mortar::averaged_nodal_normals(slave_set());
+  normals_ = averaged_normals(slave_, all_normals_);
 }
 
 void ContactInterface::keep_facing(std::span<const mortar::CandidatePair> pairs) {
   // Only facets that face each other can come into contact.
-  std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(master_.n_facets()));
-  std::vector<char> has_normal(static_cast<std::size_t>(master_.n_facets()), 0);
+  const auto& masters = integration_master();
+  std::vector<std::array<double, 3>> nm(static_cast<std::size_t>(masters.n_facets()));
+  std::vector<char> has_normal(static_cast<std::size_t>(masters.n_facets()), 0);
   for (const auto& p : pairs) {
     SEAM_ASSERT(std::binary_search(owned_.begin(), owned_.end(), p.slave));
     // Against a rigid plane the gap is the distance to the plane for any facet orientation,
@@ -291,11 +398,12 @@ void ContactInterface::keep_facing(std::span<const mortar::CandidatePair> pairs)
       continue;
     }
     const auto a = facet_normal(slave_, p.slave);
-    if (!has_normal[p.master]) {
-      nm[p.master] = facet_normal(master_, p.master);
-      has_normal[p.master] = 1;
+    const auto m = static_cast<std::size_t>(integration_facet(p.master));
+    if (!has_normal[m]) {
+      nm[m] = facet_normal(masters, static_cast<local_index>(m));
+      has_normal[m] = 1;
     }
-    const auto& b = nm[p.master];
+    const auto& b = nm[m];
     if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) pairs_.push_back(p);
   }
 }
@@ -350,10 +458,10 @@ void ContactInterface::evaluate(NodalValues& out) const {
     for (auto i = pair_offsets_[static_cast<std::size_t>(f)];
          i < pair_offsets_[static_cast<std::size_t>(f) + 1]; ++i)
       mine.push_back({slave_index(pairs_[static_cast<std::size_t>(i)].slave),
-                      pairs_[static_cast<std::size_t>(i)].master});
+                      integration_facet(pairs_[static_cast<std::size_t>(i)].master)});
   if (mine.empty()) return;
-  const auto ops =
-      mortar::assemble_mortar_operators(slave_set(), master_.facet_set(), mine, options_);
+  const auto ops = mortar::assemble_mortar_operators(slave_set(), integration_master().facet_set(),
+                                                     mine, options_);
   for (const auto& e : ops.D) {
     if (e.row == e.col)
       out.D[static_cast<std::size_t>(e.row)] += e.value;
@@ -362,8 +470,7 @@ void ContactInterface::evaluate(NodalValues& out) const {
   }
   for (std::size_t j = 0; j < n_slave; ++j) out.gap[j] = ops.weighted_gap[j];
   if (!rigid_)
-    for (const auto& e : ops.M)
-      out.M.push_back({e.row, master_mesh_nodes_[static_cast<std::size_t>(e.col)], e.value});
+    for (const auto& e : ops.M) out.M.push_back({e.row, integration_node(e.col), e.value});
   out.area = ops.integrated_area;
   for (local_index f = 0; f < slave_.n_facets(); ++f)
     if (const auto k = slave_index(f); k >= 0)
@@ -593,8 +700,8 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
     if (!needed) continue;
     masters.clear();
     for (auto i = begin; i < end; ++i)
-      masters.push_back(pairs_[static_cast<std::size_t>(i)].master);
-    mortar::linearize_slave_facet(slave_set(), master_.facet_set(), slave_adjacency(),
+      masters.push_back(integration_facet(pairs_[static_cast<std::size_t>(i)].master));
+    mortar::linearize_slave_facet(slave_set(), integration_master().facet_set(), slave_adjacency(),
                                   slave_index(f), masters, options_, lin);
     if (lin.n_pairs_integrated == 0) continue;
     const int nv = lin.n_variables();
@@ -644,7 +751,8 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
               const auto mp =
                   static_cast<std::size_t>(lin.master_nodes[static_cast<std::size_t>(p)]);
               add_row(out.operator_gradient, row, lin.dM(j, p),
-                      master_.coordinates[mp * dim + static_cast<std::size_t>(a)], nullptr, 0.0);
+                      integration_master().coordinates[mp * dim + static_cast<std::size_t>(a)],
+                      nullptr, 0.0);
             }
           }
         }

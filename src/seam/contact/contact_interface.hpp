@@ -178,6 +178,21 @@ public:
   /// same on every part), of which the pairs of the owned slave facets are kept; the slave
   /// patch and the nodal normals are rebuilt from them.
   void set_candidates(std::span<const mortar::CandidatePair> pairs);
+  /// With an external search, the master facets this part's mortar integration, linearization
+  /// and gap blocks read: those the distributed search ghosted to it (parallel::SurfacePart
+  /// layout; facet and node ids side-local, i.e. master facets and nodes of two bodies,
+  /// surface facets and nodes of self contact; facet ids sorted; coordinates current, dim per
+  /// node). Given before each set_candidates(); every master facet of an owned candidate pair
+  /// must be among them (InputError otherwise). Without it the whole master side is read.
+  void set_master_facets(std::span<const std::int64_t> facet_ids,
+                         std::span<const local_index> offsets,
+                         std::span<const local_index> connectivity,
+                         std::span<const std::int64_t> node_ids, std::span<const double> coords);
+  /// Master facets and nodes the integration reads (the ghosted ones, or the whole side).
+  local_index n_master_facets_read() const { return integration_master().n_facets(); }
+  local_index n_master_nodes_read() const {
+    return static_cast<local_index>(integration_master().mesh_nodes.size());
+  }
   /// The absolute inflation of the search volumes (the same on every part).
   double search_inflation() const { return search_options_.inflation; }
   /// The master side at the last update / place() (empty for a rigid obstacle).
@@ -192,8 +207,28 @@ public:
   /// x itself when T = I): the objective slip increment is built from them.
   std::vector<double> transformed_slave_positions() const;
 
-  /// Averaged unit nodal normals of the slave side at the last update (dim per slave node).
+  /// Averaged unit nodal normals of the slave side at the last update (dim per slave node):
+  /// those of the nodes set_normal_nodes() asked for, zero at the others.
   const std::vector<double>& normals() const { return normals_; }
+  /// The slave nodes whose averaged normals place() (and set_candidates() on self contact)
+  /// computes: side-local, sorted; every node by default. Their normals read the positions
+  /// of normal_ring(nodes) only.
+  void set_normal_nodes(std::vector<local_index> nodes);
+  /// Takes the nonzero normals of `normals` (dim per slave node, e.g. published by the nodes'
+  /// owners, which computed them from the same facets) for the nodes whose normal this part
+  /// did not compute; the others keep theirs.
+  void set_normals_from_owners(std::span<const double> normals);
+  /// The slave nodes whose normals place() computes.
+  local_index n_normals_computed() const {
+    return all_normals_ ? n_slave_nodes() : static_cast<local_index>(normal_nodes_.size());
+  }
+  /// The slave nodes of the facets around `nodes` (side-local, sorted, `nodes` included): the
+  /// positions their averaged normals read.
+  std::vector<local_index> normal_ring(std::span<const local_index> nodes) const;
+  /// The averaged normals of every slave node at the mesh displacement `u` (dim values per
+  /// mesh node, every slave node read), with the slave patch and the obstacle of the last
+  /// update; the state is not changed (for the output).
+  std::vector<double> normals_at(std::span<const double> u) const;
   /// Standard (not dual) multipliers: D is not diagonal.
   bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
   /// Candidate pairs of the owned slave facets at the last update (after the facing test).
@@ -288,6 +323,18 @@ private:
     return self_ ? patch_.index[static_cast<std::size_t>(f)] : f;
   }
 
+  /// The master facets the integration reads: the ghosted ones (set_master_facets) or the
+  /// whole master side; their mesh_nodes give the mesh node of each of their nodes.
+  const meshtying::InterfaceSide& integration_master() const {
+    return ghosted_ ? ghost_master_ : master_;
+  }
+  /// Side-local master facet f as a facet of integration_master().
+  local_index integration_facet(local_index f) const;
+  /// The mesh node of node p of integration_master().
+  std::int32_t integration_node(local_index p) const {
+    return integration_master().mesh_nodes[static_cast<std::size_t>(p)];
+  }
+
   const mesh::Mesh* mesh_ = nullptr;
   std::string name_;
   bool rigid_ = false;
@@ -295,6 +342,12 @@ private:
   bool self_ = false;
   bool external_ = false; ///< use_external_search
   meshtying::InterfaceSide slave_, master_;
+  // The master facets ghosted to this part (set_master_facets): their side-local ids (sorted)
+  // and, as a side, their nodes (mesh_nodes: the mesh node of each, not sorted) and current
+  // coordinates.
+  bool ghosted_ = false;
+  std::vector<std::int64_t> ghost_ids_;
+  meshtying::InterfaceSide ghost_master_;
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid obstacle: its reference and current surfaces, the motion (a plane's reference corners
   // too) and the displacement at the last update.
@@ -316,6 +369,11 @@ private:
   std::vector<local_index> owned_offsets_, owned_nodes_;
   search::SearchOptions search_options_;
   std::vector<double> normals_;
+  bool all_normals_ = true;               ///< set_normal_nodes not called
+  std::vector<local_index> normal_nodes_; ///< set_normal_nodes
+  /// The averaged normals of `side` (slave_ or a copy at other positions) at the nodes of
+  /// set_normal_nodes(), or at every node.
+  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all) const;
   std::vector<mortar::Triplet> transformation_;
   std::vector<mortar::Triplet> transformation_inverse_;
 };

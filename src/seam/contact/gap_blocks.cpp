@@ -259,12 +259,12 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
     return Eigen::Vector2d(X[i] + u[i], X[i + 1] + u[i + 1]);
   };
   const mortar::FacetSet slaves = slave_set();
-  const mortar::FacetSet masters = master_.facet_set();
+  const mortar::FacetSet masters = integration_master().facet_set();
   const mortar::NodeFacets& adjacency = slave_adjacency();
   for (const auto f : owned_)
     for (const auto& pair : pairs_of(f)) {
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
-      const auto mn = masters.facet_nodes(pair.master);
+      const auto mn = masters.facet_nodes(integration_facet(pair.master));
       GapBlock b;
       b.dofs.assign(6, -1);
       std::array<local_index, 4> slave_slots{sn[0], sn[1], -1, -1};
@@ -298,7 +298,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
         in.x[static_cast<std::size_t>(s)] = position(node);
       }
       for (std::size_t l = 0; l < 2; ++l) {
-        const auto node = master_mesh_nodes_[static_cast<std::size_t>(mn[l])];
+        const auto node = integration_node(mn[l]);
         b.dofs[4 + l] = static_cast<std::int64_t>(node) * 2;
         in.x[4 + l] = position(node);
       }

@@ -401,7 +401,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
     return Eigen::Vector3d(X[i] + u[i], X[i + 1] + u[i + 1], X[i + 2] + u[i + 2]);
   };
   const mortar::FacetSet slaves = slave_set();
-  const mortar::FacetSet masters = master_.facet_set();
+  const mortar::FacetSet masters = integration_master().facet_set();
   const mortar::NodeFacets& adjacency = slave_adjacency();
   const bool dual = options_.multiplier == mortar::Multiplier::dual;
   // The normal jets of the slave nodes met so far (side-local node of the slave set).
@@ -457,7 +457,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
   for (const auto f : owned_)
     for (const auto& pair : pairs_of(f)) {
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
-      const auto mn = masters.facet_nodes(pair.master);
+      const auto mn = masters.facet_nodes(integration_facet(pair.master));
       GapOrder order = requested;
       if (order == GapOrder::hessian && !hessian_rows.empty() &&
           std::none_of(sn.begin(), sn.end(), [&](local_index k) {
@@ -486,7 +486,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
         in.normal[k] = Eigen::Vector3d(jet_of(sn[k], order).value.data());
       }
       for (std::size_t l = 0; l < mn.size(); ++l) {
-        const auto node = master_mesh_nodes_[static_cast<std::size_t>(mn[l])];
+        const auto node = integration_node(mn[l]);
         master_slot[l] = slot_of(node);
         in.xm[l] = position(node);
       }

@@ -12,6 +12,13 @@ namespace seam::mortar {
 /// dim values per node of the set's coordinate array; zero vectors for nodes on no facet.
 /// Throws InputError if the normals at a node cancel (a surface folded onto itself).
 std::vector<double> averaged_nodal_normals(const FacetSet& facets);
+/// The averaged unit normals of the nodes `nodes` only, from the facets `adjacent` (sorted
+/// facet indices holding every facet around those nodes, e.g. the union of their adjacent
+/// facets): bit for bit the values of the whole computation at those nodes (the facets are
+/// summed in the same order); zero at every other node.
+std::vector<double> averaged_nodal_normals(const FacetSet& facets,
+                                           std::span<const local_index> adjacent,
+                                           std::span<const local_index> nodes);
 
 /// Unit normal interpolated from nodal normals (columns) with shape values N.
 template <int Dim>

@@ -8,6 +8,7 @@
 // increment is summed, the tangent rows are added into the matrix).
 #include "seam/common/collective.hpp"
 #include "seam/common/error.hpp"
+#include "seam/parallel/exchange.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 
@@ -41,7 +42,10 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     if (!s.friction) continue;
     out.put(p + "status", to_integers(s.status));
     out.put(p + "D_old", s.D_diag_old);
-    out.put(p + "x_old", s.x_old);
+    // Each rank reads the positions of the nodes it evaluates only: the owners' x^n.
+    std::vector<double> x_old = s.x_old;
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, x_old, disc_.dim());
+    out.put(p + "x_old", x_old);
     out.put(p + "plane_old", std::span<const double>(s.plane_old));
     out.put_real(p + "dissipation", s.dissipation);
     out.put_integer(p + "has_old", s.has_old ? 1 : 0);

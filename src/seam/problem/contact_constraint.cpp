@@ -172,23 +172,82 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   }
 }
 
-std::span<const double> ContactConstraint::interface_displacement(const la::Vector& u) const {
+std::vector<double> ContactConstraint::whole_displacement(const la::Vector& u) const {
   const int dim = disc_.dim();
-  if (gather_.size() == 0 && !interface_nodes_.empty()) {
+  std::vector<double> out(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+  if (interface_nodes_.empty()) return out;
+  if (whole_gather_.size() == 0) {
     // Made at the first use: `seam check` builds the constraint without PETSc.
     std::vector<PetscInt> dofs;
     dofs.reserve(interface_nodes_.size() * static_cast<std::size_t>(dim));
     for (const auto node : interface_nodes_)
       for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
+    whole_gather_ = la::Gather(u, dofs);
+  }
+  std::vector<double> values;
+  whole_gather_(u, values);
+  for (std::size_t k = 0; k < interface_nodes_.size(); ++k)
+    for (int c = 0; c < dim; ++c)
+      out[static_cast<std::size_t>(interface_nodes_[k]) * dim + c] = values[k * dim + c];
+  return out;
+}
+
+std::vector<std::int32_t> ContactConstraint::nodes_read() {
+  if (energy_momentum_) return interface_nodes_;
+  const int rank = disc_.comm().rank();
+  std::vector<std::int32_t> out;
+  std::vector<local_index> mine, more;
+  for (auto& s : sides_) {
+    const auto& slave = s.itf.slave();
+    const auto set = slave.facet_set();
+    mine.clear();
+    for (const auto f : s.itf.owned_facets())
+      for (const auto j : set.facet_nodes(f)) mine.push_back(j);
+    for (std::size_t j = 0; j < s.node_owners.size(); ++j)
+      if (s.node_owners[j] == rank) mine.push_back(static_cast<local_index>(j));
+    std::sort(mine.begin(), mine.end());
+    mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    for (const auto j : s.itf.normal_ring(mine)) out.push_back(slave.mesh_nodes[j]);
+    // Standard multipliers with friction: the slave positions this rank's D^n reaches.
+    for (const auto& e : s.D_coupling_old) {
+      out.push_back(slave.mesh_nodes[static_cast<std::size_t>(e.row)]);
+      out.push_back(slave.mesh_nodes[static_cast<std::size_t>(e.col)]);
+    }
+    s.itf.set_normal_nodes(std::move(mine));
+    mine = {};
+    if (s.search) {
+      more.clear();
+      s.search->nodes_read(s.itf, more);
+      const auto masters = s.itf.master_nodes();
+      for (const auto p : more) out.push_back(masters[static_cast<std::size_t>(p)]);
+    }
+    for (const auto& e : s.M_old) out.push_back(e.master_node);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+void ContactConstraint::refresh_displacement(const la::Vector& u) {
+  const int dim = disc_.dim();
+  auto nodes = nodes_read();
+  const bool changed = disc_.comm().max(!gather_made_ || nodes != gathered_ ? 1.0 : 0.0) > 0.0;
+  if (changed) {
+    gathered_ = std::move(nodes);
+    std::vector<PetscInt> dofs;
+    dofs.reserve(gathered_.size() * static_cast<std::size_t>(dim));
+    for (const auto node : gathered_)
+      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
     gather_ = la::Gather(u, dofs);
-    u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+    gather_made_ = true;
+    if (u_mesh_.empty())
+      u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
   }
   std::vector<double> values;
   gather_(u, values);
-  for (std::size_t k = 0; k < interface_nodes_.size(); ++k)
+  for (std::size_t k = 0; k < gathered_.size(); ++k)
     for (int c = 0; c < dim; ++c)
-      u_mesh_[static_cast<std::size_t>(interface_nodes_[k]) * dim + c] = values[k * dim + c];
-  return u_mesh_;
+      u_mesh_[static_cast<std::size_t>(gathered_[k]) * dim + c] = values[k * dim + c];
 }
 
 ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t j) const {
@@ -231,7 +290,10 @@ ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t
 int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers,
                                 bool retrial) {
   const auto& comm = disc_.comm();
-  const auto u_mesh = interface_displacement(u);
+  // Only the nodes this rank reads (nodes_read()), not the whole interface; the scatter is
+  // made anew when they change (a redistribution, a new ghost set).
+  refresh_displacement(u);
+  const std::span<const double> u_mesh = u_mesh_;
   int changes = 0;
   for (auto& s : sides_) {
     if (retrial) s.cycles.retract();
@@ -247,11 +309,16 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     }
     if (!s.distributed) {
       // The first distribution needs the candidate pairs of the slave elements each rank
-      // holds at the start; the search then runs on its new slave elements.
+      // holds at the start; the search then runs on its new slave elements, whose nodes are
+      // read anew.
       distribute(s);
+      refresh_displacement(u);
       ScopedTimer timer(timers, "search");
       search(s, u_mesh, t);
     }
+    // New ghosts (an exchange) come with their positions; their nodes' displacements are read
+    // from here on (friction reads the master nodes of M).
+    refresh_displacement(u);
     ScopedTimer timer(timers, "mortar");
     const double cpu = cpu_seconds();
     s.itf.evaluate(s.part);
@@ -1012,9 +1079,16 @@ std::vector<std::string> ContactConstraint::held_whole() const {
     const auto n_slave = std::to_string(s.itf.slave().n_facets());
     std::string text = "interface " + s.itf.name() + ": held whole on every rank: ";
     const std::string arrays =
-        std::string("the displacement of every interface node, the averaged nodal normals, the "
-                    "nodal arrays per slave node (D, g~, multipliers, active set") +
-        (s.friction ? ", friction history" : "") + ")";
+        std::string("the nodal arrays per slave node (D, g~, multipliers, active set") +
+        (s.friction ? ", friction history" : "") +
+        "), the displacement of every interface node and the normals of every slave node at " +
+        "the output";
+    const std::string read =
+        energy_momentum_ ? std::string(", the displacement of every interface node (energy-"
+                                       "momentum contact)")
+                         : std::string("; read per rank: the displacement of the nodes of its "
+                                       "slave elements, of their neighbours and of its master "
+                                       "facets and ghosts, the normals of its slave nodes");
     char skin[64];
     if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
     const std::string reused =
@@ -1022,23 +1096,25 @@ std::vector<std::string> ContactConstraint::held_whole() const {
                  : std::string();
     if (s.itf.self_contact())
       text += "the surface (" + n_slave +
-              " facets, nodes, current positions), the facing pairs of each search (gathered "
+              " facets, nodes, positions), the facing pairs of each search (gathered "
               "for the roles and the slave patch), " +
-              arrays +
+              arrays + read +
               "; distributed: the search (own surface facets against the surface facets "
               "ghosted by bounding boxes" +
-              reused + ") and the mortar integration of the own slave elements";
+              reused +
+              ") and the mortar integration of the own slave elements (against the "
+              "ghosted surface facets)";
     else if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.itf.n_master_facets()) +
-              " master facets, their nodes and current positions), " + arrays +
+              " master facets, their nodes and positions), " + arrays + read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +
               reused +
               ") and the mortar integration of the own slave "
-              "elements (against the master side held whole)";
+              "elements (against the ghosted master facets)";
     else
-      text += "the slave side (" + n_slave + " facets, nodes, current positions), the " +
-              s.itf.obstacle().name() + ", " + arrays +
+      text += "the slave side (" + n_slave + " facets, nodes, positions), the " +
+              s.itf.obstacle().name() + ", " + arrays + read +
               "; distributed: the search and the integration of the slave elements";
     out.push_back(std::move(text));
   }
@@ -1047,7 +1123,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
 
 std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {
   const int dim = disc_.dim();
-  const auto u_mesh = interface_displacement(u);
+  // The output rows of every slave node: their displacements and normals, whole.
+  const auto u_mesh = whole_displacement(u);
   std::vector<ContactReport> out;
   for (const auto& s : sides_) {
     ContactReport rep;
@@ -1059,7 +1136,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
       for (int c = 0; c < dim; ++c)
         rep.displacement[j * dim + c] =
             u_mesh[static_cast<std::size_t>(rep.slave_nodes[j]) * dim + c];
-    rep.normal = s.itf.normals();
+    rep.normal = s.itf.normals_at(u_mesh);
     // The multiplier vector: lambda_n n without friction, the Cartesian one with it.
     rep.lambda.assign(n * dim, 0.0);
     rep.lambda_n.assign(n, 0.0);
@@ -1126,6 +1203,12 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.local_integration_cells = s.part.n_cells;
     rep.local_contact_nodes = s.nodal.decided;
     rep.local_nodal_records = s.nodal.sent;
+    if (out.empty()) {
+      rep.local_nodes_gathered = static_cast<std::int64_t>(gathered_.size());
+      rep.interface_nodes = static_cast<std::int64_t>(interface_nodes_.size());
+    }
+    rep.local_master_facets_read = s.itf.rigid() ? 0 : s.itf.n_master_facets_read();
+    rep.local_normals = s.itf.n_normals_computed();
     out.push_back(std::move(rep));
   }
   return out;

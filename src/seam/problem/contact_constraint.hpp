@@ -330,7 +330,8 @@ private:
                          std::vector<double>& gv, std::vector<PetscInt>& set_rows,
                          std::vector<double>& set_values, std::vector<PetscInt>& add_rows,
                          std::vector<double>& add_values) const;
-  /// The frictional work of the current step (replicated).
+  /// The frictional work of the current step, summed over the owners of the active nodes (the
+  /// same on every rank). Collective.
   double dissipation_increment(const Side& s) const;
   /// Against a rigid obstacle: w_j = sum_k D_jk d_k with d_k = x~_k - x~_k^n - (c - c^n) the
   /// motion of slave node k relative to the obstacle in the step (D_jj d_j with dual
@@ -343,10 +344,20 @@ private:
                  std::vector<double>& values);
   /// The global dof of a mesh dof (node * dim + component).
   PetscInt global_dof(std::int64_t mesh_dof) const;
-  /// The displacement of the interface nodes (slave and master of every side) placed in
-  /// u_mesh_ (dim per mesh node; the other entries stay zero): one scatter of those dofs,
-  /// not the whole vector. Collective.
-  std::span<const double> interface_displacement(const la::Vector& u) const;
+  /// The displacement of every interface node (slave and master of every side), dim per mesh
+  /// node (the other entries zero): one scatter of those dofs, not the whole vector; for the
+  /// output and the start of an energy-momentum step. Collective.
+  std::vector<double> whole_displacement(const la::Vector& u) const;
+  /// The mesh nodes whose displacement this rank's evaluation reads (sorted): per side the
+  /// slave nodes of its owned slave elements and the slave nodes it owns (their normals are
+  /// the only ones computed, set here), the nodes of the facets around them (the normals read
+  /// them), the master nodes (surface nodes) of the facets it hands in to the search and of
+  /// its ghosts, and with friction the nodes its part of M^n and D^n reaches. Every interface
+  /// node with energy-momentum contact (the discrete gradient reads the start of the step).
+  std::vector<std::int32_t> nodes_read();
+  /// u_mesh_ at u for nodes_read(): the scatter is made anew when the nodes changed on some
+  /// rank (one Allreduce to decide). Collective.
+  void refresh_displacement(const la::Vector& u);
 
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
   /// every other row): T^T r_S + D lambda, in which each multiplier stands alone.
@@ -365,8 +376,12 @@ private:
   const Discretization& disc_;
   io::ParallelConfig parallel_;
   std::vector<std::int32_t> interface_nodes_; ///< mesh nodes of all sides, sorted
-  mutable la::Gather gather_;                 ///< their dofs, node-major
-  mutable std::vector<double> u_mesh_;
+  mutable la::Gather whole_gather_;           ///< their dofs, node-major (whole_displacement)
+  std::vector<std::int32_t> gathered_;        ///< the nodes gather_ brings (nodes_read())
+  la::Gather gather_;                         ///< their dofs, node-major
+  bool gather_made_ = false;
+  /// Displacement of the nodes read (dim per mesh node; stale elsewhere).
+  std::vector<double> u_mesh_;
   std::vector<double> u_mesh_start_; ///< interface displacement at the start of the step
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;

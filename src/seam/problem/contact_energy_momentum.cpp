@@ -188,8 +188,7 @@ DiscreteGradient discrete_gradient(int dim, const Invariance& inv, const Eigen::
 
 void ContactConstraint::start_step(const la::Vector& u_n) {
   if (!energy_momentum_ || sides_.empty()) return;
-  const auto u = interface_displacement(u_n);
-  u_mesh_start_.assign(u.begin(), u.end());
+  u_mesh_start_ = whole_displacement(u_n);
 }
 
 int ContactConstraint::n_discrete_gradient() const {

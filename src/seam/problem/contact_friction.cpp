@@ -191,6 +191,18 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   // Every rank gets the owners' sums, slip increments and decisions.
   publish_nodal_values(s, next);
   parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, s.slip, dim);
+  // The checks below run on every rank over the contact zone (the cycling guard's consistency,
+  // the complementarity residual, the friction rows): the owners' normals of the nodes with
+  // nonzero sums, a rank computing those of the slave nodes it reads only.
+  {
+    std::vector<double> normals(n * dim, 0.0);
+    const auto& mine = s.itf.normals();
+    for (std::size_t j = 0; j < n; ++j)
+      if (s.node_owners[j] == comm.rank() && s.D[j] != 0.0)
+        for (int c = 0; c < dim; ++c) normals[j * dim + c] = mine[j * dim + c];
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, normals, dim);
+    s.itf.set_normals_from_owners(normals);
+  }
   if (init && s.has_old) s.D_diag_old = s.D_diag;
   // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 8
   // iterations ago, the nodes that alternate keep the largest of their statuses in the cycle
@@ -249,9 +261,10 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     s.active[j] = s.status[j] != 0;
   }
   // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
-  // others.
+  // others; summed over the owners of the nodes (each has the normals of its own nodes).
   s.ncp_norm2 = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
+    if (s.node_owners[j] != comm.rank()) continue;
     if (!s.active[j]) {
       for (int c = 0; c < dim; ++c) s.ncp_norm2 += std::pow(s.D[j] * s.lambda[j * dim + c], 2);
       continue;
@@ -265,6 +278,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       s.ncp_norm2 += std::pow(s.D[j] * contact::friction_row(s.law, node, status, t).value, 2);
     }
   }
+  s.ncp_norm2 = comm.sum(s.ncp_norm2);
   return changes;
 }
 
@@ -565,15 +579,17 @@ double ContactConstraint::dissipation_increment(const Side& s) const {
   const bool coupled = s.itf.rigid() && s.itf.standard();
   const std::vector<double> w = coupled ? rigid_motion_weighted(s) : std::vector<double>{};
   const std::vector<double>& slip = coupled ? w : s.slip;
+  // Summed over the owners of the nodes: a rank has the normals of the slave nodes it reads.
+  const int rank = disc_.comm().rank();
   double work = 0.0;
   for (std::size_t j = 0; j < s.active.size(); ++j) {
-    if (!s.active[j]) continue;
+    if (!s.active[j] || s.node_owners[j] != rank) continue;
     const double* n = &s.itf.normals()[j * dim];
     double ln = 0.0;
     for (int c = 0; c < dim; ++c) ln += s.lambda[j * dim + c] * n[c];
     for (int c = 0; c < dim; ++c) work += (s.lambda[j * dim + c] - ln * n[c]) * slip[j * dim + c];
   }
-  return work;
+  return disc_.comm().sum(work);
 }
 
 void ContactConstraint::save_friction(Side& s) {

@@ -44,6 +44,11 @@ void side_part(const meshtying::InterfaceSide& side, std::span<const local_index
 
 constexpr double default_skin_factor = 0.25;
 
+void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts) {
+  itf.set_master_facets(ghosts.facet_ids, ghosts.offsets, ghosts.connectivity, ghosts.node_ids,
+                        ghosts.coords);
+}
+
 } // namespace
 
 double ContactSearch::skin_factor() {
@@ -84,6 +89,16 @@ std::int64_t ContactSearch::n_searches() const {
   return search_ ? search_->n_searches() : ghosts_->n_updates();
 }
 
+void ContactSearch::nodes_read(const contact::ContactInterface& itf,
+                               std::vector<local_index>& out) const {
+  const auto& side = itf.self_contact() ? itf.slave() : itf.master();
+  const auto set = side.facet_set();
+  for (const auto f : held_)
+    for (const auto n : set.facet_nodes(f)) out.push_back(n);
+  const auto& ghosts = search_ ? search_->ghosts() : ghosts_->ghosts();
+  for (const auto id : ghosts.node_ids) out.push_back(static_cast<local_index>(id));
+}
+
 void ContactSearch::find(contact::ContactInterface& itf) {
   if (ghosts_) {
     find_self(itf);
@@ -97,6 +112,8 @@ void ContactSearch::find(contact::ContactInterface& itf) {
   for (const auto& p : search_->pairs())
     pairs_.push_back({static_cast<local_index>(slave_part_.facet_ids[p.slave]),
                       static_cast<local_index>(ghosts.facet_ids[p.master])});
+  // The integration reads the master facets from the ghosts, not from the side held whole.
+  hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }
 
@@ -134,6 +151,7 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
   std::vector<std::int64_t> offsets;
   const auto all = parallel::allgatherv<search::CandidatePair>(comm_, facing, offsets);
   contact::orient_pairs(side, all, pairs_);
+  hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }
 

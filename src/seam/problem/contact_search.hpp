@@ -51,6 +51,11 @@ public:
   /// Collective. The candidate pairs of the owned slave facets of `itf` at its last place().
   void find(contact::ContactInterface& itf);
 
+  /// Appends the side-local nodes (master side; the surface on self contact) whose positions
+  /// the next find() reads on this rank: those of the facets it hands in and of the ghosts of
+  /// the last find() (reused ghosts take their nodes' current positions from the side).
+  void nodes_read(const contact::ContactInterface& itf, std::vector<local_index>& out) const;
+
   /// Facets this rank received at the last find() (master facets, or surface facets of self
   /// contact; its own ones included).
   local_index n_received() const;

@@ -619,7 +619,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 19;
+  constexpr std::size_t n_counts = 23;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -646,6 +646,10 @@ void Output::finish(bool converged, int n_steps) {
       mine[16] += c.surface_facets;
       mine[17] += static_cast<double>(c.local_ghost_exchanges);
       mine[18] += static_cast<double>(c.local_searches);
+      mine[19] += static_cast<double>(c.local_nodes_gathered);
+      mine[20] += static_cast<double>(c.interface_nodes);
+      mine[21] += static_cast<double>(c.local_master_facets_read);
+      mine[22] += static_cast<double>(c.local_normals);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -726,6 +730,10 @@ void Output::finish(bool converged, int n_steps) {
     e["contact_surface_facets"] = static_cast<std::int64_t>(d[16]);
     e["contact_ghost_exchanges"] = static_cast<std::int64_t>(d[17]);
     e["contact_searches"] = static_cast<std::int64_t>(d[18]);
+    e["contact_interface_nodes_gathered"] = static_cast<std::int64_t>(d[19]);
+    e["contact_interface_nodes"] = static_cast<std::int64_t>(d[20]);
+    e["contact_master_facets_read"] = static_cast<std::int64_t>(d[21]);
+    e["contact_normals_computed"] = static_cast<std::int64_t>(d[22]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

@@ -85,6 +85,14 @@ struct ContactReport {
   /// records it sent to the owners, at the last evaluation.
   std::int64_t local_contact_nodes = 0;
   std::int64_t local_nodal_records = 0;
+  /// The interface nodes whose displacements this rank's evaluation scattered at the last
+  /// evaluation (all contact interfaces; set on the first report only), and all of them.
+  std::int64_t local_nodes_gathered = 0;
+  std::int64_t interface_nodes = 0;
+  /// Master facets (surface facets of self contact) and nodes the integration of this rank
+  /// read at the last evaluation, and the slave nodes whose averaged normals it computed.
+  std::int64_t local_master_facets_read = 0;
+  std::int64_t local_normals = 0;
 };
 
 /// A probe located in the mesh: the cell that contains it and its reference coordinates.
