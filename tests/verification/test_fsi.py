@@ -509,7 +509,8 @@ def test_bad_input():
 
 
 if __name__ == "__main__":
-    tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_nonmatching,
+    tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_fieldsplit,
+             test_fsi1_nonmatching,
              test_fsi1_extruded, test_fsi1_extruded_parallel, test_flap3d_energy,
              test_fsi3_startup, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
              test_fsi3_time_order]
