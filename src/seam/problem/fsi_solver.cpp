@@ -310,9 +310,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   la::Vector layout(comm.get(), sys.n_owned());
   const la::Gather gather(layout, all);
   // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
-  // (docs/fsi.md, "Linear solvers"); `auto` keeps the direct solver, as for fluids.
+  // (docs/fsi.md, "Linear solvers"); `auto` keeps the direct solver.
   const auto choice =
-      choose_linear_solver(config.solver.linear, dim, sys.n_unknowns(), SystemKind::fluid);
+      choose_linear_solver(config.solver.linear, dim, sys.n_unknowns(), SystemKind::fsi);
   const bool iterative = choice.kind == la::SolverKind::iterative;
   if (iterative && !sys.taylor_hood())
     SEAM_THROW(InputError,
