@@ -31,7 +31,7 @@ EXAMPLE = os.path.join(HERE, "..", "examples", "dfg_cylinder")
 CD_REF = 5.57954
 
 
-def run(seam, np, level, solver, case):
+def run(seam, np, level, solver, case, options=()):
     folder = tempfile.mkdtemp(prefix="seam_bench_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -49,6 +49,8 @@ def run(seam, np, level, solver, case):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     out = os.path.join(folder, "out")
     cmd = [seam, "run", os.path.join(folder, "case.yaml"), "-o", out, "--quiet"]
+    if options:
+        cmd += ["--"] + list(options)
     if np > 1:
         cmd = ["mpirun", "--oversubscribe", "-np", str(np)] + cmd
     load = os.getloadavg()[0]
@@ -80,6 +82,9 @@ def main():
                         help="comma-separated values of solver.linear (direct, iterative, auto)")
     parser.add_argument("--np", type=int, default=1)
     parser.add_argument("--case", choices=("2d1", "2d3"), default="2d1")
+    parser.add_argument("--options", default="",
+                        help="PETSc options passed after -- to every run, e.g. "
+                        "'-pc_fieldsplit_schur_precondition selfp'")
     args = parser.parse_args()
     levels = [int(k) for k in args.levels.split(",")]
     solvers = args.solvers.split(",")
@@ -93,7 +98,7 @@ def main():
     for level in levels:
         cpu = {}
         for solver in solvers:
-            r = run(args.seam, args.np, level, solver, args.case)
+            r = run(args.seam, args.np, level, solver, args.case, args.options.split())
             cpu[solver] = r["cpu"]
             direct = r["solver"].startswith("direct")
             error = "%+8.4f%%" % (100 * (r["cd"] / CD_REF - 1)) if args.case == "2d1" else "-"

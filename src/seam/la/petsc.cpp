@@ -658,6 +658,37 @@ void default_option(const char* name, const char* value) {
   own_defaults().insert(name);
 }
 
+// The defaults of a velocity | pressure Schur fieldsplit whose option prefix is `prefix`
+// ("-fieldsplit_" for the fluid alone) and whose blocks are named u and p.
+void schur_defaults(const std::string& prefix, const std::string& u, const std::string& p,
+                    LinearSolver::VelocityBlock velocity) {
+  const auto set = [](const std::string& name, const char* value) {
+    default_option(name.c_str(), value);
+  };
+  for (const auto& block : {u, p}) set(prefix + block + "_ksp_type", "preonly");
+  const std::string pu = prefix + u + "_pc_";
+  if (velocity == LinearSolver::VelocityBlock::amg) {
+    set(pu + "type", "hypre");
+    set(pu + "hypre_type", "boomeramg");
+    set(pu + "hypre_boomeramg_relax_type_all", "l1scaled-Jacobi");
+    set(pu + "hypre_boomeramg_coarsen_type", "HMIS");
+    set(pu + "hypre_boomeramg_interp_type", "ext+i");
+  } else {
+    set(pu + "type", "bjacobi");
+  }
+  set(prefix + p + "_pc_type", "hypre");
+  set(prefix + p + "_pc_hypre_type", "boomeramg");
+}
+
+// An index set of the owned global rows `rows`.
+IS index_set(MPI_Comm comm, std::span<const PetscInt> rows) {
+  IS is = nullptr;
+  check(ISCreateGeneral(comm, static_cast<PetscInt>(rows.size()), rows.data(), PETSC_COPY_VALUES,
+                        &is),
+        "ISCreateGeneral");
+  return is;
+}
+
 } // namespace
 
 void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second,
@@ -672,15 +703,12 @@ void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const P
   PC pc = nullptr;
   check(KSPGetPC(ksp_, &pc), "KSPGetPC");
   check(PCSetType(pc, PCFIELDSPLIT), "PCSetType");
-  IS is[2] = {nullptr, nullptr};
   const std::span<const PetscInt> rows[2] = {first, second};
   const char* names[2] = {"u", "p"};
   for (int k = 0; k < 2; ++k) {
-    check(ISCreateGeneral(comm, static_cast<PetscInt>(rows[k].size()), rows[k].data(),
-                          PETSC_COPY_VALUES, &is[k]),
-          "ISCreateGeneral");
-    check(PCFieldSplitSetIS(pc, names[k], is[k]), "PCFieldSplitSetIS");
-    check(ISDestroy(&is[k]), "ISDestroy");
+    IS is = index_set(comm, rows[k]);
+    check(PCFieldSplitSetIS(pc, names[k], is), "PCFieldSplitSetIS");
+    check(ISDestroy(&is), "ISDestroy");
   }
   check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
   check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER),
@@ -693,19 +721,84 @@ void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const P
   // matrix, on which one BoomerAMG V-cycle does better than ILU(0); on the velocity block
   // BoomerAMG with l1-scaled Jacobi smoothing keeps the iterations per Newton step from
   // growing under refinement of the steady problem, where ILU(0)'s grow (146, 302, 1078).
-  for (const char* name : {"-fieldsplit_u_ksp_type", "-fieldsplit_p_ksp_type"})
-    default_option(name, "preonly");
-  if (velocity == VelocityBlock::amg) {
-    default_option("-fieldsplit_u_pc_type", "hypre");
-    default_option("-fieldsplit_u_pc_hypre_type", "boomeramg");
-    default_option("-fieldsplit_u_pc_hypre_boomeramg_relax_type_all", "l1scaled-Jacobi");
-    default_option("-fieldsplit_u_pc_hypre_boomeramg_coarsen_type", "HMIS");
-    default_option("-fieldsplit_u_pc_hypre_boomeramg_interp_type", "ext+i");
-  } else {
-    default_option("-fieldsplit_u_pc_type", "bjacobi");
+  // Measured on DFG 2D-1 and 2D-3 (docs/fluid.md, "Solving"): the selfp Schur approximation
+  // is a pressure Laplacian-like matrix, on which one BoomerAMG V-cycle does better than
+  // ILU(0); on the velocity block BoomerAMG with l1-scaled Jacobi smoothing keeps the
+  // iterations per Newton step from growing under refinement of the steady problem, where
+  // ILU(0)'s grow (146, 302, 1078).
+  schur_defaults("-fieldsplit_", "u", "p", velocity);
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+}
+
+void LinearSolver::set_fsi_fields(std::span<const PetscInt> structure,
+                                  std::span<const PetscInt> fluid, std::span<const PetscInt> mesh,
+                                  std::span<const double> modes, VelocityBlock velocity) {
+  SEAM_CHECK(kind_ == SolverKind::iterative, InternalError,
+             "a fieldsplit preconditioner for the direct solver");
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm), "PetscObjectGetComm");
+  check(KSPSetType(ksp_, KSPFGMRES), "KSPSetType");
+  check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCFIELDSPLIT), "PCSetType");
+  // The structure's near-null space, orthonormalized (MatNullSpaceCreate wants it so), goes
+  // with its index set: PCFIELDSPLIT gives it to the block's matrix, where GAMG finds it.
+  const auto n_s = static_cast<PetscInt>(structure.size());
+  const std::size_t n_modes = structure.empty() ? 0 : modes.size() / structure.size();
+  long long counts[2] = {static_cast<long long>(n_s), static_cast<long long>(n_modes)};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG_LONG, MPI_MAX, comm);
+  const bool any_structure = counts[0] > 0;
+  const auto n_modes_all = static_cast<std::size_t>(counts[1]);
+  std::vector<Vec> vecs(n_modes_all, nullptr);
+  for (std::size_t k = 0; k < n_modes_all; ++k) {
+    check(VecCreateMPI(comm, n_s, PETSC_DETERMINE, &vecs[k]), "VecCreateMPI");
+    PetscScalar* v = nullptr;
+    check(VecGetArray(vecs[k], &v), "VecGetArray");
+    for (PetscInt q = 0; q < n_s; ++q) v[q] = modes[k * structure.size() + q];
+    check(VecRestoreArray(vecs[k], &v), "VecRestoreArray");
+    for (std::size_t l = 0; l < k; ++l) {
+      PetscScalar dot = 0.0;
+      check(VecDot(vecs[k], vecs[l], &dot), "VecDot");
+      check(VecAXPY(vecs[k], -dot, vecs[l]), "VecAXPY");
+    }
+    check(VecNormalize(vecs[k], nullptr), "VecNormalize");
   }
-  default_option("-fieldsplit_p_pc_type", "hypre");
-  default_option("-fieldsplit_p_pc_hypre_type", "boomeramg");
+  MatNullSpace nsp = nullptr;
+  if (any_structure)
+    check(MatNullSpaceCreate(comm, PETSC_FALSE, static_cast<PetscInt>(vecs.size()), vecs.data(),
+                             &nsp),
+          "MatNullSpaceCreate");
+  for (auto& v : vecs) check(VecDestroy(&v), "VecDestroy");
+  const std::span<const PetscInt> rows[3] = {structure, fluid, mesh};
+  const char* names[3] = {"s", "f", "m"};
+  for (int k = 0; k < 3; ++k) {
+    IS is = index_set(comm, rows[k]);
+    if (k == 0 && nsp)
+      check(PetscObjectCompose(reinterpret_cast<PetscObject>(is), "nearnullspace",
+                               reinterpret_cast<PetscObject>(nsp)),
+            "PetscObjectCompose");
+    check(PCFieldSplitSetIS(pc, names[k], is), "PCFieldSplitSetIS");
+    check(ISDestroy(&is), "ISDestroy");
+  }
+  if (nsp) check(MatNullSpaceDestroy(&nsp), "MatNullSpaceDestroy");
+  check(PCFieldSplitSetType(pc, PC_COMPOSITE_MULTIPLICATIVE), "PCFieldSplitSetType");
+  // The blocks' defaults (docs/fsi.md, "Linear solvers"); the command line wins.
+  for (const char* name :
+       {"-fieldsplit_s_ksp_type", "-fieldsplit_f_ksp_type", "-fieldsplit_m_ksp_type"})
+    default_option(name, "preonly");
+  // GAMG's default Chebyshev/Jacobi smoothing converged slowly on the thin flag of FSI1
+  // (214 FGMRES iterations per Newton step, 126 with SOR; docs/fsi.md).
+  default_option("-fieldsplit_s_pc_type", "gamg");
+  default_option("-fieldsplit_s_mg_levels_pc_type", "sor");
+  default_option("-fieldsplit_m_pc_type", "hypre");
+  default_option("-fieldsplit_m_pc_hypre_type", "boomeramg");
+  default_option("-fieldsplit_f_pc_type", "fieldsplit");
+  default_option("-fieldsplit_f_pc_fieldsplit_detect_saddle_point", "true");
+  default_option("-fieldsplit_f_pc_fieldsplit_type", "schur");
+  default_option("-fieldsplit_f_pc_fieldsplit_schur_fact_type", "lower");
+  default_option("-fieldsplit_f_pc_fieldsplit_schur_precondition", "selfp");
+  schur_defaults("-fieldsplit_f_fieldsplit_", "0", "1", velocity);
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 }
 

@@ -250,6 +250,16 @@ public:
   /// -fieldsplit_u_, -fieldsplit_p_ and -pc_fieldsplit_ override the defaults. Collective.
   void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second,
                   VelocityBlock velocity);
+  /// The monolithic fluid-structure system (structure | fluid | fluid mesh) for the iterative
+  /// kind: FGMRES preconditioned by a multiplicative (block Gauss-Seidel) PCFIELDSPLIT over
+  /// the three fields: GAMG with the rigid-body near-null space `modes` (mode-major over the
+  /// owned structure rows) on the structure block, on the fluid block the fluid's Schur
+  /// fieldsplit (as set_fields; the pressure rows found as the zero diagonal of the
+  /// Taylor-Hood block), one BoomerAMG V-cycle on the mesh block. Options with the prefixes
+  /// -fieldsplit_s_, -fieldsplit_f_, -fieldsplit_m_ override the defaults. Collective.
+  void set_fsi_fields(std::span<const PetscInt> structure, std::span<const PetscInt> fluid,
+                      std::span<const PetscInt> mesh, std::span<const double> modes,
+                      VelocityBlock velocity);
   /// The relative tolerance of the next solves, unless the command line set -ksp_rtol.
   void set_relative_tolerance(double rtol);
   /// Keeps the preconditioner (GAMG's hierarchy, a factorization) from one solve to the next

@@ -68,6 +68,7 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
                                    std::string(fem::name(type)) +
                                    " cells; seam's fluids use tri6, quad9, tet10, hex27 "
                                    "(Taylor-Hood) or tri3, quad4, tet4, hex8 (stabilized)");
+      if (is_fluid && !fluid::is_taylor_hood(type)) taylor_hood_ = false;
       cell_fluid_[c] = is_fluid ? fluid_index.at(body.material) : -1;
       cell_solid_[c] = is_fluid ? -1 : solid_index.at(body.material);
       cell_body[c] = static_cast<int>(b);
@@ -240,13 +241,18 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
   std::vector<PetscInt> own(n_raw(), -1);
   for (std::size_t n = 0; n < n_nodes_; ++n)
     for (int i = 0; i < dim; ++i)
-      if (solid_node_[n] && prescribed_[d_dof(n, i)] < 0) own[d_dof(n, i)] = next++;
+      if (solid_node_[n] && prescribed_[d_dof(n, i)] < 0) {
+        structure_raw_.push_back(d_dof(n, i));
+        own[d_dof(n, i)] = next++;
+      }
+  end_structure_ = next;
   for (std::size_t n = 0; n < n_nodes_; ++n) {
     if (!fluid_node_[n]) continue;
     for (int i = 0; i < dim; ++i)
       if (on_interface[n].first < 0 && prescribed_[f_dof(n, i)] < 0) own[f_dof(n, i)] = next++;
     if (pressure_node_[n]) own[f_dof(n, dim)] = next++;
   }
+  end_fluid_ = next;
   for (std::size_t n = 0; n < n_nodes_; ++n)
     if (fluid_node_[n] && on_interface[n].first < 0)
       for (int i = 0; i < dim; ++i)

@@ -12,6 +12,7 @@
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fsi_system.hpp"
+#include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/progress.hpp"
 #include "seam/problem/step_control.hpp"
@@ -310,7 +311,32 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   std::iota(all.begin(), all.end(), PetscInt{0});
   la::Vector layout(comm.get(), sys.n_owned());
   const la::Gather gather(layout, all);
-  la::LinearSolver solver(comm.get(), la::SolverKind::direct);
+  // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
+  // (docs/fsi.md, "Linear solvers"); `auto` keeps the direct solver.
+  const auto choice =
+      choose_linear_solver(config.solver.linear, dim, sys.n_unknowns(), SystemKind::fsi);
+  const bool iterative = choice.kind == la::SolverKind::iterative;
+  if (iterative && !sys.taylor_hood())
+    SEAM_THROW(InputError,
+               "solver.linear: 'iterative' with an 'fsi' interface needs Taylor-Hood fluid cells "
+               "(tri6, quad9, tet10, hex27): its fieldsplit finds the pressure as the zero "
+               "diagonal of the fluid block; use 'direct'");
+  const auto velocity_block = config.time.integrator == io::Integrator::generalized_alpha
+                                  ? la::LinearSolver::VelocityBlock::ilu
+                                  : la::LinearSolver::VelocityBlock::amg;
+  const std::string solver_name =
+      describe(choice, velocity_block == la::LinearSolver::VelocityBlock::amg
+                           ? "FGMRES + structure | fluid | mesh fieldsplit: GAMG, Schur (BoomerAMG "
+                             "velocity, BoomerAMG selfp), BoomerAMG"
+                           : "FGMRES + structure | fluid | mesh fieldsplit: GAMG, Schur (ILU(0) "
+                             "velocity, BoomerAMG selfp), BoomerAMG");
+  la::LinearSolver solver(comm.get(), choice.kind);
+  if (iterative) {
+    std::vector<PetscInt> s_rows, f_rows, m_rows;
+    sys.owned_fields(s_rows, f_rows, m_rows);
+    solver.set_fsi_fields(s_rows, f_rows, m_rows, sys.structure_rigid_modes(), velocity_block);
+  }
+  long long linear_solves = 0, linear_iterations = 0;
   std::vector<double> x(all.size(), 0.0), raw, dx_all;
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
@@ -341,6 +367,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     j["wall_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     j["newton_iterations"] = newton_iterations;
+    j["linear_solver"] = solver_name;
+    j["linear_solves"] = linear_solves;
+    j["linear_iterations"] = linear_iterations;
     auto& tj = j["timings"];
     for (const char* phase : {"assembly", "condensation", "linear_solve", "output"})
       tj[phase] = timers.get(phase);
@@ -470,12 +499,21 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       b.copy_from(r);
       b.scale(-1.0);
       bool solved = false;
+      // Inexact Newton (Dembo, Eisenstat & Steihaug 1982), as for fluids: the forcing term
+      // min(1e-2, |r| / |r_ref|) keeps the convergence quadratic.
+      if (iterative)
+        solver.set_relative_tolerance(
+            std::clamp(reference > 0.0 ? rn / reference : 1e-2, 1e-10, 1e-2));
+      dx.zero();
       {
         ScopedTimer timer(timers, "linear_solve");
         solved = solver.solve(J, b, dx);
       }
+      ++linear_solves;
+      linear_iterations += solver.last_iterations();
       if (!solved) {
-        failure = "the linear solver failed (MUMPS)";
+        failure = iterative ? "the linear solver failed (FGMRES + fieldsplit)"
+                            : "the linear solver failed (MUMPS)";
         break;
       }
       gather(dx, dx_all);

@@ -415,4 +415,37 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
   return out;
 }
 
+void FsiSystem::owned_fields(std::vector<PetscInt>& structure, std::vector<PetscInt>& fluid,
+                             std::vector<PetscInt>& mesh) const {
+  structure.clear();
+  fluid.clear();
+  mesh.clear();
+  for (PetscInt k = first_owned_; k < first_owned_ + n_owned_; ++k)
+    (k < end_structure_ ? structure : k < end_fluid_ ? fluid : mesh).push_back(k);
+}
+
+std::vector<double> FsiSystem::structure_rigid_modes() const {
+  const PetscInt begin = std::min(first_owned_, end_structure_);
+  const PetscInt end = std::min(first_owned_ + n_owned_, end_structure_);
+  const auto n = static_cast<std::size_t>(end - begin);
+  const int n_modes = dim_ == 2 ? 3 : 6;
+  std::vector<double> modes(n_modes * n, 0.0);
+  for (std::size_t q = 0; q < n; ++q) {
+    const auto a = structure_raw_[begin + q];
+    const auto node = a / dim_;
+    const int i = static_cast<int>(a % dim_);
+    const double* x = &mesh_->x[node * dim_];
+    modes[i * n + q] = 1.0; // translations
+    // Rotations about the coordinate axes: (-y, x, 0), and in 3D (0, -z, y), (z, 0, -x).
+    const double r2[2] = {-x[1], x[0]};
+    if (i < 2) modes[dim_ * n + q] = r2[i];
+    if (dim_ == 3) {
+      const double rx[3] = {0.0, -x[2], x[1]}, ry[3] = {x[2], 0.0, -x[0]};
+      modes[4 * n + q] = rx[i];
+      modes[5 * n + q] = ry[i];
+    }
+  }
+  return modes;
+}
+
 } // namespace seam::problem

@@ -83,6 +83,17 @@ public:
   bool has_pressure(std::int32_t n) const { return pressure_node_[n] != 0; }
   bool is_fluid_cell(std::int32_t c) const { return cell_fluid_[c] >= 0; }
   const std::vector<FsiCoupling>& couplings() const { return couplings_; }
+  /// The owned condensed unknowns of each field (global numbers): the structure d, the fluid
+  /// (u, p) and the fluid mesh m, numbered in three consecutive ranges (the fieldsplit
+  /// preconditioner of `linear: iterative`, docs/fsi.md "Linear solvers").
+  void owned_fields(std::vector<PetscInt>& structure, std::vector<PetscInt>& fluid,
+                    std::vector<PetscInt>& mesh) const;
+  /// The rigid-body modes (3 in 2D, 6 in 3D: translations, rotations about the origin) on
+  /// the owned structure unknowns of owned_fields, mode-major: the near-null space of the
+  /// structure block for GAMG.
+  std::vector<double> structure_rigid_modes() const;
+  /// Whether every fluid cell is a Taylor-Hood cell (no stabilized equal-order cells).
+  bool taylor_hood() const { return taylor_hood_; }
   /// Whether raw dof a holds a prescribed value (a `velocity` or `dirichlet` condition).
   bool is_prescribed(std::size_t a) const { return prescribed_[a] >= 0; }
 
@@ -174,6 +185,9 @@ private:
   }
   DofMap rows_; ///< R
   PetscInt n_unknowns_ = 0, n_owned_ = 0, first_owned_ = 0;
+  PetscInt end_structure_ = 0, end_fluid_ = 0; ///< the fields' ranges of the unknowns
+  std::vector<std::size_t> structure_raw_;     ///< the raw d dof of each structure unknown
+  bool taylor_hood_ = true;
   /// The last Jacobian made from triplets: its handle, the options it was made with and its
   /// triplet count (assemble then sets only its values).
   mutable Mat pattern_of_ = nullptr;

@@ -13,7 +13,14 @@ LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, P
     break;
   }
   // The rules in the order they are tested; the first that applies decides.
-  if (system == SystemKind::fluid) return {la::SolverKind::direct, "auto: a fluid"};
+  if (system == SystemKind::fsi)
+    return {la::SolverKind::direct, "auto: fluid-structure interaction"};
+  if (system == SystemKind::fluid) {
+    if (dim == 3 && dofs >= auto_iterative_fluid_dofs_3d)
+      return {la::SolverKind::iterative, "auto: a 3D fluid, " + std::to_string(dofs) + " dofs >= " +
+                                             std::to_string(auto_iterative_fluid_dofs_3d)};
+    return {la::SolverKind::direct, "auto: a fluid"};
+  }
   if (system == SystemKind::saddle_point) return {la::SolverKind::direct, "auto: a saddle point"};
   if (dim == 2) return {la::SolverKind::direct, "auto: 2D"};
   const auto n = std::to_string(dofs), limit = std::to_string(auto_iterative_dofs);

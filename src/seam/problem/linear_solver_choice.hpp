@@ -21,17 +21,26 @@ namespace seam::problem {
 /// and fluids (below).
 inline constexpr PetscInt auto_iterative_dofs = 100000;
 
-/// Fluids stay direct at any size (bench/dfg_benchmark.py, docs/performance.md
+/// 2D fluids stay direct at any size (bench/dfg_benchmark.py, docs/performance.md
 /// "Incompressible flow: direct against iterative"): on DFG 2D-1 the fieldsplit solver
 /// (BoomerAMG on the velocity block) took 2.43, 3.06, 4.96, 9.21 times MUMPS's CPU time on
 /// 3.7k, 13.6k, 51.7k and 204k dofs, the ratio growing with the mesh; on 20 generalized-alpha
 /// steps of DFG 2D-3 (ILU(0) on the velocity block) 0.75, 0.82, 0.98 times, rising towards 1
 /// as its Krylov iterations grow (10.6, 13.6, 23.7 per Newton step), a gain within the scatter
-/// of CPU times on this shared machine (some 30 %). auto takes the iterative solver only where
-/// it measured faster by more than that scatter, which no fluid did.
+/// of CPU times on this shared machine (some 30 %). In 3D (below) the fieldsplit was faster at
+/// both sizes above 20k dofs by about 20 %, less than that scatter, but consistently, with the
+/// ratio falling as the mesh grows and half of MUMPS's memory: 3D fluids from 40k dofs go
+/// iterative.
 
-/// What the Newton system is, as far as the choice goes.
-enum class SystemKind { solid, saddle_point, fluid };
+/// 3D fluids of at least this many dofs take the iterative solver (bench: a steady channel
+/// around a rigid flap, tet10 P2/P1, docs/fluid.md "3D"): the fieldsplit took 1.09, 0.81 and
+/// 0.78 times MUMPS's CPU time on 8.3k, 22.4k and 46.0k dofs, with 18-33 FGMRES iterations
+/// per Newton step, and 0.53 of its memory on 46.0k (MUMPS's fill grows faster in 3D).
+inline constexpr PetscInt auto_iterative_fluid_dofs_3d = 40000;
+
+/// What the Newton system is, as far as the choice goes. Fluid-structure interaction stays
+/// direct (its fieldsplit measured slower than MUMPS, docs/fsi.md "Linear solvers").
+enum class SystemKind { solid, saddle_point, fluid, fsi };
 
 struct LinearSolverChoice {
   la::SolverKind kind;
