@@ -689,6 +689,18 @@ IS index_set(MPI_Comm comm, std::span<const PetscInt> rows) {
   return is;
 }
 
+// FGMRES (restart 200; AMG cycles in the blocks are not fixed linear operators) with a
+// PCFIELDSPLIT preconditioner on `ksp`; returns the preconditioner and sets `comm`.
+PC fieldsplit_pc(KSP ksp, MPI_Comm& comm) {
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp), &comm), "PetscObjectGetComm");
+  check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+  check(KSPGMRESSetRestart(ksp, 200), "KSPGMRESSetRestart");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCFIELDSPLIT), "PCSetType");
+  return pc;
+}
+
 } // namespace
 
 void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second,
@@ -696,13 +708,7 @@ void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const P
   SEAM_CHECK(kind_ == SolverKind::iterative, InternalError,
              "a fieldsplit preconditioner for the direct solver");
   MPI_Comm comm = PETSC_COMM_WORLD;
-  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm), "PetscObjectGetComm");
-  // The AMG cycles below are not fixed linear operators: flexible GMRES.
-  check(KSPSetType(ksp_, KSPFGMRES), "KSPSetType");
-  check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
-  PC pc = nullptr;
-  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCFIELDSPLIT), "PCSetType");
+  PC pc = fieldsplit_pc(ksp_, comm);
   const std::span<const PetscInt> rows[2] = {first, second};
   const char* names[2] = {"u", "p"};
   for (int k = 0; k < 2; ++k) {
@@ -721,11 +727,6 @@ void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const P
   // matrix, on which one BoomerAMG V-cycle does better than ILU(0); on the velocity block
   // BoomerAMG with l1-scaled Jacobi smoothing keeps the iterations per Newton step from
   // growing under refinement of the steady problem, where ILU(0)'s grow (146, 302, 1078).
-  // Measured on DFG 2D-1 and 2D-3 (docs/fluid.md, "Solving"): the selfp Schur approximation
-  // is a pressure Laplacian-like matrix, on which one BoomerAMG V-cycle does better than
-  // ILU(0); on the velocity block BoomerAMG with l1-scaled Jacobi smoothing keeps the
-  // iterations per Newton step from growing under refinement of the steady problem, where
-  // ILU(0)'s grow (146, 302, 1078).
   schur_defaults("-fieldsplit_", "u", "p", velocity);
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 }
@@ -736,12 +737,7 @@ void LinearSolver::set_fsi_fields(std::span<const PetscInt> structure,
   SEAM_CHECK(kind_ == SolverKind::iterative, InternalError,
              "a fieldsplit preconditioner for the direct solver");
   MPI_Comm comm = PETSC_COMM_WORLD;
-  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm), "PetscObjectGetComm");
-  check(KSPSetType(ksp_, KSPFGMRES), "KSPSetType");
-  check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
-  PC pc = nullptr;
-  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCFIELDSPLIT), "PCSetType");
+  PC pc = fieldsplit_pc(ksp_, comm);
   // The structure's near-null space, orthonormalized (MatNullSpaceCreate wants it so), goes
   // with its index set: PCFIELDSPLIT gives it to the block's matrix, where GAMG finds it.
   const auto n_s = static_cast<PetscInt>(structure.size());
