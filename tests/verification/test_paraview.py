@@ -31,6 +31,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import contact_analysis as C  # noqa: E402
@@ -81,8 +82,10 @@ def probe(pvd, png, color):
     attempts = [None] * 3 if shutil.which("Xvfb") else []
     attempts.append([pvpython(), "--force-offscreen-rendering", PROBE, pvd, png, color])
     errors = []
-    for cmd in attempts:
+    for k, cmd in enumerate(attempts):
         server, env = None, None
+        if k > 0:
+            time.sleep(3.0 * k)  # a failed window creation was seen to recur for seconds
         if cmd is None:
             server, display = virtual_display()
             if server is None:
@@ -99,9 +102,13 @@ def probe(pvd, png, color):
         for line in p.stdout.splitlines():
             if line.startswith("PARAVIEW_REPORT "):
                 return json.loads(line[len("PARAVIEW_REPORT "):])
-        errors.append("%s (DISPLAY %s): exit %d\n%s\n%s"
+        # VTK's own messages (e.g. "bad X server connection", "Could not find a decent
+        # visual") come before the stack trace that fills the end of stderr.
+        messages = [line for line in p.stderr.splitlines()
+                    if "ERR" in line or "X server" in line or "visual" in line.lower()]
+        errors.append("%s (DISPLAY %s): exit %d\n%s\n%s\n%s"
                       % (" ".join(cmd), env["DISPLAY"] if env else "none", p.returncode,
-                         p.stdout[-1500:], p.stderr[-1500:]))
+                         "\n".join(messages[:10]), p.stdout[-1500:], p.stderr[-1500:]))
     raise AssertionError("pvpython could not read %s:\n%s" % (pvd, "\n".join(errors)))
 
 
