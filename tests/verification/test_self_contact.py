@@ -110,6 +110,20 @@ def two_blocks_surface(dimension, geo, tilt=False, np=1, options=""):
     return f_surface[axis]
 
 
+def test_held_pairs_follow_the_state():
+    """Pairs held by the pair cycling guard (forced from each step's second search by
+    SEAM_HOLD_SELF_PAIRS=1) are integrated at the current positions: the two blocks equal the
+    slave/master interface, at np 1 and 3."""
+    geo = G.tied_rectangles(0.26, 0.11, kind="quad")
+    os.environ["SEAM_HOLD_SELF_PAIRS"] = "1"
+    try:
+        f1 = two_blocks_surface(2, geo, tilt=True)
+        f3 = two_blocks_surface(2, geo, tilt=True, np=3)
+    finally:
+        del os.environ["SEAM_HOLD_SELF_PAIRS"]
+    H.assert_close(f3, f1, rtol=1e-10, what="np 3 vs np 1")
+
+
 def test_two_blocks_surface_2d():
     geo = G.tied_rectangles(0.26, 0.11, kind="quad")
     two_blocks_surface(2, geo)
@@ -484,7 +498,8 @@ def test_surface_bad_input():
 
 
 if __name__ == "__main__":
-    H.main([test_two_blocks_surface_2d, test_two_blocks_surface_standard_friction_quadratic,
+    H.main([test_two_blocks_surface_2d, test_held_pairs_follow_the_state,
+            test_two_blocks_surface_standard_friction_quadratic,
             test_two_blocks_surface_3d, test_two_blocks_surface_3d_tet10,
             test_ring_closes_onto_itself, test_ring_3d_equals_2d, test_bar_impact,
             test_surface_bad_input])

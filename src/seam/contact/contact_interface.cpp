@@ -246,6 +246,7 @@ void ContactInterface::set_master_facets(std::span<const std::int64_t> facet_ids
   g.mesh_nodes.resize(node_ids.size());
   for (std::size_t i = 0; i < node_ids.size(); ++i)
     g.mesh_nodes[i] = master_mesh_nodes_[static_cast<std::size_t>(node_ids[i])];
+  ghost_side_nodes_.assign(node_ids.begin(), node_ids.end());
   // The facet type from its node count (dim - 1 dimensional facets of one order each).
   g.types.resize(facet_ids.size());
   for (std::size_t f = 0; f < facet_ids.size(); ++f) {
@@ -265,6 +266,17 @@ void ContactInterface::set_master_facets(std::span<const std::int64_t> facet_ids
                "': a ghosted master facet has ", n, " nodes");
     g.types[f] = t;
   }
+}
+
+void ContactInterface::refresh_master_coordinates() {
+  if (!ghosted_) return;
+  const int dim = this->dim();
+  // The side the search cut the ghosts from: the surface of self contact, else the master side.
+  const auto& source = self_ ? slave_.coordinates : master_.coordinates;
+  auto& x = ghost_master_.coordinates;
+  for (std::size_t i = 0; i < ghost_side_nodes_.size(); ++i)
+    for (int c = 0; c < dim; ++c)
+      x[i * dim + c] = source[static_cast<std::size_t>(ghost_side_nodes_[i]) * dim + c];
 }
 
 local_index ContactInterface::integration_facet(local_index f) const {

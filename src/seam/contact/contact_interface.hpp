@@ -188,6 +188,10 @@ public:
                          std::span<const local_index> offsets,
                          std::span<const local_index> connectivity,
                          std::span<const std::int64_t> node_ids, std::span<const double> coords);
+  /// The ghosted master facets' coordinates taken anew from the sides placed at the current
+  /// state (place()), for an iteration that keeps the candidate pairs of an earlier search
+  /// instead of searching (the search hands the ghosts with their coordinates).
+  void refresh_master_coordinates();
   /// Master facets and nodes the integration reads (the ghosted ones, or the whole side).
   local_index n_master_facets_read() const { return integration_master().n_facets(); }
   local_index n_master_nodes_read() const {
@@ -348,6 +352,7 @@ private:
   bool ghosted_ = false;
   std::vector<std::int64_t> ghost_ids_;
   meshtying::InterfaceSide ghost_master_;
+  std::vector<std::int64_t> ghost_side_nodes_; ///< side-local id of each ghost_master_ node
   std::vector<std::int32_t> master_mesh_nodes_;
   // Rigid obstacle: its reference and current surfaces, the motion (a plane's reference corners
   // too) and the displacement at the last update.

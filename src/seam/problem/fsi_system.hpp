@@ -90,7 +90,9 @@ public:
                     std::vector<PetscInt>& mesh) const;
   /// The rigid-body modes (3 in 2D, 6 in 3D: translations, rotations about the origin) on
   /// the owned structure unknowns of owned_fields, mode-major: the near-null space of the
-  /// structure block for GAMG.
+  /// structure block for GAMG. Built here rather than by MatNullSpaceCreateRigidBody
+  /// (la::Matrix::set_near_null_space), which needs every node's dim unknowns in one block:
+  /// the structure block leaves out prescribed components, so a node may hold fewer.
   std::vector<double> structure_rigid_modes() const;
   /// Whether every fluid cell is a Taylor-Hood cell (no stabilized equal-order cells).
   bool taylor_hood() const { return taylor_hood_; }
