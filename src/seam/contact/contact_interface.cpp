@@ -686,7 +686,7 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
 }
 
 void ContactInterface::linearize(std::span<const double> lambda, std::span<const char> want_gap,
-                                 Linearization& out) const {
+                                 Linearization& out, std::span<const double> step_start) const {
   const int dim = this->dim();
   out.force_tangent.clear();
   out.gap_gradient.clear();
@@ -756,15 +756,28 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
             for (int k = k_begin; k < k_end; ++k) {
               const auto sk =
                   static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(k)]);
-              add_row(out.operator_gradient, row, lin.dD(j, k),
-                      -x_slave[sk * dim + static_cast<std::size_t>(a)], nullptr, 0.0);
+              // With step_start: +dx_k (the operators applied to the step's increment).
+              const double xk = x_slave[sk * dim + static_cast<std::size_t>(a)];
+              const double w =
+                  step_start.empty()
+                      ? -xk
+                      : xk - mesh_->x[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim + a] -
+                            step_start[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim + a];
+              add_row(out.operator_gradient, row, lin.dD(j, k), w, nullptr, 0.0);
             }
             for (int p = 0; p < lin.n_master_nodes(); ++p) {
               const auto mp =
                   static_cast<std::size_t>(lin.master_nodes[static_cast<std::size_t>(p)]);
-              add_row(out.operator_gradient, row, lin.dM(j, p),
-                      integration_master().coordinates[mp * dim + static_cast<std::size_t>(a)],
-                      nullptr, 0.0);
+              const double xp =
+                  integration_master().coordinates[mp * dim + static_cast<std::size_t>(a)];
+              double w = xp;
+              if (!step_start.empty()) {
+                const auto d = mesh_dof_of_master(lin.master_nodes[static_cast<std::size_t>(p)]);
+                w = d < 0 ? 0.0
+                          : -(xp - mesh_->x[static_cast<std::size_t>(d + a)] -
+                              step_start[static_cast<std::size_t>(d + a)]);
+              }
+              add_row(out.operator_gradient, row, lin.dM(j, p), w, nullptr, 0.0);
             }
           }
         }

@@ -267,8 +267,12 @@ public:
   /// The derivatives of this part's contact force at fixed `lambda_n` and of the weighted gaps
   /// of the slave nodes with `want_gap[j]` != 0. Only slave facets with a node that has a
   /// nonzero multiplier or a wanted gap are linearized.
+  /// With `step_start` (the mesh displacement at the start of the step, dim per mesh node;
+  /// two bodies and self contact) operator_gradient is instead the derivative of
+  /// sum_k D_jk dx_k - sum_l M_jl dx_l at fixed dx = x - x_start (the slip increment of
+  /// energy-momentum friction, problem/contact_energy_momentum_friction.cpp).
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
-                 Linearization& out) const;
+                 Linearization& out, std::span<const double> step_start = {}) const;
 
   /// Whether gap_blocks is available: line2 facets (2D) or tri3 and quad4 facets (3D) on both
   /// sides, two bodies or self contact, or the slave side against a rigid plane or sphere.

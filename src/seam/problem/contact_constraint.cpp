@@ -101,8 +101,10 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
     // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
+    // With friction between deformable bodies (contact_energy_momentum_friction.cpp); friction
+    // against a rigid obstacle keeps the force of the end of the step.
     s.discrete_gradient = config.time.integrator == io::Integrator::energy_momentum &&
-                          !s.friction && s.itf.has_gap_blocks();
+                          s.itf.has_gap_blocks() && !(s.friction && s.itf.rigid());
     saddle_point_ = saddle_point_ || s.discrete_gradient;
     // The slave facets start with the bulk partition (the facets of this rank's cells).
     const mesh::Region region = itf.surface.empty()
@@ -491,15 +493,17 @@ void ContactConstraint::add_force(la::Vector& r) const {
   std::vector<double> values;
   for (const auto& s : sides_) {
     if (s.discrete_gradient) {
-      // -sum_j lambda_j grad_d g~_j (the nodes this rank owns).
+      // -sum_j lambda_n,j grad_d g~_j (the nodes this rank owns); with friction the mortar
+      // force of the tangential parts follows.
+      const auto lambda_n = normal_multipliers(s);
       for (const auto& e : s.em_gradient) {
         rows.push_back(global_dof(e.dof));
-        values.push_back(s.lambda[e.j] * e.value);
+        values.push_back(lambda_n[e.j] * e.value);
       }
-      continue;
+      if (!s.friction) continue;
     }
     std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
-    s.itf.add_force(s.part, s.lambda, f);
+    s.itf.add_force(s.part, s.discrete_gradient ? tangential_multipliers(s) : s.lambda, f);
     if (!s.T_inverse.empty()) {
       // Slave forces of the modified basis: f_S = T^-T (D lambda n).
       const auto& nodes = s.itf.slave().mesh_nodes;
@@ -701,6 +705,7 @@ void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vec
   if (!s.discrete_gradient) s.itf.linearize(s.lambda, s.active, s.lin);
   if (s.discrete_gradient && !s.em_tangent_current) {
     evaluate_discrete_gradient(s, s.em_displacement, true);
+    if (s.friction) energy_momentum_friction_tangent(s);
     s.em_tangent_current = true;
   }
   s.work_seconds += cpu_seconds() - cpu;
@@ -745,7 +750,9 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
         bv.push_back(v);
       }
     };
-    if (s.discrete_gradient) {
+    if (s.discrete_gradient && s.friction) {
+      energy_momentum_friction_columns(s, bi, bj, bv);
+    } else if (s.discrete_gradient) {
       // B^T: column j is -grad_d g~_j.
       for (const auto& e : s.em_gradient) {
         bi.push_back(global_dof(e.dof));
@@ -1073,11 +1080,14 @@ std::vector<std::string> ContactConstraint::describe() const {
           multipliers, s.c_n);
     std::string text = line;
     if (s.discrete_gradient)
-      text += ", energy-momentum contact force (discrete gradient of the weighted gaps)";
+      text += s.friction
+                  ? ", energy-momentum contact force (discrete gradient of the weighted "
+                    "gaps; friction through D and M of t_n+1 on the step's increment)"
+                  : ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
       text += ", contact force of the end of the step (energy-momentum contact needs line2 "
               "faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a rigid plane or "
-              "sphere, no friction)";
+              "sphere, and no friction against a rigid obstacle)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",

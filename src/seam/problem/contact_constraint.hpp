@@ -296,6 +296,23 @@ private:
   /// (em_tangent, from the Hessians of the weighted gaps: only when a matrix is built;
   /// contact_energy_momentum.cpp). Collective.
   void evaluate_discrete_gradient(Side& s, std::span<const double> u, bool tangent);
+  // Energy-momentum contact with friction (contact_energy_momentum_friction.cpp): the normal
+  // part n_j . lambda_j of the Cartesian multiplier takes the discrete-gradient force, the
+  // tangential part P_j lambda_j the mortar force of D and M at x_{n+1}, whose work in the step
+  // is sum_j P_j lambda_j . u~_j with the slip increment u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l.
+  /// The normal multipliers: n_j . lambda_j on a frictional side, lambda_j otherwise.
+  std::vector<double> normal_multipliers(const Side& s) const;
+  /// P_j lambda_j (dim per slave node) of a frictional side.
+  std::vector<double> tangential_multipliers(const Side& s) const;
+  /// s.slip = u~_j of the step, summed on the owners of the slave nodes. Collective.
+  void energy_momentum_slip(Side& s, std::span<const double> u_mesh) const;
+  /// The derivative of the frictional energy-momentum force beyond -lambda_n (H / 2 + the
+  /// correction's): the turning normal in lambda_n and P_j, the operators' derivatives (in
+  /// em_tangent), and the derivatives of D_j and of u~_j for the friction rows (in s.lin).
+  void energy_momentum_friction_tangent(Side& s);
+  /// This rank's columns of B^T for a frictional energy-momentum side.
+  void energy_momentum_friction_columns(const Side& s, std::vector<PetscInt>& bi,
+                                        std::vector<PetscInt>& bj, std::vector<double>& bv) const;
   // Friction (contact_friction.cpp).
   void init_friction(Side& s, const io::Interface& config, double c_n);
   /// Slip increments, stick/slip/inactive status with the cycling guard, complementarity

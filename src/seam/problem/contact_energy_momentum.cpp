@@ -1,6 +1,4 @@
 // Energy-momentum contact (docs/contact_dynamics.md §4; Hesch & Betsch 2009, Gonzalez 1996):
-
-#include "seam/parallel/exchange.hpp"
 // the contact force of the energy-momentum step (in the residual f_int - f_ext + f_c) is
 // f_c = -sum_j lambda_j grad_d g~_j (lambda_j >= 0 pushes the bodies apart: the gradient of
 // g~_j points from the slave towards the master side) with the discrete gradient
@@ -14,6 +12,7 @@
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/parallel/exchange.hpp"
 
 #include <Eigen/Dense>
 #include <mpi.h>
@@ -216,8 +215,10 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built,
   // and only of the blocks with a slave node that carries a multiplier: the Hessian enters
   // the matrix times lambda_j (H / 2 and, through H dx, the correction's derivative).
-  std::vector<char> carries(s.lambda.size(), 0);
-  for (std::size_t j = 0; j < carries.size(); ++j) carries[j] = s.lambda[j] != 0.0;
+  // With friction the normal part n_j . lambda_j of the Cartesian multiplier.
+  const std::vector<double> lambda = normal_multipliers(s);
+  std::vector<char> carries(lambda.size(), 0);
+  for (std::size_t j = 0; j < carries.size(); ++j) carries[j] = lambda[j] != 0.0;
   s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient, middle,
                    carries);
   const auto dof_of = [](const contact::GapBlock& b, int v) { return b.dof(v); };
@@ -262,8 +263,8 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
             const double h = b.hessian[(r * nv + v) * nv + k];
             hdx += h * (u[static_cast<std::size_t>(col)] - u0[static_cast<std::size_t>(col)]);
             // This rank's part of -lambda_j d(grad g~_j(x_mid))/dx_{n+1} = -lambda_j H / 2.
-            if (s.lambda[j] != 0.0 && h != 0.0)
-              s.em_tangent.push_back({dof, col, -0.5 * s.lambda[j] * h});
+            if (lambda[j] != 0.0 && h != 0.0)
+              s.em_tangent.push_back({dof, col, -0.5 * lambda[j] * h});
           }
         local.push_back({dof, b.slave[r], hessian_dx, hdx});
       }
@@ -319,12 +320,12 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
     for (Eigen::Index i = 0; i < n; ++i)
       if (dg.value(i) != 0.0)
         s.em_gradient.push_back({j, dofs[static_cast<std::size_t>(i)], -dg.value(i)});
-    if (tangent && s.lambda[j] != 0.0)
+    if (tangent && lambda[j] != 0.0)
       for (Eigen::Index k = 0; k < n; ++k)
         for (Eigen::Index i = 0; i < n; ++i)
           if (const double v = dg.correction_jacobian(i, k); v != 0.0)
             s.em_tangent.push_back({dofs[static_cast<std::size_t>(i)],
-                                    dofs[static_cast<std::size_t>(k)], -s.lambda[j] * v});
+                                    dofs[static_cast<std::size_t>(k)], -lambda[j] * v});
     begin = stop;
   }
 }

@@ -641,6 +641,51 @@ TEST(EnergyMomentumTangent, RigidSphere3dTri3Dual) {
   EXPECT_LT(e.constraint, 3e-8);
 }
 
+/// Friction with energy-momentum contact (contact_energy_momentum_friction.cpp): the normal part
+/// of the Cartesian multiplier takes the discrete-gradient force, the tangential part the
+/// mortar force of D and M at x_{n+1}, the slip increment is sum_k D_jk dx_k - sum_l M_jl dx_l.
+/// The block pressed onto the base and dragged (stick, slip and lifted nodes).
+Case energy_momentum_friction_case(std::string name, const std::string& interface, int dim) {
+  Case c = dim == 2 ? energy_momentum_case(std::move(name), interface)
+                    : energy_momentum_boxes_case(std::move(name), interface, false);
+  c.top_x = "0.002";
+  return c;
+}
+
+constexpr double tolerance_friction = 1e-8;
+
+TEST(EnergyMomentumTangent, Friction2dLine2Dual) {
+  expect_mixed(check(energy_momentum_friction_case("em_friction_2d_line2_dual",
+                                                   std::string(blocks_2d) + "}", 2),
+                     3),
+               tolerance_friction);
+}
+
+TEST(EnergyMomentumTangent, Friction2dLine2Standard) {
+  expect_mixed(
+      check(energy_momentum_friction_case("em_friction_2d_line2_standard",
+                                          std::string(blocks_2d) + ", multiplier: standard}", 2),
+            3),
+      tolerance_friction);
+}
+
+TEST(EnergyMomentumTangent, FrictionSelfContact2dLine2Dual) {
+  expect_mixed(check(energy_momentum_friction_case(
+                         "em_friction_surface_2d_line2_dual",
+                         "{name: joint, type: contact, surface: [bottom, base_top], friction: "
+                         "{model: coulomb, coefficient: 0.3}}",
+                         2),
+                     3),
+               tolerance_friction);
+}
+
+TEST(EnergyMomentumTangent, Friction3dQuad4Dual) {
+  expect_mixed(check(energy_momentum_friction_case("em_friction_3d_quad4_dual",
+                                                   std::string(blocks_2d) + "}", 3),
+                     2),
+               tolerance_friction);
+}
+
 /// Without the Hessians of the weighted gaps (the term -lambda_j H / 2 of the matrix and H dx
 /// in the derivative of the correction) the Newton system is no longer the derivative of the
 /// discretized equations: the check fails. (Without only the normals' curvature
