@@ -503,7 +503,10 @@ void ContactConstraint::add_force(la::Vector& r) const {
       if (!s.friction) continue;
     }
     std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
-    s.itf.add_force(s.part, s.discrete_gradient ? tangential_multipliers(s) : s.lambda, f);
+    if (s.discrete_gradient)
+      add_energy_momentum_friction_force(s, f);
+    else
+      s.itf.add_force(s.part, s.lambda, f);
     if (!s.T_inverse.empty()) {
       // Slave forces of the modified basis: f_S = T^-T (D lambda n).
       const auto& nodes = s.itf.slave().mesh_nodes;

@@ -298,8 +298,18 @@ private:
   void evaluate_discrete_gradient(Side& s, std::span<const double> u, bool tangent);
   // Energy-momentum contact with friction (contact_energy_momentum_friction.cpp): the normal
   // part n_j . lambda_j of the Cartesian multiplier takes the discrete-gradient force, the
-  // tangential part P_j lambda_j the mortar force of D and M at x_{n+1}, whose work in the step
-  // is sum_j P_j lambda_j . u~_j with the slip increment u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l.
+  // tangential part P_j lambda_j the mortar force of the mean operators D = (D^n + D^{n+1}) / 2,
+  // M = (M^n + M^{n+1}) / 2, whose work in the step is sum_j P_j lambda_j . u~_j with the slip
+  // increment u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l.
+  /// Visits this rank's entries of the mean operators: (slave node j, mesh node, weight) with
+  /// the weight D_jk / 2 on slave node k and -M_jl / 2 on master node l, for the operators of
+  /// x_{n+1} (this rank's part) and of x_n (the diagonal on the owner of j).
+  void
+  for_each_mean_operator(const Side& s,
+                         const std::function<void(std::size_t, std::int32_t, double)>& visit) const;
+  /// This rank's part of the tangential force of a frictional energy-momentum side, added to f
+  /// (mesh dofs).
+  void add_energy_momentum_friction_force(const Side& s, std::span<double> f) const;
   /// The normal multipliers: n_j . lambda_j on a frictional side, lambda_j otherwise.
   std::vector<double> normal_multipliers(const Side& s) const;
   /// P_j lambda_j (dim per slave node) of a frictional side.

@@ -3,20 +3,25 @@
 //
 // The Cartesian multiplier lambda_j of slave node j splits along the averaged normal n_j of
 // x_{n+1} into lambda_n,j = n_j . lambda_j and lambda_t,j = P_j lambda_j (P_j = I - n_j n_j^T).
-// The contact force in the residual is
+// With the mean mortar operators of the step, D = (D^n + D^{n+1}) / 2 and M = (M^n + M^{n+1}) / 2
+// (D^n, M^n those of the last converged step, fixed in the step), the contact force in the
+// residual is
 //   f_c = -sum_j lambda_n,j grad_d g~_j(x_n, x_{n+1})                 (the discrete gradient)
-//         + sum_j (slave k: D_jk lambda_t,j,  master l: -M_jl lambda_t,j)   (D, M of x_{n+1}),
+//         + sum_j (slave k: D_jk lambda_t,j,  master l: -M_jl lambda_t,j),
 // and the frictional condition (contact/friction.hpp) uses the slip increment
-//   u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l,   dx = x_{n+1} - x_n,
-// the step's relative motion weighted by the same operators. Then f_c . dx =
-// -sum_j lambda_n,j (g~_j(x_{n+1}) - g~_j(x_n)) + sum_j lambda_t,j . u~_j: in persistent
-// contact the step's energy changes by exactly minus the frictional work sum_j lambda_t,j . u~_j
-// (interfaces.csv's dissipation), which the condition makes >= 0 (lambda_t,j is parallel to
-// P_j u~_j in slip, P_j u~_j = 0 in stick). The rows of D and M sum alike, so both parts are
-// free of force: the linear momentum is exact. The tangential part's moment about any point
-// is -sum_j G_j(x_mid) x lambda_t,j with G_j(y) = sum_k D_jk y_k - sum_l M_jl y_l; its
-// tangential component is parallel to lambda_t,j up to the gap, so what remains is of the size
-// of the weighted gap vector at the midpoint (zero for g~_j(x_mid) = 0 on flat faces).
+//   u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l,   dx = x_{n+1} - x_n.
+// Then f_c . dx = -sum_j lambda_n,j (g~_j(x_{n+1}) - g~_j(x_n)) + sum_j lambda_t,j . u~_j: in
+// persistent contact the step's energy changes by exactly minus the frictional work
+// sum_j lambda_t,j . u~_j (interfaces.csv's dissipation), which the condition makes >= 0
+// (lambda_t,j is parallel to P_j u~_j in slip, P_j u~_j = 0 in stick). The rows of D and M
+// sum alike, so the force has no resultant: the linear momentum is exact. Its moment about the
+// midpoint is G_j(x_mid) x lambda_t,j with G_j(y) = sum_k D_jk y_k - sum_l M_jl y_l, and
+//   G_j(x_mid) = (G^n_j(x_n) + G^{n+1}_j(x_{n+1})) / 2 + (G^n_j - G^{n+1}_j)(dx) / 4:
+// the weighted gap vectors of the two ends (zero normal part in persistent contact) and the
+// change of the operators times the increment (second order in the step). With the operators of
+// x_{n+1} alone the moment held -G^{n+1}_j(dx) / 2 x lambda_t,j instead, half the weighted slip
+// against the traction: first order, and large where n_j is tilted against the motion (the
+// averaged normals at the rims of extruded rings: 1.5e-3 of the angular momentum).
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/parallel/exchange.hpp"
@@ -46,39 +51,64 @@ std::vector<double> ContactConstraint::tangential_multipliers(const Side& s) con
   return out;
 }
 
+void ContactConstraint::for_each_mean_operator(
+    const Side& s, const std::function<void(std::size_t, std::int32_t, double)>& visit) const {
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    if (s.part.D[j] != 0.0) visit(j, nodes[j], 0.5 * s.part.D[j]);
+    if (s.D_diag_old[j] != 0.0 && s.node_owners[j] == disc_.comm().rank())
+      visit(j, nodes[j], 0.5 * s.D_diag_old[j]);
+  }
+  for (const auto* coupling : {&s.part.D_coupling, &s.D_coupling_old})
+    for (const auto& e : *coupling)
+      visit(static_cast<std::size_t>(e.row), nodes[static_cast<std::size_t>(e.col)], 0.5 * e.value);
+  for (const auto* M : {&s.part.M, &s.M_old})
+    for (const auto& e : *M)
+      visit(static_cast<std::size_t>(e.slave), e.master_node, -0.5 * e.value);
+}
+
 void ContactConstraint::energy_momentum_slip(Side& s, std::span<const double> u_mesh) const {
   const int dim = disc_.dim();
-  const auto& nodes = s.itf.slave().mesh_nodes;
-  const auto dx = [&](std::int32_t node, int c) {
-    const auto i = static_cast<std::size_t>(node) * dim + c;
-    return u_mesh[i] - u_mesh_start_[i];
-  };
+  // The operators "of the last converged step" before the first one has converged: those of
+  // the first evaluation.
+  if (!s.has_old) {
+    s.D_diag_old = s.D_diag;
+    s.D_coupling_old = s.part.D_coupling;
+    s.M_old = s.part.M;
+    s.has_old = true;
+  }
   std::fill(s.slip.begin(), s.slip.end(), 0.0);
-  // This rank's parts of D and M.
-  for (std::size_t j = 0; j < nodes.size(); ++j)
-    if (s.part.D[j] != 0.0)
-      for (int c = 0; c < dim; ++c) s.slip[j * dim + c] += s.part.D[j] * dx(nodes[j], c);
-  for (const auto& e : s.part.D_coupling)
-    for (int c = 0; c < dim; ++c)
-      s.slip[static_cast<std::size_t>(e.row) * dim + c] +=
-          e.value * dx(nodes[static_cast<std::size_t>(e.col)], c);
-  for (const auto& e : s.part.M)
-    for (int c = 0; c < dim; ++c)
-      s.slip[static_cast<std::size_t>(e.slave) * dim + c] -= e.value * dx(e.master_node, c);
+  for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
+    for (int c = 0; c < dim; ++c) {
+      const auto i = static_cast<std::size_t>(node) * dim + c;
+      s.slip[j * dim + c] += w * (u_mesh[i] - u_mesh_start_[i]);
+    }
+  });
   parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, s.slip, dim);
+}
+
+void ContactConstraint::add_energy_momentum_friction_force(const Side& s,
+                                                           std::span<double> f) const {
+  const int dim = disc_.dim();
+  const auto lambda_t = tangential_multipliers(s);
+  for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
+    for (int c = 0; c < dim; ++c)
+      f[static_cast<std::size_t>(node) * dim + c] += w * lambda_t[j * dim + c];
+  });
 }
 
 void ContactConstraint::energy_momentum_friction_tangent(Side& s) {
   const int dim = disc_.dim();
-  const auto& nodes = s.itf.slave().mesh_nodes;
   const auto& normals = s.itf.normals();
   const auto lambda_n = normal_multipliers(s);
   const auto lambda_t = tangential_multipliers(s);
-  // The operators' part: d(D) lambda_t and -d(M) lambda_t at fixed lambda_t, with D_j and the
-  // operators' derivative in u~ (contracted with dx) for the friction rows of active nodes.
+  // The operators' part (D^{n+1} and M^{n+1} enter the mean by half): d(D) lambda_t and
+  // -d(M) lambda_t at fixed lambda_t, and for the friction rows of the active nodes the
+  // derivative of D_j and of the operators in u~ (contracted with dx).
   contact::Linearization lin;
   s.itf.linearize(lambda_t, s.active, lin, u_mesh_start_);
-  s.em_tangent.insert(s.em_tangent.end(), lin.force_tangent.begin(), lin.force_tangent.end());
+  for (auto& e : lin.force_tangent) s.em_tangent.push_back({e.row, e.col, 0.5 * e.value});
+  for (auto& e : lin.operator_gradient) e.value *= 0.5;
   s.lin.D_gradient = std::move(lin.D_gradient);
   s.lin.operator_gradient = std::move(lin.operator_gradient);
   // The turning normal: d lambda_n,j = q_j . dx with q_j = lambda_j^T dn_j/dx, and
@@ -127,20 +157,15 @@ void ContactConstraint::energy_momentum_friction_tangent(Side& s) {
       }
     }
   };
-  for (std::size_t j = 0; j < nodes.size(); ++j) add_turning(j, nodes[j], s.part.D[j]);
-  for (const auto& e : s.part.D_coupling)
-    add_turning(static_cast<std::size_t>(e.row), nodes[static_cast<std::size_t>(e.col)], e.value);
-  for (const auto& e : s.part.M)
-    add_turning(static_cast<std::size_t>(e.slave), e.master_node, -e.value);
+  for_each_mean_operator(s, add_turning);
 }
 
 void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vector<PetscInt>& bi,
                                                          std::vector<PetscInt>& bj,
                                                          std::vector<double>& bv) const {
   const int dim = disc_.dim();
-  const auto& nodes = s.itf.slave().mesh_nodes;
   const auto& normals = s.itf.normals();
-  // Column (j, c): -n_j,c grad_d g~_j + the mortar force of P_j e_c.
+  // Column (j, c): -n_j,c grad_d g~_j + the mean operators' force of P_j e_c.
   for (const auto& e : s.em_gradient)
     for (int c = 0; c < dim; ++c) {
       const double v = e.value * normals[e.j * dim + static_cast<std::size_t>(c)];
@@ -161,10 +186,7 @@ void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vec
         bv.push_back(v);
       }
   };
-  for (std::size_t j = 0; j < nodes.size(); ++j) add(j, nodes[j], s.part.D[j]);
-  for (const auto& e : s.part.D_coupling)
-    add(static_cast<std::size_t>(e.row), nodes[static_cast<std::size_t>(e.col)], e.value);
-  for (const auto& e : s.part.M) add(static_cast<std::size_t>(e.slave), e.master_node, -e.value);
+  for_each_mean_operator(s, add);
 }
 
 } // namespace seam::problem

@@ -108,8 +108,8 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   const bool init = !s.has_old;
   std::fill(s.slip.begin(), s.slip.end(), 0.0);
   if (s.discrete_gradient) {
-    // Energy-momentum contact: the step's increment weighted by D and M of x_{n+1}, whose
-    // product with lambda_t is the work of the tangential force
+    // Energy-momentum contact: the step's increment weighted by the mean of the operators of
+    // x_n and x_{n+1}, whose product with lambda_t is the work of the tangential force
     // (contact_energy_momentum_friction.cpp).
     energy_momentum_slip(s, u_mesh);
   } else if (s.itf.rigid()) {
@@ -376,21 +376,11 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
   for (std::size_t j = 0; j < n; ++j)
     if (inverse_row[j].empty()) inverse_row[j].emplace_back(j, 1.0);
   if (s.discrete_gradient) {
-    // Energy-momentum: u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l at fixed operators (the
-    // diagonal D_jj on the owner below).
-    for (const auto& e : s.part.M) {
-      const auto j = static_cast<std::size_t>(e.slave);
-      if (!s.active[j]) continue;
-      for (int a = 0; a < dim; ++a)
-        add_gradient(j, disc_.global_dof(e.master_node, a), coef_u, a, -e.value);
-    }
-    for (const auto& e : s.part.D_coupling) {
-      const auto j = static_cast<std::size_t>(e.row);
-      if (!s.active[j]) continue;
-      for (int a = 0; a < dim; ++a)
-        add_gradient(j, disc_.global_dof(nodes[static_cast<std::size_t>(e.col)], a), coef_u, a,
-                     e.value);
-    }
+    // Energy-momentum: u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l at fixed (mean) operators.
+    for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
+      if (s.active[j])
+        for (int a = 0; a < dim; ++a) add_gradient(j, disc_.global_dof(node, a), coef_u, a, w);
+    });
   } else if (!rigid) {
     // u~ at fixed operators: sum_l (M_jl - M_jl^n) dx_l (this rank's parts of M and M^n) and,
     // with standard multipliers, -sum_{k != j} (D_jk - D_jk^n) dx_k.
@@ -451,7 +441,7 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
           if (rigid)
             v = s.D[j] * ((a == b ? 1.0 : 0.0) - normal[a] * normal[b]);
           else if (a == b)
-            v = s.discrete_gradient ? s.D_diag[j] : -(s.D_diag[j] - s.D_diag_old[j]);
+            v = s.discrete_gradient ? 0.0 : -(s.D_diag[j] - s.D_diag_old[j]);
           if (v != 0.0) add_gradient(j, disc_.global_dof(nodes[k], b), coef_u, a, tk * v);
         }
   }
