@@ -276,6 +276,9 @@ private:
     };
     std::vector<GradientEntry> em_gradient;
     std::vector<contact::DofTriplet> em_tangent;
+    /// Friction: G_j(x_mid) = sum_k D_jk x_mid,k - sum_l M_jl x_mid,l with the mean operators
+    /// (dim per slave node, replicated).
+    std::vector<double> em_gap_mid;
     /// The interface displacement of the last evaluate() (the tangent is built from it when
     /// a matrix is needed) and whether em_tangent belongs to it.
     std::vector<double> em_displacement;

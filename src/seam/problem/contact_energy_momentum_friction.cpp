@@ -26,9 +26,65 @@
 
 #include "seam/parallel/exchange.hpp"
 
+#include <Eigen/Dense>
+
 #include <map>
 
 namespace seam::problem {
+
+namespace {
+
+/// The step's rigid rotation of the slave nodes around node j (its normal ring): y_b the
+/// midpoint positions about their centroid, dx_b the increments, J = sum_b (|y_b|^2 I -
+/// y_b y_b^T) and theta = J^-1 sum_b y_b x dx_b, the least-squares rotation (about z only in 2D).
+struct Ring {
+  std::vector<std::int32_t> nodes;
+  std::vector<Eigen::Vector3d> y, dx;
+  Eigen::Matrix3d J_inv = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d theta = Eigen::Vector3d::Zero();
+};
+
+Eigen::Vector3d vector3(const double* v, int dim) {
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  for (int c = 0; c < dim; ++c) out(c) = v[c];
+  return out;
+}
+
+Ring ring_of(const contact::ContactInterface& itf, std::size_t j, int dim,
+             std::span<const double> X, std::span<const double> u, std::span<const double> u0) {
+  Ring r;
+  const auto j_local = static_cast<local_index>(j);
+  for (const auto k : itf.normal_ring(std::span<const local_index>(&j_local, 1)))
+    r.nodes.push_back(itf.slave().mesh_nodes[static_cast<std::size_t>(k)]);
+  auto& dx = r.dx;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto node : r.nodes) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero(), d = Eigen::Vector3d::Zero();
+    for (int c = 0; c < dim; ++c) {
+      const auto i = static_cast<std::size_t>(node) * dim + c;
+      x(c) = X[i] + 0.5 * (u[i] + u0[i]);
+      d(c) = u[i] - u0[i];
+    }
+    r.y.push_back(x);
+    dx.push_back(d);
+    centre += x / static_cast<double>(r.nodes.size());
+  }
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  for (std::size_t b = 0; b < r.y.size(); ++b) {
+    r.y[b] -= centre;
+    J += r.y[b].squaredNorm() * Eigen::Matrix3d::Identity() - r.y[b] * r.y[b].transpose();
+    h += r.y[b].cross(dx[b]);
+  }
+  if (dim == 2)
+    r.J_inv(2, 2) = 1.0 / J(2, 2);
+  else
+    r.J_inv = J.inverse();
+  r.theta = r.J_inv * h;
+  return r;
+}
+
+} // namespace
 
 std::vector<double> ContactConstraint::normal_multipliers(const Side& s) const {
   if (!s.friction) return s.lambda;
@@ -85,6 +141,29 @@ void ContactConstraint::energy_momentum_slip(Side& s, std::span<const double> u_
     }
   });
   parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, s.slip, dim);
+  // Frame indifference: u~_j - theta_j x G_j(x_mid), theta_j the step's rotation of the nodes
+  // around j. A rigid rotation then slips nowhere, and the work conjugate force (the mortar
+  // force of lambda_t and the couple -Omega x y_b, add_energy_momentum_friction_force) has no
+  // moment about the midpoint.
+  const auto& X = disc_.mesh().x;
+  std::vector<double> g(s.slip.size(), 0.0);
+  for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
+    for (int c = 0; c < dim; ++c) {
+      const auto i = static_cast<std::size_t>(node) * dim + c;
+      g[j * dim + c] += w * (X[i] + 0.5 * (u_mesh[i] + u_mesh_start_[i]));
+    }
+  });
+  parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, g, dim);
+  for (std::size_t j = 0; j < s.node_owners.size(); ++j) {
+    if (s.node_owners[j] != disc_.comm().rank()) continue;
+    const Eigen::Vector3d G = vector3(&g[j * dim], dim);
+    if (G.isZero(0.0)) continue;
+    const Eigen::Vector3d correction =
+        ring_of(s.itf, j, dim, X, u_mesh, u_mesh_start_).theta.cross(G);
+    for (int c = 0; c < dim; ++c) s.slip[j * dim + c] -= correction(c);
+  }
+  parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, g, dim);
+  s.em_gap_mid = std::move(g);
 }
 
 void ContactConstraint::add_energy_momentum_friction_force(const Side& s,
@@ -95,6 +174,19 @@ void ContactConstraint::add_energy_momentum_friction_force(const Side& s,
     for (int c = 0; c < dim; ++c)
       f[static_cast<std::size_t>(node) * dim + c] += w * lambda_t[j * dim + c];
   });
+  // The couple on the ring of j: -Omega_j x y_b with Omega_j = J^-1 (G_j(x_mid) x lambda_t,j).
+  for (std::size_t j = 0; j < s.node_owners.size(); ++j) {
+    if (s.node_owners[j] != disc_.comm().rank()) continue;
+    const Eigen::Vector3d G = vector3(&s.em_gap_mid[j * dim], dim);
+    const Eigen::Vector3d lt = vector3(&lambda_t[j * dim], dim);
+    if (G.isZero(0.0) || lt.isZero(0.0)) continue;
+    const Ring r = ring_of(s.itf, j, dim, disc_.mesh().x, s.em_displacement, u_mesh_start_);
+    const Eigen::Vector3d omega = r.J_inv * G.cross(lt);
+    for (std::size_t b = 0; b < r.nodes.size(); ++b) {
+      const Eigen::Vector3d fb = -omega.cross(r.y[b]);
+      for (int c = 0; c < dim; ++c) f[static_cast<std::size_t>(r.nodes[b]) * dim + c] += fb(c);
+    }
+  }
 }
 
 void ContactConstraint::energy_momentum_friction_tangent(Side& s) {
@@ -158,6 +250,101 @@ void ContactConstraint::energy_momentum_friction_tangent(Side& s) {
     }
   };
   for_each_mean_operator(s, add_turning);
+
+  // The frame-indifference correction (energy_momentum_slip): u~_j -= theta_j x G_j and the
+  // couple -Omega_j x y_b on the ring of j, Omega_j = J^-1 (G_j x lambda_t,j).
+  const auto& X = disc_.mesh().x;
+  const std::span<const double> u = s.em_displacement;
+  std::map<std::size_t, Ring> rings;
+  const auto ring = [&](std::size_t j) -> const Ring& {
+    auto it = rings.find(j);
+    if (it == rings.end()) it = rings.emplace(j, ring_of(s.itf, j, dim, X, u, u_mesh_start_)).first;
+    return it->second;
+  };
+  const auto push = [&](std::vector<contact::DofTriplet>& to, std::int64_t row0,
+                        const Eigen::Vector3d& v, std::int64_t col) {
+    for (int c = 0; c < dim; ++c)
+      if (v(c) != 0.0) to.push_back({row0 + c, col, v(c)});
+  };
+  const auto gap_mid = [&](std::size_t j) { return vector3(&s.em_gap_mid[j * dim], dim); };
+  std::vector<char> wanted(s.active.size(), 0);
+  for (std::size_t j = 0; j < wanted.size(); ++j) wanted[j] = s.active[j] || carries(j);
+  // dG_j / dx_{n+1}: the mean operators at fixed positions times half the midpoint's motion,
+  // and the derivative of the operators of x_{n+1} (half) contracted with x_mid.
+  std::vector<double> to_mid(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) to_mid[i] = 0.5 * (u[i] - u_mesh_start_[i]) - X[i];
+  contact::Linearization at_mid;
+  s.itf.linearize(lambda_t, wanted, at_mid, to_mid);
+  std::vector<contact::DofTriplet> dG;
+  for (const auto& e : at_mid.operator_gradient) dG.push_back({e.row, e.col, 0.5 * e.value});
+  for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
+    if (!wanted[j]) return;
+    for (int a = 0; a < dim; ++a)
+      dG.push_back({static_cast<std::int64_t>(j) * dim + a,
+                    static_cast<std::int64_t>(node) * dim + a, 0.5 * w});
+  });
+  for (const auto& e : dG) {
+    const auto j = static_cast<std::size_t>(e.row / dim);
+    if (gap_mid(j).isZero(0.0)) continue;
+    Eigen::Vector3d dg = Eigen::Vector3d::Zero();
+    dg(static_cast<int>(e.row % dim)) = e.value;
+    const Ring& r = ring(j);
+    if (s.active[j])
+      push(s.lin.operator_gradient, static_cast<std::int64_t>(j) * dim, -r.theta.cross(dg), e.col);
+    if (!carries(j)) continue;
+    const Eigen::Vector3d omega = r.J_inv * dg.cross(vector3(&lambda_t[j * dim], dim));
+    for (std::size_t b = 0; b < r.nodes.size(); ++b)
+      push(s.em_tangent, static_cast<std::int64_t>(r.nodes[b]) * dim, -omega.cross(r.y[b]), e.col);
+  }
+  // Through the ring's positions (theta, J, y_b) and the turning normal in lambda_t, on the
+  // owner of j.
+  for (std::size_t j = 0; j < wanted.size(); ++j) {
+    if (!wanted[j] || s.node_owners[j] != disc_.comm().rank()) continue;
+    const Eigen::Vector3d G = gap_mid(j);
+    if (G.isZero(0.0)) continue;
+    const Ring& r = ring(j);
+    const Eigen::Vector3d lt = vector3(&lambda_t[j * dim], dim);
+    const Eigen::Vector3d omega = r.J_inv * G.cross(lt);
+    const auto n_ring = r.nodes.size();
+    // dJ v for the motion dy_b of the midpoint positions.
+    const auto dJ = [&](const std::vector<Eigen::Vector3d>& dy, const Eigen::Vector3d& v) {
+      Eigen::Vector3d out = Eigen::Vector3d::Zero();
+      for (std::size_t b = 0; b < n_ring; ++b)
+        out += 2.0 * r.y[b].dot(dy[b]) * v - dy[b] * r.y[b].dot(v) - r.y[b] * dy[b].dot(v);
+      return out;
+    };
+    std::vector<Eigen::Vector3d> dy(n_ring);
+    for (std::size_t e = 0; e < n_ring; ++e)
+      for (int q = 0; q < dim; ++q) {
+        const auto col = static_cast<std::int64_t>(r.nodes[e]) * dim + q;
+        // x_{n+1} of ring node e along q: dy_b = (delta_be - 1/N) e_q / 2, d dx_b = delta_be e_q.
+        Eigen::Vector3d dh = Eigen::Vector3d::Zero(), eq = Eigen::Vector3d::Zero();
+        eq(q) = 1.0;
+        for (std::size_t b = 0; b < n_ring; ++b) {
+          dy[b] = 0.5 * ((b == e ? 1.0 : 0.0) - 1.0 / static_cast<double>(n_ring)) * eq;
+          dh += dy[b].cross(r.dx[b]);
+        }
+        dh += r.y[e].cross(eq);
+        if (s.active[j]) {
+          const Eigen::Vector3d dtheta = r.J_inv * (dh - dJ(dy, r.theta));
+          push(s.lin.operator_gradient, static_cast<std::int64_t>(j) * dim, -dtheta.cross(G), col);
+        }
+        if (lt.isZero(0.0)) continue;
+        const Eigen::Vector3d domega = -(r.J_inv * dJ(dy, omega));
+        for (std::size_t b = 0; b < n_ring; ++b)
+          push(s.em_tangent, static_cast<std::int64_t>(r.nodes[b]) * dim,
+               -(domega.cross(r.y[b]) + omega.cross(dy[b])), col);
+      }
+    if (!carries(j)) continue;
+    const Turning& t = of(j);
+    const Eigen::Vector3d n = vector3(&normals[j * dim], dim);
+    for (const auto& [col, dn] : t.dn) {
+      const Eigen::Vector3d dlt = -n * t.q.at(col) - lambda_n[j] * vector3(dn.data(), dim);
+      const Eigen::Vector3d domega = r.J_inv * G.cross(dlt);
+      for (std::size_t b = 0; b < n_ring; ++b)
+        push(s.em_tangent, static_cast<std::int64_t>(r.nodes[b]) * dim, -domega.cross(r.y[b]), col);
+    }
+  }
 }
 
 void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vector<PetscInt>& bi,
@@ -187,6 +374,28 @@ void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vec
       }
   };
   for_each_mean_operator(s, add);
+  // The couple's column: Omega_j = J^-1 (G_j x P_j e_c).
+  for (std::size_t j = 0; j < s.node_owners.size(); ++j) {
+    if (s.node_owners[j] != disc_.comm().rank()) continue;
+    const Eigen::Vector3d G = vector3(&s.em_gap_mid[j * dim], dim);
+    if (G.isZero(0.0)) continue;
+    const Ring r = ring_of(s.itf, j, dim, disc_.mesh().x, s.em_displacement, u_mesh_start_);
+    const Eigen::Vector3d n = vector3(&normals[j * dim], dim);
+    for (int c = 0; c < dim; ++c) {
+      Eigen::Vector3d p = -n(c) * n;
+      p(c) += 1.0;
+      const Eigen::Vector3d omega = r.J_inv * G.cross(p);
+      for (std::size_t b = 0; b < r.nodes.size(); ++b) {
+        const Eigen::Vector3d fb = -omega.cross(r.y[b]);
+        for (int a = 0; a < dim; ++a)
+          if (fb(a) != 0.0) {
+            bi.push_back(disc_.global_dof(r.nodes[b], a));
+            bj.push_back(s.lm_index[j] + c);
+            bv.push_back(fb(a));
+          }
+      }
+    }
+  }
 }
 
 } // namespace seam::problem
