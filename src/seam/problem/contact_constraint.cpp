@@ -1085,7 +1085,7 @@ std::vector<std::string> ContactConstraint::describe() const {
     if (s.discrete_gradient)
       text += s.friction
                   ? ", energy-momentum contact force (discrete gradient of the weighted "
-                    "gaps; friction through the step's mean D and M on its increment)"
+                    "gaps; friction: frame-indifferent slip over the step's mean D and M)"
                   : ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
       text += ", contact force of the end of the step (energy-momentum contact needs line2 "

@@ -301,27 +301,29 @@ private:
   void evaluate_discrete_gradient(Side& s, std::span<const double> u, bool tangent);
   // Energy-momentum contact with friction (contact_energy_momentum_friction.cpp): the normal
   // part n_j . lambda_j of the Cartesian multiplier takes the discrete-gradient force, the
-  // tangential part P_j lambda_j the mortar force of the mean operators D = (D^n + D^{n+1}) / 2,
-  // M = (M^n + M^{n+1}) / 2, whose work in the step is sum_j P_j lambda_j . u~_j with the slip
-  // increment u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l.
+  // tangential part P_j lambda_j the work conjugate of the frame-indifferent slip increment
+  // u~_j = G_j(dx) - theta_j x G_j(x_mid) over the mean operators D = (D^n + D^{n+1}) / 2,
+  // M = (M^n + M^{n+1}) / 2 (G_j(y) = sum_k D_jk y_k - sum_l M_jl y_l).
   /// Visits this rank's entries of the mean operators: (slave node j, mesh node, weight) with
   /// the weight D_jk / 2 on slave node k and -M_jl / 2 on master node l, for the operators of
   /// x_{n+1} (this rank's part) and of x_n (the diagonal on the owner of j).
   void
   for_each_mean_operator(const Side& s,
                          const std::function<void(std::size_t, std::int32_t, double)>& visit) const;
-  /// This rank's part of the tangential force of a frictional energy-momentum side, added to f
-  /// (mesh dofs).
+  /// This rank's part of the tangential force of a frictional energy-momentum side (the mean
+  /// operators' force of lambda_t and the couple on the owned nodes' rings), added to f (mesh
+  /// dofs).
   void add_energy_momentum_friction_force(const Side& s, std::span<double> f) const;
   /// The normal multipliers: n_j . lambda_j on a frictional side, lambda_j otherwise.
   std::vector<double> normal_multipliers(const Side& s) const;
   /// P_j lambda_j (dim per slave node) of a frictional side.
   std::vector<double> tangential_multipliers(const Side& s) const;
-  /// s.slip = u~_j of the step, summed on the owners of the slave nodes. Collective.
+  /// s.slip = u~_j of the step on the owners of the slave nodes, and em_gap_mid. Collective.
   void energy_momentum_slip(Side& s, std::span<const double> u_mesh) const;
   /// The derivative of the frictional energy-momentum force beyond -lambda_n (H / 2 + the
-  /// correction's): the turning normal in lambda_n and P_j, the operators' derivatives (in
-  /// em_tangent), and the derivatives of D_j and of u~_j for the friction rows (in s.lin).
+  /// correction's): the turning normal in lambda_n and P_j, the operators' derivatives and the
+  /// couple's (in em_tangent), and the derivatives of D_j and of u~_j for the friction rows
+  /// (in s.lin).
   void energy_momentum_friction_tangent(Side& s);
   /// This rank's columns of B^T for a frictional energy-momentum side.
   void energy_momentum_friction_columns(const Side& s, std::vector<PetscInt>& bi,

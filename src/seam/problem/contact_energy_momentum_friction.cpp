@@ -3,25 +3,21 @@
 //
 // The Cartesian multiplier lambda_j of slave node j splits along the averaged normal n_j of
 // x_{n+1} into lambda_n,j = n_j . lambda_j and lambda_t,j = P_j lambda_j (P_j = I - n_j n_j^T).
-// With the mean mortar operators of the step, D = (D^n + D^{n+1}) / 2 and M = (M^n + M^{n+1}) / 2
-// (D^n, M^n those of the last converged step, fixed in the step), the contact force in the
-// residual is
-//   f_c = -sum_j lambda_n,j grad_d g~_j(x_n, x_{n+1})                 (the discrete gradient)
-//         + sum_j (slave k: D_jk lambda_t,j,  master l: -M_jl lambda_t,j),
-// and the frictional condition (contact/friction.hpp) uses the slip increment
-//   u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l,   dx = x_{n+1} - x_n.
-// Then f_c . dx = -sum_j lambda_n,j (g~_j(x_{n+1}) - g~_j(x_n)) + sum_j lambda_t,j . u~_j: in
-// persistent contact the step's energy changes by exactly minus the frictional work
-// sum_j lambda_t,j . u~_j (interfaces.csv's dissipation), which the condition makes >= 0
-// (lambda_t,j is parallel to P_j u~_j in slip, P_j u~_j = 0 in stick). The rows of D and M
-// sum alike, so the force has no resultant: the linear momentum is exact. Its moment about the
-// midpoint is G_j(x_mid) x lambda_t,j with G_j(y) = sum_k D_jk y_k - sum_l M_jl y_l, and
-//   G_j(x_mid) = (G^n_j(x_n) + G^{n+1}_j(x_{n+1})) / 2 + (G^n_j - G^{n+1}_j)(dx) / 4:
-// the weighted gap vectors of the two ends (zero normal part in persistent contact) and the
-// change of the operators times the increment (second order in the step). With the operators of
-// x_{n+1} alone the moment held -G^{n+1}_j(dx) / 2 x lambda_t,j instead, half the weighted slip
-// against the traction: first order, and large where n_j is tilted against the motion (the
-// averaged normals at the rims of extruded rings: 1.5e-3 of the angular momentum).
+// The normal part takes the discrete-gradient force -lambda_n,j grad_d g~_j(x_n, x_{n+1}). With
+// the mean mortar operators of the step, D = (D^n + D^{n+1}) / 2, M = (M^n + M^{n+1}) / 2 (those
+// of the last converged step fixed in the step), and G_j(y) = sum_k D_jk y_k - sum_l M_jl y_l,
+// the frictional condition (contact/friction.hpp) uses the slip increment
+//   u~_j = G_j(dx) - theta_j x G_j(x_mid),   dx = x_{n+1} - x_n,
+// theta_j the least-squares rotation of the slave nodes around j (its normal ring) in the step,
+// so that no rigid motion slips. The tangential force is its work conjugate: the mortar force of
+// lambda_t,j (slave k: D_jk lambda_t,j, master l: -M_jl lambda_t,j), whose moment about the
+// midpoint is G_j(x_mid) x lambda_t,j, and the couple -Omega_j x y_b on the ring (y_b about its
+// centroid), Omega_j = J_j^-1 (G_j(x_mid) x lambda_t,j), whose moment is the opposite. Then
+//   f_c . dx = -sum_j lambda_n,j (g~_j(x_{n+1}) - g~_j(x_n)) + sum_j lambda_t,j . u~_j:
+// in persistent contact the step's energy changes by exactly minus the frictional work (the
+// dissipation of interfaces.csv, >= 0 by the condition: lambda_t,j is parallel to P_j u~_j in
+// slip, P_j u~_j = 0 in stick), and the force has neither resultant (equal row sums of D and M;
+// the couple) nor moment: linear and angular momentum are exact.
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/parallel/exchange.hpp"

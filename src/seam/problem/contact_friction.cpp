@@ -108,7 +108,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   const bool init = !s.has_old;
   std::fill(s.slip.begin(), s.slip.end(), 0.0);
   if (s.discrete_gradient) {
-    // Energy-momentum contact: the step's increment weighted by the mean of the operators of
+    // Energy-momentum contact: the frame-indifferent increment over the mean of the operators of
     // x_n and x_{n+1}, whose product with lambda_t is the work of the tangential force
     // (contact_energy_momentum_friction.cpp).
     energy_momentum_slip(s, u_mesh);
@@ -376,7 +376,8 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
   for (std::size_t j = 0; j < n; ++j)
     if (inverse_row[j].empty()) inverse_row[j].emplace_back(j, 1.0);
   if (s.discrete_gradient) {
-    // Energy-momentum: u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l at fixed (mean) operators.
+    // Energy-momentum: u~_j = sum_k D_jk dx_k - sum_l M_jl dx_l at fixed (mean) operators (the
+    // operators' derivatives and the rotation's correction are in s.lin.operator_gradient).
     for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
       if (s.active[j])
         for (int a = 0; a < dim; ++a) add_gradient(j, disc_.global_dof(node, a), coef_u, a, w);
