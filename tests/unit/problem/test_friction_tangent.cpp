@@ -645,9 +645,10 @@ TEST(EnergyMomentumTangent, RigidSphere3dTri3Dual) {
 /// of the Cartesian multiplier takes the discrete-gradient force, the tangential part the
 /// mortar force of D and M at x_{n+1}, the slip increment is sum_k D_jk dx_k - sum_l M_jl dx_l.
 /// The block pressed onto the base and dragged (stick, slip and lifted nodes).
-Case energy_momentum_friction_case(std::string name, const std::string& interface, int dim) {
+Case energy_momentum_friction_case(std::string name, const std::string& interface, int dim,
+                                   bool tets = false) {
   Case c = dim == 2 ? energy_momentum_case(std::move(name), interface)
-                    : energy_momentum_boxes_case(std::move(name), interface, false);
+                    : energy_momentum_boxes_case(std::move(name), interface, tets);
   c.top_x = "0.002";
   return c;
 }
@@ -682,6 +683,14 @@ TEST(EnergyMomentumTangent, FrictionSelfContact2dLine2Dual) {
 TEST(EnergyMomentumTangent, Friction3dQuad4Dual) {
   expect_mixed(check(energy_momentum_friction_case("em_friction_3d_quad4_dual",
                                                    std::string(blocks_2d) + "}", 3),
+                     2),
+               tolerance_friction);
+}
+
+TEST(EnergyMomentumTangent, Friction3dTri3Standard) {
+  expect_mixed(check(energy_momentum_friction_case(
+                         "em_friction_3d_tri3_standard",
+                         std::string(blocks_2d) + ", multiplier: standard}", 3, true),
                      2),
                tolerance_friction);
 }
