@@ -122,12 +122,12 @@ def run_rings(dimension, centres, n, yaml, np):
     return rows, itf, newton
 
 
-def free_bodies(dimension, integrator, np=1, n=4, steps=40):
+def free_bodies(dimension, integrator, np=1, n=4, steps=40, centres=CENTRES):
     va, vb = VELOCITIES[dimension]
     yaml = (FREE_YAML.replace("DIM", str(dimension)).replace("VA", va).replace("VB", vb)
             .replace("INTEGRATOR", integrator).replace("STEPS", str(steps))
             .replace("SETFACTORY\n", ""))
-    rows, itf, newton = run_rings(dimension, CENTRES, n, yaml, np)
+    rows, itf, newton = run_rings(dimension, centres, n, yaml, np)
     first = rows[0]
     p0 = [first["momentum_%s" % c] for c in "xyz"]
     l0 = [first["angular_momentum_%s" % c] for c in "xyz"]
@@ -148,7 +148,7 @@ def free_bodies(dimension, integrator, np=1, n=4, steps=40):
                          max(force), dp / scale_p, dl / scale_l, e[-1] / e[0], rise))
     if not any(f > 0 for f in force):
         raise AssertionError("the bodies never touched")
-    return dict(dp=dp / scale_p, dl=dl / scale_l, rise=rise, force=force, energy=e,
+    return dict(dp=dp / scale_p, dl=dl / scale_l, rise=rise, force=force, energy=e, rows=rows,
                 dl_free=angular_before_contact(rows, force) / scale_l,
                 persistent=persistent_steps(rows, newton))
 
@@ -189,6 +189,8 @@ def angular_before_contact(rows, force):
     """Angular momentum drift over the steps before the first contact force, relative."""
     first = next(k for k, f in enumerate(force) if f > 0.0)
     free = rows[:first]
+    if not free:
+        return 0.0
     l0 = [rows[0]["angular_momentum_%s" % c] for c in "xyz"]
     return max(abs(r["angular_momentum_%s" % c] - l0[k]) for r in free
                for k, c in enumerate("xyz"))
@@ -260,6 +262,123 @@ def test_free_bodies_3d():
         raise AssertionError("np 3: angular momentum drift %.3e, energy rise %.3e"
                              % (r3["dl"], r3["rise"]))
     check_np3_equals_np1(r3, r1)
+
+
+# Ring b 0.01 closer than CENTRES put it (centre distance 1.99): the outer circles overlap,
+# and its facets lie up to 0.0092 inside ring a at t = 0.
+OVERLAP_CENTRES = ((0.0, 0.0), (1.96, 0.35))
+
+
+def polygon_moments(points):
+    """Integrals of 1, x, y, x^2, xy, y^2 over the polygon with these counter-clockwise
+    vertices (Green's theorem)."""
+    m = [0.0] * 6
+    for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1]):
+        w = x0 * y1 - x1 * y0
+        m[0] += w / 2
+        m[1] += (x0 + x1) * w / 6
+        m[2] += (y0 + y1) * w / 6
+        m[3] += (x0 * x0 + x0 * x1 + x1 * x1) * w / 12
+        m[4] += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * w / 24
+        m[5] += (y0 * y0 + y0 * y1 + y1 * y1) * w / 12
+    return m
+
+
+def initial_state(centres, n, velocities, radius=1.0, inner=0.6):
+    """Kinetic energy, momentum and angular momentum (z) at t = 0 of the meshed annuli of
+    ring_geo (the outer and inner 4n-gons: straight-sided quads with their nodes on the
+    circles) moving with the linear velocity fields v = (p + a x + b y, q + c x + d y), one
+    (p, a, b, q, c, d) per ring, rho = 1: the consistent mass integrates these exactly."""
+    energy, px, py, lz = 0.0, 0.0, 0.0, 0.0
+    for (cx, cy), (p, a, b, q, c, d) in zip(centres, velocities):
+        k = 4 * n
+        m = [0.0] * 6
+        for r, sign in ((radius, 1.0), (inner, -1.0)):
+            poly = [(cx + r * math.cos(2 * math.pi * i / k), cy + r * math.sin(2 * math.pi * i / k))
+                    for i in range(k)]
+            m = [x + sign * y for x, y in zip(m, polygon_moments(poly))]
+        area, sx, sy, ixx, ixy, iyy = m
+        vx2 = (p * p * area + a * a * ixx + b * b * iyy + 2 * p * a * sx + 2 * p * b * sy
+               + 2 * a * b * ixy)
+        vy2 = (q * q * area + c * c * ixx + d * d * iyy + 2 * q * c * sx + 2 * q * d * sy
+               + 2 * c * d * ixy)
+        energy += 0.5 * (vx2 + vy2)
+        px += p * area + a * sx + b * sy
+        py += q * area + c * sx + d * sy
+        lz += q * sx + c * ixx + d * ixy - p * sy - a * ixy - b * iyy
+    return energy, px, py, lz
+
+
+def test_start_inside_energy_momentum():
+    """The two free rings of test_free_bodies_2d (energy_momentum, 32 x 2 quads each) with ring
+    b starting 0.01 inside ring a: the first step starts with slave nodes beyond the other
+    surface (g~_j(x_n) < 0), where the discrete-gradient step gains -lambda_j g~_j(x_n)
+    (docs/contact_dynamics.md §5). With the velocity update no step may raise the energy by more
+    than 1e-9 of it (the first step against the initial energy, computed from the meshed
+    annuli), no step may change the linear or angular momentum by more than 1e-12 of its
+    scale (the first step against the run without the update), and
+    np = 3 must give the energies and momenta of np = 1 to 1e-10. Without the update
+    (SEAM_KEEP_CONTACT_GAIN=1) the first step must gain more than 1e-3 of the energy: the case
+    shows the gain the update removes."""
+    # VELOCITIES[2] as (p, a, b, q, c, d) of v = (p + a x + b y, q + c x + d y).
+    fields = ((0.5, 0.0, -0.3, 0.0, 0.3, 0.0), (-0.5 - 0.2 * 0.6, 0.0, 0.2, 0.2 * 2.1, -0.2, 0.0))
+    e0, px0, py0, l0 = initial_state(OVERLAP_CENTRES, 8, fields)
+    scale_p, scale_l = 0.5, max(abs(l0), 1.0)
+    runs = {}
+    os.environ["SEAM_KEEP_CONTACT_GAIN"] = "1"
+    try:
+        runs["kept"] = free_bodies(2, "energy_momentum", n=8, steps=20, centres=OVERLAP_CENTRES)
+    finally:
+        del os.environ["SEAM_KEEP_CONTACT_GAIN"]
+    for np in (1, 3):
+        runs[np] = free_bodies(2, "energy_momentum", n=8, steps=20, centres=OVERLAP_CENTRES,
+                               np=np)
+
+    def history(r):
+        """The largest rise of the energy in a step from t = 0 (relative to E_0) and the
+        largest change of p and L_z in a step. Step 1 is compared with the run without the
+        update (the same Newton step; only the velocity update differs), whose momenta equal
+        those of t = 0 as far as the meshed circles match the analytic ones."""
+        e = [e0] + r["energy"]
+        rise = max(b - a for a, b in zip(e, e[1:])) / e0
+        rows = [runs["kept"]["rows"][0]] + r["rows"]
+        dp = max(max(abs(b["momentum_x"] - a["momentum_x"]), abs(b["momentum_y"] - a["momentum_y"]))
+                 for a, b in zip(rows, rows[1:])) / scale_p
+        dl = max(abs(b["angular_momentum_z"] - a["angular_momentum_z"])
+                 for a, b in zip(rows, rows[1:])) / scale_l
+        return rise, dp, dl
+
+    first = runs["kept"]["rows"][0]
+    mesh_p = max(abs(first["momentum_x"] - px0), abs(first["momentum_y"] - py0)) / scale_p
+    mesh_l = abs(first["angular_momentum_z"] - l0) / scale_l
+    print("   without the update, step 1 against t = 0 (analytic): momentum %.1e, angular %.1e"
+          % (mesh_p, mesh_l))
+    if mesh_p > 1e-11 or mesh_l > 1e-11:
+        raise AssertionError("step 1 without the update changed the momenta by %.3e, %.3e"
+                             % (mesh_p, mesh_l))
+
+    kept, r1, r3 = (history(runs[k]) for k in ("kept", 1, 3))
+    print("   E_0 = %.10g, L_0 = %.10g; without the update: largest rise in a step %.3e of E_0; "
+          "with it: %.3e at np 1, %.3e at np 3; largest change in a step of the linear "
+          "momentum %.1e, of the angular momentum %.1e" % (e0, l0, kept[0], r1[0], r3[0],
+                                                         max(r1[1], r3[1]), max(r1[2], r3[2])))
+    if kept[0] < 1e-3:
+        raise AssertionError("without the velocity update the largest gain is only %.3e: the "
+                             "case does not show the gain" % kept[0])
+    for rise, dp, dl in (r1, r3):
+        if rise > 1e-9:
+            raise AssertionError("a step gained %.3e of the energy" % rise)
+        if dp > MOMENTUM_BOUND or dl > MOMENTUM_BOUND:
+            raise AssertionError("momentum drift %.3e, angular %.3e > %.0e"
+                                 % (dp, dl, MOMENTUM_BOUND))
+    worst = 0.0
+    for a, b in zip(runs[1]["rows"], runs[3]["rows"]):
+        for c in ("total_energy", "momentum_x", "momentum_y", "angular_momentum_z"):
+            worst = max(worst, abs(a[c] - b[c]))
+    worst /= max(e0, scale_l)
+    print("   np 3 vs np 1: energies and momenta max diff %.2e" % worst)
+    if worst > 1e-10 or len(runs[1]["rows"]) != len(runs[3]["rows"]):
+        raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -395,7 +514,7 @@ def test_ring_on_obstacles_3d():
 G, RHO, R_OUT, R_IN, NC = 10.0, 1.0, 1.0, 0.8, 6
 
 
-def rings_case(np=1, rings=10, k=4, end=0.35):
+def rings_case(np=1, rings=10, k=4, end=0.3725):
     """examples/rings with N rings in rows of k, run to `end` (the lowest row lands at 0.14,
     the walls are reached at about 0.37). Returns the rows of steps.csv, the plane forces per
     step, the folders and the right wall's position."""
@@ -516,6 +635,12 @@ def check_rings(rows, planes, out, rings, k, width):
         raise AssertionError("momentum balance residual %.3e of m g dt" % worst)
     if above > 1e-10 * energy[-1][2]:
         raise AssertionError("the energy exceeds the work of gravity by %.3e" % above)
+    # The steps to t = 0.36, 0.3625 and 0.37 start with slave nodes beyond the other ring's
+    # surface; without the contact velocity update they gain 4.4, 4.0 and 5.1
+    # (docs/contact_dynamics.md §5).
+    if max(rises) > 1e-9 * energy[-1][2]:
+        raise AssertionError("a step raised the energy above the work of gravity by %.3e"
+                             % max(rises))
     if pen > 0.02 * thickness or walls > 1e-6 * thickness or gap < -1e-8:
         raise AssertionError("penetration %.3e (rings), %.3e (walls), gap %.3e"
                              % (pen, walls, gap))
@@ -523,11 +648,13 @@ def check_rings(rows, planes, out, rings, k, width):
 
 
 def test_rings_example():
-    """The 10-ring CI variant of examples/rings (rows of 4 and 3) to t = 0.35 with the
+    """The 10-ring CI variant of examples/rings (rows of 4 and 3) to t = 0.3725 with the
     energy-momentum scheme: the mesh's mass (analytic) falls freely until the first landing,
     every step balances momentum against gravity and the floor and wall forces to 1e-9, the
-    energy never exceeds the work of gravity, no ring node lies inside another ring by more
-    than 2 % of the wall thickness nor beyond the floor or a wall; np = 3 equals np = 1."""
+    energy never exceeds the work of gravity and no step raises it by more than 1e-9 of that
+    work (three steps after t = 0.35 start with slave nodes beyond the other surface: the
+    contact velocity update), no ring node lies inside another ring by more than 2 % of the
+    wall thickness nor beyond the floor or a wall; np = 3 equals np = 1."""
     rows, planes, work, out, width = rings_case()
     check_rings(rows, planes, out, 10, 4, width)
     H.cleanup(work, out)
@@ -541,5 +668,6 @@ def test_rings_example():
 
 
 if __name__ == "__main__":
-    H.main([test_free_bodies_2d, test_free_bodies_3d, test_ring_on_obstacles_2d,
+    H.main([test_free_bodies_2d, test_free_bodies_3d, test_start_inside_energy_momentum,
+            test_ring_on_obstacles_2d,
             test_ring_on_obstacles_3d, test_rings_example])

@@ -1,0 +1,55 @@
+// The energy an energy-momentum step gains through contact (docs/contact_dynamics.md §5,
+// "Penetration at the start of the step"). With the discrete-gradient force every step satisfies
+//   E_{n+1} - E_n = -sum_j lambda_j g~_j(x_n)   (+ the work of the loads),
+// a loss where a node takes contact from a positive gap and zero in persistent contact. A slave
+// node that starts the step beyond the other surface (g~_j(x_n) < 0: a master node of the last
+// step that self contact makes a slave now, or a node whose pair did not exist at x_n) makes the
+// step gain e_j = -lambda_j g~_j(x_n). The solver removes that gain from the kinetic energy by an
+// impulse along d = sum_j e_j grad g~_j(x_{n+1}) (dynamic_solver.cpp): each g~_j between two
+// deformable bodies is invariant under rigid motions, so d has no resultant and no moment about
+// x_{n+1}, and the impulse keeps both momenta.
+#include "seam/problem/contact_constraint.hpp"
+
+#include <algorithm>
+
+namespace seam::problem {
+
+ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) const {
+  ImpactGain out;
+  std::vector<PetscInt> rows;
+  std::vector<double> values, gains;
+  for (const auto& s : sides_) {
+    // Against a rigid obstacle g~_j(x_n) < 0 only where the obstacle moved into the body in the
+    // step (every converged state has g~_j >= 0 against the obstacle's position then): that
+    // gain is the obstacle's work, not an error of the step.
+    if (!s.discrete_gradient || s.friction || s.itf.rigid()) continue;
+    // The weighted gaps at x_n of the pairs of the last evaluate(), as the discrete gradient
+    // took them (the same blocks at the same displacement), summed over the ranks.
+    std::vector<contact::GapBlock> start;
+    s.itf.gap_blocks(u_mesh_start_, contact::GapOrder::value, start);
+    std::vector<double> gap_start(s.lambda.size(), 0.0);
+    for (const auto& b : start)
+      for (std::size_t r = 0; r < b.slave.size(); ++r)
+        gap_start[static_cast<std::size_t>(b.slave[r])] += b.gap[r];
+    disc_.comm().sum_in_place(gap_start);
+    std::vector<double> e(gap_start.size(), 0.0);
+    for (std::size_t j = 0; j < e.size(); ++j) {
+      e[j] = std::max(0.0, -s.lambda[j] * gap_start[j]);
+      out.gain += e[j];
+    }
+    // This rank's part of grad g~_j(x_{n+1}) (the gap rows of the last evaluate()).
+    for (const auto& g : s.lin.gap_gradient)
+      if (const double w = e[static_cast<std::size_t>(g.row)]; w > 0.0) {
+        rows.push_back(global_dof(g.col));
+        values.push_back(w * g.value);
+      }
+    gains.insert(gains.end(), e.begin(), e.end());
+  }
+  out.nodes = static_cast<int>(
+      std::count_if(gains.begin(), gains.end(), [&](double x) { return x > 1e-6 * out.gain; }));
+  d.add_values(rows, values);
+  d.assemble();
+  return out;
+}
+
+} // namespace seam::problem
