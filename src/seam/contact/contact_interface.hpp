@@ -233,6 +233,11 @@ public:
   /// mesh node, every slave node read), with the slave patch and the obstacle of the last
   /// update; the state is not changed (for the output).
   std::vector<double> normals_at(std::span<const double> u) const;
+  /// The same at the slave nodes `nodes` only (side-local, sorted; zero at the others): `u`
+  /// is read at normal_ring(nodes) only, and the values equal those of the whole computation
+  /// bit for bit (the output rows of the nodes a rank owns).
+  std::vector<double> normals_at(std::span<const double> u,
+                                 std::span<const local_index> nodes) const;
   /// Standard (not dual) multipliers: D is not diagonal.
   bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
   /// Candidate pairs of the owned slave facets at the last update (after the facing test).
@@ -378,7 +383,12 @@ private:
   std::vector<local_index> normal_nodes_; ///< set_normal_nodes
   /// The averaged normals of `side` (slave_ or a copy at other positions) at the nodes of
   /// set_normal_nodes(), or at every node.
-  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all) const;
+  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all) const {
+    return averaged_normals(side, all, normal_nodes_);
+  }
+  /// At every node (`all`) or at `nodes` only.
+  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all,
+                                       std::span<const local_index> nodes) const;
   std::vector<mortar::Triplet> transformation_;
   std::vector<mortar::Triplet> transformation_inverse_;
 };

@@ -21,8 +21,15 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
   for (const auto& [name, v] : vectors) checkpoints.put_vector(w, name, *v);
   if (contact.active()) contact.write_checkpoint(w);
   if (saddle.active())
-    for (std::size_t k = 0; k < tied.size(); ++k)
-      w.put("saddle_point." + std::to_string(k), saddle.multipliers(k));
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      // Each rank its own multipliers, keyed by slave node and component.
+      std::vector<std::int64_t> keys;
+      std::vector<double> values;
+      saddle.owned_multipliers(k, keys, values);
+      const std::string p = "saddle_point." + std::to_string(k) + ".";
+      w.put_part(p + "keys", keys);
+      w.put_part(p + "values", values);
+    }
   out.write_checkpoint(w);
   checkpoints.commit(w, state.step);
 }
@@ -41,15 +48,18 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   control.set_state({checkpoints.restart_time(), r.real("control.dt"),
                      static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);
-  if (contact.active()) contact.read_checkpoint(r);
-  if (saddle.active()) {
-    std::vector<std::vector<double>> lambda;
-    const auto dim = static_cast<std::size_t>(r.integer("dimension"));
-    for (std::size_t k = 0; k < tied.size(); ++k)
-      lambda.push_back(
-          r.reals("saddle_point." + std::to_string(k), tied[k].slave.mesh_nodes.size() * dim));
-    saddle.set_multipliers(lambda);
-  }
+  if (contact.active()) contact.read_checkpoint(checkpoints);
+  if (saddle.active())
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      // The multipliers this rank owns now, from the parts that hold them.
+      std::vector<std::int64_t> keys;
+      std::vector<double> values;
+      saddle.owned_multipliers(k, keys, values);
+      const std::string p = "saddle_point." + std::to_string(k) + ".";
+      saddle.set_owned_multipliers(
+          k, checkpoints.get_keyed(p + "keys", p + "values", 1,
+                                   r.integer("mesh_nodes") * r.integer("dimension"), keys));
+    }
   return state;
 }
 
