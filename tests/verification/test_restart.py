@@ -567,8 +567,9 @@ def test_parts_not_gathered():
     interface_slide.csv it computed, ranks_detail contact_output_rows), the parts together hold
     each slave node once, and state.bin holds no per-node record of the interface (only its
     size, a hash of its node ids and the rigid plane's position: at most 3 values per record).
-    The M^n triplets are in the parts of the ranks that integrated them. Read through the
-    records' byte counts (the format of checkpoint.hpp)."""
+    The M^n triplets are in the parts of the ranks that integrated them. Saddle-point mesh tying
+    (the energy-momentum flight): the parts hold each multiplier once, state.bin none. Read
+    through the records' byte counts (the format of checkpoint.hpp)."""
     _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
     one_out, three_out = full_run(yaml, 1), full_run(yaml, 3)
     one = os.path.join(one_out, "checkpoint_00003")
@@ -598,7 +599,20 @@ def test_parts_not_gathered():
                              % ([len(n) for n in nodes], owned))
     if not any(len(p["contact.0.M_old.value"]) for p in parts):
         raise AssertionError("no part holds M^n")
-    for path in (os.path.join(one, "state.bin"), os.path.join(three, "state.bin")):
+    # Saddle-point mesh tying: the multipliers by their owners, each (slave node, component)
+    # in one part, none in state.bin.
+    _, flight = make_case(G.tied_rectangles(0.3, 0.2), flight_yaml("saddle_point", 10))
+    tied_one = os.path.join(full_run(flight, 1), "checkpoint_00010")
+    tied_three = os.path.join(full_run(flight, 3), "checkpoint_00010")
+    keys = sorted(ints(records(os.path.join(tied_one, "part_00000.bin"))["saddle_point.0.keys"]))
+    per_part = [ints(records(os.path.join(tied_three, "part_%05d.bin" % r))["saddle_point.0.keys"])
+                for r in range(3)]
+    print("   saddle-point multipliers per part at np 3: %s of %d"
+          % ([len(k) for k in per_part], len(keys)))
+    if not keys or sorted(k for p in per_part for k in p) != keys:
+        raise AssertionError("the parts do not hold each of the %d multipliers once" % len(keys))
+    for path in (os.path.join(one, "state.bin"), os.path.join(three, "state.bin"),
+                 os.path.join(tied_one, "state.bin"), os.path.join(tied_three, "state.bin")):
         state = records(path)
         big = [n for n, v in state.items() if n.startswith(("contact.", "saddle_point."))
                and len(v) > 3 * 8]

@@ -4,6 +4,24 @@
 
 namespace seam::problem {
 
+namespace {
+
+/// The saddle-point multipliers of tied interface k that this rank owns, with the prefix of
+/// their part records: keyed by slave node and component, written and read by their owners.
+struct OwnedMultipliers {
+  std::string prefix;
+  std::vector<std::int64_t> keys;
+  std::vector<double> values;
+};
+OwnedMultipliers owned_multipliers(const SaddlePoint& saddle, std::size_t k) {
+  OwnedMultipliers m;
+  m.prefix = "saddle_point." + std::to_string(k) + ".";
+  saddle.owned_multipliers(k, m.keys, m.values);
+  return m;
+}
+
+} // namespace
+
 void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
                       const StepControl& control, const ContactConstraint& contact,
                       const SaddlePoint& saddle, const std::vector<meshtying::TiedInterface>& tied,
@@ -22,13 +40,9 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
   if (contact.active()) contact.write_checkpoint(w);
   if (saddle.active())
     for (std::size_t k = 0; k < tied.size(); ++k) {
-      // Each rank its own multipliers, keyed by slave node and component.
-      std::vector<std::int64_t> keys;
-      std::vector<double> values;
-      saddle.owned_multipliers(k, keys, values);
-      const std::string p = "saddle_point." + std::to_string(k) + ".";
-      w.put_part(p + "keys", keys);
-      w.put_part(p + "values", values);
+      const auto m = owned_multipliers(saddle, k);
+      w.put_part(m.prefix + "keys", m.keys);
+      w.put_part(m.prefix + "values", m.values);
     }
   out.write_checkpoint(w);
   checkpoints.commit(w, state.step);
@@ -52,13 +66,10 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   if (saddle.active())
     for (std::size_t k = 0; k < tied.size(); ++k) {
       // The multipliers this rank owns now, from the parts that hold them.
-      std::vector<std::int64_t> keys;
-      std::vector<double> values;
-      saddle.owned_multipliers(k, keys, values);
-      const std::string p = "saddle_point." + std::to_string(k) + ".";
+      const auto m = owned_multipliers(saddle, k);
       saddle.set_owned_multipliers(
-          k, checkpoints.get_keyed(p + "keys", p + "values", 1,
-                                   r.integer("mesh_nodes") * r.integer("dimension"), keys));
+          k, checkpoints.get_keyed(m.prefix + "keys", m.prefix + "values", 1,
+                                   r.integer("mesh_nodes") * r.integer("dimension"), m.keys));
     }
   return state;
 }
