@@ -1104,8 +1104,9 @@ std::vector<std::string> ContactConstraint::held_whole() const {
                          : std::string("; read per rank: the displacement of the nodes of its "
                                        "slave elements, of their neighbours and of its master "
                                        "facets and ghosts, the normals of its slave nodes; "
-                                       "written by the owners: the output rows of the slave "
-                                       "nodes and the interface state in checkpoints");
+                                       "per rank: the output rows of the slave nodes around "
+                                       "its slave elements, the checkpointed state of the "
+                                       "slave nodes it owns");
     char skin[64];
     if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
     const std::string reused =
@@ -1162,6 +1163,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     rep.slave_nodes = s.itf.slave().mesh_nodes;
     const auto n = rep.slave_nodes.size();
     rep.owned.assign(n, 0);
+    // The first facet of every slave node: a pass over the side every rank holds (local work).
     std::vector<local_index> first(n, -1), mine, rows;
     const auto set = s.itf.slave().facet_set();
     for (local_index f = 0; f < set.n_facets(); ++f)
@@ -1179,7 +1181,8 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const
     // The multiplier vector: lambda_n n without friction, the Cartesian one with it.
     rep.lambda.assign(n * dim, 0.0);
     rep.status.assign(n, 0);
-    // Totals over the owned nodes, then summed: normal force, tangential force (dim).
+    // Totals over this rank's rows (each node in one rank's rows), then summed: normal force,
+    // tangential force (dim).
     double totals[4] = {0.0, 0.0, 0.0, 0.0};
     for (std::size_t j = 0; j < n; ++j)
       // Without friction every active node slides freely: status slip.
