@@ -360,13 +360,6 @@ std::vector<double> ContactInterface::averaged_normals(const meshtying::Interfac
   return mortar::averaged_nodal_normals(set, adjacent, nodes);
 }
 
-std::vector<double> ContactInterface::normals_at(std::span<const double> u) const {
-  if (all_normals_) return normals_;
-  meshtying::InterfaceSide side = slave_;
-  side.update_coordinates(*mesh_, u);
-  return averaged_normals(side, true);
-}
-
 std::vector<double> ContactInterface::normals_at(std::span<const double> u,
                                                  std::span<const local_index> nodes) const {
   meshtying::InterfaceSide side = slave_;

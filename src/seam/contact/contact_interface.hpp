@@ -229,13 +229,10 @@ public:
   /// The slave nodes of the facets around `nodes` (side-local, sorted, `nodes` included): the
   /// positions their averaged normals read.
   std::vector<local_index> normal_ring(std::span<const local_index> nodes) const;
-  /// The averaged normals of every slave node at the mesh displacement `u` (dim values per
-  /// mesh node, every slave node read), with the slave patch and the obstacle of the last
-  /// update; the state is not changed (for the output).
-  std::vector<double> normals_at(std::span<const double> u) const;
-  /// The same at the slave nodes `nodes` only (side-local, sorted; zero at the others): `u`
-  /// is read at normal_ring(nodes) only, and the values equal those of the whole computation
-  /// bit for bit (the output rows of the nodes a rank owns).
+  /// The averaged normals of the slave nodes `nodes` (side-local, sorted; zero at the others)
+  /// at the mesh displacement `u` (dim values per mesh node, read at normal_ring(nodes) only),
+  /// with the slave patch and the obstacle of the last update, bit for bit those of the whole
+  /// computation; the state is not changed (for the output rows a rank computes).
   std::vector<double> normals_at(std::span<const double> u,
                                  std::span<const local_index> nodes) const;
   /// Standard (not dual) multipliers: D is not diagonal.

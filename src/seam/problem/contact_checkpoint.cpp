@@ -115,6 +115,9 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     const auto& nodes = s.itf.slave().mesh_nodes;
     const auto n = nodes.size();
     // state.bin, read by every rank: every rank takes the same decision.
+    if (in.has(p + "lambda"))
+      in.fail("was written by an earlier seam, which stored the contact state in state.bin; "
+              "rerun to write a checkpoint of this version");
     if (in.integer(p + "slave_count") != static_cast<std::int64_t>(n) ||
         in.integer(p + "slave_hash") != node_id_hash(disc_, nodes))
       in.fail(which + " has other slave nodes than the input's");

@@ -63,6 +63,9 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
                      static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);
   if (contact.active()) contact.read_checkpoint(checkpoints);
+  if (saddle.active() && r.has("saddle_point.0"))
+    r.fail("was written by an earlier seam, which stored the multipliers in state.bin; rerun "
+           "to write a checkpoint of this version");
   if (saddle.active())
     for (std::size_t k = 0; k < tied.size(); ++k) {
       // The multipliers this rank owns now, from the parts that hold them.
