@@ -580,7 +580,7 @@ def check_master_ghosted(name, yaml, replace, below):
         if pairs != one["pairs"]:
             raise AssertionError("np %d: %d pairs over the ranks, %d at np 1"
                                  % (np, pairs, one["pairs"]))
-        check_nodes_read(detail, np, name)
+        check_nodes_read(detail, np, name, outs[np])
         if np == 1:
             continue
         what = "%s np %d vs np 1" % (name, np)
@@ -599,12 +599,24 @@ def check_master_ghosted(name, yaml, replace, below):
     H.cleanup(*_dirs)
 
 
-def check_nodes_read(detail, np, name):
+def check_nodes_read(detail, np, name, out):
     """What each rank reads of the interface (docs/parallel.md, "What is still replicated"):
     the mortar integration reads the master facets ghosted to it (as many as it received), and
     at np > 1 the displacement scatter brings strictly fewer nodes than the interface has
     (the averaged normals are computed for the slave nodes of its elements and those it owns;
-    printed, not bounded: the bulk partition may give one rank every slave node)."""
+    printed, not bounded: the bulk partition may give one rank every slave node). The rows of
+    interface_<name>.csv are computed by the slave nodes' owners (ranks_detail
+    contact_output_rows): they add up to the rows of the file, each computed once, and at
+    np > 1 no rank computes every row (the output reads no more than the evaluation)."""
+    rows = [r["contact_output_rows"] for r in detail]
+    files = [f for f in os.listdir(out) if f.startswith("interface_") and f.endswith(".csv")]
+    n_rows = sum(len(rows_of(out, f)) for f in files)
+    print("   %s np %d: output rows computed per rank %s of %d"
+          % (name, np, "/".join(map(str, rows)), n_rows))
+    if n_rows <= 0 or sum(rows) != n_rows:
+        raise AssertionError("np %d: the ranks computed %s of the %d rows" % (np, rows, n_rows))
+    if np > 1 and max(rows) >= n_rows:
+        raise AssertionError("np %d: a rank computed all %d output rows" % (np, n_rows))
     n = detail[0]["contact_interface_nodes"]
     gathered = [r["contact_interface_nodes_gathered"] for r in detail]
     normals = [r["contact_normals_computed"] for r in detail]

@@ -31,7 +31,9 @@ interface is redistributed at a restart, which changes sums at round-off).
   columns agree to a few 1e-12.
 Damaged or mismatched checkpoints (missing, truncated, corrupted file, another input, another
 mesh, another dimension, no such directory, a missing or damaged part file, a checkpoint of
-another kind of run: solid, fluid, fluid-structure) end with exit code 1 and a message. The nodal vectors are not gathered: each rank writes its own entries.
+another kind of run: solid, fluid, fluid-structure) end with exit code 1 and a message. Nothing is
+gathered on one rank: each rank writes its own entries of the nodal vectors, of the contact
+interface state per slave node and of the saddle-point multipliers (test_parts_not_gathered).
 """
 import os
 import shutil
@@ -297,7 +299,7 @@ def test_static_standard_multipliers():
 
 
 def test_dynamic_friction_generalized_alpha():
-    # 3 -> 1 is the static case's in CI (the gather of the state from 3 ranks is the same).
+    # 3 -> 1 is the static case's in CI (the state read from 3 part files is routed the same way).
     check_case(G.rectangle("quad_structured", 0.125, lx=1.0, ly=0.25), sliding_block_yaml, 8,
                "generalized-alpha friction", cross_np=True if H.FULL else "1 -> 3")
 
@@ -557,38 +559,88 @@ def test_bad_checkpoints():
 
 
 def test_parts_not_gathered():
-    """The nodal vectors are written by the ranks that own them: at np 3 each part file holds
-    about a third of the entries (none holds them all), and the three together hold each
-    entry once. Read through the records' byte counts (the format of checkpoint.hpp)."""
+    """Nothing is gathered on one rank in a checkpoint. The nodal vectors are written by the
+    ranks that own them: at np 3 each part file holds about a third of the entries (none holds
+    them all), and the three together hold each entry once. The contact interface state per
+    slave node (multipliers, active set, stick/slip status, D^n, x^n) is written by the slave
+    nodes' owners: part r holds the slave nodes that rank r owns (as many as the rows of
+    interface_slide.csv it computed, ranks_detail contact_output_rows), the parts together hold
+    each slave node once, and state.bin holds no per-node record of the interface (only its
+    size, a hash of its node ids and the rigid plane's position: at most 3 values per record).
+    The M^n triplets are in the parts of the ranks that integrated them. Saddle-point mesh tying
+    (the energy-momentum flight): the parts hold each multiplier once, state.bin none. Read
+    through the records' byte counts (the format of checkpoint.hpp)."""
     _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
-    one = os.path.join(full_run(yaml, 1), "checkpoint_00003")
-    three = os.path.join(full_run(yaml, 3), "checkpoint_00003")
-    total = len(index_record(os.path.join(one, "part_00000.bin")))
-    counts = [len(index_record(os.path.join(three, "part_%05d.bin" % r))) for r in range(3)]
-    entries = sorted(i for r in range(3)
-                     for i in index_record(os.path.join(three, "part_%05d.bin" % r)))
+    one_out, three_out = full_run(yaml, 1), full_run(yaml, 3)
+    one = os.path.join(one_out, "checkpoint_00003")
+    three = os.path.join(three_out, "checkpoint_00003")
+    parts = [records(os.path.join(three, "part_%05d.bin" % r)) for r in range(3)]
+    total = len(ints(records(os.path.join(one, "part_00000.bin"))["index"]))
+    counts = [len(ints(p["index"])) for p in parts]
+    entries = sorted(i for p in parts for i in ints(p["index"]))
     print("   entries per part at np 3: %s of %d" % (counts, total))
     if entries != list(range(total)):
         raise AssertionError("the parts do not hold each of the %d entries once" % total)
     if max(counts) > 0.7 * total:
         raise AssertionError("a part holds %d of %d entries" % (max(counts), total))
+    # The contact interface state.
+    slave = sorted(ints(records(os.path.join(one, "part_00000.bin"))["contact.0.nodes"]))
+    nodes = [ints(p["contact.0.nodes"]) for p in parts]
+    owned = [r["contact_slave_nodes_owned"] for r in
+             H.read_json(os.path.join(three_out, "summary.json"))["ranks_detail"]]
+    rows = len(H.read_csv(os.path.join(three_out, "interface_slide.csv")))
+    print("   slave nodes per part at np 3: %s of %d (owned per rank %s); M^n triplets "
+          "per part %s" % ([len(n) for n in nodes], len(slave), owned,
+                           [len(p["contact.0.M_old.value"]) // 8 for p in parts]))
+    if len(slave) != rows or sorted(i for n in nodes for i in n) != slave:
+        raise AssertionError("the parts do not hold each of the %d slave nodes once" % rows)
+    if [len(n) for n in nodes] != owned:
+        raise AssertionError("the parts hold %s slave nodes, the ranks own %s"
+                             % ([len(n) for n in nodes], owned))
+    if not any(len(p["contact.0.M_old.value"]) for p in parts):
+        raise AssertionError("no part holds M^n")
+    # Saddle-point mesh tying: the multipliers by their owners, each (slave node, component)
+    # in one part, none in state.bin.
+    _, flight = make_case(G.tied_rectangles(0.3, 0.2), flight_yaml("saddle_point", 10))
+    tied_one = os.path.join(full_run(flight, 1), "checkpoint_00010")
+    tied_three = os.path.join(full_run(flight, 3), "checkpoint_00010")
+    keys = sorted(ints(records(os.path.join(tied_one, "part_00000.bin"))["saddle_point.0.keys"]))
+    per_part = [ints(records(os.path.join(tied_three, "part_%05d.bin" % r))["saddle_point.0.keys"])
+                for r in range(3)]
+    print("   saddle-point multipliers per part at np 3: %s of %d"
+          % ([len(k) for k in per_part], len(keys)))
+    if not keys or sorted(k for p in per_part for k in p) != keys:
+        raise AssertionError("the parts do not hold each of the %d multipliers once" % len(keys))
+    for path in (os.path.join(one, "state.bin"), os.path.join(three, "state.bin"),
+                 os.path.join(tied_one, "state.bin"), os.path.join(tied_three, "state.bin")):
+        state = records(path)
+        big = [n for n, v in state.items() if n.startswith(("contact.", "saddle_point."))
+               and len(v) > 3 * 8]
+        if big:
+            raise AssertionError("%s holds interface records %s" % (path, big))
 
 
-def index_record(path):
-    """The int64 values of record 'index' of a checkpoint file (magic line, then records:
-    uint32 name length, name, type byte, uint64 byte count, bytes; a 16-byte trailer)."""
+def records(path):
+    """The records of a checkpoint file as name -> bytes (magic line, then records: uint32 name
+    length, name, type byte, uint64 byte count, bytes; a 16-byte trailer)."""
     import struct
     data = open(path, "rb").read()
     pos = data.index(b"\n") + 1
+    out = {}
     while pos < len(data) - 16:
         (n,) = struct.unpack_from("<I", data, pos)
         name = data[pos + 4:pos + 4 + n].decode()
         (size,) = struct.unpack_from("<Q", data, pos + 5 + n)
         start = pos + 13 + n
-        if name == "index":
-            return list(struct.unpack_from("<%dq" % (size // 8), data, start))
+        out[name] = data[start:start + size]
         pos = start + size
-    raise AssertionError("%s has no record 'index'" % path)
+    return out
+
+
+def ints(data):
+    """The int64 values of a record."""
+    import struct
+    return list(struct.unpack("<%dq" % (len(data) // 8), data))
 
 
 if __name__ == "__main__":

@@ -335,15 +335,15 @@ std::vector<local_index> ContactInterface::normal_ring(std::span<const local_ind
 }
 
 std::vector<double> ContactInterface::averaged_normals(const meshtying::InterfaceSide& side,
-                                                       bool all) const {
+                                                       bool all,
+                                                       std::span<const local_index> nodes) const {
   const int dim = this->dim();
   if (rigid_) {
     // The obstacle's normal at the node's closest point, reversed (out of the slave body).
     std::vector<double> n(side.coordinates.size(), 0.0);
     const auto n_nodes = side.mesh_nodes.size();
     for (std::size_t j = 0; j < n_nodes; ++j)
-      if (all || std::binary_search(normal_nodes_.begin(), normal_nodes_.end(),
-                                    static_cast<local_index>(j)))
+      if (all || std::binary_search(nodes.begin(), nodes.end(), static_cast<local_index>(j)))
         current_.contact_normal(dim, &side.coordinates[j * dim], &n[j * dim], nullptr);
     return n;
   }
@@ -353,18 +353,18 @@ std::vector<double> ContactInterface::averaged_normals(const meshtying::Interfac
   // Only the facets around the nodes asked for (of the slave set: the patch on self contact).
   std::vector<local_index> adjacent;
   const auto& adjacency = slave_adjacency();
-  for (const auto j : normal_nodes_)
+  for (const auto j : nodes)
     for (const auto f : adjacency.of(j)) adjacent.push_back(f);
   std::sort(adjacent.begin(), adjacent.end());
   adjacent.erase(std::unique(adjacent.begin(), adjacent.end()), adjacent.end());
-  return mortar::averaged_nodal_normals(set, adjacent, normal_nodes_);
+  return mortar::averaged_nodal_normals(set, adjacent, nodes);
 }
 
-std::vector<double> ContactInterface::normals_at(std::span<const double> u) const {
-  if (all_normals_) return normals_;
+std::vector<double> ContactInterface::normals_at(std::span<const double> u,
+                                                 std::span<const local_index> nodes) const {
   meshtying::InterfaceSide side = slave_;
   side.update_coordinates(*mesh_, u);
-  return averaged_normals(side, true);
+  return averaged_normals(side, false, nodes);
 }
 
 void ContactInterface::use_external_search() {

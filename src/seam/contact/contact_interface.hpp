@@ -229,10 +229,12 @@ public:
   /// The slave nodes of the facets around `nodes` (side-local, sorted, `nodes` included): the
   /// positions their averaged normals read.
   std::vector<local_index> normal_ring(std::span<const local_index> nodes) const;
-  /// The averaged normals of every slave node at the mesh displacement `u` (dim values per
-  /// mesh node, every slave node read), with the slave patch and the obstacle of the last
-  /// update; the state is not changed (for the output).
-  std::vector<double> normals_at(std::span<const double> u) const;
+  /// The averaged normals of the slave nodes `nodes` (side-local, sorted; zero at the others)
+  /// at the mesh displacement `u` (dim values per mesh node, read at normal_ring(nodes) only),
+  /// with the slave patch and the obstacle of the last update, bit for bit those of the whole
+  /// computation; the state is not changed (for the output rows a rank computes).
+  std::vector<double> normals_at(std::span<const double> u,
+                                 std::span<const local_index> nodes) const;
   /// Standard (not dual) multipliers: D is not diagonal.
   bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
   /// Candidate pairs of the owned slave facets at the last update (after the facing test).
@@ -382,7 +384,12 @@ private:
   std::vector<local_index> normal_nodes_; ///< set_normal_nodes
   /// The averaged normals of `side` (slave_ or a copy at other positions) at the nodes of
   /// set_normal_nodes(), or at every node.
-  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all) const;
+  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all) const {
+    return averaged_normals(side, all, normal_nodes_);
+  }
+  /// At every node (`all`) or at `nodes` only.
+  std::vector<double> averaged_normals(const meshtying::InterfaceSide& side, bool all,
+                                       std::span<const local_index> nodes) const;
   std::vector<mortar::Triplet> transformation_;
   std::vector<mortar::Triplet> transformation_inverse_;
 };

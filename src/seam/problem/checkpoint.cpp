@@ -380,76 +380,7 @@ struct Entry {
 
 void Checkpoints::get_vector(const std::string& name, la::Vector& v) const {
   const auto& order = order_;
-  const int np = comm_.size();
-  std::vector<double> held(order.index.size(), 0.0);
-  {
-    // The entries of the part files this rank read go to the rank that keeps index i
-    // (i mod np) ...
-    const auto home = [np](std::int64_t i) { return static_cast<int>(i % np); };
-    std::vector<std::vector<Entry>> out(static_cast<std::size_t>(np));
-    std::string error; // a bad record stops every rank, not only the one reading it
-    try {
-      for (const auto& part : parts_) {
-        const auto index = part.integers("index");
-        const auto values = part.reals(name, index.size());
-        for (std::size_t k = 0; k < index.size(); ++k) {
-          if (index[k] < 0 || index[k] >= order.size)
-            part.fail("record 'index' holds an entry out of range");
-          out[static_cast<std::size_t>(home(index[k]))].push_back({index[k], values[k]});
-        }
-      }
-    } catch (const InputError& e) {
-      error = e.what();
-    }
-    throw_collectively(comm_, error);
-    std::vector<Entry> send;
-    std::vector<std::int64_t> offsets(1, 0), recv_offsets;
-    for (const auto& o : out) {
-      send.insert(send.end(), o.begin(), o.end());
-      offsets.push_back(static_cast<std::int64_t>(send.size()));
-    }
-    auto kept = parallel::alltoallv<Entry>(comm_.get(), send, offsets, recv_offsets);
-    std::sort(kept.begin(), kept.end(),
-              [](const Entry& a, const Entry& b) { return a.index < b.index; });
-    // ... which answers the requests of the ranks that hold it.
-    std::vector<std::vector<std::int64_t>> ask(static_cast<std::size_t>(np));
-    std::vector<std::vector<std::size_t>> slot(static_cast<std::size_t>(np));
-    for (std::size_t k = 0; k < order.index.size(); ++k) {
-      ask[static_cast<std::size_t>(home(order.index[k]))].push_back(order.index[k]);
-      slot[static_cast<std::size_t>(home(order.index[k]))].push_back(k);
-    }
-    std::vector<std::int64_t> asked;
-    offsets.assign(1, 0);
-    for (const auto& a : ask) {
-      asked.insert(asked.end(), a.begin(), a.end());
-      offsets.push_back(static_cast<std::int64_t>(asked.size()));
-    }
-    std::vector<std::int64_t> asked_offsets;
-    const auto requests =
-        parallel::alltoallv<std::int64_t>(comm_.get(), asked, offsets, asked_offsets);
-    std::vector<double> answers(requests.size(), 0.0);
-    bool missing = false;
-    for (std::size_t k = 0; k < requests.size(); ++k) {
-      const auto it = std::lower_bound(kept.begin(), kept.end(), requests[k],
-                                       [](const Entry& e, std::int64_t i) { return e.index < i; });
-      if (it == kept.end() || it->index != requests[k])
-        missing = true;
-      else
-        answers[k] = it->value;
-    }
-    if (comm_.any(missing))
-      SEAM_THROW(InputError, "checkpoint ", reader_.path().parent_path().string(), ": record '",
-                 name,
-                 "' of its part files lacks entries (a part file of another "
-                 "run?)");
-    std::vector<std::int64_t> back_offsets;
-    const auto values =
-        parallel::alltoallv<double>(comm_.get(), answers, asked_offsets, back_offsets);
-    for (int r = 0; r < np; ++r)
-      for (std::size_t j = 0; j < slot[static_cast<std::size_t>(r)].size(); ++j)
-        held[slot[static_cast<std::size_t>(r)][j]] =
-            values[static_cast<std::size_t>(back_offsets[r]) + j];
-  }
+  const auto held = get_keyed("index", name, 1, order.size, order.index);
   {
     la::Vector::LocalView view(v, true);
     auto vl = view.values();
@@ -457,6 +388,98 @@ void Checkpoints::get_vector(const std::string& name, la::Vector& v) const {
       if (order.local[k] >= 0) vl[static_cast<std::size_t>(order.local[k])] = held[k];
   }
   v.update_ghosts();
+}
+
+std::vector<double> Checkpoints::get_keyed(const std::string& keys, const std::string& name,
+                                           int width, std::int64_t n_keys,
+                                           std::span<const std::int64_t> wanted) const {
+  const int np = comm_.size();
+  const auto w = static_cast<std::int64_t>(width);
+  // Item k's value c is entry k * width + c.
+  const auto home = [np](std::int64_t i) { return static_cast<int>(i % np); };
+  // The entries of the part files this rank read go to the rank that keeps entry i
+  // (i mod np) ...
+  std::vector<std::vector<Entry>> out(static_cast<std::size_t>(np));
+  std::string error; // a bad record stops every rank, not only the one reading it
+  try {
+    for (const auto& part : parts_) {
+      const auto index = part.integers(keys);
+      const auto values = part.reals(name, index.size() * static_cast<std::size_t>(width));
+      for (std::size_t k = 0; k < index.size(); ++k) {
+        if (index[k] < 0 || index[k] >= n_keys)
+          part.fail("record '" + keys + "' holds an entry out of range");
+        for (std::int64_t c = 0; c < w; ++c) {
+          const std::int64_t i = index[k] * w + c;
+          out[static_cast<std::size_t>(home(i))].push_back(
+              {i, values[k * static_cast<std::size_t>(width) + static_cast<std::size_t>(c)]});
+        }
+      }
+    }
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  throw_collectively(comm_, error);
+  std::vector<Entry> send;
+  std::vector<std::int64_t> offsets(1, 0), recv_offsets;
+  for (const auto& o : out) {
+    send.insert(send.end(), o.begin(), o.end());
+    offsets.push_back(static_cast<std::int64_t>(send.size()));
+  }
+  auto kept = parallel::alltoallv<Entry>(comm_.get(), send, offsets, recv_offsets);
+  std::sort(kept.begin(), kept.end(),
+            [](const Entry& a, const Entry& b) { return a.index < b.index; });
+  // ... which answers the requests of the ranks that hold it.
+  std::vector<std::vector<std::int64_t>> ask(static_cast<std::size_t>(np));
+  std::vector<std::vector<std::size_t>> slot(static_cast<std::size_t>(np));
+  for (std::size_t k = 0; k < wanted.size(); ++k)
+    for (std::int64_t c = 0; c < w; ++c) {
+      const std::int64_t i = wanted[k] * w + c;
+      ask[static_cast<std::size_t>(home(i))].push_back(i);
+      slot[static_cast<std::size_t>(home(i))].push_back(k * static_cast<std::size_t>(width) +
+                                                        static_cast<std::size_t>(c));
+    }
+  std::vector<std::int64_t> asked;
+  offsets.assign(1, 0);
+  for (const auto& a : ask) {
+    asked.insert(asked.end(), a.begin(), a.end());
+    offsets.push_back(static_cast<std::int64_t>(asked.size()));
+  }
+  std::vector<std::int64_t> asked_offsets;
+  const auto requests =
+      parallel::alltoallv<std::int64_t>(comm_.get(), asked, offsets, asked_offsets);
+  std::vector<double> answers(requests.size(), 0.0);
+  bool missing = false;
+  for (std::size_t k = 0; k < requests.size(); ++k) {
+    const auto it = std::lower_bound(kept.begin(), kept.end(), requests[k],
+                                     [](const Entry& e, std::int64_t i) { return e.index < i; });
+    if (it == kept.end() || it->index != requests[k])
+      missing = true;
+    else
+      answers[k] = it->value;
+  }
+  if (comm_.any(missing))
+    SEAM_THROW(InputError, "checkpoint ", reader_.path().parent_path().string(), ": record '", name,
+               "' of its part files lacks entries (a part file of another "
+               "run?)");
+  std::vector<std::int64_t> back_offsets;
+  const auto values =
+      parallel::alltoallv<double>(comm_.get(), answers, asked_offsets, back_offsets);
+  std::vector<double> held(wanted.size() * static_cast<std::size_t>(width), 0.0);
+  for (int r = 0; r < np; ++r)
+    for (std::size_t j = 0; j < slot[static_cast<std::size_t>(r)].size(); ++j)
+      held[slot[static_cast<std::size_t>(r)][j]] =
+          values[static_cast<std::size_t>(back_offsets[r]) + j];
+  return held;
+}
+
+void Checkpoints::read_parts(const std::function<void(const RecordReader&)>& read) const {
+  std::string error;
+  try {
+    for (const auto& part : parts_) read(part);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  throw_collectively(comm_, error);
 }
 
 io::CsvTable::Mode Checkpoints::table_mode(const std::filesystem::path& file) const {

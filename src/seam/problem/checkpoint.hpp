@@ -4,12 +4,13 @@
 // part_RRRRR.bin per rank that wrote it: named records (reals, integers, text) behind a magic
 // line and followed by their byte count and an FNV-1a checksum, so that a truncated or damaged
 // file is found before anything is read from it.
-// state.bin holds what is not sized by the mesh, interface state per slave node of the side
-// and per-rank pieces of operators as (row, column, value) triplets. The nodal vectors are not
-// gathered: each rank writes the entries it owns into its part file, with their index in a
-// rank-independent order (per mesh node in node id order, the node's dofs in order), and a
+// state.bin holds what is not sized by the mesh or an interface. Nothing is gathered: the
+// nodal vectors and the contact interface state per slave node are written by the ranks that
+// own the entries into their part files, with their index in a rank-independent order (per
+// mesh node in node id order, the node's dofs in order; the node id for a slave node), and a
 // restart on any number of ranks routes them to the ranks that hold them (no rank holds a
-// whole vector).
+// whole vector); per-rank pieces of operators (triplets) stay in the part of the rank that
+// integrated them and are taken by the rank that reads that part.
 // The input file's and the mesh's hashes are stored with them: a checkpoint of another input
 // or mesh is an input error.
 #include "seam/io/config.hpp"
@@ -20,6 +21,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -145,6 +147,20 @@ public:
   void put_vector(RecordWriter& writer, const std::string& name, const la::Vector& v) const;
   /// Record `name` of the restart checkpoint into v (owned and ghost entries). Collective.
   void get_vector(const std::string& name, la::Vector& v) const;
+  /// Keyed records of the restart checkpoint's part files: record `keys` holds one key in
+  /// [0, n_keys) per item (each item in one part), record `name` `width` values per item. Returns
+  /// the values of the items `wanted` (width each, in that order): each rank sends the items
+  /// of the part files it read to a rank chosen by key, which answers the ranks that ask for
+  /// them, so no rank gathers the items (per slave node interface state, nodal vectors).
+  /// InputError on every rank when a record is missing or damaged or an item wanted is in no
+  /// part. Collective.
+  std::vector<double> get_keyed(const std::string& keys, const std::string& name, int width,
+                                std::int64_t n_keys, std::span<const std::int64_t> wanted) const;
+  /// The part files of the restart checkpoint this rank read are part r, r + size, ... (of a
+  /// checkpoint written on more ranks; none on ranks beyond those that wrote it).
+  /// Calls `read` with each of them; an InputError there stops every rank with its message.
+  /// Collective.
+  void read_parts(const std::function<void(const RecordReader&)>& read) const;
 
   /// The mode of an output table: a fresh file, or (restarting) the file continued after its
   /// rows past the checkpoint's step are dropped. Rank 0.

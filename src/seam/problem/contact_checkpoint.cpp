@@ -1,12 +1,19 @@
 // The contact and friction state in checkpoints (checkpoint.hpp): what a converged step
-// leaves for the next one. Multipliers, the active set and the stick/slip status are kept per
-// slave node of each side (replicated on every rank); the operators of the last converged step
-// for the objective slip increment, D^n (replicated), the slave positions x^n and the rigid
-// plane's displacement, and M^n, which each rank holds in part (its slave elements), as
-// (slave node, master node, value) triplets gathered from all ranks: any number of ranks can
-// reload them, each taking a share, since only the sum over the ranks enters (the slip
-// increment is summed, the tangent rows are added into the matrix).
-#include "seam/common/collective.hpp"
+// leaves for the next one. Nothing of it is gathered on one rank:
+// - per slave node (multipliers, active set, stick/slip status, D^n_jj and the slave positions
+//   x^n of friction): each node's owner writes its values into its part file, keyed by the
+//   node's id; a restart on any number of ranks routes them to the nodes' new owners
+//   (Checkpoints::get_keyed), which publish them as they publish their decisions in every
+//   iteration (parallel::publish_from_owners: the nonzero values, in proportion to the contact
+//   zone, except x^n);
+// - M^n (and D^n_jk, j != k, of standard multipliers), which each rank holds in part (its
+//   slave elements): each rank writes its triplets (slave node, master node id, value) into its
+//   part file, and a restart gives each part file to the rank that reads it. Only the sum over
+//   the ranks enters (the slip increment is summed, the tangent rows are added into the
+//   matrix), so any number of ranks can reload them;
+// - state.bin holds only what is O(1) per side: the slave side's size and a hash of its node
+//   ids (a checkpoint of another interface is refused), the rigid plane's displacement, the
+//   frictional work so far.
 #include "seam/common/error.hpp"
 #include "seam/parallel/exchange.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -19,33 +26,53 @@ namespace seam::problem {
 
 namespace {
 
-template <class T> std::vector<std::int64_t> to_integers(const std::vector<T>& v) {
-  return std::vector<std::int64_t>(v.begin(), v.end());
+/// Values per slave node in record "state": the multiplier (1, or dim with friction), the
+/// active flag, and with friction the status, D^n_jj and x^n (dim).
+std::size_t state_width(bool friction, int dim) {
+  const auto d = static_cast<std::size_t>(dim);
+  return friction ? d + 3 + d : 2;
+}
+
+/// The slave side's node ids in the mesh as read, hashed (the same on any number of ranks).
+std::int64_t node_id_hash(const Discretization& disc, std::span<const std::int32_t> nodes) {
+  std::uint64_t hash = fnv1a(nullptr, 0);
+  for (const auto node : nodes) {
+    const std::int64_t id = disc.node_gid(node);
+    hash = fnv1a(&id, sizeof id, hash);
+  }
+  return static_cast<std::int64_t>(hash);
 }
 
 } // namespace
 
 void ContactConstraint::write_checkpoint(RecordWriter& out) const {
-  // Slave nodes by their ids in the mesh as read (the same on any number of ranks).
-  const auto node_ids = [&](const auto& nodes) {
-    std::vector<std::int64_t> ids;
-    for (const auto node : nodes) ids.push_back(disc_.node_gid(node));
-    return ids;
-  };
+  const int dim = disc_.dim();
   const auto& comm = disc_.comm();
   for (std::size_t k = 0; k < sides_.size(); ++k) {
     const auto& s = sides_[k];
     const std::string p = "contact." + std::to_string(k) + ".";
-    out.put(p + "slave_nodes", node_ids(s.itf.slave().mesh_nodes));
-    out.put(p + "lambda", s.lambda_saved);
-    out.put(p + "active", to_integers(s.active));
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    // The side by its size and node ids.
+    out.put_integer(p + "slave_count", static_cast<std::int64_t>(nodes.size()));
+    out.put_integer(p + "slave_hash", node_id_hash(disc_, nodes));
+    out.put_integer(p + "friction", s.friction ? 1 : 0);
+    // The slave nodes this rank owns, with their state.
+    const std::size_t per_node = s.friction ? static_cast<std::size_t>(dim) : 1;
+    std::vector<std::int64_t> ids;
+    std::vector<double> state;
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      if (s.node_owners[j] != comm.rank()) continue;
+      ids.push_back(disc_.node_gid(nodes[j]));
+      for (std::size_t c = 0; c < per_node; ++c) state.push_back(s.lambda_saved[j * per_node + c]);
+      state.push_back(s.active[j] ? 1.0 : 0.0);
+      if (!s.friction) continue;
+      state.push_back(static_cast<double>(s.status[j]));
+      state.push_back(s.D_diag_old[j]);
+      for (int c = 0; c < dim; ++c) state.push_back(s.x_old[j * dim + c]);
+    }
+    out.put_part(p + "nodes", ids);
+    out.put_part(p + "state", state);
     if (!s.friction) continue;
-    out.put(p + "status", to_integers(s.status));
-    out.put(p + "D_old", s.D_diag_old);
-    // Each rank reads the positions of the nodes it evaluates only: the owners' x^n.
-    std::vector<double> x_old = s.x_old;
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, x_old, disc_.dim());
-    out.put(p + "x_old", x_old);
     out.put(p + "plane_old", std::span<const double>(s.plane_old));
     out.put_real(p + "dissipation", s.dissipation);
     out.put_integer(p + "has_old", s.has_old ? 1 : 0);
@@ -56,9 +83,9 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
       master.push_back(disc_.node_gid(e.master_node));
       value.push_back(e.value);
     }
-    out.put(p + "M_old.slave", gather_to_root(comm, slave));
-    out.put(p + "M_old.master", gather_to_root(comm, master));
-    out.put(p + "M_old.value", gather_to_root(comm, value));
+    out.put_part(p + "M_old.slave", slave);
+    out.put_part(p + "M_old.master", master);
+    out.put_part(p + "M_old.value", value);
     // Standard multipliers: this rank's entries D_jk (j != k) of the last converged step.
     std::vector<std::int64_t> row, col;
     std::vector<double> coupling;
@@ -67,78 +94,104 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
       col.push_back(e.col);
       coupling.push_back(e.value);
     }
-    out.put(p + "D_coupling_old.row", gather_to_root(comm, row));
-    out.put(p + "D_coupling_old.col", gather_to_root(comm, col));
-    out.put(p + "D_coupling_old.value", gather_to_root(comm, coupling));
+    out.put_part(p + "D_coupling_old.row", row);
+    out.put_part(p + "D_coupling_old.col", col);
+    out.put_part(p + "D_coupling_old.value", coupling);
   }
 }
 
-void ContactConstraint::read_checkpoint(const RecordReader& in) {
-  // Slave nodes by their ids in the mesh as read (the same on any number of ranks).
-  const auto node_ids = [&](const auto& nodes) {
-    std::vector<std::int64_t> ids;
-    for (const auto node : nodes) ids.push_back(disc_.node_gid(node));
-    return ids;
-  };
+void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
+  const auto& in = checkpoints.restart();
   const auto& comm = disc_.comm();
   const int dim = disc_.dim();
+  // Master nodes by their ids in the mesh as read: every rank holds the interface cells.
+  std::unordered_map<std::int64_t, std::int32_t> local_of;
+  for (std::int32_t node = 0; node < disc_.mesh().n_nodes(); ++node)
+    local_of.emplace(disc_.node_gid(node), node);
   for (std::size_t k = 0; k < sides_.size(); ++k) {
     auto& s = sides_[k];
     const std::string p = "contact." + std::to_string(k) + ".";
+    const std::string which = "contact interface " + std::to_string(k + 1);
     const auto& nodes = s.itf.slave().mesh_nodes;
     const auto n = nodes.size();
-    if (in.integers(p + "slave_nodes") != node_ids(nodes))
-      in.fail("contact interface " + std::to_string(k + 1) +
-              " has other slave nodes than the input's");
+    // state.bin, read by every rank: every rank takes the same decision.
+    if (in.has(p + "lambda"))
+      in.fail("was written by an earlier seam, which stored the contact state in state.bin; "
+              "rerun to write a checkpoint of this version");
+    if (in.integer(p + "slave_count") != static_cast<std::int64_t>(n) ||
+        in.integer(p + "slave_hash") != node_id_hash(disc_, nodes))
+      in.fail(which + " has other slave nodes than the input's");
+    if (s.friction != (in.integer(p + "friction") != 0))
+      in.fail(which + " was written " + (s.friction ? "without" : "with") + " friction");
+    // The state of the slave nodes this rank owns, from the parts that hold them.
+    std::vector<std::int64_t> ids;
+    std::vector<std::size_t> mine;
+    for (std::size_t j = 0; j < n; ++j)
+      if (s.node_owners[j] == comm.rank()) {
+        mine.push_back(j);
+        ids.push_back(disc_.node_gid(nodes[j]));
+      }
+    const auto width = state_width(s.friction, dim);
+    const auto state = checkpoints.get_keyed(p + "nodes", p + "state", static_cast<int>(width),
+                                             disc_.n_global_nodes(), ids);
     const std::size_t per_node = s.friction ? static_cast<std::size_t>(dim) : 1;
-    s.lambda = in.reals(p + "lambda", n * per_node);
+    // Filled at the owned nodes, then published by the owners (as in every iteration).
+    std::vector<double> lambda(n * per_node, 0.0), flags(n * 3, 0.0), x_old;
+    if (s.friction) x_old.assign(n * static_cast<std::size_t>(dim), 0.0);
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      const auto j = mine[i];
+      const double* v = &state[i * width];
+      for (std::size_t c = 0; c < per_node; ++c) lambda[j * per_node + c] = v[c];
+      flags[j * 3] = v[per_node];
+      if (!s.friction) continue;
+      flags[j * 3 + 1] = v[per_node + 1];
+      flags[j * 3 + 2] = v[per_node + 2];
+      for (int c = 0; c < dim; ++c) x_old[j * dim + c] = v[per_node + 3 + c];
+    }
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
+                                  static_cast<int>(per_node));
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, flags, 3);
+    s.lambda = lambda;
     s.lambda_saved = s.lambda;
-    for (std::size_t j = 0; const auto a : in.integers(p + "active", n)) s.active[j++] = a != 0;
+    for (std::size_t j = 0; j < n; ++j) s.active[j] = flags[j * 3] != 0.0;
     s.active_previous = s.active;
     s.active_accepted = s.active;
-    if (s.friction != in.has(p + "status"))
-      in.fail("contact interface " + std::to_string(k + 1) + " was written " +
-              (s.friction ? "without" : "with") + " friction");
     if (!s.friction) continue;
-    for (std::size_t j = 0; const auto a : in.integers(p + "status", n))
-      s.status[j++] = static_cast<char>(a);
+    for (std::size_t j = 0; j < n; ++j) s.status[j] = static_cast<char>(flags[j * 3 + 1]);
     s.status_previous = s.status;
     s.status_accepted = s.status;
-    s.D_diag_old = in.reals(p + "D_old", n);
-    s.x_old = in.reals(p + "x_old", n * dim);
+    s.D_diag_old.assign(n, 0.0);
+    for (std::size_t j = 0; j < n; ++j) s.D_diag_old[j] = flags[j * 3 + 2];
+    // x^n: every rank reads the positions of the nodes it evaluates (all published).
+    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, x_old, dim);
+    s.x_old = std::move(x_old);
     const auto plane = in.reals(p + "plane_old", 3);
     std::copy(plane.begin(), plane.end(), s.plane_old.begin());
     s.dissipation = in.real(p + "dissipation");
     s.has_old = in.integer(p + "has_old") != 0;
-    const auto slave = in.integers(p + "M_old.slave");
-    const auto master = in.integers(p + "M_old.master", slave.size());
-    const auto value = in.reals(p + "M_old.value", slave.size());
-    // Each rank takes a contiguous share of the triplets.
-    const auto total = slave.size();
-    const auto np = static_cast<std::size_t>(comm.size());
-    const auto r = static_cast<std::size_t>(comm.rank());
-    // Checked on every rank before any rank takes its share: all fail together.
-    // Master nodes by their ids in the mesh as read: every rank holds the interface cells.
-    std::unordered_map<std::int64_t, std::int32_t> local_of;
-    for (std::int32_t node = 0; node < disc_.mesh().n_nodes(); ++node)
-      local_of.emplace(disc_.node_gid(node), node);
-    for (std::size_t i = 0; i < total; ++i)
-      if (slave[i] < 0 || static_cast<std::size_t>(slave[i]) >= n || !local_of.count(master[i]))
-        in.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
+    // The operator pieces of the part files this rank read.
     s.M_old.clear();
-    for (std::size_t i = total * r / np; i < total * (r + 1) / np; ++i)
-      s.M_old.push_back({static_cast<local_index>(slave[i]), local_of.at(master[i]), value[i]});
-    const auto row = in.integers(p + "D_coupling_old.row");
-    const auto col = in.integers(p + "D_coupling_old.col", row.size());
-    const auto coupling = in.reals(p + "D_coupling_old.value", row.size());
-    for (std::size_t i = 0; i < row.size(); ++i)
-      if (row[i] < 0 || static_cast<std::size_t>(row[i]) >= n || col[i] < 0 ||
-          static_cast<std::size_t>(col[i]) >= n)
-        in.fail("record '" + p + "D_coupling_old' names a node outside the interface");
     s.D_coupling_old.clear();
-    for (std::size_t i = row.size() * r / np; i < row.size() * (r + 1) / np; ++i)
-      s.D_coupling_old.push_back(
-          {static_cast<std::int32_t>(row[i]), static_cast<std::int32_t>(col[i]), coupling[i]});
+    checkpoints.read_parts([&](const RecordReader& part) {
+      const auto slave = part.integers(p + "M_old.slave");
+      const auto master = part.integers(p + "M_old.master", slave.size());
+      const auto value = part.reals(p + "M_old.value", slave.size());
+      for (std::size_t i = 0; i < slave.size(); ++i) {
+        if (slave[i] < 0 || static_cast<std::size_t>(slave[i]) >= n || !local_of.count(master[i]))
+          part.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
+        s.M_old.push_back({static_cast<local_index>(slave[i]), local_of.at(master[i]), value[i]});
+      }
+      const auto row = part.integers(p + "D_coupling_old.row");
+      const auto col = part.integers(p + "D_coupling_old.col", row.size());
+      const auto coupling = part.reals(p + "D_coupling_old.value", row.size());
+      for (std::size_t i = 0; i < row.size(); ++i) {
+        if (row[i] < 0 || static_cast<std::size_t>(row[i]) >= n || col[i] < 0 ||
+            static_cast<std::size_t>(col[i]) >= n)
+          part.fail("record '" + p + "D_coupling_old' names a node outside the interface");
+        s.D_coupling_old.push_back(
+            {static_cast<std::int32_t>(row[i]), static_cast<std::int32_t>(col[i]), coupling[i]});
+      }
+    });
   }
 }
 

@@ -1110,15 +1110,16 @@ std::vector<std::string> ContactConstraint::held_whole() const {
     std::string text = "interface " + s.itf.name() + ": held whole on every rank: ";
     const std::string arrays =
         std::string("the nodal arrays per slave node (D, g~, multipliers, active set") +
-        (s.friction ? ", friction history" : "") +
-        "), the displacement of every interface node and the normals of every slave node at " +
-        "the output";
+        (s.friction ? ", friction history" : "") + ")";
     const std::string read =
         energy_momentum_ ? std::string(", the displacement of every interface node (energy-"
                                        "momentum contact)")
                          : std::string("; read per rank: the displacement of the nodes of its "
                                        "slave elements, of their neighbours and of its master "
-                                       "facets and ghosts, the normals of its slave nodes");
+                                       "facets and ghosts, the normals of its slave nodes; "
+                                       "per rank: the output rows of the slave nodes around "
+                                       "its slave elements, the checkpointed state of the "
+                                       "slave nodes it owns");
     char skin[64];
     if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
     const std::string reused =
@@ -1153,49 +1154,91 @@ std::vector<std::string> ContactConstraint::held_whole() const {
 
 std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {
   const int dim = disc_.dim();
-  // The output rows of every slave node: their displacements and normals, whole.
-  const auto u_mesh = whole_displacement(u);
+  const auto& comm = disc_.comm();
+  const auto& mesh = disc_.mesh();
+  // Each slave node's row is computed by one rank: the rank that evaluates the first slave
+  // facet around it (the lowest index; each facet is evaluated by one rank), so the rows follow
+  // the distribution of the slave elements, not the bulk partition (which may give one rank
+  // every slave node). That rank reads the node's displacement and those of the facets around
+  // it (its normal) through its own scatter (nodes_read() holds them), and the node's
+  // multipliers, gap and status are published to every rank: no scatter of the whole
+  // interface, no exchange. The owners compute the multiplier vectors of their nodes (VTU).
+  SEAM_ASSERT(gather_made_);
+  std::vector<double> u_mesh(u_mesh_.size(), 0.0), values;
+  gather_(u, values);
+  for (std::size_t k = 0; k < gathered_.size(); ++k)
+    for (int c = 0; c < dim; ++c)
+      u_mesh[static_cast<std::size_t>(gathered_[k]) * dim + c] = values[k * dim + c];
   std::vector<ContactReport> out;
   for (const auto& s : sides_) {
     ContactReport rep;
     rep.name = s.itf.name();
     rep.slave_nodes = s.itf.slave().mesh_nodes;
     const auto n = rep.slave_nodes.size();
-    rep.displacement.resize(n * dim);
-    for (std::size_t j = 0; j < n; ++j)
-      for (int c = 0; c < dim; ++c)
-        rep.displacement[j * dim + c] =
-            u_mesh[static_cast<std::size_t>(rep.slave_nodes[j]) * dim + c];
-    rep.normal = s.itf.normals_at(u_mesh);
+    rep.owned.assign(n, 0);
+    // The first facet of every slave node: a pass over the side every rank holds (local work).
+    std::vector<local_index> first(n, -1), mine, rows;
+    const auto set = s.itf.slave().facet_set();
+    for (local_index f = 0; f < set.n_facets(); ++f)
+      for (const auto j : set.facet_nodes(f))
+        if (first[static_cast<std::size_t>(j)] < 0) first[static_cast<std::size_t>(j)] = f;
+    const auto own = s.itf.owned_facets();
+    for (std::size_t j = 0; j < n; ++j) {
+      const bool row = std::binary_search(own.begin(), own.end(), first[j]);
+      rep.owned[j] = s.node_owners[j] == comm.rank();
+      rep.local_owned_nodes += rep.owned[j];
+      if (rep.owned[j] || row) mine.push_back(static_cast<local_index>(j));
+      if (row) rows.push_back(static_cast<local_index>(j));
+    }
+    const auto normal = s.itf.normals_at(u_mesh, mine);
     // The multiplier vector: lambda_n n without friction, the Cartesian one with it.
     rep.lambda.assign(n * dim, 0.0);
-    rep.lambda_n.assign(n, 0.0);
-    rep.lambda_t.assign(n, 0.0);
     rep.status.assign(n, 0);
-    std::array<double, 3> ft{};
-    for (std::size_t j = 0; j < n; ++j) {
-      const double* nj = &rep.normal[j * dim];
-      for (int c = 0; c < dim; ++c)
-        rep.lambda[j * dim + c] = s.friction ? s.lambda[j * dim + c] : s.lambda[j] * nj[c];
-      for (int c = 0; c < dim; ++c) rep.lambda_n[j] += rep.lambda[j * dim + c] * nj[c];
-      double lt2 = 0.0;
-      for (int c = 0; c < dim; ++c) {
-        const double lt = rep.lambda[j * dim + c] - rep.lambda_n[j] * nj[c];
-        lt2 += lt * lt;
-        ft[c] += s.D[j] * lt;
-      }
-      rep.lambda_t[j] = std::sqrt(lt2);
+    // Totals over this rank's rows (each node in one rank's rows), then summed: normal force,
+    // tangential force (dim).
+    double totals[4] = {0.0, 0.0, 0.0, 0.0};
+    for (std::size_t j = 0; j < n; ++j)
       // Without friction every active node slides freely: status slip.
       rep.status[j] = s.friction ? s.status[j] : (s.active[j] ? 2 : 0);
-    }
-    rep.tangential_force = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
-    rep.weighted_gap = s.gap;
-    rep.gap.assign(n, 0.0);
+    const auto lambda_of = [&](std::size_t j, double* lj) {
+      for (int c = 0; c < dim; ++c)
+        lj[c] = s.friction ? s.lambda[j * dim + c] : s.lambda[j] * normal[j * dim + c];
+    };
     for (std::size_t j = 0; j < n; ++j)
-      if (s.D[j] > 0.0) rep.gap[j] = s.gap[j] / s.D[j];
+      if (rep.owned[j]) lambda_of(j, &rep.lambda[j * dim]);
+    for (const auto jl : rows) {
+      const auto j = static_cast<std::size_t>(jl);
+      const double* nj = &normal[j * dim];
+      double lj[3] = {0.0, 0.0, 0.0};
+      lambda_of(j, lj);
+      InterfaceNodeRow row;
+      row.order = static_cast<std::int64_t>(j);
+      const auto node = rep.slave_nodes[j];
+      row.node = disc_.node_gid(node);
+      for (int c = 0; c < dim; ++c) {
+        row.normal += lj[c] * nj[c];
+        row.x[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
+        row.u[c] = u_mesh[static_cast<std::size_t>(node) * dim + c];
+      }
+      double lt2 = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        const double lt = lj[c] - row.normal * nj[c];
+        lt2 += lt * lt;
+        totals[1 + c] += s.D[j] * lt;
+      }
+      totals[0] += s.D[j] * row.normal;
+      row.tangential = std::sqrt(lt2);
+      if (s.D[j] > 0.0) row.gap = s.gap[j] / s.D[j];
+      row.status = rep.status[j];
+      rep.rows.push_back(row);
+    }
+    comm.sum_in_place(totals);
+    rep.normal_force = totals[0];
+    rep.tangential_force =
+        std::sqrt(totals[1] * totals[1] + totals[2] * totals[2] + totals[3] * totals[3]);
+    rep.weighted_gap = s.gap;
     rep.active = s.active;
     for (std::size_t j = 0; j < n; ++j) {
-      rep.normal_force += s.D[j] * rep.lambda_n[j];
       if (s.active[j]) {
         rep.contact_area += s.D[j];
         ++rep.active_nodes;

@@ -70,7 +70,7 @@
 namespace seam::problem {
 
 class RecordWriter;
-class RecordReader;
+class Checkpoints;
 
 class ContactConstraint {
 public:
@@ -145,7 +145,7 @@ public:
   /// The state of the last converged step in a checkpoint, and back (contact_checkpoint.cpp).
   /// write_checkpoint is collective.
   void write_checkpoint(RecordWriter& out) const;
-  void read_checkpoint(const RecordReader& in);
+  void read_checkpoint(const Checkpoints& in);
 
   int n_active() const;
   /// Whether no interface carries friction.
@@ -160,7 +160,9 @@ public:
   /// One line per interface: what every rank still holds whole of it, and what is
   /// distributed (printed at the start of a run).
   std::vector<std::string> held_whole() const;
-  /// Per interface, the state for the output files (replicated), after balance().
+  /// Per interface, the state for the output files after balance(): the totals on every
+  /// rank, the rows of interface_<name>.csv of the slave nodes each rank owns (read through
+  /// its own displacement scatter). Collective.
   std::vector<ContactReport> reports(const la::Vector& u) const;
   /// Active nodes in stick (friction) and in slip (every active node without friction).
   int n_slip() const;
@@ -388,7 +390,7 @@ private:
   PetscInt global_dof(std::int64_t mesh_dof) const;
   /// The displacement of every interface node (slave and master of every side), dim per mesh
   /// node (the other entries zero): one scatter of those dofs, not the whole vector; for the
-  /// output and the start of an energy-momentum step. Collective.
+  /// start of an energy-momentum step. Collective.
   std::vector<double> whole_displacement(const la::Vector& u) const;
   /// The mesh nodes whose displacement this rank's evaluation reads (sorted): per side the
   /// slave nodes of its owned slave elements and the slave nodes it owns (their normals are

@@ -324,7 +324,7 @@ void Output::summarize(std::size_t k, InterfaceState& s, bool node_rows) const {
   parallel::sum_on_owners(comm.get(), keys, owners, force, dim);
   double totals[4] = {0.0, 0.0, 0.0, 0.0}; // fn, ft (3)
   double tied = 0.0;
-  std::vector<TiedNodeRow> rows;
+  std::vector<InterfaceNodeRow> rows;
   for (std::size_t j = 0; j < n_slave; ++j) {
     if (owners[j] != comm.rank()) continue;
     tied += tied_rows_[k][j];
@@ -333,9 +333,10 @@ void Output::summarize(std::size_t k, InterfaceState& s, bool node_rows) const {
     totals[0] += fj_n;
     for (int c = 0; c < dim; ++c) totals[1 + c] += force[j * dim + c] - fj_n * normals[j * dim + c];
     if (!node_rows) continue;
-    TiedNodeRow row;
+    InterfaceNodeRow row;
     const auto node = t.slave.mesh_nodes[j];
     row.node = disc_.node_gid(node);
+    row.order = row.node;
     double ln = 0.0, lt2 = 0.0;
     for (int c = 0; c < dim; ++c) {
       row.x[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
@@ -349,7 +350,7 @@ void Output::summarize(std::size_t k, InterfaceState& s, bool node_rows) const {
     row.gap = s.gap[j];
     row.normal = ln;
     row.tangential = std::sqrt(lt2);
-    row.tied = tied_rows_[k][j];
+    row.status = tied_rows_[k][j] ? InterfaceNodeRow::tied : InterfaceNodeRow::inactive;
     rows.push_back(row);
   }
   comm.sum_in_place(totals);
@@ -357,56 +358,52 @@ void Output::summarize(std::size_t k, InterfaceState& s, bool node_rows) const {
   s.tangential_force =
       std::sqrt(totals[1] * totals[1] + totals[2] * totals[2] + totals[3] * totals[3]);
   s.tied = static_cast<int>(std::lround(comm.sum(tied)));
-  if (!node_rows) return;
-  // The node rows to rank 0, in the order of the node ids.
+  if (node_rows) s.rows = rows_on_root(comm, rows); // in the order of the node ids
+}
+
+std::vector<InterfaceNodeRow> rows_on_root(const Comm& comm,
+                                           const std::vector<InterfaceNodeRow>& rows) {
   std::vector<std::int64_t> offsets(static_cast<std::size_t>(comm.size()) + 1,
                                     static_cast<std::int64_t>(rows.size()));
   offsets[0] = 0;
   std::vector<std::int64_t> recv_offsets;
-  s.rows = parallel::alltoallv<TiedNodeRow>(comm.get(), rows, offsets, recv_offsets);
-  std::sort(s.rows.begin(), s.rows.end(),
-            [](const TiedNodeRow& a, const TiedNodeRow& b) { return a.node < b.node; });
+  auto out = parallel::alltoallv<InterfaceNodeRow>(comm.get(), rows, offsets, recv_offsets);
+  std::sort(out.begin(), out.end(),
+            [](const InterfaceNodeRow& a, const InterfaceNodeRow& b) { return a.order < b.order; });
+  return out;
+}
+
+void Output::write_node_rows(const std::string& name,
+                             const std::vector<InterfaceNodeRow>& rows) const {
+  // Status per CONTRACT.md: inactive / stick / slip (without friction every active node
+  // slips); tied for a mesh-tying node with a row of D.
+  static constexpr const char* status_names[] = {"inactive", "stick", "slip", "tied"};
+  io::CsvTable table(dir_ / ("interface_" + name + ".csv"),
+                     columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
+                              "tangential_traction", "status"}));
+  for (const auto& row : rows)
+    table.add_row({row.node, row.x[0], row.x[1], row.x[2], row.u[0], row.u[1], row.u[2], row.gap,
+                   row.normal, row.tangential, status_names[row.status]});
 }
 
 void Output::write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
+                              const std::vector<std::vector<InterfaceNodeRow>>& contact_rows,
                               bool write_nodes) {
-  const int dim = disc_.dim();
-  // Status per CONTRACT.md: inactive / stick / slip (without friction every active node slips).
-  static constexpr const char* status_names[] = {"inactive", "stick", "slip"};
-  for (const auto& c : contact_) {
+  for (std::size_t k = 0; k < contact_.size(); ++k) {
+    const auto& c = contact_[k];
     interfaces_->add_row({r.step, r.time, c.name, c.normal_force, c.tangential_force,
                           c.active_nodes, c.slip_nodes, c.contact_area, c.frictional_dissipation});
     const parallel::WorkStats work{c.work_min, c.work_mean, c.work_max};
     parallel_->add_row({r.step, r.time, c.name, disc_.comm().size(), c.work_min, c.work_mean,
                         c.work_max, work.imbalance(), c.redistributed ? 1 : 0});
-    if (!write_nodes) continue;
-    io::CsvTable table(dir_ / ("interface_" + c.name + ".csv"),
-                       columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
-                                "tangential_traction", "status"}));
-    const auto& mesh = disc_.mesh();
-    for (std::size_t j = 0; j < c.slave_nodes.size(); ++j) {
-      const auto node = c.slave_nodes[j];
-      double X[3] = {0, 0, 0}, U[3] = {0, 0, 0};
-      for (int k = 0; k < dim; ++k) {
-        X[k] = mesh.x[static_cast<std::size_t>(node) * dim + k];
-        U[k] = c.displacement[j * dim + k];
-      }
-      table.add_row({disc_.node_gid(node), X[0], X[1], X[2], U[0], U[1], U[2], c.gap[j],
-                     c.lambda_n[j], c.lambda_t[j], status_names[static_cast<int>(c.status[j])]});
-    }
+    if (write_nodes) write_node_rows(c.name, contact_rows[k]);
   }
   for (std::size_t k = 0; k < tied_.size(); ++k) {
     const auto& t = tied_[k];
     const auto& s = states[k];
     interfaces_->add_row({r.step, r.time, t.name, s.normal_force, s.tangential_force, s.tied, 0,
                           t.operators.integrated_area, 0.0});
-    if (!write_nodes) continue;
-    io::CsvTable table(dir_ / ("interface_" + t.name + ".csv"),
-                       columns({"node", "x", "y", "z", "ux", "uy", "uz", "gap", "normal_traction",
-                                "tangential_traction", "status"}));
-    for (const auto& row : s.rows)
-      table.add_row({row.node, row.x[0], row.x[1], row.x[2], row.u[0], row.u[1], row.u[2], row.gap,
-                     row.normal, row.tangential, row.tied ? "tied" : "inactive"});
+    if (write_nodes) write_node_rows(t.name, s.rows);
   }
 }
 
@@ -469,7 +466,11 @@ void Output::step(const StepRecord& r, const la::Vector& u, const la::Vector* v,
   }
   const bool fields = force_fields || r.step % config_.output.every == 0;
   const auto states = interface_states(u, multipliers, fields);
-  if (comm.is_root()) write_interfaces(r, states, fields);
+  // The contact node rows, computed by the slave nodes' owners, to rank 0 for the file.
+  std::vector<std::vector<InterfaceNodeRow>> contact_rows;
+  if (fields)
+    for (const auto& c : contact_) contact_rows.push_back(rows_on_root(comm, c.rows));
+  if (comm.is_root()) write_interfaces(r, states, contact_rows, fields);
   if (fields) write_fields(r.step, r.time, u, v, states);
 }
 
@@ -540,9 +541,10 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   // interface, 0 inactive, 1 tied / stick, 2 slip).
   std::vector<double> lambda(n_points * 3, 0.0), gap(n_points, 0.0);
   std::vector<std::int32_t> status(n_points, -1);
-  if (!tied_.empty()) {
+  if (!tied_.empty() || !contact_.empty()) {
     // The owners' values, then the ghosts' copies of them (a distributed interface has its
-    // multipliers on the owned nodes only). Second vector: gap, and status + 2 (0: none).
+    // multipliers on the owned nodes only, a contact interface the multiplier vectors of the
+    // nodes whose normals it computed). Second vector: gap, and status + 2 (0: none).
     la::Vector lambda_v = disc_.make_vector(), gap_v = disc_.make_vector();
     {
       la::Vector::LocalView lv(lambda_v, true), gv(gap_v, true);
@@ -560,6 +562,14 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
           g[disc_.local_dof(node, 1)] = tied_rows_[k][j] ? 3.0 : 2.0;
         }
       }
+      for (const auto& c : contact_)
+        for (std::size_t j = 0; j < c.slave_nodes.size(); ++j) {
+          if (!c.owned[j]) continue;
+          const auto node = c.slave_nodes[j];
+          for (int k = 0; k < dim; ++k) l[disc_.local_dof(node, k)] = c.lambda[j * dim + k];
+          g[disc_.local_dof(node, 0)] = c.weighted_gap[j];
+          g[disc_.local_dof(node, 1)] = 2.0 + c.status[j];
+        }
     }
     lambda_v.update_ghosts();
     gap_v.update_ghosts();
@@ -571,16 +581,6 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
       for (int c = 0; c < dim; ++c) lambda[i * 3 + c] = l[i * dim + c];
       gap[i] = g[i * dim];
       status[i] = static_cast<std::int32_t>(g[i * dim + 1]) - 2;
-    }
-  }
-  for (const auto& c : contact_) {
-    for (std::size_t j = 0; j < c.slave_nodes.size(); ++j) {
-      const auto node = c.slave_nodes[j];
-      if (!disc_.has_node(node)) continue;
-      const auto i = static_cast<std::size_t>(disc_.local_dof(node, 0) / dim);
-      for (int k = 0; k < dim; ++k) lambda[i * 3 + k] = c.lambda[j * dim + k];
-      gap[i] = c.weighted_gap[j];
-      status[i] = c.status[j];
     }
   }
   if (!tied_.empty() || has_contact_) {
@@ -619,7 +619,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 23;
+  constexpr std::size_t n_counts = 25;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -650,6 +650,8 @@ void Output::finish(bool converged, int n_steps) {
       mine[20] += static_cast<double>(c.interface_nodes);
       mine[21] += static_cast<double>(c.local_master_facets_read);
       mine[22] += static_cast<double>(c.local_normals);
+      mine[23] += static_cast<double>(c.rows.size());
+      mine[24] += static_cast<double>(c.local_owned_nodes);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -734,6 +736,9 @@ void Output::finish(bool converged, int n_steps) {
     e["contact_interface_nodes"] = static_cast<std::int64_t>(d[20]);
     e["contact_master_facets_read"] = static_cast<std::int64_t>(d[21]);
     e["contact_normals_computed"] = static_cast<std::int64_t>(d[22]);
+    // The rows of interface_<name>.csv this rank computed at the last step (its slave nodes).
+    e["contact_output_rows"] = static_cast<std::int64_t>(d[23]);
+    e["contact_slave_nodes_owned"] = static_cast<std::int64_t>(d[24]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

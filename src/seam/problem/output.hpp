@@ -42,19 +42,31 @@ struct NewtonRecord {
   int active_set_changes = 0;
 };
 
-/// A contact interface's state at a converged step, the same on every rank.
+/// One slave node's row of interface_<name>.csv, computed by the rank that owns the node;
+/// the rows go to rank 0 only to be written (Output: O(interface) there once per written
+/// step).
+struct InterfaceNodeRow {
+  enum Status : std::int32_t { inactive = 0, stick = 1, slip = 2, tied = 3 };
+  std::int64_t order = 0; ///< the row's place in the file, the same on any number of ranks
+  std::int64_t node = 0;  ///< node id in the mesh as read
+  double x[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
+  double gap = 0.0, normal = 0.0, tangential = 0.0;
+  std::int32_t status = inactive, pad = 0;
+};
+
+/// A contact interface's state at a converged step: the totals and the per-slave-node status
+/// arrays the same on every rank; the multiplier vectors and the node rows only of the slave
+/// nodes this rank owns (their normals and displacements are read by their owners only).
 struct ContactReport {
   std::string name;
   std::vector<std::int32_t> slave_nodes; ///< mesh nodes
-  std::vector<double> displacement;      ///< dim per slave node
-  std::vector<double> normal;            ///< dim per slave node, current averaged normal
-  std::vector<double> lambda;            ///< multiplier vector, dim per slave node
-  std::vector<double> lambda_n;          ///< normal traction per slave node (> 0 pressure)
-  std::vector<double> lambda_t;          ///< magnitude of the tangential traction per node
-  std::vector<char> status;              ///< contact::NodeStatus: 0 inactive, 1 stick, 2 slip
-  std::vector<double> gap;               ///< nodal gap g~_j / D_jj (0 off the overlap)
-  std::vector<double> weighted_gap;      ///< g~_j
+  /// Multiplier vector, dim per slave node: set at the nodes this rank owns, zero elsewhere.
+  std::vector<double> lambda;
+  std::vector<char> status;         ///< contact::NodeStatus: 0 inactive, 1 stick, 2 slip
+  std::vector<double> weighted_gap; ///< g~_j
   std::vector<char> active;
+  std::vector<char> owned;             ///< per slave node: this rank owns it
+  std::vector<InterfaceNodeRow> rows;  ///< the rows of the slave nodes this rank owns
   double normal_force = 0.0;           ///< sum_j D_jj lambda_n,j
   double contact_area = 0.0;           ///< sum of D_jj over the active nodes
   double tangential_force = 0.0;       ///< |sum_j D_jj lambda_t,j|
@@ -93,7 +105,13 @@ struct ContactReport {
   /// read at the last evaluation, and the slave nodes whose averaged normals it computed.
   std::int64_t local_master_facets_read = 0;
   std::int64_t local_normals = 0;
+  /// The slave nodes this rank owns (it decides their status, checkpoints their state).
+  std::int64_t local_owned_nodes = 0;
 };
+
+/// The rows of all ranks on rank 0 in their order (empty on the other ranks). Collective.
+std::vector<InterfaceNodeRow> rows_on_root(const Comm& comm,
+                                           const std::vector<InterfaceNodeRow>& rows);
 
 /// A probe located in the mesh: the cell that contains it and its reference coordinates.
 struct LocatedProbe {
@@ -147,13 +165,6 @@ public:
   void finish(bool converged, int n_steps);
 
 private:
-  /// One slave node's row of interface_<name>.csv.
-  struct TiedNodeRow {
-    std::int64_t node = 0;
-    double x[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
-    double gap = 0.0, normal = 0.0, tangential = 0.0;
-    std::int32_t tied = 0, pad = 0;
-  };
   /// Interface state of one step. Per slave node of the rank's side (valid on the nodes it
   /// owns); the totals on every rank; the node rows on rank 0 (when asked for).
   struct InterfaceState {
@@ -162,7 +173,7 @@ private:
     std::vector<double> displacement; ///< dim per slave node
     double normal_force = 0.0, tangential_force = 0.0;
     int tied = 0;
-    std::vector<TiedNodeRow> rows; ///< rank 0: every slave node, by node id
+    std::vector<InterfaceNodeRow> rows; ///< rank 0: every slave node, by node id
   };
   /// Collective.
   std::vector<InterfaceState> interface_states(const la::Vector& u,
@@ -171,7 +182,10 @@ private:
   /// Collective: the totals and (node_rows) the node rows of tied interface k.
   void summarize(std::size_t k, InterfaceState& s, bool node_rows) const;
   void write_interfaces(const StepRecord& r, const std::vector<InterfaceState>& states,
+                        const std::vector<std::vector<InterfaceNodeRow>>& contact_rows,
                         bool write_nodes);
+  /// interface_<name>.csv from the rows of every slave node (rank 0).
+  void write_node_rows(const std::string& name, const std::vector<InterfaceNodeRow>& rows) const;
   void write_fields(int step, double time, const la::Vector& u, const la::Vector* v,
                     const std::vector<InterfaceState>& states);
 

@@ -194,4 +194,34 @@ void SaddlePoint::set_multipliers(const std::vector<std::vector<double>>& values
   lambda_saved_.copy_from(lambda_);
 }
 
+void SaddlePoint::owned_multipliers(std::size_t k, std::vector<std::int64_t>& keys,
+                                    std::vector<double>& values) const {
+  const int dim = disc_.dim();
+  keys.clear();
+  values.clear();
+  if (!active_) return;
+  la::Vector::LocalView lv(lambda_, false);
+  const auto ll = lv.values();
+  for (PetscInt i = 0; i < n_lm_; ++i) {
+    const auto& d = lm_dofs_[i];
+    if (d.interface != k) continue;
+    keys.push_back(disc_.node_gid(interfaces_[k].slave.mesh_nodes[d.slave_node]) * dim +
+                   d.component);
+    values.push_back(ll[i]);
+  }
+}
+
+void SaddlePoint::set_owned_multipliers(std::size_t k, std::span<const double> values) {
+  if (!active_) return;
+  {
+    la::Vector::LocalView lv(lambda_, true);
+    auto ll = lv.values();
+    std::size_t next = 0;
+    for (PetscInt i = 0; i < n_lm_; ++i)
+      if (lm_dofs_[i].interface == k) ll[i] = values[next++];
+    SEAM_ASSERT(next == values.size());
+  }
+  lambda_saved_.copy_from(lambda_);
+}
+
 } // namespace seam::problem

@@ -13,6 +13,8 @@
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
 
+#include <cstdint>
+#include <span>
 #include <vector>
 
 namespace seam::problem {
@@ -44,6 +46,12 @@ public:
   /// Sets lambda (and the saved copy) of every interface from values per slave node as
   /// multipliers() returns them (a restart).
   void set_multipliers(const std::vector<std::vector<double>>& values);
+  /// The multipliers of interface k that this rank owns (checkpoints: no rank gathers them):
+  /// keys (the slave node's id in the mesh as read times dim plus the component) and values.
+  void owned_multipliers(std::size_t k, std::vector<std::int64_t>& keys,
+                         std::vector<double>& values) const;
+  /// Sets them (and the saved copy) from values in the order of owned_multipliers' keys.
+  void set_owned_multipliers(std::size_t k, std::span<const double> values);
 
 private:
   struct LmDof {

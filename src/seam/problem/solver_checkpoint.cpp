@@ -4,6 +4,24 @@
 
 namespace seam::problem {
 
+namespace {
+
+/// The saddle-point multipliers of tied interface k that this rank owns, with the prefix of
+/// their part records: keyed by slave node and component, written and read by their owners.
+struct OwnedMultipliers {
+  std::string prefix;
+  std::vector<std::int64_t> keys;
+  std::vector<double> values;
+};
+OwnedMultipliers owned_multipliers(const SaddlePoint& saddle, std::size_t k) {
+  OwnedMultipliers m;
+  m.prefix = "saddle_point." + std::to_string(k) + ".";
+  saddle.owned_multipliers(k, m.keys, m.values);
+  return m;
+}
+
+} // namespace
+
 void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
                       const StepControl& control, const ContactConstraint& contact,
                       const SaddlePoint& saddle, const std::vector<meshtying::TiedInterface>& tied,
@@ -21,8 +39,11 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
   for (const auto& [name, v] : vectors) checkpoints.put_vector(w, name, *v);
   if (contact.active()) contact.write_checkpoint(w);
   if (saddle.active())
-    for (std::size_t k = 0; k < tied.size(); ++k)
-      w.put("saddle_point." + std::to_string(k), saddle.multipliers(k));
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      const auto m = owned_multipliers(saddle, k);
+      w.put_part(m.prefix + "keys", m.keys);
+      w.put_part(m.prefix + "values", m.values);
+    }
   out.write_checkpoint(w);
   checkpoints.commit(w, state.step);
 }
@@ -41,15 +62,18 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   control.set_state({checkpoints.restart_time(), r.real("control.dt"),
                      static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);
-  if (contact.active()) contact.read_checkpoint(r);
-  if (saddle.active()) {
-    std::vector<std::vector<double>> lambda;
-    const auto dim = static_cast<std::size_t>(r.integer("dimension"));
-    for (std::size_t k = 0; k < tied.size(); ++k)
-      lambda.push_back(
-          r.reals("saddle_point." + std::to_string(k), tied[k].slave.mesh_nodes.size() * dim));
-    saddle.set_multipliers(lambda);
-  }
+  if (contact.active()) contact.read_checkpoint(checkpoints);
+  if (saddle.active() && r.has("saddle_point.0"))
+    r.fail("was written by an earlier seam, which stored the multipliers in state.bin; rerun "
+           "to write a checkpoint of this version");
+  if (saddle.active())
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      // The multipliers this rank owns now, from the parts that hold them.
+      const auto m = owned_multipliers(saddle, k);
+      saddle.set_owned_multipliers(
+          k, checkpoints.get_keyed(m.prefix + "keys", m.prefix + "values", 1,
+                                   r.integer("mesh_nodes") * r.integer("dimension"), m.keys));
+    }
   return state;
 }
 
