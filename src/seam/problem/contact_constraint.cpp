@@ -1152,7 +1152,10 @@ std::vector<std::string> ContactConstraint::held_whole() const {
   return out;
 }
 
-std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) const {
+std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
+  // balance() may have given this rank other slave elements since the last evaluation: the
+  // scatter then brings the nodes around the new ones (the rows below read them).
+  refresh_displacement(u);
   const int dim = disc_.dim();
   const auto& comm = disc_.comm();
   const auto& mesh = disc_.mesh();

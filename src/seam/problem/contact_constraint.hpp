@@ -161,9 +161,10 @@ public:
   /// distributed (printed at the start of a run).
   std::vector<std::string> held_whole() const;
   /// Per interface, the state for the output files after balance(): the totals on every
-  /// rank, the rows of interface_<name>.csv of the slave nodes each rank owns (read through
-  /// its own displacement scatter). Collective.
-  std::vector<ContactReport> reports(const la::Vector& u) const;
+  /// rank, the rows of interface_<name>.csv of the slave nodes around each rank's slave
+  /// elements (read through its own displacement scatter, made anew first when balance()
+  /// redistributed the elements). Collective.
+  std::vector<ContactReport> reports(const la::Vector& u);
   /// Active nodes in stick (friction) and in slip (every active node without friction).
   int n_slip() const;
   /// Nodes that the cycling guard froze between stick and slip and that were accepted within
