@@ -14,7 +14,13 @@
 //   with quads subdivided into two layers of hexahedra: the 3D case that equals the 2D one
 //   (fsi_extruded.geo; docs/fsi.md, "Three dimensions"). Its groups: the 2D names for the
 //   extruded entities and the planes z = 0 and z = depth as `fluid_sides` and `flag_sides`.
-//   refine, quads and depth may be set before this file is included.
+//   structure = 0 leaves the flag out: the fluid alone, the flag's wet boundary
+//   `flag_wet_fluid` a rigid wall (CFD3, cfd3.geo). wall > 1 refines the fluid at the walls
+//   of cylinder and flag: its facets there are hc / wall, growing back to hc within
+//   wall_layer (0.02) of them (the flag's own cells stay: non-matching when structure = 1).
+//   wake > 0 holds the fluid's cells at that size in the box [0.1, 1.4] x [0.1, 0.31].
+//   refine, quads, depth, structure, wall, wall_layer and wake may be set before this file
+//   is included.
 // Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
 If (!Exists(refine))
   refine = 1;
@@ -25,6 +31,18 @@ If (!Exists(quads))
 EndIf
 If (!Exists(depth))
   depth = 0;
+EndIf
+If (!Exists(structure))
+  structure = 1;
+EndIf
+If (!Exists(wall))
+  wall = 1;
+EndIf
+If (!Exists(wall_layer))
+  wall_layer = 0.02;
+EndIf
+If (!Exists(wake))
+  wake = 0;
 EndIf
 nx = Round(20 * refine);
 ny = Round(2 * refine) > 1 ? Round(2 * refine) : 1;
@@ -56,8 +74,10 @@ Line(9) = {8, 9};                        // its upper face
 Curve Loop(1) = {1, 2, 3, 4};
 Curve Loop(2) = {5, 6, 7, 8, 9};
 Plane Surface(1) = {1, 2};
-Transfinite Curve{7, 9} = nx + 1;
-Transfinite Curve{8} = ny + 1;
+nxf = Round(nx * wall);
+nyf = Round(ny * wall);
+Transfinite Curve{7, 9} = nxf + 1;
+Transfinite Curve{8} = nyf + 1;
 Field[1] = Distance;
 Field[1].CurvesList = {5, 6, 7, 8, 9};
 Field[1].NumPointsPerCurve = 200;
@@ -67,29 +87,53 @@ Field[2].SizeMin = hc;
 Field[2].SizeMax = h;
 Field[2].DistMin = 0.0;
 Field[2].DistMax = 0.4;
-Background Field = 2;
+fields[] = {2};
+If (wall > 1)
+  Field[3] = Threshold;              // the walls' layer: hc / wall, hc at wall_layer (linear)
+  Field[3].InField = 1;
+  Field[3].SizeMin = hc / wall;
+  Field[3].SizeMax = h;
+  Field[3].DistMin = 0.0;
+  Field[3].DistMax = wall_layer * (h - hc / wall) / (hc - hc / wall);
+  fields[] += {3};
+EndIf
+If (wake > 0)
+  Field[4] = Box;                    // the wake
+  Field[4].VIn = wake;
+  Field[4].VOut = h;
+  Field[4].XMin = 0.1;
+  Field[4].XMax = 1.4;
+  Field[4].YMin = 0.1;
+  Field[4].YMax = 0.31;
+  fields[] += {4};
+EndIf
+Field[5] = Min;
+Field[5].FieldsList = {fields[]};
+Background Field = 5;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeFromCurvature = 0;
 
-// ---- The flag (own points and curves: own nodes).
-Point(21) = {x0, yc - th / 2, 0};
-Point(22) = {0.6, yc - th / 2, 0};
-Point(23) = {0.6, yc + th / 2, 0};
-Point(24) = {x0, yc + th / 2, 0};
-Point(25) = {xc, yc, 0};
-Line(21) = {21, 22};        // lower face
-Line(22) = {22, 23};        // tip
-Line(23) = {23, 24};        // upper face
-Circle(24) = {24, 25, 21};  // glued to the cylinder
-Curve Loop(21) = {21, 22, 23, 24};
-Plane Surface(21) = {21};
-nxs = Round(nx / fluid_ratio);
-nys = Round(ny / fluid_ratio) > 1 ? Round(ny / fluid_ratio) : 1;
-Transfinite Curve{21, 23} = nxs + 1;
-Transfinite Curve{22, 24} = nys + 1;
-Transfinite Surface{21};
-Recombine Surface{21};
+If (structure)
+  // ---- The flag (own points and curves: own nodes).
+  Point(21) = {x0, yc - th / 2, 0};
+  Point(22) = {0.6, yc - th / 2, 0};
+  Point(23) = {0.6, yc + th / 2, 0};
+  Point(24) = {x0, yc + th / 2, 0};
+  Point(25) = {xc, yc, 0};
+  Line(21) = {21, 22};        // lower face
+  Line(22) = {22, 23};        // tip
+  Line(23) = {23, 24};        // upper face
+  Circle(24) = {24, 25, 21};  // glued to the cylinder
+  Curve Loop(21) = {21, 22, 23, 24};
+  Plane Surface(21) = {21};
+  nxs = Round(nx / fluid_ratio);
+  nys = Round(ny / fluid_ratio) > 1 ? Round(ny / fluid_ratio) : 1;
+  Transfinite Curve{21, 23} = nxs + 1;
+  Transfinite Curve{22, 24} = nys + 1;
+  Transfinite Surface{21};
+  Recombine Surface{21};
+EndIf
 
 If (quads)
   Recombine Surface{1};
@@ -102,9 +146,13 @@ If (depth == 0)
   Physical Curve("walls") = {1, 3};
   Physical Curve("cylinder") = {5, 6};
   Physical Curve("flag_wet_fluid") = {7, 8, 9};
-  Physical Surface("flag") = {21};
-  Physical Curve("clamped") = {24};
-  Physical Curve("wet") = {21, 22, 23};
+  If (structure)
+    Physical Surface("flag") = {21};
+    Physical Curve("clamped") = {24};
+    Physical Curve("wet") = {21, 22, 23};
+  EndIf
+ElseIf (!structure)
+  Error("fsi.geo: depth > 0 needs the flag (structure = 1)");
 Else
   // A layer of cells in z. The flag's extruded entities lie on the fluid's but must stay
   // separate (own nodes), and the extrusion merges coinciding entities: the flag is extruded

@@ -16,6 +16,10 @@
   * A velocity condition on the fluid's interface group changes nothing (the coupling wins).
   * The FSI3 start-up (generalized-alpha on both fields, rho_s/rho_f = 1): 10 steps on a coarse
     mesh converge, the force transfer is exact at every step, 3 ranks equal 1 rank.
+  * The FSI3 start-up against CFD3 (cfd3.yaml: the same fluid mesh, the flag rigid, the fluid
+    solved alone): with a flag ten times stiffer and heavier the drag on cylinder + flag equals
+    CFD3's to 2e-4, and the differences fall as the flag stiffens (inflow, fluid keys, force
+    groups and mesh motion of the coupled run add nothing of their own).
   * The energy budget of the coupled system closes at second order in dt; the interface works
     of the two sides cancel to round-off.
   * Step cutting: a step whose Newton method fails is cut and retried; the run then equals the
@@ -324,6 +328,50 @@ def test_fsi3_startup():
         H.assert_close(steps3[-1][key], steps[-1][key], rtol=1e-8, what="FSI3 %s np 3" % key)
 
 
+def test_fsi3_against_cfd3():
+    """The FSI3 start-up (1 rank) and CFD3 (cfd3.yaml, 3 ranks: the same fluid mesh, the flag a
+    rigid wall) to t = 0.2 on fsi.geo's mesh of refine 0.5, where the flag has moved by 3e-6 m. The
+    coupled run must approach the rigid one as the flag is made stiffer and heavier: with
+    E and rho_s ten times FSI3's the drag on cylinder + flag equals CFD3's to 2e-4 from
+    t = 0.11 on, and the largest differences of drag and lift fall by at least 1.5 from the
+    FSI3 flag to the stiff one. Measured: drag 7.3e-5 (FSI3's flag 8.1e-4), lift differences
+    at t = 0.2 0.036 and 0.072 N/m (the flag's transverse acceleration against the added mass
+    of the fluid, about rho_f pi (L/2)^2 = 96 kg/m). A wrong inflow, viscosity or density, a
+    force group without the flag's interface or a mesh motion that disturbs the flow would
+    differ by far more."""
+    work, path = H.copy_example("turek_hron", "cfd3.yaml",
+                                [("end: 8, dt: 0.01", "end: 0.2, dt: 0.01")])
+    geo = os.path.join(work, "cfd3.geo")
+    with open(geo) as f:
+        text = f.read()
+    assert "structure = 0;" in text
+    with open(geo, "w") as f:
+        f.write(text.replace("structure = 0;",
+                             "refine = 0.5;\nwall = 1;\nwake = 0;\nstructure = 0;"))
+    rigid = [r for r in solve_tables(work, path, 3)[2] if r["name"] == "obstacle"]
+    stiff = ("young: 5.6e6, poisson: 0.4, density: 1000",
+             "young: 5.6e7, poisson: 0.4, density: 10000")
+    runs = {"FSI3": [], "stiff": [stiff]}
+    diff = {}
+    for name, replace in runs.items():
+        work, path = fsi3_case(0.2, 0.01, replace)
+        forces = [r for r in solve_tables(work, path, 1)[2] if r["name"] == "obstacle"]
+        if len(forces) != 20 or len(rigid) != 20:
+            raise AssertionError("%s / CFD3: %d and %d steps, expected 20"
+                                 % (name, len(forces), len(rigid)))
+        pairs = [(a, b) for a, b in zip(forces, rigid) if b["time"] > 0.105]
+        diff[name] = (max(abs(a["fx"] / b["fx"] - 1) for a, b in pairs),
+                      max(abs(a["fy"] - b["fy"]) for a, b in pairs))
+        print("   %-5s t = 0.2: drag %.6f lift %.6f (CFD3 %.6f, %.6f); from t = 0.11 largest "
+              "drag difference %.2e, lift %.4f" % (name, forces[-1]["fx"], forces[-1]["fy"],
+                                                  rigid[-1]["fx"], rigid[-1]["fy"],
+                                                  *diff[name]))
+    assert diff["stiff"][0] < 2e-4, "stiff flag: drag %.3e from CFD3's" % diff["stiff"][0]
+    for k, what in ((0, "drag"), (1, "lift")):
+        assert diff["stiff"][k] * 1.5 < diff["FSI3"][k], (
+            "the %s did not approach CFD3's with the stiffer flag: %s" % (what, diff))
+
+
 @H.full_only
 def test_fsi3_time_order():
     """The FSI3 start-up to t = 0.2 with dt = 0.02, 0.01, 0.005, 0.0025 (coarse mesh): the
@@ -512,6 +560,6 @@ if __name__ == "__main__":
     tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_fieldsplit,
              test_fsi1_nonmatching,
              test_fsi1_extruded, test_fsi1_extruded_parallel, test_flap3d_energy,
-             test_fsi3_startup, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
+             test_fsi3_startup, test_fsi3_against_cfd3, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
              test_fsi3_time_order]
     H.main(tests)
