@@ -503,12 +503,15 @@ def own_time(pid):
     try:
         with open("/proc/%d/stat" % pid) as f:
             stat = f.read()
-        with open("/proc/%d/schedstat" % pid) as f:
-            wait_ns = int(f.read().split()[1])
         with open("/proc/uptime") as f:
             now = float(f.read().split()[0])
     except (OSError, ValueError, IndexError):
         return None
+    try:
+        with open("/proc/%d/schedstat" % pid) as f:
+            wait_ns = int(f.read().split()[1])
+    except (OSError, ValueError, IndexError):
+        wait_ns = 0  # a kernel without schedstat: wall time, as before
     name = stat[stat.index("(") + 1:stat.rindex(")")]
     started = int(stat[stat.rindex(")") + 2:].split()[19]) / TICK
     return name, now - started - wait_ns * 1e-9
