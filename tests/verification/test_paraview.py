@@ -49,7 +49,7 @@ def pvpython():
     return shutil.which("pvpython")
 
 
-def virtual_display():
+def virtual_display(reset=False):
     """Starts Xvfb (24-bit screen) on a free display number and returns (process, display)
     once the server accepts clients (-displayfd: Xvfb writes the number when it is ready), or
     (None, None) if it could not start.
@@ -60,11 +60,12 @@ def virtual_display():
     $DISPLAY; VTK queries the visuals on a connection of its own), so its window's
     XOpenDisplay raced with the reset: VTK's "bad X server connection" abort in CreateAWindow.
     8 probes started at once on a loaded machine, 3 rounds: 18 of 24 aborted without -noreset
-    (13 of 16 with hwloc's search switched off alone), none with it."""
+    (13 of 16 with hwloc's search switched off alone), none with it (paraview_stress.py;
+    reset=True starts the server as before, to reproduce it)."""
     r, w = os.pipe()
     try:
-        proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-noreset", "-screen", "0",
-                                 "1280x1024x24", "-nolisten", "tcp"], pass_fds=(w,),
+        proc = subprocess.Popen(["Xvfb", "-displayfd", str(w)] + ([] if reset else ["-noreset"])
+                                + ["-screen", "0", "1280x1024x24", "-nolisten", "tcp"], pass_fds=(w,),
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     except OSError:
         os.close(r)
