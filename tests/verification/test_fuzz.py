@@ -525,10 +525,11 @@ def case_time(pid):
     return max(seam or [t for _, t in times] or [0.0])
 
 
-def run_watched(cmd, cwd, env, limit=None):
+def run_watched(cmd, cwd, env, limit=None, used=None):
     """Runs cmd; returns (exit code, stdout bytes, stderr bytes, None) or, when the case has
     used `limit` seconds of its own time (case_time) or WALL_LIMIT of wall time, kills its
-    process group and returns (None, stdout, stderr, what was exceeded)."""
+    process group and returns (None, stdout, stderr, what was exceeded). `used`, a list,
+    receives the own time last seen (sampled every 0.25 s)."""
     limit = TIMEOUT if limit is None else limit
     start = time.monotonic()
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
@@ -541,9 +542,11 @@ def run_watched(cmd, cwd, env, limit=None):
                 break
             except subprocess.TimeoutExpired:
                 pass
-            used, wall = case_time(p.pid), time.monotonic() - start
-            if used > limit or wall > WALL_LIMIT:
-                why = "%.1f s of its own time, %.1f s of wall time" % (used, wall)
+            own, wall = case_time(p.pid), time.monotonic() - start
+            if used is not None:
+                used[:] = [own]
+            if own > limit or wall > WALL_LIMIT:
+                why = "%.1f s of its own time, %.1f s of wall time" % (own, wall)
                 tree = descendants(p.pid)
                 os.killpg(p.pid, 9)
                 for q in tree:  # a rank that left the process group
@@ -567,12 +570,13 @@ def execute(case, dest):
         cmd = [H.MPIEXEC, "--oversubscribe", "-np", str(case.np)] + cmd
     start = time.time()
     # A corrupted mesh may hold any bytes, and a message may quote them.
-    code, out, err, hang = run_watched(cmd, dest, H.mpi_env())
+    own = [0.0]
+    code, out, err, hang = run_watched(cmd, dest, H.mpi_env(), used=own)
     if hang:
-        return case, "hang (stopped after %s)" % hang, -999, "", time.time() - start
+        return case, "hang (stopped after %s)" % hang, -999, "", time.time() - start, own[0]
     out = out.decode("utf-8", "replace")
     err = err.decode("utf-8", "replace")
-    return case, verdict(case, code, out, err), code, err, time.time() - start
+    return case, verdict(case, code, out, err), code, err, time.time() - start, own[0]
 
 
 def test_fuzz():
@@ -592,7 +596,7 @@ def test_fuzz():
                 results.append(r)
         failures = [r for r in results if r[1] is not None]
         tally = {}
-        for case, _, code, _, _ in results:
+        for case, _, code, _, _, _ in results:
             key = case.kind.split("+")[0].split("_")[0] + " " + case.command
             tally.setdefault(key, [0, 0, 0])
             tally[key][0 if code == 0 else 1 if code == 1 else 2] += 1
@@ -600,13 +604,16 @@ def test_fuzz():
         for key in sorted(tally):
             print("     %-22s %4d %4d %4d" % ((key,) + tuple(tally[key])))
         slowest = max(results, key=lambda r: r[4])
-        print("   %d cases in %.1f s (slowest %.1f s: %s)"
-              % (len(results), time.time() - start, slowest[4], slowest[0].label()))
+        busiest = max(results, key=lambda r: r[5])
+        print("   %d cases in %.1f s (slowest %.1f s of wall time: %s; largest own time seen "
+              "%.1f s of the %.0f s allowed: %s)"
+              % (len(results), time.time() - start, slowest[4], slowest[0].label(), busiest[5],
+                 TIMEOUT, busiest[0].label()))
         keep = os.environ.get("SEAM_FUZZ_KEEP")
-        for case, why, code, err, _ in failures[:20]:
+        for case, why, code, err, _, _ in failures[:20]:
             print("   FAILED %s: %s\n     %s" % (case.label(), why, err.strip()[-600:].replace("\n", "\n     ")))
         if keep:
-            for case, _, _, _, _ in failures:
+            for case, _, _, _, _, _ in failures:
                 shutil.copytree(os.path.join(work, "case_%04d" % case.number),
                                 os.path.join(keep, "case_%04d" % case.number), symlinks=False)
         if failures:
