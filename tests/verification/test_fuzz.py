@@ -15,8 +15,12 @@ Each case must end with
     input (with line:column and key path) or the mesh file it names, or
   * for `seam run`, exit code 2 with `seam: solver failed:` (an input that is valid but that
     no solver can handle, such as young: 1e308, whose stiffness overflows);
-and never with a crash (signal, exit code 3), a hang (30 s), a PETSc traceback or
-"terminate called" in the output.
+and never with a crash (signal, exit code 3), a hang, a PETSc traceback or "terminate called"
+in the output. A hang is a case whose seam process has used 30 s of time of its own: wall
+time less the time it spent waiting for a CPU (the run queue wait of Linux's schedstat), so a
+case that loops or that sleeps is stopped after 30 s however loaded the machine is, and a slow
+case on a machine shared by other builds is not (the wall time alone timed out spuriously).
+A case is also stopped after 20 x 30 s of wall time whatever its accounting says.
 
 SEAM_FUZZ_SEED and SEAM_FUZZ_CASES choose another seed and number of cases (for longer
 hunts outside CI); SEAM_FUZZ_KEEP=DIR keeps the folders of failing cases there.
@@ -37,7 +41,8 @@ import harness as H  # noqa: E402
 EXAMPLES_DIR = os.path.normpath(os.path.join(H.HERE, "..", "..", "examples"))
 SEED = int(os.environ.get("SEAM_FUZZ_SEED", "17"))
 N_CASES = int(os.environ.get("SEAM_FUZZ_CASES", "320"))
-TIMEOUT = 30
+TIMEOUT = float(os.environ.get("SEAM_FUZZ_TIMEOUT", "30"))  # seconds of a case's own time
+WALL_LIMIT = 20 * TIMEOUT  # the backstop
 
 # (folder, input, runnable with one step in CI): the small examples only.
 EXAMPLES = [
@@ -474,6 +479,88 @@ def verdict(case, code, out, err):
     return None
 
 
+def descendants(pid):
+    """pid and the processes it started (mpirun, orted, the ranks), from /proc."""
+    out, todo = [], [pid]
+    while todo:
+        p = todo.pop()
+        out.append(p)
+        try:
+            for task in os.listdir("/proc/%d/task" % p):
+                with open("/proc/%d/task/%s/children" % (p, task)) as f:
+                    todo += [int(c) for c in f.read().split()]
+        except OSError:
+            pass  # it ended meanwhile
+    return out
+
+
+TICK = os.sysconf("SC_CLK_TCK")
+
+
+def own_time(pid):
+    """(command name, seconds since the process started less the seconds it waited for a CPU:
+    what it ran plus what it slept), or None once it has ended."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            stat = f.read()
+        with open("/proc/uptime") as f:
+            now = float(f.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return None
+    try:
+        with open("/proc/%d/schedstat" % pid) as f:
+            wait_ns = int(f.read().split()[1])
+    except (OSError, ValueError, IndexError):
+        wait_ns = 0  # a kernel without schedstat: wall time, as before
+    name = stat[stat.index("(") + 1:stat.rindex(")")]
+    started = int(stat[stat.rindex(")") + 2:].split()[19]) / TICK
+    return name, now - started - wait_ns * 1e-9
+
+
+def case_time(pid):
+    """A case's own time: the largest of its seam processes' (the ranks), or of the whole tree
+    while mpirun has not started them yet."""
+    times = [t for t in map(own_time, descendants(pid)) if t is not None]
+    seam = [t for name, t in times if name == os.path.basename(H.SEAM)[:15]]
+    return max(seam or [t for _, t in times] or [0.0])
+
+
+def run_watched(cmd, cwd, env, limit=None, used=None):
+    """Runs cmd; returns (exit code, stdout bytes, stderr bytes, None) or, when the case has
+    used `limit` seconds of its own time (case_time) or WALL_LIMIT of wall time, kills its
+    process group and returns (None, stdout, stderr, what was exceeded). `used`, a list,
+    receives the own time last seen (sampled every 0.25 s)."""
+    limit = TIMEOUT if limit is None else limit
+    start = time.monotonic()
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=err,
+                             start_new_session=True)
+        why = None
+        while True:
+            try:
+                p.wait(timeout=0.25)
+                break
+            except subprocess.TimeoutExpired:
+                pass
+            own, wall = case_time(p.pid), time.monotonic() - start
+            if used is not None:
+                used[:] = [own]
+            if own > limit or wall > WALL_LIMIT:
+                why = "%.1f s of its own time, %.1f s of wall time" % (own, wall)
+                tree = descendants(p.pid)
+                os.killpg(p.pid, 9)
+                for q in tree:  # a rank that left the process group
+                    try:
+                        os.kill(q, 9)
+                    except OSError:
+                        pass
+                p.wait()
+                break
+        out.seek(0)
+        err.seek(0)
+        return (None if why else p.returncode), out.read(), err.read(), why
+
+
 def execute(case, dest):
     args = [case.command, "case.yaml"]
     if case.command == "run":
@@ -482,14 +569,14 @@ def execute(case, dest):
     if case.np > 1:
         cmd = [H.MPIEXEC, "--oversubscribe", "-np", str(case.np)] + cmd
     start = time.time()
-    try:
-        # A corrupted mesh may hold any bytes, and a message may quote them.
-        p = subprocess.run(cmd, cwd=dest, env=H.mpi_env(), capture_output=True, timeout=TIMEOUT)
-    except subprocess.TimeoutExpired:
-        return case, "hang (no exit within %d s)" % TIMEOUT, -999, "", time.time() - start
-    out = p.stdout.decode("utf-8", "replace")
-    err = p.stderr.decode("utf-8", "replace")
-    return case, verdict(case, p.returncode, out, err), p.returncode, err, time.time() - start
+    # A corrupted mesh may hold any bytes, and a message may quote them.
+    own = [0.0]
+    code, out, err, hang = run_watched(cmd, dest, H.mpi_env(), used=own)
+    if hang:
+        return case, "hang (stopped after %s)" % hang, -999, "", time.time() - start, own[0]
+    out = out.decode("utf-8", "replace")
+    err = err.decode("utf-8", "replace")
+    return case, verdict(case, code, out, err), code, err, time.time() - start, own[0]
 
 
 def test_fuzz():
@@ -509,7 +596,7 @@ def test_fuzz():
                 results.append(r)
         failures = [r for r in results if r[1] is not None]
         tally = {}
-        for case, _, code, _, _ in results:
+        for case, _, code, _, _, _ in results:
             key = case.kind.split("+")[0].split("_")[0] + " " + case.command
             tally.setdefault(key, [0, 0, 0])
             tally[key][0 if code == 0 else 1 if code == 1 else 2] += 1
@@ -517,13 +604,16 @@ def test_fuzz():
         for key in sorted(tally):
             print("     %-22s %4d %4d %4d" % ((key,) + tuple(tally[key])))
         slowest = max(results, key=lambda r: r[4])
-        print("   %d cases in %.1f s (slowest %.1f s: %s)"
-              % (len(results), time.time() - start, slowest[4], slowest[0].label()))
+        busiest = max(results, key=lambda r: r[5])
+        print("   %d cases in %.1f s (slowest %.1f s of wall time: %s; largest own time seen "
+              "%.1f s of the %.0f s allowed: %s)"
+              % (len(results), time.time() - start, slowest[4], slowest[0].label(), busiest[5],
+                 TIMEOUT, busiest[0].label()))
         keep = os.environ.get("SEAM_FUZZ_KEEP")
-        for case, why, code, err, _ in failures[:20]:
+        for case, why, code, err, _, _ in failures[:20]:
             print("   FAILED %s: %s\n     %s" % (case.label(), why, err.strip()[-600:].replace("\n", "\n     ")))
         if keep:
-            for case, _, _, _, _ in failures:
+            for case, _, _, _, _, _ in failures:
                 shutil.copytree(os.path.join(work, "case_%04d" % case.number),
                                 os.path.join(keep, "case_%04d" % case.number), symlinks=False)
         if failures:
@@ -536,5 +626,54 @@ def test_fuzz():
         H.cleanup(work)
 
 
+def test_hangs_are_caught_under_load():
+    """The fuzzer's watchdog (run_watched) with a 3 s limit: a fake seam that sleeps and one
+    that loops are stopped after 3 s of their own time (the one that sleeps after at most 13 s
+    of wall time); a fake seam that needs 2 s of CPU while three busy processes per core (at
+    most 8) share the machine with it finishes although its wall time may exceed the limit (it
+    was waiting for a CPU, which is not its own time: 4.1 s and 7.1 s of wall time were seen)."""
+    work = tempfile.mkdtemp(prefix="seam_fuzz_hang_")
+    burners = []
+    try:
+        fake = os.path.join(work, os.path.basename(H.SEAM) or "seam")
+        scripts = {
+            "sleeps": "sleep 600",
+            "loops": "while :; do :; done",
+            "computes": "exec %s -c 'import time\nwhile time.process_time() < 2: pass'"
+                        % sys.executable,
+        }
+        results = {}
+        for what, body in scripts.items():
+            with open(fake, "w") as f:
+                f.write("#!/bin/sh\n%s\n" % body)
+            os.chmod(fake, 0o755)
+            if what == "computes":
+                burners = [subprocess.Popen([sys.executable, "-c", "while True: pass"])
+                           for _ in range(min(8, 3 * (os.cpu_count() or 1)))]
+            start = time.monotonic()
+            code, _, _, why = run_watched([fake], work, os.environ, limit=3.0)
+            results[what] = (code, why, time.monotonic() - start)
+            print("   a seam that %s: %s after %.1f s of wall time"
+                  % (what, ("stopped (%s)" % why) if why else "exit %s" % code,
+                     results[what][2]))
+        for what in ("sleeps", "loops"):
+            code, why, wall = results[what]
+            if why is None:
+                raise AssertionError("a seam that %s was not stopped (exit %s)" % (what, code))
+        # Sleeping is its own time whatever the load (a loop's wall time grows with the load).
+        if results["sleeps"][2] > 3.0 + 10.0:
+            raise AssertionError("a seam that sleeps was stopped after %.1f s"
+                                 % results["sleeps"][2])
+        code, why, wall = results["computes"]
+        if why is not None or code != 0:
+            raise AssertionError("a seam that computes 2 s on a loaded machine was stopped "
+                                 "(%s, exit %s, %.1f s)" % (why, code, wall))
+    finally:
+        for b in burners:
+            b.kill()
+            b.wait()
+        H.cleanup(work)
+
+
 if __name__ == "__main__":
-    H.main([test_fuzz])
+    H.main([test_hangs_are_caught_under_load, test_fuzz])

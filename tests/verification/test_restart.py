@@ -292,6 +292,37 @@ def test_static_friction_two_bodies():
     check_case(TWO_BLOCKS_GEO, two_blocks_yaml, 3, "static friction, two bodies")
 
 
+def test_same_ranks_np3():
+    """Static friction of two blocks on 3 ranks, continued on 3 ranks from step 3: bit for bit
+    if two uninterrupted 3-rank runs are (the issue's requirement on the same number of ranks),
+    else within 1e-12 (the two runs' own difference is printed). At present two uninterrupted
+    3-rank runs differ at round-off (6e-14 and 9e-14 of a column's scale in two tries, the
+    residual at convergence by 1e-4 of itself), which the module docstring puts down to the
+    parallel direct solver's reductions, so no restart on 3 ranks can be bit for bit; the test
+    tightens by itself once they agree."""
+    what = "static friction, two bodies, 3 -> 3"
+    step = 3
+    _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(step))
+    first = full_run(yaml, 3)
+    second = tempfile.mkdtemp(prefix="seam_restart_out_")
+    _dirs.append(second)
+    H.run(["run", yaml, "-o", second, "--quiet"], np=3)
+    try:
+        compare(first, second, 0.0, "two uninterrupted 3-rank runs")
+        spread = 0.0
+    except AssertionError as e:
+        spread = compare(first, second, 1e-12, "two uninterrupted 3-rank runs")
+        print("   two uninterrupted 3-rank runs are not bit for bit: %s\n   they differ by at "
+              "most %.2e of a column's scale" % (str(e).splitlines()[0], spread))
+    restarted = restarted_run(yaml, first, step, 3)
+    if spread == 0.0:
+        compare(first, restarted, 0.0, what)
+        print("   %s: bit for bit" % what)
+        return
+    d33 = compare(first, restarted, 1e-12, what)
+    print("   %s: largest relative difference %.2e" % (what, d33))
+
+
 def test_static_standard_multipliers():
     """Frictionless, standard multipliers: the multipliers are unknowns of the saddle point."""
     check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: standard"), 3,
@@ -645,7 +676,8 @@ def ints(data):
 
 if __name__ == "__main__":
     try:
-        H.main([test_static_friction_two_bodies, test_static_standard_multipliers,
+        H.main([test_static_friction_two_bodies, test_same_ranks_np3,
+                test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
                 test_friction_3d_rigid_plane,
