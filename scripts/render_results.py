@@ -1,11 +1,12 @@
 """Renders the last step of a seam run with ParaView (pvpython), for the pictures of the
 examples' READMEs: the deformed mesh coloured by a point or cell field.
 
-    xvfb-run -a -s "-screen 0 1280x1024x24" pvpython scripts/render_results.py \\
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython scripts/render_results.py \\
         ironing_3d_out/results.pvd von_mises -o docs/figures/ironing_3d_paraview.png \\
         [--view x,y,z] [--up x,y,z] [--time T] [--clip x,y,z,nx,ny,nz] [--no-edges]
 
-(Debian's ParaView renders through X: xvfb-run provides a virtual screen.)"""
+(Debian's ParaView renders through X: xvfb-run provides a virtual screen; -noreset keeps Xvfb from
+resetting when pvpython's first connections close, which made window creation fail.)"""
 import argparse
 
 from paraview import simple as pv  # pvpython only
