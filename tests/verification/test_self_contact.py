@@ -410,6 +410,12 @@ def bar_impact(interface, integrator, nx=40, steps=160, np=1, gap=0.01):
     e0 = 0.5 * v * v * L * height
     rise = max(b - a for a, b in zip([e0] + e, e)) / e0
     mom = max(abs(r["momentum_x"] - v * L * height) for r in steps_rows) / (v * L * height)
+    # No loads, supports or rigid obstacles: the bars' contact forces on each other are
+    # internal, so external_work stays zero and total_energy shows what the impact dissipates.
+    external = max(abs(r["external_work"]) for r in steps_rows) / e0
+    if external > 1e-10:
+        raise AssertionError("external_work reaches %.3e of the energy: the bars' contact "
+                             "forces on each other counted as external" % external)
     print("   %s, %s: contact %.3f .. %.3f, duration %.4f (2L/c = 2, %.1f steps off), contact "
           "stress %.6g (rho c v / 2 = %.6g, plateau spread %.1f %%); velocities after %.5f, "
           "%.5f (0, %.2f); energy end/start %.6f, largest rise in a step %.2e of it; momentum "

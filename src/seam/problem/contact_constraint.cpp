@@ -487,11 +487,12 @@ double ContactConstraint::max_weight(const Side& s) const {
   return disc_.comm().max(d_max);
 }
 
-void ContactConstraint::add_force(la::Vector& r) const {
+void ContactConstraint::add_force(la::Vector& r, bool between_bodies_only) const {
   const int dim = disc_.dim();
   std::vector<PetscInt> rows;
   std::vector<double> values;
   for (const auto& s : sides_) {
+    if (between_bodies_only && s.itf.rigid()) continue;
     if (s.discrete_gradient) {
       // -sum_j lambda_n,j grad_d g~_j (the nodes this rank owns); with friction the mortar
       // force of the tangential parts follows.

@@ -108,8 +108,10 @@ public:
   /// decided there replace that evaluation's for the cycling guard. Collective.
   int evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers,
                bool retrial = false);
-  /// r += contact force of the current multipliers. Collective.
-  void add_force(la::Vector& r) const;
+  /// r += contact force of the current multipliers; with `between_bodies_only` only that of
+  /// the interfaces between deformable bodies (two bodies, self contact), not of rigid
+  /// obstacles. Collective.
+  void add_force(la::Vector& r, bool between_bodies_only = false) const;
   /// Complementarity residual in force units: c_n g~_j on active nodes, D_jj lambda_n,j on
   /// inactive ones. Same on every rank.
   double complementarity_norm() const;

@@ -124,13 +124,16 @@ public:
     return out;
   }
 
-  /// All forces the surroundings exert on the body at the last evaluation: applied loads plus
+  /// All forces the surroundings exert on the bodies at the last evaluation: applied loads plus
   /// support reactions, f_ext + (f_int - f_ext) = f_int at equilibrium.
-  /// With contact the bulk residual is taken, so that the contact forces of rigid planes count
-  /// as external actions too: f_ext + (f_int - f_ext) = f_int.
+  /// With contact the bulk residual is taken and the contact forces between deformable bodies
+  /// (two bodies, self contact) added back, so that only the rigid obstacles' contact forces
+  /// count as external actions: the work of the forces the bodies exert on each other (what an
+  /// impact dissipates, or a step would gain) stays in the energy balance.
   void total_external_force(la::Vector& out) const {
     out.copy_from(f_ext_);
     out.axpy(1.0, contact_.active() ? r_ : r_full_);
+    if (contact_.active()) contact_.add_force(out, true);
   }
 
   /// The Lagrange multipliers of every mesh-tying interface (per slave node, dim values), on
