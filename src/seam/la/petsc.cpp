@@ -71,6 +71,9 @@ Vector& Vector::operator=(Vector&& o) noexcept {
     if (v_) VecDestroy(&v_);
     v_ = o.v_;
     o.v_ = nullptr;
+    remote_rows_ = std::move(o.remote_rows_);
+    remote_values_ = std::move(o.remote_values_);
+    remote_insert_ = o.remote_insert_;
   }
   return *this;
 }
@@ -89,19 +92,96 @@ void Vector::zero() {
   check(VecSet(v_, 0.0), "VecSet");
 }
 
+// PETSc's VecAssemblyEnd adds the stashed entries of other ranks in the order their messages
+// arrive (MPI_Waitsome), so that on three or more ranks an entry that two ranks contribute to
+// rounds differently from run to run. Vector therefore keeps such entries itself and sends them
+// in assemble() with one MPI_Alltoallv, whose result is in rank order.
+void Vector::keep_remote(std::span<const PetscInt> rows, std::span<const double> values,
+                         bool insert) {
+  PetscInt lo = 0, hi = 0;
+  check(VecGetOwnershipRange(v_, &lo, &hi), "VecGetOwnershipRange");
+  if (!remote_rows_.empty())
+    SEAM_CHECK(remote_insert_ == insert, InternalError,
+               "Vector: added and inserted values without an assemble() between them");
+  remote_insert_ = insert;
+  const InsertMode mode = insert ? INSERT_VALUES : ADD_VALUES;
+  std::size_t k = 0;
+  while (k < rows.size()) {
+    // A run of owned rows goes to PETSc at once; the others are kept.
+    std::size_t end = k;
+    while (end < rows.size() && rows[end] >= lo && rows[end] < hi) ++end;
+    if (end > k)
+      check(VecSetValues(v_, static_cast<PetscInt>(end - k), rows.data() + k, values.data() + k,
+                         mode),
+            "VecSetValues");
+    for (; end < rows.size() && !(rows[end] >= lo && rows[end] < hi); ++end) {
+      if (rows[end] < 0) continue; // PETSc's convention: a negative row is ignored
+      remote_rows_.push_back(rows[end]);
+      remote_values_.push_back(values[end]);
+    }
+    k = end;
+  }
+}
+
 void Vector::add_values(std::span<const PetscInt> rows, std::span<const double> values) {
-  check(
-      VecSetValues(v_, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
-      "VecSetValues");
+  keep_remote(rows, values, false);
 }
 
 void Vector::set_values(std::span<const PetscInt> rows, std::span<const double> values) {
-  check(VecSetValues(v_, static_cast<PetscInt>(rows.size()), rows.data(), values.data(),
-                     INSERT_VALUES),
-        "VecSetValues");
+  keep_remote(rows, values, true);
 }
 
 void Vector::assemble() {
+  MPI_Comm comm = MPI_COMM_NULL;
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(v_), &comm), "PetscObjectGetComm");
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  if (size > 1) {
+    const PetscInt* ranges = nullptr;
+    check(VecGetOwnershipRanges(v_, &ranges), "VecGetOwnershipRanges");
+    // The kept entries by owner, each owner's in the order they were given.
+    const std::size_t n = remote_rows_.size();
+    std::vector<int> owner(n), send_count(size, 0), send_displ(size, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+      owner[k] =
+          static_cast<int>(std::upper_bound(ranges, ranges + size + 1, remote_rows_[k]) - ranges) -
+          1;
+      ++send_count[owner[k]];
+    }
+    for (int r = 1; r < size; ++r) send_displ[r] = send_displ[r - 1] + send_count[r - 1];
+    std::vector<PetscInt> send_rows(n);
+    std::vector<double> send_values(n);
+    {
+      std::vector<int> next(send_displ);
+      for (std::size_t k = 0; k < n; ++k) {
+        const int at = next[owner[k]]++;
+        send_rows[at] = remote_rows_[k];
+        send_values[at] = remote_values_[k];
+      }
+    }
+    std::vector<int> recv_count(size), recv_displ(size, 0);
+    MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, comm);
+    for (int r = 1; r < size; ++r) recv_displ[r] = recv_displ[r - 1] + recv_count[r - 1];
+    const int n_recv = recv_displ[size - 1] + recv_count[size - 1];
+    std::vector<PetscInt> recv_rows(n_recv);
+    std::vector<double> recv_values(n_recv);
+    MPI_Alltoallv(send_rows.data(), send_count.data(), send_displ.data(), MPIU_INT,
+                  recv_rows.data(), recv_count.data(), recv_displ.data(), MPIU_INT, comm);
+    MPI_Alltoallv(send_values.data(), send_count.data(), send_displ.data(), MPI_DOUBLE,
+                  recv_values.data(), recv_count.data(), recv_displ.data(), MPI_DOUBLE, comm);
+    int insert = remote_insert_ && n > 0 ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &insert, 1, MPI_INT, MPI_MAX, comm);
+    if (n_recv > 0)
+      check(VecSetValues(v_, n_recv, recv_rows.data(), recv_values.data(),
+                         insert ? INSERT_VALUES : ADD_VALUES),
+            "VecSetValues");
+  } else {
+    SEAM_CHECK(remote_rows_.empty(), InternalError, "Vector: row ",
+               remote_rows_.empty() ? 0 : remote_rows_.front(), " out of range");
+  }
+  remote_rows_.clear();
+  remote_values_.clear();
+  remote_insert_ = false;
   check(VecAssemblyBegin(v_), "VecAssemblyBegin");
   check(VecAssemblyEnd(v_), "VecAssemblyEnd");
 }

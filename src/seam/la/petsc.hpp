@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace seam::la {
@@ -31,7 +32,11 @@ public:
   /// n_owned local entries; `ghosts` are global indices of extra entries kept locally.
   Vector(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> ghosts = {});
   ~Vector();
-  Vector(Vector&& o) noexcept : v_(o.v_) { o.v_ = nullptr; }
+  Vector(Vector&& o) noexcept
+      : v_(o.v_), remote_rows_(std::move(o.remote_rows_)),
+        remote_values_(std::move(o.remote_values_)), remote_insert_(o.remote_insert_) {
+    o.v_ = nullptr;
+  }
   Vector& operator=(Vector&& o) noexcept;
   Vector(const Vector&) = delete;
   Vector& operator=(const Vector&) = delete;
@@ -40,8 +45,11 @@ public:
   Vector duplicate() const;
   void copy_from(const Vector& src);
   void zero();
+  /// Entries of rows owned by another rank are kept until assemble().
   void add_values(std::span<const PetscInt> rows, std::span<const double> values);
   void set_values(std::span<const PetscInt> rows, std::span<const double> values);
+  /// Collective. Sends the kept entries to their owners, which add (or insert) them in rank
+  /// order and then in the order they were given, so that a sum rounds the same in every run.
   void assemble();
   /// Owned + ghost entries become consistent with their owners (forward scatter).
   void update_ghosts();
@@ -73,7 +81,12 @@ public:
   };
 
 private:
+  void keep_remote(std::span<const PetscInt> rows, std::span<const double> values, bool insert);
+
   Vec v_ = nullptr;
+  std::vector<PetscInt> remote_rows_;
+  std::vector<double> remote_values_;
+  bool remote_insert_ = false;
 };
 
 /// Chosen entries of a distributed vector (global indices, the same or different on every
