@@ -39,6 +39,71 @@ FluidLayout::FluidLayout(const mesh::Mesh& mesh, Comm comm)
   for (std::int32_t n = 0; n < n_nodes; ++n)
     if (node_owner_[n] == rank) n_owned_dofs_ += dim_ + has_pressure_[n];
 
+  n_global_nodes_ = n_nodes;
+  n_global_cells_ = mesh.n_cells();
+  number_ghosts();
+}
+
+FluidLayout::FluidLayout(const mesh::DistributedMesh& part, Comm comm)
+    : mesh_(&part.mesh), part_(&part), comm_(comm), dim_(part.mesh.dim),
+      cell_part_(part.cell_owner), node_owner_(part.node_owner),
+      n_global_nodes_(part.n_global_nodes), n_global_cells_(part.n_global_cells) {
+  const auto& mesh = part.mesh;
+  const int rank = comm_.rank();
+  const std::int32_t n_nodes = mesh.n_nodes();
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    if (cell_part_[c] == rank) local_cells_.push_back(c);
+  // A node is a vertex of every cell around it or of none (a conforming mesh), so the cells
+  // held decide it for every node held.
+  has_pressure_.assign(n_nodes, 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+    const auto nodes = mesh.cell(c);
+    for (int k = 0; k < fem::n_vertices(mesh.cell_type[c]); ++k) has_pressure_[nodes[k]] = 1;
+  }
+  // The owned nodes in global order, their dofs after those of the lower ranks.
+  std::vector<std::int32_t> owned, others;
+  for (std::int32_t n = 0; n < n_nodes; ++n)
+    (node_owner_[n] == rank ? owned : others).push_back(n);
+  std::sort(owned.begin(), owned.end(), [&](std::int32_t a, std::int32_t b) {
+    return part.node_index[a] < part.node_index[b];
+  });
+  for (auto n : owned) n_owned_dofs_ += dim_ + has_pressure_[n];
+  long long mine = n_owned_dofs_, before = 0;
+  MPI_Exscan(&mine, &before, 1, MPI_LONG_LONG, MPI_SUM, comm_.get());
+  if (rank == 0) before = 0;
+  first_owned_dof_ = static_cast<PetscInt>(before);
+  n_global_dofs_ = static_cast<PetscInt>(comm_.sum(static_cast<std::int64_t>(mine)));
+  first_dof_.assign(n_nodes, -1);
+  PetscInt next = first_owned_dof_;
+  for (auto n : owned) {
+    first_dof_[n] = next;
+    next += dim_ + has_pressure_[n];
+  }
+  // The first dofs of the other nodes held, from their owners: one ghosted vector over the
+  // global node numbers (exact in double up to 2^53 dofs).
+  std::vector<PetscInt> ghost_nodes;
+  for (auto n : others) ghost_nodes.push_back(static_cast<PetscInt>(part.node_index[n]));
+  la::Vector first(comm_.get(), static_cast<PetscInt>(owned.size()), ghost_nodes);
+  {
+    la::Vector::LocalView view(first, true);
+    auto v = view.values();
+    const auto offset = part.node_offsets[rank];
+    for (auto n : owned) v[part.node_index[n] - offset] = static_cast<double>(first_dof_[n]);
+  }
+  first.update_ghosts();
+  {
+    la::Vector::LocalView view(first, false);
+    const auto v = view.values();
+    for (std::size_t k = 0; k < others.size(); ++k)
+      first_dof_[others[k]] = static_cast<PetscInt>(v[owned.size() + k]);
+  }
+  number_ghosts();
+}
+
+void FluidLayout::number_ghosts() {
+  const auto& mesh = *mesh_;
+  const int rank = comm_.rank();
+  const std::int32_t n_nodes = mesh.n_nodes();
   local_first_.assign(n_nodes, -1);
   for (std::int32_t n = 0; n < n_nodes; ++n)
     if (node_owner_[n] == rank)
@@ -59,6 +124,27 @@ FluidLayout::FluidLayout(const mesh::Mesh& mesh, Comm comm)
     for (int c = 0; c < dim_ + has_pressure_[n]; ++c) ghost_dofs_.push_back(first_dof_[n] + c);
     local += dim_ + has_pressure_[n];
   }
+}
+
+void FluidLayout::nodal_to_vector(std::span<const double> nodal, la::Vector& v) const {
+  {
+    la::Vector::LocalView view(v, true);
+    auto values = view.values();
+    for (std::int32_t n = 0; n < mesh_->n_nodes(); ++n)
+      if (owns_node(n))
+        for (int i = 0; i < dim_; ++i)
+          values[local_dof(n, i)] = nodal[static_cast<std::size_t>(n) * dim_ + i];
+  }
+  v.update_ghosts();
+}
+
+void FluidLayout::vector_to_nodal(const la::Vector& v, std::span<double> nodal) const {
+  la::Vector::LocalView view(v, false);
+  const auto values = view.values();
+  for (std::int32_t n = 0; n < mesh_->n_nodes(); ++n)
+    for (int i = 0; i < dim_; ++i)
+      nodal[static_cast<std::size_t>(n) * dim_ + i] =
+          local_first_[n] < 0 ? 0.0 : values[local_dof(n, i)];
 }
 
 int FluidLayout::cell_dofs(std::int32_t c, std::span<PetscInt> out) const {

@@ -6,9 +6,11 @@
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/progress.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace seam::problem {
@@ -74,14 +76,12 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
     types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
     cell_rank_.push_back(layout.comm().rank());
   }
-  const auto& mesh = layout.mesh();
-  if (!config.output.probes.empty()) {
-    const mesh::PointLocator locator(mesh);
-    for (const auto& p : config.output.probes) {
-      const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim));
-      if (!loc) io::fail_at(p.mark, "probe lies outside the fluid mesh");
-      located_.push_back({p.point, loc->cell, loc->xi});
-    }
+  // Probes: the rank whose cell the whole-mesh search would pick evaluates each (output.hpp).
+  for (const auto& p : config.output.probes) {
+    const auto loc = locate_probe(
+        cells_mesh, layout.local_cells(), [&](std::int32_t c) { return layout.cell_gid(c); }, p,
+        layout.comm());
+    located_.push_back({p.point, loc.cell, loc.xi});
   }
 }
 
@@ -129,7 +129,7 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
     const auto& mesh = layout_.mesh();
     for (std::size_t k = 0; k < located_.size(); ++k) {
       const auto& pr = located_[k];
-      if (!layout_.is_local_cell(pr.cell)) continue;
+      if (pr.cell < 0) continue;
       const auto v = evaluate_at(layout_, view.values(), pr.cell, pr.xi.data());
       double* out = &probe[k * 7];
       for (int i = 0; i < 4; ++i) out[3 + i] = v[i];
@@ -219,6 +219,32 @@ void FluidOutput::finish(bool converged, int n_steps) {
   std::vector<double> phases;
   const char* names[] = {"assembly", "linear_solve", "output"};
   for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
+  // Every rank's share (CONTRACT.md, ranks_detail), as the solid's Output reports it: the
+  // cells it assembles and the other cells it holds, its owned and ghost nodes, the nodes it
+  // holds, and the cells it holds only for an interface side.
+  parallel::mark_memory(comm.get(), "end");
+  constexpr std::size_t n_detail = 11;
+  std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
+  {
+    const auto& mesh = layout_.mesh();
+    double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
+    mine[0] = static_cast<double>(layout_.local_cells().size());
+    mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) {
+      if (layout_.owns_node(n))
+        mine[2] += 1.0;
+      else if (layout_.local_dof(n, 0) >= 0)
+        mine[3] += 1.0;
+    }
+    mine[4] = static_cast<double>(mesh.n_nodes());
+    if (const auto* part = layout_.part())
+      mine[5] = static_cast<double>(part->count(mesh::CellRole::interface));
+    double peak = 0.0;
+    for (const auto& m : parallel::memory_phases()) peak = std::max(peak, m.peak_mb);
+    mine[6] = peak;
+    for (std::size_t k = 0; k < 4; ++k) mine[7 + k] = interface_counts_[k];
+  }
+  comm.sum_in_place(detail);
   if (!comm.is_root()) return;
   io::Json j = io::Json::object();
   j["status"] = converged ? "converged" : "failed";
@@ -232,8 +258,27 @@ void FluidOutput::finish(bool converged, int n_steps) {
   j["linear_iterations"] = linear_iterations_;
   auto& t = j["timings"];
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
-  j["nodes"] = layout_.mesh().n_nodes();
-  j["cells"] = layout_.mesh().n_cells();
+  j["nodes"] = layout_.n_global_nodes();
+  j["cells"] = layout_.n_global_cells();
+  auto& ranks = j["ranks_detail"];
+  ranks = io::Json::array();
+  for (int r = 0; r < comm.size(); ++r) {
+    const double* d = &detail[static_cast<std::size_t>(r) * n_detail];
+    io::Json e = io::Json::object();
+    e["rank"] = r;
+    e["cells"] = static_cast<std::int64_t>(d[0]);
+    e["ghost_cells"] = static_cast<std::int64_t>(d[1]);
+    e["owned_nodes"] = static_cast<std::int64_t>(d[2]);
+    e["ghost_nodes"] = static_cast<std::int64_t>(d[3]);
+    e["nodes"] = static_cast<std::int64_t>(d[4]);
+    e["interface_cells"] = static_cast<std::int64_t>(d[5]);
+    e["peak_rss_mb"] = d[6];
+    e["slave_elements"] = static_cast<std::int64_t>(d[7]);
+    e["master_ghosts"] = static_cast<std::int64_t>(d[8]);
+    e["pairs"] = static_cast<std::int64_t>(d[9]);
+    e["integration_cells"] = static_cast<std::int64_t>(d[10]);
+    ranks.push_back(std::move(e));
+  }
   auto& forces = j["forces"];
   forces = io::Json::array();
   for (std::size_t k = 0; k < last_forces_.size(); ++k) {

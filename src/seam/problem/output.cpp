@@ -87,6 +87,28 @@ std::string write_step_fields(const std::filesystem::path& dir, int step, const 
   return file;
 }
 
+LocatedProbe locate_probe(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
+                          const std::function<std::int64_t(std::int32_t)>& cell_gid,
+                          const io::Probe& probe, Comm comm) {
+  const mesh::PointLocator locator(mesh, cells);
+  const auto loc = locator.locate(std::span<const double>(probe.point.data(), mesh.dim), 1e-10);
+  const ProbeCandidate mine = loc ? ProbeCandidate{probe_distance(mesh, *loc), cell_gid(loc->cell)}
+                                  : ProbeCandidate{std::numeric_limits<double>::infinity(), -1};
+  std::vector<std::int64_t> offsets;
+  const auto all = parallel::allgatherv<ProbeCandidate>(
+      comm.get(), std::span<const ProbeCandidate>(&mine, 1), offsets);
+  const auto best = std::min_element(all.begin(), all.end());
+  if (best->gid < 0) {
+    std::ostringstream s;
+    s << "probe (" << probe.point[0] << ", " << probe.point[1];
+    if (mesh.dim == 3) s << ", " << probe.point[2];
+    s << ") lies outside the mesh";
+    io::fail_at(probe.mark, s.str());
+  }
+  if (best - all.begin() != comm.rank()) return {probe.point, -1, {}};
+  return {probe.point, loc->cell, loc->xi};
+}
+
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
                const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
                bool quiet, const Checkpoints* restart)
@@ -113,27 +135,9 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
   // Probes: every rank looks among the cells it assembles, which together are the mesh; the
   // cell the whole-mesh search would pick (inside, then lowest id; else the nearest within the
   // tolerance) wins, and its rank evaluates the probe.
-  const mesh::PointLocator locator(mesh, disc.local_cells());
   for (const auto& p : config.output.probes) {
-    const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim), 1e-10);
-    const ProbeCandidate mine =
-        loc ? ProbeCandidate{probe_distance(mesh, *loc), disc.cell_gid(loc->cell)}
-            : ProbeCandidate{std::numeric_limits<double>::infinity(), -1};
-    std::vector<std::int64_t> offsets;
-    const auto all = parallel::allgatherv<ProbeCandidate>(
-        comm.get(), std::span<const ProbeCandidate>(&mine, 1), offsets);
-    const auto best = std::min_element(all.begin(), all.end());
-    if (best->gid < 0) {
-      std::ostringstream s;
-      s << "probe (" << p.point[0] << ", " << p.point[1];
-      if (mesh.dim == 3) s << ", " << p.point[2];
-      s << ") lies outside the mesh";
-      io::fail_at(p.mark, s.str());
-    }
-    if (best - all.begin() == comm.rank())
-      probes_.push_back({p.point, loc->cell, loc->xi});
-    else
-      probes_.push_back({p.point, -1, {}});
+    probes_.push_back(locate_probe(
+        mesh, disc.local_cells(), [&](std::int32_t c) { return disc.cell_gid(c); }, p, comm));
   }
 
   // A restart's tables may refuse to continue (another header): every rank stops.

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -119,6 +120,15 @@ struct LocatedProbe {
   std::int32_t cell = -1;
   std::array<double, 3> xi{};
 };
+
+/// Where a probe is evaluated on a distributed (or replicated) mesh: every rank looks among
+/// `cells` (those it assembles, which together are the mesh); the cell the whole-mesh search
+/// would pick (inside, then lowest id `cell_gid`; else the nearest within the tolerance) wins.
+/// Returns the probe with its cell (local) and reference point on the winning rank, cell -1
+/// elsewhere; a probe outside the mesh fails at its mark on every rank. Collective.
+LocatedProbe locate_probe(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
+                          const std::function<std::int64_t(std::int32_t)>& cell_gid,
+                          const io::Probe& probe, Comm comm);
 
 class Checkpoints;
 class RecordWriter;
