@@ -2,6 +2,7 @@
 
 #include "seam/mesh/node_cells.hpp"
 #include "seam/mesh/partition.hpp"
+#include "seam/parallel/exchange.hpp"
 
 #include <algorithm>
 
@@ -62,8 +63,7 @@ FluidLayout::FluidLayout(const mesh::DistributedMesh& part, Comm comm)
   }
   // The owned nodes in global order, their dofs after those of the lower ranks.
   std::vector<std::int32_t> owned, others;
-  for (std::int32_t n = 0; n < n_nodes; ++n)
-    (node_owner_[n] == rank ? owned : others).push_back(n);
+  for (std::int32_t n = 0; n < n_nodes; ++n) (node_owner_[n] == rank ? owned : others).push_back(n);
   std::sort(owned.begin(), owned.end(), [&](std::int32_t a, std::int32_t b) {
     return part.node_index[a] < part.node_index[b];
   });
@@ -178,6 +178,49 @@ void FluidLayout::owned_fields(std::vector<PetscInt>& velocity,
   }
   std::sort(velocity.begin(), velocity.end());
   std::sort(pressure.begin(), pressure.end());
+}
+
+std::vector<PetscInt> FluidLayout::first_dofs(std::span<const std::int64_t> numbers) const {
+  std::vector<PetscInt> out(numbers.size(), 0);
+  if (!part_) { // replicated: the numbers are mesh nodes
+    for (std::size_t k = 0; k < numbers.size(); ++k) out[k] = first_dof_[numbers[k]];
+    return out;
+  }
+  // Ask each number's owner (node_offsets), which answers from its owned nodes.
+  const int np = comm_.size();
+  const auto& offsets = part_->node_offsets;
+  const auto owner = [&](std::int64_t i) {
+    return static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), i) - offsets.begin() -
+                            1);
+  };
+  std::vector<std::size_t> order(numbers.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return owner(numbers[a]) < owner(numbers[b]);
+  });
+  std::vector<std::int64_t> ask, ask_offsets(static_cast<std::size_t>(np) + 1, 0);
+  for (auto k : order) {
+    ask.push_back(numbers[k]);
+    ++ask_offsets[static_cast<std::size_t>(owner(numbers[k])) + 1];
+  }
+  for (int r = 0; r < np; ++r) ask_offsets[r + 1] += ask_offsets[r];
+  std::vector<std::int64_t> asked_offsets, back_offsets;
+  const auto asked =
+      parallel::alltoallv<std::int64_t>(comm_.get(), ask, ask_offsets, asked_offsets);
+  // This rank's owned nodes by global number.
+  const auto first_owned = offsets[comm_.rank()];
+  std::vector<PetscInt> owned_first(
+      static_cast<std::size_t>(offsets[comm_.rank() + 1] - first_owned));
+  for (std::int32_t n = 0; n < mesh_->n_nodes(); ++n)
+    if (owns_node(n))
+      owned_first[static_cast<std::size_t>(part_->node_index[n] - first_owned)] = first_dof_[n];
+  std::vector<PetscInt> answers(asked.size());
+  for (std::size_t k = 0; k < asked.size(); ++k)
+    answers[k] = owned_first[static_cast<std::size_t>(asked[k] - first_owned)];
+  const auto back =
+      parallel::alltoallv<PetscInt>(comm_.get(), answers, asked_offsets, back_offsets);
+  for (std::size_t j = 0; j < order.size(); ++j) out[order[j]] = back[j];
+  return out;
 }
 
 la::Vector FluidLayout::make_vector() const {

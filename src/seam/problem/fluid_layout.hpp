@@ -74,6 +74,10 @@ public:
   void nodal_to_vector(std::span<const double> nodal, la::Vector& v) const;
   void vector_to_nodal(const la::Vector& v, std::span<double> nodal) const;
 
+  /// The first global dofs of the nodes with the given global node numbers (node_index of a
+  /// distributed mesh; held here or not), from their owners. Collective.
+  std::vector<PetscInt> first_dofs(std::span<const std::int64_t> numbers) const;
+
   la::Vector make_vector() const;
   /// The Jacobian with exact preallocation and its pattern fixed with explicit zeros.
   la::Matrix make_matrix() const;

@@ -62,12 +62,12 @@ FluidMeshMotion::FluidMeshMotion(const io::Config& config, const FluidLayout& la
     bool outside = false;
     for (auto n : region.nodes) outside = outside || (layout.owns_node(n) && !elastic_[n]);
     if (layout.comm().any(outside))
-        io::fail_at(bc.mark, "type 'mesh_displacement' drives the pseudo-elastic mesh of a fluid "
-                             "body, but region '" +
-                                 bc.region.name +
-                                 "' has nodes outside every body with mesh_motion {model: "
-                                 "pseudo_elastic} (give such a body mesh_motion, or move a "
-                                 "prescribed body with its 'displacement')");
+      io::fail_at(bc.mark, "type 'mesh_displacement' drives the pseudo-elastic mesh of a fluid "
+                           "body, but region '" +
+                               bc.region.name +
+                               "' has nodes outside every body with mesh_motion {model: "
+                               "pseudo_elastic} (give such a body mesh_motion, or move a "
+                               "prescribed body with its 'displacement')");
     for (auto n : region.nodes) source_[n] = {Source::condition, static_cast<int>(k)};
     moving_ = true;
   }

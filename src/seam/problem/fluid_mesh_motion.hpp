@@ -48,7 +48,7 @@ private:
   const io::Config& config_;
   const FluidLayout& layout_;
   bool moving_ = false;
-  bool elastic_solve_ = false; // some rank holds pseudo-elastic cells
+  bool elastic_solve_ = false;              // some rank holds pseudo-elastic cells
   std::vector<Source> source_;              // per mesh node
   std::vector<char> elastic_;               // per mesh node: in a pseudo-elastic cell
   std::vector<std::int32_t> elastic_cells_; // sorted
