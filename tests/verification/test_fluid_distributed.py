@@ -135,20 +135,19 @@ def test_tied_np3():
     H.cleanup(*_dirs)
 
 
+def piece_cells(pvtu):
+    """Per piece of a .pvtu, its cells as sets of node positions (rounded)."""
+    return [[frozenset(tuple(round(v, 9) for v in piece["points"][i]) for i in cell)
+             for cell in piece["cells"]] for piece in vtu_reader.read_pieces(pvtu)]
+
+
 def test_held_cells_np3():
-    work = dfg_case(0.04, 0.006)
-    out = run(work, 3)
+    out = run(dfg_case(0.04, 0.006), 3)
     summary = H.read_json(os.path.join(out, "summary.json"))
     detail = summary["ranks_detail"]
-    pieces = vtu_reader.read_pieces(os.path.join(out, "results_00001.pvtu"))
-    if len(pieces) != 3 or len(detail) != 3:
-        raise AssertionError("%d pieces, %d ranks_detail entries" % (len(pieces), len(detail)))
-
-    def key(p):
-        return tuple(round(v, 9) for v in p)
-
-    cells = [[frozenset(key(piece["points"][i]) for i in c) for c in piece["cells"]]
-             for piece in pieces]
+    cells = piece_cells(os.path.join(out, "results_00001.pvtu"))
+    if len(cells) != 3 or len(detail) != 3:
+        raise AssertionError("%d pieces, %d ranks_detail entries" % (len(cells), len(detail)))
     total = sum(len(part) for part in cells)
     if total != summary["cells"] or len(set().union(*[set(p) for p in cells])) != total:
         raise AssertionError("pieces hold %d cells (%d distinct), the mesh %d"

@@ -10,7 +10,6 @@
 #include "seam/problem/output.hpp"
 #include "seam/problem/progress.hpp"
 
-#include <algorithm>
 #include <cstdio>
 
 namespace seam::problem {
@@ -219,30 +218,28 @@ void FluidOutput::finish(bool converged, int n_steps) {
   std::vector<double> phases;
   const char* names[] = {"assembly", "linear_solve", "output"};
   for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
-  // Every rank's share (CONTRACT.md, ranks_detail), as the solid's Output reports it: the
-  // cells it assembles and the other cells it holds, its owned and ghost nodes, the nodes it
-  // holds, and the cells it holds only for an interface side.
+  // Every rank's share (CONTRACT.md, ranks_detail; output.hpp): the cells it assembles and
+  // the other cells it holds, the tied interfaces' counts, its peak memory, the cells it holds
+  // only for an interface side, its owned and ghost nodes and the nodes it holds.
   parallel::mark_memory(comm.get(), "end");
-  constexpr std::size_t n_detail = 11;
+  constexpr std::size_t n_detail = n_rank_detail_basics;
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
     const auto& mesh = layout_.mesh();
     double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
     mine[0] = static_cast<double>(layout_.local_cells().size());
     mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
+    for (std::size_t k = 0; k < 4; ++k) mine[2 + k] = interface_counts_[k];
+    mine[6] = parallel::peak_rss_mb();
+    if (const auto* part = layout_.part())
+      mine[7] = static_cast<double>(part->count(mesh::CellRole::interface));
     for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) {
       if (layout_.owns_node(n))
-        mine[2] += 1.0;
+        mine[8] += 1.0;
       else if (layout_.local_dof(n, 0) >= 0)
-        mine[3] += 1.0;
+        mine[9] += 1.0;
     }
-    mine[4] = static_cast<double>(mesh.n_nodes());
-    if (const auto* part = layout_.part())
-      mine[5] = static_cast<double>(part->count(mesh::CellRole::interface));
-    double peak = 0.0;
-    for (const auto& m : parallel::memory_phases()) peak = std::max(peak, m.peak_mb);
-    mine[6] = peak;
-    for (std::size_t k = 0; k < 4; ++k) mine[7 + k] = interface_counts_[k];
+    mine[10] = static_cast<double>(mesh.n_nodes());
   }
   comm.sum_in_place(detail);
   if (!comm.is_root()) return;
@@ -263,20 +260,8 @@ void FluidOutput::finish(bool converged, int n_steps) {
   auto& ranks = j["ranks_detail"];
   ranks = io::Json::array();
   for (int r = 0; r < comm.size(); ++r) {
-    const double* d = &detail[static_cast<std::size_t>(r) * n_detail];
     io::Json e = io::Json::object();
-    e["rank"] = r;
-    e["cells"] = static_cast<std::int64_t>(d[0]);
-    e["ghost_cells"] = static_cast<std::int64_t>(d[1]);
-    e["owned_nodes"] = static_cast<std::int64_t>(d[2]);
-    e["ghost_nodes"] = static_cast<std::int64_t>(d[3]);
-    e["nodes"] = static_cast<std::int64_t>(d[4]);
-    e["interface_cells"] = static_cast<std::int64_t>(d[5]);
-    e["peak_rss_mb"] = d[6];
-    e["slave_elements"] = static_cast<std::int64_t>(d[7]);
-    e["master_ghosts"] = static_cast<std::int64_t>(d[8]);
-    e["pairs"] = static_cast<std::int64_t>(d[9]);
-    e["integration_cells"] = static_cast<std::int64_t>(d[10]);
+    put_rank_detail_basics(e, r, &detail[static_cast<std::size_t>(r) * n_detail]);
     ranks.push_back(std::move(e));
   }
   auto& forces = j["forces"];

@@ -87,6 +87,16 @@ std::string write_step_fields(const std::filesystem::path& dir, int step, const 
   return file;
 }
 
+void put_rank_detail_basics(io::Json& e, int rank, const double* d) {
+  e["rank"] = rank;
+  const char* names[] = {"cells",       "ghost_cells",       "slave_elements", "master_ghosts",
+                         "pairs",       "integration_cells", nullptr,          "interface_cells",
+                         "owned_nodes", "ghost_nodes",       "nodes"};
+  for (std::size_t k = 0; k < n_rank_detail_basics; ++k)
+    if (names[k]) e[names[k]] = static_cast<std::int64_t>(d[k]);
+  e["peak_rss_mb"] = d[6];
+}
+
 LocatedProbe locate_probe(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
                           const std::function<std::int64_t(std::int32_t)>& cell_gid,
                           const io::Probe& probe, Comm comm) {
@@ -716,18 +726,7 @@ void Output::finish(bool converged, int n_steps) {
   for (int r = 0; r < comm.size(); ++r) {
     const double* d = &detail[static_cast<std::size_t>(r) * n_detail];
     io::Json e = io::Json::object();
-    e["rank"] = r;
-    e["cells"] = static_cast<std::int64_t>(d[0]);
-    e["ghost_cells"] = static_cast<std::int64_t>(d[1]);
-    e["slave_elements"] = static_cast<std::int64_t>(d[2]);
-    e["master_ghosts"] = static_cast<std::int64_t>(d[3]);
-    e["pairs"] = static_cast<std::int64_t>(d[4]);
-    e["integration_cells"] = static_cast<std::int64_t>(d[5]);
-    e["peak_rss_mb"] = d[6];
-    e["interface_cells"] = static_cast<std::int64_t>(d[7]);
-    e["owned_nodes"] = static_cast<std::int64_t>(d[8]);
-    e["ghost_nodes"] = static_cast<std::int64_t>(d[9]);
-    e["nodes"] = static_cast<std::int64_t>(d[10]);
+    put_rank_detail_basics(e, r, d);
     e["contact_nodes"] = static_cast<std::int64_t>(d[11]);
     e["contact_nodal_records"] = static_cast<std::int64_t>(d[12]);
     e["contact_master_received"] = static_cast<std::int64_t>(d[13]);

@@ -19,6 +19,10 @@
 #include <string>
 #include <vector>
 
+namespace seam::io {
+class Json;
+}
+
 namespace seam::problem {
 
 struct StepRecord {
@@ -129,6 +133,13 @@ struct LocatedProbe {
 LocatedProbe locate_probe(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
                           const std::function<std::int64_t(std::int32_t)>& cell_gid,
                           const io::Probe& probe, Comm comm);
+
+/// The entries of summary.json's ranks_detail that every run writes (CONTRACT.md), in this
+/// order in a rank's record `d`: cells, ghost_cells, slave_elements, master_ghosts, pairs,
+/// integration_cells, peak_rss_mb, interface_cells, owned_nodes, ghost_nodes, nodes. Put into
+/// `e` (a JSON object), with `rank`.
+constexpr std::size_t n_rank_detail_basics = 11;
+void put_rank_detail_basics(io::Json& e, int rank, const double* d);
 
 class Checkpoints;
 class RecordWriter;
