@@ -15,6 +15,8 @@ solved distributed, and tied fluid subdomains use the distributed condensed tyin
     finer DFG 2D-1 mesh, every rank holds at most 1.1 x (its cells + the ghost layer found by
     brute force from the written pieces) cells, fewer than 0.6 of the mesh, the owned nodes
     add up to the mesh's, and the pieces hold every cell once.
+  * An enclosed flow (driven cavity): the pinned pressure level, probes and forces on 3 ranks
+    equal 1 rank to 1e-10.
 Restarts of fluid runs 1 -> 3 (fixed, tied and moving meshes): test_restart.py.
 """
 import os
@@ -135,6 +137,41 @@ def test_tied_np3():
     H.cleanup(*_dirs)
 
 
+CAVITY = """\
+dimension: 2
+mesh: {geo: body.geo, order: 2}
+materials: {oil: {model: newtonian_fluid, density: 1, viscosity: 0.01}}
+bodies: [{region: body, material: oil}]
+boundary_conditions:
+  - {region: left, type: velocity, value: [0, 0]}
+  - {region: right, type: velocity, value: [0, 0]}
+  - {region: bottom, type: velocity, value: [0, 0]}
+  - {region: top, type: velocity, value: ["16*x*x*(2-x)*(2-x)/16", 0]}
+time: {integrator: static, end: 1, steps: 1}
+output:
+  probes: [[0.5, 0.5], [1.5, 0.9]]
+  forces: [{name: lid, regions: [top]}, {name: floor, regions: [bottom]}]
+"""
+
+
+def test_enclosed_flow_np3():
+    """A driven cavity (every wall's velocity given): the pressure is pinned at the vertex
+    with the lowest id of the mesh as read, so its level, and the forces, are the same on 3
+    ranks as on 1 (pinned at the lowest global dof, it depended on the partition)."""
+    work = tempfile.mkdtemp(prefix="seam_dfluid_cavity_")
+    _dirs.append(work)
+    H.write_case(work, "body.geo", geometry.rectangle("tri", 0.2, 2))
+    H.write_case(work, "case.yaml", CAVITY)
+    outs = [run(work, np) for np in (1, 3)]
+    compare_forces(outs[0], outs[1], 1e-10, "driven cavity")
+    p = [H.last_step_rows(H.read_csv(os.path.join(out, "probes.csv"))) for out in outs]
+    for a, b in zip(p[0], p[1]):
+        H.assert_close(b["pressure"], a["pressure"], rtol=1e-10, atol=1e-12 * abs(a["vx"]),
+                       what="probe pressure on 3 ranks")
+    print("   probe pressures %.12f, %.12f on both" % (p[0][0]["pressure"], p[0][1]["pressure"]))
+    H.cleanup(*_dirs)
+
+
 def piece_cells(pvtu):
     """Per piece of a .pvtu, its cells as sets of node positions (rounded)."""
     return [[frozenset(tuple(round(v, 9) for v in piece["points"][i]) for i in cell)
@@ -180,4 +217,5 @@ def test_held_cells_np3():
 
 
 if __name__ == "__main__":
-    H.main([test_dfg_2d1_forces_np3, test_free_stream_np3, test_tied_np3, test_held_cells_np3])
+    H.main([test_dfg_2d1_forces_np3, test_free_stream_np3, test_tied_np3, test_enclosed_flow_np3,
+            test_held_cells_np3])

@@ -169,7 +169,7 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
   }
 
   // A flow whose normal velocity is prescribed on the whole boundary determines its pressure
-  // up to a constant: fix it at the first vertex. A facet is closed where every node has the
+  // up to a constant: fix it at one vertex. A facet is closed where every node has the
   // component along the facet's normal prescribed (its largest normal component: slip walls
   // are given per axis).
   // The sides of tied interfaces are inside the flow: they close nothing and open nothing.
@@ -200,15 +200,14 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
   }
   open = comm.any(open);
   if (!open) {
-    // The owned vertex with the lowest pressure dof of all.
+    // The vertex with the lowest id in the mesh as read, whatever the number of ranks.
     std::int32_t first = -1;
     for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
       if (layout.owns_node(n) && layout.has_pressure(n) &&
-          (first < 0 || layout.global_dof(n, dim) < layout.global_dof(first, dim)))
+          (first < 0 || layout.node_gid(n) < layout.node_gid(first)))
         first = n;
-    const auto dof = first < 0 ? std::numeric_limits<std::int64_t>::max()
-                               : static_cast<std::int64_t>(layout.global_dof(first, dim));
-    const bool lowest = -comm.max(-dof) == dof; // collective: before the test of `first`
+    const auto id = first < 0 ? std::numeric_limits<std::int64_t>::max() : layout.node_gid(first);
+    const bool lowest = -comm.max(-id) == id; // collective: before the test of `first`
     model.pressure_pinned = true;
     if (first >= 0 && lowest) {
       dirichlet.push_back(
