@@ -9,8 +9,8 @@ solved distributed, and tied fluid subdomains use the distributed condensed tyin
     with a force group on the walls): every step's forces on 3 ranks equal 1 rank to 1e-10,
     and the free stream stays uniform to 1e-12 on both.
   * Tied fluid subdomains (test_fluid_tying.py's Poiseuille flow across a non-matching
-    interface, tri6 and quad9): the wall forces on 3 ranks equal 1 rank to 1e-10 and the flow
-    stays exact.
+    interface, tri6, quad9 and tet10): the wall forces on 3 ranks equal 1 rank to 1e-10 and
+    the flow stays exact.
   * No rank holds the whole mesh at np = 3 (the solids' test_held_cells_np3 pattern): on a
     finer DFG 2D-1 mesh, every rank holds at most 1.1 x (its cells + the ghost layer found by
     brute force from the written pieces) cells, fewer than 0.6 of the mesh, the owned nodes
@@ -122,11 +122,16 @@ def test_free_stream_np3():
 
 
 def test_tied_np3():
-    for kind in ("tri", "quad"):
+    tet = FT.TIED_POISEUILLE_3D + "  forces: [{name: walls, regions: [left, right]}]\n"
+    for kind, geo, text in (
+            ("tri", geometry.tied_rectangles(0.25, 0.2, order=2, kind="tri"), FT.TIED_POISEUILLE),
+            ("quad", geometry.tied_rectangles(0.25, 0.2, order=2, kind="quad"),
+             FT.TIED_POISEUILLE),
+            ("tet", geometry.tied_boxes(0.5, 0.4, order=2, kind="tet"), tet)):
         work = tempfile.mkdtemp(prefix="seam_dfluid_tied_")
         _dirs.append(work)
-        H.write_case(work, "body.geo", geometry.tied_rectangles(0.25, 0.2, order=2, kind=kind))
-        H.write_case(work, "case.yaml", FT.TIED_POISEUILLE)
+        H.write_case(work, "body.geo", geo)
+        H.write_case(work, "case.yaml", text)
         outs = [run(work, np) for np in (1, 3)]
         for out in outs:
             err = H.read_csv(os.path.join(out, "errors.csv"))[-1]
