@@ -10,13 +10,13 @@
 namespace seam::ale {
 
 std::vector<double> jacobian_stiffening(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
-                                        double power) {
+                                        double power, double smallest) {
   std::vector<double> factor(cells.size(), 1.0);
   if (cells.empty() || power == 0.0) return factor;
-  double smallest = 0.0;
+  const bool given = smallest > 0.0;
   for (std::size_t k = 0; k < cells.size(); ++k) {
     factor[k] = mesh::cell_volume(mesh, cells[k]);
-    smallest = k == 0 ? factor[k] : std::min(smallest, factor[k]);
+    if (!given) smallest = k == 0 ? factor[k] : std::min(smallest, factor[k]);
   }
   for (auto& f : factor) f = std::pow(smallest / f, power);
   return factor;

@@ -19,9 +19,10 @@
 namespace seam::ale {
 
 /// Per listed cell: (V_min / V_e)^power, with V the reference volumes and V_min the smallest
-/// over `cells`. All 1 for power 0.
+/// over `cells`, or `smallest` if positive (the smallest over the cells of all ranks of a
+/// distributed mesh). All 1 for power 0.
 std::vector<double> jacobian_stiffening(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
-                                        double power);
+                                        double power, double smallest = 0.0);
 
 /// Whether a cell with node coordinates x (n_nodes * dim) has det J <= 0 at a point of the
 /// fluid kernel's quadrature rule (degree 3 * order) or at a vertex.

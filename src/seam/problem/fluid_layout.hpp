@@ -1,11 +1,18 @@
 #pragma once
-// The dof layout of a fluid field on a replicated mesh: every node carries the velocity (dim
-// dofs), every vertex of a Taylor-Hood cell the pressure as well, one dof after its
-// velocity. A node's dofs are contiguous, numbered in the order of the node numbering of
-// mesh::number_nodes, so that every rank owns one contiguous range (PETSc's layout). The
-// local (ghosted) vector form holds the owned dofs, then the ghost nodes' dofs node by node.
+// The dof layout of a fluid field: every node carries the velocity (dim dofs), every vertex
+// of a Taylor-Hood cell the pressure as well, one dof after its velocity. A node's dofs are
+// contiguous, numbered in the order of the global node numbering (mesh::number_nodes, or the
+// node_index of a distributed mesh), so that every rank owns one contiguous range (PETSc's
+// layout). The local (ghosted) vector form holds the owned dofs, then the ghost nodes' dofs
+// node by node (ghost nodes: the nodes of this rank's cells that other ranks own).
+//
+// Two sources, as for the solid's Discretization: a replicated mesh (fluid-structure runs),
+// or this rank's part of a distributed mesh (mesh::distribute_mesh: owned cells, one ghost
+// layer). Then "node" and "cell" are indices into the part, every array here is sized by the
+// part, and the first dofs of the ghost nodes come from their owners (one ghost update).
 #include "seam/common/mpi.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/mesh/mesh.hpp"
 
 #include <cstdint>
@@ -16,9 +23,21 @@ namespace seam::problem {
 
 class FluidLayout {
 public:
+  /// Replicated: every rank holds `mesh` whole.
   FluidLayout(const mesh::Mesh& mesh, Comm comm);
+  /// Distributed: `part` is this rank's part (kept by reference).
+  FluidLayout(const mesh::DistributedMesh& part, Comm comm);
 
   const mesh::Mesh& mesh() const { return *mesh_; }
+  /// This rank's part of a distributed mesh, or null when the mesh is replicated.
+  const mesh::DistributedMesh* part() const { return part_; }
+  /// Counts of the whole mesh (the same on every rank).
+  std::int64_t n_global_nodes() const { return n_global_nodes_; }
+  std::int64_t n_global_cells() const { return n_global_cells_; }
+  /// Id in the mesh as read of node n / cell c (n / c itself when replicated).
+  std::int64_t node_gid(std::int32_t n) const { return part_ ? part_->node_gid[n] : n; }
+  std::int64_t cell_gid(std::int32_t c) const { return part_ ? part_->cell_gid[c] : c; }
+  int node_owner(std::int32_t node) const { return node_owner_[node]; }
   Comm comm() const { return comm_; }
   int dim() const { return dim_; }
 
@@ -48,12 +67,26 @@ public:
   /// a fieldsplit preconditioner).
   void owned_fields(std::vector<PetscInt>& velocity, std::vector<PetscInt>& pressure) const;
 
+  /// Nodal values (dim per mesh node, node-major) into the velocity entries this rank owns
+  /// of a layout vector, and back from a ghosted vector into every node of this rank's cells
+  /// (the other nodes get 0): how nodal fields (the mesh displacement) are made consistent
+  /// across ranks and stored in checkpoints.
+  void nodal_to_vector(std::span<const double> nodal, la::Vector& v) const;
+  void vector_to_nodal(const la::Vector& v, std::span<double> nodal) const;
+
+  /// The first global dofs of the nodes with the given global node numbers (node_index of a
+  /// distributed mesh; held here or not), from their owners. Collective.
+  std::vector<PetscInt> first_dofs(std::span<const std::int64_t> numbers) const;
+
   la::Vector make_vector() const;
   /// The Jacobian with exact preallocation and its pattern fixed with explicit zeros.
   la::Matrix make_matrix() const;
 
 private:
+  void number_ghosts();
+
   const mesh::Mesh* mesh_;
+  const mesh::DistributedMesh* part_ = nullptr;
   Comm comm_;
   int dim_;
   std::vector<int> cell_part_;
@@ -64,6 +97,7 @@ private:
   std::vector<std::int32_t> local_first_; // mesh node -> its first local dof, or -1
   std::vector<PetscInt> ghost_dofs_;
   PetscInt n_owned_dofs_ = 0, n_global_dofs_ = 0, first_owned_dof_ = 0;
+  std::int64_t n_global_nodes_ = 0, n_global_cells_ = 0;
 };
 
 } // namespace seam::problem

@@ -2,6 +2,7 @@
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
+#include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/solid/element.hpp"
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace seam::problem {
 
@@ -56,14 +58,16 @@ FluidMeshMotion::FluidMeshMotion(const io::Config& config, const FluidLayout& la
     const auto& bc = config.boundary_conditions[k];
     if (bc.type != io::BoundaryType::mesh_displacement) continue;
     const auto& region = find_region(mesh, bc.region, {0, 1, 2}, "a mesh displacement condition");
-    for (auto n : region.nodes)
-      if (!elastic_[n])
-        io::fail_at(bc.mark, "type 'mesh_displacement' drives the pseudo-elastic mesh of a fluid "
-                             "body, but region '" +
-                                 bc.region.name +
-                                 "' has nodes outside every body with mesh_motion {model: "
-                                 "pseudo_elastic} (give such a body mesh_motion, or move a "
-                                 "prescribed body with its 'displacement')");
+    // Owned nodes only (every cell around them is held): the same answer on every rank.
+    bool outside = false;
+    for (auto n : region.nodes) outside = outside || (layout.owns_node(n) && !elastic_[n]);
+    if (layout.comm().any(outside))
+      io::fail_at(bc.mark, "type 'mesh_displacement' drives the pseudo-elastic mesh of a fluid "
+                           "body, but region '" +
+                               bc.region.name +
+                               "' has nodes outside every body with mesh_motion {model: "
+                               "pseudo_elastic} (give such a body mesh_motion, or move a "
+                               "prescribed body with its 'displacement')");
     for (auto n : region.nodes) source_[n] = {Source::condition, static_cast<int>(k)};
     moving_ = true;
   }
@@ -75,6 +79,7 @@ FluidMeshMotion::FluidMeshMotion(const io::Config& config, const FluidLayout& la
     for (auto n : mesh.cell(c))
       source_[n] = b < 0 ? Source{Source::zero, -1} : Source{Source::body, b};
   }
+  elastic_solve_ = layout.comm().any(!elastic_cells.empty()); // a part may hold none
   elastic_cells_ = std::move(elastic_cells);
   cell_body_ = std::move(cell_body);
 }
@@ -87,13 +92,17 @@ void FluidMeshMotion::build_solve() {
   const auto& elastic_cells = elastic_cells_;
   const auto& config = config_;
   // The stiffness of the pseudo-elastic mesh, once: E = (V_min / V_e)^chi per cell.
-  disc_ = std::make_unique<Discretization>(mesh, layout_.comm());
+  disc_ = layout_.part() ? std::make_unique<Discretization>(*layout_.part(), layout_.comm())
+                         : std::make_unique<Discretization>(mesh, layout_.comm());
   K_.emplace(disc_->make_matrix());
   std::vector<std::int32_t> local;
   for (auto c : disc_->local_cells())
     if (std::binary_search(elastic_cells.begin(), elastic_cells.end(), c)) local.push_back(c);
   // (V_min / V_e) with V_min over all elastic cells, to each body's power chi.
-  const auto ratio = ale::jacobian_stiffening(mesh, elastic_cells, 1.0);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (auto c : local) smallest = std::min(smallest, mesh::cell_volume(mesh, c));
+  smallest = layout_.comm().min(smallest);
+  const auto ratio = ale::jacobian_stiffening(mesh, elastic_cells, 1.0, smallest);
   const auto young = [&](std::int32_t c) {
     const auto& mm = *config.bodies[cell_body_[c]].mesh_motion;
     const double power = mm.stiffening == io::Stiffening::jacobian ? mm.stiffening_power : 0.0;
@@ -160,7 +169,7 @@ bool FluidMeshMotion::displacement(double t, std::vector<double>& d) {
   const int dim = mesh.dim;
   const std::int32_t n_nodes = mesh.n_nodes();
   d.assign(static_cast<std::size_t>(n_nodes) * dim, 0.0);
-  if (!elastic_cells_.empty() && !disc_) build_solve();
+  if (elastic_solve_ && !disc_) build_solve();
   if (disc_) {
     // K d = 0 in the interior, d given on the Dirichlet nodes: the free rows get
     // b = -K_free,prescribed d_prescribed, the prescribed rows their values (as
@@ -186,10 +195,15 @@ bool FluidMeshMotion::displacement(double t, std::vector<double>& d) {
     for (std::int32_t n = 0; n < n_nodes; ++n)
       if (elastic_[n] && disc_->owns_node(n))
         for (int i = 0; i < dim; ++i) d[n * dim + i] = v[disc_->local_dof(n, i)];
-    layout_.comm().sum_in_place(d);
   }
+  // Each owner its nodes (every cell around an owned node is held, so elastic_ and source_
+  // are exact there), then the ghost nodes from their owners.
   for (std::int32_t n = 0; n < n_nodes; ++n)
-    if (!elastic_[n]) value_at(source_[n], t, n, &d[static_cast<std::size_t>(n) * dim]);
+    if (!elastic_[n] && layout_.owns_node(n))
+      value_at(source_[n], t, n, &d[static_cast<std::size_t>(n) * dim]);
+  la::Vector consistent = layout_.make_vector();
+  layout_.nodal_to_vector(d, consistent);
+  layout_.vector_to_nodal(consistent, d);
   return true;
 }
 

@@ -7,8 +7,9 @@
 // time only the boundary data change. Its Dirichlet data: `mesh_displacement` conditions,
 // zero on the rest of the mesh's boundary, and the motion of the nodes it shares with bodies
 // that do not move pseudo-elastically (prescribed, or fixed). The system matrix is the same
-// every step, so its factorization is kept. The displacement is returned on
-// every node and every rank, like the mesh (replicated).
+// every step, so its factorization is kept. On a distributed mesh the solve is distributed
+// too (a Discretization of the part): each rank sets up its owned rows and returns the
+// displacement of the nodes of its cells, made consistent by one ghost update.
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/problem/discretization.hpp"
@@ -29,8 +30,8 @@ public:
 
   /// Whether the fluid mesh moves at all.
   bool moving() const { return moving_; }
-  /// The displacement of every mesh node at time t, node-major (n_nodes * dim), the same on
-  /// every rank. Collective. False if the linear solver failed.
+  /// The displacement at time t of the nodes of this rank's cells, node-major (n_nodes * dim
+  /// of mesh(); 0 at the other nodes held). Collective. False if the linear solver failed.
   bool displacement(double t, std::vector<double>& d);
 
 private:
@@ -47,6 +48,7 @@ private:
   const io::Config& config_;
   const FluidLayout& layout_;
   bool moving_ = false;
+  bool elastic_solve_ = false;              // some rank holds pseudo-elastic cells
   std::vector<Source> source_;              // per mesh node
   std::vector<char> elastic_;               // per mesh node: in a pseudo-elastic cell
   std::vector<std::int32_t> elastic_cells_; // sorted

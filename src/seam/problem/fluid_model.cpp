@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -78,18 +79,22 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
     io::fail_at(config.mesh.mark, "the mesh is " + std::to_string(dim) + "D but `dimension` is " +
                                       std::to_string(config.dimension));
   // Conditions of the wrong kind for their body first: they are the user's likely slip.
+  // Counted over the owned nodes (every cell around them is held), the same on every rank.
+  const auto& comm = layout.comm();
   const auto in_fluid = fluid_nodes(config, mesh);
   for (const auto& bc : config.boundary_conditions) {
     const auto& region = find_region(mesh, bc.region, {0, 1, 2, 3}, "a boundary condition");
-    const auto fluid = std::count_if(region.nodes.begin(), region.nodes.end(),
-                                     [&](std::int32_t n) { return in_fluid[n] != 0; });
+    std::int64_t fluid = 0, solid = 0;
+    for (auto n : region.nodes)
+      if (layout.owns_node(n)) ++(in_fluid[n] != 0 ? fluid : solid);
+    fluid = comm.sum(fluid);
+    solid = comm.sum(solid);
     if (bc.type == io::BoundaryType::dirichlet && fluid > 0)
       io::fail_at(bc.mark, "type 'dirichlet' prescribes a solid's displacement, but region '" +
                                bc.region.name +
                                "' belongs to a fluid body; prescribe the fluid's velocity with "
                                "type 'velocity'");
-    if (bc.type == io::BoundaryType::velocity &&
-        fluid < static_cast<std::ptrdiff_t>(region.nodes.size()))
+    if (bc.type == io::BoundaryType::velocity && solid > 0)
       io::fail_at(bc.mark, "type 'velocity' prescribes a fluid's velocity, but region '" +
                                bc.region.name +
                                "' belongs to a solid body (a solid's motion is prescribed with "
@@ -120,10 +125,12 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
       model.cell_fluid[c] = fluid_index.at(body.material);
     }
   }
-  const auto uncovered = std::count(model.cell_fluid.begin(), model.cell_fluid.end(), -1);
+  std::int64_t uncovered = 0;
+  for (auto c : layout.local_cells()) uncovered += model.cell_fluid[c] < 0 ? 1 : 0;
+  uncovered = comm.sum(uncovered);
   if (uncovered > 0)
     io::fail_at(config.bodies.front().mark,
-                std::to_string(uncovered) + " of " + std::to_string(mesh.n_cells()) +
+                std::to_string(uncovered) + " of " + std::to_string(layout.n_global_cells()) +
                     " cells belong to no body (every cell needs a material)");
 
   // Velocity conditions (and, for the pinning rule below, which nodes have all components).
@@ -162,7 +169,7 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
   }
 
   // A flow whose normal velocity is prescribed on the whole boundary determines its pressure
-  // up to a constant: fix it at the first vertex. A facet is closed where every node has the
+  // up to a constant: fix it at one vertex. A facet is closed where every node has the
   // component along the facet's normal prescribed (its largest normal component: slip walls
   // are given per axis).
   // The sides of tied interfaces are inside the flow: they close nothing and open nothing.
@@ -172,9 +179,12 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
     for (const auto* side : {&itf.slave, itf.master ? &*itf.master : nullptr})
       if (side)
         for (auto n : find_region(mesh, *side, {dim - 1}, "an interface side").nodes) tied[n] = 1;
+  // The exterior facets of this rank's cells (a facet of an owned cell is exterior in the
+  // part only if it is in the mesh: the ghost layer holds the cell across it).
   const auto exterior = mesh::exterior_facets(mesh);
   for (std::int32_t f = 0; f < exterior.size() && !open; ++f) {
     const auto c = exterior.cell[f];
+    if (!layout.is_local_cell(c)) continue;
     const auto type = mesh.cell_type[c];
     const auto facet = fem::facet_nodes(type, exterior.local[f]);
     if (std::all_of(facet.begin(), facet.end(), [&](int k) { return tied[mesh.cell(c)[k]] != 0; }))
@@ -188,14 +198,18 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
     for (int k : fem::facet_nodes(type, exterior.local[f]))
       if (!(prescribed[cell[k]] & (1u << axis))) open = true;
   }
+  open = comm.any(open);
   if (!open) {
+    // The vertex with the lowest id in the mesh as read, whatever the number of ranks.
     std::int32_t first = -1;
     for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
-      if (layout.has_pressure(n) &&
-          (first < 0 || layout.global_dof(n, dim) < layout.global_dof(first, dim)))
+      if (layout.owns_node(n) && layout.has_pressure(n) &&
+          (first < 0 || layout.node_gid(n) < layout.node_gid(first)))
         first = n;
+    const auto id = first < 0 ? std::numeric_limits<std::int64_t>::max() : layout.node_gid(first);
+    const bool lowest = -comm.max(-id) == id; // collective: before the test of `first`
     model.pressure_pinned = true;
-    if (layout.owns_node(first)) {
+    if (first >= 0 && lowest) {
       dirichlet.push_back(
           {layout.global_dof(first, dim), first, static_cast<int>(model.values.size())});
       model.values.emplace_back(0.0);

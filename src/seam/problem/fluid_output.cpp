@@ -6,6 +6,7 @@
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/json.hpp"
 #include "seam/mesh/locate.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/output.hpp"
 #include "seam/problem/progress.hpp"
 
@@ -74,14 +75,12 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
     types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
     cell_rank_.push_back(layout.comm().rank());
   }
-  const auto& mesh = layout.mesh();
-  if (!config.output.probes.empty()) {
-    const mesh::PointLocator locator(mesh);
-    for (const auto& p : config.output.probes) {
-      const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim));
-      if (!loc) io::fail_at(p.mark, "probe lies outside the fluid mesh");
-      located_.push_back({p.point, loc->cell, loc->xi});
-    }
+  // Probes: the rank whose cell the whole-mesh search would pick evaluates each (output.hpp).
+  for (const auto& p : config.output.probes) {
+    const auto loc = locate_probe(
+        cells_mesh, layout.local_cells(), [&](std::int32_t c) { return layout.cell_gid(c); }, p,
+        layout.comm());
+    located_.push_back({p.point, loc.cell, loc.xi});
   }
 }
 
@@ -129,7 +128,7 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
     const auto& mesh = layout_.mesh();
     for (std::size_t k = 0; k < located_.size(); ++k) {
       const auto& pr = located_[k];
-      if (!layout_.is_local_cell(pr.cell)) continue;
+      if (pr.cell < 0) continue;
       const auto v = evaluate_at(layout_, view.values(), pr.cell, pr.xi.data());
       double* out = &probe[k * 7];
       for (int i = 0; i < 4; ++i) out[3 + i] = v[i];
@@ -219,6 +218,30 @@ void FluidOutput::finish(bool converged, int n_steps) {
   std::vector<double> phases;
   const char* names[] = {"assembly", "linear_solve", "output"};
   for (const char* n : names) phases.push_back(comm.max(timers_.get(n)));
+  // Every rank's share (CONTRACT.md, ranks_detail; output.hpp): the cells it assembles and
+  // the other cells it holds, the tied interfaces' counts, its peak memory, the cells it holds
+  // only for an interface side, its owned and ghost nodes and the nodes it holds.
+  parallel::mark_memory(comm.get(), "end");
+  constexpr std::size_t n_detail = n_rank_detail_basics;
+  std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
+  {
+    const auto& mesh = layout_.mesh();
+    double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
+    mine[0] = static_cast<double>(layout_.local_cells().size());
+    mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
+    for (std::size_t k = 0; k < 4; ++k) mine[2 + k] = interface_counts_[k];
+    mine[6] = parallel::peak_rss_mb();
+    if (const auto* part = layout_.part())
+      mine[7] = static_cast<double>(part->count(mesh::CellRole::interface));
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) {
+      if (layout_.owns_node(n))
+        mine[8] += 1.0;
+      else if (layout_.local_dof(n, 0) >= 0)
+        mine[9] += 1.0;
+    }
+    mine[10] = static_cast<double>(mesh.n_nodes());
+  }
+  comm.sum_in_place(detail);
   if (!comm.is_root()) return;
   io::Json j = io::Json::object();
   j["status"] = converged ? "converged" : "failed";
@@ -232,8 +255,15 @@ void FluidOutput::finish(bool converged, int n_steps) {
   j["linear_iterations"] = linear_iterations_;
   auto& t = j["timings"];
   for (std::size_t k = 0; k < phases.size(); ++k) t[names[k]] = phases[k];
-  j["nodes"] = layout_.mesh().n_nodes();
-  j["cells"] = layout_.mesh().n_cells();
+  j["nodes"] = layout_.n_global_nodes();
+  j["cells"] = layout_.n_global_cells();
+  auto& ranks = j["ranks_detail"];
+  ranks = io::Json::array();
+  for (int r = 0; r < comm.size(); ++r) {
+    io::Json e = io::Json::object();
+    put_rank_detail_basics(e, r, &detail[static_cast<std::size_t>(r) * n_detail]);
+    ranks.push_back(std::move(e));
+  }
   auto& forces = j["forces"];
   forces = io::Json::array();
   for (std::size_t k = 0; k < last_forces_.size(); ++k) {

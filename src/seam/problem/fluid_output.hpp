@@ -54,6 +54,9 @@ public:
   void newton(int step, int iteration, double residual, double increment);
   /// The linear solver as the run's header names it (summary.json's linear_solver).
   void set_linear_solver(std::string name) { linear_solver_ = std::move(name); }
+  /// This rank's share of the tied interfaces (ranks_detail): slave facets, ghosted master
+  /// facets, pairs, integration cells.
+  void set_interface_counts(const std::array<double, 4>& counts) { interface_counts_ = counts; }
   /// The iterations of one linear solve (summed into summary.json's linear_iterations).
   void linear_iterations(int n) {
     linear_iterations_ += n;
@@ -100,6 +103,7 @@ private:
   long long linear_iterations_ = 0, linear_solves_ = 0;
   std::string linear_solver_;
   std::vector<std::array<double, 3>> last_forces_;
+  std::array<double, 4> interface_counts_{};
 };
 
 } // namespace seam::problem

@@ -286,15 +286,18 @@ struct NewtonOutcome {
   const char* failure = "";
 };
 
-/// The stored order of fluid vectors: per mesh node its velocity, then its pressure (on the
-/// vertices of Taylor-Hood cells and every node of equal-order ones), as the layout has them.
+/// The stored order of fluid vectors: per node of the mesh as read (node_gid), dim + 1 slots,
+/// its velocity and then its pressure (held on the vertices of Taylor-Hood cells and every
+/// node of equal-order ones; the slot of a node without one stays unused), so that every
+/// rank finds a node's entries from its id alone, without a count over the nodes before it.
 CanonicalOrder fluid_order(const FluidLayout& layout) {
   const int dim = layout.dim();
   CanonicalOrder order;
+  order.size = layout.n_global_nodes() * (dim + 1);
   for (std::int32_t n = 0; n < layout.mesh().n_nodes(); ++n)
-    for (int c = 0; c < dim + (layout.has_pressure(n) ? 1 : 0); ++c, ++order.size)
+    for (int c = 0; c < dim + (layout.has_pressure(n) ? 1 : 0); ++c)
       if (layout.local_dof(n, c) >= 0)
-        order.add(order.size, layout.local_dof(n, c), layout.owns_node(n));
+        order.add(layout.node_gid(n) * (dim + 1) + c, layout.local_dof(n, c), layout.owns_node(n));
   return order;
 }
 
@@ -505,6 +508,24 @@ bool any_inverted(const FluidLayout& layout, std::span<const double> x) {
   return layout.comm().any(inverted);
 }
 
+// A nodal field (dim per mesh node, consistent on the nodes of this rank's cells) in a
+// checkpoint: in the velocity slots of a layout vector, so stored in the fluid's order.
+void put_nodal(const Checkpoints& checkpoints, RecordWriter& writer, const FluidLayout& layout,
+               const std::string& name, std::span<const double> nodal) {
+  la::Vector v = layout.make_vector();
+  v.zero();
+  layout.nodal_to_vector(nodal, v);
+  checkpoints.put_vector(writer, name, v);
+}
+
+void get_nodal(const Checkpoints& checkpoints, const FluidLayout& layout, const std::string& name,
+               std::vector<double>& nodal) {
+  la::Vector v = layout.make_vector();
+  checkpoints.get_vector(name, v);
+  nodal.assign(static_cast<std::size_t>(layout.mesh().n_nodes()) * layout.dim(), 0.0);
+  layout.vector_to_nodal(v, nodal);
+}
+
 // The moving mesh over the steps (ALE): the mesh displacement d and its rate at the last
 // converged step, and the configuration and mesh velocity of the step being solved.
 struct MovingMesh {
@@ -518,18 +539,21 @@ struct MovingMesh {
   }
 };
 
-} // namespace
+// Sets up the tied interfaces of the fluid subdomains (the mesh initialization moves slave
+// nodes onto the master side before anything is integrated).
+using TyingSetup = std::function<std::vector<meshtying::TiedInterface>(PhaseTimers&)>;
 
-FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                       const std::filesystem::path& dir, bool quiet, bool check_only,
-                       const RestartFrom& restart) {
-  const FluidLayout layout(mesh, comm);
+// The run on a layout, replicated or distributed (fluid_solver.hpp).
+FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const TyingSetup& setup,
+                    const std::function<MeshIdentity()>& identity, const std::filesystem::path& dir,
+                    bool quiet, bool check_only, const RestartFrom& restart) {
+  const auto& mesh = layout.mesh();
+  const auto comm = layout.comm();
   const auto model = build_fluid_model(config, layout);
   FluidMeshMotion motion(config, layout);
-  // Tied fluid subdomains: the mortar operators, once (the mesh initialization moves slave
-  // nodes onto the master side before anything is integrated).
+  // Tied fluid subdomains: the mortar operators, once.
   PhaseTimers setup_timers;
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, setup_timers);
+  const auto tied = setup(setup_timers);
   FluidRunInfo info{static_cast<long long>(layout.n_global_dofs())};
   if (check_only) return info;
   std::optional<TyingConstraint> tying;
@@ -537,16 +561,27 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     tying.emplace(tied, tied_dofs(layout, model)); // the velocity; the pressure is untied
     if (!tying->active()) tying.reset();
   }
-  const Checkpoints checkpoints(config, "fluid", identify(mesh), comm, fluid_order(layout),
+  const Checkpoints checkpoints(config, "fluid", identity(), comm, fluid_order(layout),
                                 restart.input, dir, restart.checkpoint);
   FluidOutput out(config, layout, model, dir, quiet,
                   checkpoints.restarting() ? &checkpoints : nullptr);
+  {
+    std::array<double, 4> counts{};
+    for (const auto& t : tied) {
+      counts[0] += static_cast<double>(t.local_slave_facets);
+      counts[1] += static_cast<double>(t.local_master_ghosts);
+      counts[2] += static_cast<double>(t.local_pairs);
+      counts[3] += static_cast<double>(t.local_integration_cells);
+    }
+    out.set_interface_counts(counts);
+  }
   if (comm.is_root() && !quiet)
-    std::printf("seam: %s\n  fluid: %d nodes, %d cells, %lld dofs, %d rank(s)%s; "
+    std::printf("seam: %s\n  fluid: %lld nodes, %lld cells, %lld dofs, %d rank(s)%s; "
                 "output in %s\n",
-                config.title.empty() ? config.source.c_str() : config.title.c_str(), mesh.n_nodes(),
-                mesh.n_cells(), info.n_dofs, comm.size(), motion.moving() ? ", moving mesh" : "",
-                dir.c_str());
+                config.title.empty() ? config.source.c_str() : config.title.c_str(),
+                static_cast<long long>(layout.n_global_nodes()),
+                static_cast<long long>(layout.n_global_cells()), info.n_dofs, comm.size(),
+                motion.moving() ? ", moving mesh" : "", dir.c_str());
   const auto solver_name = describe_fluid_linear_solver(config, layout);
   if (comm.is_root() && !quiet) std::printf("  linear solver: %s\n", solver_name.c_str());
   out.set_linear_solver(solver_name);
@@ -651,8 +686,8 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
         for (int i = 0; i < 3; ++i) last_forces[g][i] = f[g * 3 + i];
     }
     if (motion.moving()) {
-      mm.d = r.reals("mesh.d", mm.d.size());
-      mm.d_dot = r.reals("mesh.d_dot", mm.d_dot.size());
+      get_nodal(checkpoints, layout, "mesh.d", mm.d);
+      get_nodal(checkpoints, layout, "mesh.d_dot", mm.d_dot);
     }
     if (comm.is_root() && !quiet)
       std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
@@ -752,15 +787,42 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
         for (const auto& g : last_forces) f.insert(f.end(), g.begin(), g.end());
         writer.put("last_forces", f);
       }
-      // The moving mesh (replicated, dim per mesh node): its displacement and rate at t.
-      writer.put("mesh.d", mm.d);
-      writer.put("mesh.d_dot", mm.d_dot);
+      // The moving mesh: its displacement and rate at t, in the velocity slots of the
+      // stored order (nodal, written by the owners).
+      if (motion.moving()) {
+        put_nodal(checkpoints, writer, layout, "mesh.d", mm.d);
+        put_nodal(checkpoints, writer, layout, "mesh.d_dot", mm.d_dot);
+      }
       out.write_checkpoint(writer);
       checkpoints.commit(writer, step);
     }
   }
   out.finish(true, step);
   return info;
+}
+
+} // namespace
+
+FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
+                       const std::filesystem::path& dir, bool quiet, bool check_only,
+                       const RestartFrom& restart) {
+  const FluidLayout layout(mesh, comm);
+  return run_on(
+      config, layout,
+      [&](PhaseTimers& timers) { return meshtying::setup_mesh_tying(config, mesh, timers); },
+      [&] { return identify(mesh); }, dir, quiet, check_only, restart);
+}
+
+FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
+                       const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
+                       bool quiet, const RestartFrom& restart) {
+  const FluidLayout layout(part, comm);
+  return run_on(
+      config, layout,
+      [&](PhaseTimers& timers) {
+        return meshtying::setup_mesh_tying(config, part, comm.get(), timers);
+      },
+      [&] { return identity; }, dir, quiet, false, restart);
 }
 
 } // namespace seam::problem

@@ -5,6 +5,7 @@
 // the load parameter t), with the step cutting of the solid drivers.
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/problem/restart_from.hpp"
 
@@ -13,15 +14,25 @@
 
 namespace seam::problem {
 
+struct MeshIdentity;
+
 struct FluidRunInfo {
   long long n_dofs = 0;
 };
 
 /// Checks the input for the fluid field, then runs all steps, writing into `dir` (which
-/// exists). `check_only` stops after the checks. The mesh initialization of tied interfaces
-/// moves slave nodes of `mesh`. Throws InputError or SolverError.
+/// exists), on a mesh every rank holds whole (`seam check`). `check_only` stops after the
+/// checks. The mesh initialization of tied interfaces moves slave nodes of `mesh`. Throws
+/// InputError or SolverError.
 FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        const std::filesystem::path& dir, bool quiet, bool check_only = false,
                        const RestartFrom& restart = {});
+
+/// The same on this rank's part of a distributed mesh (mesh::distribute_mesh): each rank
+/// assembles its cells, owns the dofs of its nodes and holds one ghost layer; the moving
+/// mesh is solved distributed as well. `identity`: of the whole mesh (checkpoint.hpp).
+FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
+                       const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
+                       bool quiet, const RestartFrom& restart = {});
 
 } // namespace seam::problem

@@ -87,6 +87,38 @@ std::string write_step_fields(const std::filesystem::path& dir, int step, const 
   return file;
 }
 
+void put_rank_detail_basics(io::Json& e, int rank, const double* d) {
+  e["rank"] = rank;
+  const char* names[] = {"cells",       "ghost_cells",       "slave_elements", "master_ghosts",
+                         "pairs",       "integration_cells", nullptr,          "interface_cells",
+                         "owned_nodes", "ghost_nodes",       "nodes"};
+  for (std::size_t k = 0; k < n_rank_detail_basics; ++k)
+    if (names[k]) e[names[k]] = static_cast<std::int64_t>(d[k]);
+  e["peak_rss_mb"] = d[6];
+}
+
+LocatedProbe locate_probe(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
+                          const std::function<std::int64_t(std::int32_t)>& cell_gid,
+                          const io::Probe& probe, Comm comm) {
+  const mesh::PointLocator locator(mesh, cells);
+  const auto loc = locator.locate(std::span<const double>(probe.point.data(), mesh.dim), 1e-10);
+  const ProbeCandidate mine = loc ? ProbeCandidate{probe_distance(mesh, *loc), cell_gid(loc->cell)}
+                                  : ProbeCandidate{std::numeric_limits<double>::infinity(), -1};
+  std::vector<std::int64_t> offsets;
+  const auto all = parallel::allgatherv<ProbeCandidate>(
+      comm.get(), std::span<const ProbeCandidate>(&mine, 1), offsets);
+  const auto best = std::min_element(all.begin(), all.end());
+  if (best->gid < 0) {
+    std::ostringstream s;
+    s << "probe (" << probe.point[0] << ", " << probe.point[1];
+    if (mesh.dim == 3) s << ", " << probe.point[2];
+    s << ") lies outside the mesh";
+    io::fail_at(probe.mark, s.str());
+  }
+  if (best - all.begin() != comm.rank()) return {probe.point, -1, {}};
+  return {probe.point, loc->cell, loc->xi};
+}
+
 Output::Output(const io::Config& config, const Discretization& disc, const Model& model,
                const std::vector<meshtying::TiedInterface>& tied, std::filesystem::path dir,
                bool quiet, const Checkpoints* restart)
@@ -113,27 +145,9 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
   // Probes: every rank looks among the cells it assembles, which together are the mesh; the
   // cell the whole-mesh search would pick (inside, then lowest id; else the nearest within the
   // tolerance) wins, and its rank evaluates the probe.
-  const mesh::PointLocator locator(mesh, disc.local_cells());
   for (const auto& p : config.output.probes) {
-    const auto loc = locator.locate(std::span<const double>(p.point.data(), mesh.dim), 1e-10);
-    const ProbeCandidate mine =
-        loc ? ProbeCandidate{probe_distance(mesh, *loc), disc.cell_gid(loc->cell)}
-            : ProbeCandidate{std::numeric_limits<double>::infinity(), -1};
-    std::vector<std::int64_t> offsets;
-    const auto all = parallel::allgatherv<ProbeCandidate>(
-        comm.get(), std::span<const ProbeCandidate>(&mine, 1), offsets);
-    const auto best = std::min_element(all.begin(), all.end());
-    if (best->gid < 0) {
-      std::ostringstream s;
-      s << "probe (" << p.point[0] << ", " << p.point[1];
-      if (mesh.dim == 3) s << ", " << p.point[2];
-      s << ") lies outside the mesh";
-      io::fail_at(p.mark, s.str());
-    }
-    if (best - all.begin() == comm.rank())
-      probes_.push_back({p.point, loc->cell, loc->xi});
-    else
-      probes_.push_back({p.point, -1, {}});
+    probes_.push_back(locate_probe(
+        mesh, disc.local_cells(), [&](std::int32_t c) { return disc.cell_gid(c); }, p, comm));
   }
 
   // A restart's tables may refuse to continue (another header): every rank stops.
@@ -712,18 +726,7 @@ void Output::finish(bool converged, int n_steps) {
   for (int r = 0; r < comm.size(); ++r) {
     const double* d = &detail[static_cast<std::size_t>(r) * n_detail];
     io::Json e = io::Json::object();
-    e["rank"] = r;
-    e["cells"] = static_cast<std::int64_t>(d[0]);
-    e["ghost_cells"] = static_cast<std::int64_t>(d[1]);
-    e["slave_elements"] = static_cast<std::int64_t>(d[2]);
-    e["master_ghosts"] = static_cast<std::int64_t>(d[3]);
-    e["pairs"] = static_cast<std::int64_t>(d[4]);
-    e["integration_cells"] = static_cast<std::int64_t>(d[5]);
-    e["peak_rss_mb"] = d[6];
-    e["interface_cells"] = static_cast<std::int64_t>(d[7]);
-    e["owned_nodes"] = static_cast<std::int64_t>(d[8]);
-    e["ghost_nodes"] = static_cast<std::int64_t>(d[9]);
-    e["nodes"] = static_cast<std::int64_t>(d[10]);
+    put_rank_detail_basics(e, r, d);
     e["contact_nodes"] = static_cast<std::int64_t>(d[11]);
     e["contact_nodal_records"] = static_cast<std::int64_t>(d[12]);
     e["contact_master_received"] = static_cast<std::int64_t>(d[13]);

@@ -13,10 +13,15 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace seam::io {
+class Json;
+}
 
 namespace seam::problem {
 
@@ -119,6 +124,22 @@ struct LocatedProbe {
   std::int32_t cell = -1;
   std::array<double, 3> xi{};
 };
+
+/// Where a probe is evaluated on a distributed (or replicated) mesh: every rank looks among
+/// `cells` (those it assembles, which together are the mesh); the cell the whole-mesh search
+/// would pick (inside, then lowest id `cell_gid`; else the nearest within the tolerance) wins.
+/// Returns the probe with its cell (local) and reference point on the winning rank, cell -1
+/// elsewhere; a probe outside the mesh fails at its mark on every rank. Collective.
+LocatedProbe locate_probe(const mesh::Mesh& mesh, std::span<const std::int32_t> cells,
+                          const std::function<std::int64_t(std::int32_t)>& cell_gid,
+                          const io::Probe& probe, Comm comm);
+
+/// The entries of summary.json's ranks_detail that every run writes (CONTRACT.md), in this
+/// order in a rank's record `d`: cells, ghost_cells, slave_elements, master_ghosts, pairs,
+/// integration_cells, peak_rss_mb, interface_cells, owned_nodes, ghost_nodes, nodes. Put into
+/// `e` (a JSON object), with `rank`.
+constexpr std::size_t n_rank_detail_basics = 11;
+void put_rank_detail_basics(io::Json& e, int rank, const double* d);
 
 class Checkpoints;
 class RecordWriter;

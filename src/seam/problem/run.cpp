@@ -187,17 +187,21 @@ int run(const RunOptions& options, int argc, char** argv) {
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
     auto mesh = load_mesh(config, comm);
+    if (comm.is_root() && comm.size() > 1 && !options.quiet)
+      std::printf("seam: fluid-structure runs are not distributed yet: every rank holds the "
+                  "whole mesh\n");
     make_output_directory(output_directory(options), comm);
     run_fsi(config, mesh, comm, output_directory(options), options.quiet, false,
             {options.input, options.restart});
     return 0;
   }
   if (has_fluid(config)) {
-    auto mesh = load_mesh(config, comm);
-    if (comm.is_root() && comm.size() > 1)
-      std::printf("seam: fluid runs are not distributed yet: every rank holds the whole mesh\n");
+    // Distributed as the solids: each rank holds its cells, their nodes and one ghost layer.
     make_output_directory(output_directory(options), comm);
-    run_fluid(config, mesh, comm, output_directory(options), options.quiet, false,
+    MeshIdentity identity;
+    auto part =
+        load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
+    run_fluid(config, part, identity, comm, output_directory(options), options.quiet,
               {options.input, options.restart});
     return 0;
   }

@@ -24,6 +24,25 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
   for (const auto& t : interfaces)
     for (auto n : t.slave.mesh_nodes) is_slave_node[n] = 1;
 
+  // The first dofs of the master nodes of distributed interfaces, by global node number, if
+  // the layout is not the solid's (one collective lookup for all interfaces).
+  std::vector<std::int64_t> master_numbers;
+  std::vector<PetscInt> master_first;
+  if (disc.first_dofs_of) {
+    for (const auto& t : interfaces)
+      if (t.distributed && t.strategy == io::Strategy::condensed)
+        master_numbers.insert(master_numbers.end(), t.master_index.begin(), t.master_index.end());
+    std::sort(master_numbers.begin(), master_numbers.end());
+    master_numbers.erase(std::unique(master_numbers.begin(), master_numbers.end()),
+                         master_numbers.end());
+    master_first = disc.first_dofs_of(master_numbers);
+  }
+  const auto master_dof = [&](std::int64_t number, int c) -> PetscInt {
+    if (!disc.first_dofs_of) return static_cast<PetscInt>(number) * dim + c;
+    const auto at = std::lower_bound(master_numbers.begin(), master_numbers.end(), number);
+    return master_first[static_cast<std::size_t>(at - master_numbers.begin())] + c;
+  };
+
   d_diag_.resize(interfaces.size());
   transforms_.resize(interfaces.size());
   for (std::size_t k = 0; k < interfaces.size(); ++k) {
@@ -98,7 +117,7 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
             continue;
           }
           if (t.distributed) { // global node number (the solid's layout); chains checked at set-up
-            entries.emplace_back(static_cast<PetscInt>(t.master_index[key]) * dim + c, v);
+            entries.emplace_back(master_dof(t.master_index[key], c), v);
             continue;
           }
           const auto master = t.master.mesh_nodes[key];

@@ -34,6 +34,10 @@ struct TiedDofs {
   std::function<int(std::int32_t)> node_owner;
   std::function<PetscInt(std::int32_t, int)> global_dof;
   std::function<std::int32_t(std::int32_t, int)> local_dof;
+  /// Distributed interfaces name master nodes by their global node number (node_index), which
+  /// need not be held here. The first dofs of such nodes (collective; all ranks call it), for
+  /// a layout whose dofs are not dim * number + c (the fluid's); unset: the solid's layout.
+  std::function<std::vector<PetscInt>(std::span<const std::int64_t>)> first_dofs_of;
   std::vector<PetscInt> prescribed; ///< owned dofs with a prescribed value
 };
 
@@ -53,6 +57,10 @@ TiedDofs tied_dofs(const Layout& layout, const Prescribed& model) {
     dofs.node_owner = [&layout](std::int32_t n) { return layout.node_owner(n); };
   dofs.global_dof = [&layout](std::int32_t n, int c) { return layout.global_dof(n, c); };
   dofs.local_dof = [&layout](std::int32_t n, int c) { return layout.local_dof(n, c); };
+  if constexpr (requires { layout.first_dofs(std::span<const std::int64_t>()); })
+    dofs.first_dofs_of = [&layout](std::span<const std::int64_t> numbers) {
+      return layout.first_dofs(numbers);
+    };
   for (const auto& d : model.dirichlet) dofs.prescribed.push_back(d.dof);
   return dofs;
 }

@@ -93,4 +93,11 @@ TEST(JacobianStiffening, SmallCellsAreStiffer) {
   const auto f2 = ale::jacobian_stiffening(m, cells, 2.0);
   EXPECT_NEAR(f2[2], 1.0 / 16, 1e-14);
   for (double f : ale::jacobian_stiffening(m, cells, 0.0)) EXPECT_EQ(f, 1.0);
+  // A part of a distributed mesh: its cells 1 and 2 against the smallest volume of all ranks
+  // (cell 0's, 1), not of its own cells (2).
+  const std::vector<std::int32_t> part{1, 2};
+  const auto fp = ale::jacobian_stiffening(m, part, 1.0, 1.0);
+  EXPECT_NEAR(fp[0], 0.5, 1e-14);
+  EXPECT_NEAR(fp[1], 0.25, 1e-14);
+  EXPECT_NEAR(ale::jacobian_stiffening(m, part, 1.0)[0], 1.0, 1e-14);
 }
