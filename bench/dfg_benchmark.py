@@ -10,8 +10,9 @@ meshes, whose iterative solver has ILU(0) on the velocity block; c_D is the last
 (no reference).
 
 Printed: one row per level and solver: dofs, c_D and its relative error against 5.57954, the
-CPU time (user + system) and peak resident memory of the run (for np > 1: the CPU time of all
-ranks, the largest rank's memory), the 1-minute load average of the machine when the run
+CPU time (user + system) of the run and per Newton iteration (the run's CPU time over its linear
+solves), its peak resident memory (for np > 1: the CPU time of all ranks, the largest rank's
+memory), the 1-minute load average of the machine when the run
 started (the machine is shared: wall times mean little, CPU times are the measure), Newton's
 linear solves, the Krylov iterations per Newton step, and the linear solver the run names in
 summary.json; after the iterative row of a level, the ratio of its CPU time to the direct
@@ -97,9 +98,9 @@ def main():
         print("DFG 2D-1, Taylor-Hood P2/P1, np = %d, c_D reference %.5f" % (args.np, CD_REF))
     else:
         print("DFG 2D-3, 20 steps of dt = 0.04, Taylor-Hood P2/P1, np = %d" % args.np)
-    print("%5s %8s %-9s %9s %9s %9s %8s %5s %6s %7s  %s" % (
-        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "RSS [MB]", "load", "newton",
-        "krylov", "linear solver of the run"))
+    print("%5s %8s %-9s %9s %9s %9s %8s %8s %5s %6s %7s  %s" % (
+        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "CPU/newt", "RSS [MB]", "load",
+        "newton", "krylov", "linear solver of the run"))
     for level in levels:
         cpu = {}
         for solver in solvers:
@@ -107,8 +108,8 @@ def main():
             cpu[solver] = r["cpu"]
             direct = r["solver"].startswith("direct")
             error = "%+8.4f%%" % (100 * (r["cd"] / CD_REF - 1)) if args.case == "2d1" else "-"
-            print("%5d %8d %-9s %9.6f %9s %9.2f %8.0f %5.2f %6d %7s  %s" % (
-                level, r["dofs"], solver, r["cd"], error, r["cpu"],
+            print("%5d %8d %-9s %9.6f %9s %9.2f %8.3f %8.0f %5.2f %6d %7s  %s" % (
+                level, r["dofs"], solver, r["cd"], error, r["cpu"], r["cpu"] / r["solves"],
                 r["rss"], r["load"], r["solves"], "-" if direct else "%.1f" % r["krylov"],
                 r["solver"]), flush=True)
         for solver in ("iterative", "pcd"):

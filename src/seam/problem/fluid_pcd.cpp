@@ -166,10 +166,13 @@ PressureConvectionDiffusion::PressureConvectionDiffusion(const FluidModel& model
   const auto index = n_view.values();
   std::vector<double> mass;
   CellOperators ops;
+  std::int32_t inverted = -1;
   for (auto c : cells_) {
     const auto nodes = mesh.cell(c);
-    SEAM_CHECK(cell_operators(layout, c, {}, ops), InputError, "fluid cell ", c + 1,
-               " is inverted (det J <= 0)");
+    if (!cell_operators(layout, c, {}, ops)) {
+      inverted = c;
+      continue;
+    }
     const int nv = ops.n_vertices;
     const double mu = model.fluids[model.cell_fluid[c]].viscosity;
     // The vertices are the first nodes of the cell (Gmsh order), as in fluid::navier_stokes.
@@ -184,6 +187,9 @@ PressureConvectionDiffusion::PressureConvectionDiffusion(const FluidModel& model
         laplace_.push_back(ops.A[k * nv + l]);
       }
   }
+  // Checked on every rank before the collective set-up.
+  SEAM_CHECK(!layout.comm().any(inverted >= 0), InputError, "a fluid cell is inverted (det J <= 0)",
+             inverted >= 0 ? " (cell " + std::to_string(inverted + 1) + ")" : std::string());
   const MPI_Comm comm = layout.comm().get();
   Mp_ = la::Matrix::from_triplets(comm, n_owned, rows_, cols_, mass);
   Ap_ = la::Matrix::from_triplets(comm, n_owned, rows_, cols_, laplace_);
