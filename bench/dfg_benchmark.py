@@ -2,14 +2,17 @@
 """DFG 2D-1 (Schaefer & Turek 1996, Re = 20) on the example's geometry (examples/dfg_cylinder)
 under uniform refinement of its cell sizes (h, hc) = (0.08, 0.012) / 2^k, Taylor-Hood P2/P1:
 the direct solver (MUMPS) against the iterative one (FGMRES + velocity | pressure Schur
-fieldsplit, BoomerAMG on both blocks), and what `solver.linear: auto` picks. With --case 2d3:
+fieldsplit, BoomerAMG on both blocks), the same with the pressure convection-diffusion Schur
+block (`pcd`: `solver.linear: iterative` and `-fluid_schur pcd` after `--`), and what
+`solver.linear: auto` picks. With --case 2d3:
 the first 20 steps (dt = 0.04, generalized-alpha, up to t = 0.8) of DFG 2D-3 on the same
 meshes, whose iterative solver has ILU(0) on the velocity block; c_D is the last step's
 (no reference).
 
 Printed: one row per level and solver: dofs, c_D and its relative error against 5.57954, the
-CPU time (user + system) and peak resident memory of the run (for np > 1: the CPU time of all
-ranks, the largest rank's memory), the 1-minute load average of the machine when the run
+CPU time (user + system) of the run and per Newton iteration (the run's CPU time over its linear
+solves), its peak resident memory (for np > 1: the CPU time of all ranks, the largest rank's
+memory), the 1-minute load average of the machine when the run
 started (the machine is shared: wall times mean little, CPU times are the measure), Newton's
 linear solves, the Krylov iterations per Newton step, and the linear solver the run names in
 summary.json; after the iterative row of a level, the ratio of its CPU time to the direct
@@ -17,7 +20,7 @@ one's. The rule of `auto` for fluids (src/seam/problem/linear_solver_choice.hpp)
 these ratios.
 
 Usage: /usr/bin/python3 bench/dfg_benchmark.py [--seam build/bin/seam] [--levels 0,1,2]
-           [--solvers direct,iterative] [--np 1] [--case 2d1|2d3]
+           [--solvers direct,iterative,pcd] [--np 1] [--case 2d1|2d3]
 """
 import argparse
 import json
@@ -32,6 +35,8 @@ CD_REF = 5.57954
 
 
 def run(seam, np, level, solver, case, options=()):
+    if solver == "pcd":
+        solver, options = "iterative", ["-fluid_schur", "pcd"] + list(options)
     folder = tempfile.mkdtemp(prefix="seam_bench_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -79,7 +84,8 @@ def main():
     parser.add_argument("--levels", default="0,1,2",
                         help="comma-separated refinement levels k: (h, hc) = (0.08, 0.012) / 2^k")
     parser.add_argument("--solvers", default="direct,iterative",
-                        help="comma-separated values of solver.linear (direct, iterative, auto)")
+                        help="comma-separated values of solver.linear (direct, iterative, auto) "
+                        "or pcd (iterative with -fluid_schur pcd)")
     parser.add_argument("--np", type=int, default=1)
     parser.add_argument("--case", choices=("2d1", "2d3"), default="2d1")
     parser.add_argument("--options", default="",
@@ -92,9 +98,9 @@ def main():
         print("DFG 2D-1, Taylor-Hood P2/P1, np = %d, c_D reference %.5f" % (args.np, CD_REF))
     else:
         print("DFG 2D-3, 20 steps of dt = 0.04, Taylor-Hood P2/P1, np = %d" % args.np)
-    print("%5s %8s %-9s %9s %9s %9s %8s %5s %6s %7s  %s" % (
-        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "RSS [MB]", "load", "newton",
-        "krylov", "linear solver of the run"))
+    print("%5s %8s %-9s %9s %9s %9s %8s %8s %5s %6s %7s  %s" % (
+        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "CPU/newt", "RSS [MB]", "load",
+        "newton", "krylov", "linear solver of the run"))
     for level in levels:
         cpu = {}
         for solver in solvers:
@@ -102,13 +108,14 @@ def main():
             cpu[solver] = r["cpu"]
             direct = r["solver"].startswith("direct")
             error = "%+8.4f%%" % (100 * (r["cd"] / CD_REF - 1)) if args.case == "2d1" else "-"
-            print("%5d %8d %-9s %9.6f %9s %9.2f %8.0f %5.2f %6d %7s  %s" % (
-                level, r["dofs"], solver, r["cd"], error, r["cpu"],
+            print("%5d %8d %-9s %9.6f %9s %9.2f %8.3f %8.0f %5.2f %6d %7s  %s" % (
+                level, r["dofs"], solver, r["cd"], error, r["cpu"], r["cpu"] / r["solves"],
                 r["rss"], r["load"], r["solves"], "-" if direct else "%.1f" % r["krylov"],
                 r["solver"]), flush=True)
-        if "direct" in cpu and "iterative" in cpu:
-            print("%5d %8s iterative / direct CPU time: %.2f" % (
-                level, "", cpu["iterative"] / cpu["direct"]), flush=True)
+        for solver in ("iterative", "pcd"):
+            if "direct" in cpu and solver in cpu:
+                print("%5d %8s %s / direct CPU time: %.2f" % (
+                    level, "", solver, cpu[solver] / cpu["direct"]), flush=True)
 
 
 if __name__ == "__main__":

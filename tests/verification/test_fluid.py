@@ -464,6 +464,77 @@ def test_dfg_2d1_lsc():
         raise AssertionError("LSC takes %.2f times selfp's iterations (expected <= 0.7)" % ratio)
 
 
+PCD = ["-fluid_schur", "pcd"]
+
+
+def test_dfg_2d1_pcd():
+    """The pressure convection-diffusion Schur block (`-fluid_schur pcd`, fluid_pcd.hpp) gives
+    MUMPS's c_D, c_L and dp to 1e-8 (c_L: of c_D) on DFG 2D-1 on 1 and 3 ranks, in as many Newton steps (5),
+    and names itself in summary.json."""
+    direct = dfg(0.08, 0.012)
+    for np in (1, 3):
+        info = {}
+        it = dfg(0.08, 0.012, np=np, solver="{linear: iterative}", summary=info, options=PCD)
+        print("   np = %d: %d Newton steps, %.1f FGMRES iterations per step, %s"
+              % (np, info["linear_solves"], info["linear_iterations"] / info["linear_solves"],
+                 info["linear_solver"]))
+        # c_L to 1e-8 of the force scale c_D: the Newton tolerance bounds the residual
+        # relative to the force level, and the lift is 1/600 of the drag (measured 9.9e-11
+        # apart on 3 ranks, 1.8e-8 of c_L).
+        for k, what in enumerate(("c_D", "c_L", "dp")):
+            H.assert_close(it[k], direct[k], rtol=1e-8, atol=1e-8 * abs(direct[0]) if k == 1 else 0,
+                           what="%s, PCD against MUMPS on %d ranks" % (what, np))
+        if info["linear_solves"] != 5 or not info["linear_solver"].endswith(", PCD)"):
+            raise AssertionError("PCD: %d Newton steps (expected 5), solver %r"
+                                 % (info["linear_solves"], info["linear_solver"]))
+
+
+def test_dfg_2d1_pcd_refinement():
+    """PCD's FGMRES iterations per Newton step do not grow over two refinements of DFG 2D-1
+    (3,736 -> 51,727 dofs). With an exact velocity block (LU), which isolates the Schur
+    approximation, measured 50.0, 39.8, 39.0 (ratio 0.78 over two refinements), where selfp
+    took 64.6 -> 94.2 over one (1.46, test_dfg_2d1_lsc's data; about 2.1 over two): the bound
+    1.2 leaves room for the scatter of an AMG-approximated A_p and fails for selfp's growth.
+    With the default BoomerAMG cycle on the velocity block measured 119.2, 64.6, 63.4 (0.53),
+    where selfp took 107.6, 98.4, 128.0 (1.19): the bound 1.0."""
+    for name, options, bound in (("exact velocity block", PCD + EXACT_BLOCKS, 1.2),
+                                 ("BoomerAMG velocity block", PCD, 1.0)):
+        per_step = []
+        for k in (0, 2):
+            info = {}
+            dfg(0.08 / 2 ** k, 0.012 / 2 ** k, solver="{linear: iterative}", summary=info,
+                options=options)
+            per_step.append(info["linear_iterations"] / info["linear_solves"])
+        growth = per_step[1] / per_step[0]
+        print("   PCD, %s: %.1f -> %.1f FGMRES iterations per Newton step over two refinements "
+              "(%.2f)" % (name, per_step[0], per_step[1], growth))
+        if growth > bound:
+            raise AssertionError("PCD, %s: iterations per Newton step grow %.2f times over two "
+                                 "refinements (expected <= %.1f)" % (name, growth, bound))
+
+
+def test_pcd_bad_option():
+    """`-fluid_schur` with an unknown value, or PCD on linear (stabilized) cells: exit 1 with a
+    message naming the option."""
+    work = tempfile.mkdtemp(prefix="seam_pcd_")
+    try:
+        with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
+            H.write_case(work, "dfg.geo", f.read())
+        with open(os.path.join(EXAMPLE, "dfg_2d1.yaml")) as f:
+            text = f.read() + "solver: {linear: iterative}\n"
+        H.write_case(work, "case.yaml", text)
+        H.write_case(work, "linear.yaml", text.replace("order: 2", "order: 1"))
+        for name, options, must in (
+                ("case.yaml", ["-fluid_schur", "lsc"], "-fluid_schur lsc: expected pcd or selfp"),
+                ("linear.yaml", PCD, "-fluid_schur pcd needs Taylor-Hood fluid cells")):
+            code, out, err = H.run(["run", name, "-o", "out", "--quiet", "--"] + options,
+                                   cwd=work, check=False, timeout=300)
+            if code != 1 or must not in err:
+                raise AssertionError("exit %d, expected 1 with %r:\n%s%s" % (code, must, out, err))
+    finally:
+        H.cleanup(work)
+
+
 def linear_solver_of_run(yaml_path, np=1):
     """Runs a case with its header printed: the linear solver its header line names, the one
     summary.json names (both must agree), and the output directory."""
@@ -544,11 +615,12 @@ def expect_bad(what, must, order=2, material="{model: newtonian_fluid, density: 
 CD3_MAX, T_CD3, CL3_MAX, T_CL3 = 2.95092, 3.93625, 0.47795, 5.69313  # John 2004
 
 
-def dfg_2d3(end, dt=None, geo=None, solver=None, np=1, summary=None):
+def dfg_2d3(end, dt=None, geo=None, solver=None, np=1, summary=None, options=()):
     """The example's DFG 2D-3 (U(t) = 1.5 sin(pi t / 8)) up to `end`: times, c_D and c_L
     (c = 2 F / (rho U_mean^2 D) = 20 F) of every step. `geo`: (h, hc) for the example's
     dfg.geo instead of the mesh of dfg_2d3.geo; `dt` instead of the example's 0.01; `solver`:
-    solver.linear; `summary`: a dict updated with summary.json."""
+    solver.linear; `summary`: a dict updated with summary.json; `options`: PETSc options
+    passed after `--`."""
     work = tempfile.mkdtemp(prefix="seam_dfg3_")
     with open(os.path.join(EXAMPLE, "dfg_2d3.yaml")) as f:
         text = f.read().replace("end: 8", "end: %g" % end).replace("every: 10", "every: 100000")
@@ -566,7 +638,8 @@ def dfg_2d3(end, dt=None, geo=None, solver=None, np=1, summary=None):
                 H.write_case(work, name, f.read())
     if solver:
         text += "solver: {linear: %s}\n" % solver
-    out = H.solve(H.write_case(work, "case.yaml", text), np=np)
+    out = H.solve(H.write_case(work, "case.yaml", text), np=np,
+                  extra=["--"] + list(options) if options else ())
     rows = H.read_csv(os.path.join(out, "forces.csv"))
     info = H.read_json(os.path.join(out, "summary.json"))
     dofs = info["dofs"]
@@ -594,9 +667,10 @@ def test_dfg_2d3_coarse():
 
 def test_dfg_2d3_iterative():
     """20 steps of DFG 2D-3 (dt = 0.04, generalized-alpha, 3,736 dofs): the fieldsplit solver
-    (ILU(0) on the velocity block) gives MUMPS's drag and lift at every step to 1e-8 (of the
-    largest drag) on 1 and 3 ranks (measured 1.7e-12 and 2.1e-12); `auto` keeps the run on
-    MUMPS, as the rule of linear_solver_choice.hpp says."""
+    (ILU(0) on the velocity block; selfp, and PCD with the reaction term, `-fluid_schur pcd`)
+    gives MUMPS's drag and lift at every step to 1e-8 (of the largest drag) on 1 and 3 ranks
+    (measured 1.7e-12 and 2.1e-12 with selfp); `auto` keeps the run on MUMPS, as the rule of
+    linear_solver_choice.hpp says."""
     geo = (0.08, 0.012)
     info = {}
     t, cd, cl, dofs = dfg_2d3(0.8, dt=0.04, geo=geo, summary=info)
@@ -605,9 +679,12 @@ def test_dfg_2d3_iterative():
         raise AssertionError("%d steps, auto chose %r on %d dofs; the rule says %r"
                              % (len(t), info["linear_solver"], dofs, expected))
     scale = max(abs(c) for c in cd)
-    for solver, np in (("direct", 3), ("iterative", 1), ("iterative", 3)):
+    for solver, np, options in (("direct", 3, ()), ("iterative", 1, ()), ("iterative", 3, ()),
+                                ("iterative", 1, PCD), ("iterative", 3, PCD)):
         run = {}
-        t2, cd2, cl2, _ = dfg_2d3(0.8, dt=0.04, geo=geo, solver=solver, np=np, summary=run)
+        t2, cd2, cl2, _ = dfg_2d3(0.8, dt=0.04, geo=geo, solver=solver, np=np, summary=run,
+                                  options=options)
+        solver = run["linear_solver"]
         worst = max(abs(a - b) for a, b in zip(cd + cl, cd2 + cl2))
         print("   %s, np = %d: %d linear solves, %.1f Krylov iterations each; largest force "
               "difference to MUMPS on 1 rank %.2e (of max c_D %.4f)"
@@ -686,5 +763,6 @@ if __name__ == "__main__":
             test_kovasznay_rates,
             test_kovasznay_rates_stabilized, test_kovasznay_3d_extruded,
             test_kovasznay_3d_three_ranks, test_dfg_2d1, test_dfg_2d1_stabilized,
-            test_dfg_2d1_three_ranks, test_dfg_2d1_fieldsplit, test_dfg_2d1_lsc, test_dfg_2d1_auto,
+            test_dfg_2d1_three_ranks, test_dfg_2d1_fieldsplit, test_dfg_2d1_lsc, test_dfg_2d1_pcd,
+            test_dfg_2d1_pcd_refinement, test_pcd_bad_option, test_dfg_2d1_auto,
             test_dfg_2d1_finer, test_dfg_2d3_coarse, test_dfg_2d3_iterative, test_dfg_2d3, test_bad_input, test_gives_up_after_step_cuts])

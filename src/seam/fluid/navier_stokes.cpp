@@ -2,6 +2,7 @@
 
 #include "seam/common/dual_number.hpp"
 #include "seam/common/error.hpp"
+#include "seam/fluid/pressure_operators.hpp"
 
 #include <algorithm>
 #include <array>
@@ -414,6 +415,57 @@ int n_element_dofs(fem::CellType cell) {
 
 bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<double> K) {
   return kernel<double>(in, in.x, in.mesh_velocity, r, K);
+}
+
+bool pressure_operators(fem::CellType cell, std::span<const double> x, std::span<const double> c,
+                        std::span<double> mass, std::span<double> laplacian,
+                        std::span<double> convection) {
+  SEAM_ASSERT(is_taylor_hood(cell));
+  FluidElementInput in;
+  in.cell = cell;
+  in.dim = fem::dimension(cell);
+  const int dim = in.dim;
+  const int n = fem::n_nodes(cell);
+  const int nv = fem::n_vertices(cell);
+  SEAM_ASSERT(static_cast<int>(mass.size()) == nv * nv);
+  for (auto* m : {&mass, &laplacian, &convection}) std::fill(m->begin(), m->end(), 0.0);
+  // The linear pressure functions lie in the quadratic velocity space: M_k = sum_a M_k(xi_a)
+  // N_a, so their physical gradients follow from the velocity's.
+  std::array<double, 8 * max_nodes> Mk_at{};
+  const auto ref = fem::reference_nodes(cell);
+  for (int a = 0; a < n; ++a) {
+    std::array<double, 8> Ma{};
+    fem::shape_values(pressure_cell(cell), &ref[a * dim], Ma.data());
+    for (int k = 0; k < nv; ++k) Mk_at[k * max_nodes + a] = Ma[k];
+  }
+  // The degree of the residual's rule (3 * order), exact for the convection on affine cells.
+  const auto rule = fem::quadrature(cell, 3 * fem::order(cell));
+  Point<double> q;
+  std::array<double, 8 * 3> G{};
+  for (int iq = 0; iq < rule.n_points; ++iq) {
+    if (!evaluate(in, x, &rule.points[iq * dim], rule.weights[iq], q)) return false;
+    std::array<double, 3> cq{};
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < dim; ++i) cq[i] += q.N[a] * c[a * dim + i];
+    for (int k = 0; k < nv; ++k)
+      for (int i = 0; i < dim; ++i) {
+        double g = 0.0;
+        for (int a = 0; a < n; ++a) g += Mk_at[k * max_nodes + a] * q.G[a * dim + i];
+        G[k * dim + i] = g;
+      }
+    for (int k = 0; k < nv; ++k)
+      for (int l = 0; l < nv; ++l) {
+        double gg = 0.0, cg = 0.0;
+        for (int i = 0; i < dim; ++i) {
+          gg += G[k * dim + i] * G[l * dim + i];
+          cg += cq[i] * G[l * dim + i];
+        }
+        mass[k * nv + l] += q.weight * q.M[k] * q.M[l];
+        laplacian[k * nv + l] += q.weight * gg;
+        convection[k * nv + l] += q.weight * q.M[k] * cg;
+      }
+  }
+  return true;
 }
 
 bool navier_stokes_mesh_derivatives(const FluidElementInput& in, std::span<double> by_position,

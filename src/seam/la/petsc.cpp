@@ -811,6 +811,33 @@ void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const P
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 }
 
+namespace {
+
+PetscErrorCode apply_schur_shell(PC pc, Vec x, Vec y) {
+  void* context = nullptr;
+  PetscCall(PCShellGetContext(pc, &context));
+  try {
+    (*static_cast<const LinearSolver::SchurApply*>(context))(x, y);
+  } catch (const std::exception& e) {
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
+  }
+  return 0;
+}
+
+} // namespace
+
+void LinearSolver::set_schur_preconditioner(SchurApply apply) {
+  schur_apply_ = std::move(apply);
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  // The pressure block (zero for Taylor-Hood) as the preconditioning matrix: nothing is
+  // assembled for the Schur block, and no PC is built on it before the shell replaces it.
+  check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_A11, nullptr),
+        "PCFieldSplitSetSchurPre");
+  default_option("-fieldsplit_p_pc_type", "none");
+  schur_installed_ = false;
+}
+
 void LinearSolver::set_fsi_fields(std::span<const PetscInt> structure,
                                   std::span<const PetscInt> fluid, std::span<const PetscInt> mesh,
                                   std::span<const double> modes, VelocityBlock velocity) {
@@ -909,6 +936,22 @@ bool LinearSolver::solve_once(const Matrix& A, const Matrix& P, const Vector& b,
           "PCSetReusePreconditioner");
   check(KSPSetOperators(ksp_, A.get(), P.get()), "KSPSetOperators");
   if (!reuse) ++builds_;
+  if (schur_apply_ && !schur_installed_) {
+    // The Schur block's solver exists after PCFIELDSPLIT's set-up; the shell stays on it
+    // through later set-ups (PCFIELDSPLIT reads the block's options once).
+    if (KSPSetUp(ksp_)) return false;
+    KSP* blocks = nullptr;
+    PetscInt n_blocks = 0;
+    check(PCFieldSplitGetSubKSP(pc, &n_blocks, &blocks), "PCFieldSplitGetSubKSP");
+    PC schur = nullptr;
+    check(KSPGetPC(blocks[n_blocks - 1], &schur), "KSPGetPC");
+    check(PetscFree(blocks), "PetscFree");
+    check(PCSetType(schur, PCSHELL), "PCSetType");
+    check(PCShellSetContext(schur, &schur_apply_), "PCShellSetContext");
+    check(PCShellSetApply(schur, apply_schur_shell), "PCShellSetApply");
+    check(PCShellSetName(schur, "seam Schur preconditioner"), "PCShellSetName");
+    schur_installed_ = true;
+  }
   PetscErrorCode ierr = KSPSolve(ksp_, b.get(), x.get());
   if (ierr) return false; // e.g. a zero pivot in the factorization: the caller cuts the step
   KSPConvergedReason reason;

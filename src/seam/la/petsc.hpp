@@ -4,6 +4,7 @@
 #include <petscksp.h>
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <utility>
@@ -263,6 +264,12 @@ public:
   /// -fieldsplit_u_, -fieldsplit_p_ and -pc_fieldsplit_ override the defaults. Collective.
   void set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second,
                   VelocityBlock velocity);
+  /// y ~ S^-1 x on the Schur block of set_fields (Vecs laid out as its pressure rows).
+  using SchurApply = std::function<void(Vec x, Vec y)>;
+  /// Replaces set_fields' selfp approximation and its BoomerAMG cycle by `apply`, a PCSHELL on
+  /// the Schur block (whose operator stays PCFIELDSPLIT's matrix-free Schur complement; its
+  /// preconditioning matrix is the pressure block). Call after set_fields. Collective.
+  void set_schur_preconditioner(SchurApply apply);
   /// The monolithic fluid-structure system (structure | fluid | fluid mesh) for the iterative
   /// kind: FGMRES preconditioned by a multiplicative (block Gauss-Seidel) PCFIELDSPLIT over
   /// the three fields: GAMG with the rigid-body near-null space `modes` (mode-major over the
@@ -301,6 +308,8 @@ private:
 
   KSP ksp_ = nullptr;
   SolverKind kind_;
+  SchurApply schur_apply_;
+  bool schur_installed_ = false; ///< the PCSHELL sits on the Schur block
   int iterations_ = 0;
   bool keep_ = false;
   bool stale_ = true;           ///< the next solve builds the preconditioner

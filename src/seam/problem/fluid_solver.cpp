@@ -8,6 +8,7 @@
 #include "seam/problem/fluid_mesh_motion.hpp"
 #include "seam/problem/fluid_model.hpp"
 #include "seam/problem/fluid_output.hpp"
+#include "seam/problem/fluid_pcd.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/step_control.hpp"
 #include "seam/problem/tying_constraint.hpp"
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <optional>
 
 namespace seam::problem {
@@ -320,9 +322,10 @@ la::LinearSolver::VelocityBlock fluid_velocity_block(const io::Config& config) {
 // fluid)", "iterative (FGMRES + Schur fieldsplit: BoomerAMG velocity, BoomerAMG selfp)".
 std::string describe_fluid_linear_solver(const io::Config& config, const FluidLayout& layout) {
   const bool amg = fluid_velocity_block(config) == la::LinearSolver::VelocityBlock::amg;
+  const std::string schur = pcd_requested() ? "PCD" : "BoomerAMG selfp";
   return describe(fluid_linear_solver(config, layout),
-                  amg ? "FGMRES + Schur fieldsplit: BoomerAMG velocity, BoomerAMG selfp"
-                      : "FGMRES + Schur fieldsplit: ILU(0) velocity, BoomerAMG selfp");
+                  std::string("FGMRES + Schur fieldsplit: ") +
+                      (amg ? "BoomerAMG velocity, " : "ILU(0) velocity, ") + schur);
 }
 
 class FluidNewton {
@@ -342,12 +345,21 @@ public:
       std::vector<PetscInt> velocity, pressure;
       layout.owned_fields(velocity, pressure);
       solver_.set_fields(velocity, pressure, fluid_velocity_block(config));
+      // `-fluid_schur pcd`: the pressure convection-diffusion Schur block (fluid_pcd.hpp).
+      if (pcd_requested()) {
+        SEAM_CHECK(!tying, InputError,
+                   "command line: -fluid_schur pcd does not support tied fluid subdomains");
+        pcd_ = std::make_unique<PressureConvectionDiffusion>(model, layout);
+        solver_.set_schur_preconditioner([this](Vec x, Vec y) { pcd_->apply(x, y); });
+      }
     }
   }
 
   /// The residual scale of the run so far (the largest first residual of a step): part of
   /// the state a checkpoint keeps.
   double reference() const { return reference_; }
+  /// The weights of the Jacobian for the PCD preconditioner (steady: {1, 0, 1}).
+  void set_pcd_weights(const PcdWeights& weights) { pcd_weights_ = weights; }
   void set_reference(double reference) { reference_ = reference; }
 
   /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
@@ -444,6 +456,7 @@ public:
       if (iterative_)
         solver_.set_relative_tolerance(linear_ ? 1e-10
                                                : std::clamp(norm / reference_, 1e-10, forcing_max));
+      if (pcd_) pcd_->update(w, linear_ ? PcdWeights{0.0, 1.0, 1.0} : pcd_weights_);
       r_sys->scale(-1.0);
       d_sys->zero();
       bool solved;
@@ -485,6 +498,8 @@ private:
   la::Vector r_, rt_, r_full_, dw_, dwt_;
   la::LinearSolver solver_;
   bool iterative_ = false;
+  std::unique_ptr<PressureConvectionDiffusion> pcd_;
+  PcdWeights pcd_weights_;
   std::vector<PetscInt> fixed_;
   double reference_ = 0.0;
   bool linear_ = false; // the problem is linear: converged after one correction
@@ -734,6 +749,7 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
       w_f.scale(1.0 - alpha_f);
       w_f.axpy(alpha_f, wk);
       w_f.update_ghosts();
+      newton.set_pcd_weights({alpha_f, alpha_m / (gamma * h), alpha_f * alpha_f});
       return assemble(model, layout, ms, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h), h},
                       t + alpha_f * h, r, &K);
     };
