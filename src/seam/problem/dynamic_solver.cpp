@@ -521,8 +521,9 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
       const double gain = kinetic + internal - energy_old - allowed;
       const double round_off = 1e-13 * (kinetic + std::abs(internal));
       // After the release the restarted acceleration (above) rings in the stiff modes near the
-      // contact, and generalized-alpha's energy rises for a few steps (the Hertz impact: 4
-      // steps, up to 9e-4 of the energy) until its numerical dissipation wins.
+      // contact, and generalized-alpha's energy rises for a few steps until its numerical
+      // dissipation wins (the Hertz impact with the bound only while a node was active at t_n
+      // or t_{n+1}: steps 51 to 54 after the release in step 49 gained up to 9.1e-4).
       transient = active > 0 || active_n > 0 || (transient && gain >= -round_off);
       if (transient && gain > round_off) {
         // Two layers of cells around the contact nodes first (as the energy-momentum update),
