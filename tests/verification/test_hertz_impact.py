@@ -33,9 +33,10 @@ largest step value and its neighbours. Measured (generalized-alpha, rho_inf = 0.
 nodes -2.66 % and +3.86 % (-2.70 % and +4.07 % before the persistency of the contact
 velocities, docs/contact_dynamics.md §6), 2926 nodes -2.01 % and +3.32 % (before it); np 3
 equal to np 1. The energy bound of generalized-alpha at impacts (§6) leaves both figures of the
-CI mesh as they were to 5e-5 of them (-2.67 %, +3.86 %; 2926 nodes: -2.01 %, +3.24 %) and its largest gain in a step at 1.5e-16 of the energy
-(4.72e-3 without it: the restarts from the acceleration of equilibrium while the contact shrinks
-and after the release ring in the stiff modes of the graded mesh).
+CI mesh as they were to 5e-5 of them (-2.67 %, +3.86 %; 2926 nodes: -2.01 %, +3.24 %) and
+its largest gain in a step at 1.5e-16 of the energy (4.72e-3 without it: the restarts from
+the acceleration of equilibrium while the contact shrinks and after the release ring in the
+stiff modes of the graded mesh).
 """
 import math
 import os
