@@ -166,5 +166,74 @@ def test_free_rings_friction_3d():
     check(rings(dimension=3, n=6, steps=20), min_persistent=2)
 
 
+def test_start_inside_friction():
+    """The rings of test_free_rings_friction_2d (`surface:`, dual, mu = 0.3, 8 cells per quarter
+    circle) with ring b starting 0.01 inside ring a, as test_rings.py's
+    test_start_inside_energy_momentum: the first step starts with slave nodes beyond the other
+    surface, where the discrete gradient of the normal part gains -lambda_n,j g~_j(x_n). The
+    contact velocity update (docs/contact_dynamics.md §5) takes that out of the velocities;
+    the step's frictional dissipation is a function of the positions, so interfaces.csv's
+    dissipation D stays that of the step. With the update: no step raises E + D by more than
+    1e-9 of E_0 (the first step against the meshed annuli's energy, D_0 = 0), D never falls,
+    no step changes the linear or angular momentum by more than 1e-12 of its scale (step 1
+    against the run without the update), np 3 equals np 1 to 1e-10 of E_0. Without it
+    (SEAM_KEEP_CONTACT_GAIN=1) the first step must raise E + D by more than 1e-3 of E_0."""
+    fields = ((0.5, 0.0, -0.3, 0.0, 0.3, 0.0), (-0.5 - 0.2 * 0.6, 0.0, 0.2, 0.2 * 2.1, -0.2, 0.0))
+    e0, _, _, l0 = R.initial_state(R.OVERLAP_CENTRES, 8, fields)
+    scale_p, scale_l = 0.5, max(abs(l0), 1.0)
+    yaml = rings_yaml("surface", 20, 2)
+    runs = {}
+    os.environ["SEAM_KEEP_CONTACT_GAIN"] = "1"
+    try:
+        runs["kept"] = R.run_rings(2, R.OVERLAP_CENTRES, 8, yaml, 1)
+    finally:
+        del os.environ["SEAM_KEEP_CONTACT_GAIN"]
+    for np in (1, 3):
+        runs[np] = R.run_rings(2, R.OVERLAP_CENTRES, 8, yaml, np)
+
+    def history(run):
+        rows, itf = run[0], run[1]
+        balance = [e0] + [r["total_energy"] + f["frictional_dissipation"]
+                          for r, f in zip(rows, itf)]
+        rise = max(b - a for a, b in zip(balance, balance[1:])) / e0
+        diss = [0.0] + [f["frictional_dissipation"] for f in itf]
+        drop = min(b - a for a, b in zip(diss, diss[1:])) / e0
+        rows = [runs["kept"][0][0]] + rows
+        dp = max(max(abs(b["momentum_x"] - a["momentum_x"]), abs(b["momentum_y"] - a["momentum_y"]))
+                 for a, b in zip(rows, rows[1:])) / scale_p
+        dl = max(abs(b["angular_momentum_z"] - a["angular_momentum_z"])
+                 for a, b in zip(rows, rows[1:])) / scale_l
+        slip = sum(f["slip_nodes"] for f in itf)
+        stick = sum(f["active_nodes"] - f["slip_nodes"] for f in itf)
+        return dict(rise=rise, drop=drop, dp=dp, dl=dl, d=diss[-1] / e0, balance=balance,
+                    stick=stick, slip=slip)
+
+    kept, r1, r3 = (history(runs[k]) for k in ("kept", 1, 3))
+    np_diff = max(abs(a - b) for a, b in zip(r1["balance"], r3["balance"])) / e0
+    print("   E_0 = %.10g; E + D, largest rise in a step: %.3e of E_0 without the update, %.3e "
+          "with it (np 3 %.3e); dissipation %.3e of E_0 (%d stick, %d slip node-steps), smallest "
+          "increment %.1e; largest change in a step of the linear momentum %.1e, angular %.1e; "
+          "np 3 vs np 1 %.1e" % (e0, kept["rise"], r1["rise"], r3["rise"], r1["d"], r1["stick"],
+                                 r1["slip"], min(r1["drop"], r3["drop"]),
+                                 max(r1["dp"], r3["dp"]), max(r1["dl"], r3["dl"]), np_diff))
+    if kept["rise"] < 1e-3:
+        raise AssertionError("without the velocity update the largest gain is only %.3e: the "
+                             "case does not show the gain" % kept["rise"])
+    if r1["stick"] == 0 or r1["slip"] == 0 or not r1["d"] > 1e-6:
+        raise AssertionError("set-up: %d stick, %d slip node-steps, dissipation %.3e"
+                             % (r1["stick"], r1["slip"], r1["d"]))
+    for r in (r1, r3):
+        if r["rise"] > 1e-9:
+            raise AssertionError("E + D rose by %.3e of E_0 in a step" % r["rise"])
+        if r["drop"] < -DISSIPATION_ROUND_OFF:
+            raise AssertionError("the dissipation decreased by %.3e in a step" % -r["drop"])
+        if r["dp"] > MOMENTUM_BOUND or r["dl"] > ANGULAR_BOUND:
+            raise AssertionError("momentum change %.3e, angular %.3e in a step"
+                                 % (r["dp"], r["dl"]))
+    if np_diff > 1e-10 or len(r1["balance"]) != len(r3["balance"]):
+        raise AssertionError("np 3 differs from np 1 by %.3e of E_0" % np_diff)
+
+
 if __name__ == "__main__":
-    H.main([test_free_rings_friction_2d, test_restart_friction_np3, test_free_rings_friction_3d])
+    H.main([test_free_rings_friction_2d, test_restart_friction_np3, test_start_inside_friction,
+            test_free_rings_friction_3d])

@@ -239,14 +239,16 @@ def test_free_bodies_3d():
     of the 3D weighted gaps (docs/contact_dynamics.md §5): linear and angular momentum to
     1e-12 through the impact and no step gaining more than 1e-10 of the energy. The
     end-of-step force of generalized-alpha keeps the linear momentum only: through the
-    contact its angular momentum drifts by about 1e-2 of its scale and single steps gain
-    energy. SEAM_FULL=1: np = 3 equals np = 1."""
+    contact its angular momentum drifts by about 1e-2 of its scale; its energy bound at
+    impacts (docs/contact_dynamics.md §6) keeps every step's gain below the 1e-4 of issue 13
+    (2.2e-3 without it). SEAM_FULL=1: np = 3 equals np = 1."""
     r = free_bodies(3, "generalized_alpha", n=6, steps=20)
     check_free(r, "generalized_alpha")
-    if r["dl"] < 1e-4 or r["rise"] < 1e-6:
-        raise AssertionError("the end-of-step force kept angular momentum (%.2e) and energy "
-                             "(largest rise %.2e): the comparison shows nothing"
-                             % (r["dl"], r["rise"]))
+    if r["dl"] < 1e-4:
+        raise AssertionError("the end-of-step force kept angular momentum (%.2e): the "
+                             "comparison shows nothing" % r["dl"])
+    if r["rise"] > 1e-4:
+        raise AssertionError("generalized-alpha: a step gained %.3e of the energy" % r["rise"])
     r1 = free_bodies(3, "energy_momentum", n=6, steps=20)
     check_free(r1, "energy_momentum")
     if r1["dl"] > MOMENTUM_BOUND:

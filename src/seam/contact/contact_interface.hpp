@@ -30,6 +30,7 @@
 #include "seam/mortar/linearization.hpp"
 #include "seam/search/interface_search.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -137,6 +138,11 @@ public:
   bool rigid() const { return rigid_; }
   /// The rigid obstacle in its current position (rigid() only).
   const Obstacle& obstacle() const { return current_; }
+  /// Whether the rigid obstacle's prescribed displacement varies in time (rigid() only).
+  bool obstacle_moves() const {
+    return std::any_of(plane_motion_.begin(), plane_motion_.end(),
+                       [](const io::Expression& e) { return e.uses_time(); });
+  }
   /// Self and multi-body contact (`surface:`, self_contact.hpp): the slave and the master side
   /// are both the whole surface and every search assigns the roles of its facets.
   bool self_contact() const { return self_; }

@@ -154,6 +154,11 @@ public:
   bool frictionless() const {
     return std::none_of(sides_.begin(), sides_.end(), [](const Side& s) { return s.friction; });
   }
+  /// Whether a rigid obstacle of some interface has a prescribed motion (it can do work).
+  bool moving_obstacle() const {
+    return std::any_of(sides_.begin(), sides_.end(),
+                       [](const Side& s) { return s.itf.rigid() && s.itf.obstacle_moves(); });
+  }
   /// Whether the active set at the last evaluate() differs from the one of the last converged
   /// step (save()): a contact opened or closed in the step. Same on every rank.
   bool set_changed() const;

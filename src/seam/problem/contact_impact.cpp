@@ -1,6 +1,7 @@
 // The energy an energy-momentum step gains through contact (docs/contact_dynamics.md §5,
 // "Penetration at the start of the step"). With the discrete-gradient force every step satisfies
-//   E_{n+1} - E_n = -sum_j lambda_j g~_j(x_n)   (+ the work of the loads),
+//   E_{n+1} - E_n = -sum_j lambda_j g~_j(x_n)   (+ the work of the loads, - the frictional
+//   dissipation; lambda_j the normal part of a frictional multiplier),
 // a loss where a node takes contact from a positive gap and zero in persistent contact. A slave
 // node that starts the step beyond the other surface (g~_j(x_n) < 0: a master node of the last
 // step that self contact makes a slave now, or a node whose pair did not exist at x_n) makes the
@@ -22,19 +23,23 @@ ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) cons
     // Against a rigid obstacle g~_j(x_n) < 0 only where the obstacle moved into the body in the
     // step (every converged state has g~_j >= 0 against the obstacle's position then): that
     // gain is the obstacle's work, not an error of the step.
-    if (!s.discrete_gradient || s.friction || s.itf.rigid()) continue;
+    if (!s.discrete_gradient || s.itf.rigid()) continue;
+    // With friction the normal part n_j . lambda_j takes the discrete gradient; the tangential
+    // part's work is the step's dissipation, lambda_t,j . u~_j, a function of the positions
+    // only, so the update (velocities only) leaves it as interfaces.csv reports it.
+    const auto lambda = normal_multipliers(s);
     // The weighted gaps at x_n of the pairs of the last evaluate(), as the discrete gradient
     // took them (the same blocks at the same displacement), summed over the ranks.
     std::vector<contact::GapBlock> start;
     s.itf.gap_blocks(u_mesh_start_, contact::GapOrder::value, start);
-    std::vector<double> gap_start(s.lambda.size(), 0.0);
+    std::vector<double> gap_start(lambda.size(), 0.0);
     for (const auto& b : start)
       for (std::size_t r = 0; r < b.slave.size(); ++r)
         gap_start[static_cast<std::size_t>(b.slave[r])] += b.gap[r];
     disc_.comm().sum_in_place(gap_start);
     std::vector<double> e(gap_start.size(), 0.0);
     for (std::size_t j = 0; j < e.size(); ++j) {
-      e[j] = std::max(0.0, -s.lambda[j] * gap_start[j]);
+      e[j] = std::max(0.0, -lambda[j] * gap_start[j]);
       out.gain += e[j];
     }
     // This rank's part of grad g~_j(x_{n+1}) (the gap rows of the last evaluate()).

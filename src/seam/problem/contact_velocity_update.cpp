@@ -29,10 +29,10 @@ double remove_along(const la::Matrix& M, const la::Vector& delta, double G, la::
 }
 
 /// The velocity of a contact patch relative to its rigid motion. The patch S is the nodes
-/// where d is nonzero grown by `layers` layers of cells (the nodes M couples to it), without
-/// the prescribed dofs; delta = P_S (v - R c) with R the rigid motions of the whole mesh at
-/// x_{n+1} (translations, rotations about the patch's centroid) and c from
-/// R^T M P_S (v - R c) = 0, so that M delta has no resultant and no moment: v - s delta keeps
+/// where d is nonzero grown by `layers` layers of cells (the nodes M couples to it; every node
+/// of the mesh for layers < 0), without the prescribed dofs; delta = P_S (v - R c) with R the rigid
+/// motions of the whole mesh at x_{n+1} (translations, rotations about the patch's centroid) and c
+/// from R^T M P_S (v - R c) = 0, so that M delta has no resultant and no moment: v - s delta keeps
 /// both momenta for any s. Returns the number of patch nodes.
 std::int64_t patch_deformation_velocity(const Discretization& disc, const la::Matrix& M,
                                         const la::Vector& u, const la::Vector& v,
@@ -52,7 +52,12 @@ std::int64_t patch_deformation_velocity(const Discretization& disc, const la::Ma
       for (int c = 0; c < dim; ++c) out.values()[i * dim + c] = any ? 1.0 : 0.0;
     }
   };
-  flag_nodes(d);
+  if (layers < 0) {
+    la::Vector::LocalView out(mask, true);
+    for (auto& x : out.values()) x = 1.0;
+  } else {
+    flag_nodes(d);
+  }
   for (int l = 0; l < layers; ++l) {
     M.mult(mask, work);
     flag_nodes(work);
@@ -131,6 +136,17 @@ std::int64_t patch_deformation_velocity(const Discretization& disc, const la::Ma
 
 } // namespace
 
+double remove_from_patch(const Discretization& disc, const la::Matrix& M,
+                         std::span<const PetscInt> prescribed, const la::Vector& u,
+                         const la::Vector& seed, int layers, double G, la::Vector& v,
+                         std::int64_t& patch_nodes, double& s) {
+  la::Vector delta = disc.make_vector(), mask = disc.make_vector(), work = disc.make_vector();
+  patch_nodes =
+      patch_deformation_velocity(disc, M, u, v, seed, prescribed, layers, delta, mask, work);
+  s = 0.0;
+  return patch_nodes > 0 ? remove_along(M, delta, G, v, work, s) : 0.0;
+}
+
 ContactGainRemoval
 remove_contact_gain(const Discretization& disc, const ContactConstraint& contact,
                     const la::Matrix& M, std::span<const PetscInt> prescribed, const la::Vector& u,
@@ -151,13 +167,9 @@ remove_contact_gain(const Discretization& disc, const ContactConstraint& contact
   if (!mass_solve(b, y))
     SEAM_THROW(SolverError, "the mass matrix solve of the contact velocity update failed");
   r.impulse = remove_along(M, y, gain.gain, v, work, r.mu);
-  if (r.impulse < gain.gain) {
-    la::Vector& delta = b;
-    la::Vector& mask = y;
-    r.patch_nodes =
-        patch_deformation_velocity(disc, M, u, v, d, prescribed, layers, delta, mask, work);
-    r.patch = remove_along(M, delta, gain.gain - r.impulse, v, work, r.s);
-  }
+  if (r.impulse < gain.gain)
+    r.patch = remove_from_patch(disc, M, prescribed, u, d, layers, gain.gain - r.impulse, v,
+                                r.patch_nodes, r.s);
   return r;
 }
 

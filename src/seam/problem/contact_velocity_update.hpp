@@ -34,6 +34,16 @@ struct ContactGainRemoval {
   std::int64_t patch_nodes = 0;
 };
 
+/// Takes up to G out of the kinetic energy of the velocity of a patch relative to its rigid
+/// motion (stage 2 above): the patch is the nodes where `seed` is nonzero grown by `layers`
+/// layers of cells (every node for layers < 0), without the prescribed dofs; v <- v - s delta
+/// with M delta free of resultant and moment, so that both momenta are kept. Returns the
+/// energy removed (less than G when the patch's relative motion holds less). Collective.
+double remove_from_patch(const Discretization& disc, const la::Matrix& M,
+                         std::span<const PetscInt> prescribed, const la::Vector& u,
+                         const la::Vector& seed, int layers, double G, la::Vector& v,
+                         std::int64_t& patch_nodes, double& s);
+
 /// The contact velocity update after a converged energy-momentum step at displacement u with
 /// velocity v (updated in place). `energy` is the scale below which G is round-off (1e-13 of
 /// it); `mass_solve(b, x)` gives x = M^-1 b on the free dofs and zero on the prescribed ones
