@@ -634,6 +634,19 @@ def check_nodes_read(detail, np, name, out):
                              % (np, max(gathered), n))
 
 
+def check_part_read(detail, what):
+    """Every rank's displacement scatter brings strictly fewer nodes than the interface has
+    (energy-momentum contact reads the start of the step through the same scatter, not every
+    interface node: docs/parallel.md, "Contact: what a rank reads")."""
+    n = detail[0]["contact_interface_nodes"]
+    gathered = [r["contact_interface_nodes_gathered"] for r in detail]
+    print("   %s: interface nodes gathered per rank %s of %d"
+          % (what, "/".join(map(str, gathered)), n))
+    if n <= 0 or min(gathered) <= 0 or max(gathered) >= n:
+        raise AssertionError("%s: ranks gathered %s of the %d interface nodes"
+                             % (what, gathered, n))
+
+
 def test_hertz_master_ghosted():
     """Hertz sphere on a block (3D, two bodies), two load steps."""
     # 0.8: the boxes are widened by the ghosting's skin (docs/parallel.md, "Reused ghosting"),
@@ -733,6 +746,7 @@ def test_rings_self_search_np3():
             "contact_surface_facets"]:
         raise AssertionError("np 1 searched a part of the surface: %s" % ranks_detail(one)[0])
     check_surface_received(three, "rings np 3")
+    check_part_read(ranks_detail(three), "rings np 3 (energy-momentum)")
     compare_outputs(one, three, 1e-10, "rings np 3 vs np 1")
     H.cleanup(*_dirs)
 

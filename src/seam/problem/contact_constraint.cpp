@@ -176,28 +176,26 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   }
 }
 
-std::vector<double> ContactConstraint::whole_displacement(const la::Vector& u) const {
-  const int dim = disc_.dim();
-  std::vector<double> out(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
-  if (interface_nodes_.empty()) return out;
-  if (whole_gather_.size() == 0) {
-    // Made at the first use: `seam check` builds the constraint without PETSc.
-    std::vector<PetscInt> dofs;
-    dofs.reserve(interface_nodes_.size() * static_cast<std::size_t>(dim));
+std::int32_t ContactConstraint::node_of_gid(std::int64_t number) const {
+  if (interface_numbers_.empty()) {
+    // Made at the first use: `seam check` builds the constraint without the dof numbering.
     for (const auto node : interface_nodes_)
-      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
-    whole_gather_ = la::Gather(u, dofs);
+      interface_numbers_.emplace_back(disc_.node_gid(node), node);
+    std::sort(interface_numbers_.begin(), interface_numbers_.end());
   }
-  std::vector<double> values;
-  whole_gather_(u, values);
-  for (std::size_t k = 0; k < interface_nodes_.size(); ++k)
-    for (int c = 0; c < dim; ++c)
-      out[static_cast<std::size_t>(interface_nodes_[k]) * dim + c] = values[k * dim + c];
-  return out;
+  const auto it = std::lower_bound(interface_numbers_.begin(), interface_numbers_.end(),
+                                   std::pair<std::int64_t, std::int32_t>{number, -1});
+  SEAM_ASSERT(it != interface_numbers_.end() && it->first == number);
+  return it->second;
+}
+
+bool ContactConstraint::reads_every_node() const {
+  return std::any_of(sides_.begin(), sides_.end(),
+                     [](const Side& s) { return s.discrete_gradient && s.friction; });
 }
 
 std::vector<std::int32_t> ContactConstraint::nodes_read() {
-  if (energy_momentum_) return interface_nodes_;
+  if (reads_every_node()) return interface_nodes_;
   const int rank = disc_.comm().rank();
   std::vector<std::int32_t> out;
   std::vector<local_index> mine, more;
@@ -244,14 +242,25 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
       for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
     gather_ = la::Gather(u, dofs);
     gather_made_ = true;
+    start_read_ = false;
     if (u_mesh_.empty())
       u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
   }
-  std::vector<double> values;
-  gather_(u, values);
-  for (std::size_t k = 0; k < gathered_.size(); ++k)
-    for (int c = 0; c < dim; ++c)
-      u_mesh_[static_cast<std::size_t>(gathered_[k]) * dim + c] = values[k * dim + c];
+  const auto read = [&](const la::Vector& v, std::vector<double>& out) {
+    std::vector<double> values;
+    gather_(v, values);
+    for (std::size_t k = 0; k < gathered_.size(); ++k)
+      for (int c = 0; c < dim; ++c)
+        out[static_cast<std::size_t>(gathered_[k]) * dim + c] = values[k * dim + c];
+  };
+  read(u, u_mesh_);
+  // The start of an energy-momentum step at the same nodes, by the same scatter (again after
+  // a new scatter: new ghosts, a redistribution). The same decision on every rank.
+  if (has_start_ && !start_read_) {
+    if (u_mesh_start_.size() != u_mesh_.size()) u_mesh_start_.assign(u_mesh_.size(), 0.0);
+    read(u_start_, u_mesh_start_);
+    start_read_ = true;
+  }
 }
 
 ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t j) const {
@@ -1113,14 +1122,14 @@ std::vector<std::string> ContactConstraint::held_whole() const {
         std::string("the nodal arrays per slave node (D, g~, multipliers, active set") +
         (s.friction ? ", friction history" : "") + ")";
     const std::string read =
-        energy_momentum_ ? std::string(", the displacement of every interface node (energy-"
-                                       "momentum contact)")
-                         : std::string("; read per rank: the displacement of the nodes of its "
-                                       "slave elements, of their neighbours and of its master "
-                                       "facets and ghosts, the normals of its slave nodes; "
-                                       "per rank: the output rows of the slave nodes around "
-                                       "its slave elements, the checkpointed state of the "
-                                       "slave nodes it owns");
+        reads_every_node() ? std::string(", the displacement of every interface node (energy-"
+                                         "momentum contact with friction)")
+                           : std::string("; read per rank: the displacement of the nodes of its "
+                                         "slave elements, of their neighbours and of its master "
+                                         "facets and ghosts, the normals of its slave nodes; "
+                                         "per rank: the output rows of the slave nodes around "
+                                         "its slave elements, the checkpointed state of the "
+                                         "slave nodes it owns");
     char skin[64];
     if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
     const std::string reused =
