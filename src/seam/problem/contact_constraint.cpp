@@ -189,13 +189,7 @@ std::int32_t ContactConstraint::node_of_gid(std::int64_t number) const {
   return it->second;
 }
 
-bool ContactConstraint::reads_every_node() const {
-  return std::any_of(sides_.begin(), sides_.end(),
-                     [](const Side& s) { return s.discrete_gradient && s.friction; });
-}
-
 std::vector<std::int32_t> ContactConstraint::nodes_read() {
-  if (reads_every_node()) return interface_nodes_;
   const int rank = disc_.comm().rank();
   std::vector<std::int32_t> out;
   std::vector<local_index> mine, more;
@@ -207,6 +201,12 @@ std::vector<std::int32_t> ContactConstraint::nodes_read() {
       for (const auto j : set.facet_nodes(f)) mine.push_back(j);
     for (std::size_t j = 0; j < s.node_owners.size(); ++j)
       if (s.node_owners[j] == rank) mine.push_back(static_cast<local_index>(j));
+    // Energy-momentum friction: the slave rows of this rank's part of the last converged
+    // step's operators (its mean operators), whose rings and normals it reads.
+    if (s.discrete_gradient && s.friction) {
+      for (const auto& e : s.M_old) mine.push_back(static_cast<local_index>(e.slave));
+      for (const auto& e : s.D_coupling_old) mine.push_back(static_cast<local_index>(e.row));
+    }
     std::sort(mine.begin(), mine.end());
     mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
     for (const auto j : s.itf.normal_ring(mine)) out.push_back(slave.mesh_nodes[j]);
@@ -1122,14 +1122,11 @@ std::vector<std::string> ContactConstraint::held_whole() const {
         std::string("the nodal arrays per slave node (D, g~, multipliers, active set") +
         (s.friction ? ", friction history" : "") + ")";
     const std::string read =
-        reads_every_node() ? std::string(", the displacement of every interface node (energy-"
-                                         "momentum contact with friction)")
-                           : std::string("; read per rank: the displacement of the nodes of its "
-                                         "slave elements, of their neighbours and of its master "
-                                         "facets and ghosts, the normals of its slave nodes; "
-                                         "per rank: the output rows of the slave nodes around "
-                                         "its slave elements, the checkpointed state of the "
-                                         "slave nodes it owns");
+        std::string("; read per rank: the displacement of the nodes of its slave elements, of "
+                    "their neighbours and of its master facets and ghosts (energy-momentum "
+                    "contact: at the start of the step too), the normals of its slave nodes; "
+                    "per rank: the output rows of the slave nodes around its slave elements, the "
+                    "checkpointed state of the slave nodes it owns");
     char skin[64];
     if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
     const std::string reused =
@@ -1295,6 +1292,24 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     }
     rep.local_master_facets_read = s.itf.rigid() ? 0 : s.itf.n_master_facets_read();
     rep.local_normals = s.itf.n_normals_computed();
+    // The sides' facets held, and those whose nodes the scatter all brought.
+    const auto all_read = [&](const meshtying::InterfaceSide& side) {
+      std::int64_t n = 0;
+      for (local_index f = 0; f < side.n_facets(); ++f) {
+        bool read = true;
+        for (auto k = side.offsets[f]; read && k < side.offsets[f + 1]; ++k)
+          read = std::binary_search(
+              gathered_.begin(), gathered_.end(),
+              side.mesh_nodes[static_cast<std::size_t>(side.nodes[static_cast<std::size_t>(k)])]);
+        n += read;
+      }
+      return n;
+    };
+    const bool two_bodies = !s.itf.rigid() && !s.itf.self_contact();
+    rep.local_side_facets_held =
+        s.itf.slave().n_facets() + (two_bodies ? s.itf.n_master_facets() : 0);
+    rep.local_side_facets_read =
+        all_read(s.itf.slave()) + (two_bodies ? all_read(s.itf.master()) : 0);
     out.push_back(std::move(rep));
   }
   return out;

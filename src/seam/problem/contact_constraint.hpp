@@ -396,14 +396,10 @@ private:
   /// slave nodes of its owned slave elements and the slave nodes it owns (their normals are
   /// the only ones computed, set here), the nodes of the facets around them (the normals read
   /// them), the master nodes (surface nodes) of the facets it hands in to the search and of
-  /// its ghosts, and with friction the nodes its part of M^n and D^n reaches. The same nodes
-  /// with energy-momentum contact (the discrete gradient reads the start of the step there
-  /// too); every interface node only with energy-momentum friction (reads_every_node()).
+  /// its ghosts, and with friction the nodes its part of M^n and D^n reaches. The same with
+  /// energy-momentum contact (whose discrete gradient reads the start of the step at them
+  /// too); with its friction also the rings of the slave rows of the rank's M^n and D^n.
   std::vector<std::int32_t> nodes_read();
-  /// Energy-momentum contact with friction between deformable bodies: its slip reads the
-  /// rotation of every slave node's ring and the normals of every slave node with a
-  /// multiplier, so every interface node is read.
-  bool reads_every_node() const;
   /// u_mesh_ at u for nodes_read() (and u_mesh_start_ at the start of the step for the same
   /// nodes): the scatter is made anew when the nodes changed on some rank (one Allreduce to
   /// decide). Collective.
