@@ -185,8 +185,7 @@ std::int32_t ContactConstraint::node_of_gid(std::int64_t number) const {
   }
   const auto it = std::lower_bound(interface_numbers_.begin(), interface_numbers_.end(),
                                    std::pair<std::int64_t, std::int32_t>{number, -1});
-  SEAM_ASSERT(it != interface_numbers_.end() && it->first == number);
-  return it->second;
+  return it != interface_numbers_.end() && it->first == number ? it->second : -1;
 }
 
 std::vector<std::int32_t> ContactConstraint::nodes_read() {

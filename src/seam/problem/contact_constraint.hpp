@@ -404,8 +404,8 @@ private:
   /// nodes): the scatter is made anew when the nodes changed on some rank (one Allreduce to
   /// decide). Collective.
   void refresh_displacement(const la::Vector& u);
-  /// The mesh node of a node id of the mesh as read (Discretization::node_gid), for the
-  /// interface nodes.
+  /// The mesh node of a node id of the mesh as read (Discretization::node_gid) if it is an
+  /// interface node, else -1.
   std::int32_t node_of_gid(std::int64_t number) const;
 
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on

@@ -330,7 +330,11 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       x_mid(i) = en.x_mid;
     }
     // Their mesh dofs (the gradient and the tangent are kept in mesh dofs).
-    for (auto& d : dofs) d = static_cast<std::int64_t>(node_of_gid(d / dim)) * dim + d % dim;
+    for (auto& d : dofs) {
+      const auto node = node_of_gid(d / dim);
+      SEAM_ASSERT(node >= 0);
+      d = static_cast<std::int64_t>(node) * dim + d % dim;
+    }
     const DiscreteGradient dg =
         discrete_gradient(dim, invariance, dx, x_mid, gap_start, gap_end, G, G1, Hdx, tangent);
     for (Eigen::Index i = 0; i < n; ++i)
