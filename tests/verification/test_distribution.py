@@ -634,6 +634,19 @@ def check_nodes_read(detail, np, name, out):
                              % (np, max(gathered), n))
 
 
+def check_part_read(detail, what):
+    """Every rank's displacement scatter brings strictly fewer nodes than the interface has
+    (energy-momentum contact reads the start of the step through the same scatter, not every
+    interface node: docs/parallel.md, "Contact: what a rank reads")."""
+    n = detail[0]["contact_interface_nodes"]
+    gathered = [r["contact_interface_nodes_gathered"] for r in detail]
+    print("   %s: interface nodes gathered per rank %s of %d"
+          % (what, "/".join(map(str, gathered)), n))
+    if n <= 0 or min(gathered) <= 0 or max(gathered) >= n:
+        raise AssertionError("%s: ranks gathered %s of the %d interface nodes"
+                             % (what, gathered, n))
+
+
 def test_hertz_master_ghosted():
     """Hertz sphere on a block (3D, two bodies), two load steps."""
     # 0.8: the boxes are widened by the ghosting's skin (docs/parallel.md, "Reused ghosting"),
@@ -658,10 +671,11 @@ SCALE_GROUPS = (("ux", "uy", "uz", "gap"), ("normal_traction", "tangential_tract
 NOT_COMPARED = ("residual", "newton_iterations", "wall_seconds")
 
 
-def compare_outputs(a, b, rtol, what):
+def compare_outputs(a, b, rtol, what, floor=0.0):
     """steps.csv (energies, momenta, active nodes), interfaces.csv, reactions.csv, probes.csv
     and interface_*.csv of two runs: every numeric column to rtol relative to the largest value
-    of its group (SCALE_GROUPS) or of itself, every other column equal."""
+    of its group (SCALE_GROUPS) or of itself, at least `floor` (for columns that are zero up to
+    round-off, such as the momenta of free bodies), every other column equal."""
     names = sorted(n for n in os.listdir(a) if n in ("steps.csv", "interfaces.csv",
                                                      "reactions.csv", "probes.csv")
                    or (n.startswith("interface_") and n.endswith(".csv")))
@@ -682,7 +696,7 @@ def compare_outputs(a, b, rtol, what):
                 continue
             group = [g for g in SCALE_GROUPS if k in g]
             group = [c for c in group[0] if c in ra[0]] if group else [k]
-            scale = max(abs(r[c]) for r in ra for c in group) or 1.0
+            scale = max([floor] + [abs(r[c]) for r in ra for c in group]) or 1.0
             worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(ra, rb)])
         worst_all = max(worst_all, worst)
         if worst > rtol:
@@ -733,7 +747,35 @@ def test_rings_self_search_np3():
             "contact_surface_facets"]:
         raise AssertionError("np 1 searched a part of the surface: %s" % ranks_detail(one)[0])
     check_surface_received(three, "rings np 3")
+    check_part_read(ranks_detail(three), "rings np 3 (energy-momentum)")
     compare_outputs(one, three, 1e-10, "rings np 3 vs np 1")
+    H.cleanup(*_dirs)
+
+
+def friction_rings_case(np):
+    """test_friction_dynamics.py's two free rings with energy-momentum contact and Coulomb
+    friction (`surface:`, dual multipliers; 8 cells per quarter circle, 40 steps)."""
+    import test_friction_dynamics as F
+    import test_rings
+    yaml = F.rings_yaml("surface", 40, 2)
+    work, out = test_rings.T.run_case(test_rings.ring_geo(test_rings.CENTRES, 8, 2), yaml,
+                                      np=np)
+    _dirs.extend([work, out])
+    return out
+
+
+def test_energy_momentum_friction_part_np3():
+    """Energy-momentum contact with friction reads the nodes of its rank's part (its slave
+    elements, owned slave nodes and the slave rows of its M^n, D^n with their rings, its
+    ghosts), not every interface node, and np 3 equals np 1."""
+    one, three = friction_rings_case(1), friction_rings_case(3)
+    slipping = [r for r in rows_of(one, "interfaces.csv") if r["slip_nodes"] > 0]
+    if len(slipping) < 3:
+        raise AssertionError("the rings slip in %d steps only" % len(slipping))
+    check_part_read(ranks_detail(three), "friction rings np 3 (energy-momentum)")
+    # The momenta and the external work are zero up to round-off (3e-13, free bodies): against
+    # the momentum of one ring (0.5, as test_rings.py scales it).
+    compare_outputs(one, three, 1e-10, "friction rings np 3 vs np 1", floor=0.5)
     H.cleanup(*_dirs)
 
 

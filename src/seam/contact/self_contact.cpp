@@ -101,29 +101,42 @@ void keep_facing_pairs(const meshtying::InterfaceSide& side, double inflation,
   }
 }
 
+void with_axes(const meshtying::InterfaceSide& side, std::span<const search::CandidatePair> pairs,
+               std::vector<FacingPair>& out) {
+  const auto surface = side.surface();
+  // The axis of a facet's normal cone, as the self-contact tree has it.
+  const auto axis = [&](local_index f) {
+    const auto begin = static_cast<std::size_t>(surface.offsets[f]);
+    const auto end = static_cast<std::size_t>(surface.offsets[f + 1]);
+    return search::facet_normal_cone(side.dim, surface.coords,
+                                     surface.connectivity.subspan(begin, end - begin))
+        .axis;
+  };
+  out.clear();
+  out.reserve(pairs.size());
+  for (const auto& p : pairs) out.push_back({p, axis(p.slave), axis(p.master)});
+}
+
 void orient_pairs(const meshtying::InterfaceSide& side,
                   std::span<const search::CandidatePair> pairs,
                   std::vector<mortar::CandidatePair>& out) {
+  std::vector<FacingPair> facing;
+  with_axes(side, pairs, facing);
+  orient_pairs(side.n_facets(), facing, out);
+}
+
+void orient_pairs(local_index n_facets, std::span<const FacingPair> pairs,
+                  std::vector<mortar::CandidatePair>& out) {
   std::vector<search::CandidatePair> sorted;
   sorted.reserve(pairs.size());
-  for (const auto& p : pairs)
-    sorted.push_back({std::min(p.slave, p.master), std::max(p.slave, p.master)});
-  std::sort(sorted.begin(), sorted.end());
-  // The axes of the facets' normal cones, as the self-contact tree has them.
-  std::vector<std::array<double, 3>> axis(static_cast<std::size_t>(side.n_facets()));
-  const auto surface = side.surface();
-  const auto normal_axis = [&](local_index f) {
-    const auto begin = static_cast<std::size_t>(surface.offsets[f]);
-    const auto end = static_cast<std::size_t>(surface.offsets[f + 1]);
-    axis[static_cast<std::size_t>(f)] =
-        search::facet_normal_cone(side.dim, surface.coords,
-                                  surface.connectivity.subspan(begin, end - begin))
-            .axis;
-  };
-  for (const auto& p : sorted) {
-    normal_axis(p.slave);
-    normal_axis(p.master);
+  std::vector<std::array<double, 3>> axis(static_cast<std::size_t>(n_facets));
+  for (const auto& p : pairs) {
+    const auto [a, b] = p.pair;
+    sorted.push_back({std::min(a, b), std::max(a, b)});
+    axis[static_cast<std::size_t>(a)] = p.slave_axis;
+    axis[static_cast<std::size_t>(b)] = p.master_axis;
   }
+  std::sort(sorted.begin(), sorted.end());
   const auto oriented = search::assign_roles(axis, sorted);
   out.clear();
   for (const auto& p : oriented) out.push_back({p.slave, p.master});

@@ -59,6 +59,22 @@ void orient_pairs(const meshtying::InterfaceSide& side,
                   std::span<const search::CandidatePair> pairs,
                   std::vector<mortar::CandidatePair>& out);
 
+/// A facing self pair with the axes of its facets' normal cones (as the self-contact tree has
+/// them) at the positions of the rank that found it: the distributed search gathers these, so
+/// that orienting the pairs of other ranks reads no position of their facets.
+struct FacingPair {
+  search::CandidatePair pair;
+  std::array<double, 3> slave_axis, master_axis;
+};
+
+/// `pairs` (facets of `side`) with their axes at the side's current coordinates.
+void with_axes(const meshtying::InterfaceSide& side, std::span<const search::CandidatePair> pairs,
+               std::vector<FacingPair>& out);
+
+/// orient_pairs with the axes given with the pairs; `n_facets`: the surface's facets.
+void orient_pairs(local_index n_facets, std::span<const FacingPair> pairs,
+                  std::vector<mortar::CandidatePair>& out);
+
 /// The slave facets of the current pairs as a facet set over the surface's nodes. The mortar
 /// integration and the averaged nodal normals use these facets only, so that the normal of a
 /// node is that of the faces that touch (a body's corner that touches with one face keeps that

@@ -20,7 +20,6 @@
 #include "seam/problem/contact_constraint.hpp"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace seam::problem {
 
@@ -104,10 +103,8 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
   const auto& in = checkpoints.restart();
   const auto& comm = disc_.comm();
   const int dim = disc_.dim();
-  // Master nodes by their ids in the mesh as read: every rank holds the interface cells.
-  std::unordered_map<std::int64_t, std::int32_t> local_of;
-  for (std::int32_t node = 0; node < disc_.mesh().n_nodes(); ++node)
-    local_of.emplace(disc_.node_gid(node), node);
+  // Master nodes by their ids in the mesh as read (node_of_gid): every rank holds the
+  // interface cells.
   for (std::size_t k = 0; k < sides_.size(); ++k) {
     auto& s = sides_[k];
     const std::string p = "contact." + std::to_string(k) + ".";
@@ -177,9 +174,10 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
       const auto master = part.integers(p + "M_old.master", slave.size());
       const auto value = part.reals(p + "M_old.value", slave.size());
       for (std::size_t i = 0; i < slave.size(); ++i) {
-        if (slave[i] < 0 || static_cast<std::size_t>(slave[i]) >= n || !local_of.count(master[i]))
+        const auto master_node = node_of_gid(master[i]);
+        if (slave[i] < 0 || static_cast<std::size_t>(slave[i]) >= n || master_node < 0)
           part.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
-        s.M_old.push_back({static_cast<local_index>(slave[i]), local_of.at(master[i]), value[i]});
+        s.M_old.push_back({static_cast<local_index>(slave[i]), master_node, value[i]});
       }
       const auto row = part.integers(p + "D_coupling_old.row");
       const auto col = part.integers(p + "D_coupling_old.col", row.size());

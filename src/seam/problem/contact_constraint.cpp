@@ -176,28 +176,19 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   }
 }
 
-std::vector<double> ContactConstraint::whole_displacement(const la::Vector& u) const {
-  const int dim = disc_.dim();
-  std::vector<double> out(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
-  if (interface_nodes_.empty()) return out;
-  if (whole_gather_.size() == 0) {
-    // Made at the first use: `seam check` builds the constraint without PETSc.
-    std::vector<PetscInt> dofs;
-    dofs.reserve(interface_nodes_.size() * static_cast<std::size_t>(dim));
+std::int32_t ContactConstraint::node_of_gid(std::int64_t number) const {
+  if (interface_numbers_.empty()) {
+    // Made at the first use: `seam check` builds the constraint without the dof numbering.
     for (const auto node : interface_nodes_)
-      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
-    whole_gather_ = la::Gather(u, dofs);
+      interface_numbers_.emplace_back(disc_.node_gid(node), node);
+    std::sort(interface_numbers_.begin(), interface_numbers_.end());
   }
-  std::vector<double> values;
-  whole_gather_(u, values);
-  for (std::size_t k = 0; k < interface_nodes_.size(); ++k)
-    for (int c = 0; c < dim; ++c)
-      out[static_cast<std::size_t>(interface_nodes_[k]) * dim + c] = values[k * dim + c];
-  return out;
+  const auto it = std::lower_bound(interface_numbers_.begin(), interface_numbers_.end(),
+                                   std::pair<std::int64_t, std::int32_t>{number, -1});
+  return it != interface_numbers_.end() && it->first == number ? it->second : -1;
 }
 
 std::vector<std::int32_t> ContactConstraint::nodes_read() {
-  if (energy_momentum_) return interface_nodes_;
   const int rank = disc_.comm().rank();
   std::vector<std::int32_t> out;
   std::vector<local_index> mine, more;
@@ -209,6 +200,12 @@ std::vector<std::int32_t> ContactConstraint::nodes_read() {
       for (const auto j : set.facet_nodes(f)) mine.push_back(j);
     for (std::size_t j = 0; j < s.node_owners.size(); ++j)
       if (s.node_owners[j] == rank) mine.push_back(static_cast<local_index>(j));
+    // Energy-momentum friction: the slave rows of this rank's part of the last converged
+    // step's operators (its mean operators), whose rings and normals it reads.
+    if (s.discrete_gradient && s.friction) {
+      for (const auto& e : s.M_old) mine.push_back(static_cast<local_index>(e.slave));
+      for (const auto& e : s.D_coupling_old) mine.push_back(static_cast<local_index>(e.row));
+    }
     std::sort(mine.begin(), mine.end());
     mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
     for (const auto j : s.itf.normal_ring(mine)) out.push_back(slave.mesh_nodes[j]);
@@ -244,14 +241,25 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
       for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
     gather_ = la::Gather(u, dofs);
     gather_made_ = true;
+    start_read_ = false;
     if (u_mesh_.empty())
       u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
   }
-  std::vector<double> values;
-  gather_(u, values);
-  for (std::size_t k = 0; k < gathered_.size(); ++k)
-    for (int c = 0; c < dim; ++c)
-      u_mesh_[static_cast<std::size_t>(gathered_[k]) * dim + c] = values[k * dim + c];
+  const auto read = [&](const la::Vector& v, std::vector<double>& out) {
+    std::vector<double> values;
+    gather_(v, values);
+    for (std::size_t k = 0; k < gathered_.size(); ++k)
+      for (int c = 0; c < dim; ++c)
+        out[static_cast<std::size_t>(gathered_[k]) * dim + c] = values[k * dim + c];
+  };
+  read(u, u_mesh_);
+  // The start of an energy-momentum step at the same nodes, by the same scatter (again after
+  // a new scatter: new ghosts, a redistribution). The same decision on every rank.
+  if (has_start_ && !start_read_) {
+    if (u_mesh_start_.size() != u_mesh_.size()) u_mesh_start_.assign(u_mesh_.size(), 0.0);
+    read(u_start_, u_mesh_start_);
+    start_read_ = true;
+  }
 }
 
 ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t j) const {
@@ -1113,14 +1121,11 @@ std::vector<std::string> ContactConstraint::held_whole() const {
         std::string("the nodal arrays per slave node (D, g~, multipliers, active set") +
         (s.friction ? ", friction history" : "") + ")";
     const std::string read =
-        energy_momentum_ ? std::string(", the displacement of every interface node (energy-"
-                                       "momentum contact)")
-                         : std::string("; read per rank: the displacement of the nodes of its "
-                                       "slave elements, of their neighbours and of its master "
-                                       "facets and ghosts, the normals of its slave nodes; "
-                                       "per rank: the output rows of the slave nodes around "
-                                       "its slave elements, the checkpointed state of the "
-                                       "slave nodes it owns");
+        std::string("; read per rank: the displacement of the nodes of its slave elements, of "
+                    "their neighbours and of its master facets and ghosts (energy-momentum "
+                    "contact: at the start of the step too), the normals of its slave nodes; "
+                    "per rank: the output rows of the slave nodes around its slave elements, the "
+                    "checkpointed state of the slave nodes it owns");
     char skin[64];
     if (s.search) std::snprintf(skin, sizeof skin, "%.3g", s.search->skin());
     const std::string reused =
@@ -1286,6 +1291,24 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     }
     rep.local_master_facets_read = s.itf.rigid() ? 0 : s.itf.n_master_facets_read();
     rep.local_normals = s.itf.n_normals_computed();
+    // The sides' facets held, and those whose nodes the scatter all brought.
+    const auto all_read = [&](const meshtying::InterfaceSide& side) {
+      std::int64_t n = 0;
+      for (local_index f = 0; f < side.n_facets(); ++f) {
+        bool read = true;
+        for (auto k = side.offsets[f]; read && k < side.offsets[f + 1]; ++k)
+          read = std::binary_search(
+              gathered_.begin(), gathered_.end(),
+              side.mesh_nodes[static_cast<std::size_t>(side.nodes[static_cast<std::size_t>(k)])]);
+        n += read;
+      }
+      return n;
+    };
+    const bool two_bodies = !s.itf.rigid() && !s.itf.self_contact();
+    rep.local_side_facets_held =
+        s.itf.slave().n_facets() + (two_bodies ? s.itf.n_master_facets() : 0);
+    rep.local_side_facets_read =
+        all_read(s.itf.slave()) + (two_bodies ? all_read(s.itf.master()) : 0);
     out.push_back(std::move(rep));
   }
   return out;

@@ -65,6 +65,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace seam::problem {
@@ -396,20 +397,21 @@ private:
                  std::vector<double>& values);
   /// The global dof of a mesh dof (node * dim + component).
   PetscInt global_dof(std::int64_t mesh_dof) const;
-  /// The displacement of every interface node (slave and master of every side), dim per mesh
-  /// node (the other entries zero): one scatter of those dofs, not the whole vector; for the
-  /// start of an energy-momentum step. Collective.
-  std::vector<double> whole_displacement(const la::Vector& u) const;
   /// The mesh nodes whose displacement this rank's evaluation reads (sorted): per side the
   /// slave nodes of its owned slave elements and the slave nodes it owns (their normals are
   /// the only ones computed, set here), the nodes of the facets around them (the normals read
   /// them), the master nodes (surface nodes) of the facets it hands in to the search and of
-  /// its ghosts, and with friction the nodes its part of M^n and D^n reaches. Every interface
-  /// node with energy-momentum contact (the discrete gradient reads the start of the step).
+  /// its ghosts, and with friction the nodes its part of M^n and D^n reaches. The same with
+  /// energy-momentum contact (whose discrete gradient reads the start of the step at them
+  /// too); with its friction also the rings of the slave rows of the rank's M^n and D^n.
   std::vector<std::int32_t> nodes_read();
-  /// u_mesh_ at u for nodes_read(): the scatter is made anew when the nodes changed on some
-  /// rank (one Allreduce to decide). Collective.
+  /// u_mesh_ at u for nodes_read() (and u_mesh_start_ at the start of the step for the same
+  /// nodes): the scatter is made anew when the nodes changed on some rank (one Allreduce to
+  /// decide). Collective.
   void refresh_displacement(const la::Vector& u);
+  /// The mesh node of a node id of the mesh as read (Discretization::node_gid) if it is an
+  /// interface node, else -1.
+  std::int32_t node_of_gid(std::int64_t number) const;
 
   /// With a modified slave basis the slave rows are combined by T^T first (P, identity on
   /// every other row): T^T r_S + D lambda, in which each multiplier stands alone.
@@ -428,13 +430,19 @@ private:
   const Discretization& disc_;
   io::ParallelConfig parallel_;
   std::vector<std::int32_t> interface_nodes_; ///< mesh nodes of all sides, sorted
-  mutable la::Gather whole_gather_;           ///< their dofs, node-major (whole_displacement)
-  std::vector<std::int32_t> gathered_;        ///< the nodes gather_ brings (nodes_read())
-  la::Gather gather_;                         ///< their dofs, node-major
+  /// Their ids in the mesh as read (node_gid), sorted, with the mesh node of each.
+  mutable std::vector<std::pair<std::int64_t, std::int32_t>> interface_numbers_;
+  std::vector<std::int32_t> gathered_; ///< the nodes gather_ brings (nodes_read())
+  la::Gather gather_;                  ///< their dofs, node-major
   bool gather_made_ = false;
   /// Displacement of the nodes read (dim per mesh node; stale elsewhere).
   std::vector<double> u_mesh_;
-  std::vector<double> u_mesh_start_; ///< interface displacement at the start of the step
+  /// Displacement at the start of the energy-momentum step (start_step), and the same for
+  /// the nodes read (dim per mesh node; stale elsewhere), filled by the scatter of u_mesh_.
+  la::Vector u_start_;
+  bool has_start_ = false;  ///< start_step was called
+  bool start_read_ = false; ///< u_mesh_start_ holds u_start_ at the nodes read
+  std::vector<double> u_mesh_start_;
   std::vector<Side> sides_;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;

@@ -27,12 +27,17 @@ namespace {
 
 /// One contribution to the per-node data of the discrete gradient: node j, what (the gap at
 /// the start g0 or end g1 of the step, the gradient at the midpoint G or at the end G1, H dx
-/// at the midpoint), the mesh dof and the value.
+/// at the midpoint), the dof (id of the node in the mesh as read * dim + component, the same on
+/// every rank) and the value; with a dof, the step's increment and the
+/// midpoint position there, so that the node's owner reads no displacement of its own (the
+/// sender read them with its blocks).
 struct Entry {
   std::int64_t dof = 0;
   std::int32_t j = 0;
   std::int32_t kind = 0;
   double value = 0.0;
+  double dx = 0.0;
+  double x_mid = 0.0;
 };
 enum Kind : std::int32_t { g0 = 0, g1 = 1, mid_gradient = 2, end_gradient = 3, hessian_dx = 4 };
 
@@ -187,7 +192,12 @@ DiscreteGradient discrete_gradient(int dim, const Invariance& inv, const Eigen::
 
 void ContactConstraint::start_step(const la::Vector& u_n) {
   if (!energy_momentum_ || sides_.empty()) return;
-  u_mesh_start_ = whole_displacement(u_n);
+  // Kept whole as the distributed vector; each rank reads the nodes it reads of u by the same
+  // scatter (refresh_displacement), not every interface node.
+  if (!has_start_) u_start_ = u_n.duplicate();
+  u_start_.copy_from(u_n);
+  has_start_ = true;
+  start_read_ = false;
 }
 
 int ContactConstraint::n_discrete_gradient() const {
@@ -222,6 +232,12 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   s.itf.gap_blocks(mid, tangent ? contact::GapOrder::hessian : contact::GapOrder::gradient, middle,
                    carries);
   const auto dof_of = [](const contact::GapBlock& b, int v) { return b.dof(v); };
+  // An entry at mesh dof d: sent with its node id, the increment and the midpoint there.
+  const auto at = [&](std::int64_t d, std::int32_t j, Kind kind, double value) {
+    const auto i = static_cast<std::size_t>(d);
+    const std::int64_t id = disc_.node_gid(static_cast<std::int32_t>(d / dim)) * dim + d % dim;
+    return Entry{id, j, kind, value, u[i] - u0[i], X[i] + mid[i]};
+  };
   // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
   // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
   s.lin.gap_gradient.clear();
@@ -245,7 +261,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       local.push_back({0, b.slave[r], g1, b.gap[r]});
       for (std::size_t v = 0; v < nv; ++v)
         if (const auto dof = dof_of(b, static_cast<int>(v)); dof >= 0)
-          local.push_back({dof, b.slave[r], end_gradient, b.gradient[r * nv + v]});
+          local.push_back(at(dof, b.slave[r], end_gradient, b.gradient[r * nv + v]));
     }
   }
   for (const auto& b : middle) {
@@ -255,7 +271,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       for (std::size_t v = 0; v < nv; ++v) {
         const auto dof = dof_of(b, static_cast<int>(v));
         if (dof < 0) continue;
-        local.push_back({dof, b.slave[r], mid_gradient, b.gradient[r * nv + v]});
+        local.push_back(at(dof, b.slave[r], mid_gradient, b.gradient[r * nv + v]));
         if (!tangent || b.hessian.empty()) continue;
         double hdx = 0.0;
         for (std::size_t k = 0; k < nv; ++k)
@@ -266,7 +282,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
             if (lambda[j] != 0.0 && h != 0.0)
               s.em_tangent.push_back({dof, col, -0.5 * lambda[j] * h});
           }
-        local.push_back({dof, b.slave[r], hessian_dx, hdx});
+        local.push_back(at(dof, b.slave[r], hessian_dx, hdx));
       }
     }
   }
@@ -290,7 +306,8 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       begin = stop;
       continue;
     }
-    // The node's dofs, node-major with all dim components.
+    // The node's dofs (by node id, so in the same order at every np), node-major with all dim
+    // components.
     std::map<std::int64_t, int> index;
     for (std::size_t e = begin; e < stop; ++e)
       if (all[e].kind >= mid_gradient) index.emplace(all[e].dof / dim * dim, 0);
@@ -309,11 +326,14 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       if (en.kind < mid_gradient) continue;
       const auto i = index[en.dof / dim * dim] + static_cast<int>(en.dof % dim);
       (en.kind == mid_gradient ? G : en.kind == end_gradient ? G1 : Hdx)(i) += en.value;
+      dx(i) = en.dx;
+      x_mid(i) = en.x_mid;
     }
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const auto d = static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)]);
-      dx(i) = u[d] - u0[d];
-      x_mid(i) = X[d] + mid[d];
+    // Their mesh dofs (the gradient and the tangent are kept in mesh dofs).
+    for (auto& d : dofs) {
+      const auto node = node_of_gid(d / dim);
+      SEAM_ASSERT(node >= 0);
+      d = static_cast<std::int64_t>(node) * dim + d % dim;
     }
     const DiscreteGradient dg =
         discrete_gradient(dim, invariance, dx, x_mid, gap_start, gap_end, G, G1, Hdx, tangent);

@@ -148,9 +148,13 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
   }
   contact::keep_facing_pairs(side, itf.search_inflation(), mine, facing);
   // The contact graph of all ranks: the roles of a group of pairs depend on the whole group.
+  // Each pair comes with its facets' normal axes from the rank that found it (which reads
+  // both facets; the others' positions of them may be stale).
+  std::vector<contact::FacingPair> with;
+  contact::with_axes(side, facing, with);
   std::vector<std::int64_t> offsets;
-  const auto all = parallel::allgatherv<search::CandidatePair>(comm_, facing, offsets);
-  contact::orient_pairs(side, all, pairs_);
+  const auto all = parallel::allgatherv<contact::FacingPair>(comm_, with, offsets);
+  contact::orient_pairs(side.n_facets(), all, pairs_);
   hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }

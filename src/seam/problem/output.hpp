@@ -112,6 +112,12 @@ struct ContactReport {
   std::int64_t local_normals = 0;
   /// The slave nodes this rank owns (it decides their status, checkpoints their state).
   std::int64_t local_owned_nodes = 0;
+  /// Facets of the contact sides this rank holds (slave and master facets, a self-contact
+  /// surface once: today the whole sides), and those of them whose nodes its scatter all
+  /// brought at the last evaluation (its slave elements, their normal rings, its held master
+  /// facets and ghosts: what it would hold with the sides distributed).
+  std::int64_t local_side_facets_held = 0;
+  std::int64_t local_side_facets_read = 0;
 };
 
 /// The rows of all ranks on rank 0 in their order (empty on the other ranks). Collective.
