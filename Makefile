@@ -43,7 +43,7 @@ test: build
 # PETSc keep their allocations to the end of the process. The instrumented build is compiled at
 # -O1 with line tables only (-g1): the sanitizers check the same code as at -O2 (-O1 is what
 # their documentation recommends; it inlines less, so fewer accesses are folded away), and a
-# finding's stack trace still names file, line and function, but the cold build costs about
+# finding's stack trace still names file, line and function, but the cold build costs
 # about half of RelWithDebInfo's -O2 -g (README "Sanitizers"). Without the benchmarks the
 # default target is exactly what SANITIZE_TESTS run: bin/seam and the unit test executables.
 SANITIZE_FLAGS ?= -O1 -g1 -DNDEBUG

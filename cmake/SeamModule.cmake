@@ -33,12 +33,17 @@ function(seam_unit_test name)
   target_include_directories(unit_${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   add_test(NAME unit_${name} COMMAND unit_${name} --gtest_brief=1 WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}/tests)
   set_tests_properties(unit_${name} PROPERTIES LABELS unit)
+  # The instrumented build (make sanitize) runs the MPI cases 10 to 20 times slower.
+  set(mpi_timeout 300)
+  if(SEAM_SANITIZE)
+    set(mpi_timeout 1800)
+  endif()
   foreach(np ${ARG_MPI_RANKS})
     add_test(NAME unit_${name}_np${np}
              COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} --oversubscribe
                      $<TARGET_FILE:unit_${name}> --gtest_brief=1
              WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}/tests)
-    set_tests_properties(unit_${name}_np${np} PROPERTIES LABELS "unit;mpi" PROCESSORS ${np} TIMEOUT 300
+    set_tests_properties(unit_${name}_np${np} PROPERTIES LABELS "unit;mpi" PROCESSORS ${np} TIMEOUT ${mpi_timeout}
       ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
   endforeach()
 endfunction()
