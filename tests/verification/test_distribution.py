@@ -19,6 +19,8 @@ Each test can fail:
   the tolerance; with SEAM_FULL=1 also equal to np = 1;
 - one master surface shared by two slave interfaces (two blocks tied side by side onto one
   block, non-matching) at np = 3: the patch test (uniform uniaxial stress) stays exact;
+- `seam check` at np 3 prints what np 1 prints on the refined tied blocks (from a .geo and from
+  a .msh) and a line of cells held per rank, none holding the whole mesh;
 - with the default measure (CPU time of the interface evaluation) parallel.csv reports
   positive per-rank times and a consistent imbalance column;
 - what each rank holds, at np = 3 on the tied blocks (a refined copy of the example): against
@@ -294,11 +296,11 @@ def test_shared_master_patch_np3():
     H.cleanup(*_dirs)
 
 
-def test_held_cells_np3():
+def refined_blocks():
+    """The tied blocks example refined (11 x 11 x 11 hexahedra, tetrahedra of size 0.1), one
+    step: (work directory, input path)."""
     work, path = H.copy_example("tied_blocks", "blocks.yaml", (("steps: 5}", "steps: 1}"),))
     _dirs.append(work)
-    # Refined (11 x 11 x 11 hexahedra, tetrahedra of size 0.1): the interface sides' cells,
-    # which every rank holds, are then a small part of each rank's cells.
     geo = os.path.join(work, "blocks.geo")
     with open(geo) as f:
         text = f.read()
@@ -308,6 +310,61 @@ def test_held_cells_np3():
         text = text.replace(a, b)
     with open(geo, "w") as f:
         f.write(text)
+    return work, path
+
+
+def test_check_distributed_np3():
+    """`seam check` sets up the mesh as a run does, distributed: on the refined tied blocks,
+    from the .geo (meshed on rank 0, which sends the parts) and from a binary MSH 4.1 file
+    (read in chunks), np 3 reports what np 1 reports (counts, cell types, regions, the tied
+    interface's facets and integration cells; the mesh initialization's relocation, a
+    round-off figure, is left out) and a line of cells held per rank, each below the mesh's."""
+    import re
+    import subprocess
+    work, path = refined_blocks()
+    msh = os.path.join(work, "blocks.msh")
+    subprocess.run(["gmsh", "-3", "-bin", "-format", "msh41", os.path.join(work, "blocks.geo"),
+                    "-o", msh], check=True, stdout=subprocess.DEVNULL)
+    with open(path) as f:
+        text = f.read()
+    if "geo: blocks.geo" not in text:
+        raise AssertionError("blocks.yaml: 'geo: blocks.geo' not found")
+    from_file = H.write_case(work, "from_file.yaml", text.replace("geo: blocks.geo",
+                                                                  "file: blocks.msh"))
+    held_line = re.compile(r"cells held per rank \(own, ghost layer, interface sides\): "
+                           r"([0-9 /]+) of (\d+)")
+
+    def report(yaml, np):
+        _, out, _ = H.run(["check", yaml], np=np)
+        lines = [re.sub(r"moved by at most \S+", "moved by at most X", line)
+                 for line in out.splitlines() if line.startswith(" ") or line.endswith(": ok")]
+        held = [line for line in lines if held_line.search(line)]
+        return [line for line in lines if line not in held], held
+
+    for yaml, what in ((path, ".geo"), (from_file, ".msh")):
+        one, held_one = report(yaml, 1)
+        three, held = report(yaml, 3)
+        if held_one:
+            raise AssertionError("%s: np 1 reports cells held per rank: %s" % (what, held_one))
+        if one != three:
+            raise AssertionError("%s: seam check np 1 and np 3 differ:\n%s\n---\n%s"
+                                 % (what, "\n".join(one), "\n".join(three)))
+        if len(held) != 1:
+            raise AssertionError("%s: np 3 does not report the cells held per rank:\n%s"
+                                 % (what, "\n".join(three)))
+        m = held_line.search(held[0])
+        per_rank, total = [int(v) for v in m.group(1).split("/")], int(m.group(2))
+        if len(per_rank) != 3 or max(per_rank) >= total:
+            raise AssertionError("%s: cells held per rank %s of %d: a rank holds the whole mesh"
+                                 % (what, per_rank, total))
+        print("   seam check %s: np 3 reports what np 1 does; cells held per rank %s of %d"
+              % (what, " / ".join(str(v) for v in per_rank), total))
+
+
+def test_held_cells_np3():
+    # Refined: the interface sides' cells, which every rank holds, are then a small part of
+    # each rank's cells.
+    work, path = refined_blocks()
     out = H.solve(path, np=3)
     _dirs.append(out)
     summary = H.read_json(os.path.join(out, "summary.json"))
@@ -852,7 +909,8 @@ def test_ghosting_reused_np3():
 
 if __name__ == "__main__":
     H.main([test_rings_self_search_np3, test_two_blocks_self_search_np3,
-            test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3, test_tied_interface_part_np3,
+            test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3,
+            test_check_distributed_np3, test_tied_interface_part_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])

@@ -354,6 +354,36 @@ def test_dynamic_contact_generalized_alpha():
                "generalized-alpha frictionless drop", cross_np="1 -> 3")
 
 
+def test_partition_reproducible():
+    """The generalized-alpha drop on 3 ranks with the reproducible direct solve (REPRODUCIBLE):
+    three uninterrupted runs and the 3 -> 3 restart from step 27 are bit for bit the same, and
+    every rank owns the same cells and nodes in each (summary.json ranks_detail). The mesh of
+    its .geo is read in chunks and partitioned in parallel by PT-Scotch, whose partition used
+    to change from run to run here (90/95/91 and 91/90/95 cells in two runs) while PT-Scotch
+    ran several threads per rank (docs/parallel.md "Reproducible runs")."""
+    what = "generalized-alpha drop, 3 ranks"
+    step = 27
+    _, yaml = make_case(G.rectangle("quad", 0.1, lx=1.0, ly=0.5), drop_yaml(step))
+
+    def owned(out):
+        return [(r["cells"], r["owned_nodes"])
+                for r in H.read_json(os.path.join(out, "summary.json"))["ranks_detail"]]
+
+    first = full_run(yaml, 3, REPRODUCIBLE)
+    for attempt in range(2):
+        again = tempfile.mkdtemp(prefix="seam_restart_out_")
+        _dirs.append(again)
+        H.run(["run", yaml, "-o", again, "--quiet", "--"] + REPRODUCIBLE, np=3)
+        if owned(again) != owned(first):
+            raise AssertionError("%s: cells and owned nodes per rank %s in the first run, %s in "
+                                 "run %d" % (what, owned(first), owned(again), attempt + 2))
+        compare(first, again, 0.0, "%s, uninterrupted run %d" % (what, attempt + 2))
+    print("   three uninterrupted 3-rank runs: bit for bit, (cells, owned nodes) per rank %s"
+          % owned(first))
+    compare(first, restarted_run(yaml, first, step, 3, REPRODUCIBLE), 0.0, what + " 3 -> 3")
+    print("   %s 3 -> 3 restart: bit for bit" % what)
+
+
 def test_energy_momentum_tied_condensed():
     check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("condensed", e), 10,
                "energy-momentum, condensed tying", cross_np="1 -> 3")
@@ -680,7 +710,7 @@ def ints(data):
 
 if __name__ == "__main__":
     try:
-        H.main([test_static_friction_two_bodies, test_same_ranks_np3,
+        H.main([test_static_friction_two_bodies, test_same_ranks_np3, test_partition_reproducible,
                 test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,

@@ -4,6 +4,12 @@
 
 #include <petscmat.h>
 
+#include <cstdlib>
+
+#include <cstdio> // scotch.h needs FILE
+// Scotch's random generator (libscotch, the library under PETSc's PT-Scotch).
+#include <scotch/scotch.h>
+
 namespace seam::mesh {
 namespace {
 
@@ -11,6 +17,24 @@ void check(PetscErrorCode code, const char* what) {
   SEAM_CHECK(code == 0, InternalError, "parallel partitioning: ", what, " failed (PETSc error ",
              static_cast<int>(code), ")");
 }
+
+/// SCOTCH_PTHREAD_NUMBER=1 while it lives, unless the environment sets a number already
+/// (then the user chose threads over reproducibility).
+class ScotchThreads {
+public:
+  ScotchThreads() : set_(std::getenv(kName) == nullptr) {
+    if (set_) setenv(kName, "1", 1);
+  }
+  ~ScotchThreads() {
+    if (set_) unsetenv(kName);
+  }
+  ScotchThreads(const ScotchThreads&) = delete;
+  ScotchThreads& operator=(const ScotchThreads&) = delete;
+
+private:
+  static constexpr const char* kName = "SCOTCH_PTHREAD_NUMBER";
+  bool set_;
+};
 
 } // namespace
 
@@ -50,6 +74,13 @@ std::vector<int> partition_dual_graph(MPI_Comm comm, std::int64_t first, std::in
     check(MatPartitioningSetVertexWeights(mp, w), "MatPartitioningSetVertexWeights");
   }
   check(MatPartitioningSetType(mp, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType(ptscotch)");
+  // A reproducible partition (docs/parallel.md "Reproducible runs"): with several threads per
+  // rank (Debian's Scotch starts one per core) PT-Scotch's result depends on their timing,
+  // and its random generator goes on from the state of an earlier partition in the process.
+  // Its default context reads SCOTCH_PTHREAD_NUMBER when a computation starts.
+  const ScotchThreads one_thread;
+  SCOTCH_randomSeed(1);
+  SCOTCH_randomReset();
   IS is = nullptr;
   check(MatPartitioningApply(mp, &is), "MatPartitioningApply");
   const PetscInt* p = nullptr;

@@ -819,26 +819,16 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
 
 } // namespace
 
-FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                       const std::filesystem::path& dir, bool quiet, bool check_only,
-                       const RestartFrom& restart) {
-  const FluidLayout layout(mesh, comm);
-  return run_on(
-      config, layout,
-      [&](PhaseTimers& timers) { return meshtying::setup_mesh_tying(config, mesh, timers); },
-      [&] { return identify(mesh); }, dir, quiet, check_only, restart);
-}
-
 FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
                        const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
-                       bool quiet, const RestartFrom& restart) {
+                       bool quiet, const RestartFrom& restart, bool check_only) {
   const FluidLayout layout(part, comm);
   return run_on(
       config, layout,
       [&](PhaseTimers& timers) {
         return meshtying::setup_mesh_tying(config, part, comm.get(), timers);
       },
-      [&] { return identity; }, dir, quiet, false, restart);
+      [&] { return identity; }, dir, quiet, check_only, restart);
 }
 
 } // namespace seam::problem

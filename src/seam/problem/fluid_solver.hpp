@@ -6,7 +6,6 @@
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
 #include "seam/mesh/distribute.hpp"
-#include "seam/mesh/mesh.hpp"
 #include "seam/problem/restart_from.hpp"
 
 #include <filesystem>
@@ -21,18 +20,13 @@ struct FluidRunInfo {
 };
 
 /// Checks the input for the fluid field, then runs all steps, writing into `dir` (which
-/// exists), on a mesh every rank holds whole (`seam check`). `check_only` stops after the
-/// checks. The mesh initialization of tied interfaces moves slave nodes of `mesh`. Throws
-/// InputError or SolverError.
-FluidRunInfo run_fluid(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                       const std::filesystem::path& dir, bool quiet, bool check_only = false,
-                       const RestartFrom& restart = {});
-
-/// The same on this rank's part of a distributed mesh (mesh::distribute_mesh): each rank
+/// exists), on this rank's part of a distributed mesh (mesh::distribute_mesh): each rank
 /// assembles its cells, owns the dofs of its nodes and holds one ghost layer; the moving
 /// mesh is solved distributed as well. `identity`: of the whole mesh (checkpoint.hpp).
+/// `check_only` (`seam check`) stops after the checks and the set-up of tied interfaces, whose
+/// mesh initialization moves slave nodes of `part`. Throws InputError or SolverError.
 FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
                        const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
-                       bool quiet, const RestartFrom& restart = {});
+                       bool quiet, const RestartFrom& restart = {}, bool check_only = false);
 
 } // namespace seam::problem

@@ -113,7 +113,8 @@ std::optional<mesh::DistributedMesh> read_chunked(const io::Config& config, cons
 /// rank 0 into `scratch` (binary MSH 4.1, removed after reading; the Gmsh model is freed
 /// first) and then read the same way. Files the chunked reader leaves to Gmsh are read whole
 /// on rank 0, which sends each rank its part and frees the whole mesh.
-/// `identity` gets the whole mesh's (checkpoint.hpp).
+/// `identity` gets the whole mesh's (checkpoint.hpp). An empty `scratch` (`seam check`, which
+/// has no output directory): a geometry file is meshed in memory on rank 0, which sends the parts.
 mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm& comm,
                                             MeshIdentity& identity,
                                             const std::filesystem::path& scratch, bool quiet) {
@@ -129,7 +130,8 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   }
   std::filesystem::path file = config.mesh.file;
   const bool generated = !config.mesh.geo.empty();
-  if (generated) {
+  const bool in_memory = generated && scratch.empty();
+  if (generated && !in_memory) {
     file = scratch / "mesh_generated.msh";
     on_root_collectively(comm, [&] {
       mesh::ReadOptions opts;
@@ -144,16 +146,17 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
       }
     });
   }
-  auto part = read_chunked(config, comm, file, sides, quiet);
+  auto part = in_memory ? std::nullopt : read_chunked(config, comm, file, sides, quiet);
   if (part) {
     identity = identify(*part, comm);
   } else {
-    auto whole = read_on_root(config, comm, generated ? file : std::filesystem::path());
+    auto whole =
+        read_on_root(config, comm, generated && !in_memory ? file : std::filesystem::path());
     if (comm.is_root()) identity = identify(whole);
     comm.broadcast_value(identity);
     part = mesh::distribute_mesh(whole, comm.get(), sides);
   }
-  if (generated && comm.is_root()) {
+  if (generated && !in_memory && comm.is_root()) {
     std::error_code ec;
     std::filesystem::remove(file, ec);
   }
@@ -261,9 +264,13 @@ int run(const RunOptions& options, int argc, char** argv) {
 
 int check(const std::string& input, const std::vector<std::string>& petsc_args) {
   Comm comm;
+  int argc = 0;
+  char** argv = nullptr;
+  la::Session petsc(argc, argv, petsc_args); // the parallel partition of the chunked reader
   const auto config = io::load_config(input);
-  auto mesh = load_mesh(config, comm);
   if (has_fsi(config)) {
+    // Fluid-structure runs hold the whole mesh on every rank (run_fsi), and so does their check.
+    auto mesh = load_mesh(config, comm);
     const auto info = run_fsi(config, mesh, comm, {}, true, true);
     if (comm.is_root())
       std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %d nodes, %d cells, %lld "
@@ -271,41 +278,77 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
                   input.c_str(), mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
     return 0;
   }
+  // The mesh as a run distributes it (each rank its cells, one ghost layer and the cells of
+  // the interface sides held whole), and the set-up a run does on it.
+  MeshIdentity identity;
+  auto part = load_distributed_mesh(config, comm, identity, {}, true);
   if (has_fluid(config)) {
-    const auto info = run_fluid(config, mesh, comm, {}, true, true);
+    const auto info = run_fluid(config, part, identity, comm, {}, true, {}, true);
     if (comm.is_root())
-      std::printf("%s: ok\n  fluid, dimension %d, %d nodes, %d cells, %lld dofs\n", input.c_str(),
-                  mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
+      std::printf("%s: ok\n  fluid, dimension %d, %lld nodes, %lld cells, %lld dofs\n",
+                  input.c_str(), part.mesh.dim, static_cast<long long>(part.n_global_nodes),
+                  static_cast<long long>(part.n_global_cells), info.n_dofs);
     return 0;
   }
-  const Discretization disc(mesh, comm);
+  const Discretization disc(part, comm);
   const auto model = build_model(config, disc);
   PhaseTimers timers;
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers);
+  const auto tied = meshtying::setup_mesh_tying(config, part, comm.get(), timers);
   const ContactConstraint contact(config, disc, model);
+  // Cells by type over the owned cells (the types in the order of fem::CellType), and the
+  // integration cells of each tied interface over the ranks that integrated them.
+  std::vector<long long> by_type(256, 0);
+  for (std::int32_t c = 0; c < part.n_cells(); ++c)
+    if (part.cell_role[static_cast<std::size_t>(c)] == mesh::CellRole::owned)
+      ++by_type[static_cast<std::size_t>(part.mesh.cell_type[static_cast<std::size_t>(c)])];
+  MPI_Allreduce(MPI_IN_PLACE, by_type.data(), static_cast<int>(by_type.size()), MPI_LONG_LONG,
+                MPI_SUM, comm.get());
+  std::vector<long long> integration_cells;
+  for (const auto& t : tied) integration_cells.push_back(t.local_integration_cells);
+  if (!integration_cells.empty())
+    MPI_Allreduce(MPI_IN_PLACE, integration_cells.data(),
+                  static_cast<int>(integration_cells.size()), MPI_LONG_LONG, MPI_SUM, comm.get());
+  const auto contact_lines = contact.describe();
+  std::vector<long long> held(static_cast<std::size_t>(comm.size()));
+  const long long n_held = part.n_cells();
+  MPI_Gather(&n_held, 1, MPI_LONG_LONG, held.data(), 1, MPI_LONG_LONG, 0, comm.get());
   if (!comm.is_root()) return 0;
-  std::map<std::string, int> by_type;
-  for (auto t : mesh.cell_type) ++by_type[std::string(fem::name(t))];
+  std::map<std::string, long long> named;
+  for (std::size_t t = 0; t < by_type.size(); ++t)
+    if (by_type[t] > 0) named[std::string(fem::name(static_cast<fem::CellType>(t)))] = by_type[t];
   std::printf("%s: ok\n", input.c_str());
   if (!config.title.empty()) std::printf("  title: %s\n", config.title.c_str());
-  std::printf("  dimension %d, %d nodes, %d cells (", mesh.dim, mesh.n_nodes(), mesh.n_cells());
+  std::printf("  dimension %d, %lld nodes, %lld cells (", part.mesh.dim,
+              static_cast<long long>(part.n_global_nodes),
+              static_cast<long long>(part.n_global_cells));
   bool first = true;
-  for (const auto& [name, n] : by_type) {
-    std::printf("%s%d %s", first ? "" : ", ", n, name.c_str());
+  for (const auto& [name, n] : named) {
+    std::printf("%s%lld %s", first ? "" : ", ", n, name.c_str());
     first = false;
   }
   std::printf("), %lld dofs\n", static_cast<long long>(disc.n_global_dofs()));
   std::printf("  regions:");
-  for (const auto& r : mesh.regions) std::printf(" %s (dim %d)", r.name.c_str(), r.dim);
+  for (const auto& r : part.mesh.regions) std::printf(" %s (dim %d)", r.name.c_str(), r.dim);
   std::printf("\n  %zu bodies, %zu boundary conditions, %zu interfaces, %d steps to t = %g\n",
               config.bodies.size(), config.boundary_conditions.size(), config.interfaces.size(),
               config.time.n_steps, config.time.end);
-  for (const auto& t : tied)
-    std::printf("  interface %s: %d slave and %d master facets, %d integration cells, "
+  for (std::size_t k = 0; k < tied.size(); ++k) {
+    const auto& t = tied[k];
+    // Distributed interfaces: each rank integrated its own slave facets; the others whole on
+    // every rank.
+    const long long cells = t.distributed ? integration_cells[k] : t.local_integration_cells;
+    std::printf("  interface %s: %lld slave and %lld master facets, %lld integration cells, "
                 "slave nodes moved by at most %.3g\n",
-                t.name.c_str(), t.slave.n_facets(), t.master.n_facets(),
-                t.operators.n_integration_cells, t.max_relocation);
-  for (const auto& line : contact.describe()) std::printf("  %s\n", line.c_str());
+                t.name.c_str(), static_cast<long long>(t.n_slave_facets),
+                static_cast<long long>(t.n_master_facets), cells, t.max_relocation);
+  }
+  for (const auto& line : contact_lines) std::printf("  %s\n", line.c_str());
+  if (held.size() > 1) {
+    std::printf("  cells held per rank (own, ghost layer, interface sides):");
+    for (std::size_t r = 0; r < held.size(); ++r)
+      std::printf("%s %lld", r == 0 ? "" : " /", held[r]);
+    std::printf(" of %lld\n", static_cast<long long>(part.n_global_cells));
+  }
   return 0;
 }
 

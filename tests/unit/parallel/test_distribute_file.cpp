@@ -116,6 +116,22 @@ TEST(DistributeFile, TrianglesAndQuadsAsciiAndBinary) {
   }
 }
 
+// The parallel partition is a function of the file and the number of ranks: reading the same
+// file again in the same processes gives every rank the same cells with the same roles (PT-Scotch
+// with one thread per rank and its random generator reset; docs/parallel.md "Reproducible runs").
+// Across processes test_restart.py's test_partition_reproducible checks it.
+TEST(DistributeFile, SamePartitionEveryTime) {
+  const auto file = mesh_file(blocks_geo, "again.msh", 3, true, 2);
+  const std::vector<std::string> sides = {"lower_top"};
+  const DistributedMesh first = mesh::distribute_file(file, world(), sides);
+  for (int again = 0; again < 3; ++again) {
+    const DistributedMesh d = mesh::distribute_file(file, world(), sides);
+    EXPECT_EQ(d.cell_gid, first.cell_gid) << "read " << again + 2 << ", rank " << rank();
+    EXPECT_EQ(d.cell_owner, first.cell_owner) << "read " << again + 2 << ", rank " << rank();
+    EXPECT_EQ(d.node_index, first.node_index) << "read " << again + 2 << ", rank " << rank();
+  }
+}
+
 // Truncated files and other versions: MSH 2.2 is left to Gmsh (MshUnsupported); a truncated
 // 4.1 file is an InputError naming the file on every rank.
 TEST(DistributeFile, BadFilesNameTheFileOnEveryRank) {
