@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config git
   petsc-dev libopenblas0-pthread
-  libeigen3-dev libgmsh-dev gmsh libmetis-dev libyaml-cpp-dev libmuparser-dev
+  libeigen3-dev libgmsh-dev gmsh libmetis-dev libscotch-dev libyaml-cpp-dev libmuparser-dev
   libcli11-dev libspdlog-dev libcgal-dev
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
