@@ -515,7 +515,7 @@ def test_dfg_2d1_pcd_refinement():
 
 def test_pcd_bad_option():
     """`-fluid_schur` with an unknown value, or PCD on linear (stabilized) cells: exit 1 with a
-    message naming the option."""
+    message naming the option; with the direct solver the run's header says PCD is unused."""
     work = tempfile.mkdtemp(prefix="seam_pcd_")
     try:
         with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
@@ -531,6 +531,13 @@ def test_pcd_bad_option():
                                    cwd=work, check=False, timeout=300)
             if code != 1 or must not in err:
                 raise AssertionError("exit %d, expected 1 with %r:\n%s%s" % (code, must, out, err))
+        # With the direct solver PCD has no Schur block to precondition: the header says so.
+        H.write_case(work, "direct.yaml", text.replace("linear: iterative", "linear: direct"))
+        code, out, err = H.run(["run", "direct.yaml", "-o", "out_direct", "--"] + PCD, cwd=work,
+                               check=False, timeout=300)
+        must = "-fluid_schur pcd unused: set solver.linear: iterative"
+        if code != 0 or must not in out:
+            raise AssertionError("exit %d, expected 0 with %r:\n%s%s" % (code, must, out, err))
     finally:
         H.cleanup(work)
 

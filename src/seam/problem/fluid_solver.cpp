@@ -322,10 +322,15 @@ la::LinearSolver::VelocityBlock fluid_velocity_block(const io::Config& config) {
 // fluid)", "iterative (FGMRES + Schur fieldsplit: BoomerAMG velocity, BoomerAMG selfp)".
 std::string describe_fluid_linear_solver(const io::Config& config, const FluidLayout& layout) {
   const bool amg = fluid_velocity_block(config) == la::LinearSolver::VelocityBlock::amg;
-  const std::string schur = pcd_requested() ? "PCD" : "BoomerAMG selfp";
-  return describe(fluid_linear_solver(config, layout),
-                  std::string("FGMRES + Schur fieldsplit: ") +
-                      (amg ? "BoomerAMG velocity, " : "ILU(0) velocity, ") + schur);
+  const bool pcd = pcd_requested();
+  const auto choice = fluid_linear_solver(config, layout);
+  std::string text = describe(choice, std::string("FGMRES + Schur fieldsplit: ") +
+                                          (amg ? "BoomerAMG velocity, " : "ILU(0) velocity, ") +
+                                          (pcd ? "PCD" : "BoomerAMG selfp"));
+  // PCD preconditions the iterative solve's Schur block: say when a direct solve leaves it out.
+  if (pcd && choice.kind != la::SolverKind::iterative)
+    text += "; -fluid_schur pcd unused: set solver.linear: iterative";
+  return text;
 }
 
 class FluidNewton {
