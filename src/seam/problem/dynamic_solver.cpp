@@ -310,23 +310,32 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   la::Vector force = disc.make_vector(), force_old = disc.make_vector(), du = disc.make_vector();
   // The state of the integrator: u, v and a (generalized-alpha's acceleration; zero with the
   // energy-momentum method) and the last step's force of the trapezoidal external work.
-  const std::vector<std::pair<const char*, const la::Vector*>> state_out = {
+  // With the energy bound at impacts also the nodes of the last contact force (`seed`, the
+  // patch the bound takes a gain from, kept through the release's transient).
+  la::Vector seed = disc.make_vector();
+  std::vector<std::pair<const char*, const la::Vector*>> state_out = {
       {"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}};
+  std::vector<std::pair<const char*, la::Vector*>> state_in = {
+      {"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}};
+  if (energy_bound) {
+    state_out.emplace_back("contact_seed", &seed);
+    state_in.emplace_back("contact_seed", &seed);
+  }
+  bool restored_transient = false;
   if (checkpoints.restarting()) {
-    const auto state =
-        read_checkpoint(checkpoints, control, contact, saddle, tied,
-                        {{"u", &u}, {"v", &v}, {"a", &a}, {"force_old", &force_old}});
+    const auto state = read_checkpoint(checkpoints, control, contact, saddle, tied, state_in);
     step = state.step;
     external_work = state.external_work;
+    restored_transient = state.impact_transient;
   } else {
     out.initial(u);
   }
   // The energy bound's state: the energy K + U of t_n, the force whose work it allows at t_n
   // (bound_force), the nodes of the last contact force (the patch's seed), the number of active
   // nodes at t_n and whether the impact's transient lasts (a run continued from a checkpoint
-  // takes it to last if a node is active at t_n).
+  // takes the transient and the seed from it).
   la::Vector f_ext_new = disc.make_vector(), bound_old = disc.make_vector(),
-             bound_new = disc.make_vector(), seed = disc.make_vector();
+             bound_new = disc.make_vector();
   double energy_old = 0.0;
   int active_n = 0;
   bool transient = false;
@@ -357,7 +366,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     energy_old = 0.5 * work.dot(v) + strain;
     bound_force(f_ext_new, force_old, bound_old);
     active_n = contact.n_active();
-    transient = active_n > 0;
+    transient = active_n > 0 || restored_transient;
   }
   while (control.running()) {
     const double t = control.time();
@@ -554,8 +563,9 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     out.step(rec, u, &v, newton.reactions(), newton.multipliers(tied), last);
     newton.accept();
     control.accept(t_new);
-    write_checkpoint(checkpoints, {step, external_work}, control, contact, saddle, tied, out,
-                     state_out);
+    DriverState written{step, external_work};
+    written.impact_transient = energy_bound && transient;
+    write_checkpoint(checkpoints, written, control, contact, saddle, tied, out, state_out);
   }
   out.finish(true, step);
 }

@@ -23,6 +23,9 @@ struct DriverState {
   /// guess extrapolates from, and how many of them are known (0 to 2; static_solver.cpp).
   double t_older = 0.0, t_oldest = 0.0;
   int n_known = 0;
+  /// Dynamic runs with generalized-alpha's energy bound at impacts: whether the impact's
+  /// transient (from the first active node through the release's ringing) still lasts.
+  bool impact_transient = false;
 };
 
 /// Writes checkpoint_NNNNN/ after converged step `state.step` if one is due. Collective.
