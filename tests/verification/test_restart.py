@@ -382,6 +382,13 @@ def test_impact_release_transient():
     if release is None or release + 2 >= len(active):
         raise AssertionError("no release with steps after it: active nodes %s" % active)
     step = release + 2  # steps.csv row i is step i + 1: the second step without contact
+    # The bound's and the persistency projection's phases are timed in summary.json.
+    import json
+    with open(os.path.join(one, "summary.json")) as f:
+        timings = json.load(f)["timings"]
+    for phase in ("contact_energy_bound", "contact_persistency", "assembly", "condensation"):
+        if not timings.get(phase, 0.0) > 0.0:
+            raise AssertionError("summary.json timings: %s missing or zero: %s" % (phase, timings))
     same = compare(one, restarted_run(path, one, step, 1), 0.0, "impact release 1 -> 1")
     print("   release at step %d, restarted from step %d: 1 -> 1 bit for bit (max %.1e)"
           % (release + 1, step, same))
