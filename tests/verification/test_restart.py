@@ -37,6 +37,8 @@ another kind of run: solid, fluid, fluid-structure) end with exit code 1 and a m
 gathered on one rank: each rank writes its own entries of the nodal vectors, of the contact
 interface state per slave node and of the saddle-point multipliers (test_parts_not_gathered).
 """
+import json
+import math
 import os
 import shutil
 import sys
@@ -360,9 +362,8 @@ def test_impact_release_transient():
     first active node through the ringing after the release, taking a step's gain from the
     patch of the last contact force: a checkpoint one step after the release (no node active
     at this step or the one before) must carry both, or the restarted steps keep the gains the
-    uninterrupted run removes. test_hertz_impact's sphere (CI mesh, 25 steps over the contact
+    uninterrupted run removes. test_hertz_impact's sphere (CI mesh, 20 steps over the contact
     time), checkpoints every step, restarted 1 -> 1 bit for bit."""
-    import math
     v = math.sqrt(16.0 * HI.E / (1.0 - HI.NU ** 2) * 0.0025 ** 2.5
                   / (15.0 * HI.RHO * 4.0 / 3.0 * math.pi))
     t_c = HI.hertz(HI.RHO * 4.0 / 3.0 * math.pi, v)[2]
@@ -383,7 +384,6 @@ def test_impact_release_transient():
         raise AssertionError("no release with steps after it: active nodes %s" % active)
     step = release + 2  # steps.csv row i is step i + 1: the second step without contact
     # The bound's and the persistency projection's phases are timed in summary.json.
-    import json
     with open(os.path.join(one, "summary.json")) as f:
         timings = json.load(f)["timings"]
     for phase in ("contact_energy_bound", "contact_persistency", "assembly", "condensation"):
