@@ -181,6 +181,10 @@ public:
   /// Nodes that the cycling guard froze between stick and slip and whose frozen status violates
   /// its condition beyond the band at the last evaluate(): each counts as a change.
   int n_inconsistent() const;
+  /// Nodes that a frozen or held set kept active but that had no pair at the last evaluate()
+  /// (D_jj = 0: no gap row, no force column) and were released; counted among its changes.
+  /// Same on every rank.
+  int n_released() const { return released_; }
 
   /// Diagnostics and tests of the linearization. While the sets are held, evaluate() keeps
   /// every node's status (active, stick, slip) and tangent frame as they are, so that the
@@ -448,6 +452,7 @@ private:
   bool saddle_point_ = false;
   bool energy_momentum_ = false; ///< integrator: energy_momentum
   bool held_ = false;            ///< hold_sets
+  int released_ = 0;             ///< n_released()
   PetscInt n_lm_ = 0;            ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0;        ///< global index of the first of them
 };

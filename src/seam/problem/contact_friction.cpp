@@ -209,19 +209,24 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     s.itf.set_normals_from_owners(normals);
   }
   if (init && s.has_old) s.D_diag_old = s.D_diag;
-  // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 8
+  // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 12
   // iterations ago, the nodes that alternate keep the largest of their statuses in the cycle
   // (inactive < stick < slip) for the rest of the step; the others go on being decided. A frozen
   // node whose condition asks for another status counts as a change, so that an inconsistent state
   // (say, a stuck node whose traction has left the cone) is never accepted: the step is cut
   // instead.
+  // A node without a pair at this iterate (D_jj = 0) is released from a frozen or held status
+  // (no gap row: the saddle point would be singular; see evaluate()).
+  const auto paired = [&](std::size_t j) { return s.D[j] > 1e-12 * d_max; };
   const auto decided = [&](const std::vector<char>& wanted) {
     std::vector<char> out = wanted;
     for (std::size_t j = 0; j < n; ++j)
-      if (s.frozen_nodes[j]) out[j] = s.status_previous[j];
+      if ((held_ || s.frozen_nodes[j]) && paired(j)) out[j] = s.status_previous[j];
     return out;
   };
-  std::vector<char> status = held_ ? s.status_previous : decided(next);
+  std::vector<char> status = decided(next);
+  for (std::size_t j = 0; j < n; ++j)
+    released_ += (held_ || s.frozen_nodes[j]) && s.status_previous[j] != 0 && !paired(j);
   if (!held_) {
     std::vector<char> alternating;
     if (s.cycles.guard(status, alternating) > 0)
