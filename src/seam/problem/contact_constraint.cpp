@@ -357,18 +357,19 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     }
     s.active_previous = s.active;
     // The owner of each slave node decides its status from its sums; frozen or held sets
-    // keep theirs, except at nodes that have no pair at this iterate (D_jj = 0: self contact
-    // made their facets master only, or they left every pair). Such a node has no gap row and
-    // no force column, so kept active it would make the saddle point singular (examples/rings,
-    // 200 rings at t = 0.66: active nodes of the frozen union whose roles flipped); it is
-    // released (inactive, lambda_j = 0) and counted as a change.
+    // keep theirs, except at nodes that have no pair at this iterate (paired(): D_jj = 0 where
+    // self contact made their facets master only or they left every pair, or no gap row of the
+    // discrete gradient). Such a node has no constraint row, so kept active it would make the
+    // saddle point singular (examples/rings, 200 rings at t = 0.66: active nodes of the frozen
+    // union whose roles flipped); it is released (inactive, lambda_j = 0) and counted as a
+    // change.
     const double d_max = max_weight(s);
     const double touching = 1e-9 * s.itf.slave_mesh_size();
     const bool decide = !s.frozen && !held_;
     std::vector<char> next(s.active.size(), 0);
     for (std::size_t j = 0; j < next.size(); ++j) {
       if (s.node_owners[j] != comm.rank()) continue;
-      if (s.D[j] <= 1e-12 * d_max) continue;
+      if (!paired(s, j, d_max)) continue;
       if (!decide) {
         next[j] = s.active[j];
         continue;

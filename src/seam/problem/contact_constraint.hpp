@@ -307,9 +307,18 @@ private:
     /// The interface displacement of the last evaluate() (the tangent is built from it when
     /// a matrix is needed) and whether em_tangent belongs to it.
     std::vector<double> em_displacement;
+    /// Per slave node (replicated): whether g~_j(x_{n+1}) has a nonzero gradient, i.e. a gap
+    /// row in the Newton step (paired()).
+    std::vector<char> em_row;
     bool em_tangent_current = false;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
+  /// Whether slave node j has a pair at the last evaluate(): a nodal weight D_jj above 1e-12
+  /// of the side's largest (d_max), and with the discrete-gradient force also a gap row. Only
+  /// such a node can be active: any other has no constraint row (a singular saddle point).
+  static bool paired(const Side& s, std::size_t j, double d_max) {
+    return s.D[j] > 1e-12 * d_max && (!s.discrete_gradient || s.em_row[j] != 0);
+  }
   /// This rank's part of D_jj, g~_j (and on a frictional side D_jj without coupling, in
   /// D_diag) summed on the owners of the slave nodes (parallel::sum_on_owners): on return the
   /// owned nodes hold the sums, the others zero. Collective.
