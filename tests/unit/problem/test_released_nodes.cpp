@@ -13,20 +13,7 @@
 // (some pairs gone). Each time the held active nodes without a pair must be released and the
 // saddle point must solve. Without the release the lifted case keeps every node active with
 // empty rows and the linear solver fails.
-#include "seam/common/mpi.hpp"
-#include "seam/common/timer.hpp"
-#include "seam/io/config.hpp"
-#include "seam/la/petsc.hpp"
-#include "seam/mesh/gmsh_reader.hpp"
-#include "seam/meshtying/tied_interface.hpp"
-#include "seam/problem/assembly.hpp"
-#include "seam/problem/contact_constraint.hpp"
-#include "seam/problem/discretization.hpp"
-#include "seam/problem/model.hpp"
-#include "seam/problem/newton.hpp"
-#include "seam/problem/output.hpp"
-#include "seam/problem/saddle_point.hpp"
-#include "seam/problem/tying_constraint.hpp"
+#include "contact_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,30 +72,15 @@ Outcome held_set_after_motion(const std::string& name, double dx, double dy) {
     std::ofstream(folder / "case.yaml") << yaml;
   }
   comm.barrier();
-  const auto config = io::load_config(folder / "case.yaml");
-  mesh::ReadOptions opts;
-  opts.dim = 2;
-  opts.order = config.mesh.order;
-  auto mesh = mesh::read_mesh(folder / "case.geo", opts);
-  const Discretization disc(mesh, comm);
-  const auto model = build_model(config, disc);
-  PhaseTimers timers;
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers);
-  const TyingConstraint tying(tied, disc, model);
-  SaddlePoint saddle(tied, disc, model);
-  ContactConstraint contact(config, disc, model);
-  Output out(config, disc, model, tied, folder / "out", true);
-  NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
+  ContactRun run(comm, folder, false);
+  const Discretization& disc = run.disc;
+  const Model& model = run.model;
+  ContactConstraint& contact = run.contact;
   la::Vector u = disc.make_vector();
-  const auto evaluator = [&](double t) {
-    return [&, t](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f_ext) {
-      return assemble(model, disc, state, t, r, K, &f_ext);
-    };
-  };
   Outcome o;
   contact.start_step(u);
-  EXPECT_TRUE(newton.solve(u, 1.0, 1, evaluator(1.0)).converged) << name << ": press";
-  newton.accept();
+  EXPECT_TRUE(run.newton.solve(u, 1.0, 1, run.evaluator(1.0)).converged) << name << ": press";
+  run.newton.accept();
   contact.start_step(u);
   o.active_before = contact.n_active();
 
@@ -117,7 +89,7 @@ Outcome held_set_after_motion(const std::string& name, double dx, double dy) {
   {
     std::vector<PetscInt> rows;
     std::vector<double> values;
-    for (const auto node : mesh.region("body", 2).nodes) {
+    for (const auto node : run.mesh.region("body", 2).nodes) {
       if (!disc.owns_node(node)) continue;
       rows.push_back(disc.global_dof(node, 0));
       values.push_back(dx);
@@ -129,7 +101,7 @@ Outcome held_set_after_motion(const std::string& name, double dx, double dy) {
     u.update_ghosts();
   }
   const double t = 2.0;
-  contact.evaluate(u, t, false, timers);
+  contact.evaluate(u, t, false, run.timers);
   o.active_after = contact.n_active();
   o.released = contact.n_released();
 
@@ -143,7 +115,7 @@ Outcome held_set_after_motion(const std::string& name, double dx, double dy) {
   std::vector<PetscInt> dirichlet;
   for (const auto& d : model.dirichlet) dirichlet.push_back(d.dof);
   la::LinearSolver solver(comm.get(), la::SolverKind::direct);
-  o.solved = contact.solve_saddle_point(K, minus_r, dirichlet, nullptr, solver, dd, timers);
+  o.solved = contact.solve_saddle_point(K, minus_r, dirichlet, nullptr, solver, dd, run.timers);
   o.finite = std::isfinite(dd.norm());
   for (const double l : contact.multipliers()) o.finite = o.finite && std::isfinite(l);
   contact.hold_sets(false);
