@@ -393,7 +393,15 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     // iterations ago is replaced by the union of the sets of the cycle and kept for the rest
     // of the step. The same published set on every rank gives the same decision.
     std::vector<char> alternating;
-    if (s.cycles.guard(next, alternating) > 0) s.frozen = true;
+    if (s.cycles.guard(next, alternating) > 0) {
+      s.frozen = true;
+      // The union of the cycle's sets can hold nodes that have no pair at this iterate.
+      for (std::size_t j = 0; j < next.size(); ++j)
+        if (next[j] && !paired(s, j, d_max)) {
+          next[j] = 0;
+          ++released_;
+        }
+    }
     s.active = std::move(next);
     for (std::size_t j = 0; j < s.active.size(); ++j)
       changes += s.active[j] != s.active_previous[j];

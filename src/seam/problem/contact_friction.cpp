@@ -229,8 +229,14 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   if (!held_) {
     std::vector<char> alternating;
     if (s.cycles.guard(status, alternating) > 0)
-      for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t j = 0; j < n; ++j) {
         if (alternating[j]) s.frozen_nodes[j] = 1;
+        // The largest status of the cycle, unless the node has no pair at this iterate.
+        if (status[j] != 0 && !paired(s, j, d_max)) {
+          status[j] = 0;
+          ++released_;
+        }
+      }
   }
   s.status = std::move(status);
   // A frozen node is consistent if its stick/slip condition holds up to a small tolerance (a
