@@ -302,6 +302,7 @@ ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t
 int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers,
                                 bool retrial) {
   const auto& comm = disc_.comm();
+  released_ = 0;
   // Only the nodes this rank reads (nodes_read()), not the whole interface; the scatter is
   // made anew when they change (a redistribution, a new ghost set).
   refresh_displacement(u);
@@ -356,18 +357,23 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     }
     s.active_previous = s.active;
     // The owner of each slave node decides its status from its sums; frozen or held sets
-    // keep theirs.
+    // keep theirs, except at nodes that have no pair at this iterate (paired(): D_jj = 0 where
+    // self contact made their facets master only or they left every pair, or no gap row of the
+    // discrete gradient). Such a node has no constraint row, so kept active it would make the
+    // saddle point singular (examples/rings, 200 rings at t = 0.66: active nodes of the frozen
+    // union whose roles flipped); it is released (inactive, lambda_j = 0) and counted as a
+    // change.
     const double d_max = max_weight(s);
     const double touching = 1e-9 * s.itf.slave_mesh_size();
     const bool decide = !s.frozen && !held_;
     std::vector<char> next(s.active.size(), 0);
     for (std::size_t j = 0; j < next.size(); ++j) {
       if (s.node_owners[j] != comm.rank()) continue;
+      if (!paired(s, j, d_max)) continue;
       if (!decide) {
         next[j] = s.active[j];
         continue;
       }
-      if (s.D[j] <= 1e-12 * d_max) continue;
       const NodeFrame f = frame(s, j);
       if (f.wn < min_free_normal) continue;
       // Touching (zero gap, zero pressure) counts as active: bodies held only by contact
@@ -375,12 +381,27 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       next[j] = s.lambda[j] - s.c_n * (s.gap[j] / s.D[j] - touching) > 0.0;
     }
     publish_nodal_values(s, next);
-    if (!decide) continue;
-    // Cycling guard (contact/active_set_cycles.hpp): a set that returns to the one of k <= 8
+    if (!decide) {
+      int released = 0;
+      for (std::size_t j = 0; j < next.size(); ++j) released += s.active[j] && !next[j];
+      s.active = std::move(next);
+      released_ += released;
+      changes += released;
+      continue;
+    }
+    // Cycling guard (contact/active_set_cycles.hpp): a set that returns to the one of k <= 12
     // iterations ago is replaced by the union of the sets of the cycle and kept for the rest
     // of the step. The same published set on every rank gives the same decision.
     std::vector<char> alternating;
-    if (s.cycles.guard(next, alternating) > 0) s.frozen = true;
+    if (s.cycles.guard(next, alternating) > 0) {
+      s.frozen = true;
+      // The union of the cycle's sets can hold nodes that have no pair at this iterate.
+      for (std::size_t j = 0; j < next.size(); ++j)
+        if (next[j] && !paired(s, j, d_max)) {
+          next[j] = 0;
+          ++released_;
+        }
+    }
     s.active = std::move(next);
     for (std::size_t j = 0; j < s.active.size(); ++j)
       changes += s.active[j] != s.active_previous[j];

@@ -181,6 +181,10 @@ public:
   /// Nodes that the cycling guard froze between stick and slip and whose frozen status violates
   /// its condition beyond the band at the last evaluate(): each counts as a change.
   int n_inconsistent() const;
+  /// Nodes that a frozen or held set kept active but that had no pair at the last evaluate()
+  /// (D_jj = 0: no gap row, no force column) and were released; counted among its changes.
+  /// Same on every rank.
+  int n_released() const { return released_; }
 
   /// Diagnostics and tests of the linearization. While the sets are held, evaluate() keeps
   /// every node's status (active, stick, slip) and tangent frame as they are, so that the
@@ -303,9 +307,18 @@ private:
     /// The interface displacement of the last evaluate() (the tangent is built from it when
     /// a matrix is needed) and whether em_tangent belongs to it.
     std::vector<double> em_displacement;
+    /// Per slave node (replicated): whether g~_j(x_{n+1}) has a nonzero gradient, i.e. a gap
+    /// row in the Newton step (paired()).
+    std::vector<char> em_row;
     bool em_tangent_current = false;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
+  /// Whether slave node j has a pair at the last evaluate(): a nodal weight D_jj above 1e-12
+  /// of the side's largest (d_max), and with the discrete-gradient force also a gap row. Only
+  /// such a node can be active: any other has no constraint row (a singular saddle point).
+  static bool paired(const Side& s, std::size_t j, double d_max) {
+    return s.D[j] > 1e-12 * d_max && (!s.discrete_gradient || s.em_row[j] != 0);
+  }
   /// This rank's part of D_jj, g~_j (and on a frictional side D_jj without coupling, in
   /// D_diag) summed on the owners of the slave nodes (parallel::sum_on_owners): on return the
   /// owned nodes hold the sums, the others zero. Collective.
@@ -448,6 +461,7 @@ private:
   bool saddle_point_ = false;
   bool energy_momentum_ = false; ///< integrator: energy_momentum
   bool held_ = false;            ///< hold_sets
+  int released_ = 0;             ///< n_released()
   PetscInt n_lm_ = 0;            ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0;        ///< global index of the first of them
 };

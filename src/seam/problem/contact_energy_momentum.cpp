@@ -292,10 +292,15 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       parallel::allgatherv<Entry>(disc_.comm().get(), std::span<const Entry>(local), offsets);
   const auto& nodes = s.itf.slave().mesh_nodes;
   const Invariance invariance = invariance_of(s.itf, dim);
-  // The weighted gaps at x_{n+1} that the active set and the gap rows use.
+  // The weighted gaps at x_{n+1} that the active set and the gap rows use, and which slave
+  // nodes have a gap row at all: the segmentation's D_jj can be positive where these blocks
+  // integrate nothing (their own pre-checks), and such a node must stay inactive.
   std::fill(s.gap.begin(), s.gap.end(), 0.0);
-  for (const auto& e : all)
+  s.em_row.assign(s.gap.size(), 0);
+  for (const auto& e : all) {
     if (e.kind == g1) s.gap[static_cast<std::size_t>(e.j)] += e.value;
+    if (e.kind == end_gradient && e.value != 0.0) s.em_row[static_cast<std::size_t>(e.j)] = 1;
+  }
   std::stable_sort(all.begin(), all.end(),
                    [](const Entry& a, const Entry& b) { return a.j < b.j; });
   for (std::size_t begin = 0; begin < all.size();) {

@@ -177,7 +177,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   // The status each owned node's condition asks for at this iterate, decided by its owner.
   for (std::size_t j = 0; j < n; ++j) {
     if (s.node_owners[j] != comm.rank()) continue;
-    if (s.D[j] <= 1e-12 * d_max) continue;
+    if (!paired(s, j, d_max)) continue;
     if (frame(s, j).wn < min_free_normal) continue;
     const auto node = friction_node(s, j);
     double lambda_n = 0.0;
@@ -209,24 +209,34 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     s.itf.set_normals_from_owners(normals);
   }
   if (init && s.has_old) s.D_diag_old = s.D_diag;
-  // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 8
+  // Cycling guard (contact/active_set_cycles.hpp): when the statuses return to those of k <= 12
   // iterations ago, the nodes that alternate keep the largest of their statuses in the cycle
   // (inactive < stick < slip) for the rest of the step; the others go on being decided. A frozen
   // node whose condition asks for another status counts as a change, so that an inconsistent state
   // (say, a stuck node whose traction has left the cone) is never accepted: the step is cut
   // instead.
+  // A node without a pair at this iterate (paired()) is released from a frozen or held status
+  // (no gap row: the saddle point would be singular; see evaluate()).
   const auto decided = [&](const std::vector<char>& wanted) {
     std::vector<char> out = wanted;
     for (std::size_t j = 0; j < n; ++j)
-      if (s.frozen_nodes[j]) out[j] = s.status_previous[j];
+      if ((held_ || s.frozen_nodes[j]) && paired(s, j, d_max)) out[j] = s.status_previous[j];
     return out;
   };
-  std::vector<char> status = held_ ? s.status_previous : decided(next);
+  std::vector<char> status = decided(next);
+  for (std::size_t j = 0; j < n; ++j)
+    released_ += (held_ || s.frozen_nodes[j]) && s.status_previous[j] != 0 && !paired(s, j, d_max);
   if (!held_) {
     std::vector<char> alternating;
     if (s.cycles.guard(status, alternating) > 0)
-      for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t j = 0; j < n; ++j) {
         if (alternating[j]) s.frozen_nodes[j] = 1;
+        // The largest status of the cycle, unless the node has no pair at this iterate.
+        if (status[j] != 0 && !paired(s, j, d_max)) {
+          status[j] = 0;
+          ++released_;
+        }
+      }
   }
   s.status = std::move(status);
   // A frozen node is consistent if its stick/slip condition holds up to a small tolerance (a

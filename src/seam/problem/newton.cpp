@@ -271,6 +271,15 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         changes > 0 && contact_.active() && changes == contact_.n_inconsistent();
     stalled = frozen_only && (conv.meets_tolerance || conv.at_floor) ? stalled + 1 : 0;
     if (logging_) out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
+    if (const int released = contact_.active() ? contact_.n_released() : 0;
+        logging_ && released > 0) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "step %5d  iteration %3d  contact: %d node(s) held active by the cycling guard "
+                    "had no pair (D_jj = 0) and were released",
+                    step, it, released);
+      out_.note(line);
+    }
     last_norm_ = norm;
     res.residual = reference > 0 ? norm / reference : 0.0;
     res.iterations = it;

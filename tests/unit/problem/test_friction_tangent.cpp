@@ -27,20 +27,7 @@
 // discrete gradient between the pressed state x_n (the start of the step) and the dragged
 // one, and its derivative holds the Hessians of the weighted gaps and the derivative of the
 // correction term.
-#include "seam/common/mpi.hpp"
-#include "seam/common/timer.hpp"
-#include "seam/io/config.hpp"
-#include "seam/la/petsc.hpp"
-#include "seam/mesh/gmsh_reader.hpp"
-#include "seam/meshtying/tied_interface.hpp"
-#include "seam/problem/assembly.hpp"
-#include "seam/problem/contact_constraint.hpp"
-#include "seam/problem/discretization.hpp"
-#include "seam/problem/model.hpp"
-#include "seam/problem/newton.hpp"
-#include "seam/problem/output.hpp"
-#include "seam/problem/saddle_point.hpp"
-#include "seam/problem/tying_constraint.hpp"
+#include "contact_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -186,27 +173,14 @@ Errors check(const Case& c, int n_directions) {
     std::ofstream(folder / "case.yaml") << yaml;
   }
   comm.barrier();
-  const auto config = io::load_config(folder / "case.yaml");
-  mesh::ReadOptions opts;
-  opts.dim = config.dimension;
-  opts.order = config.mesh.order;
-  opts.serendipity = c.geo.find("SecondOrderIncomplete = 1") != std::string::npos;
-  auto mesh = mesh::read_mesh(folder / "case.geo", opts);
-  const Discretization disc(mesh, comm);
-  const auto model = build_model(config, disc);
-  PhaseTimers timers;
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers);
-  const TyingConstraint tying(tied, disc, model);
-  SaddlePoint saddle(tied, disc, model);
-  ContactConstraint contact(config, disc, model);
-  Output out(config, disc, model, tied, folder / "out", true);
-  NewtonSolver newton(config, model, disc, tying, saddle, contact, out);
+  ContactRun run(comm, folder, c.geo.find("SecondOrderIncomplete = 1") != std::string::npos);
+  const Discretization& disc = run.disc;
+  const Model& model = run.model;
+  PhaseTimers& timers = run.timers;
+  ContactConstraint& contact = run.contact;
+  NewtonSolver& newton = run.newton;
   la::Vector u = disc.make_vector();
-  const auto evaluator = [&](double t) {
-    return [&, t](const la::Vector& state, la::Vector& r, la::Matrix* K, la::Vector& f_ext) {
-      return assemble(model, disc, state, t, r, K, &f_ext);
-    };
-  };
+  const auto evaluator = [&run](double t) { return run.evaluator(t); };
   // Press (accepted), then drag: converged but not accepted. The step starts (energy-momentum
   // contact) at the reference and at the pressed state.
   contact.start_step(u);
