@@ -41,6 +41,16 @@ double side_young(const Discretization& disc, const Model& model,
   return disc.comm().max(young);
 }
 
+/// The global ids of the side extracted from `region` (whose nodes are `mesh_nodes`).
+SideIds side_ids(const Discretization& disc, const mesh::Region& region,
+                 std::span<const std::int32_t> mesh_nodes) {
+  SideIds ids;
+  ids.facets = meshtying::facet_gids(region, [&](std::int32_t c) { return disc.cell_gid(c); });
+  ids.nodes.reserve(mesh_nodes.size());
+  for (const auto n : mesh_nodes) ids.nodes.push_back(disc.node_gid(n));
+  return ids;
+}
+
 } // namespace
 
 ContactConstraint::ContactConstraint(const io::Config& config, const Discretization& disc,
@@ -95,7 +105,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.node_keys.resize(n);
     s.node_owners.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
-      s.node_keys[j] = static_cast<std::int64_t>(j);
+      s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
       s.node_owners[j] = disc.node_owner(nodes[j]);
     }
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
@@ -113,13 +123,15 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     for (std::int32_t f = 0; f < region.n_facets(); ++f)
       if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
         s.bulk_facets.push_back(f);
+    s.slave_ids = side_ids(disc, region, s.itf.slave().mesh_nodes);
     if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
         disc.comm().size() > 1)
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
     if (s.itf.self_contact()) {
       // Self contact: each rank searches the surface facets it evaluates against the surface
       // facets ghosted to it; it hands in those of its own cells.
-      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, s.bulk_facets);
+      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, s.bulk_facets,
+                                                 s.slave_ids, s.slave_ids);
       s.itf.set_owned_facets(s.bulk_facets);
     } else if (!s.itf.rigid()) {
       // Two bodies: each rank searches the slave facets it evaluates against the master
@@ -128,7 +140,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       std::vector<local_index> held;
       for (std::int32_t f = 0; f < master.n_facets(); ++f)
         if (disc.is_local_cell(master.facet_cell[static_cast<std::size_t>(f)])) held.push_back(f);
-      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, std::move(held));
+      s.search =
+          std::make_unique<ContactSearch>(disc.comm().get(), s.itf, std::move(held), s.slave_ids,
+                                          side_ids(disc, master, s.itf.master_nodes()));
       s.itf.set_owned_facets(s.bulk_facets);
     }
     sides_.push_back(std::move(s));
@@ -978,20 +992,28 @@ void ContactConstraint::distribute(Side& s) {
     return;
   }
   const int dim = disc_.dim();
-  const auto n = static_cast<std::size_t>(s.itf.slave().n_facets());
-  std::vector<double> centroids(n * static_cast<std::size_t>(dim)), work(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    const auto c = s.itf.slave_centroid(static_cast<local_index>(f));
-    for (int a = 0; a < dim; ++a) centroids[f * dim + a] = c[static_cast<std::size_t>(a)];
-    // The work of a facet: its candidate pairs (each one a projection and a clip) and its
-    // integration cells at the last evaluation (known once it has been evaluated).
-    work[f] = static_cast<double>(s.itf.n_pairs_of(static_cast<local_index>(f)));
-    if (s.distributed) work[f] += static_cast<double>(s.part.facet_cells[f]);
-  }
   const auto owned = s.itf.owned_facets();
   const std::vector<local_index> held =
       s.distributed ? std::vector<local_index>(owned.begin(), owned.end()) : s.bulk_facets;
-  s.itf.set_owned_facets(s.distribution->distribute(held, centroids, work));
+  // The facets this rank holds, by global id, with their centroids and work.
+  const auto n = held.size();
+  std::vector<std::int64_t> ids(n);
+  std::vector<double> centroids(n * static_cast<std::size_t>(dim)), work(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto f = held[i];
+    ids[i] = s.slave_ids.facets[static_cast<std::size_t>(f)];
+    const auto c = s.itf.slave_centroid(f);
+    for (int a = 0; a < dim; ++a) centroids[i * dim + a] = c[static_cast<std::size_t>(a)];
+    // The work of a facet: its candidate pairs (each one a projection and a clip) and its
+    // integration cells at the last evaluation (known once it has been evaluated).
+    work[i] = static_cast<double>(s.itf.n_pairs_of(f));
+    if (s.distributed)
+      work[i] += static_cast<double>(s.part.facet_cells[static_cast<std::size_t>(f)]);
+  }
+  const auto mine = s.distribution->distribute(ids, centroids, work);
+  std::vector<local_index> facets(mine.size());
+  for (std::size_t i = 0; i < mine.size(); ++i) facets[i] = s.slave_ids.facet(mine[i]);
+  s.itf.set_owned_facets(std::move(facets));
   s.distributed = true;
 }
 

@@ -215,7 +215,9 @@ private:
     /// D_jj (the nodal weight with standard multipliers) and g~_j: summed on the owner of
     /// slave node j, which decides its status, then published to every rank.
     std::vector<double> D, gap;
-    std::vector<std::int64_t> node_keys; ///< side-local slave node j, the same on every rank
+    /// The global ids of the slave side's facets and nodes (crossing the ranks).
+    SideIds slave_ids;
+    std::vector<std::int64_t> node_keys; ///< node id of slave node j (the mesh as read)
     std::vector<int> node_owners;        ///< the rank owning each slave node
     struct {
       std::int64_t sent = 0;    ///< nodal records sent to the owners at the last evaluate

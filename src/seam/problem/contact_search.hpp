@@ -19,9 +19,11 @@
 // a fraction of the mean facet size, exchanged anew only when a surface node has moved more
 // than half the skin since the last exchange.
 //
-// The interface still holds its sides whole on every rank (the placement reads them, and the
-// reused ghosts take their positions from them); what this removes is every rank's search
-// against the whole surface.
+// What crosses the ranks names facets and nodes by their global ids (SideIds: cell of the mesh
+// as read and local facet, node of the mesh as read), not by their index in the side, so that
+// the side a rank holds need not be whole. The interface still holds its sides whole on every
+// rank (the placement reads them, and the reused ghosts take their positions from them); what
+// this removes is every rank's search against the whole surface.
 #include "seam/contact/contact_interface.hpp"
 #include "seam/parallel/distributed_search.hpp"
 #include "seam/parallel/ghosting.hpp"
@@ -36,6 +38,15 @@
 
 namespace seam::problem {
 
+/// The global ids of the facets and the nodes of an interface side, in the side's order (both
+/// increasing): meshtying::facet_gids and the node ids of the mesh as read.
+struct SideIds {
+  std::vector<std::int64_t> facets, nodes;
+  /// The side-local index of facet (node) id `id`; InternalError if the side has none.
+  local_index facet(std::int64_t id) const;
+  local_index node(std::int64_t id) const;
+};
+
 class ContactSearch {
 public:
   /// The skin of the reused ghosting as a fraction of the slave side's mean edge: 0.25, or the
@@ -45,8 +56,10 @@ public:
 
   /// `held`: the facets (side-local: master facets of two bodies, surface facets of self
   /// contact) this rank hands in to the ghosting, each on one rank (e.g. those of the cells it
-  /// assembles). Switches `itf` to the external search.
-  ContactSearch(MPI_Comm comm, contact::ContactInterface& itf, std::vector<local_index> held);
+  /// assembles). `slave`, `master`: the global ids of the slave and the master side (of the
+  /// surface twice on self contact). Switches `itf` to the external search.
+  ContactSearch(MPI_Comm comm, contact::ContactInterface& itf, std::vector<local_index> held,
+                SideIds slave, SideIds master);
 
   /// Collective. The candidate pairs of the owned slave facets of `itf` at its last place().
   void find(contact::ContactInterface& itf);
@@ -73,11 +86,16 @@ public:
 
 private:
   void find_self(contact::ContactInterface& itf);
+  /// The ghosts to the interface's integration, in side-local ids.
+  void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts);
 
   MPI_Comm comm_;
   double skin_;
   std::vector<local_index> held_;
+  SideIds slave_ids_, master_ids_;
   std::vector<local_index> local_; // side node -> part node, scratch
+  // The ghosts in side-local ids for the interface, scratch.
+  std::vector<std::int64_t> ghost_facets_, ghost_nodes_;
   parallel::SurfacePart slave_part_, master_part_;
   std::vector<mortar::CandidatePair> pairs_;
   // Two bodies.
