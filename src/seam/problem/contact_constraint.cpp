@@ -89,8 +89,15 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.active.assign(n, 0);
     s.active_previous = s.active;
     s.active_accepted = s.active;
-    // Prescribed components of the slave nodes (known on the owning rank only).
     const auto& nodes = s.itf.slave().mesh_nodes;
+    s.node_keys.resize(n);
+    s.node_owners.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
+      s.node_owners[j] = disc.node_owner(nodes[j]);
+    }
+    // Prescribed components of the slave nodes: known on the owning rank only (the model
+    // holds the owned rows), published by the owners (in proportion to the prescribed nodes).
     std::vector<double> fixed(n * dim, 0.0);
     for (const auto& d : model.dirichlet) {
       const auto it = std::lower_bound(nodes.begin(), nodes.end(), d.node);
@@ -99,15 +106,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       for (int c = 0; c < dim; ++c)
         if (disc.global_dof(d.node, c) == d.dof) fixed[j * dim + c] = 1.0;
     }
-    disc.comm().sum_in_place(fixed);
+    parallel::publish_from_owners(disc.comm().get(), s.node_keys, s.node_owners, fixed, dim);
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
-    s.node_keys.resize(n);
-    s.node_owners.resize(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
-      s.node_owners[j] = disc.node_owner(nodes[j]);
-    }
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
     // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
