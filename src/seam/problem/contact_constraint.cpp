@@ -141,9 +141,15 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       std::vector<local_index> held;
       for (std::int32_t f = 0; f < master.n_facets(); ++f)
         if (disc.is_local_cell(master.facet_cell[static_cast<std::size_t>(f)])) held.push_back(f);
-      s.search =
-          std::make_unique<ContactSearch>(disc.comm().get(), s.itf, std::move(held), s.slave_ids,
-                                          side_ids(disc, master, s.itf.master_nodes()));
+      s.master_in_part = master_held_in_part(itf, config);
+      s.master_facets = static_cast<int>(disc.comm().sum(static_cast<double>(held.size())));
+      if (s.master_in_part)
+        // The parts agree on the quadrature (a part may hold no curved master facet).
+        s.itf.set_cell_quadrature_degree(
+            static_cast<int>(disc.comm().max(static_cast<double>(s.itf.cell_quadrature_degree()))));
+      s.search = std::make_unique<ContactSearch>(
+          disc.comm().get(), s.itf, std::move(held), s.slave_ids,
+          side_ids(disc, master, s.itf.master_nodes()), s.master_in_part);
       s.itf.set_owned_facets(s.bulk_facets);
     }
     sides_.push_back(std::move(s));
@@ -164,6 +170,11 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   std::sort(interface_nodes_.begin(), interface_nodes_.end());
   interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
                          interface_nodes_.end());
+  // The interface nodes of all ranks, each counted by its owner (a master side held in part
+  // is not whole on any rank).
+  interface_total_ = static_cast<std::int64_t>(disc.comm().sum(
+      static_cast<double>(std::count_if(interface_nodes_.begin(), interface_nodes_.end(),
+                                        [&](std::int32_t node) { return disc.owns_node(node); }))));
   if (!saddle_point_) return;
   // One multiplier per slave node (dim with friction), owned with the node; numbered rank by
   // rank.
@@ -236,6 +247,7 @@ std::vector<std::int32_t> ContactConstraint::nodes_read() {
       s.search->nodes_read(s.itf, more);
       const auto masters = s.itf.master_nodes();
       for (const auto p : more) out.push_back(masters[static_cast<std::size_t>(p)]);
+      out.insert(out.end(), s.ghost_nodes.begin(), s.ghost_nodes.end());
     }
     for (const auto& e : s.M_old) out.push_back(e.master_node);
   }
@@ -253,12 +265,11 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
     std::vector<PetscInt> dofs;
     dofs.reserve(gathered_.size() * static_cast<std::size_t>(dim));
     for (const auto node : gathered_)
-      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
+      for (int c = 0; c < dim; ++c) dofs.push_back(dof_of(node, c));
     gather_ = la::Gather(u, dofs);
     gather_made_ = true;
     start_read_ = false;
-    if (u_mesh_.empty())
-      u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+    u_mesh_.resize((static_cast<std::size_t>(disc_.mesh().n_nodes()) + outside_.size()) * dim, 0.0);
   }
   const auto read = [&](const la::Vector& v, std::vector<double>& out) {
     std::vector<double> values;
@@ -414,6 +425,17 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
     s.itf.set_candidates(s.held_pairs);
     return;
   }
+  if (s.master_in_part) {
+    // The ghosts' nodes need not be nodes of this part: their positions (for reused ghosts)
+    // are their reference coordinates plus the displacement read, and the mortar entries
+    // name them by mesh node or outside node.
+    std::vector<double> positions;
+    node_positions(s.ghost_nodes, positions);
+    s.search->find(s.itf, positions);
+    map_master_nodes(s.search->master_ghosts().node_ids, s.ghost_nodes);
+    s.search->hand_in_part(s.itf, s.ghost_nodes);
+    return;
+  }
   s.search->find(s.itf);
   if (!s.search->self()) return;
   // Pair cycling guard (self contact). Whether two facets are a candidate pair is decided on
@@ -526,7 +548,8 @@ void ContactConstraint::add_force(la::Vector& r, bool between_bodies_only) const
       }
       if (!s.friction) continue;
     }
-    std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+    std::vector<double> f(
+        (static_cast<std::size_t>(disc_.mesh().n_nodes()) + outside_.size()) * dim, 0.0);
     if (s.discrete_gradient)
       add_energy_momentum_friction_force(s, f);
     else
@@ -553,8 +576,7 @@ void ContactConstraint::add_force(la::Vector& r, bool between_bodies_only) const
     }
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (f[i] == 0.0) continue;
-      rows.push_back(
-          disc_.global_dof(static_cast<std::int32_t>(i / dim), static_cast<int>(i % dim)));
+      rows.push_back(dof_of(static_cast<std::int32_t>(i / dim), static_cast<int>(i % dim)));
       values.push_back(f[i]);
     }
   }
@@ -617,7 +639,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
         for (int b = 0; b < dim; ++b) {
           const double v = scale * normals[j * dim + a] * f.w[b];
           if (v == 0.0) continue;
-          li.push_back(disc_.global_dof(e.master_node, a));
+          li.push_back(dof_of(e.master_node, a));
           lj.push_back(disc_.global_dof(nodes[j], b));
           lv.push_back(v);
         }
@@ -745,8 +767,107 @@ void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vec
 
 PetscInt ContactConstraint::global_dof(std::int64_t mesh_dof) const {
   const int dim = disc_.dim();
-  return disc_.global_dof(static_cast<std::int32_t>(mesh_dof / dim),
-                          static_cast<int>(mesh_dof % dim));
+  return dof_of(static_cast<std::int32_t>(mesh_dof / dim), static_cast<int>(mesh_dof % dim));
+}
+
+PetscInt ContactConstraint::dof_of(std::int32_t node, int c) const {
+  const auto n = disc_.mesh().n_nodes();
+  if (node < n) return disc_.global_dof(node, c);
+  return static_cast<PetscInt>(outside_[static_cast<std::size_t>(node - n)].dofs[c]);
+}
+
+void ContactConstraint::node_positions(std::span<const std::int32_t> nodes,
+                                       std::vector<double>& out) const {
+  const int dim = disc_.dim();
+  const auto& mesh = disc_.mesh();
+  const auto n = mesh.n_nodes();
+  out.resize(nodes.size() * static_cast<std::size_t>(dim));
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto node = static_cast<std::size_t>(nodes[i]);
+    const double* x =
+        nodes[i] < n ? &mesh.x[node * dim] : outside_[node - static_cast<std::size_t>(n)].x;
+    for (int c = 0; c < dim; ++c) out[i * dim + c] = x[c] + u_mesh_[node * dim + c];
+  }
+}
+
+void ContactConstraint::map_master_nodes(std::span<const std::int64_t> ids,
+                                         std::vector<std::int32_t>& out) {
+  const auto& comm = disc_.comm();
+  const int size = comm.size(), dim = disc_.dim();
+  const auto home = [size](std::int64_t id) { return static_cast<int>(id % size); };
+  const auto by_id = [](const OutsideNode& a, const OutsideNode& b) { return a.id < b.id; };
+  const auto send = [&](std::vector<OutsideNode>& records) {
+    std::sort(records.begin(), records.end(), [&](const OutsideNode& a, const OutsideNode& b) {
+      return home(a.id) != home(b.id) ? home(a.id) < home(b.id) : a.id < b.id;
+    });
+    std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
+    for (const auto& r : records) ++offsets[static_cast<std::size_t>(home(r.id)) + 1];
+    for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
+    std::vector<std::int64_t> recv_offsets;
+    return std::pair(parallel::alltoallv<OutsideNode>(comm.get(), records, offsets, recv_offsets),
+                     recv_offsets);
+  };
+  if (!directory_made_) {
+    // Every master node of the facets the ranks hand in, at its home rank (made at the first
+    // search: `seam check` builds the constraint without the dof numbering).
+    std::vector<OutsideNode> mine;
+    for (const auto& s : sides_) {
+      if (!s.master_in_part) continue;
+      std::vector<local_index> nodes;
+      s.search->nodes_read(s.itf, nodes);
+      const auto masters = s.itf.master_nodes();
+      for (const auto p : nodes) {
+        const auto node = masters[static_cast<std::size_t>(p)];
+        OutsideNode r;
+        r.id = disc_.node_gid(node);
+        for (int c = 0; c < dim; ++c) {
+          r.dofs[c] = disc_.global_dof(node, c);
+          r.x[c] = disc_.mesh().x[static_cast<std::size_t>(node) * dim + c];
+        }
+        mine.push_back(r);
+      }
+    }
+    directory_ = send(mine).first;
+    std::sort(directory_.begin(), directory_.end(), by_id);
+    directory_.erase(
+        std::unique(directory_.begin(), directory_.end(),
+                    [](const OutsideNode& a, const OutsideNode& b) { return a.id == b.id; }),
+        directory_.end());
+    directory_made_ = true;
+  }
+  const auto outside_node = [&](std::int64_t id) {
+    const auto it = std::lower_bound(outside_index_.begin(), outside_index_.end(),
+                                     std::pair<std::int64_t, std::int32_t>{id, -1});
+    return it != outside_index_.end() && it->first == id ? it->second : -1;
+  };
+  // Ids neither interface nodes of this part nor known outside nodes: asked at their homes.
+  std::vector<OutsideNode> asked;
+  for (const auto id : ids)
+    if (node_of_gid(id) < 0 && outside_node(id) < 0) asked.emplace_back().id = id;
+  auto [requests, from] = send(asked);
+  std::vector<OutsideNode> answers(requests.size());
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const auto it = std::lower_bound(directory_.begin(), directory_.end(), requests[i], by_id);
+    SEAM_CHECK(it != directory_.end() && it->id == requests[i].id, InternalError,
+               "contact: master node ", requests[i].id, " is in no rank's master facets");
+    answers[i] = *it;
+  }
+  // Back to the asking ranks, in the order they asked.
+  std::vector<std::int64_t> recv_offsets;
+  const auto found = parallel::alltoallv<OutsideNode>(comm.get(), answers, from, recv_offsets);
+  for (const auto& r : found) {
+    if (outside_node(r.id) >= 0) continue;
+    const auto node = static_cast<std::int32_t>(disc_.mesh().n_nodes() + outside_.size());
+    outside_.push_back(r);
+    outside_index_.insert(std::lower_bound(outside_index_.begin(), outside_index_.end(),
+                                           std::pair<std::int64_t, std::int32_t>{r.id, -1}),
+                          {r.id, node});
+  }
+  out.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const auto node = node_of_gid(ids[i]);
+    out[i] = node >= 0 ? node : outside_node(ids[i]);
+  }
 }
 
 bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector& minus_r,
@@ -1107,12 +1228,12 @@ std::vector<std::string> ContactConstraint::describe() const {
                     "master roles assigned at every search), %s, c_n = %.4g",
                     s.itf.name().c_str(), n_facets, multipliers, s.c_n);
     else
-      std::snprintf(
-          line, sizeof line, "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
-          s.itf.name().c_str(), n_facets,
-          s.itf.rigid() ? s.itf.obstacle().name()
-                        : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
-          multipliers, s.c_n);
+      std::snprintf(line, sizeof line,
+                    "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
+                    s.itf.name().c_str(), n_facets,
+                    s.itf.rigid() ? s.itf.obstacle().name()
+                                  : (std::to_string(s.master_facets) + " master facets").c_str(),
+                    multipliers, s.c_n);
     std::string text = line;
     if (s.discrete_gradient)
       text += s.friction
@@ -1164,9 +1285,21 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               reused +
               ") and the mortar integration of the own slave elements (against the "
               "ghosted surface facets)";
+    else if (s.search && s.master_in_part)
+      text += "the slave side (" + n_slave + " facets, nodes, positions), " + arrays + read +
+              "; in part: the master side (the facets of its own and ghost cells, " +
+              std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
+              ", the others read as ghosts)" +
+              "; distributed: the search (own slave elements against the master facets "
+              "ghosted by bounding boxes" +
+              reused +
+              ") and the mortar integration of the own slave "
+              "elements (against the ghosted master facets)";
     else if (s.search)
-      text += "both sides (" + n_slave + " slave and " + std::to_string(s.itf.n_master_facets()) +
-              " master facets, their nodes and positions), " + arrays + read +
+      text += "both sides (" + n_slave + " slave and " + std::to_string(s.master_facets) +
+              " master facets, their nodes and positions; the master side whole for friction, "
+              "standard multipliers or energy-momentum contact), " +
+              arrays + read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +
               reused +
@@ -1291,7 +1424,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     // The frictional work including this step (save() adds it once the step is accepted).
     rep.frictional_dissipation = s.friction ? s.dissipation + dissipation_increment(s) : 0.0;
     rep.slave_elements = s.itf.slave().n_facets();
-    rep.master_elements = s.itf.n_master_facets();
+    rep.master_elements = s.itf.rigid() ? s.itf.n_master_facets() : s.master_facets;
     rep.candidate_pairs = static_cast<int>(s.share.candidates);
     rep.work_min = s.balance.time.min;
     rep.work_mean = s.balance.time.mean;
@@ -1310,7 +1443,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_nodal_records = s.nodal.sent;
     if (out.empty()) {
       rep.local_nodes_gathered = static_cast<std::int64_t>(gathered_.size());
-      rep.interface_nodes = static_cast<std::int64_t>(interface_nodes_.size());
+      rep.interface_nodes = interface_total_;
     }
     rep.local_master_facets_read = s.itf.rigid() ? 0 : s.itf.n_master_facets_read();
     rep.local_normals = s.itf.n_normals_computed();

@@ -32,6 +32,16 @@ struct GlobalFacingPair {
 
 } // namespace
 
+bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
+  for (const auto& other : config.interfaces)
+    if (other.type == io::InterfaceType::contact && other.multiplier != io::Multiplier::dual)
+      return false;
+  return itf.type == io::InterfaceType::contact && itf.master && itf.surface.empty() &&
+         itf.multiplier == io::Multiplier::dual &&
+         itf.friction.model == io::FrictionModel::frictionless &&
+         config.time.integrator != io::Integrator::energy_momentum;
+}
+
 local_index SideIds::facet(std::int64_t id) const {
   return index_of(facets, id, "facet");
 }
@@ -66,9 +76,10 @@ double ContactSearch::skin_factor() {
 }
 
 ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
-                             std::vector<local_index> held, SideIds slave, SideIds master)
-    : comm_(comm), skin_(skin_factor() * itf.slave_mesh_size()), held_(std::move(held)),
-      slave_ids_(std::move(slave)), master_ids_(std::move(master)) {
+                             std::vector<local_index> held, SideIds slave, SideIds master,
+                             bool master_in_part)
+    : comm_(comm), skin_(skin_factor() * itf.slave_mesh_size()), in_part_(master_in_part),
+      held_(std::move(held)), slave_ids_(std::move(slave)), master_ids_(std::move(master)) {
   std::sort(held_.begin(), held_.end());
   // The ids increase along the sides (local numbering monotone in the mesh as read), so a
   // side-local index is found by bisection.
@@ -104,12 +115,13 @@ void ContactSearch::nodes_read(const contact::ContactInterface& itf,
   const auto set = side.facet_set();
   for (const auto f : held_)
     for (const auto n : set.facet_nodes(f)) out.push_back(n);
+  if (in_part_) return;
   const auto& ghosts = search_ ? search_->ghosts() : ghosts_->ghosts();
   const auto& ids = ghosts_ ? slave_ids_ : master_ids_;
   for (const auto id : ghosts.node_ids) out.push_back(ids.node(id));
 }
 
-void ContactSearch::find(contact::ContactInterface& itf) {
+void ContactSearch::find(contact::ContactInterface& itf, std::span<const double> ghost_positions) {
   if (ghosts_) {
     find_self(itf);
     return;
@@ -119,6 +131,23 @@ void ContactSearch::find(contact::ContactInterface& itf) {
                        slave_part_);
   meshtying::side_part(itf.master(), master_ids_.facets, master_ids_.nodes, held_, local_,
                        master_part_);
+  if (in_part_) {
+    // Reused ghosts take their positions from the caller: their nodes need not be held.
+    position_ids_ = search_->ghosts().node_ids;
+    const auto dim = static_cast<std::size_t>(itf.dim());
+    SEAM_CHECK(ghost_positions.size() == position_ids_.size() * dim, InternalError,
+               "contact search: ", ghost_positions.size() / dim, " ghost positions for ",
+               position_ids_.size(), " ghost nodes");
+    static constexpr double none[3] = {0.0, 0.0, 0.0};
+    search_->find_pairs(slave_part_, master_part_,
+                        ghost_positions.empty() ? std::span<const double>(none, dim)
+                                                : ghost_positions,
+                        position_ids_);
+    pairs_.clear();
+    for (const auto& p : search_->pairs())
+      pairs_.push_back({owned[static_cast<std::size_t>(p.slave)], p.master});
+    return;
+  }
   search_->find_pairs(slave_part_, master_part_, itf.master().coordinates, master_ids_.nodes);
   pairs_.clear();
   const auto& ghosts = search_->ghosts();
@@ -127,6 +156,19 @@ void ContactSearch::find(contact::ContactInterface& itf) {
                       master_ids_.facet(ghosts.facet_ids[static_cast<std::size_t>(p.master)])});
   // The integration reads the master facets from the ghosts, not from the side held whole.
   hand_ghosts(itf, ghosts);
+  itf.set_candidates(pairs_);
+}
+
+void ContactSearch::hand_in_part(contact::ContactInterface& itf,
+                                 std::span<const std::int32_t> mesh_nodes) {
+  SEAM_ASSERT(in_part_);
+  const auto& ghosts = search_->ghosts();
+  // The pairs name the ghosts by their index, which the interface takes as their facet id.
+  ghost_facets_.resize(ghosts.facet_ids.size());
+  for (std::size_t f = 0; f < ghost_facets_.size(); ++f)
+    ghost_facets_[f] = static_cast<std::int64_t>(f);
+  itf.set_master_facets(ghost_facets_, ghosts.offsets, ghosts.connectivity, ghosts.node_ids,
+                        ghosts.coords, mesh_nodes);
   itf.set_candidates(pairs_);
 }
 
