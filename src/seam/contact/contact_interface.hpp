@@ -214,6 +214,11 @@ public:
   }
   /// The absolute inflation of the search volumes (the same on every part).
   double search_inflation() const { return search_options_.inflation; }
+  /// The inflation from the shortest edge of both sides, `min_edge` (a master side held in
+  /// part: the shortest edge of all parts, so that every part searches as the whole does).
+  void set_search_edge(double min_edge) {
+    search_options_.inflation = search_options_.inflation_factor * min_edge;
+  }
   /// The master side at the last update / place() (empty for a rigid obstacle).
   const meshtying::InterfaceSide& master() const { return master_; }
 

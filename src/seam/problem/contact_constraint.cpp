@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <string_view>
 
@@ -143,8 +144,18 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
         if (disc.is_local_cell(master.facet_cell[static_cast<std::size_t>(f)])) held.push_back(f);
       s.master_in_part = master_held_in_part(itf, config);
       s.master_facets = static_cast<int>(disc.comm().sum(static_cast<double>(held.size())));
+      if (s.master_in_part) {
+        // The parts agree on the search inflation (from the shortest edge of both sides, as
+        // search::InterfaceSearch takes it) and on the quadrature (a part may hold no curved
+        // master facet).
+        const double huge = std::numeric_limits<double>::max();
+        const double part = search::min_edge_length(s.itf.master().surface());
+        double lm = disc.comm().min(part > 0.0 ? part : huge);
+        lm = lm < huge ? lm : 0.0;
+        const double ls = search::min_edge_length(s.itf.slave().surface());
+        s.itf.set_search_edge(ls > 0.0 && lm > 0.0 ? std::min(ls, lm) : std::max(ls, lm));
+      }
       if (s.master_in_part)
-        // The parts agree on the quadrature (a part may hold no curved master facet).
         s.itf.set_cell_quadrature_degree(
             static_cast<int>(disc.comm().max(static_cast<double>(s.itf.cell_quadrature_degree()))));
       s.search = std::make_unique<ContactSearch>(
@@ -331,7 +342,8 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
   // Only the nodes this rank reads (nodes_read()), not the whole interface; the scatter is
   // made anew when they change (a redistribution, a new ghost set).
   refresh_displacement(u);
-  const std::span<const double> u_mesh = u_mesh_;
+  // Taken anew after each refresh: outside nodes found by a search extend u_mesh_.
+  std::span<const double> u_mesh = u_mesh_;
   int changes = 0;
   for (auto& s : sides_) {
     if (retrial) s.cycles.retract();
@@ -354,12 +366,16 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       // read anew.
       distribute(s);
       refresh_displacement(u);
+      u_mesh = u_mesh_;
       ScopedTimer timer(timers, "search");
       search(s, u_mesh, t);
     }
     // New ghosts (an exchange) come with their positions; their nodes' displacements are read
     // from here on (friction reads the master nodes of M).
-    if (s.search && s.search->n_exchanges() != exchanges) refresh_displacement(u);
+    if (s.search && s.search->n_exchanges() != exchanges) {
+      refresh_displacement(u);
+      u_mesh = u_mesh_;
+    }
     ScopedTimer timer(timers, "mortar");
     const double cpu = cpu_seconds();
     s.itf.evaluate(s.part);
@@ -776,17 +792,20 @@ PetscInt ContactConstraint::dof_of(std::int32_t node, int c) const {
   return static_cast<PetscInt>(outside_[static_cast<std::size_t>(node - n)].dofs[c]);
 }
 
+double ContactConstraint::reference(std::int32_t node, int c) const {
+  const auto n = disc_.mesh().n_nodes();
+  if (node < n) return disc_.mesh().x[static_cast<std::size_t>(node) * disc_.dim() + c];
+  return outside_[static_cast<std::size_t>(node - n)].x[c];
+}
+
 void ContactConstraint::node_positions(std::span<const std::int32_t> nodes,
                                        std::vector<double>& out) const {
   const int dim = disc_.dim();
-  const auto& mesh = disc_.mesh();
-  const auto n = mesh.n_nodes();
   out.resize(nodes.size() * static_cast<std::size_t>(dim));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const auto node = static_cast<std::size_t>(nodes[i]);
-    const double* x =
-        nodes[i] < n ? &mesh.x[node * dim] : outside_[node - static_cast<std::size_t>(n)].x;
-    for (int c = 0; c < dim; ++c) out[i * dim + c] = x[c] + u_mesh_[node * dim + c];
+    for (int c = 0; c < dim; ++c)
+      out[i * dim + c] = reference(nodes[i], c) + u_mesh_[node * dim + c];
   }
 }
 
@@ -1297,8 +1316,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               "elements (against the ghosted master facets)";
     else if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.master_facets) +
-              " master facets, their nodes and positions; the master side whole for friction, "
-              "standard multipliers or energy-momentum contact), " +
+              " master facets, their nodes and positions; the master side whole for "
+              "friction, standard multipliers or energy-momentum contact), " +
               arrays + read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +
