@@ -90,7 +90,7 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     std::vector<double> value;
     for (const auto& e : s.M_old) {
       slave.push_back(s.slave_ids.nodes[static_cast<std::size_t>(e.slave)]);
-      master.push_back(disc_.node_gid(e.master_node));
+      master.push_back(node_id(e.master_node));
       value.push_back(e.value);
     }
     out.put_part(p + "M_old.slave_node", slave);
@@ -182,15 +182,22 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     // The operator pieces of the part files this rank read.
     s.M_old.clear();
     s.D_coupling_old.clear();
+    // A master side held in part: master nodes outside this rank's part (found below).
+    std::vector<std::int64_t> outside_ids;
     checkpoints.read_parts([&](const RecordReader& part) {
       const auto slave = part.integers(p + "M_old.slave_node");
       const auto master = part.integers(p + "M_old.master", slave.size());
       const auto value = part.reals(p + "M_old.value", slave.size());
       for (std::size_t i = 0; i < slave.size(); ++i) {
         const auto j = slave_of_id(s.slave_ids, slave[i]);
-        const auto master_node = node_of_gid(master[i]);
-        if (j < 0 || master_node < 0)
+        auto master_node = node_of_gid(master[i]);
+        if (j < 0 || (master_node < 0 && !s.master_in_part))
           part.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
+        if (master_node < 0) {
+          // Numbered after the collective look-up below; -1 - k names outside_ids[k] until then.
+          master_node = -1 - static_cast<std::int32_t>(outside_ids.size());
+          outside_ids.push_back(master[i]);
+        }
         s.M_old.push_back({static_cast<local_index>(j), master_node, value[i]});
       }
       const auto row = part.integers(p + "D_coupling_old.row_node");
@@ -204,6 +211,13 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
             {static_cast<std::int32_t>(j), static_cast<std::int32_t>(k), coupling[i]});
       }
     });
+    if (s.master_in_part) {
+      // Collective (the sides are the same on every rank): the outside nodes of M^n.
+      std::vector<std::int32_t> found;
+      map_master_nodes(outside_ids, found);
+      for (auto& e : s.M_old)
+        if (e.master_node < 0) e.master_node = found[static_cast<std::size_t>(-1 - e.master_node)];
+    }
   }
 }
 

@@ -798,6 +798,11 @@ double ContactConstraint::reference(std::int32_t node, int c) const {
   return outside_[static_cast<std::size_t>(node - n)].x[c];
 }
 
+std::int64_t ContactConstraint::node_id(std::int32_t node) const {
+  const auto n = disc_.mesh().n_nodes();
+  return node < n ? disc_.node_gid(node) : outside_[static_cast<std::size_t>(node - n)].id;
+}
+
 void ContactConstraint::node_positions(std::span<const std::int32_t> nodes,
                                        std::vector<double>& out) const {
   const int dim = disc_.dim();
@@ -1316,8 +1321,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               "elements (against the ghosted master facets)";
     else if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.master_facets) +
-              " master facets, their nodes and positions; the master side whole for "
-              "friction, standard multipliers or energy-momentum contact), " +
+              " master facets, their nodes and positions; the master side whole with "
+              "standard multipliers or energy-momentum contact), " +
               arrays + read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +

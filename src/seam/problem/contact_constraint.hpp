@@ -413,8 +413,9 @@ private:
   /// an outside node, whose global dofs and reference coordinates come from the directory
   /// (the rank id % size keeps those of the nodes of the master facets the ranks hand in).
   void map_master_nodes(std::span<const std::int64_t> ids, std::vector<std::int32_t>& out);
-  /// Reference coordinate c of a mesh or outside node.
+  /// Reference coordinate c and id in the mesh as read of a mesh or outside node.
   double reference(std::int32_t node, int c) const;
+  std::int64_t node_id(std::int32_t node) const;
   /// The current positions (reference plus u_mesh_) of `nodes` (mesh or outside nodes).
   void node_positions(std::span<const std::int32_t> nodes, std::vector<double>& out) const;
   /// The mesh nodes whose displacement this rank's evaluation reads (sorted): per side the

@@ -38,7 +38,6 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
       return false;
   return itf.type == io::InterfaceType::contact && itf.master && itf.surface.empty() &&
          itf.multiplier == io::Multiplier::dual &&
-         itf.friction.model == io::FrictionModel::frictionless &&
          config.time.integrator != io::Integrator::energy_momentum;
 }
 

@@ -51,8 +51,8 @@ struct SideIds {
 /// facets of its own and ghost cells (the distributed mesh no longer sends every rank the
 /// whole side) and reads every other master facet through the ghosts of the search, whose
 /// nodes need not be nodes of its part (ContactConstraint numbers them after the mesh nodes,
-/// with their global dofs). Two-body contact with dual multipliers, without friction, outside
-/// energy-momentum contact and runs with a saddle point (standard multipliers on some
+/// with their global dofs). Two-body contact with dual multipliers (with or without friction)
+/// outside energy-momentum contact and runs with a saddle point (standard multipliers on some
 /// interface); every other interface keeps its master side whole.
 bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 
