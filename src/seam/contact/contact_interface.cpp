@@ -231,7 +231,8 @@ void ContactInterface::set_master_facets(std::span<const std::int64_t> facet_ids
                                          std::span<const local_index> offsets,
                                          std::span<const local_index> connectivity,
                                          std::span<const std::int64_t> node_ids,
-                                         std::span<const double> coords) {
+                                         std::span<const double> coords,
+                                         std::span<const std::int32_t> mesh_nodes) {
   SEAM_ASSERT(external_ && !rigid_);
   SEAM_ASSERT(offsets.size() == facet_ids.size() + 1);
   SEAM_ASSERT(std::is_sorted(facet_ids.begin(), facet_ids.end()));
@@ -243,10 +244,15 @@ void ContactInterface::set_master_facets(std::span<const std::int64_t> facet_ids
   g.offsets.assign(offsets.begin(), offsets.end());
   g.nodes.assign(connectivity.begin(), connectivity.end());
   g.coordinates.assign(coords.begin(), coords.end());
-  g.mesh_nodes.resize(node_ids.size());
-  for (std::size_t i = 0; i < node_ids.size(); ++i)
-    g.mesh_nodes[i] = master_mesh_nodes_[static_cast<std::size_t>(node_ids[i])];
-  ghost_side_nodes_.assign(node_ids.begin(), node_ids.end());
+  if (mesh_nodes.empty()) {
+    g.mesh_nodes.resize(node_ids.size());
+    for (std::size_t i = 0; i < node_ids.size(); ++i)
+      g.mesh_nodes[i] = master_mesh_nodes_[static_cast<std::size_t>(node_ids[i])];
+    ghost_side_nodes_.assign(node_ids.begin(), node_ids.end());
+  } else {
+    g.mesh_nodes.assign(mesh_nodes.begin(), mesh_nodes.end());
+    ghost_side_nodes_.clear();
+  }
   // The facet type from its node count (dim - 1 dimensional facets of one order each).
   g.types.resize(facet_ids.size());
   for (std::size_t f = 0; f < facet_ids.size(); ++f) {
@@ -270,6 +276,7 @@ void ContactInterface::set_master_facets(std::span<const std::int64_t> facet_ids
 
 void ContactInterface::refresh_master_coordinates() {
   if (!ghosted_) return;
+  SEAM_ASSERT(ghost_side_nodes_.size() == ghost_master_.mesh_nodes.size());
   const int dim = this->dim();
   // The side the search cut the ghosts from: the surface of self contact, else the master side.
   const auto& source = self_ ? slave_.coordinates : master_.coordinates;

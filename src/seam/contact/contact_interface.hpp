@@ -190,10 +190,19 @@ public:
   /// surface facets and nodes of self contact; facet ids sorted; coordinates current, dim per
   /// node). Given before each set_candidates(); every master facet of an owned candidate pair
   /// must be among them (InputError otherwise). Without it the whole master side is read.
+  /// With `mesh_nodes` (a master side held in part, problem/contact_search.hpp) the ghosts'
+  /// nodes are given as mesh nodes instead (one per node; numbers at or beyond the mesh's
+  /// node count name nodes outside this part, whose dofs the caller maps), `node_ids` are
+  /// unused and refresh_master_coordinates() is not available.
   void set_master_facets(std::span<const std::int64_t> facet_ids,
                          std::span<const local_index> offsets,
                          std::span<const local_index> connectivity,
-                         std::span<const std::int64_t> node_ids, std::span<const double> coords);
+                         std::span<const std::int64_t> node_ids, std::span<const double> coords,
+                         std::span<const std::int32_t> mesh_nodes = {});
+  /// The quadrature degree of the integration cells (8 when a side has curved facets), and its
+  /// replacement (a master side held in part: the degree all parts agree on).
+  int cell_quadrature_degree() const { return options_.pair.cell_quadrature_degree; }
+  void set_cell_quadrature_degree(int degree) { options_.pair.cell_quadrature_degree = degree; }
   /// The ghosted master facets' coordinates taken anew from the sides placed at the current
   /// state (place()), for an iteration that keeps the candidate pairs of an earlier search
   /// instead of searching (the search hands the ghosts with their coordinates).
@@ -205,6 +214,11 @@ public:
   }
   /// The absolute inflation of the search volumes (the same on every part).
   double search_inflation() const { return search_options_.inflation; }
+  /// The inflation from the shortest edge of both sides, `min_edge` (a master side held in
+  /// part: the shortest edge of all parts, so that every part searches as the whole does).
+  void set_search_edge(double min_edge) {
+    search_options_.inflation = search_options_.inflation_factor * min_edge;
+  }
   /// The master side at the last update / place() (empty for a rigid obstacle).
   const meshtying::InterfaceSide& master() const { return master_; }
 

@@ -61,24 +61,17 @@ fem::CellType facet_type_of(int dim, std::size_t n_nodes) {
 /// node numbers; facet ids from the cell ids of the mesh as read.
 parallel::SurfacePart side_part(const InterfaceSide& side, const mesh::DistributedMesh& part,
                                 const mesh::Region& region, const std::vector<char>& take) {
+  std::vector<local_index> facets;
+  for (local_index f = 0; f < side.n_facets(); ++f)
+    if (take[static_cast<std::size_t>(f)]) facets.push_back(f);
+  std::vector<std::int64_t> node_ids(side.mesh_nodes.size());
+  for (std::size_t n = 0; n < node_ids.size(); ++n)
+    node_ids[n] = part.node_index[static_cast<std::size_t>(side.mesh_nodes[n])];
+  std::vector<local_index> scratch;
   parallel::SurfacePart p;
-  p.dim = side.dim;
-  std::vector<local_index> local(side.mesh_nodes.size(), -1);
-  for (local_index f = 0; f < side.n_facets(); ++f) {
-    if (!take[static_cast<std::size_t>(f)]) continue;
-    p.facet_ids.push_back(part.cell_gid[static_cast<std::size_t>(region.facet_cell[f])] * 8 +
-                          region.facet_local[f]);
-    for (auto k = side.offsets[f]; k < side.offsets[f + 1]; ++k) {
-      const auto n = static_cast<std::size_t>(side.nodes[static_cast<std::size_t>(k)]);
-      if (local[n] < 0) {
-        local[n] = p.n_nodes();
-        p.node_ids.push_back(part.node_index[static_cast<std::size_t>(side.mesh_nodes[n])]);
-        for (int c = 0; c < side.dim; ++c) p.coords.push_back(side.coordinates[n * side.dim + c]);
-      }
-      p.connectivity.push_back(local[n]);
-    }
-    p.offsets.push_back(static_cast<local_index>(p.connectivity.size()));
-  }
+  const auto facet_ids = facet_gids(
+      region, [&](std::int32_t c) { return part.cell_gid[static_cast<std::size_t>(c)]; });
+  meshtying::side_part(side, facet_ids, node_ids, facets, scratch, p);
   return p;
 }
 

@@ -40,4 +40,31 @@ void InterfaceSide::update_coordinates(const mesh::Mesh& mesh,
     }
 }
 
+void side_part(const InterfaceSide& side, std::span<const std::int64_t> facet_ids,
+               std::span<const std::int64_t> node_ids, std::span<const local_index> facets,
+               std::vector<local_index>& scratch, parallel::SurfacePart& out) {
+  const int dim = side.dim;
+  out.dim = dim;
+  out.facet_ids.clear();
+  out.offsets.assign(1, 0);
+  out.connectivity.clear();
+  out.node_ids.clear();
+  out.coords.clear();
+  scratch.assign(side.mesh_nodes.size(), -1);
+  for (const auto f : facets) {
+    const auto fi = static_cast<std::size_t>(f);
+    out.facet_ids.push_back(facet_ids[fi]);
+    for (auto k = side.offsets[fi]; k < side.offsets[fi + 1]; ++k) {
+      const auto n = static_cast<std::size_t>(side.nodes[static_cast<std::size_t>(k)]);
+      if (scratch[n] < 0) {
+        scratch[n] = out.n_nodes();
+        out.node_ids.push_back(node_ids[n]);
+        for (int c = 0; c < dim; ++c) out.coords.push_back(side.coordinates[n * dim + c]);
+      }
+      out.connectivity.push_back(scratch[n]);
+    }
+    out.offsets.push_back(static_cast<local_index>(out.connectivity.size()));
+  }
+}
+
 } // namespace seam::meshtying

@@ -34,10 +34,11 @@ DistributedSearch::DistributedSearch(MPI_Comm comm, double inflation,
 }
 
 void DistributedSearch::find_pairs(const SurfacePart& slave, const SurfacePart& master,
-                                   std::span<const double> master_positions) {
+                                   std::span<const double> master_positions,
+                                   std::span<const global_index> position_ids) {
   stats_ = {};
   const double t0 = wall_seconds();
-  stats_.exchanged = ghosting_.update(slave, master, master_positions);
+  stats_.exchanged = ghosting_.update(slave, master, master_positions, position_ids);
   if (stats_.exchanged) stats_.ghosting = ghosting_.exchange_stats();
   const auto& ghosts = ghosting_.ghosts();
   const double t1 = wall_seconds();

@@ -63,9 +63,10 @@ public:
   /// trees are refitted if the slave part and the ghost set are the same facets as in the
   /// previous call, built anew otherwise. With a skin the ghosts of an earlier call are reused
   /// while they can be (VerletGhosts), their nodes placed at `master_positions` (indexed by
-  /// master node id).
+  /// master node id, or by the position of the id in `position_ids` if given).
   void find_pairs(const SurfacePart& slave, const SurfacePart& master,
-                  std::span<const double> master_positions = {});
+                  std::span<const double> master_positions = {},
+                  std::span<const global_index> position_ids = {});
 
   /// Pairs of the last call: slave = facet index in the slave part passed, master = facet
   /// index in ghosts().

@@ -1,5 +1,6 @@
 #include "seam/parallel/facet_distribution.hpp"
 
+#include "seam/common/error.hpp"
 #include "seam/parallel/exchange.hpp"
 #include "seam/parallel/rcb.hpp"
 
@@ -10,40 +11,32 @@ namespace seam::parallel {
 FacetDistribution::FacetDistribution(MPI_Comm comm, int dim)
     : comm_(comm), dim_(dim), partition_(dim) {}
 
-std::vector<local_index> FacetDistribution::distribute(std::span<const local_index> held,
-                                                       std::span<const double> centroids,
-                                                       std::span<const double> work) {
+std::vector<global_index> FacetDistribution::distribute(std::span<const global_index> ids,
+                                                        std::span<const double> centroids,
+                                                        std::span<const double> work) {
   int size = 1;
   MPI_Comm_size(comm_, &size);
-  const auto n = held.size();
-  const auto d = static_cast<std::size_t>(dim_);
-  std::vector<double> points(n * d), weights(n);
-  std::vector<global_index> ids(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto f = static_cast<std::size_t>(held[i]);
-    for (std::size_t c = 0; c < d; ++c) points[i * d + c] = centroids[f * d + c];
-    weights[i] = work[f];
-    ids[i] = static_cast<global_index>(f);
-  }
+  const auto n = ids.size();
+  SEAM_ASSERT(centroids.size() == n * static_cast<std::size_t>(dim_) && work.size() == n);
   std::vector<int> parts(n, 0);
   if (n_partitions_ == 0)
-    partition_.partition(comm_, points, weights, ids, parts);
+    partition_.partition(comm_, centroids, work, ids, parts);
   else
-    partition_.repartition(comm_, points, weights, ids, parts);
+    partition_.repartition(comm_, centroids, work, ids, parts);
   ++n_partitions_;
   moved_ = count_moving(comm_, parts);
-  // Send every facet index to its new rank.
+  // Send every facet id to its new rank.
   std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
   for (const int p : parts) ++offsets[static_cast<std::size_t>(p) + 1];
   for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
-  std::vector<local_index> send(n);
+  std::vector<global_index> send(n);
   {
     std::vector<std::int64_t> next(offsets.begin(), offsets.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-      send[static_cast<std::size_t>(next[static_cast<std::size_t>(parts[i])]++)] = held[i];
+      send[static_cast<std::size_t>(next[static_cast<std::size_t>(parts[i])]++)] = ids[i];
   }
   std::vector<std::int64_t> recv_offsets;
-  auto mine = alltoallv<local_index>(comm_, send, offsets, recv_offsets);
+  auto mine = alltoallv<global_index>(comm_, send, offsets, recv_offsets);
   std::sort(mine.begin(), mine.end());
   return mine;
 }

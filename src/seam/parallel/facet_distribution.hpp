@@ -6,8 +6,8 @@
 // the cut axes and only moves the planes (Zoltan's RCB_REUSE), so a rebalance after a sliding
 // step moves the facets near the planes only.
 //
-// Facets are numbered 0 .. n_facets - 1 over the whole interface; the per-facet arrays are
-// read at the facets a rank holds only.
+// Facets cross the ranks by their global ids; a rank passes and receives the facets it holds
+// only.
 #include "seam/common/types.hpp"
 #include "seam/parallel/load_balance.hpp"
 
@@ -23,13 +23,13 @@ class FacetDistribution {
 public:
   FacetDistribution(MPI_Comm comm, int dim);
 
-  /// Collective. `held`: the facets this rank holds now (each facet on exactly one rank);
-  /// `centroids`: dim values per facet; `work`: per facet (0 = no candidate pairs). Returns
-  /// the facets this rank holds afterwards (sorted). The first call partitions from scratch,
-  /// later ones keep the cut axes.
-  std::vector<local_index> distribute(std::span<const local_index> held,
-                                      std::span<const double> centroids,
-                                      std::span<const double> work);
+  /// Collective. `ids`: the global ids of the facets this rank holds now (each facet on exactly
+  /// one rank); `centroids`: dim values and `work`: one value per facet of `ids` (0 = no
+  /// candidate pairs). Returns the ids of the facets this rank holds afterwards (sorted). The
+  /// first call partitions from scratch, later ones keep the cut axes.
+  std::vector<global_index> distribute(std::span<const global_index> ids,
+                                       std::span<const double> centroids,
+                                       std::span<const double> work);
 
   /// Facets that changed rank in the last distribute(), summed over the ranks.
   std::int64_t moved() const { return moved_; }

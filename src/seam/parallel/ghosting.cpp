@@ -167,7 +167,8 @@ bool VerletGhosts::still_valid(const SurfacePart& part, const std::vector<global
 }
 
 bool VerletGhosts::update(const SurfacePart& slave, const SurfacePart& master,
-                          std::span<const double> positions) {
+                          std::span<const double> positions,
+                          std::span<const global_index> position_ids) {
   ++n_updates_;
   int reuse = exchanged_ && skin_ > 0.0 && still_valid(slave, slave_ids_, slave_coords_) &&
               still_valid(master, master_ids_, master_coords_);
@@ -176,10 +177,17 @@ bool VerletGhosts::update(const SurfacePart& slave, const SurfacePart& master,
     SEAM_CHECK(!positions.empty(), InputError,
                "ghosting: reused ghosts need the current node positions");
     const auto dim = static_cast<std::size_t>(ghosts_.dim);
-    for (std::size_t i = 0; i < ghosts_.node_ids.size(); ++i)
-      for (std::size_t c = 0; c < dim; ++c)
-        ghosts_.coords[i * dim + c] =
-            positions[static_cast<std::size_t>(ghosts_.node_ids[i]) * dim + c];
+    for (std::size_t i = 0; i < ghosts_.node_ids.size(); ++i) {
+      const auto id = ghosts_.node_ids[i];
+      auto at = static_cast<std::size_t>(id);
+      if (!position_ids.empty()) {
+        const auto it = std::lower_bound(position_ids.begin(), position_ids.end(), id);
+        SEAM_CHECK(it != position_ids.end() && *it == id, InternalError, "ghosting: node ", id,
+                   " of a reused ghost has no position");
+        at = static_cast<std::size_t>(it - position_ids.begin());
+      }
+      for (std::size_t c = 0; c < dim; ++c) ghosts_.coords[i * dim + c] = positions[at * dim + c];
+    }
     return false;
   }
   // Half the skin on each side: the boxes of two facets may then approach by the whole skin.

@@ -71,9 +71,12 @@ public:
   /// Collective. The ghosts of `master` (the master facets this rank holds) for `slave` (this
   /// rank's slave part), exchanged anew or reused. `positions`: the current coordinates of
   /// every node id (dim per id; e.g. a side held whole), read for the nodes of reused ghosts;
-  /// with a positive skin it must not be empty. Returns true if it exchanged.
+  /// with a positive skin it must not be empty. With `position_ids` (sorted) `positions` holds
+  /// dim values per entry of it instead, those of the node with that id (e.g. the nodes a rank
+  /// holds, in global ids); a reused ghost's node must be among them. Returns true if it
+  /// exchanged.
   bool update(const SurfacePart& slave, const SurfacePart& master,
-              std::span<const double> positions);
+              std::span<const double> positions, std::span<const global_index> position_ids = {});
 
   const SurfacePart& ghosts() const { return ghosts_; }
   double skin() const { return skin_; }

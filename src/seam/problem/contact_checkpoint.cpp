@@ -7,10 +7,10 @@
 //   iteration (parallel::publish_from_owners: the nonzero values, in proportion to the contact
 //   zone, except x^n);
 // - M^n (and D^n_jk, j != k, of standard multipliers), which each rank holds in part (its
-//   slave elements): each rank writes its triplets (slave node, master node id, value) into its
-//   part file, and a restart gives each part file to the rank that reads it. Only the sum over
-//   the ranks enters (the slip increment is summed, the tangent rows are added into the
-//   matrix), so any number of ranks can reload them;
+//   slave elements): each rank writes its triplets (slave node id, master node id, value; ids
+//   of the mesh as read, never an index in the side) into its part file, and a restart gives each
+//   part file to the rank that reads it. Only the sum over the ranks enters (the slip increment is
+//   summed, the tangent rows are added into the matrix), so any number of ranks can reload them;
 // - state.bin holds only what is O(1) per side: the slave side's size and a hash of its node
 //   ids (a checkpoint of another interface is refused), the rigid plane's displacement, the
 //   frictional work so far.
@@ -32,14 +32,25 @@ std::size_t state_width(bool friction, int dim) {
   return friction ? d + 3 + d : 2;
 }
 
-/// The slave side's node ids in the mesh as read, hashed (the same on any number of ranks).
-std::int64_t node_id_hash(const Discretization& disc, std::span<const std::int32_t> nodes) {
-  std::uint64_t hash = fnv1a(nullptr, 0);
-  for (const auto node : nodes) {
-    const std::int64_t id = disc.node_gid(node);
-    hash = fnv1a(&id, sizeof id, hash);
+/// The slave side's node ids in the mesh as read, hashed: the sum (modulo 2^64) of each node's
+/// hashed id over the nodes' owners, so that no rank needs the whole side and the value is the
+/// same on any number of ranks. Collective.
+std::int64_t node_id_hash(const Discretization& disc, std::span<const std::int32_t> nodes,
+                          std::span<const int> owners) {
+  std::uint64_t hash = 0;
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    if (owners[j] != disc.comm().rank()) continue;
+    const std::int64_t id = disc.node_gid(nodes[j]);
+    hash += fnv1a(&id, sizeof id);
   }
+  MPI_Allreduce(MPI_IN_PLACE, &hash, 1, MPI_UINT64_T, MPI_SUM, disc.comm().get());
   return static_cast<std::int64_t>(hash);
+}
+
+/// The side-local slave node of node id `id` in a checkpoint record, -1 if the side has none.
+std::int64_t slave_of_id(const SideIds& ids, std::int64_t id) {
+  const auto it = std::lower_bound(ids.nodes.begin(), ids.nodes.end(), id);
+  return it != ids.nodes.end() && *it == id ? it - ids.nodes.begin() : -1;
 }
 
 } // namespace
@@ -53,7 +64,7 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     const auto& nodes = s.itf.slave().mesh_nodes;
     // The side by its size and node ids.
     out.put_integer(p + "slave_count", static_cast<std::int64_t>(nodes.size()));
-    out.put_integer(p + "slave_hash", node_id_hash(disc_, nodes));
+    out.put_integer(p + "slave_hash", node_id_hash(disc_, nodes, s.node_owners));
     out.put_integer(p + "friction", s.friction ? 1 : 0);
     // The slave nodes this rank owns, with their state.
     const std::size_t per_node = s.friction ? static_cast<std::size_t>(dim) : 1;
@@ -78,23 +89,23 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     std::vector<std::int64_t> slave, master;
     std::vector<double> value;
     for (const auto& e : s.M_old) {
-      slave.push_back(e.slave);
-      master.push_back(disc_.node_gid(e.master_node));
+      slave.push_back(s.slave_ids.nodes[static_cast<std::size_t>(e.slave)]);
+      master.push_back(node_id(e.master_node));
       value.push_back(e.value);
     }
-    out.put_part(p + "M_old.slave", slave);
+    out.put_part(p + "M_old.slave_node", slave);
     out.put_part(p + "M_old.master", master);
     out.put_part(p + "M_old.value", value);
     // Standard multipliers: this rank's entries D_jk (j != k) of the last converged step.
     std::vector<std::int64_t> row, col;
     std::vector<double> coupling;
     for (const auto& e : s.D_coupling_old) {
-      row.push_back(e.row);
-      col.push_back(e.col);
+      row.push_back(s.slave_ids.nodes[static_cast<std::size_t>(e.row)]);
+      col.push_back(s.slave_ids.nodes[static_cast<std::size_t>(e.col)]);
       coupling.push_back(e.value);
     }
-    out.put_part(p + "D_coupling_old.row", row);
-    out.put_part(p + "D_coupling_old.col", col);
+    out.put_part(p + "D_coupling_old.row_node", row);
+    out.put_part(p + "D_coupling_old.col_node", col);
     out.put_part(p + "D_coupling_old.value", coupling);
   }
 }
@@ -115,8 +126,10 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     if (in.has(p + "lambda"))
       in.fail("was written by an earlier seam, which stored the contact state in state.bin; "
               "rerun to write a checkpoint of this version");
+    // Collective before any failure, so that every rank reaches it.
+    const auto hash = node_id_hash(disc_, nodes, s.node_owners);
     if (in.integer(p + "slave_count") != static_cast<std::int64_t>(n) ||
-        in.integer(p + "slave_hash") != node_id_hash(disc_, nodes))
+        in.integer(p + "slave_hash") != hash)
       in.fail(which + " has other slave nodes than the input's");
     if (s.friction != (in.integer(p + "friction") != 0))
       in.fail(which + " was written " + (s.friction ? "without" : "with") + " friction");
@@ -169,27 +182,42 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     // The operator pieces of the part files this rank read.
     s.M_old.clear();
     s.D_coupling_old.clear();
+    // A master side held in part: master nodes outside this rank's part (found below).
+    std::vector<std::int64_t> outside_ids;
     checkpoints.read_parts([&](const RecordReader& part) {
-      const auto slave = part.integers(p + "M_old.slave");
+      const auto slave = part.integers(p + "M_old.slave_node");
       const auto master = part.integers(p + "M_old.master", slave.size());
       const auto value = part.reals(p + "M_old.value", slave.size());
       for (std::size_t i = 0; i < slave.size(); ++i) {
-        const auto master_node = node_of_gid(master[i]);
-        if (slave[i] < 0 || static_cast<std::size_t>(slave[i]) >= n || master_node < 0)
+        const auto j = slave_of_id(s.slave_ids, slave[i]);
+        auto master_node = node_of_gid(master[i]);
+        if (j < 0 || (master_node < 0 && !s.master_in_part))
           part.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
-        s.M_old.push_back({static_cast<local_index>(slave[i]), master_node, value[i]});
+        if (master_node < 0) {
+          // Numbered after the collective look-up below; -1 - k names outside_ids[k] until then.
+          master_node = -1 - static_cast<std::int32_t>(outside_ids.size());
+          outside_ids.push_back(master[i]);
+        }
+        s.M_old.push_back({static_cast<local_index>(j), master_node, value[i]});
       }
-      const auto row = part.integers(p + "D_coupling_old.row");
-      const auto col = part.integers(p + "D_coupling_old.col", row.size());
+      const auto row = part.integers(p + "D_coupling_old.row_node");
+      const auto col = part.integers(p + "D_coupling_old.col_node", row.size());
       const auto coupling = part.reals(p + "D_coupling_old.value", row.size());
       for (std::size_t i = 0; i < row.size(); ++i) {
-        if (row[i] < 0 || static_cast<std::size_t>(row[i]) >= n || col[i] < 0 ||
-            static_cast<std::size_t>(col[i]) >= n)
+        const auto j = slave_of_id(s.slave_ids, row[i]), k = slave_of_id(s.slave_ids, col[i]);
+        if (j < 0 || k < 0)
           part.fail("record '" + p + "D_coupling_old' names a node outside the interface");
         s.D_coupling_old.push_back(
-            {static_cast<std::int32_t>(row[i]), static_cast<std::int32_t>(col[i]), coupling[i]});
+            {static_cast<std::int32_t>(j), static_cast<std::int32_t>(k), coupling[i]});
       }
     });
+    if (s.master_in_part) {
+      // Collective (the sides are the same on every rank): the outside nodes of M^n.
+      std::vector<std::int32_t> found;
+      map_master_nodes(outside_ids, found);
+      for (auto& e : s.M_old)
+        if (e.master_node < 0) e.master_node = found[static_cast<std::size_t>(-1 - e.master_node)];
+    }
   }
 }
 

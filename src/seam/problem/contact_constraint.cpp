@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <string_view>
 
@@ -39,6 +40,16 @@ double side_young(const Discretization& disc, const Model& model,
       }
   }
   return disc.comm().max(young);
+}
+
+/// The global ids of the side extracted from `region` (whose nodes are `mesh_nodes`).
+SideIds side_ids(const Discretization& disc, const mesh::Region& region,
+                 std::span<const std::int32_t> mesh_nodes) {
+  SideIds ids;
+  ids.facets = meshtying::facet_gids(region, [&](std::int32_t c) { return disc.cell_gid(c); });
+  ids.nodes.reserve(mesh_nodes.size());
+  for (const auto n : mesh_nodes) ids.nodes.push_back(disc.node_gid(n));
+  return ids;
 }
 
 } // namespace
@@ -79,8 +90,15 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.active.assign(n, 0);
     s.active_previous = s.active;
     s.active_accepted = s.active;
-    // Prescribed components of the slave nodes (known on the owning rank only).
     const auto& nodes = s.itf.slave().mesh_nodes;
+    s.node_keys.resize(n);
+    s.node_owners.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
+      s.node_owners[j] = disc.node_owner(nodes[j]);
+    }
+    // Prescribed components of the slave nodes: known on the owning rank only (the model
+    // holds the owned rows), published by the owners (in proportion to the prescribed nodes).
     std::vector<double> fixed(n * dim, 0.0);
     for (const auto& d : model.dirichlet) {
       const auto it = std::lower_bound(nodes.begin(), nodes.end(), d.node);
@@ -89,15 +107,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       for (int c = 0; c < dim; ++c)
         if (disc.global_dof(d.node, c) == d.dof) fixed[j * dim + c] = 1.0;
     }
-    disc.comm().sum_in_place(fixed);
+    parallel::publish_from_owners(disc.comm().get(), s.node_keys, s.node_owners, fixed, dim);
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
-    s.node_keys.resize(n);
-    s.node_owners.resize(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      s.node_keys[j] = static_cast<std::int64_t>(j);
-      s.node_owners[j] = disc.node_owner(nodes[j]);
-    }
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
     // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
@@ -113,13 +125,15 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     for (std::int32_t f = 0; f < region.n_facets(); ++f)
       if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
         s.bulk_facets.push_back(f);
+    s.slave_ids = side_ids(disc, region, s.itf.slave().mesh_nodes);
     if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
         disc.comm().size() > 1)
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
     if (s.itf.self_contact()) {
       // Self contact: each rank searches the surface facets it evaluates against the surface
       // facets ghosted to it; it hands in those of its own cells.
-      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, s.bulk_facets);
+      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, s.bulk_facets,
+                                                 s.slave_ids, s.slave_ids);
       s.itf.set_owned_facets(s.bulk_facets);
     } else if (!s.itf.rigid()) {
       // Two bodies: each rank searches the slave facets it evaluates against the master
@@ -128,7 +142,25 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       std::vector<local_index> held;
       for (std::int32_t f = 0; f < master.n_facets(); ++f)
         if (disc.is_local_cell(master.facet_cell[static_cast<std::size_t>(f)])) held.push_back(f);
-      s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, std::move(held));
+      s.master_in_part = master_held_in_part(itf, config);
+      s.master_facets = static_cast<int>(disc.comm().sum(static_cast<double>(held.size())));
+      if (s.master_in_part) {
+        // The parts agree on the search inflation (from the shortest edge of both sides, as
+        // search::InterfaceSearch takes it) and on the quadrature (a part may hold no curved
+        // master facet).
+        const double huge = std::numeric_limits<double>::max();
+        const double part = search::min_edge_length(s.itf.master().surface());
+        double lm = disc.comm().min(part > 0.0 ? part : huge);
+        lm = lm < huge ? lm : 0.0;
+        const double ls = search::min_edge_length(s.itf.slave().surface());
+        s.itf.set_search_edge(ls > 0.0 && lm > 0.0 ? std::min(ls, lm) : std::max(ls, lm));
+      }
+      if (s.master_in_part)
+        s.itf.set_cell_quadrature_degree(
+            static_cast<int>(disc.comm().max(static_cast<double>(s.itf.cell_quadrature_degree()))));
+      s.search = std::make_unique<ContactSearch>(
+          disc.comm().get(), s.itf, std::move(held), s.slave_ids,
+          side_ids(disc, master, s.itf.master_nodes()), s.master_in_part);
       s.itf.set_owned_facets(s.bulk_facets);
     }
     sides_.push_back(std::move(s));
@@ -149,6 +181,11 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   std::sort(interface_nodes_.begin(), interface_nodes_.end());
   interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
                          interface_nodes_.end());
+  // The interface nodes of all ranks, each counted by its owner (a master side held in part
+  // is not whole on any rank).
+  interface_total_ = static_cast<std::int64_t>(disc.comm().sum(
+      static_cast<double>(std::count_if(interface_nodes_.begin(), interface_nodes_.end(),
+                                        [&](std::int32_t node) { return disc.owns_node(node); }))));
   if (!saddle_point_) return;
   // One multiplier per slave node (dim with friction), owned with the node; numbered rank by
   // rank.
@@ -221,6 +258,7 @@ std::vector<std::int32_t> ContactConstraint::nodes_read() {
       s.search->nodes_read(s.itf, more);
       const auto masters = s.itf.master_nodes();
       for (const auto p : more) out.push_back(masters[static_cast<std::size_t>(p)]);
+      out.insert(out.end(), s.ghost_nodes.begin(), s.ghost_nodes.end());
     }
     for (const auto& e : s.M_old) out.push_back(e.master_node);
   }
@@ -238,12 +276,11 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
     std::vector<PetscInt> dofs;
     dofs.reserve(gathered_.size() * static_cast<std::size_t>(dim));
     for (const auto node : gathered_)
-      for (int c = 0; c < dim; ++c) dofs.push_back(disc_.global_dof(node, c));
+      for (int c = 0; c < dim; ++c) dofs.push_back(dof_of(node, c));
     gather_ = la::Gather(u, dofs);
     gather_made_ = true;
     start_read_ = false;
-    if (u_mesh_.empty())
-      u_mesh_.assign(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+    u_mesh_.resize((static_cast<std::size_t>(disc_.mesh().n_nodes()) + outside_.size()) * dim, 0.0);
   }
   const auto read = [&](const la::Vector& v, std::vector<double>& out) {
     std::vector<double> values;
@@ -306,7 +343,8 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
   // Only the nodes this rank reads (nodes_read()), not the whole interface; the scatter is
   // made anew when they change (a redistribution, a new ghost set).
   refresh_displacement(u);
-  const std::span<const double> u_mesh = u_mesh_;
+  // Taken anew after each refresh: outside nodes found by a search extend u_mesh_.
+  std::span<const double> u_mesh = u_mesh_;
   int changes = 0;
   for (auto& s : sides_) {
     if (retrial) s.cycles.retract();
@@ -329,12 +367,16 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       // read anew.
       distribute(s);
       refresh_displacement(u);
+      u_mesh = u_mesh_;
       ScopedTimer timer(timers, "search");
       search(s, u_mesh, t);
     }
     // New ghosts (an exchange) come with their positions; their nodes' displacements are read
     // from here on (friction reads the master nodes of M).
-    if (s.search && s.search->n_exchanges() != exchanges) refresh_displacement(u);
+    if (s.search && s.search->n_exchanges() != exchanges) {
+      refresh_displacement(u);
+      u_mesh = u_mesh_;
+    }
     ScopedTimer timer(timers, "mortar");
     const double cpu = cpu_seconds();
     s.itf.evaluate(s.part);
@@ -418,6 +460,17 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
   if (s.pairs_held) {
     s.itf.refresh_master_coordinates(); // no search: the ghosts' positions are not handed
     s.itf.set_candidates(s.held_pairs);
+    return;
+  }
+  if (s.master_in_part) {
+    // The ghosts' nodes need not be nodes of this part: their positions (for reused ghosts)
+    // are their reference coordinates plus the displacement read, and the mortar entries
+    // name them by mesh node or outside node.
+    std::vector<double> positions;
+    node_positions(s.ghost_nodes, positions);
+    s.search->find(s.itf, positions);
+    map_master_nodes(s.search->master_ghosts().node_ids, s.ghost_nodes);
+    s.search->hand_in_part(s.itf, s.ghost_nodes);
     return;
   }
   s.search->find(s.itf);
@@ -532,7 +585,8 @@ void ContactConstraint::add_force(la::Vector& r, bool between_bodies_only) const
       }
       if (!s.friction) continue;
     }
-    std::vector<double> f(static_cast<std::size_t>(disc_.mesh().n_nodes()) * dim, 0.0);
+    std::vector<double> f(
+        (static_cast<std::size_t>(disc_.mesh().n_nodes()) + outside_.size()) * dim, 0.0);
     if (s.discrete_gradient)
       add_energy_momentum_friction_force(s, f);
     else
@@ -559,8 +613,7 @@ void ContactConstraint::add_force(la::Vector& r, bool between_bodies_only) const
     }
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (f[i] == 0.0) continue;
-      rows.push_back(
-          disc_.global_dof(static_cast<std::int32_t>(i / dim), static_cast<int>(i % dim)));
+      rows.push_back(dof_of(static_cast<std::int32_t>(i / dim), static_cast<int>(i % dim)));
       values.push_back(f[i]);
     }
   }
@@ -623,7 +676,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
         for (int b = 0; b < dim; ++b) {
           const double v = scale * normals[j * dim + a] * f.w[b];
           if (v == 0.0) continue;
-          li.push_back(disc_.global_dof(e.master_node, a));
+          li.push_back(dof_of(e.master_node, a));
           lj.push_back(disc_.global_dof(nodes[j], b));
           lv.push_back(v);
         }
@@ -751,8 +804,115 @@ void ContactConstraint::linearize(Side& s, std::vector<PetscInt>& rows, std::vec
 
 PetscInt ContactConstraint::global_dof(std::int64_t mesh_dof) const {
   const int dim = disc_.dim();
-  return disc_.global_dof(static_cast<std::int32_t>(mesh_dof / dim),
-                          static_cast<int>(mesh_dof % dim));
+  return dof_of(static_cast<std::int32_t>(mesh_dof / dim), static_cast<int>(mesh_dof % dim));
+}
+
+PetscInt ContactConstraint::dof_of(std::int32_t node, int c) const {
+  const auto n = disc_.mesh().n_nodes();
+  if (node < n) return disc_.global_dof(node, c);
+  return static_cast<PetscInt>(outside_[static_cast<std::size_t>(node - n)].dofs[c]);
+}
+
+double ContactConstraint::reference(std::int32_t node, int c) const {
+  const auto n = disc_.mesh().n_nodes();
+  if (node < n) return disc_.mesh().x[static_cast<std::size_t>(node) * disc_.dim() + c];
+  return outside_[static_cast<std::size_t>(node - n)].x[c];
+}
+
+std::int64_t ContactConstraint::node_id(std::int32_t node) const {
+  const auto n = disc_.mesh().n_nodes();
+  return node < n ? disc_.node_gid(node) : outside_[static_cast<std::size_t>(node - n)].id;
+}
+
+void ContactConstraint::node_positions(std::span<const std::int32_t> nodes,
+                                       std::vector<double>& out) const {
+  const int dim = disc_.dim();
+  out.resize(nodes.size() * static_cast<std::size_t>(dim));
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto node = static_cast<std::size_t>(nodes[i]);
+    for (int c = 0; c < dim; ++c)
+      out[i * dim + c] = reference(nodes[i], c) + u_mesh_[node * dim + c];
+  }
+}
+
+void ContactConstraint::map_master_nodes(std::span<const std::int64_t> ids,
+                                         std::vector<std::int32_t>& out) {
+  const auto& comm = disc_.comm();
+  const int size = comm.size(), dim = disc_.dim();
+  const auto home = [size](std::int64_t id) { return static_cast<int>(id % size); };
+  const auto by_id = [](const OutsideNode& a, const OutsideNode& b) { return a.id < b.id; };
+  const auto send = [&](std::vector<OutsideNode>& records) {
+    std::sort(records.begin(), records.end(), [&](const OutsideNode& a, const OutsideNode& b) {
+      return home(a.id) != home(b.id) ? home(a.id) < home(b.id) : a.id < b.id;
+    });
+    std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
+    for (const auto& r : records) ++offsets[static_cast<std::size_t>(home(r.id)) + 1];
+    for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
+    std::vector<std::int64_t> recv_offsets;
+    return std::pair(parallel::alltoallv<OutsideNode>(comm.get(), records, offsets, recv_offsets),
+                     recv_offsets);
+  };
+  if (!directory_made_) {
+    // Every master node of the facets the ranks hand in, at its home rank (made at the first
+    // search: `seam check` builds the constraint without the dof numbering).
+    std::vector<OutsideNode> mine;
+    for (const auto& s : sides_) {
+      if (!s.master_in_part) continue;
+      std::vector<local_index> nodes;
+      s.search->nodes_read(s.itf, nodes);
+      const auto masters = s.itf.master_nodes();
+      for (const auto p : nodes) {
+        const auto node = masters[static_cast<std::size_t>(p)];
+        OutsideNode r;
+        r.id = disc_.node_gid(node);
+        for (int c = 0; c < dim; ++c) {
+          r.dofs[c] = disc_.global_dof(node, c);
+          r.x[c] = disc_.mesh().x[static_cast<std::size_t>(node) * dim + c];
+        }
+        mine.push_back(r);
+      }
+    }
+    directory_ = send(mine).first;
+    std::sort(directory_.begin(), directory_.end(), by_id);
+    directory_.erase(
+        std::unique(directory_.begin(), directory_.end(),
+                    [](const OutsideNode& a, const OutsideNode& b) { return a.id == b.id; }),
+        directory_.end());
+    directory_made_ = true;
+  }
+  const auto outside_node = [&](std::int64_t id) {
+    const auto it = std::lower_bound(outside_index_.begin(), outside_index_.end(),
+                                     std::pair<std::int64_t, std::int32_t>{id, -1});
+    return it != outside_index_.end() && it->first == id ? it->second : -1;
+  };
+  // Ids neither interface nodes of this part nor known outside nodes: asked at their homes.
+  std::vector<OutsideNode> asked;
+  for (const auto id : ids)
+    if (node_of_gid(id) < 0 && outside_node(id) < 0) asked.emplace_back().id = id;
+  auto [requests, from] = send(asked);
+  std::vector<OutsideNode> answers(requests.size());
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const auto it = std::lower_bound(directory_.begin(), directory_.end(), requests[i], by_id);
+    SEAM_CHECK(it != directory_.end() && it->id == requests[i].id, InternalError,
+               "contact: master node ", requests[i].id, " is in no rank's master facets");
+    answers[i] = *it;
+  }
+  // Back to the asking ranks, in the order they asked.
+  std::vector<std::int64_t> recv_offsets;
+  const auto found = parallel::alltoallv<OutsideNode>(comm.get(), answers, from, recv_offsets);
+  for (const auto& r : found) {
+    if (outside_node(r.id) >= 0) continue;
+    const auto node = static_cast<std::int32_t>(disc_.mesh().n_nodes() + outside_.size());
+    outside_.push_back(r);
+    outside_index_.insert(std::lower_bound(outside_index_.begin(), outside_index_.end(),
+                                           std::pair<std::int64_t, std::int32_t>{r.id, -1}),
+                          {r.id, node});
+  }
+  out.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const auto node = node_of_gid(ids[i]);
+    out[i] = node >= 0 ? node : outside_node(ids[i]);
+  }
 }
 
 bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector& minus_r,
@@ -999,20 +1159,28 @@ void ContactConstraint::distribute(Side& s) {
     return;
   }
   const int dim = disc_.dim();
-  const auto n = static_cast<std::size_t>(s.itf.slave().n_facets());
-  std::vector<double> centroids(n * static_cast<std::size_t>(dim)), work(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    const auto c = s.itf.slave_centroid(static_cast<local_index>(f));
-    for (int a = 0; a < dim; ++a) centroids[f * dim + a] = c[static_cast<std::size_t>(a)];
-    // The work of a facet: its candidate pairs (each one a projection and a clip) and its
-    // integration cells at the last evaluation (known once it has been evaluated).
-    work[f] = static_cast<double>(s.itf.n_pairs_of(static_cast<local_index>(f)));
-    if (s.distributed) work[f] += static_cast<double>(s.part.facet_cells[f]);
-  }
   const auto owned = s.itf.owned_facets();
   const std::vector<local_index> held =
       s.distributed ? std::vector<local_index>(owned.begin(), owned.end()) : s.bulk_facets;
-  s.itf.set_owned_facets(s.distribution->distribute(held, centroids, work));
+  // The facets this rank holds, by global id, with their centroids and work.
+  const auto n = held.size();
+  std::vector<std::int64_t> ids(n);
+  std::vector<double> centroids(n * static_cast<std::size_t>(dim)), work(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto f = held[i];
+    ids[i] = s.slave_ids.facets[static_cast<std::size_t>(f)];
+    const auto c = s.itf.slave_centroid(f);
+    for (int a = 0; a < dim; ++a) centroids[i * dim + a] = c[static_cast<std::size_t>(a)];
+    // The work of a facet: its candidate pairs (each one a projection and a clip) and its
+    // integration cells at the last evaluation (known once it has been evaluated).
+    work[i] = static_cast<double>(s.itf.n_pairs_of(f));
+    if (s.distributed)
+      work[i] += static_cast<double>(s.part.facet_cells[static_cast<std::size_t>(f)]);
+  }
+  const auto mine = s.distribution->distribute(ids, centroids, work);
+  std::vector<local_index> facets(mine.size());
+  for (std::size_t i = 0; i < mine.size(); ++i) facets[i] = s.slave_ids.facet(mine[i]);
+  s.itf.set_owned_facets(std::move(facets));
   s.distributed = true;
 }
 
@@ -1105,12 +1273,12 @@ std::vector<std::string> ContactConstraint::describe() const {
                     "master roles assigned at every search), %s, c_n = %.4g",
                     s.itf.name().c_str(), n_facets, multipliers, s.c_n);
     else
-      std::snprintf(
-          line, sizeof line, "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
-          s.itf.name().c_str(), n_facets,
-          s.itf.rigid() ? s.itf.obstacle().name()
-                        : (std::to_string(s.itf.n_master_facets()) + " master facets").c_str(),
-          multipliers, s.c_n);
+      std::snprintf(line, sizeof line,
+                    "interface %s: contact, %d slave facets against %s, %s, c_n = %.4g",
+                    s.itf.name().c_str(), n_facets,
+                    s.itf.rigid() ? s.itf.obstacle().name()
+                                  : (std::to_string(s.master_facets) + " master facets").c_str(),
+                    multipliers, s.c_n);
     std::string text = line;
     if (s.discrete_gradient)
       text += s.friction
@@ -1162,9 +1330,21 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               reused +
               ") and the mortar integration of the own slave elements (against the "
               "ghosted surface facets)";
+    else if (s.search && s.master_in_part)
+      text += "the slave side (" + n_slave + " facets, nodes, positions), " + arrays + read +
+              "; in part: the master side (the facets of its own and ghost cells, " +
+              std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
+              ", the others read as ghosts)" +
+              "; distributed: the search (own slave elements against the master facets "
+              "ghosted by bounding boxes" +
+              reused +
+              ") and the mortar integration of the own slave "
+              "elements (against the ghosted master facets)";
     else if (s.search)
-      text += "both sides (" + n_slave + " slave and " + std::to_string(s.itf.n_master_facets()) +
-              " master facets, their nodes and positions), " + arrays + read +
+      text += "both sides (" + n_slave + " slave and " + std::to_string(s.master_facets) +
+              " master facets, their nodes and positions; the master side whole with "
+              "standard multipliers or energy-momentum contact), " +
+              arrays + read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +
               reused +
@@ -1289,7 +1469,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     // The frictional work including this step (save() adds it once the step is accepted).
     rep.frictional_dissipation = s.friction ? s.dissipation + dissipation_increment(s) : 0.0;
     rep.slave_elements = s.itf.slave().n_facets();
-    rep.master_elements = s.itf.n_master_facets();
+    rep.master_elements = s.itf.rigid() ? s.itf.n_master_facets() : s.master_facets;
     rep.candidate_pairs = static_cast<int>(s.share.candidates);
     rep.work_min = s.balance.time.min;
     rep.work_mean = s.balance.time.mean;
@@ -1308,7 +1488,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_nodal_records = s.nodal.sent;
     if (out.empty()) {
       rep.local_nodes_gathered = static_cast<std::int64_t>(gathered_.size());
-      rep.interface_nodes = static_cast<std::int64_t>(interface_nodes_.size());
+      rep.interface_nodes = interface_total_;
     }
     rep.local_master_facets_read = s.itf.rigid() ? 0 : s.itf.n_master_facets_read();
     rep.local_normals = s.itf.n_normals_computed();

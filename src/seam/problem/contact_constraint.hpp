@@ -219,7 +219,9 @@ private:
     /// D_jj (the nodal weight with standard multipliers) and g~_j: summed on the owner of
     /// slave node j, which decides its status, then published to every rank.
     std::vector<double> D, gap;
-    std::vector<std::int64_t> node_keys; ///< side-local slave node j, the same on every rank
+    /// The global ids of the slave side's facets and nodes (crossing the ranks).
+    SideIds slave_ids;
+    std::vector<std::int64_t> node_keys; ///< node id of slave node j (the mesh as read)
     std::vector<int> node_owners;        ///< the rank owning each slave node
     struct {
       std::int64_t sent = 0;    ///< nodal records sent to the owners at the last evaluate
@@ -245,6 +247,12 @@ private:
     /// Two-body and self-contact interfaces: the search distributed over the ranks (facets
     /// ghosted).
     std::unique_ptr<ContactSearch> search;
+    /// The master side held in part (master_held_in_part): the facets of the whole side, and
+    /// the node (mesh node, or outside node numbered after them) of every node of the ghosts
+    /// of the last search.
+    bool master_in_part = false;
+    int master_facets = 0;
+    std::vector<std::int32_t> ghost_nodes;
     /// Self contact: the oriented pairs of the searches of the current step (newest last, at
     /// most ContactSearch::max_pair_period + 1) and the pairs held for the rest of the step
     /// once the search returned to an earlier set (pair cycling guard, see search()).
@@ -408,8 +416,21 @@ private:
   /// of the contact force tangent as global triplets.
   void linearize(Side& s, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols,
                  std::vector<double>& values);
-  /// The global dof of a mesh dof (node * dim + component).
+  /// The global dof of a mesh dof (node * dim + component; a node at or beyond the mesh's
+  /// node count is an outside node).
   PetscInt global_dof(std::int64_t mesh_dof) const;
+  /// The global dof of component c of node `node` (a mesh node or an outside node).
+  PetscInt dof_of(std::int32_t node, int c) const;
+  /// Collective. The node of every id in `ids` (node ids of the mesh as read of the ghosts of
+  /// a master side held in part): its mesh node if it is an interface node of this part, else
+  /// an outside node, whose global dofs and reference coordinates come from the directory
+  /// (the rank id % size keeps those of the nodes of the master facets the ranks hand in).
+  void map_master_nodes(std::span<const std::int64_t> ids, std::vector<std::int32_t>& out);
+  /// Reference coordinate c and id in the mesh as read of a mesh or outside node.
+  double reference(std::int32_t node, int c) const;
+  std::int64_t node_id(std::int32_t node) const;
+  /// The current positions (reference plus u_mesh_) of `nodes` (mesh or outside nodes).
+  void node_positions(std::span<const std::int32_t> nodes, std::vector<double>& out) const;
   /// The mesh nodes whose displacement this rank's evaluation reads (sorted): per side the
   /// slave nodes of its owned slave elements and the slave nodes it owns (their normals are
   /// the only ones computed, set here), the nodes of the facets around them (the normals read
@@ -443,6 +464,7 @@ private:
   const Discretization& disc_;
   io::ParallelConfig parallel_;
   std::vector<std::int32_t> interface_nodes_; ///< mesh nodes of all sides, sorted
+  std::int64_t interface_total_ = 0;          ///< interface nodes of all ranks
   /// Their ids in the mesh as read (node_gid), sorted, with the mesh node of each.
   mutable std::vector<std::pair<std::int64_t, std::int32_t>> interface_numbers_;
   std::vector<std::int32_t> gathered_; ///< the nodes gather_ brings (nodes_read())
@@ -457,6 +479,17 @@ private:
   bool start_read_ = false; ///< u_mesh_start_ holds u_start_ at the nodes read
   std::vector<double> u_mesh_start_;
   std::vector<Side> sides_;
+  /// Master nodes of the ghosts outside this rank's part (master sides held in part): outside
+  /// node k is node n_nodes + k of u_mesh_ and of the mortar entries; kept once found.
+  struct OutsideNode {
+    std::int64_t id = 0;
+    std::int64_t dofs[3] = {0, 0, 0};
+    double x[3] = {0, 0, 0}; ///< reference coordinates
+  };
+  std::vector<OutsideNode> outside_;
+  std::vector<std::pair<std::int64_t, std::int32_t>> outside_index_; ///< (id, node), sorted
+  std::vector<OutsideNode> directory_; ///< this rank's part of the directory, sorted by id
+  bool directory_made_ = false;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;
   bool energy_momentum_ = false; ///< integrator: energy_momentum

@@ -33,8 +33,9 @@ namespace {
 /// sender read them with its blocks).
 struct Entry {
   std::int64_t dof = 0;
-  std::int32_t j = 0;
+  std::int64_t node = 0; ///< the slave node's id in the mesh as read (not its index in the side)
   std::int32_t kind = 0;
+  std::int32_t pad = 0;
   double value = 0.0;
   double dx = 0.0;
   double x_mid = 0.0;
@@ -233,10 +234,11 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
                    carries);
   const auto dof_of = [](const contact::GapBlock& b, int v) { return b.dof(v); };
   // An entry at mesh dof d: sent with its node id, the increment and the midpoint there.
-  const auto at = [&](std::int64_t d, std::int32_t j, Kind kind, double value) {
+  const auto key = [&](local_index j) { return s.slave_ids.nodes[static_cast<std::size_t>(j)]; };
+  const auto at = [&](std::int64_t d, local_index j, Kind kind, double value) {
     const auto i = static_cast<std::size_t>(d);
     const std::int64_t id = disc_.node_gid(static_cast<std::int32_t>(d / dim)) * dim + d % dim;
-    return Entry{id, j, kind, value, u[i] - u0[i], X[i] + mid[i]};
+    return Entry{id, key(j), kind, 0, value, u[i] - u0[i], X[i] + mid[i]};
   };
   // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
   // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
@@ -254,11 +256,12 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   }
   std::vector<Entry> local;
   for (const auto& b : start)
-    for (std::size_t r = 0; r < b.slave.size(); ++r) local.push_back({0, b.slave[r], g0, b.gap[r]});
+    for (std::size_t r = 0; r < b.slave.size(); ++r)
+      local.push_back({0, key(b.slave[r]), g0, 0, b.gap[r]});
   for (const auto& b : end) {
     const auto nv = static_cast<std::size_t>(b.n_variables());
     for (std::size_t r = 0; r < b.slave.size(); ++r) {
-      local.push_back({0, b.slave[r], g1, b.gap[r]});
+      local.push_back({0, key(b.slave[r]), g1, 0, b.gap[r]});
       for (std::size_t v = 0; v < nv; ++v)
         if (const auto dof = dof_of(b, static_cast<int>(v)); dof >= 0)
           local.push_back(at(dof, b.slave[r], end_gradient, b.gradient[r * nv + v]));
@@ -298,15 +301,16 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   std::fill(s.gap.begin(), s.gap.end(), 0.0);
   s.em_row.assign(s.gap.size(), 0);
   for (const auto& e : all) {
-    if (e.kind == g1) s.gap[static_cast<std::size_t>(e.j)] += e.value;
-    if (e.kind == end_gradient && e.value != 0.0) s.em_row[static_cast<std::size_t>(e.j)] = 1;
+    const auto j = static_cast<std::size_t>(s.slave_ids.node(e.node));
+    if (e.kind == g1) s.gap[j] += e.value;
+    if (e.kind == end_gradient && e.value != 0.0) s.em_row[j] = 1;
   }
   std::stable_sort(all.begin(), all.end(),
-                   [](const Entry& a, const Entry& b) { return a.j < b.j; });
+                   [](const Entry& a, const Entry& b) { return a.node < b.node; });
   for (std::size_t begin = 0; begin < all.size();) {
     std::size_t stop = begin;
-    while (stop < all.size() && all[stop].j == all[begin].j) ++stop;
-    const auto j = static_cast<std::size_t>(all[begin].j);
+    while (stop < all.size() && all[stop].node == all[begin].node) ++stop;
+    const auto j = static_cast<std::size_t>(s.slave_ids.node(all[begin].node));
     if (!disc_.owns_node(nodes[j])) {
       begin = stop;
       continue;

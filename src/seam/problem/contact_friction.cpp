@@ -137,8 +137,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     }
     // Current position of a master node (u_mesh holds the interface nodes).
     const auto x_of = [&](std::int32_t node, int c) {
-      const auto i = static_cast<std::size_t>(node) * dim + c;
-      return X[i] + u_mesh[i];
+      return reference(node, c) + u_mesh[static_cast<std::size_t>(node) * dim + c];
     };
     for (const auto& e : s.part.M)
       for (int c = 0; c < dim; ++c)
@@ -398,14 +397,12 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
     for (const auto& e : s.part.M) {
       const auto j = static_cast<std::size_t>(e.slave);
       if (!s.active[j]) continue;
-      for (int a = 0; a < dim; ++a)
-        add_gradient(j, disc_.global_dof(e.master_node, a), coef_u, a, e.value);
+      for (int a = 0; a < dim; ++a) add_gradient(j, dof_of(e.master_node, a), coef_u, a, e.value);
     }
     for (const auto& e : s.M_old) {
       const auto j = static_cast<std::size_t>(e.slave);
       if (!s.active[j]) continue;
-      for (int a = 0; a < dim; ++a)
-        add_gradient(j, disc_.global_dof(e.master_node, a), coef_u, a, -e.value);
+      for (int a = 0; a < dim; ++a) add_gradient(j, dof_of(e.master_node, a), coef_u, a, -e.value);
     }
     const auto coupling = [&](const std::vector<mortar::Triplet>& D, double scale) {
       for (const auto& e : D) {
@@ -480,7 +477,7 @@ void ContactConstraint::condense_friction(
     if (!s.active[j]) continue;
     for (int a = 0; a < dim; ++a) {
       if (s.dirichlet[j * dim + a]) continue;
-      li.push_back(disc_.global_dof(e.master_node, a));
+      li.push_back(dof_of(e.master_node, a));
       lj.push_back(disc_.global_dof(nodes[j], a));
       lv.push_back(e.value / s.D[j]);
     }

@@ -6,6 +6,7 @@
 #include "seam/search/traversal.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -14,42 +15,52 @@ namespace seam::problem {
 
 namespace {
 
-/// Facets `facets` of `side` at its current positions, as a surface part: facet ids and node
-/// ids are the side-local ones (the same on every rank, which holds the side whole).
-void side_part(const meshtying::InterfaceSide& side, std::span<const local_index> facets,
-               std::vector<local_index>& local, parallel::SurfacePart& out) {
-  const int dim = side.dim;
-  out.dim = dim;
-  out.facet_ids.clear();
-  out.offsets.assign(1, 0);
-  out.connectivity.clear();
-  out.node_ids.clear();
-  out.coords.clear();
-  local.assign(side.mesh_nodes.size(), -1);
-  const auto set = side.facet_set();
-  for (const auto f : facets) {
-    out.facet_ids.push_back(f);
-    for (const auto n : set.facet_nodes(f)) {
-      const auto i = static_cast<std::size_t>(n);
-      if (local[i] < 0) {
-        local[i] = out.n_nodes();
-        out.node_ids.push_back(n);
-        for (int c = 0; c < dim; ++c) out.coords.push_back(side.coordinates[i * dim + c]);
-      }
-      out.connectivity.push_back(local[i]);
-    }
-    out.offsets.push_back(static_cast<local_index>(out.connectivity.size()));
-  }
-}
-
 constexpr double default_skin_factor = 0.25;
 
-void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts) {
-  itf.set_master_facets(ghosts.facet_ids, ghosts.offsets, ghosts.connectivity, ghosts.node_ids,
-                        ghosts.coords);
+local_index index_of(std::span<const std::int64_t> ids, std::int64_t id, const char* what) {
+  const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+  SEAM_CHECK(it != ids.end() && *it == id, InternalError, "contact search: ", what, " id ", id,
+             " is not on the side");
+  return static_cast<local_index>(it - ids.begin());
 }
 
+/// A facing pair as it crosses the ranks: its facets by global id.
+struct GlobalFacingPair {
+  std::int64_t slave = 0, master = 0;
+  std::array<double, 3> slave_axis, master_axis;
+};
+
 } // namespace
+
+bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
+  for (const auto& other : config.interfaces)
+    if (other.type == io::InterfaceType::contact && other.multiplier != io::Multiplier::dual)
+      return false;
+  return itf.type == io::InterfaceType::contact && itf.master && itf.surface.empty() &&
+         itf.multiplier == io::Multiplier::dual &&
+         config.time.integrator != io::Integrator::energy_momentum;
+}
+
+local_index SideIds::facet(std::int64_t id) const {
+  return index_of(facets, id, "facet");
+}
+local_index SideIds::node(std::int64_t id) const {
+  return index_of(nodes, id, "node");
+}
+
+void ContactSearch::hand_ghosts(contact::ContactInterface& itf,
+                                const parallel::SurfacePart& ghosts) {
+  // The interface indexes its sides locally: the ghosts' global ids are mapped back.
+  const auto& ids = ghosts_ ? slave_ids_ : master_ids_;
+  ghost_facets_.resize(ghosts.facet_ids.size());
+  for (std::size_t f = 0; f < ghost_facets_.size(); ++f)
+    ghost_facets_[f] = ids.facet(ghosts.facet_ids[f]);
+  ghost_nodes_.resize(ghosts.node_ids.size());
+  for (std::size_t n = 0; n < ghost_nodes_.size(); ++n)
+    ghost_nodes_[n] = ids.node(ghosts.node_ids[n]);
+  itf.set_master_facets(ghost_facets_, ghosts.offsets, ghosts.connectivity, ghost_nodes_,
+                        ghosts.coords);
+}
 
 double ContactSearch::skin_factor() {
   const char* text = std::getenv("SEAM_GHOST_SKIN");
@@ -64,9 +75,17 @@ double ContactSearch::skin_factor() {
 }
 
 ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
-                             std::vector<local_index> held)
-    : comm_(comm), skin_(skin_factor() * itf.slave_mesh_size()), held_(std::move(held)) {
+                             std::vector<local_index> held, SideIds slave, SideIds master,
+                             bool master_in_part)
+    : comm_(comm), skin_(skin_factor() * itf.slave_mesh_size()), in_part_(master_in_part),
+      held_(std::move(held)), slave_ids_(std::move(slave)), master_ids_(std::move(master)) {
   std::sort(held_.begin(), held_.end());
+  // The ids increase along the sides (local numbering monotone in the mesh as read), so a
+  // side-local index is found by bisection.
+  for (const auto* ids : {&slave_ids_, &master_ids_})
+    SEAM_CHECK(std::is_sorted(ids->facets.begin(), ids->facets.end()) &&
+                   std::is_sorted(ids->nodes.begin(), ids->nodes.end()),
+               InternalError, "contact search: side ids not increasing");
   if (itf.self_contact()) {
     ghosts_.emplace(comm, itf.search_inflation(), skin_);
   } else {
@@ -95,34 +114,69 @@ void ContactSearch::nodes_read(const contact::ContactInterface& itf,
   const auto set = side.facet_set();
   for (const auto f : held_)
     for (const auto n : set.facet_nodes(f)) out.push_back(n);
+  if (in_part_) return;
   const auto& ghosts = search_ ? search_->ghosts() : ghosts_->ghosts();
-  for (const auto id : ghosts.node_ids) out.push_back(static_cast<local_index>(id));
+  const auto& ids = ghosts_ ? slave_ids_ : master_ids_;
+  for (const auto id : ghosts.node_ids) out.push_back(ids.node(id));
 }
 
-void ContactSearch::find(contact::ContactInterface& itf) {
+void ContactSearch::find(contact::ContactInterface& itf, std::span<const double> ghost_positions) {
   if (ghosts_) {
     find_self(itf);
     return;
   }
-  side_part(itf.slave(), itf.owned_facets(), local_, slave_part_);
-  side_part(itf.master(), held_, local_, master_part_);
-  search_->find_pairs(slave_part_, master_part_, itf.master().coordinates);
+  const auto owned = itf.owned_facets();
+  meshtying::side_part(itf.slave(), slave_ids_.facets, slave_ids_.nodes, owned, local_,
+                       slave_part_);
+  meshtying::side_part(itf.master(), master_ids_.facets, master_ids_.nodes, held_, local_,
+                       master_part_);
+  if (in_part_) {
+    // Reused ghosts take their positions from the caller: their nodes need not be held.
+    position_ids_ = search_->ghosts().node_ids;
+    const auto dim = static_cast<std::size_t>(itf.dim());
+    SEAM_CHECK(ghost_positions.size() == position_ids_.size() * dim, InternalError,
+               "contact search: ", ghost_positions.size() / dim, " ghost positions for ",
+               position_ids_.size(), " ghost nodes");
+    static constexpr double none[3] = {0.0, 0.0, 0.0};
+    search_->find_pairs(slave_part_, master_part_,
+                        ghost_positions.empty() ? std::span<const double>(none, dim)
+                                                : ghost_positions,
+                        position_ids_);
+    pairs_.clear();
+    for (const auto& p : search_->pairs())
+      pairs_.push_back({owned[static_cast<std::size_t>(p.slave)], p.master});
+    return;
+  }
+  search_->find_pairs(slave_part_, master_part_, itf.master().coordinates, master_ids_.nodes);
   pairs_.clear();
   const auto& ghosts = search_->ghosts();
   for (const auto& p : search_->pairs())
-    pairs_.push_back({static_cast<local_index>(slave_part_.facet_ids[p.slave]),
-                      static_cast<local_index>(ghosts.facet_ids[p.master])});
+    pairs_.push_back({owned[static_cast<std::size_t>(p.slave)],
+                      master_ids_.facet(ghosts.facet_ids[static_cast<std::size_t>(p.master)])});
   // The integration reads the master facets from the ghosts, not from the side held whole.
   hand_ghosts(itf, ghosts);
+  itf.set_candidates(pairs_);
+}
+
+void ContactSearch::hand_in_part(contact::ContactInterface& itf,
+                                 std::span<const std::int32_t> mesh_nodes) {
+  SEAM_ASSERT(in_part_);
+  const auto& ghosts = search_->ghosts();
+  // The pairs name the ghosts by their index, which the interface takes as their facet id.
+  ghost_facets_.resize(ghosts.facet_ids.size());
+  for (std::size_t f = 0; f < ghost_facets_.size(); ++f)
+    ghost_facets_[f] = static_cast<std::int64_t>(f);
+  itf.set_master_facets(ghost_facets_, ghosts.offsets, ghosts.connectivity, ghosts.node_ids,
+                        ghosts.coords, mesh_nodes);
   itf.set_candidates(pairs_);
 }
 
 void ContactSearch::find_self(contact::ContactInterface& itf) {
   const auto& side = itf.slave();
   const auto owned = itf.owned_facets();
-  side_part(side, owned, local_, slave_part_);
-  side_part(side, held_, local_, master_part_);
-  ghosts_->update(slave_part_, master_part_, side.coordinates);
+  meshtying::side_part(side, slave_ids_.facets, slave_ids_.nodes, owned, local_, slave_part_);
+  meshtying::side_part(side, slave_ids_.facets, slave_ids_.nodes, held_, local_, master_part_);
+  ghosts_->update(slave_part_, master_part_, side.coordinates, slave_ids_.nodes);
   const auto& ghosts = ghosts_->ghosts();
   // The self pairs among this rank's facets and its ghosts; the tree is kept while the ghosts
   // are the same facets.
@@ -141,8 +195,8 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
   // Each pair once: on the rank that evaluates its lower facet (every facet of the surface is
   // evaluated on one rank, and a facet's partners are all ghosted to that rank).
   for (const auto& p : found) {
-    const auto a = static_cast<local_index>(ghosts.facet_ids[static_cast<std::size_t>(p.slave)]);
-    const auto b = static_cast<local_index>(ghosts.facet_ids[static_cast<std::size_t>(p.master)]);
+    const auto a = slave_ids_.facet(ghosts.facet_ids[static_cast<std::size_t>(p.slave)]);
+    const auto b = slave_ids_.facet(ghosts.facet_ids[static_cast<std::size_t>(p.master)]);
     const auto lo = std::min(a, b);
     if (std::binary_search(owned.begin(), owned.end(), lo)) mine.push_back({lo, std::max(a, b)});
   }
@@ -152,9 +206,19 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
   // both facets; the others' positions of them may be stale).
   std::vector<contact::FacingPair> with;
   contact::with_axes(side, facing, with);
+  std::vector<GlobalFacingPair> send(with.size());
+  for (std::size_t i = 0; i < with.size(); ++i)
+    send[i] = {slave_ids_.facets[static_cast<std::size_t>(with[i].pair.slave)],
+               slave_ids_.facets[static_cast<std::size_t>(with[i].pair.master)], with[i].slave_axis,
+               with[i].master_axis};
   std::vector<std::int64_t> offsets;
-  const auto all = parallel::allgatherv<contact::FacingPair>(comm_, with, offsets);
-  contact::orient_pairs(side.n_facets(), all, pairs_);
+  const auto all = parallel::allgatherv<GlobalFacingPair>(comm_, send, offsets);
+  with.resize(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i)
+    with[i] = {{slave_ids_.facet(all[i].slave), slave_ids_.facet(all[i].master)},
+               all[i].slave_axis,
+               all[i].master_axis};
+  contact::orient_pairs(side.n_facets(), with, pairs_);
   hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }

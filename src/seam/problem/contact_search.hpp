@@ -19,9 +19,11 @@
 // a fraction of the mean facet size, exchanged anew only when a surface node has moved more
 // than half the skin since the last exchange.
 //
-// The interface still holds its sides whole on every rank (the placement reads them, and the
-// reused ghosts take their positions from them); what this removes is every rank's search
-// against the whole surface.
+// What crosses the ranks names facets and nodes by their global ids (SideIds: cell of the mesh
+// as read and local facet, node of the mesh as read), not by their index in the side, so that
+// the side a rank holds need not be whole. The interface still holds its sides whole on every
+// rank (the placement reads them, and the reused ghosts take their positions from them); what
+// this removes is every rank's search against the whole surface.
 #include "seam/contact/contact_interface.hpp"
 #include "seam/parallel/distributed_search.hpp"
 #include "seam/parallel/ghosting.hpp"
@@ -36,6 +38,24 @@
 
 namespace seam::problem {
 
+/// The global ids of the facets and the nodes of an interface side, in the side's order (both
+/// increasing): meshtying::facet_gids and the node ids of the mesh as read.
+struct SideIds {
+  std::vector<std::int64_t> facets, nodes;
+  /// The side-local index of facet (node) id `id`; InternalError if the side has none.
+  local_index facet(std::int64_t id) const;
+  local_index node(std::int64_t id) const;
+};
+
+/// Whether the master side of interface `itf` is held in part: each rank holds the master
+/// facets of its own and ghost cells (the distributed mesh no longer sends every rank the
+/// whole side) and reads every other master facet through the ghosts of the search, whose
+/// nodes need not be nodes of its part (ContactConstraint numbers them after the mesh nodes,
+/// with their global dofs). Two-body contact with dual multipliers (with or without friction)
+/// outside energy-momentum contact and runs with a saddle point (standard multipliers on some
+/// interface); every other interface keeps its master side whole.
+bool master_held_in_part(const io::Interface& itf, const io::Config& config);
+
 class ContactSearch {
 public:
   /// The skin of the reused ghosting as a fraction of the slave side's mean edge: 0.25, or the
@@ -45,15 +65,30 @@ public:
 
   /// `held`: the facets (side-local: master facets of two bodies, surface facets of self
   /// contact) this rank hands in to the ghosting, each on one rank (e.g. those of the cells it
-  /// assembles). Switches `itf` to the external search.
-  ContactSearch(MPI_Comm comm, contact::ContactInterface& itf, std::vector<local_index> held);
+  /// assembles). `slave`, `master`: the global ids of the slave and the master side (of the
+  /// surface twice on self contact). Switches `itf` to the external search.
+  /// `master_in_part`: the master side `itf` holds is a part (master_held_in_part).
+  ContactSearch(MPI_Comm comm, contact::ContactInterface& itf, std::vector<local_index> held,
+                SideIds slave, SideIds master, bool master_in_part = false);
 
   /// Collective. The candidate pairs of the owned slave facets of `itf` at its last place().
-  void find(contact::ContactInterface& itf);
+  /// A master side held in part: `ghost_positions` are the current positions of the nodes of
+  /// master_ghosts() as the last find() left them (dim per node; read when the ghosts are
+  /// reused), and the ghosts and pairs are handed to `itf` by hand_in_part(), the pairs'
+  /// master facets being indices into master_ghosts().
+  void find(contact::ContactInterface& itf, std::span<const double> ghost_positions = {});
+  bool master_in_part() const { return in_part_; }
+  /// The master facets ghosted to this rank at the last find() (two bodies).
+  const parallel::SurfacePart& master_ghosts() const { return search_->ghosts(); }
+  /// A master side held in part: the ghosts and pairs of the last find() to `itf`, with the
+  /// mesh node of every ghost node (numbers beyond the mesh's nodes for those outside it).
+  void hand_in_part(contact::ContactInterface& itf, std::span<const std::int32_t> mesh_nodes);
 
   /// Appends the side-local nodes (master side; the surface on self contact) whose positions
   /// the next find() reads on this rank: those of the facets it hands in and of the ghosts of
-  /// the last find() (reused ghosts take their nodes' current positions from the side).
+  /// the last find() (reused ghosts take their nodes' current positions from the side). A
+  /// master side held in part: those of the facets it hands in only (the ghosts' nodes are
+  /// the caller's, hand_in_part).
   void nodes_read(const contact::ContactInterface& itf, std::vector<local_index>& out) const;
 
   /// Facets this rank received at the last find() (master facets, or surface facets of self
@@ -73,11 +108,18 @@ public:
 
 private:
   void find_self(contact::ContactInterface& itf);
+  /// The ghosts to the interface's integration, in side-local ids.
+  void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts);
 
   MPI_Comm comm_;
   double skin_;
+  bool in_part_ = false;
+  std::vector<std::int64_t> position_ids_; // the ghost nodes of the last find(), scratch
   std::vector<local_index> held_;
+  SideIds slave_ids_, master_ids_;
   std::vector<local_index> local_; // side node -> part node, scratch
+  // The ghosts in side-local ids for the interface, scratch.
+  std::vector<std::int64_t> ghost_facets_, ghost_nodes_;
   parallel::SurfacePart slave_part_, master_part_;
   std::vector<mortar::CandidatePair> pairs_;
   // Two bodies.

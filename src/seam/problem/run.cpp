@@ -14,6 +14,7 @@
 #include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
+#include "seam/problem/contact_search.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/dynamic_solver.hpp"
 #include "seam/problem/fluid_model.hpp"
@@ -120,12 +121,13 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
                                             const std::filesystem::path& scratch, bool quiet) {
   // Sides held whole on every rank: those of contact and of saddle-point tying. The sides of
   // condensed tying are set up distributed (meshtying::distributed_tying): each rank needs
-  // only its own cells' facets and the master facets ghosted to it.
+  // only its own cells' facets and the master facets ghosted to it; so is the master side of
+  // two-body contact held in part (master_held_in_part).
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     if (meshtying::distributed_tying(itf)) continue;
     sides.push_back(itf.slave.name);
-    if (itf.master) sides.push_back(itf.master->name);
+    if (itf.master && !master_held_in_part(itf, config)) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
   }
   std::filesystem::path file = config.mesh.file;

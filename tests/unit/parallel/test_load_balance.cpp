@@ -1,10 +1,13 @@
 // Eq. (21)'s monitor and the proximity split of the contact zone.
 #include "parallel_test_support.hpp"
 #include "seam/common/error.hpp"
+#include "seam/parallel/exchange.hpp"
+#include "seam/parallel/facet_distribution.hpp"
 #include "seam/parallel/load_balance.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -98,6 +101,54 @@ TEST(ProximityPartition, ContactZoneAndRestAreBalancedSeparately) {
   std::vector<int> again(id.size());
   split.repartition(world(), x, work, id, again);
   EXPECT_EQ(again, parts);
+}
+
+// The facets of an interface cross the ranks by their global ids (cell id of the mesh as read
+// * 8 + local facet, beyond 32 bits on large meshes): each id ends on exactly one rank, the
+// facets with work are balanced, and a repartition with the same input moves none.
+TEST(FacetDistribution, MovesFacetsByTheirGlobalIds) {
+  constexpr std::int64_t n = 600;
+  const auto gid = [](std::int64_t f) { return (std::int64_t{3'000'000'000} + 7 * f) * 8 + f % 6; };
+  std::vector<global_index> ids;
+  std::vector<double> centroids, work;
+  for (std::int64_t f = rank(); f < n; f += size()) { // held round robin, unrelated to geometry
+    ids.push_back(gid(f));
+    const double x = static_cast<double>(f % 30) / 30.0, y = static_cast<double>(f / 30) / 20.0;
+    centroids.push_back(x);
+    centroids.push_back(y);
+    work.push_back(x < 0.3 ? 5.0 : 0.0); // a contact zone on one side
+  }
+  FacetDistribution distribution(world(), 2);
+  const auto mine = distribution.distribute(ids, centroids, work);
+  EXPECT_TRUE(std::is_sorted(mine.begin(), mine.end()));
+  std::vector<std::int64_t> offsets;
+  auto all = allgatherv<global_index>(world(), mine, offsets);
+  std::sort(all.begin(), all.end());
+  std::vector<global_index> expected;
+  for (std::int64_t f = 0; f < n; ++f) expected.push_back(gid(f));
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(all, expected);
+  // The work per rank: the contact zone spread over every rank.
+  double my_work = 0.0;
+  for (const auto id : mine) {
+    const auto f = (id / 8 - std::int64_t{3'000'000'000}) / 7;
+    my_work += f % 30 < 9 ? 5.0 : 0.0;
+  }
+  double least = 0.0, most = 0.0;
+  MPI_Allreduce(&my_work, &least, 1, MPI_DOUBLE, MPI_MIN, world());
+  MPI_Allreduce(&my_work, &most, 1, MPI_DOUBLE, MPI_MAX, world());
+  EXPECT_GT(least, 0.0);
+  EXPECT_LE(most, 1.1 * least + 10.0);
+  // Handed back as they are now: the same cut, nothing moves.
+  std::vector<double> c2, w2;
+  for (const auto id : mine) {
+    const auto f = (id / 8 - std::int64_t{3'000'000'000}) / 7;
+    c2.push_back(static_cast<double>(f % 30) / 30.0);
+    c2.push_back(static_cast<double>(f / 30) / 20.0);
+    w2.push_back(f % 30 < 9 ? 5.0 : 0.0);
+  }
+  EXPECT_EQ(distribution.distribute(mine, c2, w2), mine);
+  EXPECT_EQ(distribution.moved(), 0);
 }
 
 } // namespace
