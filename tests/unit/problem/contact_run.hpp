@@ -22,6 +22,17 @@
 
 namespace seam::problem {
 
+/// A wider base block below the cases' body (Gmsh text; h is the body's mesh size), meshed
+/// independently (non-matching, 0.7 h): groups base_bottom, base_top, base.
+inline constexpr const char* kWideBase =
+    "Point(11) = {-0.3, -0.25, 0, 0.7*h}; Point(12) = {1.3, -0.25, 0, 0.7*h};\n"
+    "Point(13) = {1.3, 0, 0, 0.7*h}; Point(14) = {-0.3, 0, 0, 0.7*h};\n"
+    "Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};\n"
+    "Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};\n"
+    "Recombine Surface{11};\n"
+    "Physical Curve(\"base_bottom\") = {11}; Physical Curve(\"base_top\") = {13};\n"
+    "Physical Surface(\"base\") = {11};\n";
+
 struct ContactRun {
   /// `serendipity`: the mesh's quadratic cells are serendipity ones (quad8, hex20).
   ContactRun(const Comm& comm, const std::filesystem::path& folder, bool serendipity)

@@ -79,13 +79,7 @@ std::string rectangle_geo(double h, int order, bool two_bodies) {
       "Physical Surface(\"body\") = {1};\n";
   if (two_bodies)
     // A wider base below, meshed independently (non-matching, 0.7 h).
-    g += "Point(11) = {-0.3, -0.25, 0, 0.7*h}; Point(12) = {1.3, -0.25, 0, 0.7*h};\n"
-         "Point(13) = {1.3, 0, 0, 0.7*h}; Point(14) = {-0.3, 0, 0, 0.7*h};\n"
-         "Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};\n"
-         "Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};\n"
-         "Recombine Surface{11};\n"
-         "Physical Curve(\"base_bottom\") = {11}; Physical Curve(\"base_top\") = {13};\n"
-         "Physical Surface(\"base\") = {11};\n";
+    g += kWideBase;
   g += "Mesh.ElementOrder = " + std::to_string(order) + ";\n";
   return g;
 }

@@ -35,14 +35,7 @@ constexpr const char* geo =
     "Transfinite Curve{1, 3} = 17; Transfinite Curve{2, 4} = 5;\n"
     "Transfinite Surface{1}; Recombine Surface{1};\n"
     "Physical Curve(\"bottom\") = {1}; Physical Curve(\"top\") = {3};\n"
-    "Physical Surface(\"body\") = {1};\n"
-    "Point(11) = {-0.3, -0.25, 0, 0.7*h}; Point(12) = {1.3, -0.25, 0, 0.7*h};\n"
-    "Point(13) = {1.3, 0, 0, 0.7*h}; Point(14) = {-0.3, 0, 0, 0.7*h};\n"
-    "Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};\n"
-    "Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};\n"
-    "Recombine Surface{11};\n"
-    "Physical Curve(\"base_bottom\") = {11}; Physical Curve(\"base_top\") = {13};\n"
-    "Physical Surface(\"base\") = {11};\n";
+    "Physical Surface(\"body\") = {1};\n";
 
 struct Outcome {
   int active_before = 0, active_after = 0, released = 0;
@@ -68,7 +61,7 @@ Outcome held_set_after_motion(const std::string& name, double dx, double dy) {
   if (comm.is_root()) {
     std::filesystem::remove_all(folder);
     std::filesystem::create_directories(folder);
-    std::ofstream(folder / "case.geo") << geo;
+    std::ofstream(folder / "case.geo") << geo << kWideBase;
     std::ofstream(folder / "case.yaml") << yaml;
   }
   comm.barrier();
