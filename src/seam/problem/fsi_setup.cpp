@@ -6,11 +6,13 @@
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
 #include "seam/mesh/facets.hpp"
+#include "seam/mesh/partition.hpp"
 #include "seam/problem/model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <span>
 
 namespace seam::problem {
 
@@ -236,31 +238,78 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     for (int a : fem::facet_nodes(mesh.cell_type[c], exterior.local[f])) held[nodes[a]] |= mask;
   }
 
-  // Condensed numbering and the maps T_c (columns) and R (rows), raw dof by raw dof.
-  PetscInt next = 0;
-  std::vector<PetscInt> own(n_raw(), -1);
-  for (std::size_t n = 0; n < n_nodes_; ++n)
-    for (int i = 0; i < dim; ++i)
-      if (solid_node_[n] && prescribed_[d_dof(n, i)] < 0) {
-        structure_raw_.push_back(d_dof(n, i));
-        own[d_dof(n, i)] = next++;
-      }
-  end_structure_ = next;
-  for (std::size_t n = 0; n < n_nodes_; ++n) {
-    if (!fluid_node_[n]) continue;
-    for (int i = 0; i < dim; ++i)
-      if (on_interface[n].first < 0 && prescribed_[f_dof(n, i)] < 0) own[f_dof(n, i)] = next++;
-    if (pressure_node_[n]) own[f_dof(n, dim)] = next++;
-  }
-  end_fluid_ = next;
-  for (std::size_t n = 0; n < n_nodes_; ++n)
-    if (fluid_node_[n] && on_interface[n].first < 0)
-      for (int i = 0; i < dim; ++i)
-        if (!(held[n] >> i & 1u)) own[m_dof(n, i)] = next++;
-  n_unknowns_ = next;
+  // The partition, as a fluid run's on the replicated mesh (FluidLayout): METIS parts of the
+  // cells, each node owned by the lowest part among its cells.
   const int size = comm.size(), rank = comm.rank();
-  n_owned_ = next / size + (rank < next % size ? 1 : 0);
-  first_owned_ = rank * (next / size) + std::min<PetscInt>(rank, next % size);
+  std::vector<int> cell_part;
+  if (comm.is_root()) cell_part = mesh::partition_cells(mesh, size);
+  comm.broadcast(cell_part);
+  const auto numbering = mesh::number_nodes(mesh, cell_part, size);
+  node_owner_ = numbering.owner;
+  node_slot_ = numbering.new_index;
+  n_owned_nodes_ = numbering.offsets[rank + 1] - numbering.offsets[rank];
+  std::vector<char> held_node(n_nodes_, 0);
+  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
+    if (cell_part[c] == rank) {
+      local_cells_.push_back(c);
+      for (auto n : mesh.cell(c)) held_node[n] = 1;
+    }
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    if (held_node[n]) held_nodes_.push_back(static_cast<std::int32_t>(n));
+
+  // Condensed numbering and the maps T_c (columns) and R (rows), raw dof by raw dof. The
+  // unknowns of a node, in the canonical order (node by node, structure, fluid, mesh) and in
+  // the order of the ranks (each rank's nodes in numbering order: structure, fluid, mesh).
+  const auto structure_unknown = [&](std::size_t n, int i) {
+    return solid_node_[n] && prescribed_[d_dof(static_cast<std::int32_t>(n), i)] < 0;
+  };
+  const auto fluid_unknown = [&](std::size_t n, int c) {
+    if (!fluid_node_[n]) return false;
+    if (c == dim) return pressure_node_[n] != 0;
+    return on_interface[n].first < 0 && prescribed_[f_dof(static_cast<std::int32_t>(n), c)] < 0;
+  };
+  const auto mesh_unknown = [&](std::size_t n, int i) {
+    return fluid_node_[n] && on_interface[n].first < 0 && !(held[n] >> i & 1u);
+  };
+  PetscInt next = 0;
+  std::vector<PetscInt> canon(n_raw(), -1);
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    for (int i = 0; i < dim; ++i)
+      if (structure_unknown(n, i)) canon[d_dof(static_cast<std::int32_t>(n), i)] = next++;
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    for (int c = 0; c <= dim; ++c)
+      if (fluid_unknown(n, c)) canon[f_dof(static_cast<std::int32_t>(n), c)] = next++;
+  for (std::size_t n = 0; n < n_nodes_; ++n)
+    for (int i = 0; i < dim; ++i)
+      if (mesh_unknown(n, i)) canon[m_dof(static_cast<std::int32_t>(n), i)] = next++;
+  n_unknowns_ = next;
+  next = 0;
+  std::vector<PetscInt> own(n_raw(), -1);
+  for (int r = 0; r < size; ++r) {
+    const auto nodes =
+        std::span(numbering.old_index)
+            .subspan(static_cast<std::size_t>(numbering.offsets[r]),
+                     static_cast<std::size_t>(numbering.offsets[r + 1] - numbering.offsets[r]));
+    if (r == rank) first_owned_ = next;
+    for (auto n : nodes)
+      for (int i = 0; i < dim; ++i)
+        if (structure_unknown(n, i)) {
+          if (r == rank) structure_raw_.push_back(d_dof(n, i));
+          own[d_dof(n, i)] = next++;
+        }
+    if (r == rank) end_structure_ = next;
+    for (auto n : nodes)
+      for (int c = 0; c <= dim; ++c)
+        if (fluid_unknown(n, c)) own[f_dof(n, c)] = next++;
+    if (r == rank) end_fluid_ = next;
+    for (auto n : nodes)
+      for (int i = 0; i < dim; ++i)
+        if (mesh_unknown(n, i)) own[m_dof(n, i)] = next++;
+    if (r == rank) n_owned_ = next - first_owned_;
+  }
+  canonical_.assign(static_cast<std::size_t>(n_unknowns_), 0);
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    if (own[a] >= 0) canonical_[own[a]] = canon[a];
 
   // The structure dofs P maps an interface node to, component i.
   const auto for_master = [&](std::int32_t n, const auto& f) {
@@ -316,10 +365,20 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     mesh_young_[fluid_cells[q]] = std::pow(ratio[q], power);
   }
 
-  // A contiguous block of cells per rank.
-  const auto n_cells = static_cast<std::int64_t>(mesh.n_cells());
-  for (std::int64_t c = n_cells * rank / size; c < n_cells * (rank + 1) / size; ++c)
-    local_cells_.push_back(static_cast<std::int32_t>(c));
+  // The unknowns the cells of this rank need.
+  for (auto n : held_nodes_) {
+    const auto scan = [&](std::size_t a) {
+      for (auto q = columns_.offsets[a]; q < columns_.offsets[a + 1]; ++q)
+        held_.push_back(columns_.index[q]);
+    };
+    for (int i = 0; i < dim; ++i) {
+      scan(d_dof(n, i));
+      scan(m_dof(n, i));
+    }
+    for (int c = 0; c <= dim; ++c) scan(f_dof(n, c));
+  }
+  std::sort(held_.begin(), held_.end());
+  held_.erase(std::unique(held_.begin(), held_.end()), held_.end());
 }
 
 } // namespace seam::problem

@@ -10,10 +10,12 @@
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/locate.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fsi_system.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/output.hpp"
 #include "seam/problem/progress.hpp"
 #include "seam/problem/step_control.hpp"
 
@@ -307,10 +309,13 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                   "rank(s); output in %s\n",
                   mesh.n_nodes(), mesh.n_cells(), info.n_dofs, comm.size(), dir.string().c_str());
   }
+  // A Newton iteration scatters the unknowns of the held nodes (held_unknowns); the whole
+  // state is brought to every rank once per converged step, for the output on the replicated
+  // mesh (fields, probes, the interface files) and the checkpoints.
   std::vector<PetscInt> all(static_cast<std::size_t>(sys.n_unknowns()));
   std::iota(all.begin(), all.end(), PetscInt{0});
-  la::Vector layout(comm.get(), sys.n_owned());
-  const la::Gather gather(layout, all);
+  la::Vector xv(comm.get(), sys.n_owned());
+  const la::Gather gather_all(xv, all), gather_held(xv, sys.held_unknowns());
   // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
   // (docs/fsi.md, "Linear solvers"); `auto` keeps the direct solver.
   const auto choice =
@@ -337,7 +342,13 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     solver.set_fsi_fields(s_rows, f_rows, m_rows, sys.structure_rigid_modes(), velocity_block);
   }
   long long linear_solves = 0, linear_iterations = 0;
-  std::vector<double> x(all.size(), 0.0), raw, dx_all;
+  std::vector<double> x(all.size(), 0.0), raw, x_held;
+  // The owned entries of the whole x into xv.
+  const auto set_owned = [&] {
+    la::Vector::LocalView view(xv, true);
+    auto v = view.values();
+    for (PetscInt k = 0; k < sys.n_owned(); ++k) v[k] = x[sys.first_owned() + k];
+  };
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
   double reference = 0.0, work = 0.0;
@@ -358,6 +369,29 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   StepControl control(config.time);
   int step = 0, newton_iterations = 0;
   const auto finish = [&](bool ok) {
+    // Every rank's share (CONTRACT.md, ranks_detail; output.hpp): the cells it assembles and
+    // the other cells it holds (the rest of the replicated mesh), its peak memory, its owned
+    // nodes, the other nodes of its cells and the nodes it holds.
+    parallel::mark_memory(comm.get(), "end");
+    constexpr std::size_t n_detail = n_rank_detail_basics;
+    std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
+    {
+      double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
+      mine[0] = static_cast<double>(sys.local_cells().size());
+      mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
+      mine[6] = parallel::peak_rss_mb();
+      std::vector<char> of_cells(static_cast<std::size_t>(mesh.n_nodes()), 0);
+      for (auto c : sys.local_cells())
+        for (auto n : mesh.cell(c)) of_cells[n] = 1;
+      for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) {
+        if (sys.owns_node(n))
+          mine[8] += 1.0;
+        else if (of_cells[n])
+          mine[9] += 1.0;
+      }
+      mine[10] = static_cast<double>(mesh.n_nodes());
+    }
+    comm.sum_in_place(detail);
     if (!root) return;
     io::Json j = io::Json::object();
     j["status"] = ok ? "converged" : "failed";
@@ -373,6 +407,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     auto& tj = j["timings"];
     for (const char* phase : {"assembly", "condensation", "linear_solve", "output"})
       tj[phase] = timers.get(phase);
+    j["nodes"] = static_cast<std::int64_t>(mesh.n_nodes());
+    j["cells"] = static_cast<std::int64_t>(mesh.n_cells());
+    auto& ranks = j["ranks_detail"];
+    ranks = io::Json::array();
+    for (int rk = 0; rk < comm.size(); ++rk) {
+      io::Json e = io::Json::object();
+      put_rank_detail_basics(e, rk, &detail[static_cast<std::size_t>(rk) * n_detail]);
+      ranks.push_back(std::move(e));
+    }
     io::write_json(dir / "summary.json", j);
   };
   // The energy budget (docs/fsi.md, "Energy budget"): the powers at t_n, the works accumulated
@@ -389,7 +432,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   // The state carried from step to step: the unknowns, the history of the time integration,
   // the residual scale, the reactions and powers at t_n and the works to t_n, the forces of
   // the force groups, step control and the output counters. Rank 0's copy is written (the
-  // records of the tables' columns are kept on rank 0 only).
+  // records of the tables' columns are kept on rank 0 only): x in the canonical numbering of
+  // the unknowns and the reactions summed, so that any number of ranks continues.
   const auto flat = [](const auto& groups) {
     std::vector<double> out;
     for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
@@ -400,14 +444,17 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                                  p.interface_structure};
   };
   const auto write_checkpoint = [&] {
+    std::vector<double> canonical_x(x.size()), all_reactions = reaction;
+    for (std::size_t k = 0; k < x.size(); ++k) canonical_x[sys.canonical()[k]] = x[k];
+    comm.sum_in_place(all_reactions);
     const auto c = control.state();
     RecordWriter cw = checkpoints.begin(step, c.t);
     cw.put_real("control.dt", c.dt);
     cw.put_integer("control.cuts", c.cuts);
     cw.put_integer("newton.iterations", newton_iterations);
     cw.put_real("newton.reference", reference);
-    cw.put("x", x);
-    cw.put("reaction", reaction);
+    cw.put("x", canonical_x);
+    cw.put("reaction", all_reactions);
     cw.put("power", powers(power_old));
     cw.put("work", powers(work_sum));
     cw.put_real("structure_work", work);
@@ -428,8 +475,12 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     newton_iterations = static_cast<int>(r.integer("newton.iterations"));
     reference = r.real("newton.reference");
     const auto n_raw = sys.n_raw();
-    x = r.reals("x", x.size());
+    const auto canonical_x = r.reals("x", x.size());
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = canonical_x[sys.canonical()[k]];
+    // The reactions live on the owners of their nodes (FsiSystem::Result::raw_residual).
     reaction = r.reals("reaction", n_raw);
+    for (std::size_t a = 0; a < n_raw; ++a)
+      if (!sys.owns_raw(a)) reaction[a] = 0.0;
     const auto p = r.reals("power", 4), s = r.reals("work", 4);
     power_old = {p[0], p[1], p[2], p[3]};
     work_sum = {s[0], s[1], s[2], s[3]};
@@ -446,6 +497,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
                   control.time());
   }
+  set_owned();
   std::vector<double> x_converged = x;
   const double progress_wall = wall_seconds(), progress_time = control.time();
   while (control.running()) {
@@ -486,6 +538,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
         if (sys.is_fluid_node(n))
           for (int i = 0; i < dim; ++i)
             level += res.raw_residual[sys.f_dof(n, i)] * res.raw_residual[sys.f_dof(n, i)];
+      level = comm.sum(level); // each rank's owned nodes
       reference = std::max({reference, it == 0 ? rn : 0.0, std::sqrt(level), res.level});
       if (root && !quiet)
         std::printf("  step %d t = %g  iteration %d  |r| = %.3e (relative %.3e)\n", step + 1, t, it,
@@ -516,17 +569,23 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                             : "the linear solver failed (MUMPS)";
         break;
       }
-      gather(dx, dx_all);
-      for (std::size_t k = 0; k < x.size(); ++k) x[k] += dx_all[k];
+      xv.axpy(1.0, dx);
+      gather_held(xv, x_held);
+      const auto& held = sys.held_unknowns();
+      for (std::size_t k = 0; k < held.size(); ++k) x[held[k]] = x_held[k];
     }
     newton_iterations += it;
     if (*failure != '\0') {
       x = x_converged;
+      set_owned();
       if (control.cut(failure, t, comm)) continue;
       finish(false);
       SEAM_THROW(SolverError, failure, " at t = ", t, " after ", control.cuts(), " step cuts; the ",
                  step, " converged steps are written in ", dir.string());
     }
+    // The whole converged state on every rank (the output on the replicated mesh).
+    gather_all(xv, x);
+    sys.expand(x, g, raw);
     x_converged = x;
     control.accept(t);
     ++step;
@@ -543,6 +602,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     // t_{n+alpha_f}, as for forces.csv; their power on the fluid's velocity; the power of the
     // transferred force P^T f on the structure's velocity; the dissipation and the kinetic
     // energy carried through the boundary (- convection + mesh transport, fluid::EnergyIntegrals).
+    // The reactions are those of each rank's owned nodes, the powers their sums over ranks.
     Powers power;
     for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
       if (sys.is_fluid_node(n))
@@ -564,6 +624,14 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
               power.interface_structure +=
                   cp.weights[q] * f * history.rate[sys.d_dof(cp.structure_nodes[q], i)];
           }
+    {
+      std::array<double, 3> partial{power.interface_fluid, power.boundary,
+                                    power.interface_structure};
+      comm.sum_in_place(partial);
+      power.interface_fluid = partial[0];
+      power.boundary = partial[1];
+      power.interface_structure = partial[2];
+    }
     const auto fluid_energy = sys.fluid_energy(raw, dynamic ? std::span<const double>(history.rate)
                                                             : std::span<const double>());
     power.boundary += fluid_energy.mesh_transport - fluid_energy.convection;
@@ -577,9 +645,30 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
           h * (power_old.interface_structure + power.interface_structure);
     }
     power_old = power;
+    // The force groups: each rank's sums over its owned nodes, summed over ranks.
+    std::vector<double> group_sums;
+    for (const auto& group : w.groups) {
+      const auto f = fluid_force(sys, res.raw_residual, group.second);
+      group_sums.insert(group_sums.end(), f.begin(), f.end());
+    }
+    comm.sum_in_place(group_sums);
+    // The fluid's interface residual whole (the interface sides are held whole on every rank):
+    // the traction, the force transfer and its work.
+    std::vector<double> interface_residual = res.raw_residual;
+    {
+      std::vector<double> values;
+      for (const auto& cp : sys.couplings())
+        for (auto n : cp.fluid_nodes)
+          for (int i = 0; i < dim; ++i) values.push_back(res.raw_residual[sys.f_dof(n, i)]);
+      comm.sum_in_place(values);
+      std::size_t k = 0;
+      for (const auto& cp : sys.couplings())
+        for (auto n : cp.fluid_nodes)
+          for (int i = 0; i < dim; ++i) interface_residual[sys.f_dof(n, i)] = values[k++];
+    }
     if (root) {
       for (std::size_t k = 0; k < w.groups.size(); ++k) {
-        auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
+        std::array<double, 3> f{group_sums[k * 3], group_sums[k * 3 + 1], group_sums[k * 3 + 2]};
         // Dynamics: the residual holds the force at t_{n+alpha_f}; at t_{n+1} it is
         // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f (as the fluid runs).
         if (dynamic)
@@ -601,7 +690,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
           double fn = 0.0;
           std::array<double, 3> f{};
           for (int i = 0; i < dim; ++i) {
-            f[i] = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
+            f[i] = -interface_residual[sys.f_dof(cp.fluid_nodes[j], i)];
             fn += f[i] * n[i];
             ff[i] += f[i];
             for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
@@ -641,7 +730,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       // Fields every `output.every` steps and at the end.
       if (step % config.output.every == 0 || !control.running()) {
         write_fields(sys, raw, step, t, w);
-        write_interfaces(sys, raw, res.raw_residual, normals, dir);
+        write_interfaces(sys, raw, interface_residual, normals, dir);
       }
     }
     if (checkpoints.due(step)) write_checkpoint();

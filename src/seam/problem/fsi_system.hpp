@@ -18,8 +18,13 @@
 // fluid by (u, p), the fluid by the mesh position and velocity (shape derivatives), the
 // pseudo-elastic mesh stiffness, the mass blocks of a time step.
 //
-// Every rank holds the description (the mesh is replicated) and the whole state; each rank
-// assembles a contiguous block of cells, the condensed system is a distributed PETSc system.
+// Every rank holds the description (the mesh is replicated). The cells are partitioned as
+// a fluid run's (METIS, mesh::partition_cells), each node owned by the lowest part among its
+// cells (mesh::number_nodes); each rank assembles its cells. The condensed unknowns are
+// numbered by the owners of their nodes: each rank's block holds its nodes' structure, then
+// fluid, then mesh unknowns, after the blocks of the lower ranks. The raw residual of a rank's
+// cells is summed on the owners of its nodes (one assembly of a node-laid-out vector), so that
+// a Newton iteration needs the unknowns of the held nodes only (held_unknowns), never all.
 #include "seam/common/mpi.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/config.hpp"
@@ -68,6 +73,25 @@ public:
   PetscInt n_unknowns() const { return n_unknowns_; }
   PetscInt n_owned() const { return n_owned_; }
   PetscInt first_owned() const { return first_owned_; }
+  /// The condensed unknowns this rank's cells need (the columns of their raw dofs, through
+  /// P the structure nodes of their interface nodes), ascending: what a Newton iteration
+  /// scatters to this rank.
+  const std::vector<PetscInt>& held_unknowns() const { return held_; }
+  /// Whether this rank owns mesh node n (its raw residual entries are summed here).
+  bool owns_node(std::int32_t n) const { return node_owner_[n] == comm_.rank(); }
+  /// Whether this rank owns the node of raw dof a.
+  bool owns_raw(std::size_t a) const { return owns_node(raw_node(a)); }
+  std::int32_t raw_node(std::size_t a) const {
+    return static_cast<std::int32_t>(a < base_f_   ? a / dim_
+                                     : a < base_m_ ? (a - base_f_) / (dim_ + 1)
+                                                   : (a - base_m_) / dim_);
+  }
+  /// The cells this rank assembles.
+  const std::vector<std::int32_t>& local_cells() const { return local_cells_; }
+  /// The numbering of the unknowns that does not depend on the number of ranks (node by node
+  /// in mesh order, structure, fluid, mesh): checkpoints hold x in it. canonical()[k] is the
+  /// canonical number of unknown k.
+  const std::vector<PetscInt>& canonical() const { return canonical_; }
   std::size_t n_raw() const { return static_cast<std::size_t>(base_m_) + n_nodes_ * dim_; }
 
   /// Raw dof numbers: d of node n component i, u (c < dim) or p (c = dim), m.
@@ -131,8 +155,9 @@ public:
     /// The force level: the norm over the condensed rows of the sums of the magnitudes of the
     /// element contributions (round-off in the residual is a small multiple of eps times this).
     double level = 0.0;
-    /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
-    /// prescribed dofs, the fluid's interface forces before the transfer).
+    /// The raw residual r = f_int - f_ext (reactions on prescribed dofs, the fluid's interface
+    /// forces before the transfer): summed over ranks in the raw dofs of the nodes this rank
+    /// owns, 0 in all others (a sum over nodes is a sum of the ranks' partial sums).
     std::vector<double> raw_residual;
     /// Wall time of this call on this rank: the element kernels (assembly) and the products
     /// with R and T_c into the condensed matrix (condensation).
@@ -171,6 +196,20 @@ private:
   std::vector<solid::Material> solids_;
   std::vector<char> solid_node_, fluid_node_, pressure_node_;
   std::vector<std::int32_t> local_cells_;
+  std::vector<int> node_owner_;
+  /// The node-laid-out vector the raw residual is summed in: node n's slots from
+  /// node_slot_[n] * raw_slots(), each rank's owned nodes one contiguous range.
+  std::vector<std::int64_t> node_slot_;
+  std::int64_t n_owned_nodes_ = 0;
+  std::vector<std::int32_t> held_nodes_; ///< the nodes of local_cells_, ascending
+  std::vector<PetscInt> held_, canonical_;
+  std::size_t raw_slots() const { return static_cast<std::size_t>(3 * dim_ + 1); }
+  /// The slot of raw dof a within its node's raw_slots().
+  std::size_t raw_slot(std::size_t a) const {
+    return a < base_f_   ? a % dim_
+           : a < base_m_ ? dim_ + (a - base_f_) % (dim_ + 1)
+                         : 2 * dim_ + 1 + (a - base_m_) % dim_;
+  }
   std::vector<FsiCoupling> couplings_;
   /// Per raw dof: the expression of a prescribed value (-1: none).
   std::vector<int> prescribed_;
@@ -187,8 +226,8 @@ private:
   }
   DofMap rows_; ///< R
   PetscInt n_unknowns_ = 0, n_owned_ = 0, first_owned_ = 0;
-  PetscInt end_structure_ = 0, end_fluid_ = 0; ///< the fields' ranges of the unknowns
-  std::vector<std::size_t> structure_raw_;     ///< the raw d dof of each structure unknown
+  PetscInt end_structure_ = 0, end_fluid_ = 0; ///< the fields' ends in this rank's block
+  std::vector<std::size_t> structure_raw_;     ///< the raw d dof of each owned structure unknown
   bool taylor_hood_ = true;
   /// The last Jacobian made from triplets: its handle, the options it was made with and its
   /// triplet count (assemble then sets only its values).

@@ -193,8 +193,8 @@ int run(const RunOptions& options, int argc, char** argv) {
   if (has_fsi(config)) {
     auto mesh = load_mesh(config, comm);
     if (comm.is_root() && comm.size() > 1 && !options.quiet)
-      std::printf("seam: fluid-structure runs are not distributed yet: every rank holds the "
-                  "whole mesh\n");
+      std::printf("seam: fluid-structure runs hold the whole mesh on every rank (each assembles "
+                  "its part of the cells; the mesh is not distributed yet)\n");
     make_output_directory(output_directory(options), comm);
     run_fsi(config, mesh, comm, output_directory(options), options.quiet, false,
             {options.input, options.restart});

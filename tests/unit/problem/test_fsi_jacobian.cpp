@@ -25,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -183,8 +184,9 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
     if (shape) residual(std::vector<double>(N, 0.0), &J, true);
     residual(x, &J, shape != 0, &res);
     if (shape) {
-      // Force conservation through P^T.
-      double ff[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
+      // Force conservation through P^T (the raw residual summed on the owners of the nodes:
+      // each rank's sums over its nodes, summed over ranks).
+      std::array<double, 3> ff{}, fs{};
       for (const auto& cp : sys.couplings())
         for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
           for (int i = 0; i < dim; ++i) {
@@ -192,6 +194,8 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
             ff[i] += f;
             for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) fs[i] += cp.weights[q] * f;
           }
+      comm.sum_in_place(ff);
+      comm.sum_in_place(fs);
       e.force =
           std::hypot(ff[0] - fs[0], ff[1] - fs[1], ff[2] - fs[2]) / std::hypot(ff[0], ff[1], ff[2]);
     }
