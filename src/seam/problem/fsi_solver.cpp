@@ -373,10 +373,12 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     // the other cells it holds (the rest of the replicated mesh), its peak memory, its owned
     // nodes, the other nodes of its cells and the nodes it holds.
     parallel::mark_memory(comm.get(), "end");
-    constexpr std::size_t n_detail = n_rank_detail_basics;
+    // And the unknowns a Newton iteration brings to it (held_unknowns), of all.
+    constexpr std::size_t n_detail = n_rank_detail_basics + 1;
     std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
     {
       double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
+      mine[n_rank_detail_basics] = static_cast<double>(sys.held_unknowns().size());
       mine[0] = static_cast<double>(sys.local_cells().size());
       mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
       mine[6] = parallel::peak_rss_mb();
@@ -414,6 +416,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     for (int rk = 0; rk < comm.size(); ++rk) {
       io::Json e = io::Json::object();
       put_rank_detail_basics(e, rk, &detail[static_cast<std::size_t>(rk) * n_detail]);
+      e["held_unknowns"] =
+          static_cast<std::int64_t>(detail[static_cast<std::size_t>(rk) * n_detail + n_detail - 1]);
       ranks.push_back(std::move(e));
     }
     io::write_json(dir / "summary.json", j);

@@ -25,8 +25,9 @@ struct FsiRunInfo {
 
 /// Checks the input, then runs all steps, writing into `dir` (which exists), or continues
 /// from the checkpoint of `restart` (the tables and results.pvd continue; the checkpoints
-/// of `output.checkpoint_every` hold the whole state, fsi_solver.cpp). `check_only` stops
-/// after the checks. Throws InputError or SolverError.
+/// of `output.checkpoint_every` hold the whole state, x in a numbering independent of the
+/// number of ranks, fsi_solver.cpp). `check_only` stops after the checks. Throws InputError
+/// or SolverError.
 FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                    const std::filesystem::path& dir, bool quiet, bool check_only = false,
                    const RestartFrom& restart = {});
