@@ -29,6 +29,7 @@
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/solid/material.hpp"
 
@@ -63,9 +64,13 @@ struct FsiCoupling {
 
 class FsiSystem {
 public:
-  /// Checks the input for a steady fsi run (InputError, located) and builds the maps.
+  /// Checks the input for a steady fsi run (InputError, located, on every rank) and builds
+  /// the maps. `part` (kept by reference): `mesh` is this rank's part of a distributed mesh
+  /// (part->mesh, its `fsi` interface sides held whole, `interfaces` set up on it); null: the
+  /// mesh is replicated.
   FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
-            const std::vector<meshtying::TiedInterface>& interfaces, Comm comm);
+            const std::vector<meshtying::TiedInterface>& interfaces, Comm comm,
+            const mesh::DistributedMesh* part = nullptr);
 
   int dim() const { return dim_; }
   Comm comm() const { return comm_; }
@@ -86,11 +91,18 @@ public:
                                      : a < base_m_ ? (a - base_f_) / (dim_ + 1)
                                                    : (a - base_m_) / dim_);
   }
+  /// A number of raw dof a that is the same on every rank and for any number of ranks.
+  std::int64_t raw_id(std::size_t a) const {
+    const auto n = raw_node(a);
+    return (part_ ? part_->node_gid[n] : n) * static_cast<std::int64_t>(raw_slots()) +
+           static_cast<std::int64_t>(raw_slot(a));
+  }
+  const mesh::DistributedMesh* part() const { return part_; }
   /// The cells this rank assembles.
   const std::vector<std::int32_t>& local_cells() const { return local_cells_; }
   /// The numbering of the unknowns that does not depend on the number of ranks (node by node
   /// in mesh order, structure, fluid, mesh): checkpoints hold x in it. canonical()[k] is the
-  /// canonical number of unknown k.
+  /// canonical number of unknown k. Replicated mesh only (empty on a distributed one).
   const std::vector<PetscInt>& canonical() const { return canonical_; }
   std::size_t n_raw() const { return static_cast<std::size_t>(base_m_) + n_nodes_ * dim_; }
 
@@ -183,8 +195,13 @@ private:
                  std::span<const double> K, std::vector<PetscInt>* I, std::vector<PetscInt>* J,
                  std::vector<double>& V) const;
 
+  /// Per node (width values each, node-major): the sums over the ranks holding the node of
+  /// their `contributions`, on every rank holding it (distributed mesh). Collective.
+  std::vector<double> share(std::span<const double> contributions, int width) const;
+
   const io::Config* config_;
   const mesh::Mesh* mesh_;
+  const mesh::DistributedMesh* part_ = nullptr;
   Comm comm_;
   int dim_;
   std::size_t n_nodes_ = 0, base_f_ = 0, base_m_ = 0;
