@@ -92,12 +92,13 @@ def test_fsi1_coarse():
 
 
 def test_fsi1_owners_np3():
-    """FSI1 (refine 0.5) on 3 ranks: each rank assembles its part of the cells and owns its
-    part of the nodes (summary.json ranks_detail: the parts add up to the mesh, none is the
-    whole), and the results equal 1 rank's to 1e-10 with the same Newton iterations: the
-    residual summed on the owners of the nodes and the increments scattered to the unknowns
-    of each rank's cells give the 1-rank Newton method. Each rank still holds the whole mesh
-    (printed: held cells = assembled + ghost_cells)."""
+    """FSI1 (refine 0.5) on 3 ranks, on the distributed mesh: each rank assembles its part of
+    the cells and owns its part of the nodes (summary.json ranks_detail: the parts add up to
+    the mesh), holds its cells, a ghost layer and the fsi sides but not the whole mesh (held
+    cells, assembled + ghost_cells, fewer than the mesh's), and the results equal 1 rank's to
+    1e-10 with the same Newton iterations: the residual summed on the owners of the nodes and
+    the increments scattered to the unknowns of each rank's cells give the 1-rank Newton
+    method."""
     work, path = fsi_case(refine=0.5)
     try:
         runs = {}
@@ -116,6 +117,10 @@ def test_fsi1_owners_np3():
                                      d["cells"] + d["ghost_cells"], d["owned_nodes"],
                                      s3["nodes"], d["peak_rss_mb"],
                                      s1["ranks_detail"][0]["peak_rss_mb"]))
+        if d["cells"] + d["ghost_cells"] >= s3["cells"] or d["nodes"] >= s3["nodes"]:
+            raise AssertionError("rank %d holds %d of %d cells and %d of %d nodes: the whole mesh"
+                                 % (d["rank"], d["cells"] + d["ghost_cells"], s3["cells"],
+                                    d["nodes"], s3["nodes"]))
         if not 0 < d["cells"] < s3["cells"] or not 0 < d["owned_nodes"] < s3["nodes"]:
             raise AssertionError("rank %d assembles %d of %d cells and owns %d of %d nodes"
                                  % (d["rank"], d["cells"], s3["cells"], d["owned_nodes"],

@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -68,8 +69,81 @@ struct Writer {
   std::vector<std::pair<std::string, std::vector<std::int32_t>>> groups;
 };
 
+// This rank's piece of the fields: the cells it assembles and their nodes (the pressure at
+// every node of a fluid cell: its linear interpolation from the vertices), cell data `rank`.
+void write_piece(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
+                 Writer& w) {
+  const auto& mesh = sys.mesh();
+  const int dim = mesh.dim;
+  std::vector<std::int32_t> local(static_cast<std::size_t>(mesh.n_nodes()), -1), nodes_of;
+  for (auto c : sys.local_cells())
+    for (auto n : mesh.cell(c))
+      if (local[n] < 0) {
+        local[n] = static_cast<std::int32_t>(nodes_of.size());
+        nodes_of.push_back(n);
+      }
+  const auto nn = nodes_of.size();
+  std::vector<double> points(nn * dim), disp(nn * 3, 0.0), mdisp(nn * 3, 0.0), vel(nn * 3, 0.0),
+      pres(nn, 0.0);
+  for (std::size_t q = 0; q < nn; ++q) {
+    const auto node = nodes_of[q];
+    for (int i = 0; i < dim; ++i) {
+      points[q * dim + i] = mesh.x[static_cast<std::size_t>(node) * dim + i];
+      if (sys.is_solid_node(node)) disp[q * 3 + i] = raw[sys.d_dof(node, i)];
+      if (sys.is_fluid_node(node)) {
+        mdisp[q * 3 + i] = raw[sys.m_dof(node, i)];
+        disp[q * 3 + i] = mdisp[q * 3 + i];
+        vel[q * 3 + i] = raw[sys.f_dof(node, i)];
+      }
+    }
+  }
+  std::vector<std::int32_t> conn, offsets, rank;
+  std::vector<std::uint8_t> types;
+  for (auto c : sys.local_cells()) {
+    const auto type = mesh.cell_type[c];
+    const auto nodes = mesh.cell(c);
+    for (int k : fem::vtk_node_order(type)) conn.push_back(local[nodes[k]]);
+    offsets.push_back(static_cast<std::int32_t>(conn.size()));
+    types.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
+    rank.push_back(sys.comm().rank());
+    if (!sys.is_fluid_cell(c)) continue;
+    const auto pcell = fluid::pressure_cell(type);
+    const auto xi = fem::reference_nodes(type);
+    std::array<double, 8> N{};
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      fem::shape_values(pcell, &xi[a * dim], N.data());
+      double p = 0.0;
+      for (int v = 0; v < fem::n_nodes(pcell); ++v) p += N[v] * raw[sys.f_dof(nodes[v], dim)];
+      pres[local[nodes[a]]] = p;
+    }
+  }
+  io::VtuPiece piece;
+  piece.point_dim = dim;
+  piece.points = points;
+  piece.connectivity = conn;
+  piece.offsets = offsets;
+  piece.types = types;
+  piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
+  piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
+  piece.point_data.emplace_back("pressure", 1, std::span<const double>(pres));
+  piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(mdisp));
+  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(rank));
+  piece.time = t;
+  piece.cycle = step;
+  const auto file = write_step_fields(w.dir, step, piece, sys.comm());
+  if (sys.comm().is_root()) w.pvd->add(t, file);
+}
+
+// The fields of a step. On a distributed mesh each rank writes the piece of the cells it
+// assembles (results_NNNNN.pvtu lists them; collective); on the replicated mesh rank 0 writes
+// the whole mesh.
 void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
                   Writer& w) {
+  if (sys.part() && sys.comm().size() > 1) {
+    write_piece(sys, raw, step, t, w);
+    return;
+  }
+  if (!sys.comm().is_root()) return;
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
   const auto nn = static_cast<std::size_t>(mesh.n_nodes());
@@ -145,9 +219,9 @@ void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
       const double tn = tr[0] * nv[0] + tr[1] * nv[1] + tr[2] * nv[2];
       double tt = 0.0;
       for (int i = 0; i < 3; ++i) tt += (tr[i] - tn * nv[i]) * (tr[i] - tn * nv[i]);
-      s << n << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0] << ',' << u[1] << ','
-        << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0] << ',' << tr[1] << ','
-        << tr[2] << '\n';
+      s << (sys.part() ? sys.part()->node_gid[n] : n) << ',' << x[0] << ',' << x[1] << ',' << x[2]
+        << ',' << u[0] << ',' << u[1] << ',' << u[2] << ",0," << tn << ',' << std::sqrt(tt)
+        << ",tied," << tr[0] << ',' << tr[1] << ',' << tr[2] << '\n';
     }
     io::write_file_atomically(dir / ("interface_" + cp.name + ".csv"), s.str());
   }
@@ -182,50 +256,80 @@ std::vector<double> interface_normals(const io::Config& config, const FsiSystem&
 }
 
 // Locates every probe: in a solid cell if one holds it (a point on the wet surface reports
-// the structure), else in a fluid cell; a probe outside both is an input error.
+// the structure), else in a fluid cell; a probe outside both is an input error. Each rank
+// searches the cells it assembles; the cell the whole-mesh search would pick (inside, then
+// the lowest id; else the nearest within the tolerance) wins, on the rank that assembles it
+// (the others get cell -1). Collective.
 void locate_probes(const io::Config& config, const FsiSystem& sys, Writer& w) {
   const auto& mesh = sys.mesh();
+  const auto* part = sys.part();
+  const auto comm = sys.comm();
   std::vector<std::int32_t> solid, fluid;
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
-    (sys.is_fluid_cell(c) ? fluid : solid).push_back(c);
+  for (auto c : sys.local_cells()) (sys.is_fluid_cell(c) ? fluid : solid).push_back(c);
+  std::sort(solid.begin(), solid.end());
+  std::sort(fluid.begin(), fluid.end());
   const mesh::PointLocator in_solid(mesh, solid), in_fluid(mesh, fluid);
+  constexpr double none = std::numeric_limits<double>::infinity();
   for (const auto& probe : config.output.probes) {
     const std::span<const double> p(probe.point.data(), static_cast<std::size_t>(mesh.dim));
-    auto at = in_solid.locate(p, 1e-8);
-    if (!at) at = in_fluid.locate(p, 1e-8);
-    if (!at) io::fail_at(probe.mark, "the probe lies outside the mesh");
-    w.probe_at.push_back(*at);
+    mesh::PointLocation found;
+    for (const auto* locator : {&in_solid, &in_fluid}) {
+      const auto at = locator->locate(p, 1e-8);
+      double distance = none, id = none;
+      if (at) {
+        // Inside to round-off counts as inside (PointLocator: then the lowest id).
+        distance = mesh::reference_distance(mesh.cell_type[at->cell], at->xi.data());
+        if (distance <= 1e-12) distance = 0.0;
+        id = static_cast<double>(part ? part->cell_gid[at->cell] : at->cell);
+      }
+      const double best = comm.min(distance);
+      const double best_id = comm.min(distance == best ? id : none);
+      if (best == none) continue;
+      if (at && distance == best && id == best_id) found = *at;
+      break;
+    }
+    if (!comm.any(found.cell >= 0)) io::fail_at(probe.mark, "the probe lies outside the mesh");
+    w.probe_at.push_back(found);
   }
 }
 
 // probes.csv: the structure's displacement (velocity 0: steady) in a solid cell; the mesh
-// displacement, the velocity and the pressure in a fluid cell.
+// displacement, the velocity and the pressure in a fluid cell. Evaluated on the rank that
+// located the probe, written by rank 0. Collective.
 void write_probes(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
                   Writer& w) {
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
+  constexpr std::size_t width = 11; // x, u, v, p, 1 in a fluid cell
+  std::vector<double> values(w.probe_at.size() * width, 0.0);
   for (std::size_t k = 0; k < w.probe_at.size(); ++k) {
     const auto& at = w.probe_at[k];
+    if (at.cell < 0) continue;
+    double* out = &values[k * width];
     const auto type = mesh.cell_type[at.cell];
     const auto nodes = mesh.cell(at.cell);
     std::array<double, fem::max_cell_nodes> N{};
     fem::shape_values(type, at.xi.data(), N.data());
-    std::array<double, 3> x{}, u{}, v{};
     const bool fluid = sys.is_fluid_cell(at.cell);
     for (std::size_t a = 0; a < nodes.size(); ++a)
       for (int i = 0; i < dim; ++i) {
-        x[i] += N[a] * mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
-        u[i] += N[a] * raw[fluid ? sys.m_dof(nodes[a], i) : sys.d_dof(nodes[a], i)];
-        if (fluid) v[i] += N[a] * raw[sys.f_dof(nodes[a], i)];
+        out[i] += N[a] * mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
+        out[3 + i] += N[a] * raw[fluid ? sys.m_dof(nodes[a], i) : sys.d_dof(nodes[a], i)];
+        if (fluid) out[6 + i] += N[a] * raw[sys.f_dof(nodes[a], i)];
       }
-    double p = 0.0;
     if (fluid) {
       const auto pcell = fluid::pressure_cell(type);
       fem::shape_values(pcell, at.xi.data(), N.data());
-      for (int a = 0; a < fem::n_nodes(pcell); ++a) p += N[a] * raw[sys.f_dof(nodes[a], dim)];
+      for (int a = 0; a < fem::n_nodes(pcell); ++a) out[9] += N[a] * raw[sys.f_dof(nodes[a], dim)];
+      out[10] = 1.0;
     }
-    const io::CsvValue pressure = fluid ? io::CsvValue(p) : io::CsvValue("");
-    w.probes->add_row({step, t, k, x[0], x[1], x[2], u[0], u[1], u[2], v[0], v[1], v[2], pressure});
+  }
+  sys.comm().sum_in_place(values);
+  if (!sys.comm().is_root()) return;
+  for (std::size_t k = 0; k < w.probe_at.size(); ++k) {
+    const double* v = &values[k * width];
+    const io::CsvValue pressure = v[10] > 0.0 ? io::CsvValue(v[9]) : io::CsvValue("");
+    w.probes->add_row({step, t, k, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], pressure});
   }
 }
 
@@ -238,11 +342,19 @@ bool has_fsi(const io::Config& config) {
 
 FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                    const std::filesystem::path& dir, bool quiet, bool check_only,
-                   const RestartFrom& restart) {
+                   const RestartFrom& restart, mesh::DistributedMesh* part,
+                   const MeshIdentity* identity) {
   check_fsi_input(config);
   PhaseTimers timers;
+  // On a distributed mesh the fsi sides are held whole by every rank: the couplings are set
+  // up on each rank's part as on the whole mesh.
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
-  FsiSystem sys(config, mesh, tied, comm);
+  FsiSystem sys(config, mesh, tied, comm, part);
+  const bool distributed = part != nullptr;
+  const long long n_nodes = distributed ? part->n_global_nodes : mesh.n_nodes();
+  const long long n_cells = distributed ? part->n_global_cells : mesh.n_cells();
+  if (distributed && (config.output.checkpoint_every > 0 || !restart.checkpoint.empty()))
+    SEAM_THROW(InternalError, "fsi: checkpoints are written on the replicated mesh only");
   FsiRunInfo info;
   info.n_dofs = sys.n_unknowns();
   const int dim = sys.dim();
@@ -252,12 +364,14 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     std::vector<std::int32_t> nodes;
     for (const auto& ref : group.regions) {
       const auto& region = find_region(mesh, ref, {dim - 1}, "a force group");
+      bool off_fluid = false; // on any rank (collective)
       for (auto n : region.nodes) {
-        if (!sys.is_fluid_node(n))
-          io::fail_at(ref.mark, "force group '" + group.name + "': region '" + ref.name +
-                                    "' is not on the fluid; forces.csv sums fluid-side groups");
+        off_fluid = off_fluid || !sys.is_fluid_node(n);
         nodes.push_back(n);
       }
+      if (comm.any(off_fluid))
+        io::fail_at(ref.mark, "force group '" + group.name + "': region '" + ref.name +
+                                  "' is not on the fluid; forces.csv sums fluid-side groups");
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
@@ -269,8 +383,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   const bool root = comm.is_root();
   // Checkpoints hold the whole state (every rank has it; state.bin only, no part files of
   // nodal vectors), identified by the mesh after the mesh initialization of the interfaces.
-  const Checkpoints checkpoints(config, "fluid-structure", identify(mesh), comm, {}, restart.input,
-                                dir, restart.checkpoint);
+  const Checkpoints checkpoints(config, "fluid-structure", identity ? *identity : identify(mesh),
+                                comm, {}, restart.input, dir, restart.checkpoint);
   // A restart continues the tables (rows after its step dropped) and results.pvd; a table
   // with another header stops every rank.
   on_root_collectively(comm, [&] {
@@ -305,15 +419,19 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   });
   if (root) {
     if (!quiet)
-      std::printf("seam: fluid-structure interaction, %d nodes, %d cells, %lld unknowns, %d "
+      std::printf("seam: fluid-structure interaction, %lld nodes, %lld cells, %lld unknowns, %d "
                   "rank(s); output in %s\n",
-                  mesh.n_nodes(), mesh.n_cells(), info.n_dofs, comm.size(), dir.string().c_str());
+                  n_nodes, n_cells, info.n_dofs, comm.size(), dir.string().c_str());
   }
-  // A Newton iteration scatters the unknowns of the held nodes (held_unknowns); the whole
-  // state is brought to every rank once per converged step, for the output on the replicated
-  // mesh (fields, probes, the interface files) and the checkpoints.
-  std::vector<PetscInt> all(static_cast<std::size_t>(sys.n_unknowns()));
-  std::iota(all.begin(), all.end(), PetscInt{0});
+  // A Newton iteration scatters the unknowns of the held nodes (held_unknowns). On the
+  // replicated mesh the whole state is brought to every rank once per converged step, for the
+  // output on the whole mesh (the interface files) and the checkpoints; on a distributed mesh
+  // never (x holds the entries of held_unknowns only).
+  std::vector<PetscInt> all;
+  if (!distributed) {
+    all.resize(static_cast<std::size_t>(sys.n_unknowns()));
+    std::iota(all.begin(), all.end(), PetscInt{0});
+  }
   la::Vector xv(comm.get(), sys.n_owned());
   const la::Gather gather_all(xv, all), gather_held(xv, sys.held_unknowns());
   // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
@@ -342,7 +460,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     solver.set_fsi_fields(s_rows, f_rows, m_rows, sys.structure_rigid_modes(), velocity_block);
   }
   long long linear_solves = 0, linear_iterations = 0;
-  std::vector<double> x(all.size(), 0.0), raw, x_held;
+  std::vector<double> x(static_cast<std::size_t>(sys.n_unknowns()), 0.0), raw, x_held;
   // The owned entries of the whole x into xv.
   const auto set_owned = [&] {
     la::Vector::LocalView view(xv, true);
@@ -382,6 +500,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       mine[0] = static_cast<double>(sys.local_cells().size());
       mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
       mine[6] = parallel::peak_rss_mb();
+      if (distributed) mine[7] = static_cast<double>(part->count(mesh::CellRole::interface));
       std::vector<char> of_cells(static_cast<std::size_t>(mesh.n_nodes()), 0);
       for (auto c : sys.local_cells())
         for (auto n : mesh.cell(c)) of_cells[n] = 1;
@@ -409,8 +528,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     auto& tj = j["timings"];
     for (const char* phase : {"assembly", "condensation", "linear_solve", "output"})
       tj[phase] = timers.get(phase);
-    j["nodes"] = static_cast<std::int64_t>(mesh.n_nodes());
-    j["cells"] = static_cast<std::int64_t>(mesh.n_cells());
+    j["nodes"] = static_cast<std::int64_t>(n_nodes);
+    j["cells"] = static_cast<std::int64_t>(n_cells);
     auto& ranks = j["ranks_detail"];
     ranks = io::Json::array();
     for (int rk = 0; rk < comm.size(); ++rk) {
@@ -587,8 +706,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       SEAM_THROW(SolverError, failure, " at t = ", t, " after ", control.cuts(), " step cuts; the ",
                  step, " converged steps are written in ", dir.string());
     }
-    // The whole converged state on every rank (the output on the replicated mesh).
-    gather_all(xv, x);
+    // The whole converged state on every rank (the output on the replicated mesh); on a
+    // distributed mesh the held entries are current.
+    if (!distributed) gather_all(xv, x);
     sys.expand(x, g, raw);
     x_converged = x;
     control.accept(t);
@@ -729,13 +849,16 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
         print_step_line(
             step, t, it, rn / std::max(reference, 1e-300), wall,
             time_left(wall_seconds() - progress_wall, t - progress_time, config.time.end - t));
-      ScopedTimer timer(timers, "output");
-      if (w.probes) write_probes(sys, raw, step, t, w);
-      // Fields every `output.every` steps and at the end.
       if (step % config.output.every == 0 || !control.running()) {
-        write_fields(sys, raw, step, t, w);
+        ScopedTimer timer(timers, "output");
         write_interfaces(sys, raw, interface_residual, normals, dir);
       }
+    }
+    {
+      ScopedTimer timer(timers, "output");
+      if (!w.probe_at.empty()) write_probes(sys, raw, step, t, w);
+      // Fields every `output.every` steps and at the end.
+      if (step % config.output.every == 0 || !control.running()) write_fields(sys, raw, step, t, w);
     }
     if (checkpoints.due(step)) write_checkpoint();
   }

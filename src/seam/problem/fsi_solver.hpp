@@ -14,7 +14,13 @@
 
 #include <filesystem>
 
+namespace seam::mesh {
+struct DistributedMesh;
+}
+
 namespace seam::problem {
+
+struct MeshIdentity;
 
 /// True if the input has an interface of type fsi.
 bool has_fsi(const io::Config& config);
@@ -28,8 +34,12 @@ struct FsiRunInfo {
 /// of `output.checkpoint_every` hold the whole state, x in a numbering independent of the
 /// number of ranks, fsi_solver.cpp). `check_only` stops after the checks. Throws InputError
 /// or SolverError.
+/// `part`: `mesh` is this rank's part of a distributed mesh (part->mesh; the fsi sides held
+/// whole; `identity` the whole mesh's), without checkpoints (output.checkpoint_every and
+/// restarts run on the replicated mesh); null: `mesh` is the whole mesh on every rank.
 FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                    const std::filesystem::path& dir, bool quiet, bool check_only = false,
-                   const RestartFrom& restart = {});
+                   const RestartFrom& restart = {}, mesh::DistributedMesh* part = nullptr,
+                   const MeshIdentity* identity = nullptr);
 
 } // namespace seam::problem

@@ -191,13 +191,22 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
+    make_output_directory(output_directory(options), comm);
+    const RestartFrom restart{options.input, options.restart};
+    if (config.output.checkpoint_every == 0 && options.restart.empty()) {
+      // Distributed as the fluid runs, the fsi sides held whole on every rank.
+      MeshIdentity identity;
+      auto part =
+          load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
+      run_fsi(config, part.mesh, comm, output_directory(options), options.quiet, false, restart,
+              &part, &identity);
+      return 0;
+    }
     auto mesh = load_mesh(config, comm);
     if (comm.is_root() && comm.size() > 1 && !options.quiet)
-      std::printf("seam: fluid-structure runs hold the whole mesh on every rank (each assembles "
-                  "its part of the cells; the mesh is not distributed yet)\n");
-    make_output_directory(output_directory(options), comm);
-    run_fsi(config, mesh, comm, output_directory(options), options.quiet, false,
-            {options.input, options.restart});
+      std::printf("seam: fluid-structure runs with checkpoints are not distributed yet: every "
+                  "rank holds the whole mesh (and assembles its part of the cells)\n");
+    run_fsi(config, mesh, comm, output_directory(options), options.quiet, false, restart);
     return 0;
   }
   if (has_fluid(config)) {
