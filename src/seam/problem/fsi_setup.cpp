@@ -31,20 +31,73 @@ std::string point_text(const mesh::Mesh& mesh, std::int32_t n) {
 
 } // namespace
 
+la::Vector FsiSystem::nodal_vector(int width) const {
+  std::vector<PetscInt> ghosts;
+  for (auto n : ghost_nodes_)
+    for (int k = 0; k < width; ++k)
+      ghosts.push_back(static_cast<PetscInt>(node_slot_[n] * width + k));
+  return la::Vector(comm_.get(), static_cast<PetscInt>(n_owned_nodes_ * width), ghosts);
+}
+
+std::size_t FsiSystem::nodal_local(std::int32_t n, std::size_t k, PetscInt first,
+                                   std::size_t width) const {
+  if (owns_node(n))
+    return static_cast<std::size_t>(node_slot_[n] * static_cast<std::int64_t>(width) - first) + k;
+  const auto g =
+      std::lower_bound(ghost_nodes_.begin(), ghost_nodes_.end(), n) - ghost_nodes_.begin();
+  return (static_cast<std::size_t>(n_owned_nodes_) + static_cast<std::size_t>(g)) * width + k;
+}
+
+la::Vector FsiSystem::make_raw_vector() const {
+  return nodal_vector(static_cast<int>(raw_slots()));
+}
+
+CanonicalOrder FsiSystem::raw_order() const {
+  CanonicalOrder order;
+  const auto slots = raw_slots();
+  order.size = (part_ ? part_->n_global_nodes : static_cast<std::int64_t>(n_nodes_)) *
+               static_cast<std::int64_t>(slots);
+  const auto first = make_raw_vector().owned_begin();
+  for (std::size_t a = 0; a < n_raw(); ++a) {
+    const auto n = raw_node(a);
+    order.add(raw_id(a), static_cast<std::int32_t>(nodal_local(n, raw_slot(a), first, slots)),
+              owns_node(n));
+  }
+  return order;
+}
+
+void FsiSystem::raw_to_vector(std::span<const double> raw, la::Vector& v) const {
+  const auto slots = raw_slots();
+  const auto first = v.owned_begin();
+  la::Vector::LocalView view(v, true);
+  auto values = view.values();
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    values[nodal_local(raw_node(a), raw_slot(a), first, slots)] = raw[a];
+}
+
+void FsiSystem::vector_to_raw(const la::Vector& v, std::vector<double>& raw) const {
+  const auto slots = raw_slots();
+  const auto first = v.owned_begin();
+  raw.assign(n_raw(), 0.0);
+  la::Vector::LocalView view(v, false);
+  const auto values = view.values();
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    raw[a] = values[nodal_local(raw_node(a), raw_slot(a), first, slots)];
+}
+
+void FsiSystem::unknowns_from_raw(std::span<const double> raw, std::vector<double>& x) const {
+  for (std::size_t a = 0; a < n_raw(); ++a)
+    if (own_[a] >= 0) x[static_cast<std::size_t>(own_[a])] = raw[a];
+}
+
 std::vector<double> FsiSystem::share(std::span<const double> contributions, int width) const {
   // A node-laid-out vector with the other nodes held here as ghosts: the contributions are
   // summed on the owners (in rank order), then sent back to every rank holding the node.
   const auto n_nodes = static_cast<std::int32_t>(n_nodes_);
   const auto w = static_cast<PetscInt>(width);
-  std::vector<PetscInt> ghosts, rows;
-  std::vector<std::int32_t> ghost_nodes;
-  for (std::int32_t n = 0; n < n_nodes; ++n)
-    if (!owns_node(n)) {
-      ghost_nodes.push_back(n);
-      for (PetscInt k = 0; k < w; ++k)
-        ghosts.push_back(static_cast<PetscInt>(node_slot_[n]) * w + k);
-    }
-  la::Vector v(comm_.get(), static_cast<PetscInt>(n_owned_nodes_) * w, ghosts);
+  std::vector<PetscInt> rows;
+  const auto& ghost_nodes = ghost_nodes_;
+  auto v = nodal_vector(width);
   for (std::int32_t n = 0; n < n_nodes; ++n)
     for (PetscInt k = 0; k < w; ++k) rows.push_back(static_cast<PetscInt>(node_slot_[n]) * w + k);
   v.add_values(rows, contributions);
@@ -103,8 +156,11 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
       local_cells_.push_back(c);
       for (auto n : mesh.cell(c)) held_node[n] = 1;
     }
-  for (std::size_t n = 0; n < n_nodes_; ++n)
+  for (std::size_t n = 0; n < n_nodes_; ++n) {
     if (held_node[n]) held_nodes_.push_back(static_cast<std::int32_t>(n));
+    if (!owns_node(static_cast<std::int32_t>(n)))
+      ghost_nodes_.push_back(static_cast<std::int32_t>(n));
+  }
 
   // Bodies: a fluid or a solid material per cell.
   std::map<std::string, int> fluid_index, solid_index;
@@ -346,9 +402,9 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
         if (bits[n * dim + i] > 0.0) held[n] |= 1u << i;
   }
 
-  // Condensed numbering and the maps T_c (columns) and R (rows), raw dof by raw dof. The
-  // unknowns of a node, in the canonical order (node by node, structure, fluid, mesh) and in
-  // the order of the ranks (each rank's nodes in numbering order: structure, fluid, mesh).
+  // Condensed numbering and the maps T_c (columns) and R (rows), raw dof by raw dof: the
+  // unknowns in the order of the ranks (each rank's nodes in numbering order: structure, then
+  // fluid, then mesh).
   const auto structure_unknown = [&](std::size_t n, int i) {
     return solid_node_[n] && prescribed_[d_dof(static_cast<std::int32_t>(n), i)] < 0;
   };
@@ -364,7 +420,7 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
   if (part) {
     // Each rank numbers the unknowns of its nodes (in global node order) after those of the
     // lower ranks (one MPI_Exscan); the numbers of the other nodes held come from their
-    // owners (one exchange). No canonical numbering: checkpoints are not written here.
+    // owners (one exchange).
     std::vector<std::int32_t> owned;
     for (std::int32_t n = 0; n < static_cast<std::int32_t>(n_nodes_); ++n)
       if (owns_node(n)) owned.push_back(n);
@@ -404,18 +460,6 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
       own[a] = static_cast<PetscInt>(numbers[raw_node(a) * slots + raw_slot(a)]) - 1;
   } else {
     PetscInt next = 0;
-    std::vector<PetscInt> canon(n_raw(), -1);
-    for (std::size_t n = 0; n < n_nodes_; ++n)
-      for (int i = 0; i < dim; ++i)
-        if (structure_unknown(n, i)) canon[d_dof(static_cast<std::int32_t>(n), i)] = next++;
-    for (std::size_t n = 0; n < n_nodes_; ++n)
-      for (int c = 0; c <= dim; ++c)
-        if (fluid_unknown(n, c)) canon[f_dof(static_cast<std::int32_t>(n), c)] = next++;
-    for (std::size_t n = 0; n < n_nodes_; ++n)
-      for (int i = 0; i < dim; ++i)
-        if (mesh_unknown(n, i)) canon[m_dof(static_cast<std::int32_t>(n), i)] = next++;
-    n_unknowns_ = next;
-    next = 0;
     for (int r = 0; r < size; ++r) {
       const auto nodes =
           std::span(numbering.old_index)
@@ -438,11 +482,10 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
           if (mesh_unknown(n, i)) own[m_dof(n, i)] = next++;
       if (r == rank) n_owned_ = next - first_owned_;
     }
-    canonical_.assign(static_cast<std::size_t>(n_unknowns_), 0);
-    for (std::size_t a = 0; a < n_raw(); ++a)
-      if (own[a] >= 0) canonical_[own[a]] = canon[a];
+    n_unknowns_ = next;
   }
 
+  own_ = own;
   // The structure dofs P maps an interface node to, component i.
   const auto for_master = [&](std::int32_t n, const auto& f) {
     const auto& cp = couplings_[on_interface[n].first];

@@ -25,7 +25,6 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -69,10 +68,12 @@ struct Writer {
   std::vector<std::pair<std::string, std::vector<std::int32_t>>> groups;
 };
 
-// This rank's piece of the fields: the cells it assembles and their nodes (the pressure at
-// every node of a fluid cell: its linear interpolation from the vertices), cell data `rank`.
-void write_piece(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
-                 Writer& w) {
+// The fields of a step: each rank the piece of the cells it assembles and their nodes (the
+// pressure at every node of a fluid cell: its linear interpolation from the vertices), cell
+// data `rank`; results_NNNNN.vtu on one rank, else results_NNNNN.pvtu listing the pieces.
+// Collective.
+void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
+                  Writer& w) {
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
   std::vector<std::int32_t> local(static_cast<std::size_t>(mesh.n_nodes()), -1), nodes_of;
@@ -134,68 +135,6 @@ void write_piece(const FsiSystem& sys, const std::vector<double>& raw, int step,
   if (sys.comm().is_root()) w.pvd->add(t, file);
 }
 
-// The fields of a step. On a distributed mesh each rank writes the piece of the cells it
-// assembles (results_NNNNN.pvtu lists them; collective); on the replicated mesh rank 0 writes
-// the whole mesh.
-void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
-                  Writer& w) {
-  if (sys.part() && sys.comm().size() > 1) {
-    write_piece(sys, raw, step, t, w);
-    return;
-  }
-  if (!sys.comm().is_root()) return;
-  const auto& mesh = sys.mesh();
-  const int dim = mesh.dim;
-  const auto nn = static_cast<std::size_t>(mesh.n_nodes());
-  // Vectors with 3 components also in 2D (docs/input.md §5.2: ParaView warps by 3-vectors).
-  std::vector<double> disp(nn * 3, 0.0), mdisp(nn * 3, 0.0), vel(nn * 3, 0.0), pres(nn, 0.0);
-  for (std::size_t n = 0; n < nn; ++n)
-    for (int i = 0; i < dim; ++i) {
-      const auto node = static_cast<std::int32_t>(n);
-      if (sys.is_solid_node(node)) disp[n * 3 + i] = raw[sys.d_dof(node, i)];
-      if (sys.is_fluid_node(node)) {
-        mdisp[n * 3 + i] = raw[sys.m_dof(node, i)];
-        disp[n * 3 + i] = mdisp[n * 3 + i];
-        vel[n * 3 + i] = raw[sys.f_dof(node, i)];
-      }
-    }
-  std::vector<std::int32_t> conn, offsets;
-  std::vector<std::uint8_t> types;
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
-    const auto type = mesh.cell_type[c];
-    const auto nodes = mesh.cell(c);
-    for (int k : fem::vtk_node_order(type)) conn.push_back(nodes[k]);
-    offsets.push_back(static_cast<std::int32_t>(conn.size()));
-    types.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
-    if (!sys.is_fluid_node(nodes[0])) continue;
-    // The pressure at every node of the cell: its linear interpolation from the vertices.
-    const auto pcell = fluid::pressure_cell(type);
-    const auto xi = fem::reference_nodes(type);
-    std::array<double, 8> N{};
-    for (std::size_t a = 0; a < nodes.size(); ++a) {
-      fem::shape_values(pcell, &xi[a * dim], N.data());
-      double p = 0.0;
-      for (int v = 0; v < fem::n_nodes(pcell); ++v) p += N[v] * raw[sys.f_dof(nodes[v], dim)];
-      pres[nodes[a]] = p;
-    }
-  }
-  io::VtuPiece piece;
-  piece.point_dim = dim;
-  piece.points = mesh.x;
-  piece.connectivity = conn;
-  piece.offsets = offsets;
-  piece.types = types;
-  piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
-  piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
-  piece.point_data.emplace_back("pressure", 1, std::span<const double>(pres));
-  piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(mdisp));
-  piece.time = t;
-  piece.cycle = step;
-  const auto file = io::step_file_name("results", step, ".vtu");
-  io::write_vtu(w.dir / file, piece);
-  w.pvd->add(t, file);
-}
-
 // interface_<name>.csv: per fluid-side node its reference position, the structure's
 // displacement there (P d), and the traction the fluid exerts, t_j = -r_j / D_jj.
 void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
@@ -219,9 +158,9 @@ void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
       const double tn = tr[0] * nv[0] + tr[1] * nv[1] + tr[2] * nv[2];
       double tt = 0.0;
       for (int i = 0; i < 3; ++i) tt += (tr[i] - tn * nv[i]) * (tr[i] - tn * nv[i]);
-      s << (sys.part() ? sys.part()->node_gid[n] : n) << ',' << x[0] << ',' << x[1] << ',' << x[2]
-        << ',' << u[0] << ',' << u[1] << ',' << u[2] << ",0," << tn << ',' << std::sqrt(tt)
-        << ",tied," << tr[0] << ',' << tr[1] << ',' << tr[2] << '\n';
+      s << sys.part()->node_gid[n] << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0]
+        << ',' << u[1] << ',' << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0]
+        << ',' << tr[1] << ',' << tr[2] << '\n';
     }
     io::write_file_atomically(dir / ("interface_" + cp.name + ".csv"), s.str());
   }
@@ -340,21 +279,17 @@ bool has_fsi(const io::Config& config) {
                      [](const io::Interface& i) { return i.type == io::InterfaceType::fsi; });
 }
 
-FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                   const std::filesystem::path& dir, bool quiet, bool check_only,
-                   const RestartFrom& restart, mesh::DistributedMesh* part,
-                   const MeshIdentity* identity) {
+FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
+                   const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
+                   bool quiet, bool check_only, const RestartFrom& restart) {
+  auto& mesh = part.mesh;
   check_fsi_input(config);
   PhaseTimers timers;
-  // On a distributed mesh the fsi sides are held whole by every rank: the couplings are set
-  // up on each rank's part as on the whole mesh.
+  // Every rank holds the fsi sides whole: the couplings are set up on each rank's part as on
+  // the whole mesh.
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
-  FsiSystem sys(config, mesh, tied, comm, part);
-  const bool distributed = part != nullptr;
-  const long long n_nodes = distributed ? part->n_global_nodes : mesh.n_nodes();
-  const long long n_cells = distributed ? part->n_global_cells : mesh.n_cells();
-  if (distributed && (config.output.checkpoint_every > 0 || !restart.checkpoint.empty()))
-    SEAM_THROW(InternalError, "fsi: checkpoints are written on the replicated mesh only");
+  FsiSystem sys(config, mesh, tied, comm, &part);
+  const long long n_nodes = part.n_global_nodes, n_cells = part.n_global_cells;
   FsiRunInfo info;
   info.n_dofs = sys.n_unknowns();
   const int dim = sys.dim();
@@ -383,8 +318,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   const bool root = comm.is_root();
   // Checkpoints hold the whole state (every rank has it; state.bin only, no part files of
   // nodal vectors), identified by the mesh after the mesh initialization of the interfaces.
-  const Checkpoints checkpoints(config, "fluid-structure", identity ? *identity : identify(mesh),
-                                comm, {}, restart.input, dir, restart.checkpoint);
+  const Checkpoints checkpoints(config, "fluid-structure", identity, comm, sys.raw_order(),
+                                restart.input, dir, restart.checkpoint);
   // A restart continues the tables (rows after its step dropped) and results.pvd; a table
   // with another header stops every rank.
   on_root_collectively(comm, [&] {
@@ -423,17 +358,10 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                   "rank(s); output in %s\n",
                   n_nodes, n_cells, info.n_dofs, comm.size(), dir.string().c_str());
   }
-  // A Newton iteration scatters the unknowns of the held nodes (held_unknowns). On the
-  // replicated mesh the whole state is brought to every rank once per converged step, for the
-  // output on the whole mesh (the interface files) and the checkpoints; on a distributed mesh
-  // never (x holds the entries of held_unknowns only).
-  std::vector<PetscInt> all;
-  if (!distributed) {
-    all.resize(static_cast<std::size_t>(sys.n_unknowns()));
-    std::iota(all.begin(), all.end(), PetscInt{0});
-  }
+  // A Newton iteration scatters the unknowns of the held nodes (held_unknowns); nothing is
+  // gathered whole (x holds the entries of held_unknowns only).
   la::Vector xv(comm.get(), sys.n_owned());
-  const la::Gather gather_all(xv, all), gather_held(xv, sys.held_unknowns());
+  const la::Gather gather_held(xv, sys.held_unknowns());
   // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
   // (docs/fsi.md, "Linear solvers"); `auto` keeps the direct solver.
   const auto choice =
@@ -470,7 +398,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
   double reference = 0.0, work = 0.0;
-  std::vector<double> last_force(sys.n_raw(), 0.0), last_raw(sys.n_raw(), 0.0);
+  // The structure nodes of the interfaces (the sides are held whole on every rank, in global
+  // order) and, per node and component, the force transferred to them and their displacement
+  // at the last step (the work of the transferred force; rank 0).
+  std::vector<std::int32_t> wet;
+  for (const auto& cp : sys.couplings())
+    wet.insert(wet.end(), cp.structure_nodes.begin(), cp.structure_nodes.end());
+  std::sort(wet.begin(), wet.end());
+  wet.erase(std::unique(wet.begin(), wet.end()), wet.end());
+  std::vector<double> last_force(wet.size() * dim, 0.0), last_raw(wet.size() * dim, 0.0);
   const auto start = std::chrono::steady_clock::now();
   const auto normals = interface_normals(config, sys);
   const auto& nc = config.solver.newton;
@@ -500,7 +436,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       mine[0] = static_cast<double>(sys.local_cells().size());
       mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
       mine[6] = parallel::peak_rss_mb();
-      if (distributed) mine[7] = static_cast<double>(part->count(mesh::CellRole::interface));
+      mine[7] = static_cast<double>(part.count(mesh::CellRole::interface));
       std::vector<char> of_cells(static_cast<std::size_t>(mesh.n_nodes()), 0);
       for (auto c : sys.local_cells())
         for (auto n : mesh.cell(c)) of_cells[n] = 1;
@@ -566,27 +502,33 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     return std::array<double, 4>{p.boundary, p.dissipation, p.interface_fluid,
                                  p.interface_structure};
   };
+  // The nodal state (the converged raw values, the reactions, the time integration's history)
+  // as raw nodal vectors, each value written by the owner of its node into its part file.
+  la::Vector nodal = sys.make_raw_vector();
   const auto write_checkpoint = [&] {
-    std::vector<double> canonical_x(x.size()), all_reactions = reaction;
-    for (std::size_t k = 0; k < x.size(); ++k) canonical_x[sys.canonical()[k]] = x[k];
-    comm.sum_in_place(all_reactions);
     const auto c = control.state();
     RecordWriter cw = checkpoints.begin(step, c.t);
     cw.put_real("control.dt", c.dt);
     cw.put_integer("control.cuts", c.cuts);
     cw.put_integer("newton.iterations", newton_iterations);
     cw.put_real("newton.reference", reference);
-    cw.put("x", canonical_x);
-    cw.put("reaction", all_reactions);
+    const auto put_nodal = [&](const char* name, std::span<const double> values) {
+      sys.raw_to_vector(values, nodal);
+      checkpoints.put_vector(cw, name, nodal);
+    };
+    put_nodal("raw", raw);
+    put_nodal("reaction", reaction);
     cw.put("power", powers(power_old));
     cw.put("work", powers(work_sum));
     cw.put_real("structure_work", work);
     cw.put("last_force", last_force);
     cw.put("last_raw", last_raw);
     cw.put("group_force", flat(group_force));
-    cw.put("history.old", history.old);
-    cw.put("history.rate", history.rate);
-    cw.put("history.accel", history.accel);
+    if (dynamic) {
+      put_nodal("history.old", history.old);
+      put_nodal("history.rate", history.rate);
+      put_nodal("history.accel", history.accel);
+    }
     put_pvd(cw, w.pvd.get());
     checkpoints.commit(cw, step);
   };
@@ -598,24 +540,31 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     newton_iterations = static_cast<int>(r.integer("newton.iterations"));
     reference = r.real("newton.reference");
     const auto n_raw = sys.n_raw();
-    const auto canonical_x = r.reals("x", x.size());
-    for (std::size_t k = 0; k < x.size(); ++k) x[k] = canonical_x[sys.canonical()[k]];
+    const auto get_nodal = [&](const char* name, std::vector<double>& values) {
+      checkpoints.get_vector(name, nodal);
+      sys.vector_to_raw(nodal, values);
+    };
+    std::vector<double> state;
+    get_nodal("raw", state);
+    sys.unknowns_from_raw(state, x);
     // The reactions live on the owners of their nodes (FsiSystem::Result::raw_residual).
-    reaction = r.reals("reaction", n_raw);
+    get_nodal("reaction", reaction);
     for (std::size_t a = 0; a < n_raw; ++a)
       if (!sys.owns_raw(a)) reaction[a] = 0.0;
     const auto p = r.reals("power", 4), s = r.reals("work", 4);
     power_old = {p[0], p[1], p[2], p[3]};
     work_sum = {s[0], s[1], s[2], s[3]};
     work = r.real("structure_work");
-    last_force = r.reals("last_force", n_raw);
-    last_raw = r.reals("last_raw", n_raw);
+    last_force = r.reals("last_force", last_force.size());
+    last_raw = r.reals("last_raw", last_raw.size());
     const auto f = r.reals("group_force", group_force.size() * 3);
     for (std::size_t k = 0; k < group_force.size(); ++k)
       for (int i = 0; i < 3; ++i) group_force[k][i] = f[k * 3 + i];
-    history.old = r.reals("history.old", dynamic ? n_raw : 0);
-    history.rate = r.reals("history.rate", dynamic ? n_raw : 0);
-    history.accel = r.reals("history.accel", dynamic ? n_raw : 0);
+    if (dynamic) {
+      get_nodal("history.old", history.old);
+      get_nodal("history.rate", history.rate);
+      get_nodal("history.accel", history.accel);
+    }
     if (root && !quiet)
       std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
                   control.time());
@@ -706,9 +655,6 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
       SEAM_THROW(SolverError, failure, " at t = ", t, " after ", control.cuts(), " step cuts; the ",
                  step, " converged steps are written in ", dir.string());
     }
-    // The whole converged state on every rank (the output on the replicated mesh); on a
-    // distributed mesh the held entries are current.
-    if (!distributed) gather_all(xv, x);
     sys.expand(x, g, raw);
     x_converged = x;
     control.accept(t);
@@ -831,11 +777,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        tangential[2] * tangential[2]),
              0, 0, cp.d_total});
       }
-      for (std::size_t a = 0; a < transferred.size(); ++a)
-        if (transferred[a] != 0.0 || last_force[a] != 0.0)
-          work += 0.5 * (transferred[a] + last_force[a]) * (raw[a] - last_raw[a]);
-      last_force = transferred;
-      last_raw = raw;
+      for (std::size_t q = 0; q < wet.size(); ++q)
+        for (int i = 0; i < dim; ++i) {
+          const auto a = sys.d_dof(wet[q], i);
+          const auto k = q * dim + i;
+          if (transferred[a] != 0.0 || last_force[k] != 0.0)
+            work += 0.5 * (transferred[a] + last_force[k]) * (raw[a] - last_raw[k]);
+          last_force[k] = transferred[a];
+          last_raw[k] = raw[a];
+        }
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       // clang-format off

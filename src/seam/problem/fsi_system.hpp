@@ -31,6 +31,7 @@
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/solid/material.hpp"
 
 #include <cstdint>
@@ -100,10 +101,17 @@ public:
   const mesh::DistributedMesh* part() const { return part_; }
   /// The cells this rank assembles.
   const std::vector<std::int32_t>& local_cells() const { return local_cells_; }
-  /// The numbering of the unknowns that does not depend on the number of ranks (node by node
-  /// in mesh order, structure, fluid, mesh): checkpoints hold x in it. canonical()[k] is the
-  /// canonical number of unknown k. Replicated mesh only (empty on a distributed one).
-  const std::vector<PetscInt>& canonical() const { return canonical_; }
+  /// Raw nodal vectors (checkpoints): 3 dim + 1 slots per node (d, then u and p, then m), the
+  /// owned nodes' slots owned, the other held nodes' slots ghosts. Their stored order is by
+  /// global node id (raw_id), independent of the number of ranks.
+  la::Vector make_raw_vector() const;
+  CanonicalOrder raw_order() const;
+  /// Raw values (n_raw) into such a vector (owned and ghost entries) and back.
+  void raw_to_vector(std::span<const double> raw, la::Vector& v) const;
+  void vector_to_raw(const la::Vector& v, std::vector<double>& raw) const;
+  /// The unknowns of the held nodes from a raw state (x = the raw value of each unknown's
+  /// raw dof); the other entries of x are left as they are.
+  void unknowns_from_raw(std::span<const double> raw, std::vector<double>& x) const;
   std::size_t n_raw() const { return static_cast<std::size_t>(base_m_) + n_nodes_ * dim_; }
 
   /// Raw dof numbers: d of node n component i, u (c < dim) or p (c = dim), m.
@@ -198,6 +206,10 @@ private:
   /// Per node (width values each, node-major): the sums over the ranks holding the node of
   /// their `contributions`, on every rank holding it (distributed mesh). Collective.
   std::vector<double> share(std::span<const double> contributions, int width) const;
+  /// A vector of `width` values per node laid out as share's (owned nodes, then ghost_nodes_).
+  la::Vector nodal_vector(int width) const;
+  /// The local index of value k of node n in such a vector, whose first owned row is `first`.
+  std::size_t nodal_local(std::int32_t n, std::size_t k, PetscInt first, std::size_t width) const;
 
   const io::Config* config_;
   const mesh::Mesh* mesh_;
@@ -219,7 +231,10 @@ private:
   std::vector<std::int64_t> node_slot_;
   std::int64_t n_owned_nodes_ = 0;
   std::vector<std::int32_t> held_nodes_; ///< the nodes of local_cells_, ascending
-  std::vector<PetscInt> held_, canonical_;
+  std::vector<PetscInt> held_;
+  std::vector<PetscInt> own_; ///< per raw dof: its unknown (raw = x there), or -1
+  /// The ghosts of the raw nodal vectors: the held nodes this rank does not own, in node order.
+  std::vector<std::int32_t> ghost_nodes_;
   std::size_t raw_slots() const { return static_cast<std::size_t>(3 * dim_ + 1); }
   /// The slot of raw dof a within its node's raw_slots().
   std::size_t raw_slot(std::size_t a) const {

@@ -9,7 +9,6 @@
 #include "seam/mesh/distribute_file.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/mesh/msh_chunk.hpp"
-#include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -72,13 +71,6 @@ mesh::Mesh read_on_root(const io::Config& config, const Comm& comm,
       io::fail_at(mesh_mark(config), e.what());
     }
   });
-  return m;
-}
-
-/// The whole mesh on every rank (fluid runs and `seam check`).
-mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
-  auto m = read_on_root(config, comm);
-  mesh::broadcast_mesh(comm.get(), m);
   return m;
 }
 
@@ -191,22 +183,13 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
+    // Distributed as the fluid runs, the fsi sides held whole on every rank.
     make_output_directory(output_directory(options), comm);
-    const RestartFrom restart{options.input, options.restart};
-    if (config.output.checkpoint_every == 0 && options.restart.empty()) {
-      // Distributed as the fluid runs, the fsi sides held whole on every rank.
-      MeshIdentity identity;
-      auto part =
-          load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
-      run_fsi(config, part.mesh, comm, output_directory(options), options.quiet, false, restart,
-              &part, &identity);
-      return 0;
-    }
-    auto mesh = load_mesh(config, comm);
-    if (comm.is_root() && comm.size() > 1 && !options.quiet)
-      std::printf("seam: fluid-structure runs with checkpoints are not distributed yet: every "
-                  "rank holds the whole mesh (and assembles its part of the cells)\n");
-    run_fsi(config, mesh, comm, output_directory(options), options.quiet, false, restart);
+    MeshIdentity identity;
+    auto part =
+        load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
+    run_fsi(config, part, identity, comm, output_directory(options), options.quiet, false,
+            {options.input, options.restart});
     return 0;
   }
   if (has_fluid(config)) {
@@ -279,20 +262,19 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   char** argv = nullptr;
   la::Session petsc(argc, argv, petsc_args); // the parallel partition of the chunked reader
   const auto config = io::load_config(input);
-  if (has_fsi(config)) {
-    // Fluid-structure runs hold the whole mesh on every rank (run_fsi), and so does their check.
-    auto mesh = load_mesh(config, comm);
-    const auto info = run_fsi(config, mesh, comm, {}, true, true);
-    if (comm.is_root())
-      std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %d nodes, %d cells, %lld "
-                  "unknowns\n",
-                  input.c_str(), mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
-    return 0;
-  }
   // The mesh as a run distributes it (each rank its cells, one ghost layer and the cells of
   // the interface sides held whole), and the set-up a run does on it.
   MeshIdentity identity;
   auto part = load_distributed_mesh(config, comm, identity, {}, true);
+  if (has_fsi(config)) {
+    const auto info = run_fsi(config, part, identity, comm, {}, true, true);
+    if (comm.is_root())
+      std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %lld nodes, %lld cells, "
+                  "%lld unknowns\n",
+                  input.c_str(), part.mesh.dim, static_cast<long long>(part.n_global_nodes),
+                  static_cast<long long>(part.n_global_cells), info.n_dofs);
+    return 0;
+  }
   if (has_fluid(config)) {
     const auto info = run_fluid(config, part, identity, comm, {}, true, {}, true);
     if (comm.is_root())
