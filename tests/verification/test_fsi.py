@@ -104,10 +104,11 @@ def test_fsi1_owners_np3():
         runs = {}
         for np in (1, 3):
             out = H.solve(path, np=np)
-            runs[np] = (results(out), H.read_json(os.path.join(out, "summary.json")))
+            runs[np] = (results(out), H.read_json(os.path.join(out, "summary.json")),
+                        H.read_csv(os.path.join(out, "interface_flag.csv")))
     finally:
         H.cleanup(work)
-    (r1, s1), (r3, s3) = runs[1], runs[3]
+    (r1, s1, i1), (r3, s3, i3) = runs[1], runs[3]
     detail = s3["ranks_detail"]
     if len(detail) != 3:
         raise AssertionError("%d ranks_detail entries on 3 ranks" % len(detail))
@@ -137,9 +138,18 @@ def test_fsi1_owners_np3():
         worst = max(worst, abs(r3[key] - r1[key]) / abs(r1[key]))
         H.assert_close(r3[key], r1[key], rtol=1e-10, what="FSI1 np 3 against np 1: " + key)
     for a, b in zip(r1["steps"], r3["steps"]):
-        for c in ("x", "y"):
-            key = "interface_force_structure_" + c
+        for key in ("interface_force_structure_x", "interface_force_structure_y",
+                    "external_work", "internal_energy"):
             H.assert_close(b[key], a[key], rtol=1e-10, what="step %d %s np 3" % (a["step"], key))
+    # The interface file (rank 0 writes every node of the side: its displacement P d and the
+    # traction, from the interface unknowns every rank receives).
+    if len(i1) != len(i3) or [r["node"] for r in i1] != [r["node"] for r in i3]:
+        raise AssertionError("interface_flag.csv: other nodes on 3 ranks")
+    for key in ("ux", "uy", "tx", "ty"):
+        scale = max(abs(r[key]) for r in i1)
+        for a, b in zip(i1, i3):
+            H.assert_close(b[key], a[key], atol=1e-10 * scale,
+                           what="interface_flag.csv node %d %s np 3" % (a["node"], key))
     print("   FSI1 refine 0.5: np 3 against np 1, largest relative difference %.1e" % worst)
 
 

@@ -549,16 +549,29 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
   }
 
   // The unknowns the cells of this rank need.
+  const auto scan_raw = [&](std::size_t a) {
+    for (auto q = columns_.offsets[a]; q < columns_.offsets[a + 1]; ++q)
+      held_.push_back(columns_.index[q]);
+  };
   for (auto n : held_nodes_) {
-    const auto scan = [&](std::size_t a) {
-      for (auto q = columns_.offsets[a]; q < columns_.offsets[a + 1]; ++q)
-        held_.push_back(columns_.index[q]);
-    };
+    const auto& scan = scan_raw;
     for (int i = 0; i < dim; ++i) {
       scan(d_dof(n, i));
       scan(m_dof(n, i));
     }
     for (int c = 0; c <= dim; ++c) scan(f_dof(n, c));
+  }
+  // And those of the interfaces' nodes, which every rank holds whole: the interface output and
+  // the work of the transferred force (rank 0) read the structure's displacement on all of
+  // them, the fluid's interface velocity follows it.
+  for (const auto& cp : couplings_) {
+    for (auto n : cp.fluid_nodes)
+      for (int i = 0; i < dim; ++i) {
+        scan_raw(f_dof(n, i));
+        scan_raw(m_dof(n, i));
+      }
+    for (auto n : cp.structure_nodes)
+      for (int i = 0; i < dim; ++i) scan_raw(d_dof(n, i));
   }
   std::sort(held_.begin(), held_.end());
   held_.erase(std::unique(held_.begin(), held_.end()), held_.end());

@@ -80,8 +80,8 @@ public:
   PetscInt n_owned() const { return n_owned_; }
   PetscInt first_owned() const { return first_owned_; }
   /// The condensed unknowns this rank's cells need (the columns of their raw dofs, through
-  /// P the structure nodes of their interface nodes), ascending: what a Newton iteration
-  /// scatters to this rank.
+  /// P the structure nodes of their interface nodes) and those of the interface nodes (held
+  /// whole), ascending: what a Newton iteration scatters to this rank.
   const std::vector<PetscInt>& held_unknowns() const { return held_; }
   /// Whether this rank owns mesh node n (its raw residual entries are summed here).
   bool owns_node(std::int32_t n) const { return node_owner_[n] == comm_.rank(); }
