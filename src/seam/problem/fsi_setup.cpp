@@ -87,7 +87,10 @@ void FsiSystem::vector_to_raw(const la::Vector& v, std::vector<double>& raw) con
 
 void FsiSystem::unknowns_from_raw(std::span<const double> raw, std::vector<double>& x) const {
   for (std::size_t a = 0; a < n_raw(); ++a)
-    if (own_[a] >= 0) x[static_cast<std::size_t>(own_[a])] = raw[a];
+    if (own_[a] >= 0) {
+      const auto p = held_position(own_[a]);
+      if (p >= 0) x[static_cast<std::size_t>(p)] = raw[a];
+    }
 }
 
 std::vector<double> FsiSystem::share(std::span<const double> contributions, int width) const {
@@ -575,6 +578,14 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
   }
   std::sort(held_.begin(), held_.end());
   held_.erase(std::unique(held_.begin(), held_.end()), held_.end());
+  // The owned unknowns, a contiguous block of held_ (the owned nodes are nodes of owned cells).
+  if (n_owned_ > 0 &&
+      (held_position(first_owned_) < 0 ||
+       held_position(first_owned_ + n_owned_ - 1) != held_position(first_owned_) + n_owned_ - 1))
+    SEAM_THROW(InternalError, "fsi: the owned unknowns are not all held");
+  held_column_.resize(columns_.index.size());
+  for (std::size_t q = 0; q < columns_.index.size(); ++q)
+    held_column_[q] = held_position(columns_.index[q]);
 }
 
 } // namespace seam::problem

@@ -359,7 +359,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
                   n_nodes, n_cells, info.n_dofs, comm.size(), dir.string().c_str());
   }
   // A Newton iteration scatters the unknowns of the held nodes (held_unknowns); nothing is
-  // gathered whole (x holds the entries of held_unknowns only).
+  // gathered whole.
   la::Vector xv(comm.get(), sys.n_owned());
   const la::Gather gather_held(xv, sys.held_unknowns());
   // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
@@ -388,12 +388,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
     solver.set_fsi_fields(s_rows, f_rows, m_rows, sys.structure_rigid_modes(), velocity_block);
   }
   long long linear_solves = 0, linear_iterations = 0;
-  std::vector<double> x(static_cast<std::size_t>(sys.n_unknowns()), 0.0), raw, x_held;
-  // The owned entries of the whole x into xv.
+  // x: the held unknowns (held_unknowns, ascending; the owned ones among them from
+  // first_held on).
+  std::vector<double> x(sys.held_unknowns().size(), 0.0), raw;
+  const auto first_held = sys.n_owned() > 0 ? sys.held_position(sys.first_owned()) : 0;
+  // The owned entries of x into xv.
   const auto set_owned = [&] {
     la::Vector::LocalView view(xv, true);
     auto v = view.values();
-    for (PetscInt k = 0; k < sys.n_owned(); ++k) v[k] = x[sys.first_owned() + k];
+    for (PetscInt k = 0; k < sys.n_owned(); ++k) v[k] = x[static_cast<std::size_t>(first_held + k)];
   };
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
@@ -642,9 +645,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
         break;
       }
       xv.axpy(1.0, dx);
-      gather_held(xv, x_held);
-      const auto& held = sys.held_unknowns();
-      for (std::size_t k = 0; k < held.size(); ++k) x[held[k]] = x_held[k];
+      gather_held(xv, x);
     }
     newton_iterations += it;
     if (*failure != '\0') {

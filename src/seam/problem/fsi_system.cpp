@@ -97,9 +97,13 @@ void FsiSystem::expand(std::span<const double> x, std::span<const double> g,
                        std::vector<double>& raw) const {
   raw.assign(g.begin(), g.end());
   for (std::size_t a = 0; a < n_raw(); ++a) {
+    const auto begin = columns_.offsets[a], end = columns_.offsets[a + 1];
+    if (std::any_of(held_column_.begin() + begin, held_column_.begin() + end,
+                    [](std::ptrdiff_t p) { return p < 0; }))
+      continue;
     const double scale = column_scale(a);
-    for (auto q = columns_.offsets[a]; q < columns_.offsets[a + 1]; ++q)
-      raw[a] += scale * columns_.weight[q] * x[columns_.index[q]];
+    for (auto q = begin; q < end; ++q)
+      raw[a] += scale * columns_.weight[q] * x[static_cast<std::size_t>(held_column_[q])];
   }
 }
 

@@ -34,6 +34,7 @@
 #include "seam/problem/checkpoint.hpp"
 #include "seam/solid/material.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -109,8 +110,7 @@ public:
   /// Raw values (n_raw) into such a vector (owned and ghost entries) and back.
   void raw_to_vector(std::span<const double> raw, la::Vector& v) const;
   void vector_to_raw(const la::Vector& v, std::vector<double>& raw) const;
-  /// The unknowns of the held nodes from a raw state (x = the raw value of each unknown's
-  /// raw dof); the other entries of x are left as they are.
+  /// The held unknowns (x as in expand) from a raw state: the raw value of each one's raw dof.
   void unknowns_from_raw(std::span<const double> raw, std::vector<double>& x) const;
   std::size_t n_raw() const { return static_cast<std::size_t>(base_m_) + n_nodes_ * dim_; }
 
@@ -162,8 +162,15 @@ public:
              std::vector<double>& accel) const;
   /// The raw values of the prescribed part g(t) (zero elsewhere).
   std::vector<double> prescribed(double t) const;
-  /// raw = T_c x + g, x all condensed unknowns.
+  /// raw = T_c x + g, x the values of held_unknowns() (in that order), in the raw dofs whose
+  /// unknowns are all held (the nodes of this rank's cells and of the interfaces); g in the
+  /// others.
   void expand(std::span<const double> x, std::span<const double> g, std::vector<double>& raw) const;
+  /// The position of unknown k in held_unknowns(), or -1.
+  std::ptrdiff_t held_position(PetscInt k) const {
+    const auto it = std::lower_bound(held_.begin(), held_.end(), k);
+    return it != held_.end() && *it == k ? it - held_.begin() : -1;
+  }
 
   struct Options {
     bool shape_derivatives = true; ///< false: drop d r_fluid / d m (tests show it matters)
@@ -233,6 +240,8 @@ private:
   std::vector<std::int32_t> held_nodes_; ///< the nodes of local_cells_, ascending
   std::vector<PetscInt> held_;
   std::vector<PetscInt> own_; ///< per raw dof: its unknown (raw = x there), or -1
+  /// Per entry of T_c (columns_): the position of its unknown in held_, or -1.
+  std::vector<std::ptrdiff_t> held_column_;
   /// The ghosts of the raw nodal vectors: the held nodes this rank does not own, in node order.
   std::vector<std::int32_t> ghost_nodes_;
   std::size_t raw_slots() const { return static_cast<std::size_t>(3 * dim_ + 1); }

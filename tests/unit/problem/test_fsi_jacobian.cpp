@@ -180,7 +180,10 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane,
   const auto residual = [&](const std::vector<double>& state, la::Matrix* J, bool shape,
                             FsiSystem::Result* out = nullptr) {
     std::vector<double> raw;
-    sys.expand(state, g, raw);
+    // expand takes the held unknowns (the state is the same on every rank).
+    std::vector<double> held;
+    for (auto k : sys.held_unknowns()) held.push_back(state[static_cast<std::size_t>(k)]);
+    sys.expand(held, g, raw);
     la::Vector r;
     FsiSystem::Options o;
     o.shape_derivatives = shape;
@@ -196,7 +199,7 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane,
   {
     la::Vector r;
     std::vector<double> raw;
-    sys.expand(std::vector<double>(N, 0.0), g, raw);
+    sys.expand(std::vector<double>(sys.held_unknowns().size(), 0.0), g, raw);
     sys.assemble(raw, 1.0, r, nullptr, {});
     e.rest_norm = r.norm();
   }
