@@ -9,6 +9,7 @@
 #include "seam/mesh/distribute.hpp"
 #include "seam/mesh/facets.hpp"
 #include "seam/mesh/partition.hpp"
+#include "seam/problem/checkpoint.hpp"
 #include "seam/problem/model.hpp"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #pragma once
 // The monolithic fluid-structure system with the fluid-split dual-mortar condensation
-// (Kloeppel, Popp, Kuettler & Wall 2011; docs/fsi.md). Raw fields on the (replicated) mesh:
+// (Kloeppel, Popp, Kuettler & Wall 2011; docs/fsi.md). Raw fields on the nodes of the mesh:
 // the structure displacement d on the nodes of solid cells, the fluid velocity and pressure
 // (u, p) and the fluid mesh displacement m on the nodes of fluid cells. The condensed unknowns
 // x are what is left after eliminating
@@ -18,20 +18,20 @@
 // fluid by (u, p), the fluid by the mesh position and velocity (shape derivatives), the
 // pseudo-elastic mesh stiffness, the mass blocks of a time step.
 //
-// Every rank holds the description (the mesh is replicated). The cells are partitioned as
-// a fluid run's (METIS, mesh::partition_cells), each node owned by the lowest part among its
-// cells (mesh::number_nodes); each rank assembles its cells. The condensed unknowns are
-// numbered by the owners of their nodes: each rank's block holds its nodes' structure, then
-// fluid, then mesh unknowns, after the blocks of the lower ranks. The raw residual of a rank's
-// cells is summed on the owners of its nodes (one assembly of a node-laid-out vector), so that
-// a Newton iteration needs the unknowns of the held nodes only (held_unknowns), never all.
+// The mesh is this rank's part of a distributed mesh (runs: its cells, a ghost layer and the
+// fsi sides whole) or the whole mesh on every rank (the unit tests; then the cells are
+// partitioned by METIS and the nodes numbered as a fluid run's, mesh::number_nodes). Each
+// rank assembles its cells. The condensed unknowns are numbered by the owners of their nodes:
+// each rank's block holds its nodes' structure, then fluid, then mesh unknowns, after the
+// blocks of the lower ranks. The raw residual of a rank's cells is summed on the owners of its
+// nodes (one assembly of a node-laid-out vector), so that a Newton iteration needs the
+// unknowns of the held nodes only (held_unknowns), never all (docs/fsi.md "In parallel").
 #include "seam/common/mpi.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
 #include "seam/meshtying/tied_interface.hpp"
-#include "seam/problem/checkpoint.hpp"
 #include "seam/solid/material.hpp"
 
 #include <algorithm>
@@ -40,6 +40,8 @@
 #include <vector>
 
 namespace seam::problem {
+
+struct CanonicalOrder;
 
 /// A sparse map from raw dofs to condensed indices: per raw dof a list of (index, weight).
 struct DofMap {
