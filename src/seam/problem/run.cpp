@@ -266,13 +266,30 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   // the interface sides held whole), and the set-up a run does on it.
   MeshIdentity identity;
   auto part = load_distributed_mesh(config, comm, identity, {}, true);
+  // The cells each rank holds (own, ghost layer, interface sides), printed by rank 0.
+  const auto held_per_rank = [&] {
+    std::vector<long long> held(static_cast<std::size_t>(comm.size()));
+    const long long n_held = part.n_cells();
+    MPI_Gather(&n_held, 1, MPI_LONG_LONG, held.data(), 1, MPI_LONG_LONG, 0, comm.get());
+    return held;
+  };
+  const auto print_held = [&](const std::vector<long long>& held) {
+    if (held.size() < 2) return;
+    std::printf("  cells held per rank (own, ghost layer, interface sides):");
+    for (std::size_t r = 0; r < held.size(); ++r)
+      std::printf("%s %lld", r == 0 ? "" : " /", held[r]);
+    std::printf(" of %lld\n", static_cast<long long>(part.n_global_cells));
+  };
   if (has_fsi(config)) {
     const auto info = run_fsi(config, part, identity, comm, {}, true, true);
-    if (comm.is_root())
+    const auto held = held_per_rank();
+    if (comm.is_root()) {
       std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %lld nodes, %lld cells, "
                   "%lld unknowns\n",
                   input.c_str(), part.mesh.dim, static_cast<long long>(part.n_global_nodes),
                   static_cast<long long>(part.n_global_cells), info.n_dofs);
+      print_held(held);
+    }
     return 0;
   }
   if (has_fluid(config)) {
@@ -302,9 +319,7 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
     MPI_Allreduce(MPI_IN_PLACE, integration_cells.data(),
                   static_cast<int>(integration_cells.size()), MPI_LONG_LONG, MPI_SUM, comm.get());
   const auto contact_lines = contact.describe();
-  std::vector<long long> held(static_cast<std::size_t>(comm.size()));
-  const long long n_held = part.n_cells();
-  MPI_Gather(&n_held, 1, MPI_LONG_LONG, held.data(), 1, MPI_LONG_LONG, 0, comm.get());
+  const auto held = held_per_rank();
   if (!comm.is_root()) return 0;
   std::map<std::string, long long> named;
   for (std::size_t t = 0; t < by_type.size(); ++t)
@@ -336,12 +351,7 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
                 static_cast<long long>(t.n_master_facets), cells, t.max_relocation);
   }
   for (const auto& line : contact_lines) std::printf("  %s\n", line.c_str());
-  if (held.size() > 1) {
-    std::printf("  cells held per rank (own, ghost layer, interface sides):");
-    for (std::size_t r = 0; r < held.size(); ++r)
-      std::printf("%s %lld", r == 0 ? "" : " /", held[r]);
-    std::printf(" of %lld\n", static_cast<long long>(part.n_global_cells));
-  }
+  print_held(held);
   return 0;
 }
 
