@@ -9,7 +9,9 @@
     1.5 % on the lift, and the finer meshes move toward the published values.
   * Force conservation: the force the structure receives through P^T equals the fluid's
     interface force (steps.csv) to 1e-10.
-  * 3 ranks equal 1 rank to solver tolerance.
+  * 3 ranks equal 1 rank to 1e-10; on 3 ranks each assembles its part of the cells and owns
+    its part of the nodes (summary.json ranks_detail), and a Newton iteration exchanges only
+    the unknowns of each rank's cells.
   * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface (the
     same fluid mesh, the flag coarsened or refined) give the matching result within 1.5 %
     (tip u_y), 1 % (lift) and 1e-4 (drag); the force transfer stays exact.
@@ -86,7 +88,87 @@ def test_fsi1_coarse():
                            what="force transfer, step %d, %s" % (row["step"], c))
     r3 = run_case(np=3)
     for key in ("ux", "uy", "drag", "lift"):
-        H.assert_close(r3[key], r1[key], rtol=1e-7, what="FSI1 np 3 against np 1: " + key)
+        H.assert_close(r3[key], r1[key], rtol=1e-10, what="FSI1 np 3 against np 1: " + key)
+
+
+def test_fsi1_owners_np3():
+    """FSI1 (refine 0.5) on 3 ranks, on the distributed mesh: each rank assembles its part of
+    the cells and owns its part of the nodes (summary.json ranks_detail: the parts add up to
+    the mesh), holds its cells, a ghost layer and the fsi sides but not the whole mesh (held
+    cells, assembled + ghost_cells, fewer than the mesh's), and the results equal 1 rank's to
+    1e-10 with the same Newton iterations: the residual summed on the owners of the nodes and
+    the increments scattered to the unknowns of each rank's cells give the 1-rank Newton
+    method. Also with the rank-0 reader (METIS), which puts the flag on rank 2, so that rank 0
+    writes the interface file and the work of the transferred force from unknowns of cells it
+    does not assemble."""
+    work, path = fsi_case(refine=0.5)
+    try:
+        runs = {}
+        for np, reader in ((1, None), (3, None), ("3 rank0", "rank0")):
+            if reader:
+                os.environ["SEAM_MESH_READER"] = reader
+            try:
+                out = H.solve(path, np=3 if reader else np)
+            finally:
+                os.environ.pop("SEAM_MESH_READER", None)
+            runs[np] = (results(out), H.read_json(os.path.join(out, "summary.json")),
+                        H.read_csv(os.path.join(out, "interface_flag.csv")))
+    finally:
+        H.cleanup(work)
+    (r1, s1, i1), (r3, s3, i3) = runs[1], runs[3]
+    check_owners_np3(r1, s1, i1, r3, s3, i3, "chunked reader")
+    r3, s3, i3 = runs["3 rank0"]
+    check_owners_np3(r1, s1, i1, r3, s3, i3, "rank-0 reader")
+
+
+def check_owners_np3(r1, s1, i1, r3, s3, i3, what):
+    """test_fsi1_owners_np3's checks of a 3-rank run (r3, its summary s3 and interface file
+    i3) against the 1-rank run."""
+    detail = s3["ranks_detail"]
+    if len(detail) != 3:
+        raise AssertionError("%d ranks_detail entries on 3 ranks" % len(detail))
+    for d in detail:
+        print("   %s, rank %d: assembles %d of %d cells, holds %d; owns %d of %d nodes; "
+              "peak %.0f MB (1 rank: %.0f MB)"
+              % (what, d["rank"], d["cells"], s3["cells"], d["cells"] + d["ghost_cells"],
+                 d["owned_nodes"], s3["nodes"], d["peak_rss_mb"],
+                 s1["ranks_detail"][0]["peak_rss_mb"]))
+        if d["cells"] + d["ghost_cells"] >= s3["cells"] or d["nodes"] >= s3["nodes"]:
+            raise AssertionError("rank %d holds %d of %d cells and %d of %d nodes: the whole mesh"
+                                 % (d["rank"], d["cells"] + d["ghost_cells"], s3["cells"],
+                                    d["nodes"], s3["nodes"]))
+        if not 0 < d["cells"] < s3["cells"] or not 0 < d["owned_nodes"] < s3["nodes"]:
+            raise AssertionError("rank %d assembles %d of %d cells and owns %d of %d nodes"
+                                 % (d["rank"], d["cells"], s3["cells"], d["owned_nodes"],
+                                    s3["nodes"]))
+    for key, total in (("cells", s3["cells"]), ("owned_nodes", s3["nodes"])):
+        if sum(d[key] for d in detail) != total:
+            raise AssertionError("ranks_detail %s add up to %d, the mesh has %d"
+                                 % (key, sum(d[key] for d in detail), total))
+    if s3["newton_iterations"] != s1["newton_iterations"]:
+        raise AssertionError("%d Newton iterations on 3 ranks, %d on 1"
+                             % (s3["newton_iterations"], s1["newton_iterations"]))
+    worst = 0.0
+    for key in ("ux", "uy", "drag", "lift"):
+        worst = max(worst, abs(r3[key] - r1[key]) / abs(r1[key]))
+        H.assert_close(r3[key], r1[key], rtol=1e-10,
+                       what="FSI1 np 3 (%s) against np 1: %s" % (what, key))
+    for a, b in zip(r1["steps"], r3["steps"]):
+        for key in ("interface_force_structure_x", "interface_force_structure_y",
+                    "external_work", "internal_energy"):
+            H.assert_close(b[key], a[key], rtol=1e-10,
+                           what="step %d %s np 3 (%s)" % (a["step"], key, what))
+    # The interface file (rank 0 writes every node of the side: its displacement P d and the
+    # traction, from the interface unknowns every rank receives).
+    if len(i1) != len(i3) or [r["node"] for r in i1] != [r["node"] for r in i3]:
+        raise AssertionError("interface_flag.csv: other nodes on 3 ranks")
+    for key in ("ux", "uy", "tx", "ty"):
+        scale = max(abs(r[key]) for r in i1)
+        for a, b in zip(i1, i3):
+            H.assert_close(b[key], a[key], atol=1e-10 * scale,
+                           what="interface_flag.csv node %d %s np 3 (%s)" % (a["node"], key, what))
+    print("   FSI1 refine 0.5, %s: np 3 against np 1, largest relative difference %.1e"
+          % (what, worst))
 
 
 def test_fsi1_fieldsplit():

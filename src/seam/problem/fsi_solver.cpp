@@ -10,10 +10,12 @@
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/locate.hpp"
 #include "seam/meshtying/tied_interface.hpp"
+#include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/fsi_system.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/output.hpp"
 #include "seam/problem/progress.hpp"
 #include "seam/problem/step_control.hpp"
 
@@ -21,8 +23,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -66,33 +68,46 @@ struct Writer {
   std::vector<std::pair<std::string, std::vector<std::int32_t>>> groups;
 };
 
+// The fields of a step: each rank the piece of the cells it assembles and their nodes (the
+// pressure at every node of a fluid cell: its linear interpolation from the vertices), cell
+// data `rank`; results_NNNNN.vtu on one rank, else results_NNNNN.pvtu listing the pieces.
+// Collective.
 void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
                   Writer& w) {
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
-  const auto nn = static_cast<std::size_t>(mesh.n_nodes());
-  // Vectors with 3 components also in 2D (docs/input.md §5.2: ParaView warps by 3-vectors).
-  std::vector<double> disp(nn * 3, 0.0), mdisp(nn * 3, 0.0), vel(nn * 3, 0.0), pres(nn, 0.0);
-  for (std::size_t n = 0; n < nn; ++n)
+  std::vector<std::int32_t> local(static_cast<std::size_t>(mesh.n_nodes()), -1), nodes_of;
+  for (auto c : sys.local_cells())
+    for (auto n : mesh.cell(c))
+      if (local[n] < 0) {
+        local[n] = static_cast<std::int32_t>(nodes_of.size());
+        nodes_of.push_back(n);
+      }
+  const auto nn = nodes_of.size();
+  std::vector<double> points(nn * dim), disp(nn * 3, 0.0), mdisp(nn * 3, 0.0), vel(nn * 3, 0.0),
+      pres(nn, 0.0);
+  for (std::size_t q = 0; q < nn; ++q) {
+    const auto node = nodes_of[q];
     for (int i = 0; i < dim; ++i) {
-      const auto node = static_cast<std::int32_t>(n);
-      if (sys.is_solid_node(node)) disp[n * 3 + i] = raw[sys.d_dof(node, i)];
+      points[q * dim + i] = mesh.x[static_cast<std::size_t>(node) * dim + i];
+      if (sys.is_solid_node(node)) disp[q * 3 + i] = raw[sys.d_dof(node, i)];
       if (sys.is_fluid_node(node)) {
-        mdisp[n * 3 + i] = raw[sys.m_dof(node, i)];
-        disp[n * 3 + i] = mdisp[n * 3 + i];
-        vel[n * 3 + i] = raw[sys.f_dof(node, i)];
+        mdisp[q * 3 + i] = raw[sys.m_dof(node, i)];
+        disp[q * 3 + i] = mdisp[q * 3 + i];
+        vel[q * 3 + i] = raw[sys.f_dof(node, i)];
       }
     }
-  std::vector<std::int32_t> conn, offsets;
+  }
+  std::vector<std::int32_t> conn, offsets, rank;
   std::vector<std::uint8_t> types;
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c) {
+  for (auto c : sys.local_cells()) {
     const auto type = mesh.cell_type[c];
     const auto nodes = mesh.cell(c);
-    for (int k : fem::vtk_node_order(type)) conn.push_back(nodes[k]);
+    for (int k : fem::vtk_node_order(type)) conn.push_back(local[nodes[k]]);
     offsets.push_back(static_cast<std::int32_t>(conn.size()));
     types.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
-    if (!sys.is_fluid_node(nodes[0])) continue;
-    // The pressure at every node of the cell: its linear interpolation from the vertices.
+    rank.push_back(sys.comm().rank());
+    if (!sys.is_fluid_cell(c)) continue;
     const auto pcell = fluid::pressure_cell(type);
     const auto xi = fem::reference_nodes(type);
     std::array<double, 8> N{};
@@ -100,12 +115,12 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
       fem::shape_values(pcell, &xi[a * dim], N.data());
       double p = 0.0;
       for (int v = 0; v < fem::n_nodes(pcell); ++v) p += N[v] * raw[sys.f_dof(nodes[v], dim)];
-      pres[nodes[a]] = p;
+      pres[local[nodes[a]]] = p;
     }
   }
   io::VtuPiece piece;
   piece.point_dim = dim;
-  piece.points = mesh.x;
+  piece.points = points;
   piece.connectivity = conn;
   piece.offsets = offsets;
   piece.types = types;
@@ -113,11 +128,11 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
   piece.point_data.emplace_back("pressure", 1, std::span<const double>(pres));
   piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(mdisp));
+  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(rank));
   piece.time = t;
   piece.cycle = step;
-  const auto file = io::step_file_name("results", step, ".vtu");
-  io::write_vtu(w.dir / file, piece);
-  w.pvd->add(t, file);
+  const auto file = write_step_fields(w.dir, step, piece, sys.comm());
+  if (sys.comm().is_root()) w.pvd->add(t, file);
 }
 
 // interface_<name>.csv: per fluid-side node its reference position, the structure's
@@ -143,9 +158,9 @@ void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
       const double tn = tr[0] * nv[0] + tr[1] * nv[1] + tr[2] * nv[2];
       double tt = 0.0;
       for (int i = 0; i < 3; ++i) tt += (tr[i] - tn * nv[i]) * (tr[i] - tn * nv[i]);
-      s << n << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0] << ',' << u[1] << ','
-        << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0] << ',' << tr[1] << ','
-        << tr[2] << '\n';
+      s << sys.part()->node_gid[n] << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0]
+        << ',' << u[1] << ',' << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0]
+        << ',' << tr[1] << ',' << tr[2] << '\n';
     }
     io::write_file_atomically(dir / ("interface_" + cp.name + ".csv"), s.str());
   }
@@ -180,50 +195,80 @@ std::vector<double> interface_normals(const io::Config& config, const FsiSystem&
 }
 
 // Locates every probe: in a solid cell if one holds it (a point on the wet surface reports
-// the structure), else in a fluid cell; a probe outside both is an input error.
+// the structure), else in a fluid cell; a probe outside both is an input error. Each rank
+// searches the cells it assembles; the cell the whole-mesh search would pick (inside, then
+// the lowest id; else the nearest within the tolerance) wins, on the rank that assembles it
+// (the others get cell -1). Collective.
 void locate_probes(const io::Config& config, const FsiSystem& sys, Writer& w) {
   const auto& mesh = sys.mesh();
+  const auto* part = sys.part();
+  const auto comm = sys.comm();
   std::vector<std::int32_t> solid, fluid;
-  for (std::int32_t c = 0; c < mesh.n_cells(); ++c)
-    (sys.is_fluid_cell(c) ? fluid : solid).push_back(c);
+  for (auto c : sys.local_cells()) (sys.is_fluid_cell(c) ? fluid : solid).push_back(c);
+  std::sort(solid.begin(), solid.end());
+  std::sort(fluid.begin(), fluid.end());
   const mesh::PointLocator in_solid(mesh, solid), in_fluid(mesh, fluid);
+  constexpr double none = std::numeric_limits<double>::infinity();
   for (const auto& probe : config.output.probes) {
     const std::span<const double> p(probe.point.data(), static_cast<std::size_t>(mesh.dim));
-    auto at = in_solid.locate(p, 1e-8);
-    if (!at) at = in_fluid.locate(p, 1e-8);
-    if (!at) io::fail_at(probe.mark, "the probe lies outside the mesh");
-    w.probe_at.push_back(*at);
+    mesh::PointLocation found;
+    for (const auto* locator : {&in_solid, &in_fluid}) {
+      const auto at = locator->locate(p, 1e-8);
+      double distance = none, id = none;
+      if (at) {
+        // Inside to round-off counts as inside (PointLocator: then the lowest id).
+        distance = mesh::reference_distance(mesh.cell_type[at->cell], at->xi.data());
+        if (distance <= 1e-12) distance = 0.0;
+        id = static_cast<double>(part ? part->cell_gid[at->cell] : at->cell);
+      }
+      const double best = comm.min(distance);
+      const double best_id = comm.min(distance == best ? id : none);
+      if (best == none) continue;
+      if (at && distance == best && id == best_id) found = *at;
+      break;
+    }
+    if (!comm.any(found.cell >= 0)) io::fail_at(probe.mark, "the probe lies outside the mesh");
+    w.probe_at.push_back(found);
   }
 }
 
 // probes.csv: the structure's displacement (velocity 0: steady) in a solid cell; the mesh
-// displacement, the velocity and the pressure in a fluid cell.
+// displacement, the velocity and the pressure in a fluid cell. Evaluated on the rank that
+// located the probe, written by rank 0. Collective.
 void write_probes(const FsiSystem& sys, const std::vector<double>& raw, int step, double t,
                   Writer& w) {
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
+  constexpr std::size_t width = 11; // x, u, v, p, 1 in a fluid cell
+  std::vector<double> values(w.probe_at.size() * width, 0.0);
   for (std::size_t k = 0; k < w.probe_at.size(); ++k) {
     const auto& at = w.probe_at[k];
+    if (at.cell < 0) continue;
+    double* out = &values[k * width];
     const auto type = mesh.cell_type[at.cell];
     const auto nodes = mesh.cell(at.cell);
     std::array<double, fem::max_cell_nodes> N{};
     fem::shape_values(type, at.xi.data(), N.data());
-    std::array<double, 3> x{}, u{}, v{};
     const bool fluid = sys.is_fluid_cell(at.cell);
     for (std::size_t a = 0; a < nodes.size(); ++a)
       for (int i = 0; i < dim; ++i) {
-        x[i] += N[a] * mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
-        u[i] += N[a] * raw[fluid ? sys.m_dof(nodes[a], i) : sys.d_dof(nodes[a], i)];
-        if (fluid) v[i] += N[a] * raw[sys.f_dof(nodes[a], i)];
+        out[i] += N[a] * mesh.x[static_cast<std::size_t>(nodes[a]) * dim + i];
+        out[3 + i] += N[a] * raw[fluid ? sys.m_dof(nodes[a], i) : sys.d_dof(nodes[a], i)];
+        if (fluid) out[6 + i] += N[a] * raw[sys.f_dof(nodes[a], i)];
       }
-    double p = 0.0;
     if (fluid) {
       const auto pcell = fluid::pressure_cell(type);
       fem::shape_values(pcell, at.xi.data(), N.data());
-      for (int a = 0; a < fem::n_nodes(pcell); ++a) p += N[a] * raw[sys.f_dof(nodes[a], dim)];
+      for (int a = 0; a < fem::n_nodes(pcell); ++a) out[9] += N[a] * raw[sys.f_dof(nodes[a], dim)];
+      out[10] = 1.0;
     }
-    const io::CsvValue pressure = fluid ? io::CsvValue(p) : io::CsvValue("");
-    w.probes->add_row({step, t, k, x[0], x[1], x[2], u[0], u[1], u[2], v[0], v[1], v[2], pressure});
+  }
+  sys.comm().sum_in_place(values);
+  if (!sys.comm().is_root()) return;
+  for (std::size_t k = 0; k < w.probe_at.size(); ++k) {
+    const double* v = &values[k * width];
+    const io::CsvValue pressure = v[10] > 0.0 ? io::CsvValue(v[9]) : io::CsvValue("");
+    w.probes->add_row({step, t, k, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], pressure});
   }
 }
 
@@ -234,13 +279,17 @@ bool has_fsi(const io::Config& config) {
                      [](const io::Interface& i) { return i.type == io::InterfaceType::fsi; });
 }
 
-FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
-                   const std::filesystem::path& dir, bool quiet, bool check_only,
-                   const RestartFrom& restart) {
+FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
+                   const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
+                   bool quiet, bool check_only, const RestartFrom& restart) {
+  auto& mesh = part.mesh;
   check_fsi_input(config);
   PhaseTimers timers;
+  // Every rank holds the fsi sides whole: the couplings are set up on each rank's part as on
+  // the whole mesh.
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
-  FsiSystem sys(config, mesh, tied, comm);
+  FsiSystem sys(config, mesh, tied, comm, &part);
+  const long long n_nodes = part.n_global_nodes, n_cells = part.n_global_cells;
   FsiRunInfo info;
   info.n_dofs = sys.n_unknowns();
   const int dim = sys.dim();
@@ -250,12 +299,14 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     std::vector<std::int32_t> nodes;
     for (const auto& ref : group.regions) {
       const auto& region = find_region(mesh, ref, {dim - 1}, "a force group");
+      bool off_fluid = false; // on any rank (collective)
       for (auto n : region.nodes) {
-        if (!sys.is_fluid_node(n))
-          io::fail_at(ref.mark, "force group '" + group.name + "': region '" + ref.name +
-                                    "' is not on the fluid; forces.csv sums fluid-side groups");
+        off_fluid = off_fluid || !sys.is_fluid_node(n);
         nodes.push_back(n);
       }
+      if (comm.any(off_fluid))
+        io::fail_at(ref.mark, "force group '" + group.name + "': region '" + ref.name +
+                                  "' is not on the fluid; forces.csv sums fluid-side groups");
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
@@ -267,8 +318,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   const bool root = comm.is_root();
   // Checkpoints hold the whole state (every rank has it; state.bin only, no part files of
   // nodal vectors), identified by the mesh after the mesh initialization of the interfaces.
-  const Checkpoints checkpoints(config, "fluid-structure", identify(mesh), comm, {}, restart.input,
-                                dir, restart.checkpoint);
+  const Checkpoints checkpoints(config, "fluid-structure", identity, comm, sys.raw_order(),
+                                restart.input, dir, restart.checkpoint);
   // A restart continues the tables (rows after its step dropped) and results.pvd; a table
   // with another header stops every rank.
   on_root_collectively(comm, [&] {
@@ -303,14 +354,14 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   });
   if (root) {
     if (!quiet)
-      std::printf("seam: fluid-structure interaction, %d nodes, %d cells, %lld unknowns, %d "
+      std::printf("seam: fluid-structure interaction, %lld nodes, %lld cells, %lld unknowns, %d "
                   "rank(s); output in %s\n",
-                  mesh.n_nodes(), mesh.n_cells(), info.n_dofs, comm.size(), dir.string().c_str());
+                  n_nodes, n_cells, info.n_dofs, comm.size(), dir.string().c_str());
   }
-  std::vector<PetscInt> all(static_cast<std::size_t>(sys.n_unknowns()));
-  std::iota(all.begin(), all.end(), PetscInt{0});
-  la::Vector layout(comm.get(), sys.n_owned());
-  const la::Gather gather(layout, all);
+  // A Newton iteration scatters the unknowns of the held nodes (held_unknowns); nothing is
+  // gathered whole.
+  la::Vector xv(comm.get(), sys.n_owned());
+  const la::Gather gather_held(xv, sys.held_unknowns());
   // MUMPS, or with `linear: iterative` FGMRES with the structure | fluid | mesh fieldsplit
   // (docs/fsi.md, "Linear solvers"); `auto` keeps the direct solver.
   const auto choice =
@@ -337,11 +388,28 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     solver.set_fsi_fields(s_rows, f_rows, m_rows, sys.structure_rigid_modes(), velocity_block);
   }
   long long linear_solves = 0, linear_iterations = 0;
-  std::vector<double> x(all.size(), 0.0), raw, dx_all;
+  // x: the held unknowns (held_unknowns, ascending; the owned ones among them from
+  // first_held on).
+  std::vector<double> x(sys.held_unknowns().size(), 0.0), raw;
+  const auto first_held = sys.n_owned() > 0 ? sys.held_position(sys.first_owned()) : 0;
+  // The owned entries of x into xv.
+  const auto set_owned = [&] {
+    la::Vector::LocalView view(xv, true);
+    auto v = view.values();
+    for (PetscInt k = 0; k < sys.n_owned(); ++k) v[k] = x[static_cast<std::size_t>(first_held + k)];
+  };
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
   double reference = 0.0, work = 0.0;
-  std::vector<double> last_force(sys.n_raw(), 0.0), last_raw(sys.n_raw(), 0.0);
+  // The structure nodes of the interfaces (the sides are held whole on every rank, in global
+  // order) and, per node and component, the force transferred to them and their displacement
+  // at the last step (the work of the transferred force; rank 0).
+  std::vector<std::int32_t> wet;
+  for (const auto& cp : sys.couplings())
+    wet.insert(wet.end(), cp.structure_nodes.begin(), cp.structure_nodes.end());
+  std::sort(wet.begin(), wet.end());
+  wet.erase(std::unique(wet.begin(), wet.end()), wet.end());
+  std::vector<double> last_force(wet.size() * dim, 0.0), last_raw(wet.size() * dim, 0.0);
   const auto start = std::chrono::steady_clock::now();
   const auto normals = interface_normals(config, sys);
   const auto& nc = config.solver.newton;
@@ -358,6 +426,32 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   StepControl control(config.time);
   int step = 0, newton_iterations = 0;
   const auto finish = [&](bool ok) {
+    // Every rank's share (CONTRACT.md, ranks_detail; output.hpp): the cells it assembles and
+    // the other cells it holds (the rest of the replicated mesh), its peak memory, its owned
+    // nodes, the other nodes of its cells and the nodes it holds.
+    parallel::mark_memory(comm.get(), "end");
+    // And the unknowns a Newton iteration brings to it (held_unknowns), of all.
+    constexpr std::size_t n_detail = n_rank_detail_basics + 1;
+    std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
+    {
+      double* mine = &detail[static_cast<std::size_t>(comm.rank()) * n_detail];
+      mine[n_rank_detail_basics] = static_cast<double>(sys.held_unknowns().size());
+      mine[0] = static_cast<double>(sys.local_cells().size());
+      mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
+      mine[6] = parallel::peak_rss_mb();
+      mine[7] = static_cast<double>(part.count(mesh::CellRole::interface));
+      std::vector<char> of_cells(static_cast<std::size_t>(mesh.n_nodes()), 0);
+      for (auto c : sys.local_cells())
+        for (auto n : mesh.cell(c)) of_cells[n] = 1;
+      for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) {
+        if (sys.owns_node(n))
+          mine[8] += 1.0;
+        else if (of_cells[n])
+          mine[9] += 1.0;
+      }
+      mine[10] = static_cast<double>(mesh.n_nodes());
+    }
+    comm.sum_in_place(detail);
     if (!root) return;
     io::Json j = io::Json::object();
     j["status"] = ok ? "converged" : "failed";
@@ -373,6 +467,17 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     auto& tj = j["timings"];
     for (const char* phase : {"assembly", "condensation", "linear_solve", "output"})
       tj[phase] = timers.get(phase);
+    j["nodes"] = static_cast<std::int64_t>(n_nodes);
+    j["cells"] = static_cast<std::int64_t>(n_cells);
+    auto& ranks = j["ranks_detail"];
+    ranks = io::Json::array();
+    for (int rk = 0; rk < comm.size(); ++rk) {
+      io::Json e = io::Json::object();
+      put_rank_detail_basics(e, rk, &detail[static_cast<std::size_t>(rk) * n_detail]);
+      e["held_unknowns"] =
+          static_cast<std::int64_t>(detail[static_cast<std::size_t>(rk) * n_detail + n_detail - 1]);
+      ranks.push_back(std::move(e));
+    }
     io::write_json(dir / "summary.json", j);
   };
   // The energy budget (docs/fsi.md, "Energy budget"): the powers at t_n, the works accumulated
@@ -389,7 +494,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
   // The state carried from step to step: the unknowns, the history of the time integration,
   // the residual scale, the reactions and powers at t_n and the works to t_n, the forces of
   // the force groups, step control and the output counters. Rank 0's copy is written (the
-  // records of the tables' columns are kept on rank 0 only).
+  // records of the tables' columns are kept on rank 0 only): x in the canonical numbering of
+  // the unknowns and the reactions summed, so that any number of ranks continues.
   const auto flat = [](const auto& groups) {
     std::vector<double> out;
     for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
@@ -399,6 +505,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     return std::array<double, 4>{p.boundary, p.dissipation, p.interface_fluid,
                                  p.interface_structure};
   };
+  // The nodal state (the converged raw values, the reactions, the time integration's history)
+  // as raw nodal vectors, each value written by the owner of its node into its part file.
+  la::Vector nodal = sys.make_raw_vector();
   const auto write_checkpoint = [&] {
     const auto c = control.state();
     RecordWriter cw = checkpoints.begin(step, c.t);
@@ -406,17 +515,23 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     cw.put_integer("control.cuts", c.cuts);
     cw.put_integer("newton.iterations", newton_iterations);
     cw.put_real("newton.reference", reference);
-    cw.put("x", x);
-    cw.put("reaction", reaction);
+    const auto put_nodal = [&](const char* name, std::span<const double> values) {
+      sys.raw_to_vector(values, nodal);
+      checkpoints.put_vector(cw, name, nodal);
+    };
+    put_nodal("raw", raw);
+    put_nodal("reaction", reaction);
     cw.put("power", powers(power_old));
     cw.put("work", powers(work_sum));
     cw.put_real("structure_work", work);
     cw.put("last_force", last_force);
     cw.put("last_raw", last_raw);
     cw.put("group_force", flat(group_force));
-    cw.put("history.old", history.old);
-    cw.put("history.rate", history.rate);
-    cw.put("history.accel", history.accel);
+    if (dynamic) {
+      put_nodal("history.old", history.old);
+      put_nodal("history.rate", history.rate);
+      put_nodal("history.accel", history.accel);
+    }
     put_pvd(cw, w.pvd.get());
     checkpoints.commit(cw, step);
   };
@@ -428,24 +543,36 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     newton_iterations = static_cast<int>(r.integer("newton.iterations"));
     reference = r.real("newton.reference");
     const auto n_raw = sys.n_raw();
-    x = r.reals("x", x.size());
-    reaction = r.reals("reaction", n_raw);
+    const auto get_nodal = [&](const char* name, std::vector<double>& values) {
+      checkpoints.get_vector(name, nodal);
+      sys.vector_to_raw(nodal, values);
+    };
+    std::vector<double> state;
+    get_nodal("raw", state);
+    sys.unknowns_from_raw(state, x);
+    // The reactions live on the owners of their nodes (FsiSystem::Result::raw_residual).
+    get_nodal("reaction", reaction);
+    for (std::size_t a = 0; a < n_raw; ++a)
+      if (!sys.owns_raw(a)) reaction[a] = 0.0;
     const auto p = r.reals("power", 4), s = r.reals("work", 4);
     power_old = {p[0], p[1], p[2], p[3]};
     work_sum = {s[0], s[1], s[2], s[3]};
     work = r.real("structure_work");
-    last_force = r.reals("last_force", n_raw);
-    last_raw = r.reals("last_raw", n_raw);
+    last_force = r.reals("last_force", last_force.size());
+    last_raw = r.reals("last_raw", last_raw.size());
     const auto f = r.reals("group_force", group_force.size() * 3);
     for (std::size_t k = 0; k < group_force.size(); ++k)
       for (int i = 0; i < 3; ++i) group_force[k][i] = f[k * 3 + i];
-    history.old = r.reals("history.old", dynamic ? n_raw : 0);
-    history.rate = r.reals("history.rate", dynamic ? n_raw : 0);
-    history.accel = r.reals("history.accel", dynamic ? n_raw : 0);
+    if (dynamic) {
+      get_nodal("history.old", history.old);
+      get_nodal("history.rate", history.rate);
+      get_nodal("history.accel", history.accel);
+    }
     if (root && !quiet)
       std::printf("  restarting from %s: step %d, t = %.17g\n", restart.checkpoint.c_str(), step,
                   control.time());
   }
+  set_owned();
   std::vector<double> x_converged = x;
   const double progress_wall = wall_seconds(), progress_time = control.time();
   while (control.running()) {
@@ -486,6 +613,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
         if (sys.is_fluid_node(n))
           for (int i = 0; i < dim; ++i)
             level += res.raw_residual[sys.f_dof(n, i)] * res.raw_residual[sys.f_dof(n, i)];
+      level = comm.sum(level); // each rank's owned nodes
       reference = std::max({reference, it == 0 ? rn : 0.0, std::sqrt(level), res.level});
       if (root && !quiet)
         std::printf("  step %d t = %g  iteration %d  |r| = %.3e (relative %.3e)\n", step + 1, t, it,
@@ -516,17 +644,19 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                             : "the linear solver failed (MUMPS)";
         break;
       }
-      gather(dx, dx_all);
-      for (std::size_t k = 0; k < x.size(); ++k) x[k] += dx_all[k];
+      xv.axpy(1.0, dx);
+      gather_held(xv, x);
     }
     newton_iterations += it;
     if (*failure != '\0') {
       x = x_converged;
+      set_owned();
       if (control.cut(failure, t, comm)) continue;
       finish(false);
       SEAM_THROW(SolverError, failure, " at t = ", t, " after ", control.cuts(), " step cuts; the ",
                  step, " converged steps are written in ", dir.string());
     }
+    sys.expand(x, g, raw);
     x_converged = x;
     control.accept(t);
     ++step;
@@ -543,6 +673,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
     // t_{n+alpha_f}, as for forces.csv; their power on the fluid's velocity; the power of the
     // transferred force P^T f on the structure's velocity; the dissipation and the kinetic
     // energy carried through the boundary (- convection + mesh transport, fluid::EnergyIntegrals).
+    // The reactions are those of each rank's owned nodes, the powers their sums over ranks.
     Powers power;
     for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
       if (sys.is_fluid_node(n))
@@ -564,6 +695,14 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
               power.interface_structure +=
                   cp.weights[q] * f * history.rate[sys.d_dof(cp.structure_nodes[q], i)];
           }
+    {
+      std::array<double, 3> partial{power.interface_fluid, power.boundary,
+                                    power.interface_structure};
+      comm.sum_in_place(partial);
+      power.interface_fluid = partial[0];
+      power.boundary = partial[1];
+      power.interface_structure = partial[2];
+    }
     const auto fluid_energy = sys.fluid_energy(raw, dynamic ? std::span<const double>(history.rate)
                                                             : std::span<const double>());
     power.boundary += fluid_energy.mesh_transport - fluid_energy.convection;
@@ -577,9 +716,30 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
           h * (power_old.interface_structure + power.interface_structure);
     }
     power_old = power;
+    // The force groups: each rank's sums over its owned nodes, summed over ranks.
+    std::vector<double> group_sums;
+    for (const auto& group : w.groups) {
+      const auto f = fluid_force(sys, res.raw_residual, group.second);
+      group_sums.insert(group_sums.end(), f.begin(), f.end());
+    }
+    comm.sum_in_place(group_sums);
+    // The fluid's interface residual whole (the interface sides are held whole on every rank):
+    // the traction, the force transfer and its work.
+    std::vector<double> interface_residual = res.raw_residual;
+    {
+      std::vector<double> values;
+      for (const auto& cp : sys.couplings())
+        for (auto n : cp.fluid_nodes)
+          for (int i = 0; i < dim; ++i) values.push_back(res.raw_residual[sys.f_dof(n, i)]);
+      comm.sum_in_place(values);
+      std::size_t k = 0;
+      for (const auto& cp : sys.couplings())
+        for (auto n : cp.fluid_nodes)
+          for (int i = 0; i < dim; ++i) interface_residual[sys.f_dof(n, i)] = values[k++];
+    }
     if (root) {
       for (std::size_t k = 0; k < w.groups.size(); ++k) {
-        auto f = fluid_force(sys, res.raw_residual, w.groups[k].second);
+        std::array<double, 3> f{group_sums[k * 3], group_sums[k * 3 + 1], group_sums[k * 3 + 2]};
         // Dynamics: the residual holds the force at t_{n+alpha_f}; at t_{n+1} it is
         // F_{n+1} = (F_{n+alpha_f} - (1 - alpha_f) F_n) / alpha_f (as the fluid runs).
         if (dynamic)
@@ -601,7 +761,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
           double fn = 0.0;
           std::array<double, 3> f{};
           for (int i = 0; i < dim; ++i) {
-            f[i] = -res.raw_residual[sys.f_dof(cp.fluid_nodes[j], i)];
+            f[i] = -interface_residual[sys.f_dof(cp.fluid_nodes[j], i)];
             fn += f[i] * n[i];
             ff[i] += f[i];
             for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
@@ -618,11 +778,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
                        tangential[2] * tangential[2]),
              0, 0, cp.d_total});
       }
-      for (std::size_t a = 0; a < transferred.size(); ++a)
-        if (transferred[a] != 0.0 || last_force[a] != 0.0)
-          work += 0.5 * (transferred[a] + last_force[a]) * (raw[a] - last_raw[a]);
-      last_force = transferred;
-      last_raw = raw;
+      for (std::size_t q = 0; q < wet.size(); ++q)
+        for (int i = 0; i < dim; ++i) {
+          const auto a = sys.d_dof(wet[q], i);
+          const auto k = q * dim + i;
+          if (transferred[a] != 0.0 || last_force[k] != 0.0)
+            work += 0.5 * (transferred[a] + last_force[k]) * (raw[a] - last_raw[k]);
+          last_force[k] = transferred[a];
+          last_raw[k] = raw[a];
+        }
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       // clang-format off
@@ -636,13 +800,16 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::Mesh& mesh, Comm comm,
         print_step_line(
             step, t, it, rn / std::max(reference, 1e-300), wall,
             time_left(wall_seconds() - progress_wall, t - progress_time, config.time.end - t));
-      ScopedTimer timer(timers, "output");
-      if (w.probes) write_probes(sys, raw, step, t, w);
-      // Fields every `output.every` steps and at the end.
       if (step % config.output.every == 0 || !control.running()) {
-        write_fields(sys, raw, step, t, w);
-        write_interfaces(sys, raw, res.raw_residual, normals, dir);
+        ScopedTimer timer(timers, "output");
+        write_interfaces(sys, raw, interface_residual, normals, dir);
       }
+    }
+    {
+      ScopedTimer timer(timers, "output");
+      if (!w.probe_at.empty()) write_probes(sys, raw, step, t, w);
+      // Fields every `output.every` steps and at the end.
+      if (step % config.output.every == 0 || !control.running()) write_fields(sys, raw, step, t, w);
     }
     if (checkpoints.due(step)) write_checkpoint();
   }

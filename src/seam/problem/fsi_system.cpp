@@ -97,9 +97,13 @@ void FsiSystem::expand(std::span<const double> x, std::span<const double> g,
                        std::vector<double>& raw) const {
   raw.assign(g.begin(), g.end());
   for (std::size_t a = 0; a < n_raw(); ++a) {
+    const auto begin = columns_.offsets[a], end = columns_.offsets[a + 1];
+    if (std::any_of(held_column_.begin() + begin, held_column_.begin() + end,
+                    [](std::ptrdiff_t p) { return p < 0; }))
+      continue;
     const double scale = column_scale(a);
-    for (auto q = columns_.offsets[a]; q < columns_.offsets[a + 1]; ++q)
-      raw[a] += scale * columns_.weight[q] * x[columns_.index[q]];
+    for (auto q = begin; q < end; ++q)
+      raw[a] += scale * columns_.weight[q] * x[static_cast<std::size_t>(held_column_[q])];
   }
 }
 
@@ -379,23 +383,75 @@ FsiSystem::Result FsiSystem::assemble(std::span<const double> raw, double /*t*/,
   out.inverted = comm_.any(out.inverted);
   out.strain_energy = comm_.sum(out.strain_energy);
   out.kinetic_energy = comm_.sum(out.kinetic_energy);
-  comm_.sum_in_place(res);
-  comm_.sum_in_place(mag);
+  // The raw residual and its magnitudes summed on the owners of the nodes: this rank's
+  // entries of the nodes it holds into a node-laid-out vector (two values per raw slot),
+  // whose assembly sends the others' to their owners, which add them in rank order.
+  const auto slots = raw_slots();
+  {
+    la::Vector summed(comm_.get(), static_cast<PetscInt>(n_owned_nodes_ * slots * 2));
+    std::vector<PetscInt> at;
+    std::vector<double> values;
+    at.reserve(held_nodes_.size() * slots * 2);
+    values.reserve(at.capacity());
+    const auto put = [&](std::int32_t n, std::size_t a) {
+      const auto slot = static_cast<PetscInt>((node_slot_[n] * slots + raw_slot(a)) * 2);
+      at.push_back(slot);
+      values.push_back(res[a]);
+      at.push_back(slot + 1);
+      values.push_back(mag[a]);
+    };
+    for (auto n : held_nodes_) {
+      for (int i = 0; i < dim; ++i) {
+        put(n, d_dof(n, i));
+        put(n, m_dof(n, i));
+      }
+      for (int c = 0; c <= dim; ++c) put(n, f_dof(n, c));
+    }
+    summed.add_values(at, values);
+    summed.assemble();
+    std::fill(res.begin(), res.end(), 0.0);
+    std::fill(mag.begin(), mag.end(), 0.0);
+    la::Vector::LocalView view(summed, false);
+    const auto v = view.values();
+    const auto first = summed.owned_begin();
+    for (std::size_t k = 0; k < at.size(); k += 2) {
+      const auto local = at[k] - first;
+      if (local < 0 || local >= static_cast<PetscInt>(v.size())) continue;
+      const auto n = held_nodes_[k / (2 * slots)];
+      // The raw dof of this slot, in the order put() visited them.
+      const auto j = (k / 2) % slots;
+      const auto a =
+          j < static_cast<std::size_t>(2 * dim)
+              ? (j % 2 == 0 ? d_dof(n, static_cast<int>(j / 2)) : m_dof(n, static_cast<int>(j / 2)))
+              : f_dof(n, static_cast<int>(j - 2 * dim));
+      res[a] = v[local];
+      mag[a] = v[local + 1];
+    }
+  }
   for (std::size_t a = 0; a < n_raw(); ++a)
     if (rows_.offsets[a + 1] > rows_.offsets[a]) out.level += mag[a] * mag[a];
-  out.level = std::sqrt(out.level);
+  out.level = std::sqrt(comm_.sum(out.level));
 
-  // R^T r: every rank sets the rows it owns from the summed raw residual.
-  std::vector<double> owned(static_cast<std::size_t>(n_owned_), 0.0);
-  for (std::size_t a = 0; a < n_raw(); ++a)
-    for (auto q = rows_.offsets[a]; q < rows_.offsets[a + 1]; ++q) {
-      const auto row = rows_.index[q] - first_owned_;
-      if (row >= 0 && row < n_owned_) owned[row] += rows_.weight[q] * res[a];
+  // R^T r from the rows of the owned nodes: an interface node's momentum rows go through P^T
+  // to structure unknowns that other ranks may own.
+  std::vector<PetscInt> ids;
+  std::vector<double> contributions;
+  for (auto n : held_nodes_) {
+    if (!owns_node(n)) continue;
+    const auto add_rows = [&](std::size_t a) {
+      for (auto q = rows_.offsets[a]; q < rows_.offsets[a + 1]; ++q) {
+        ids.push_back(rows_.index[q]);
+        contributions.push_back(rows_.weight[q] * res[a]);
+      }
+    };
+    for (int i = 0; i < dim; ++i) {
+      add_rows(d_dof(n, i));
+      add_rows(m_dof(n, i));
     }
+    for (int c = 0; c <= dim; ++c) add_rows(f_dof(n, c));
+  }
   r = la::Vector(comm_.get(), n_owned_);
-  std::vector<PetscInt> ids(owned.size());
-  for (std::size_t q = 0; q < ids.size(); ++q) ids[q] = first_owned_ + static_cast<PetscInt>(q);
-  r.set_values(ids, owned);
+  r.add_values(ids, contributions);
   r.assemble();
   const double t0 = wall_seconds();
   if (J && reuse) {
@@ -431,7 +487,7 @@ std::vector<double> FsiSystem::structure_rigid_modes() const {
   const int n_modes = dim_ == 2 ? 3 : 6;
   std::vector<double> modes(n_modes * n, 0.0);
   for (std::size_t q = 0; q < n; ++q) {
-    const auto a = structure_raw_[begin + q];
+    const auto a = structure_raw_[q];
     const auto node = a / dim_;
     const int i = static_cast<int>(a % dim_);
     const double* x = &mesh_->x[node * dim_];

@@ -1,6 +1,6 @@
 #pragma once
 // The monolithic fluid-structure system with the fluid-split dual-mortar condensation
-// (Kloeppel, Popp, Kuettler & Wall 2011; docs/fsi.md). Raw fields on the (replicated) mesh:
+// (Kloeppel, Popp, Kuettler & Wall 2011; docs/fsi.md). Raw fields on the nodes of the mesh:
 // the structure displacement d on the nodes of solid cells, the fluid velocity and pressure
 // (u, p) and the fluid mesh displacement m on the nodes of fluid cells. The condensed unknowns
 // x are what is left after eliminating
@@ -18,20 +18,30 @@
 // fluid by (u, p), the fluid by the mesh position and velocity (shape derivatives), the
 // pseudo-elastic mesh stiffness, the mass blocks of a time step.
 //
-// Every rank holds the description (the mesh is replicated) and the whole state; each rank
-// assembles a contiguous block of cells, the condensed system is a distributed PETSc system.
+// The mesh is this rank's part of a distributed mesh (runs: its cells, a ghost layer and the
+// fsi sides whole) or the whole mesh on every rank (the unit tests; then the cells are
+// partitioned by METIS and the nodes numbered as a fluid run's, mesh::number_nodes). Each
+// rank assembles its cells. The condensed unknowns are numbered by the owners of their nodes:
+// each rank's block holds its nodes' structure, then fluid, then mesh unknowns, after the
+// blocks of the lower ranks. The raw residual of a rank's cells is summed on the owners of its
+// nodes (one assembly of a node-laid-out vector), so that a Newton iteration needs the
+// unknowns of the held nodes only (held_unknowns), never all (docs/fsi.md "In parallel").
 #include "seam/common/mpi.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/solid/material.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace seam::problem {
+
+struct CanonicalOrder;
 
 /// A sparse map from raw dofs to condensed indices: per raw dof a list of (index, weight).
 struct DofMap {
@@ -58,9 +68,13 @@ struct FsiCoupling {
 
 class FsiSystem {
 public:
-  /// Checks the input for a steady fsi run (InputError, located) and builds the maps.
+  /// Checks the input for a steady fsi run (InputError, located, on every rank) and builds
+  /// the maps. `part` (kept by reference): `mesh` is this rank's part of a distributed mesh
+  /// (part->mesh, its `fsi` interface sides held whole, `interfaces` set up on it); null: the
+  /// mesh is replicated.
   FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
-            const std::vector<meshtying::TiedInterface>& interfaces, Comm comm);
+            const std::vector<meshtying::TiedInterface>& interfaces, Comm comm,
+            const mesh::DistributedMesh* part = nullptr);
 
   int dim() const { return dim_; }
   Comm comm() const { return comm_; }
@@ -68,6 +82,38 @@ public:
   PetscInt n_unknowns() const { return n_unknowns_; }
   PetscInt n_owned() const { return n_owned_; }
   PetscInt first_owned() const { return first_owned_; }
+  /// The condensed unknowns this rank's cells need (the columns of their raw dofs, through
+  /// P the structure nodes of their interface nodes) and those of the interface nodes (held
+  /// whole), ascending: what a Newton iteration scatters to this rank.
+  const std::vector<PetscInt>& held_unknowns() const { return held_; }
+  /// Whether this rank owns mesh node n (its raw residual entries are summed here).
+  bool owns_node(std::int32_t n) const { return node_owner_[n] == comm_.rank(); }
+  /// Whether this rank owns the node of raw dof a.
+  bool owns_raw(std::size_t a) const { return owns_node(raw_node(a)); }
+  std::int32_t raw_node(std::size_t a) const {
+    return static_cast<std::int32_t>(a < base_f_   ? a / dim_
+                                     : a < base_m_ ? (a - base_f_) / (dim_ + 1)
+                                                   : (a - base_m_) / dim_);
+  }
+  /// A number of raw dof a that is the same on every rank and for any number of ranks.
+  std::int64_t raw_id(std::size_t a) const {
+    const auto n = raw_node(a);
+    return (part_ ? part_->node_gid[n] : n) * static_cast<std::int64_t>(raw_slots()) +
+           static_cast<std::int64_t>(raw_slot(a));
+  }
+  const mesh::DistributedMesh* part() const { return part_; }
+  /// The cells this rank assembles.
+  const std::vector<std::int32_t>& local_cells() const { return local_cells_; }
+  /// Raw nodal vectors (checkpoints): 3 dim + 1 slots per node (d, then u and p, then m), the
+  /// owned nodes' slots owned, the other held nodes' slots ghosts. Their stored order is by
+  /// global node id (raw_id), independent of the number of ranks.
+  la::Vector make_raw_vector() const;
+  CanonicalOrder raw_order() const;
+  /// Raw values (n_raw) into such a vector (owned and ghost entries) and back.
+  void raw_to_vector(std::span<const double> raw, la::Vector& v) const;
+  void vector_to_raw(const la::Vector& v, std::vector<double>& raw) const;
+  /// The held unknowns (x as in expand) from a raw state: the raw value of each one's raw dof.
+  void unknowns_from_raw(std::span<const double> raw, std::vector<double>& x) const;
   std::size_t n_raw() const { return static_cast<std::size_t>(base_m_) + n_nodes_ * dim_; }
 
   /// Raw dof numbers: d of node n component i, u (c < dim) or p (c = dim), m.
@@ -118,8 +164,15 @@ public:
              std::vector<double>& accel) const;
   /// The raw values of the prescribed part g(t) (zero elsewhere).
   std::vector<double> prescribed(double t) const;
-  /// raw = T_c x + g, x all condensed unknowns.
+  /// raw = T_c x + g, x the values of held_unknowns() (in that order), in the raw dofs whose
+  /// unknowns are all held (the nodes of this rank's cells and of the interfaces); g in the
+  /// others.
   void expand(std::span<const double> x, std::span<const double> g, std::vector<double>& raw) const;
+  /// The position of unknown k in held_unknowns(), or -1.
+  std::ptrdiff_t held_position(PetscInt k) const {
+    const auto it = std::lower_bound(held_.begin(), held_.end(), k);
+    return it != held_.end() && *it == k ? it - held_.begin() : -1;
+  }
 
   struct Options {
     bool shape_derivatives = true; ///< false: drop d r_fluid / d m (tests show it matters)
@@ -131,8 +184,9 @@ public:
     /// The force level: the norm over the condensed rows of the sums of the magnitudes of the
     /// element contributions (round-off in the residual is a small multiple of eps times this).
     double level = 0.0;
-    /// The raw residual r = f_int - f_ext of every raw dof, summed over ranks (reactions on
-    /// prescribed dofs, the fluid's interface forces before the transfer).
+    /// The raw residual r = f_int - f_ext (reactions on prescribed dofs, the fluid's interface
+    /// forces before the transfer): summed over ranks in the raw dofs of the nodes this rank
+    /// owns, 0 in all others (a sum over nodes is a sum of the ranks' partial sums).
     std::vector<double> raw_residual;
     /// Wall time of this call on this rank: the element kernels (assembly) and the products
     /// with R and T_c into the condensed matrix (condensation).
@@ -158,8 +212,17 @@ private:
                  std::span<const double> K, std::vector<PetscInt>* I, std::vector<PetscInt>* J,
                  std::vector<double>& V) const;
 
+  /// Per node (width values each, node-major): the sums over the ranks holding the node of
+  /// their `contributions`, on every rank holding it (distributed mesh). Collective.
+  std::vector<double> share(std::span<const double> contributions, int width) const;
+  /// A vector of `width` values per node laid out as share's (owned nodes, then ghost_nodes_).
+  la::Vector nodal_vector(int width) const;
+  /// The local index of value k of node n in such a vector, whose first owned row is `first`.
+  std::size_t nodal_local(std::int32_t n, std::size_t k, PetscInt first, std::size_t width) const;
+
   const io::Config* config_;
   const mesh::Mesh* mesh_;
+  const mesh::DistributedMesh* part_ = nullptr;
   Comm comm_;
   int dim_;
   std::size_t n_nodes_ = 0, base_f_ = 0, base_m_ = 0;
@@ -171,6 +234,25 @@ private:
   std::vector<solid::Material> solids_;
   std::vector<char> solid_node_, fluid_node_, pressure_node_;
   std::vector<std::int32_t> local_cells_;
+  std::vector<int> node_owner_;
+  /// The node-laid-out vector the raw residual is summed in: node n's slots from
+  /// node_slot_[n] * raw_slots(), each rank's owned nodes one contiguous range.
+  std::vector<std::int64_t> node_slot_;
+  std::int64_t n_owned_nodes_ = 0;
+  std::vector<std::int32_t> held_nodes_; ///< the nodes of local_cells_, ascending
+  std::vector<PetscInt> held_;
+  std::vector<PetscInt> own_; ///< per raw dof: its unknown (raw = x there), or -1
+  /// Per entry of T_c (columns_): the position of its unknown in held_, or -1.
+  std::vector<std::ptrdiff_t> held_column_;
+  /// The ghosts of the raw nodal vectors: the held nodes this rank does not own, in node order.
+  std::vector<std::int32_t> ghost_nodes_;
+  std::size_t raw_slots() const { return static_cast<std::size_t>(3 * dim_ + 1); }
+  /// The slot of raw dof a within its node's raw_slots().
+  std::size_t raw_slot(std::size_t a) const {
+    return a < base_f_   ? a % dim_
+           : a < base_m_ ? dim_ + (a - base_f_) % (dim_ + 1)
+                         : 2 * dim_ + 1 + (a - base_m_) % dim_;
+  }
   std::vector<FsiCoupling> couplings_;
   /// Per raw dof: the expression of a prescribed value (-1: none).
   std::vector<int> prescribed_;
@@ -187,8 +269,8 @@ private:
   }
   DofMap rows_; ///< R
   PetscInt n_unknowns_ = 0, n_owned_ = 0, first_owned_ = 0;
-  PetscInt end_structure_ = 0, end_fluid_ = 0; ///< the fields' ranges of the unknowns
-  std::vector<std::size_t> structure_raw_;     ///< the raw d dof of each structure unknown
+  PetscInt end_structure_ = 0, end_fluid_ = 0; ///< the fields' ends in this rank's block
+  std::vector<std::size_t> structure_raw_;     ///< the raw d dof of each owned structure unknown
   bool taylor_hood_ = true;
   /// The last Jacobian made from triplets: its handle, the options it was made with and its
   /// triplet count (assemble then sets only its values).

@@ -9,7 +9,6 @@
 #include "seam/mesh/distribute_file.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/mesh/msh_chunk.hpp"
-#include "seam/mesh/transfer.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -72,13 +71,6 @@ mesh::Mesh read_on_root(const io::Config& config, const Comm& comm,
       io::fail_at(mesh_mark(config), e.what());
     }
   });
-  return m;
-}
-
-/// The whole mesh on every rank (fluid runs and `seam check`).
-mesh::Mesh load_mesh(const io::Config& config, const Comm& comm) {
-  auto m = read_on_root(config, comm);
-  mesh::broadcast_mesh(comm.get(), m);
   return m;
 }
 
@@ -191,12 +183,12 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
-    auto mesh = load_mesh(config, comm);
-    if (comm.is_root() && comm.size() > 1 && !options.quiet)
-      std::printf("seam: fluid-structure runs are not distributed yet: every rank holds the "
-                  "whole mesh\n");
+    // Distributed as the fluid runs, the fsi sides held whole on every rank.
     make_output_directory(output_directory(options), comm);
-    run_fsi(config, mesh, comm, output_directory(options), options.quiet, false,
+    MeshIdentity identity;
+    auto part =
+        load_distributed_mesh(config, comm, identity, output_directory(options), options.quiet);
+    run_fsi(config, part, identity, comm, output_directory(options), options.quiet, false,
             {options.input, options.restart});
     return 0;
   }
@@ -270,20 +262,36 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   char** argv = nullptr;
   la::Session petsc(argc, argv, petsc_args); // the parallel partition of the chunked reader
   const auto config = io::load_config(input);
-  if (has_fsi(config)) {
-    // Fluid-structure runs hold the whole mesh on every rank (run_fsi), and so does their check.
-    auto mesh = load_mesh(config, comm);
-    const auto info = run_fsi(config, mesh, comm, {}, true, true);
-    if (comm.is_root())
-      std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %d nodes, %d cells, %lld "
-                  "unknowns\n",
-                  input.c_str(), mesh.dim, mesh.n_nodes(), mesh.n_cells(), info.n_dofs);
-    return 0;
-  }
   // The mesh as a run distributes it (each rank its cells, one ghost layer and the cells of
   // the interface sides held whole), and the set-up a run does on it.
   MeshIdentity identity;
   auto part = load_distributed_mesh(config, comm, identity, {}, true);
+  // The cells each rank holds (own, ghost layer, interface sides), printed by rank 0.
+  const auto held_per_rank = [&] {
+    std::vector<long long> held(static_cast<std::size_t>(comm.size()));
+    const long long n_held = part.n_cells();
+    MPI_Gather(&n_held, 1, MPI_LONG_LONG, held.data(), 1, MPI_LONG_LONG, 0, comm.get());
+    return held;
+  };
+  const auto print_held = [&](const std::vector<long long>& held) {
+    if (held.size() < 2) return;
+    std::printf("  cells held per rank (own, ghost layer, interface sides):");
+    for (std::size_t r = 0; r < held.size(); ++r)
+      std::printf("%s %lld", r == 0 ? "" : " /", held[r]);
+    std::printf(" of %lld\n", static_cast<long long>(part.n_global_cells));
+  };
+  if (has_fsi(config)) {
+    const auto info = run_fsi(config, part, identity, comm, {}, true, true);
+    const auto held = held_per_rank();
+    if (comm.is_root()) {
+      std::printf("%s: ok\n  fluid-structure interaction, dimension %d, %lld nodes, %lld cells, "
+                  "%lld unknowns\n",
+                  input.c_str(), part.mesh.dim, static_cast<long long>(part.n_global_nodes),
+                  static_cast<long long>(part.n_global_cells), info.n_dofs);
+      print_held(held);
+    }
+    return 0;
+  }
   if (has_fluid(config)) {
     const auto info = run_fluid(config, part, identity, comm, {}, true, {}, true);
     if (comm.is_root())
@@ -311,9 +319,7 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
     MPI_Allreduce(MPI_IN_PLACE, integration_cells.data(),
                   static_cast<int>(integration_cells.size()), MPI_LONG_LONG, MPI_SUM, comm.get());
   const auto contact_lines = contact.describe();
-  std::vector<long long> held(static_cast<std::size_t>(comm.size()));
-  const long long n_held = part.n_cells();
-  MPI_Gather(&n_held, 1, MPI_LONG_LONG, held.data(), 1, MPI_LONG_LONG, 0, comm.get());
+  const auto held = held_per_rank();
   if (!comm.is_root()) return 0;
   std::map<std::string, long long> named;
   for (std::size_t t = 0; t < by_type.size(); ++t)
@@ -345,12 +351,7 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
                 static_cast<long long>(t.n_master_facets), cells, t.max_relocation);
   }
   for (const auto& line : contact_lines) std::printf("  %s\n", line.c_str());
-  if (held.size() > 1) {
-    std::printf("  cells held per rank (own, ghost layer, interface sides):");
-    for (std::size_t r = 0; r < held.size(); ++r)
-      std::printf("%s %lld", r == 0 ? "" : " /", held[r]);
-    std::printf(" of %lld\n", static_cast<long long>(part.n_global_cells));
-  }
+  print_held(held);
   return 0;
 }
 

@@ -19,12 +19,14 @@
 #include "seam/common/timer.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/mesh/distribute.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/fsi_system.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -94,9 +96,16 @@ enum class Shape { plane, tet, hex };
 
 struct Errors {
   double with_shape = 0.0, without_shape = 0.0, force = 0.0;
+  /// The unknowns, and the norm of the condensed residual at x = 0 (which does not depend on
+  /// the numbering of the unknowns).
+  long long n_unknowns = 0;
+  double rest_norm = 0.0;
 };
 
-Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
+/// `distributed`: on each rank's part of the distributed mesh (mesh::distribute_mesh, the fsi
+/// sides held whole), else on the replicated mesh.
+Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane,
+             bool distributed = false) {
   Comm comm;
   const int dim = shape_of == Shape::plane ? 2 : 3;
   const char* tag[] = {"2d", "tet", "hex"};
@@ -134,19 +143,28 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
   mesh::ReadOptions opts;
   opts.dim = dim;
   opts.order = order;
-  auto mesh = mesh::read_mesh(folder / "case.geo", opts);
+  auto whole = mesh::read_mesh(folder / "case.geo", opts);
+  mesh::DistributedMesh part;
+  if (distributed) {
+    if (!comm.is_root()) whole = mesh::Mesh{};
+    const std::vector<std::string> sides{"wet_fluid", "wet"};
+    part = mesh::distribute_mesh(whole, comm.get(), sides);
+  }
+  auto& mesh = distributed ? part.mesh : whole;
   PhaseTimers timers;
   const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
-  FsiSystem sys(config, mesh, tied, comm);
+  FsiSystem sys(config, mesh, tied, comm, distributed ? &part : nullptr);
   // Dynamics: a step from a state at t_n that is not at rest (random, the same on every rank):
   // the inertia of both fields, the mesh velocity's derivatives and u_G = P v(d) enter.
   FsiSystem::History history;
   if (dynamic) {
     history = FsiSystem::History::from_rho_inf(0.5, 0.05, sys.n_raw());
     for (std::size_t k = 0; k < sys.n_raw(); ++k) {
-      history.old[k] = 0.003 * noise(static_cast<std::int64_t>(k), 3);
-      history.rate[k] = 0.01 * noise(static_cast<std::int64_t>(k), 4);
-      history.accel[k] = 0.1 * noise(static_cast<std::int64_t>(k), 5);
+      // By a number of the raw dof that every rank holding it shares.
+      const auto id = sys.raw_id(k);
+      history.old[k] = 0.003 * noise(id, 3);
+      history.rate[k] = 0.01 * noise(id, 4);
+      history.accel[k] = 0.1 * noise(id, 5);
     }
     sys.set_history(&history);
   }
@@ -162,7 +180,10 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
   const auto residual = [&](const std::vector<double>& state, la::Matrix* J, bool shape,
                             FsiSystem::Result* out = nullptr) {
     std::vector<double> raw;
-    sys.expand(state, g, raw);
+    // expand takes the held unknowns (the state is the same on every rank).
+    std::vector<double> held;
+    for (auto k : sys.held_unknowns()) held.push_back(state[static_cast<std::size_t>(k)]);
+    sys.expand(held, g, raw);
     la::Vector r;
     FsiSystem::Options o;
     o.shape_derivatives = shape;
@@ -174,6 +195,14 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
     return values;
   };
   Errors e;
+  e.n_unknowns = static_cast<long long>(N);
+  {
+    la::Vector r;
+    std::vector<double> raw;
+    sys.expand(std::vector<double>(sys.held_unknowns().size(), 0.0), g, raw);
+    sys.assemble(raw, 1.0, r, nullptr, {});
+    e.rest_norm = r.norm();
+  }
   for (int shape = 1; shape >= 0; --shape) {
     la::Matrix J;
     FsiSystem::Result res;
@@ -183,8 +212,9 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
     if (shape) residual(std::vector<double>(N, 0.0), &J, true);
     residual(x, &J, shape != 0, &res);
     if (shape) {
-      // Force conservation through P^T.
-      double ff[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
+      // Force conservation through P^T (the raw residual summed on the owners of the nodes:
+      // each rank's sums over its nodes, summed over ranks).
+      std::array<double, 3> ff{}, fs{};
       for (const auto& cp : sys.couplings())
         for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j)
           for (int i = 0; i < dim; ++i) {
@@ -192,6 +222,8 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
             ff[i] += f;
             for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) fs[i] += cp.weights[q] * f;
           }
+      comm.sum_in_place(ff);
+      comm.sum_in_place(fs);
       e.force =
           std::hypot(ff[0] - fs[0], ff[1] - fs[1], ff[2] - fs[2]) / std::hypot(ff[0], ff[1], ff[2]);
     }
@@ -229,10 +261,11 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane) {
     (shape ? e.with_shape : e.without_shape) = worst;
   }
   if (comm.is_root())
-    std::printf("fsi Jacobian, %s, order %d%s: %d unknowns, relative error %.3e with the shape "
+    std::printf("fsi Jacobian, %s, order %d%s%s: %d unknowns, relative error %.3e with the shape "
                 "derivatives, %.3e without; force transfer %.3e\n",
                 tag[static_cast<int>(shape_of)], order, dynamic ? ", dynamic" : "",
-                static_cast<int>(N), e.with_shape, e.without_shape, e.force);
+                distributed ? ", distributed mesh" : "", static_cast<int>(N), e.with_shape,
+                e.without_shape, e.force);
   return e;
 }
 
@@ -262,6 +295,31 @@ TEST(FsiJacobian, DynamicLinearStabilizedAgreesWithFiniteDifferences) {
   EXPECT_LT(e.with_shape, 1e-6);
   EXPECT_GT(e.without_shape, 1e-5);
   EXPECT_LT(e.force, 1e-10);
+}
+
+// On each rank's part of the distributed mesh: the same Jacobian check, and the same unknowns
+// and rest residual as on the replicated mesh (the numbering differs, the norm does not).
+void check_distributed(int order, bool dynamic, Shape shape_of) {
+  const auto e = check(order, dynamic, shape_of, true);
+  EXPECT_LT(e.with_shape, 1e-6);
+  EXPECT_GT(e.without_shape, 1e-5);
+  EXPECT_LT(e.force, 1e-10);
+  const auto replicated = check(order, dynamic, shape_of);
+  EXPECT_EQ(e.n_unknowns, replicated.n_unknowns);
+  EXPECT_NEAR(e.rest_norm, replicated.rest_norm, 1e-12 * replicated.rest_norm);
+  EXPECT_GT(e.rest_norm, 0.0);
+}
+
+TEST(FsiJacobian, DistributedQuadraticAgreesWithFiniteDifferences) {
+  check_distributed(2, false, Shape::plane);
+}
+
+TEST(FsiJacobian, DistributedDynamicLinearStabilizedAgreesWithFiniteDifferences) {
+  check_distributed(1, true, Shape::plane);
+}
+
+TEST(FsiJacobian, DistributedDynamicTet10AgreesWithFiniteDifferences) {
+  check_distributed(2, true, Shape::tet);
 }
 
 // 3D: hex27 and tet10 fluid over a non-matching tet10 slab, static and in a
