@@ -595,23 +595,25 @@ def test_dfg_2d1_finer():
 
 
 BAD_BASE = """\
-dimension: 2
+dimension: %(dimension)d
 mesh: {geo: body.geo, order: %(order)s}
 materials:
   oil: %(material)s
 bodies: [{region: body, material: oil%(body)s}]
 boundary_conditions:
-  - {region: left, type: %(left)s, value: [1, 0]}
+  - {region: left, type: %(left)s, value: [1, 0%(z)s]}
 time: {integrator: %(integrator)s, end: 1, steps: 1}
 %(extra)s"""
 
 
 def expect_bad(what, must, order=2, material="{model: newtonian_fluid, density: 1, viscosity: 1}",
-               left="velocity", integrator="static", extra="", line=None, body=""):
+               left="velocity", integrator="static", extra="", line=None, body="", dimension=2):
+    """`dimension` 3 asks for a 3D run on the 2D mesh (the condition given three values)."""
     work = tempfile.mkdtemp(prefix="seam_fluid_bad_")
     H.write_case(work, "body.geo", geometry.rectangle("quad_structured", 0.5, 1))
     text = BAD_BASE % dict(order=order, material=material, left=left, integrator=integrator,
-                           extra=extra, body=body)
+                           extra=extra, body=body, dimension=dimension,
+                           z=", 0" if dimension == 3 else "")
     H.write_case(work, "case.yaml", text)
     try:
         H.expect_input_error(what, work, "case.yaml", line, must, timeout=120)
@@ -730,6 +732,8 @@ def test_bad_input():
                left="dirichlet", line=7)
     expect_bad("velocity on a solid", ["type 'velocity'", "no fluid body"],
                material="{model: linear_elastic, young: 1, poisson: 0.3}", order=1, line=7)
+    expect_bad("a fluid in a dimension mismatch", ["mesh.geo", "dimension 2", "dimension 3"],
+               dimension=3, line=2)
     expect_bad("serendipity fluid mesh", ["quad8", "serendipity cells are not fluid cells"],
                order="2, serendipity: true", line=5)
     expect_bad("fluid mesh tying of sides that do not face each other",
