@@ -366,6 +366,17 @@ def assert_forces_close(got, expected, what, rtol=1e-8):
         raise AssertionError("%s: forces differ by %.3e (> %.3e)" % (what, worst, rtol * scale))
 
 
+def same_iterations(info, reference, np, where, reference_where, rtol, suspect):
+    """PCD's FGMRES iterations in summary.json `info` within rtol of `reference`'s."""
+    got, expected = info["linear_iterations"], reference["linear_iterations"]
+    print("   np %d: %d FGMRES iterations in %d Newton steps %s, %d in %d %s"
+          % (np, got, info["linear_solves"], where, expected, reference["linear_solves"],
+             reference_where))
+    if abs(got - expected) > rtol * expected:
+        raise AssertionError("PCD, np %d: %d FGMRES iterations %s, %d %s (%s)"
+                             % (np, got, where, expected, reference_where, suspect))
+
+
 def test_pcd_moved_mesh():
     """PCD on a mesh moved by a prescribed stretch and shear (steady DFG 2D-1): the same FGMRES
     iterations as on the mesh given in the moved coordinates, MUMPS's forces on 1 and 3 ranks."""
@@ -395,16 +406,9 @@ def test_pcd_moved_mesh():
             assert_forces_close(fixed, direct, "PCD on the mesh in moved coordinates, np %d, "
                                 "against MUMPS on the moved mesh" % np)
             assert_forces_close(moved, direct, "PCD on the moved mesh, np %d, against MUMPS" % np)
-            print("   np %d: %d FGMRES iterations in %d Newton steps on the moved mesh, %d on "
-                  "the mesh in moved coordinates" % (np, info["linear_iterations"],
-                                                     info["linear_solves"],
-                                                     fixed_info["linear_iterations"]))
-            if abs(info["linear_iterations"] - fixed_info["linear_iterations"]) > \
-                    0.02 * fixed_info["linear_iterations"]:
-                raise AssertionError("PCD on the moved mesh, np %d: %d FGMRES iterations, %d on "
-                                     "the same mesh in its moved coordinates (PCD of the "
-                                     "reference geometry?)" % (np, info["linear_iterations"],
-                                                               fixed_info["linear_iterations"]))
+            same_iterations(info, fixed_info, np, "on the moved mesh",
+                            "on the mesh in moved coordinates", 0.02,
+                            "PCD of the reference geometry?")
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
@@ -445,17 +449,8 @@ def test_pcd_translating_mesh():
             moving, info = translating_dfg(work, V, "iterative", np=np, pcd=True)
             assert_forces_close(moving, direct, "PCD on the translating mesh, np %d, against "
                                 "MUMPS" % np)
-            print("   np %d: %d FGMRES iterations in %d Newton steps on the translating mesh, "
-                  "%d (%d) on the fixed one" % (np, info["linear_iterations"],
-                                                info["linear_solves"],
-                                                rest_info["linear_iterations"],
-                                                rest_info["linear_solves"]))
-            if abs(info["linear_iterations"] - rest_info["linear_iterations"]) > \
-                    0.05 * rest_info["linear_iterations"]:
-                raise AssertionError("PCD on the translating mesh, np %d: %d FGMRES iterations, "
-                                     "%d on the fixed mesh (convecting with u, not u - w?)"
-                                     % (np, info["linear_iterations"],
-                                        rest_info["linear_iterations"]))
+            same_iterations(info, rest_info, np, "on the translating mesh", "on the fixed mesh",
+                            0.05, "convecting with u, not u - w?")
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
