@@ -11,13 +11,15 @@ meshes, whose iterative solver has ILU(0) on the velocity block; c_D is the last
 
 Printed: one row per level and solver: dofs, c_D and its relative error against 5.57954, the
 CPU time (user + system) of the run and per Newton iteration (the run's CPU time over its linear
-solves), its peak resident memory (for np > 1: the CPU time of all ranks, the largest rank's
-memory), the 1-minute load average of the machine when the run
-started (the machine is shared: wall times mean little, CPU times are the measure), Newton's
-linear solves, the Krylov iterations per Newton step, and the linear solver the run names in
-summary.json; after the iterative row of a level, the ratio of its CPU time to the direct
-one's. The rule of `auto` for fluids (src/seam/problem/linear_solver_choice.hpp) rests on
-these ratios.
+solves), the wall time of the run and per Newton iteration (set-up and meshing included), the
+wall time per Newton iteration of seam's own assembly and linear solves (summary.json's
+timings: without meshing and set-up), its
+peak resident memory (for np > 1: the CPU time of all ranks, the largest rank's memory), the
+1-minute load average of the machine when the run started (the machine is shared: wall times
+mean little, CPU times are the measure), Newton's linear solves, the Krylov iterations per
+Newton step, and the linear solver the run names in summary.json; after the iterative row of a
+level, the ratio of its CPU time to the direct one's. The rule of `auto` for fluids
+(src/seam/problem/linear_solver_choice.hpp) rests on these ratios.
 
 Usage: /usr/bin/python3 bench/dfg_benchmark.py [--seam build/bin/seam] [--levels 0,1,2]
            [--solvers direct,iterative,pcd] [--np 1] [--case 2d1|2d3]
@@ -28,6 +30,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLE = os.path.join(HERE, "..", "examples", "dfg_cylinder")
@@ -59,9 +62,11 @@ def run(seam, np, level, solver, case, options=()):
     if np > 1:
         cmd = ["mpirun", "--oversubscribe", "-np", str(np)] + cmd
     load = os.getloadavg()[0]
+    start = time.monotonic()
     proc = subprocess.Popen(cmd, env=env)
     # The rusage of the run and of its waited-for descendants (the ranks under mpirun).
     _, status, usage = os.wait4(proc.pid, 0)
+    wall = time.monotonic() - start
     proc.returncode = os.waitstatus_to_exitcode(status)
     if proc.returncode != 0:
         raise SystemExit("%s failed with exit code %d (case in %s)"
@@ -73,7 +78,9 @@ def run(seam, np, level, solver, case, options=()):
     solves = info["linear_solves"]
     u_mean = 0.2 if case == "2d1" else 1.0
     return {"dofs": info["dofs"], "cd": 2 * fx / (1.0 * u_mean ** 2 * 0.1),
-            "cpu": usage.ru_utime + usage.ru_stime, "rss": usage.ru_maxrss / 1024.0,
+            "cpu": usage.ru_utime + usage.ru_stime, "wall": wall,
+            "newton_wall": sum(info["timings"].get(k, 0.0) for k in ("assembly", "linear_solve")),
+            "rss": usage.ru_maxrss / 1024.0,
             "load": load, "solves": solves, "krylov": info["linear_iterations"] / solves,
             "solver": info.get("linear_solver", "?")}
 
@@ -98,9 +105,9 @@ def main():
         print("DFG 2D-1, Taylor-Hood P2/P1, np = %d, c_D reference %.5f" % (args.np, CD_REF))
     else:
         print("DFG 2D-3, 20 steps of dt = 0.04, Taylor-Hood P2/P1, np = %d" % args.np)
-    print("%5s %8s %-9s %9s %9s %9s %8s %8s %5s %6s %7s  %s" % (
-        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "CPU/newt", "RSS [MB]", "load",
-        "newton", "krylov", "linear solver of the run"))
+    print("%5s %8s %-9s %9s %9s %9s %8s %8s %9s %9s %8s %5s %6s %7s  %s" % (
+        "level", "dofs", "linear", "c_D", "error", "CPU [s]", "CPU/newt", "wall [s]", "wall/newt",
+        "solve/newt", "RSS [MB]", "load", "newton", "krylov", "linear solver of the run"))
     for level in levels:
         cpu = {}
         for solver in solvers:
@@ -108,9 +115,12 @@ def main():
             cpu[solver] = r["cpu"]
             direct = r["solver"].startswith("direct")
             error = "%+8.4f%%" % (100 * (r["cd"] / CD_REF - 1)) if args.case == "2d1" else "-"
-            print("%5d %8d %-9s %9.6f %9s %9.2f %8.3f %8.0f %5.2f %6d %7s  %s" % (
+            row = "%5d %8d %-9s %9.6f %9s %9.2f %8.3f %8.2f %9.3f %10.3f %8.0f %5.2f %6d %7s  %s"
+            print(row % (
                 level, r["dofs"], solver, r["cd"], error, r["cpu"], r["cpu"] / r["solves"],
-                r["rss"], r["load"], r["solves"], "-" if direct else "%.1f" % r["krylov"],
+                r["wall"], r["wall"] / r["solves"], r["newton_wall"] / r["solves"], r["rss"],
+                r["load"], r["solves"],
+                "-" if direct else "%.1f" % r["krylov"],
                 r["solver"]), flush=True)
         for solver in ("iterative", "pcd"):
             if "direct" in cpu and solver in cpu:

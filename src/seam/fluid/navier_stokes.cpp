@@ -417,9 +417,9 @@ bool navier_stokes(const FluidElementInput& in, std::span<double> r, std::span<d
   return kernel<double>(in, in.x, in.mesh_velocity, r, K);
 }
 
-bool pressure_operators(fem::CellType cell, std::span<const double> x, std::span<const double> c,
-                        std::span<double> mass, std::span<double> laplacian,
-                        std::span<double> convection) {
+bool pressure_operators(fem::CellType cell, std::span<const double> x, std::span<const double> u,
+                        std::span<const double> w, std::span<double> mass,
+                        std::span<double> laplacian, std::span<double> convection) {
   SEAM_ASSERT(is_taylor_hood(cell));
   FluidElementInput in;
   in.cell = cell;
@@ -446,7 +446,8 @@ bool pressure_operators(fem::CellType cell, std::span<const double> x, std::span
     if (!evaluate(in, x, &rule.points[iq * dim], rule.weights[iq], q)) return false;
     std::array<double, 3> cq{};
     for (int a = 0; a < n; ++a)
-      for (int i = 0; i < dim; ++i) cq[i] += q.N[a] * c[a * dim + i];
+      for (int i = 0; i < dim; ++i)
+        cq[i] += q.N[a] * (u[a * dim + i] - (w.empty() ? 0.0 : w[a * dim + i]));
     for (int k = 0; k < nv; ++k)
       for (int i = 0; i < dim; ++i) {
         double g = 0.0;

@@ -13,14 +13,17 @@ bool is_simplex(fem::CellType t) {
 }
 
 // Node coordinates of facet `local` of cell c (3 per node); returns the facet node count.
+// `at`: node coordinates in mesh.x's layout to use instead of mesh.x (null: mesh.x).
 int facet_coordinates(const Mesh& mesh, std::int32_t c, int local,
-                      std::array<double, 3 * fem::max_facet_nodes>& xf) {
+                      std::array<double, 3 * fem::max_facet_nodes>& xf,
+                      const double* at = nullptr) {
   const auto type = mesh.cell_type[c];
   const auto local_nodes = fem::facet_nodes(type, local);
   const auto nodes = mesh.cell(c);
   const int n = static_cast<int>(local_nodes.size());
   for (int i = 0; i < n; ++i) {
-    const auto x = mesh.node(nodes[local_nodes[i]]);
+    const auto node = nodes[local_nodes[i]];
+    const double* x = at ? at + static_cast<std::size_t>(node) * mesh.dim : mesh.node(node).data();
     for (int a = 0; a < 3; ++a) xf[3 * i + a] = a < mesh.dim ? x[a] : 0.0;
   }
   return n;
@@ -126,13 +129,13 @@ Point facet_point(const Mesh& mesh, std::int32_t c, int local, const double* xi_
 }
 
 Point facet_normal(const Mesh& mesh, std::int32_t c, int local, const double* xi_f,
-                   double* area_element) {
+                   double* area_element, const double* x) {
   const auto ft = fem::facet_type(mesh.cell_type[c], local);
   const int fd = fem::dimension(ft);
   SEAM_ASSERT(fd == mesh.dim - 1);
   std::array<double, 3 * fem::max_facet_nodes> xf{};
   std::array<double, 2 * fem::max_facet_nodes> dN{};
-  const int n = facet_coordinates(mesh, c, local, xf);
+  const int n = facet_coordinates(mesh, c, local, xf, x);
   fem::shape_gradients(ft, xi_f, dN.data());
   std::array<Point, 2> t{}; // tangents dx/dxi_f (and dx/deta_f in 3D)
   for (int i = 0; i < n; ++i)

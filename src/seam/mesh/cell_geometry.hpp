@@ -36,8 +36,9 @@ Point cell_centroid(const Mesh& mesh, std::int32_t c);
 Point facet_point(const Mesh& mesh, std::int32_t c, int local, const double* xi_f);
 /// Outward unit normal of facet `local` of cell c at xi_f (fem::facet_nodes orientation); the
 /// area element |dx/dxi_f x dx/deta_f| (3D) or |dx/dxi_f| (2D) goes to *area_element if given.
+/// `x`: node coordinates in the layout of mesh.x to take instead of mesh.x (a moved mesh).
 Point facet_normal(const Mesh& mesh, std::int32_t c, int local, const double* xi_f,
-                   double* area_element = nullptr);
+                   double* area_element = nullptr, const double* x = nullptr);
 /// Area (length in 2D) of facet `local` of cell c by quadrature of the area element.
 double facet_area(const Mesh& mesh, std::int32_t c, int local);
 

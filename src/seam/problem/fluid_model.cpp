@@ -21,8 +21,6 @@ void check_supported(const io::Config& config) {
                                  "' is a solid in a run with fluid bodies but no 'fsi' "
                                  "interface: a fluid and a structure are joined by an interface "
                                  "of type 'fsi' (its 'fluid' and 'structure' groups)");
-  const bool moving = std::any_of(config.bodies.begin(), config.bodies.end(),
-                                  [](const io::Body& b) { return b.mesh_motion.has_value(); });
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::mesh_tying)
       io::fail_at(itf.mark, "interface '" + itf.name + "' of type '" +
@@ -34,11 +32,6 @@ void check_supported(const io::Config& config) {
                                 "': fluid subdomains are tied with dual multipliers, condensed "
                                 "(multiplier 'dual', strategy 'condensed'); the saddle-point "
                                 "form is not available for fluids");
-    if (moving)
-      io::fail_at(itf.mark, "interface '" + itf.name +
-                                "': mesh tying of fluids whose mesh moves (mesh_motion) is not "
-                                "available yet in this version of seam (the mortar operators "
-                                "are integrated once, on the reference mesh)");
   }
   if (config.time.integrator == io::Integrator::energy_momentum)
     io::fail_at(config.time.mark,

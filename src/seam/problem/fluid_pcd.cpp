@@ -43,30 +43,35 @@ la::Vector pressure_numbering(const FluidLayout& layout, PetscInt& n_owned) {
   return index;
 }
 
-// The pressure operators of cell c (fluid::pressure_operators) at the nodal velocity read from
-// `u`, the fluid's local vector form (empty: at rest), in M, A, N; returns false if inverted.
+// The pressure operators of cell c (fluid::pressure_operators) in the configuration `x` (nodal,
+// mesh.x's layout) at the nodal velocity read from `u`, the fluid's local vector form (empty: at
+// rest), convecting with u - w (`w` nodal, empty: a fixed mesh), in M, A, N; returns false if
+// inverted.
 struct CellOperators {
   int n_vertices = 0;
   std::array<double, max_vertices * max_vertices> M{}, A{}, N{};
 };
-bool cell_operators(const FluidLayout& layout, std::int32_t c, std::span<const double> u,
-                    CellOperators& out) {
+bool cell_operators(const FluidLayout& layout, std::int32_t c, std::span<const double> x,
+                    std::span<const double> u, std::span<const double> w, CellOperators& out) {
   const auto& mesh = layout.mesh();
   const int dim = layout.dim();
   const auto type = mesh.cell_type[c];
   const auto nodes = mesh.cell(c);
-  std::array<double, max_coordinates> x{}, velocity{};
+  std::array<double, max_coordinates> xc{}, velocity{}, mesh_velocity{};
   for (std::size_t a = 0; a < nodes.size(); ++a)
     for (int i = 0; i < dim; ++i) {
-      x[a * dim + i] = mesh.x[nodes[a] * dim + i];
+      const auto k = static_cast<std::size_t>(nodes[a]) * dim + i;
+      xc[a * dim + i] = x[k];
       velocity[a * dim + i] = u.empty() ? 0.0 : u[layout.local_dof(nodes[a], i)];
+      mesh_velocity[a * dim + i] = w.empty() ? 0.0 : w[k];
     }
   out.n_vertices = fem::n_vertices(type);
   const auto n = nodes.size() * static_cast<std::size_t>(dim);
   const auto nn = static_cast<std::size_t>(out.n_vertices * out.n_vertices);
   return fluid::pressure_operators(
-      type, std::span<const double>(x.data(), n), std::span<const double>(velocity.data(), n),
-      std::span(out.M.data(), nn), std::span(out.A.data(), nn), std::span(out.N.data(), nn));
+      type, std::span<const double>(xc.data(), n), std::span<const double>(velocity.data(), n),
+      std::span<const double>(mesh_velocity.data(), n), std::span(out.M.data(), nn),
+      std::span(out.A.data(), nn), std::span(out.N.data(), nn));
 }
 
 // A KSP of its own options prefix on `A`, its defaults set before the command line's.
@@ -140,11 +145,8 @@ PressureConvectionDiffusion::PressureConvectionDiffusion(const FluidModel& model
     for (std::int32_t k = 0; k < exterior.size(); ++k) {
       const auto c = exterior.cell[k];
       if (!layout.is_local_cell(c)) continue;
-      const auto centre =
-          mesh::reference_centre(fem::facet_type(mesh.cell_type[c], exterior.local[k]));
       facet_cell_.push_back(c);
       facet_local_.push_back(exterior.local[k]);
-      facet_normal_.push_back(mesh::facet_normal(mesh, c, exterior.local[k], centre.data()));
       const auto nodes = mesh.cell(c);
       const auto local = fem::facet_nodes(mesh.cell_type[c], exterior.local[k]);
       bool open = false;
@@ -164,17 +166,9 @@ PressureConvectionDiffusion::PressureConvectionDiffusion(const FluidModel& model
   const auto numbering = pressure_numbering(layout, n_owned);
   la::Vector::LocalView n_view(numbering, false);
   const auto index = n_view.values();
-  std::vector<double> mass;
-  CellOperators ops;
-  std::int32_t inverted = -1;
   for (auto c : cells_) {
     const auto nodes = mesh.cell(c);
-    if (!cell_operators(layout, c, {}, ops)) {
-      inverted = c;
-      continue;
-    }
-    const int nv = ops.n_vertices;
-    const double mu = model.fluids[model.cell_fluid[c]].viscosity;
+    const int nv = fem::n_vertices(mesh.cell_type[c]);
     // The vertices are the first nodes of the cell (Gmsh order), as in fluid::navier_stokes.
     for (int k = 0; k < nv; ++k)
       for (int l = 0; l < nv; ++l) {
@@ -183,15 +177,14 @@ PressureConvectionDiffusion::PressureConvectionDiffusion(const FluidModel& model
         cols_.push_back(static_cast<PetscInt>(index[dl]));
         dofs_.push_back(dk);
         dofs_.push_back(dl);
-        mass.push_back(ops.M[k * nv + l] / mu);
-        laplace_.push_back(ops.A[k * nv + l]);
       }
   }
   // Checked on every rank before the collective set-up.
+  const auto inverted = set_geometry(mesh.x);
   SEAM_CHECK(!layout.comm().any(inverted >= 0), InputError, "a fluid cell is inverted (det J <= 0)",
              inverted >= 0 ? " (cell " + std::to_string(inverted + 1) + ")" : std::string());
   const MPI_Comm comm = layout.comm().get();
-  Mp_ = la::Matrix::from_triplets(comm, n_owned, rows_, cols_, mass);
+  Mp_ = la::Matrix::from_triplets(comm, n_owned, rows_, cols_, mass_values_);
   Ap_ = la::Matrix::from_triplets(comm, n_owned, rows_, cols_, laplace_);
   values_.assign(rows_.size(), 0.0);
   Kp_ = la::Matrix::from_triplets(comm, n_owned, rows_, cols_, values_);
@@ -207,7 +200,39 @@ PressureConvectionDiffusion::~PressureConvectionDiffusion() {
   if (t2_) VecDestroy(&t2_);
 }
 
-void PressureConvectionDiffusion::mark_dirichlet(std::span<const double> u) {
+std::int32_t PressureConvectionDiffusion::set_geometry(std::span<const double> x) {
+  const auto& mesh = layout_.mesh();
+  geometry_.assign(x.begin(), x.end());
+  mass_values_.resize(rows_.size());
+  laplace_.resize(rows_.size());
+  CellOperators ops;
+  std::int32_t inverted = -1;
+  std::size_t t = 0;
+  for (auto c : cells_) {
+    const int nv = fem::n_vertices(mesh.cell_type[c]);
+    if (!cell_operators(layout_, c, x, {}, {}, ops)) {
+      inverted = c;
+      t += static_cast<std::size_t>(nv * nv);
+      continue;
+    }
+    const double mu = model_.fluids[model_.cell_fluid[c]].viscosity;
+    for (int kl = 0; kl < nv * nv; ++kl, ++t) {
+      mass_values_[t] = ops.M[kl] / mu;
+      laplace_[t] = ops.A[kl];
+    }
+  }
+  facet_normal_.clear();
+  for (std::size_t k = 0; k < facet_cell_.size(); ++k) {
+    const auto c = facet_cell_[k];
+    const auto centre = mesh::reference_centre(fem::facet_type(mesh.cell_type[c], facet_local_[k]));
+    facet_normal_.push_back(
+        mesh::facet_normal(mesh, c, facet_local_[k], centre.data(), nullptr, x.data()));
+  }
+  return inverted;
+}
+
+void PressureConvectionDiffusion::mark_dirichlet(std::span<const double> u,
+                                                 std::span<const double> mesh_velocity) {
   const auto& mesh = layout_.mesh();
   const int dim = layout_.dim();
   mark_.zero();
@@ -225,8 +250,11 @@ void PressureConvectionDiffusion::mark_dirichlet(std::span<const double> u) {
         for (int i = 0; i < dim; ++i) {
           const auto dof = layout_.local_dof(nodes[a], i);
           prescribed = prescribed && p[dof] != 0.0;
-          flux += u[dof] * facet_normal_[k][i];
-          speed += std::abs(u[dof]);
+          // The convective velocity u - w crosses the facet.
+          const double c =
+              u[dof] - (mesh_velocity.empty() ? 0.0 : mesh_velocity[nodes[a] * dim + i]);
+          flux += c * facet_normal_[k][i];
+          speed += std::abs(c);
         }
       // Inflow: the velocity prescribed and entering (a wall's c . n is round-off).
       if (!prescribed || !(flux < -1e-8 * speed)) continue;
@@ -240,13 +268,25 @@ void PressureConvectionDiffusion::mark_dirichlet(std::span<const double> u) {
   if (!layout_.comm().any(any_inflow)) mark_.copy_from(fallback_);
 }
 
-void PressureConvectionDiffusion::update(const la::Vector& w, const PcdWeights& weights) {
+void PressureConvectionDiffusion::update(const la::Vector& w, const PcdWeights& weights,
+                                         std::span<const double> x,
+                                         std::span<const double> mesh_velocity) {
   const auto& mesh = layout_.mesh();
+  if (x.empty()) x = mesh.x;
   la::Vector::LocalView view(w, false);
   const auto u = view.values();
+  // A moved mesh: M~, A_p and A_r of the current configuration, their solvers set up again.
+  const bool moved =
+      layout_.comm().any(!std::equal(x.begin(), x.end(), geometry_.begin(), geometry_.end()));
+  if (moved) {
+    set_geometry(x); // the solver has checked the cells
+    Mp_.set_triplet_values(mass_values_);
+    la::check(KSPSetOperators(ksp_m_, Mp_.get(), Mp_.get()), "KSPSetOperators");
+    if (ksp_r_) KSPDestroy(&ksp_r_);
+  }
   // A_p's Dirichlet vertices at this velocity; its AMG hierarchy is rebuilt when they change.
-  mark_dirichlet(u);
-  bool changed = false;
+  mark_dirichlet(u, mesh_velocity);
+  bool changed = moved;
   {
     la::Vector::LocalView m_view(mark_, false);
     const auto m = m_view.values();
@@ -255,7 +295,7 @@ void PressureConvectionDiffusion::update(const la::Vector& w, const PcdWeights& 
       const auto dk = dofs_[2 * t], dl = dofs_[2 * t + 1];
       fixed[t] = dk != dl && (m[dk] > 0.0 || m[dl] > 0.0);
     }
-    changed = layout_.comm().any(fixed != fixed_);
+    changed = layout_.comm().any(fixed != fixed_) || changed;
     fixed_ = std::move(fixed);
   }
   if (changed || !ksp_a_) {
@@ -267,7 +307,7 @@ void PressureConvectionDiffusion::update(const la::Vector& w, const PcdWeights& 
   CellOperators ops;
   std::size_t t = 0;
   for (auto cell : cells_) {
-    cell_operators(layout_, cell, u, ops);
+    cell_operators(layout_, cell, x, u, mesh_velocity, ops);
     const auto nn = static_cast<std::size_t>(ops.n_vertices * ops.n_vertices);
     const auto& fluid = model_.fluids[model_.cell_fluid[cell]];
     const double scale = fluid.density / fluid.viscosity;
@@ -287,7 +327,10 @@ void PressureConvectionDiffusion::update(const la::Vector& w, const PcdWeights& 
         values_[t] = dk != dl && (f[dk] > 0.0 || f[dl] > 0.0) ? 0.0 : laplace_[t] / fluid.density;
       }
     }
-    Ar_ = la::Matrix::from_triplets(layout_.comm().get(), n_owned_, rows_, cols_, values_);
+    if (Ar_.get() == nullptr)
+      Ar_ = la::Matrix::from_triplets(layout_.comm().get(), n_owned_, rows_, cols_, values_);
+    else
+      Ar_.set_triplet_values(values_);
     ksp_r_ = inner_solver(Ar_, "pcd_reaction_", KSPPREONLY, PCHYPRE, 0);
   }
   mass_ = weights.mass;

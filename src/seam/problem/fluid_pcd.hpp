@@ -19,6 +19,11 @@
 // exactly A_p's. A_p^-1 and A_r^-1 are one BoomerAMG V-cycle each, M~^-1 a few
 // Jacobi-preconditioned CG iterations.
 //
+// On a moving mesh (ALE) the momentum equations convect with c = u - w (w the mesh velocity) and
+// are integrated on the current configuration; so are the PCD operators: K~ convects with u - w,
+// and M~, A_p, A_r and the facet normals that find the inflow are those of the configuration
+// the Newton step integrates on, rebuilt (with A_p's and A_r's AMG hierarchies) when it moves.
+//
 // Boundary conditions: A_p carries a zero Dirichlet condition on the vertices of the inflow
 // (boundary facets whose nodes all have the velocity prescribed, with c . n < 0 on average),
 // Neumann conditions elsewhere (Elman, Silvester & Wathen 2014, sec. 9.2.2; FENaPack's BRM1).
@@ -62,15 +67,23 @@ public:
   PressureConvectionDiffusion(const PressureConvectionDiffusion&) = delete;
   PressureConvectionDiffusion& operator=(const PressureConvectionDiffusion&) = delete;
 
-  /// F_p at the velocity of `w` (the fluid's unknowns, ghosts up to date). Collective.
-  void update(const la::Vector& w, const PcdWeights& weights);
+  /// F_p at the velocity of `w` (the fluid's unknowns, ghosts up to date). On a moving mesh
+  /// (ALE) `x` is the current configuration and `mesh_velocity` the mesh velocity (nodal, in
+  /// mesh.x's layout; empty: the reference configuration, at rest): M~, A_p and A_r are those of
+  /// the configuration x, and K~ convects with u - w, as the momentum equations do. Collective.
+  void update(const la::Vector& w, const PcdWeights& weights, std::span<const double> x = {},
+              std::span<const double> mesh_velocity = {});
   /// y = -(1 / coupling) [M~^-1 (s x + K~ A_p^-1 x) + m A_r^-1 x] on the pressure rows (the
   /// Schur block's layout).
   void apply(Vec x, Vec y) const;
 
 private:
-  /// Marks the Dirichlet vertices of A_p at the velocity w in `mark_` (owned and ghosts).
-  void mark_dirichlet(std::span<const double> u);
+  /// Marks the Dirichlet vertices of A_p at the convective velocity u - w in `mark_` (owned
+  /// and ghosts).
+  void mark_dirichlet(std::span<const double> u, std::span<const double> mesh_velocity);
+  /// M~ and A_p's triplets and the facet normals in the configuration x (nodal); returns an
+  /// inverted cell of this rank, or -1.
+  std::int32_t set_geometry(std::span<const double> x);
 
   const FluidModel& model_;
   const FluidLayout& layout_;
@@ -78,10 +91,12 @@ private:
   std::vector<PetscInt> rows_, cols_;    ///< triplets: n_v^2 per cell, pressure numbering
   std::vector<std::int32_t> dofs_;       ///< per triplet: the local pressure dofs of row and col
   std::vector<double> laplace_;          ///< per triplet: A_p without boundary conditions
+  std::vector<double> mass_values_;      ///< per triplet: M~
+  std::vector<double> geometry_;         ///< the configuration of M~, A_p, A_r (nodal)
   std::vector<double> values_;           ///< scratch: triplet values
   std::vector<std::int32_t> facet_cell_; ///< the exterior facets of local cells
   std::vector<std::int8_t> facet_local_;
-  std::vector<std::array<double, 3>> facet_normal_; ///< at the facet's centre
+  std::vector<std::array<double, 3>> facet_normal_; ///< at the facet's centre, in geometry_
   la::Vector prescribed_;   ///< 1 at the prescribed velocity dofs, with ghosts
   la::Vector fallback_;     ///< 1 at the pressure dofs of the outflow vertices (or the pin)
   la::Vector mark_;         ///< the Dirichlet vertices of A_p now

@@ -365,7 +365,15 @@ public:
   double reference() const { return reference_; }
   /// The weights of the Jacobian for the PCD preconditioner (steady: {1, 0, 1}).
   void set_pcd_weights(const PcdWeights& weights) { pcd_weights_ = weights; }
+  /// The configuration and mesh velocity (nodal; empty: the reference mesh, at rest) the PCD
+  /// preconditioner's operators are built in: those the equations are integrated with.
+  void set_pcd_mesh(std::span<const double> x, std::span<const double> mesh_velocity) {
+    pcd_x_ = x;
+    pcd_mesh_velocity_ = mesh_velocity;
+  }
   void set_reference(double reference) { reference_ = reference; }
+  /// The tying constraint, built anew when the mesh moves (null: none).
+  void set_tying(const TyingConstraint* tying) { tying_ = tying; }
 
   /// Evaluates r and K at the unknowns w (ghosts up to date); returns "inverted".
   using Evaluator = std::function<bool(const la::Vector& w, la::Vector& r, la::Matrix& K)>;
@@ -461,7 +469,9 @@ public:
       if (iterative_)
         solver_.set_relative_tolerance(linear_ ? 1e-10
                                                : std::clamp(norm / reference_, 1e-10, forcing_max));
-      if (pcd_) pcd_->update(w, linear_ ? PcdWeights{0.0, 1.0, 1.0} : pcd_weights_);
+      if (pcd_)
+        pcd_->update(w, linear_ ? PcdWeights{0.0, 1.0, 1.0} : pcd_weights_, pcd_x_,
+                     pcd_mesh_velocity_);
       r_sys->scale(-1.0);
       d_sys->zero();
       bool solved;
@@ -505,6 +515,7 @@ private:
   bool iterative_ = false;
   std::unique_ptr<PressureConvectionDiffusion> pcd_;
   PcdWeights pcd_weights_;
+  std::span<const double> pcd_x_, pcd_mesh_velocity_;
   std::vector<PetscInt> fixed_;
   double reference_ = 0.0;
   bool linear_ = false; // the problem is linear: converged after one correction
@@ -559,9 +570,12 @@ struct MovingMesh {
   }
 };
 
-// Sets up the tied interfaces of the fluid subdomains (the mesh initialization moves slave
-// nodes onto the master side before anything is integrated).
-using TyingSetup = std::function<std::vector<meshtying::TiedInterface>(PhaseTimers&)>;
+// Sets up the tied interfaces of the fluid subdomains. In the reference configuration (`x`
+// empty) the mesh initialization moves slave nodes onto the master side before anything is
+// integrated; in a moved configuration x (nodal, mesh.x's layout) the operators are integrated
+// on the interface where the mesh has moved it, and the mesh keeps its reference coordinates.
+using TyingSetup =
+    std::function<std::vector<meshtying::TiedInterface>(PhaseTimers&, std::span<const double> x)>;
 
 // The run on a layout, replicated or distributed (fluid_solver.hpp).
 FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const TyingSetup& setup,
@@ -571,9 +585,9 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
   const auto comm = layout.comm();
   const auto model = build_fluid_model(config, layout);
   FluidMeshMotion motion(config, layout);
-  // Tied fluid subdomains: the mortar operators, once.
+  // Tied fluid subdomains: the mortar operators, once on a fixed mesh.
   PhaseTimers setup_timers;
-  const auto tied = setup(setup_timers);
+  auto tied = setup(setup_timers, {});
   FluidRunInfo info{static_cast<long long>(layout.n_global_dofs())};
   if (check_only) return info;
   std::optional<TyingConstraint> tying;
@@ -606,14 +620,19 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
   if (comm.is_root() && !quiet) std::printf("  linear solver: %s\n", solver_name.c_str());
   out.set_linear_solver(solver_name);
   FluidNewton newton(config, model, layout, out, tying ? &*tying : nullptr);
+  // On a moving mesh the tied interface moves with it: D and M are integrated again in the
+  // configuration of every step (ties(x)), and the constraint built anew from them.
+  const auto ties = [&](std::span<const double> x) {
+    if (!tying) return;
+    PhaseTimers timers;
+    tying.reset();
+    tied = setup(timers, x);
+    tying.emplace(tied, tied_dofs(layout, model));
+    newton.set_tying(&*tying);
+  };
   la::Vector w = layout.make_vector(), w_old = layout.make_vector();
   set_initial_velocity(config, layout, w);
   impose(model, layout, 0.0, w);
-  if (tying) { // the initial state satisfies the tying constraint (slave velocities = P v_M)
-    tying->expand(w, w_old);
-    w.copy_from(w_old);
-    w.update_ghosts();
-  }
   const bool exact = !config.output.exact_velocity.empty() || !config.output.exact_pressure.empty();
   const auto& tc = config.time;
   // Generalized-alpha for first-order systems (Jansen, Whiting & Hulbert 2000, eqs. 17-19 and
@@ -642,6 +661,12 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
     if (any_inverted(layout, ms.x))
       SEAM_THROW(SolverError, "a fluid cell is inverted (det J <= 0) by the mesh displacement at "
                               "t = 0");
+    ties(ms.x);
+  }
+  if (tying) { // the initial state satisfies the tying constraint at t = 0 (slave: P v_M)
+    tying->expand(w, w_old);
+    w.copy_from(w_old);
+    w.update_ghosts();
   }
   // The consistent initial state of generalized-alpha: the velocity's rate and the pressure
   // at t = 0 that satisfy the momentum equations at the initial velocity, with the rates of
@@ -663,6 +688,7 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
     const FluidNewton::Prescriber rates = [&](la::Vector& yk) {
       impose(model, layout, 0.0, yk, 1e-4 * tc.dt);
     };
+    newton.set_pcd_mesh(ms.x, ms.w);
     const auto res = newton.solve_initial(y, initial, rates);
     if (!res.converged)
       SEAM_THROW(SolverError, res.failure,
@@ -727,12 +753,15 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
         res.failure = "the linear solver of the pseudo-elastic mesh failed";
       } else if (any_inverted(layout, mm.at(mm.d_new))) {
         res.failure = "a fluid cell is inverted (det J <= 0) by the mesh motion";
-      } else if (unsteady) {
-        mm.d_dot_new.resize(mm.d.size());
-        ale::step_mesh(ga, h, mm.X, mm.d, mm.d_new, mm.d_dot, mm.x, mm.w, mm.d_dot_new);
-        ms = {mm.x, mm.w};
       } else {
-        ms = {mm.x, {}};
+        ties(mm.x); // the tied interface at t_new (mm.x = X + d_new)
+        if (unsteady) {
+          mm.d_dot_new.resize(mm.d.size());
+          ale::step_mesh(ga, h, mm.X, mm.d, mm.d_new, mm.d_dot, mm.x, mm.w, mm.d_dot_new);
+          ms = {mm.x, mm.w};
+        } else {
+          ms = {mm.x, {}};
+        }
       }
     }
     const FluidNewton::Evaluator steady = [&](const la::Vector& wk, la::Vector& r, la::Matrix& K) {
@@ -758,8 +787,10 @@ FluidRunInfo run_on(const io::Config& config, const FluidLayout& layout, const T
       return assemble(model, layout, ms, {&w_f, &w_f, &u_dot_m, alpha_f, alpha_m / (gamma * h), h},
                       t + alpha_f * h, r, &K);
     };
-    if (*res.failure == '\0')
+    if (*res.failure == '\0') {
+      newton.set_pcd_mesh(ms.x, ms.w);
       res = newton.solve(w, t_new, step + 1, unsteady ? generalized_alpha : steady);
+    }
     if (!res.converged) {
       w.copy_from(w_old);
       w.update_ghosts();
@@ -830,8 +861,20 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
   const FluidLayout layout(part, comm);
   return run_on(
       config, layout,
-      [&](PhaseTimers& timers) {
-        return meshtying::setup_mesh_tying(config, part, comm.get(), timers);
+      [&](PhaseTimers& timers, std::span<const double> x) {
+        if (x.empty()) return meshtying::setup_mesh_tying(config, part, comm.get(), timers);
+        // The interface where the mesh has moved it: set up on the moved coordinates, whose
+        // slave nodes the mesh initialization may shift; the mesh keeps its own.
+        std::vector<double> moved(x.begin(), x.end());
+        part.mesh.x.swap(moved);
+        try {
+          auto tied = meshtying::setup_mesh_tying(config, part, comm.get(), timers);
+          part.mesh.x.swap(moved);
+          return tied;
+        } catch (...) {
+          part.mesh.x.swap(moved);
+          throw;
+        }
       },
       [&] { return identity; }, dir, quiet, check_only, restart);
 }

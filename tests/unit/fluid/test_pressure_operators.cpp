@@ -45,7 +45,7 @@ TEST_P(PressureOperators, ExactOnAffineCells) {
                                                              : 8.0;
   const double measure = det * reference_measure;
   std::vector<double> M(nv * nv), A(nv * nv), N(nv * nv);
-  ASSERT_TRUE(fluid::pressure_operators(type, x, c, M, A, N));
+  ASSERT_TRUE(fluid::pressure_operators(type, x, c, {}, M, A, N));
   std::vector<double> p(nv);
   for (int k = 0; k < nv; ++k)
     for (int i = 0; i < dim; ++i) p[k] += g[i] * x[k * dim + i];
@@ -82,7 +82,42 @@ TEST_P(PressureOperators, InvertedCellIsReported) {
   std::vector<double> x(ref.begin(), ref.end()), c(n * dim, 0.0);
   for (int a = 0; a < n; ++a) x[a * dim] = -x[a * dim]; // mirrored: det J < 0
   std::vector<double> M(nv * nv), A(nv * nv), N(nv * nv);
-  EXPECT_FALSE(fluid::pressure_operators(type, x, c, M, A, N));
+  EXPECT_FALSE(fluid::pressure_operators(type, x, c, {}, M, A, N));
+}
+
+// ALE: on a rigidly translated cell whose fluid moves with the mesh (u = w, not uniform), the
+// convection u - w vanishes: N = 0, and M and A are those of the cell before the translation.
+// With u = w + c0 (c0 constant) N is the fixed cell's N at the velocity c0.
+TEST_P(PressureOperators, MovingMeshConvectsWithTheRelativeVelocity) {
+  const auto type = GetParam();
+  const int dim = fem::dimension(type);
+  const int n = fem::n_nodes(type);
+  const int nv = fem::n_vertices(type);
+  const auto ref = fem::reference_nodes(type);
+  const double B[3][3] = {{1.3, 0.4, -0.2}, {0.1, 0.9, 0.3}, {0.2, -0.1, 1.1}};
+  const double shift[3] = {3.5, -1.25, 0.75};
+  const std::array<double, 3> c0 = {0.7, -1.1, 0.4};
+  std::vector<double> X(n * dim), x(n * dim), w(n * dim), u(n * dim), c(n * dim);
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < dim; ++i) {
+      for (int j = 0; j < dim; ++j) X[a * dim + i] += B[i][j] * ref[a * dim + j];
+      x[a * dim + i] = X[a * dim + i] + shift[i];
+      w[a * dim + i] = std::sin(1.0 + a + 2.0 * i) + X[a * dim + i] * X[a * dim + i];
+      u[a * dim + i] = w[a * dim + i] + c0[i];
+      c[a * dim + i] = c0[i];
+    }
+  std::vector<double> M(nv * nv), A(nv * nv), N(nv * nv), M0(nv * nv), A0(nv * nv), N0(nv * nv);
+  ASSERT_TRUE(fluid::pressure_operators(type, x, w, w, M, A, N));
+  ASSERT_TRUE(fluid::pressure_operators(type, X, c, {}, M0, A0, N0));
+  double scale = 0.0;
+  for (int kl = 0; kl < nv * nv; ++kl) scale = std::max(scale, std::abs(N0[kl]));
+  for (int kl = 0; kl < nv * nv; ++kl) {
+    EXPECT_EQ(N[kl], 0.0) << kl;
+    EXPECT_NEAR(M[kl], M0[kl], 1e-13 * std::abs(M0[kl]) + 1e-15) << kl;
+    EXPECT_NEAR(A[kl], A0[kl], 1e-12 * std::abs(A0[kl]) + 1e-13) << kl;
+  }
+  ASSERT_TRUE(fluid::pressure_operators(type, x, u, w, M, A, N));
+  for (int kl = 0; kl < nv * nv; ++kl) EXPECT_NEAR(N[kl], N0[kl], 1e-12 * scale) << kl;
 }
 
 INSTANTIATE_TEST_SUITE_P(TaylorHood, PressureOperators,
