@@ -252,6 +252,10 @@ private:
     /// of the last search.
     bool master_in_part = false;
     int master_facets = 0;
+    /// The slave side held in part (slave_held_in_part): the facets of its own and ghost cells
+    /// and the nodal arrays of their nodes; the slave facets of the whole side.
+    bool slave_in_part = false;
+    int slave_facets = 0;
     std::vector<std::int32_t> ghost_nodes;
     /// Self contact: the oriented pairs of the searches of the current step (newest last, at
     /// most ContactSearch::max_pair_period + 1) and the pairs held for the rest of the step
