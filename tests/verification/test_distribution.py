@@ -547,6 +547,7 @@ def check_contact_part(friction):
                                              r["integration_cells"], r["contact_nodes"],
                                              r["contact_nodal_records"]))
     check_counts_add_up(one, three, what)
+    check_slave_in_part(three, what, False)  # the bulk distribution: the slave side in part
     decided = sum(r["contact_nodes"] for r in d3)
     records = sum(r["contact_nodal_records"] for r in d3)
     print("   %s: nodes decided %d over the ranks, %d at np 1; records %d" %
@@ -739,6 +740,8 @@ def test_hertz_master_side_in_part_np3():
     if sum(held) > 1.4 * n_m:
         raise AssertionError("the ranks hold %d master facets of %d together" % (sum(held), n_m))
     compare_outputs(one, three, 1e-10, "hertz master side in part np 3 vs np 1")
+    # The independent distribution (the default) keeps the slave side whole on every rank.
+    check_slave_in_part(three, "hertz independent", True)
     # 2D ironing without friction (the die, the master, slides over the slab): the parts'
     # shortest master edges differ from the side's, and the search inflation taken from a
     # part's own edges gave extra pairs at np 2 and 3 (nonzero D at inactive nodes).
@@ -785,15 +788,15 @@ def check_slave_in_part(three, what, whole):
 
 
 def test_slave_side_in_part_np3():
-    """The slave side of frictionless two-body contact held in part with the bulk distribution
-    of the interface (docs/parallel.md, "Converting the contact sides", step 3): the
+    """The slave side of two-body contact held in part with the bulk distribution of the
+    interface (docs/parallel.md, "Converting the contact sides", step 3): the
     distributed mesh no longer gives every rank the slave side; a rank holds the slave facets of
     its own cells (which it evaluates) and of its ghost cells (their nodes' rings), the nodal
     arrays per held slave node, and the counts, norms and the cycling guard's comparisons are
     agreed over the owners. At np 3 (check_slave_in_part): the Hertz sphere on a block (two load
-    steps) and the 2D ironing without friction; every output equals np 1 to 1e-10. The ironing
-    with Coulomb friction keeps its slave side whole on every rank (not converted) and still
-    equals np 1. Held on every rank before: 358 of 358 (Hertz), 60 of 60 (ironing)."""
+    steps) and the 2D ironing without and with Coulomb friction; every output equals np 1 to
+    1e-10 (test_contact_friction_part_np3 checks the Hertz sphere with friction). Held on every
+    rank before: 358 of 358 (Hertz), 60 of 60 (ironing)."""
     replace = (("steps: 5", "steps: 2"), BULK)
     one = run_example("hertz_3d", "sphere_block.yaml", 1, replace)
     three = run_example("hertz_3d", "sphere_block.yaml", 3, replace)
@@ -805,7 +808,7 @@ def test_slave_side_in_part_np3():
         what = "ironing with friction" if friction else "ironing"
         one = run_example("ironing", "ironing_2d.yaml", 1, replace)
         three = run_example("ironing", "ironing_2d.yaml", 3, replace)
-        check_slave_in_part(three, what, friction)
+        check_slave_in_part(three, what, False)
         compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
     H.cleanup(*_dirs)
 

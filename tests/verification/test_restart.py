@@ -337,13 +337,16 @@ def test_static_standard_multipliers():
 
 
 def test_static_slave_side_in_part():
-    """Frictionless two blocks with the bulk distribution of the interface: at np 3 each rank
-    holds the slave facets of its own and ghost cells only and the state of the slave nodes it
-    holds (docs/parallel.md, "Converting the contact sides", step 3); the checkpoint keys the
-    state by node id, so a restart on another number of ranks continues the run."""
-    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: dual")
-               + "parallel: {interface_distribution: bulk}\n", 3,
+    """Two blocks, frictionless and with Coulomb friction, with the bulk distribution of the
+    interface: at np 3 each rank holds the slave facets of its own and ghost cells only and the
+    state of the slave nodes it holds (docs/parallel.md, "Converting the contact sides", step
+    3); the checkpoint keys the state by node id, so a restart on another number of ranks
+    continues the run."""
+    bulk = "parallel: {interface_distribution: bulk}\n"
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: dual") + bulk, 3,
                "static frictionless, slave side in part")
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e) + bulk, 3,
+               "static friction, slave side in part")
 
 
 def test_dynamic_friction_generalized_alpha():

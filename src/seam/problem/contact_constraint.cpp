@@ -1382,14 +1382,14 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              " of " + std::to_string(s.slave_facets) + " slave and " +
              std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
              " master facets, the other master facets read as ghosts), the nodal arrays per "
-             "held slave node (D, g~, multipliers, active set; the owners' values published)" +
-             read +
+             "held slave node (D, g~, multipliers, active set" +
+             (s.friction ? ", friction history" : "") + "; the owners' values published)" + read +
              "; distributed: the search (own slave elements against the master facets "
              "ghosted by bounding boxes" +
              reused + ") and the mortar integration of the own slave elements";
     else if (s.search && s.master_in_part)
       text += "the slave side (" + n_slave +
-              " facets, nodes, positions; held in part only without friction and with "
+              " facets, nodes, positions; held in part only with "
               "interface_distribution: bulk), " +
               arrays + read +
               "; in part: the master side (the facets of its own and ghost cells, " +

@@ -43,7 +43,6 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
 
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
   return master_held_in_part(itf, config) &&
-         itf.friction.model == io::FrictionModel::frictionless &&
          config.parallel.interface_distribution == io::InterfaceDistribution::bulk;
 }
 
