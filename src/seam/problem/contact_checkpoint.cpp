@@ -165,9 +165,8 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
       flags[j * 3 + 2] = v[per_node + 2];
       for (int c = 0; c < dim; ++c) x_old[j * dim + c] = v[per_node + 3 + c];
     }
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
-                                  static_cast<int>(per_node));
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, flags, 3);
+    publish(s, lambda, static_cast<int>(per_node));
+    publish(s, flags, 3);
     s.lambda = lambda;
     s.lambda_saved = s.lambda;
     for (std::size_t j = 0; j < n; ++j) s.active[j] = flags[j * 3] != 0.0;
@@ -180,7 +179,7 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     s.D_diag_old.assign(n, 0.0);
     for (std::size_t j = 0; j < n; ++j) s.D_diag_old[j] = flags[j * 3 + 2];
     // x^n: every rank reads the positions of the nodes it evaluates (all published).
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, x_old, dim);
+    publish(s, x_old, dim);
     s.x_old = std::move(x_old);
     const auto plane = in.reals(p + "plane_old", 3);
     std::copy(plane.begin(), plane.end(), s.plane_old.begin());

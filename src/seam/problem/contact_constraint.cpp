@@ -112,6 +112,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
       s.node_owners[j] = disc.node_owner(nodes[j]);
     }
+    if (slave_part)
+      s.holders = std::make_shared<parallel::HolderPublisher>(disc.comm().get(), s.node_keys,
+                                                              s.node_owners);
     // Prescribed components of the slave nodes: known on the owning rank only (the model
     // holds the owned rows), published by the owners (in proportion to the prescribed nodes).
     std::vector<double> fixed(n * dim, 0.0);
@@ -122,7 +125,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       for (int c = 0; c < dim; ++c)
         if (disc.global_dof(d.node, c) == d.dof) fixed[j * dim + c] = 1.0;
     }
-    parallel::publish_from_owners(disc.comm().get(), s.node_keys, s.node_owners, fixed, dim);
+    publish(s, fixed, dim);
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
@@ -592,14 +595,26 @@ void ContactConstraint::publish_nodal_values(Side& s, std::vector<char>& next) c
     v[j * width + width - 1] = static_cast<double>(next[j]);
     if (s.friction) v[j * width + 2] = s.D_diag[j];
   }
-  s.nodal.decided = static_cast<std::int64_t>(
-      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, v, width));
+  // The owned nodes with nonzero records (publish() counts the records sent, one per holder
+  // on a side held in part).
+  s.nodal.decided = 0;
+  for (std::size_t j = 0; j < n; ++j)
+    if (s.node_owners[j] == disc_.comm().rank())
+      s.nodal.decided +=
+          std::any_of(&v[j * width], &v[j * width] + width, [](double x) { return x != 0.0; });
+  publish(s, v, width);
   for (std::size_t j = 0; j < n; ++j) {
     s.D[j] = v[j * width];
     s.gap[j] = v[j * width + 1];
     next[j] = static_cast<char>(v[j * width + width - 1]);
     if (s.friction) s.D_diag[j] = v[j * width + 2];
   }
+}
+
+std::size_t ContactConstraint::publish(const Side& s, std::span<double> values, int width) const {
+  if (s.holders) return s.holders->publish(values, width);
+  return parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, values,
+                                       width);
 }
 
 double ContactConstraint::max_weight(const Side& s) const {
@@ -806,7 +821,7 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
             lambda[j * dim + b] =
                 -values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)] / s.D[j];
       }
-      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, dim);
+      publish(s, lambda, dim);
       s.lambda = std::move(lambda);
       continue;
     }
@@ -820,7 +835,7 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
       lambda[j] = -wy / (s.D[j] * f.wn);
     }
     // The owners' multipliers (nonzero at active nodes only) to every rank.
-    parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, 1);
+    publish(s, lambda, 1);
     s.lambda = std::move(lambda);
   }
 }

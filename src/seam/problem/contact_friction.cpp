@@ -195,7 +195,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   }
   // Every rank gets the owners' sums, slip increments and decisions.
   publish_nodal_values(s, next);
-  parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, s.slip, dim);
+  publish(s, s.slip, dim);
   // The checks below run on every rank over the contact zone (the cycling guard's consistency,
   // the complementarity residual, the friction rows): the owners' normals of the nodes with
   // nonzero sums, a rank computing those of the slave nodes it reads only.
@@ -205,7 +205,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     for (std::size_t j = 0; j < n; ++j)
       if (s.node_owners[j] == comm.rank() && s.D[j] != 0.0)
         for (int c = 0; c < dim; ++c) normals[j * dim + c] = mine[j * dim + c];
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, normals, dim);
+    publish(s, normals, dim);
     s.itf.set_normals_from_owners(normals);
   }
   if (init && s.has_old) s.D_diag_old = s.D_diag;
