@@ -547,6 +547,7 @@ def check_contact_part(friction):
                                              r["integration_cells"], r["contact_nodes"],
                                              r["contact_nodal_records"]))
     check_counts_add_up(one, three, what)
+    check_slave_in_part(three, what, False)  # the bulk distribution: the slave side in part
     decided = sum(r["contact_nodes"] for r in d3)
     records = sum(r["contact_nodal_records"] for r in d3)
     print("   %s: nodes decided %d over the ranks, %d at np 1; records %d" %
@@ -739,6 +740,8 @@ def test_hertz_master_side_in_part_np3():
     if sum(held) > 1.4 * n_m:
         raise AssertionError("the ranks hold %d master facets of %d together" % (sum(held), n_m))
     compare_outputs(one, three, 1e-10, "hertz master side in part np 3 vs np 1")
+    # The independent distribution (the default) keeps the slave side whole on every rank.
+    check_slave_in_part(three, "hertz independent", True)
     # 2D ironing without friction (the die, the master, slides over the slab): the parts'
     # shortest master edges differ from the side's, and the search inflation taken from a
     # part's own edges gave extra pairs at np 2 and 3 (nonzero D at inactive nodes).
@@ -751,6 +754,62 @@ def test_hertz_master_side_in_part_np3():
     print("   ironing np 3: master facets held per rank %s of %d"
           % ("/".join(map(str, held)), itf["master_elements"]))
     compare_outputs(one, three, 1e-10, "ironing without friction np 3 vs np 1")
+    H.cleanup(*_dirs)
+
+
+BULK = ("solver:", "parallel: {interface_distribution: bulk}\nsolver:")
+
+
+def check_slave_in_part(three, what, whole):
+    """ranks_detail at np 3 of a run whose slave side is held in part (`whole`: it is not, the
+    slave side held whole on every rank as before): no rank holds the whole slave side, each
+    holds at least the slave elements it evaluates (those of its own cells), the ghost layer's
+    facets (the rings of the averaged normals) add at most half the side over all ranks, and
+    the ranks evaluate every slave facet once. Returns the slave facets held per rank."""
+    n_s = H.read_json(os.path.join(three, "summary.json"))["interfaces"][0]["slave_elements"]
+    detail = ranks_detail(three)
+    held = [r["contact_slave_facets_held"] for r in detail]
+    own = [r["slave_elements"] for r in detail]
+    print("   %s np 3: slave facets held per rank %s of %d, evaluated %s"
+          % (what, "/".join(map(str, held)), n_s, "/".join(map(str, own))))
+    if sum(own) != n_s:
+        raise AssertionError("%s: the ranks evaluate %d slave facets of %d" % (what, sum(own), n_s))
+    if whole:
+        if held != [n_s] * len(held):
+            raise AssertionError("%s: slave side not whole on every rank: %s" % (what, held))
+        return held
+    if max(held) >= n_s or any(h < o for h, o in zip(held, own)):
+        raise AssertionError("%s: slave facets held per rank %s of %d (evaluated %s)"
+                             % (what, held, n_s, own))
+    if sum(held) > 1.5 * n_s:
+        raise AssertionError("%s: the ranks hold %d slave facets of %d together"
+                             % (what, sum(held), n_s))
+    return held
+
+
+def test_slave_side_in_part_np3():
+    """The slave side of two-body contact held in part with the bulk distribution of the
+    interface (docs/parallel.md, "Converting the contact sides", step 3): the
+    distributed mesh no longer gives every rank the slave side; a rank holds the slave facets of
+    its own cells (which it evaluates) and of its ghost cells (their nodes' rings), the nodal
+    arrays per held slave node, and the counts, norms and the cycling guard's comparisons are
+    agreed over the owners. At np 3 (check_slave_in_part): the Hertz sphere on a block (two load
+    steps) and the 2D ironing without and with Coulomb friction; every output equals np 1 to
+    1e-10 (test_contact_friction_part_np3 checks the Hertz sphere with friction). Held on every
+    rank before: 358 of 358 (Hertz), 60 of 60 (ironing)."""
+    replace = (("steps: 5", "steps: 2"), BULK)
+    one = run_example("hertz_3d", "sphere_block.yaml", 1, replace)
+    three = run_example("hertz_3d", "sphere_block.yaml", 3, replace)
+    check_slave_in_part(three, "hertz", False)
+    compare_outputs(one, three, 1e-10, "hertz slave side in part np 3 vs np 1")
+    frictionless = (("    friction: {model: coulomb, coefficient: 0.3}\n", ""),)
+    for friction in (False, True):
+        replace = tuple(IRONING_SHORT) + (BULK,) + (() if friction else frictionless)
+        what = "ironing with friction" if friction else "ironing"
+        one = run_example("ironing", "ironing_2d.yaml", 1, replace)
+        three = run_example("ironing", "ironing_2d.yaml", 3, replace)
+        check_slave_in_part(three, what, False)
+        compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
     H.cleanup(*_dirs)
 
 
@@ -949,7 +1008,7 @@ def test_ghosting_reused_np3():
 
 
 if __name__ == "__main__":
-    H.main([test_hertz_master_side_in_part_np3, test_rings_self_search_np3, test_two_blocks_self_search_np3,
+    H.main([test_hertz_master_side_in_part_np3, test_slave_side_in_part_np3, test_rings_self_search_np3, test_two_blocks_self_search_np3,
             test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3,
             test_check_distributed_np3, test_tied_interface_part_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,

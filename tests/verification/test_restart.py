@@ -336,6 +336,19 @@ def test_static_standard_multipliers():
                "static contact, standard multipliers", cross_np="1 -> 3")
 
 
+def test_static_slave_side_in_part():
+    """Two blocks, frictionless and with Coulomb friction, with the bulk distribution of the
+    interface: at np 3 each rank holds the slave facets of its own and ghost cells only and the
+    state of the slave nodes it holds (docs/parallel.md, "Converting the contact sides", step
+    3); the checkpoint keys the state by node id, so a restart on another number of ranks
+    continues the run."""
+    bulk = "parallel: {interface_distribution: bulk}\n"
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: dual") + bulk, 3,
+               "static frictionless, slave side in part")
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e) + bulk, 3,
+               "static friction, slave side in part")
+
+
 def test_dynamic_friction_generalized_alpha():
     # 3 -> 1 is the static case's in CI (the state read from 3 part files is routed the same way).
     check_case(G.rectangle("quad_structured", 0.125, lx=1.0, ly=0.25), sliding_block_yaml, 8,
@@ -750,7 +763,7 @@ def ints(data):
 
 if __name__ == "__main__":
     try:
-        H.main([test_static_friction_two_bodies, test_same_ranks_np3, test_partition_reproducible,
+        H.main([test_static_friction_two_bodies, test_static_slave_side_in_part, test_same_ranks_np3, test_partition_reproducible,
                 test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,

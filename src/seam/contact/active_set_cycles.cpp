@@ -4,8 +4,12 @@
 
 namespace seam::contact {
 
-std::size_t ActiveSetCycles::guard(std::vector<char>& next, std::vector<char>& alternating) {
+std::size_t ActiveSetCycles::guard(std::vector<char>& next, std::vector<char>& alternating,
+                                   const Agree& agree) {
   alternating.assign(next.size(), 0);
+  const auto equal = [&](const std::vector<char>& a, const std::vector<char>& b) {
+    return agree ? agree(a == b) : a == b;
+  };
   const std::size_t m = history_.size();
   std::size_t period = 0;
   // The set k iterations before `next` is history_[m - k] (history_[m - 1] is one before).
@@ -14,10 +18,10 @@ std::size_t ActiveSetCycles::guard(std::vector<char>& next, std::vector<char>& a
   // stopped the convergence). So for k >= 3 the set before `next` must have repeated with the
   // same period too; period 2 is caught at its first return, as before.
   const auto repeats = [&](std::size_t k) {
-    if (history_[m - k] != next) return false;
-    return k == 2 || (m >= k + 1 && history_[m - 1 - k] == history_[m - 1]);
+    if (!equal(history_[m - k], next)) return false;
+    return k == 2 || (m >= k + 1 && equal(history_[m - 1 - k], history_[m - 1]));
   };
-  if (m >= 2 && next != history_.back())
+  if (m >= 2 && !equal(next, history_.back()))
     for (std::size_t k = 2; k <= max_period && k <= m; ++k)
       if (repeats(k)) {
         period = k;

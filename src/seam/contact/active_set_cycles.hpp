@@ -12,6 +12,7 @@
 // keeps that choice for the rest of the step. Period 2 is the guard this replaces.
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <vector>
 
 namespace seam::contact {
@@ -38,7 +39,12 @@ public:
   /// per-node maximum over the k sets of the cycle, `alternating` marks the nodes whose status
   /// changed within it, and k is returned; otherwise 0 (`alternating` all zero). The result is
   /// recorded as the newest set.
-  std::size_t guard(std::vector<char>& next, std::vector<char>& alternating);
+  /// `agree`, if given, turns this part's comparison of two sets into the whole's (e.g. equal
+  /// on every rank, when each rank holds the statuses of part of the nodes); called in the
+  /// same order on every part.
+  using Agree = std::function<bool(bool)>;
+  std::size_t guard(std::vector<char>& next, std::vector<char>& alternating,
+                    const Agree& agree = {});
 
   /// Forgets the set recorded by the last guard() (if any since start() or the last retract()):
   /// a shortened Newton correction (line search) decides the statuses again at a point of

@@ -14,11 +14,16 @@ namespace seam::contact {
 
 namespace {
 
-double mean_edge_length(const meshtying::InterfaceSide& side) {
+/// The sum and number of the edge lengths of facets `facets` of `side` (all of them when
+/// empty and `all`).
+std::pair<double, double> edge_sum(const meshtying::InterfaceSide& side,
+                                   std::span<const local_index> facets, bool all) {
   const int dim = side.dim;
   double sum = 0.0;
   long count = 0;
-  for (local_index f = 0; f < side.n_facets(); ++f) {
+  const local_index n = all ? side.n_facets() : static_cast<local_index>(facets.size());
+  for (local_index i = 0; i < n; ++i) {
+    const local_index f = all ? i : facets[static_cast<std::size_t>(i)];
     const auto* nodes = &side.nodes[static_cast<std::size_t>(side.offsets[f])];
     const int n = fem::n_vertices(side.types[static_cast<std::size_t>(f)]);
     const int edges = dim == 2 ? 1 : n;
@@ -34,12 +39,23 @@ double mean_edge_length(const meshtying::InterfaceSide& side) {
       ++count;
     }
   }
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return {sum, static_cast<double>(count)};
+}
+
+double mean_edge_length(const meshtying::InterfaceSide& side) {
+  const auto [sum, count] = edge_sum(side, {}, true);
+  return count > 0 ? sum / count : 0.0;
 }
 
 } // namespace
 
-ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh)
+std::pair<double, double>
+ContactInterface::slave_edge_sum(std::span<const local_index> facets) const {
+  return edge_sum(slave_, facets, false);
+}
+
+ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh& mesh,
+                                   bool slave_part)
     : mesh_(&mesh), name_(config.name),
       rigid_(config.rigid_plane.has_value() || config.rigid_obstacle.has_value()),
       frictional_(config.friction.model != io::FrictionModel::frictionless),
@@ -48,7 +64,7 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   const int dim = mesh.dim;
   slave_ = self_ ? extract_surface(mesh, config.surface)
                  : meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
-  if (slave_.n_facets() == 0)
+  if (slave_.n_facets() == 0 && !slave_part)
     io::fail_at(config.slave.mark, "the slave region '" + config.slave.name + "' has no facets");
   mesh_size_ = mean_edge_length(slave_);
   options_.multiplier = config.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual

@@ -36,6 +36,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace seam::contact {
@@ -125,7 +126,10 @@ public:
   /// The sides of `config` (a `type: contact` interface) in `mesh` (kept by reference).
   /// Located InputError for regions that are missing or not boundaries, and for sides that
   /// share nodes.
-  ContactInterface(const io::Interface& config, const mesh::Mesh& mesh);
+  /// `slave_part`: the mesh holds part of the slave side (problem::slave_held_in_part), which
+  /// may then be empty here; the caller checks the whole side and agrees the mesh size over
+  /// the parts (set_slave_mesh_size).
+  ContactInterface(const io::Interface& config, const mesh::Mesh& mesh, bool slave_part = false);
   ~ContactInterface();
   ContactInterface(ContactInterface&&) noexcept;
   ContactInterface& operator=(ContactInterface&&) noexcept;
@@ -159,6 +163,11 @@ public:
   local_index n_master_facets() const { return master_.n_facets(); }
   /// Mean edge length of the slave facets in the reference configuration.
   double slave_mesh_size() const { return mesh_size_; }
+  /// The sum and the number of the edge lengths of slave facets `facets` (reference
+  /// configuration), and the mean edge length agreed over the parts of a slave side held in
+  /// part (their sums over the facets each part evaluates).
+  std::pair<double, double> slave_edge_sum(std::span<const local_index> facets) const;
+  void set_slave_mesh_size(double size) { mesh_size_ = size; }
   local_index n_slave_nodes() const { return static_cast<local_index>(slave_.mesh_nodes.size()); }
 
   /// Places both sides at the mesh displacement `u` (dim values per mesh node; only interface

@@ -166,4 +166,94 @@ inline std::size_t publish_from_owners(MPI_Comm comm, std::span<const std::int64
   return mine.size();
 }
 
+/// publish_from_owners for items that each rank holds in part (e.g. the slave nodes of a
+/// contact side held in part): the owners send their nonzero items only to the ranks that hold
+/// them, not to every rank. Made once for a fixed set of items per rank (collective: each rank
+/// tells the owners which of their items it holds, one Alltoallv); each publish() is then one
+/// Alltoallv in proportion to the nonzero items times the ranks holding each.
+class HolderPublisher {
+public:
+  HolderPublisher(MPI_Comm comm, std::span<const std::int64_t> keys, std::span<const int> owners)
+      : comm_(comm), keys_(keys.begin(), keys.end()), owners_(owners.begin(), owners.end()) {
+    SEAM_ASSERT(keys.size() == owners.size());
+    int size = 1;
+    MPI_Comm_rank(comm, &rank_);
+    MPI_Comm_size(comm, &size);
+    for (std::size_t i = 0; i < keys_.size(); ++i) index_.emplace_back(keys_[i], i);
+    std::sort(index_.begin(), index_.end());
+    // The keys this rank holds without owning them, to their owners.
+    std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
+    for (const int o : owners_)
+      if (o != rank_) ++offsets[static_cast<std::size_t>(o) + 1];
+    for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
+    std::vector<std::int64_t> send(static_cast<std::size_t>(offsets[size]));
+    {
+      std::vector<std::int64_t> next(offsets.begin(), offsets.end() - 1);
+      for (std::size_t i = 0; i < keys_.size(); ++i)
+        if (owners_[i] != rank_) send[static_cast<std::size_t>(next[owners_[i]]++)] = keys_[i];
+    }
+    std::vector<std::int64_t> recv_offsets;
+    const auto recv = alltoallv<std::int64_t>(comm, send, offsets, recv_offsets);
+    // Per holding rank (in rank order), the owned items it holds.
+    to_offsets_.assign(static_cast<std::size_t>(size) + 1, 0);
+    for (int r = 0; r < size; ++r) {
+      for (auto k = recv_offsets[r]; k < recv_offsets[r + 1]; ++k) {
+        const auto i = find(recv[static_cast<std::size_t>(k)]);
+        SEAM_CHECK(i >= 0 && owners_[static_cast<std::size_t>(i)] == rank_, InternalError,
+                   "parallel: rank ", r, " holds item ", recv[static_cast<std::size_t>(k)],
+                   ", which rank ", rank_, " does not own");
+        to_items_.push_back(static_cast<std::size_t>(i));
+      }
+      to_offsets_[static_cast<std::size_t>(r) + 1] = static_cast<std::int64_t>(to_items_.size());
+    }
+  }
+
+  /// Collective. As publish_from_owners: on return every item holds the values its owner sent,
+  /// zero where the owner sent none. Returns the number of records this rank sent.
+  std::size_t publish(std::span<double> values, int width) const {
+    using Record = detail::KeyValues;
+    SEAM_ASSERT(width >= 1 && width <= 4 &&
+                values.size() == keys_.size() * static_cast<std::size_t>(width));
+    const auto size = to_offsets_.size() - 1;
+    std::vector<std::int64_t> offsets(size + 1, 0);
+    std::vector<Record> send;
+    for (std::size_t r = 0; r < size; ++r) {
+      for (auto k = to_offsets_[r]; k < to_offsets_[r + 1]; ++k) {
+        const auto i = to_items_[static_cast<std::size_t>(k)];
+        if (!detail::any_nonzero(values, i, width)) continue;
+        Record rec{keys_[i], {0.0, 0.0, 0.0, 0.0}};
+        for (int c = 0; c < width; ++c) rec.v[c] = values[i * width + c];
+        send.push_back(rec);
+      }
+      offsets[r + 1] = static_cast<std::int64_t>(send.size());
+    }
+    std::vector<std::int64_t> recv_offsets;
+    const auto recv = alltoallv<Record>(comm_, send, offsets, recv_offsets);
+    for (std::size_t i = 0; i < keys_.size(); ++i)
+      if (owners_[i] != rank_)
+        for (int c = 0; c < width; ++c) values[i * width + c] = 0.0;
+    for (const auto& rec : recv) {
+      const auto i = find(rec.key);
+      SEAM_ASSERT(i >= 0);
+      for (int c = 0; c < width; ++c) values[static_cast<std::size_t>(i) * width + c] = rec.v[c];
+    }
+    return send.size();
+  }
+
+private:
+  std::int64_t find(std::int64_t key) const {
+    const auto it = std::lower_bound(index_.begin(), index_.end(),
+                                     std::pair<std::int64_t, std::size_t>{key, 0});
+    return it != index_.end() && it->first == key ? static_cast<std::int64_t>(it->second) : -1;
+  }
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  std::vector<std::int64_t> keys_;
+  std::vector<int> owners_;
+  std::vector<std::pair<std::int64_t, std::size_t>> index_; ///< (key, item), sorted
+  std::vector<std::size_t> to_items_;                       ///< owned items per holding rank
+  std::vector<std::int64_t> to_offsets_; ///< where each rank's items start (size + 1)
+};
+
 } // namespace seam::parallel

@@ -53,6 +53,13 @@ std::int64_t slave_of_id(const SideIds& ids, std::int64_t id) {
   return it != ids.nodes.end() && *it == id ? it - ids.nodes.begin() : -1;
 }
 
+/// The number of slave nodes of the side, each counted by its owner (a slave side held in
+/// part is not whole on any rank). Collective.
+std::int64_t node_count(const Discretization& disc, std::span<const int> owners) {
+  const auto mine = std::count(owners.begin(), owners.end(), disc.comm().rank());
+  return static_cast<std::int64_t>(disc.comm().sum(static_cast<double>(mine)));
+}
+
 } // namespace
 
 void ContactConstraint::write_checkpoint(RecordWriter& out) const {
@@ -63,7 +70,7 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     const std::string p = "contact." + std::to_string(k) + ".";
     const auto& nodes = s.itf.slave().mesh_nodes;
     // The side by its size and node ids.
-    out.put_integer(p + "slave_count", static_cast<std::int64_t>(nodes.size()));
+    out.put_integer(p + "slave_count", node_count(disc_, s.node_owners));
     out.put_integer(p + "slave_hash", node_id_hash(disc_, nodes, s.node_owners));
     out.put_integer(p + "friction", s.friction ? 1 : 0);
     // The slave nodes this rank owns, with their state.
@@ -128,8 +135,8 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
               "rerun to write a checkpoint of this version");
     // Collective before any failure, so that every rank reaches it.
     const auto hash = node_id_hash(disc_, nodes, s.node_owners);
-    if (in.integer(p + "slave_count") != static_cast<std::int64_t>(n) ||
-        in.integer(p + "slave_hash") != hash)
+    const auto count = node_count(disc_, s.node_owners);
+    if (in.integer(p + "slave_count") != count || in.integer(p + "slave_hash") != hash)
       in.fail(which + " has other slave nodes than the input's");
     if (s.friction != (in.integer(p + "friction") != 0))
       in.fail(which + " was written " + (s.friction ? "without" : "with") + " friction");
@@ -158,9 +165,8 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
       flags[j * 3 + 2] = v[per_node + 2];
       for (int c = 0; c < dim; ++c) x_old[j * dim + c] = v[per_node + 3 + c];
     }
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
-                                  static_cast<int>(per_node));
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, flags, 3);
+    publish(s, lambda, static_cast<int>(per_node));
+    publish(s, flags, 3);
     s.lambda = lambda;
     s.lambda_saved = s.lambda;
     for (std::size_t j = 0; j < n; ++j) s.active[j] = flags[j * 3] != 0.0;
@@ -173,7 +179,7 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     s.D_diag_old.assign(n, 0.0);
     for (std::size_t j = 0; j < n; ++j) s.D_diag_old[j] = flags[j * 3 + 2];
     // x^n: every rank reads the positions of the nodes it evaluates (all published).
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, x_old, dim);
+    publish(s, x_old, dim);
     s.x_old = std::move(x_old);
     const auto plane = in.reals(p + "plane_old", 3);
     std::copy(plane.begin(), plane.end(), s.plane_old.begin());

@@ -63,7 +63,22 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   for (const auto& m : model.materials) young = std::max(young, m.young);
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::contact) continue;
-    Side s(contact::ContactInterface(itf, disc.mesh()));
+    const bool slave_part = slave_held_in_part(itf, config) && disc.comm().size() > 1;
+    Side s(contact::ContactInterface(itf, disc.mesh(), slave_part));
+    s.slave_in_part = slave_part;
+    if (slave_part) {
+      // Every part agrees on the slave side's mean edge (c_n, the skin of the ghosting): the
+      // sums over the slave facets of each part's own cells, each facet counted once.
+      const mesh::Region region = meshtying::side_region(disc.mesh(), itf.slave);
+      std::vector<local_index> own;
+      for (std::int32_t f = 0; f < region.n_facets(); ++f)
+        if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)])) own.push_back(f);
+      const auto [sum, count] = s.itf.slave_edge_sum(own);
+      const double total = disc.comm().sum(count);
+      if (!(total > 0.0))
+        io::fail_at(itf.slave.mark, "the slave region '" + itf.slave.name + "' has no facets");
+      s.itf.set_slave_mesh_size(disc.comm().sum(sum) / total);
+    }
     if (s.itf.standard()) {
       saddle_point_ = true;
       // Standard multipliers weight the gaps with N_j, whose integral vanishes (tri6) or is
@@ -97,6 +112,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
       s.node_owners[j] = disc.node_owner(nodes[j]);
     }
+    if (slave_part)
+      s.holders = std::make_shared<parallel::HolderPublisher>(disc.comm().get(), s.node_keys,
+                                                              s.node_owners);
     // Prescribed components of the slave nodes: known on the owning rank only (the model
     // holds the owned rows), published by the owners (in proportion to the prescribed nodes).
     std::vector<double> fixed(n * dim, 0.0);
@@ -107,7 +125,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       for (int c = 0; c < dim; ++c)
         if (disc.global_dof(d.node, c) == d.dof) fixed[j * dim + c] = 1.0;
     }
-    parallel::publish_from_owners(disc.comm().get(), s.node_keys, s.node_owners, fixed, dim);
+    publish(s, fixed, dim);
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
@@ -144,6 +162,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
         if (disc.is_local_cell(master.facet_cell[static_cast<std::size_t>(f)])) held.push_back(f);
       s.master_in_part = master_held_in_part(itf, config);
       s.master_facets = static_cast<int>(disc.comm().sum(static_cast<double>(held.size())));
+      s.slave_facets = static_cast<int>(disc.comm().sum(static_cast<double>(s.bulk_facets.size())));
       if (s.master_in_part) {
         // The parts agree on the search inflation (from the shortest edge of both sides, as
         // search::InterfaceSearch takes it) and on the quadrature (a part may hold no curved
@@ -152,7 +171,11 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
         const double part = search::min_edge_length(s.itf.master().surface());
         double lm = disc.comm().min(part > 0.0 ? part : huge);
         lm = lm < huge ? lm : 0.0;
-        const double ls = search::min_edge_length(s.itf.slave().surface());
+        double ls = search::min_edge_length(s.itf.slave().surface());
+        if (s.slave_in_part) {
+          ls = disc.comm().min(ls > 0.0 ? ls : huge);
+          ls = ls < huge ? ls : 0.0;
+        }
         s.itf.set_search_edge(ls > 0.0 && lm > 0.0 ? std::min(ls, lm) : std::max(ls, lm));
       }
       if (s.master_in_part)
@@ -423,9 +446,19 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       next[j] = s.lambda[j] - s.c_n * (s.gap[j] / s.D[j] - touching) > 0.0;
     }
     publish_nodal_values(s, next);
+    // The counts are the same on every rank: on a slave side held in part each rank counts
+    // the nodes it owns and the counts are summed (every node is held by its owner).
+    const auto counted = [&](std::size_t j) {
+      return !s.slave_in_part || s.node_owners[j] == comm.rank();
+    };
+    const auto agreed = [&](int n) {
+      return s.slave_in_part ? static_cast<int>(comm.sum(static_cast<double>(n))) : n;
+    };
     if (!decide) {
       int released = 0;
-      for (std::size_t j = 0; j < next.size(); ++j) released += s.active[j] && !next[j];
+      for (std::size_t j = 0; j < next.size(); ++j)
+        released += counted(j) && s.active[j] && !next[j];
+      released = agreed(released);
       s.active = std::move(next);
       released_ += released;
       changes += released;
@@ -433,20 +466,29 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     }
     // Cycling guard (contact/active_set_cycles.hpp): a set that returns to the one of k <= 12
     // iterations ago is replaced by the union of the sets of the cycle and kept for the rest
-    // of the step. The same published set on every rank gives the same decision.
+    // of the step. The same published set on every rank gives the same decision; on a slave
+    // side held in part each rank compares the nodes it holds and the ranks agree (two sets
+    // are equal where they are equal on every rank).
     std::vector<char> alternating;
-    if (s.cycles.guard(next, alternating) > 0) {
+    const auto all_ranks = [&](bool equal) { return comm.min(equal ? 1.0 : 0.0) > 0.0; };
+    if (s.cycles.guard(next, alternating,
+                       s.slave_in_part ? contact::ActiveSetCycles::Agree(all_ranks)
+                                       : contact::ActiveSetCycles::Agree()) > 0) {
       s.frozen = true;
       // The union of the cycle's sets can hold nodes that have no pair at this iterate.
+      int released = 0;
       for (std::size_t j = 0; j < next.size(); ++j)
         if (next[j] && !paired(s, j, d_max)) {
           next[j] = 0;
-          ++released_;
+          released += counted(j);
         }
+      released_ += agreed(released);
     }
     s.active = std::move(next);
+    int changed = 0;
     for (std::size_t j = 0; j < s.active.size(); ++j)
-      changes += s.active[j] != s.active_previous[j];
+      changed += counted(j) && s.active[j] != s.active_previous[j];
+    changes += agreed(changed);
   }
   return changes;
 }
@@ -553,14 +595,26 @@ void ContactConstraint::publish_nodal_values(Side& s, std::vector<char>& next) c
     v[j * width + width - 1] = static_cast<double>(next[j]);
     if (s.friction) v[j * width + 2] = s.D_diag[j];
   }
-  s.nodal.decided = static_cast<std::int64_t>(
-      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, v, width));
+  // The owned nodes with nonzero records (publish() counts the records sent, one per holder
+  // on a side held in part).
+  s.nodal.decided = 0;
+  for (std::size_t j = 0; j < n; ++j)
+    if (s.node_owners[j] == disc_.comm().rank())
+      s.nodal.decided +=
+          std::any_of(&v[j * width], &v[j * width] + width, [](double x) { return x != 0.0; });
+  publish(s, v, width);
   for (std::size_t j = 0; j < n; ++j) {
     s.D[j] = v[j * width];
     s.gap[j] = v[j * width + 1];
     next[j] = static_cast<char>(v[j * width + width - 1]);
     if (s.friction) s.D_diag[j] = v[j * width + 2];
   }
+}
+
+std::size_t ContactConstraint::publish(const Side& s, std::span<double> values, int width) const {
+  if (s.holders) return s.holders->publish(values, width);
+  return parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, values,
+                                       width);
 }
 
 double ContactConstraint::max_weight(const Side& s) const {
@@ -622,18 +676,21 @@ void ContactConstraint::add_force(la::Vector& r, bool between_bodies_only) const
 }
 
 double ContactConstraint::complementarity_norm() const {
-  double sum = 0.0;
+  double sum = 0.0, own = 0.0;
   for (const auto& s : sides_) {
     if (s.friction) {
       sum += s.ncp_norm2;
       continue;
     }
+    // Each node once, by its owner (a slave side held in part is not whole on any rank).
+    const int rank = disc_.comm().rank();
     for (std::size_t j = 0; j < s.active.size(); ++j) {
+      if (s.node_owners[j] != rank) continue;
       const double c = s.active[j] ? s.c_n * s.gap[j] : s.D[j] * s.lambda[j];
-      sum += c * c;
+      own += c * c;
     }
   }
-  return std::sqrt(sum);
+  return std::sqrt(sum + disc_.comm().sum(own));
 }
 
 void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::Matrix& Ksys,
@@ -764,7 +821,7 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
             lambda[j * dim + b] =
                 -values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)] / s.D[j];
       }
-      parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, dim);
+      publish(s, lambda, dim);
       s.lambda = std::move(lambda);
       continue;
     }
@@ -778,7 +835,7 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
       lambda[j] = -wy / (s.D[j] * f.wn);
     }
     // The owners' multipliers (nonzero at active nodes only) to every rank.
-    parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, lambda, 1);
+    publish(s, lambda, 1);
     s.lambda = std::move(lambda);
   }
 }
@@ -1237,9 +1294,9 @@ void ContactConstraint::save() {
 }
 
 bool ContactConstraint::set_changed() const {
-  for (const auto& s : sides_)
-    if (s.active != s.active_accepted) return true;
-  return false;
+  bool changed = false;
+  for (const auto& s : sides_) changed = changed || s.active != s.active_accepted;
+  return disc_.comm().max(changed ? 1.0 : 0.0) > 0.0;
 }
 
 void ContactConstraint::restore() {
@@ -1254,17 +1311,21 @@ void ContactConstraint::restore() {
 }
 
 int ContactConstraint::n_active() const {
-  int n = 0;
+  // Each node counted by its owner.
+  const int rank = disc_.comm().rank();
+  double n = 0.0;
   for (const auto& s : sides_)
-    n += static_cast<int>(std::count(s.active.begin(), s.active.end(), 1));
-  return n;
+    for (std::size_t j = 0; j < s.active.size(); ++j)
+      n += s.node_owners[j] == rank && s.active[j] == 1;
+  return static_cast<int>(disc_.comm().sum(n));
 }
 
 std::vector<std::string> ContactConstraint::describe() const {
   std::vector<std::string> out;
   for (const auto& s : sides_) {
     char line[256];
-    const int n_facets = static_cast<int>(s.itf.slave().n_facets());
+    const int n_facets =
+        s.slave_in_part ? s.slave_facets : static_cast<int>(s.itf.slave().n_facets());
     const char* multipliers =
         s.itf.standard() ? "standard multipliers (saddle point)" : "dual multipliers (condensed)";
     if (s.itf.self_contact())
@@ -1330,8 +1391,22 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               reused +
               ") and the mortar integration of the own slave elements (against the "
               "ghosted surface facets)";
+    else if (s.search && s.slave_in_part)
+      text = "interface " + s.itf.name() +
+             ": held in part: both sides (the facets of its own and ghost cells: " + n_slave +
+             " of " + std::to_string(s.slave_facets) + " slave and " +
+             std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
+             " master facets, the other master facets read as ghosts), the nodal arrays per "
+             "held slave node (D, g~, multipliers, active set" +
+             (s.friction ? ", friction history" : "") + "; the owners' values published)" + read +
+             "; distributed: the search (own slave elements against the master facets "
+             "ghosted by bounding boxes" +
+             reused + ") and the mortar integration of the own slave elements";
     else if (s.search && s.master_in_part)
-      text += "the slave side (" + n_slave + " facets, nodes, positions), " + arrays + read +
+      text += "the slave side (" + n_slave +
+              " facets, nodes, positions; held in part only with "
+              "interface_distribution: bulk), " +
+              arrays + read +
               "; in part: the master side (the facets of its own and ghost cells, " +
               std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
               ", the others read as ghosts)" +
@@ -1422,9 +1497,9 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
       double lj[3] = {0.0, 0.0, 0.0};
       lambda_of(j, lj);
       InterfaceNodeRow row;
-      row.order = static_cast<std::int64_t>(j);
       const auto node = rep.slave_nodes[j];
       row.node = disc_.node_gid(node);
+      row.order = row.node; // the side's order (ids increase along it), on every part
       for (int c = 0; c < dim; ++c) {
         row.normal += lj[c] * nj[c];
         row.x[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
@@ -1448,13 +1523,20 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
         std::sqrt(totals[1] * totals[1] + totals[2] * totals[2] + totals[3] * totals[3]);
     rep.weighted_gap = s.gap;
     rep.active = s.active;
+    // Each node counted by its owner.
+    double counts[3] = {0.0, 0.0, 0.0}; // area, active nodes, slip nodes
     for (std::size_t j = 0; j < n; ++j) {
+      if (!rep.owned[j]) continue;
       if (s.active[j]) {
-        rep.contact_area += s.D[j];
-        ++rep.active_nodes;
+        counts[0] += s.D[j];
+        ++counts[1];
       }
-      rep.slip_nodes += rep.status[j] == 2;
+      counts[2] += rep.status[j] == 2;
     }
+    comm.sum_in_place(counts);
+    rep.contact_area = counts[0];
+    rep.active_nodes = static_cast<int>(counts[1]);
+    rep.slip_nodes = static_cast<int>(counts[2]);
     // Energy-momentum contact against a rigid plane: its reaction is the resultant of the
     // discrete-gradient force along the normal (the nodal weights of the midpoint gradient and
     // the correction, not D_j of the end of the step); the momentum balance needs that one.
@@ -1468,7 +1550,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     }
     // The frictional work including this step (save() adds it once the step is accepted).
     rep.frictional_dissipation = s.friction ? s.dissipation + dissipation_increment(s) : 0.0;
-    rep.slave_elements = s.itf.slave().n_facets();
+    rep.slave_elements = s.slave_in_part ? s.slave_facets : s.itf.slave().n_facets();
     rep.master_elements = s.itf.rigid() ? s.itf.n_master_facets() : s.master_facets;
     rep.candidate_pairs = static_cast<int>(s.share.candidates);
     rep.work_min = s.balance.time.min;
@@ -1508,6 +1590,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     const bool two_bodies = !s.itf.rigid() && !s.itf.self_contact();
     rep.local_side_facets_held =
         s.itf.slave().n_facets() + (two_bodies ? s.itf.n_master_facets() : 0);
+    rep.local_slave_facets_held = s.itf.slave().n_facets();
     rep.local_side_facets_read =
         all_read(s.itf.slave()) + (two_bodies ? all_read(s.itf.master()) : 0);
     out.push_back(std::move(rep));
@@ -1516,11 +1599,13 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
 }
 
 int ContactConstraint::n_slip() const {
-  int n = 0;
+  // Each node counted by its owner.
+  const int rank = disc_.comm().rank();
+  double n = 0.0;
   for (const auto& s : sides_)
     for (std::size_t j = 0; j < s.active.size(); ++j)
-      n += s.friction ? s.status[j] == 2 : s.active[j] != 0;
-  return n;
+      if (s.node_owners[j] == rank) n += s.friction ? s.status[j] == 2 : s.active[j] != 0;
+  return static_cast<int>(disc_.comm().sum(n));
 }
 
 } // namespace seam::problem

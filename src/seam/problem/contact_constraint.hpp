@@ -68,6 +68,10 @@
 #include <utility>
 #include <vector>
 
+namespace seam::parallel {
+class HolderPublisher;
+}
+
 namespace seam::problem {
 
 class RecordWriter;
@@ -252,6 +256,13 @@ private:
     /// of the last search.
     bool master_in_part = false;
     int master_facets = 0;
+    /// The slave side held in part (slave_held_in_part): the facets of its own and ghost cells
+    /// and the nodal arrays of their nodes; the slave facets of the whole side.
+    bool slave_in_part = false;
+    int slave_facets = 0;
+    /// A slave side held in part: the owners publish to the ranks that hold each node
+    /// (publish()).
+    std::shared_ptr<const parallel::HolderPublisher> holders;
     std::vector<std::int32_t> ghost_nodes;
     /// Self contact: the oriented pairs of the searches of the current step (newest last, at
     /// most ContactSearch::max_pair_period + 1) and the pairs held for the rest of the step
@@ -336,6 +347,11 @@ private:
   void publish_nodal_values(Side& s, std::vector<char>& next) const;
   /// The largest D_jj of the side (its owners' sums). Collective.
   double max_weight(const Side& s) const;
+  /// The owners' values of the slave nodes of side s (`width` per node) to the ranks that hold
+  /// the nodes: every rank on a side held whole (parallel::publish_from_owners), the holders
+  /// on a side held in part (parallel::HolderPublisher). Returns the records this rank sent.
+  /// Collective.
+  std::size_t publish(const Side& s, std::span<double> values, int width) const;
   /// The discrete gradients of side s at the interface displacement u (x_{n+1}) and the start
   /// of the step, and with `tangent` the derivative of their force at the current multipliers
   /// (em_tangent, from the Hessians of the weighted gaps: only when a matrix is built;

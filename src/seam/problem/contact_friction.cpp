@@ -171,6 +171,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   // Tolerance of the stick/slip conditions, in traction units.
   double scale = 0.0;
   for (const double l : s.lambda) scale = std::max(scale, std::abs(l));
+  if (s.slave_in_part) scale = comm.max(scale); // every part the whole side's
   const double tolerance = 1e-8 * scale;
   std::vector<char> next(n, 0);
   // The status each owned node's condition asks for at this iterate, decided by its owner.
@@ -194,7 +195,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   }
   // Every rank gets the owners' sums, slip increments and decisions.
   publish_nodal_values(s, next);
-  parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, s.slip, dim);
+  publish(s, s.slip, dim);
   // The checks below run on every rank over the contact zone (the cycling guard's consistency,
   // the complementarity residual, the friction rows): the owners' normals of the nodes with
   // nonzero sums, a rank computing those of the slave nodes it reads only.
@@ -204,7 +205,7 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
     for (std::size_t j = 0; j < n; ++j)
       if (s.node_owners[j] == comm.rank() && s.D[j] != 0.0)
         for (int c = 0; c < dim; ++c) normals[j * dim + c] = mine[j * dim + c];
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, normals, dim);
+    publish(s, normals, dim);
     s.itf.set_normals_from_owners(normals);
   }
   if (init && s.has_old) s.D_diag_old = s.D_diag;
@@ -222,21 +223,36 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
       if ((held_ || s.frozen_nodes[j]) && paired(s, j, d_max)) out[j] = s.status_previous[j];
     return out;
   };
+  // The counts are the same on every rank: on a slave side held in part each rank counts the
+  // nodes it owns and the counts are summed (every node is held by its owner).
+  const auto counted = [&](std::size_t j) {
+    return !s.slave_in_part || s.node_owners[j] == comm.rank();
+  };
+  const auto agreed = [&](int count) {
+    return s.slave_in_part ? static_cast<int>(comm.sum(static_cast<double>(count))) : count;
+  };
   std::vector<char> status = decided(next);
+  int released = 0;
   for (std::size_t j = 0; j < n; ++j)
-    released_ += (held_ || s.frozen_nodes[j]) && s.status_previous[j] != 0 && !paired(s, j, d_max);
+    released += counted(j) && (held_ || s.frozen_nodes[j]) && s.status_previous[j] != 0 &&
+                !paired(s, j, d_max);
   if (!held_) {
     std::vector<char> alternating;
-    if (s.cycles.guard(status, alternating) > 0)
+    // On a slave side held in part the sets are equal where they are equal on every rank.
+    const auto all_ranks = [&](bool equal) { return comm.min(equal ? 1.0 : 0.0) > 0.0; };
+    if (s.cycles.guard(status, alternating,
+                       s.slave_in_part ? contact::ActiveSetCycles::Agree(all_ranks)
+                                       : contact::ActiveSetCycles::Agree()) > 0)
       for (std::size_t j = 0; j < n; ++j) {
         if (alternating[j]) s.frozen_nodes[j] = 1;
         // The largest status of the cycle, unless the node has no pair at this iterate.
         if (status[j] != 0 && !paired(s, j, d_max)) {
           status[j] = 0;
-          ++released_;
+          released += counted(j);
         }
       }
   }
+  released_ += agreed(released);
   s.status = std::move(status);
   // A frozen node is consistent if its stick/slip condition holds up to a small tolerance (a
   // node on the cone may be either). Its normal status is kept as the frictionless guard keeps
@@ -267,12 +283,21 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   int changes = 0;
   s.inconsistent = 0;
   for (std::size_t j = 0; j < n; ++j) {
+    s.active[j] = s.status[j] != 0;
+    if (!counted(j)) continue;
     changes += s.status[j] != s.status_previous[j];
     const bool inconsistent =
         s.frozen_nodes[j] && s.status[j] == s.status_previous[j] && !consistent(j);
     changes += inconsistent;
     s.inconsistent += inconsistent;
-    s.active[j] = s.status[j] != 0;
+  }
+  if (s.slave_in_part) {
+    double counts[3] = {static_cast<double>(changes), static_cast<double>(s.inconsistent),
+                        static_cast<double>(s.on_cone)};
+    comm.sum_in_place(counts);
+    changes = static_cast<int>(counts[0]);
+    s.inconsistent = static_cast<int>(counts[1]);
+    s.on_cone = static_cast<int>(counts[2]);
   }
   // Complementarity residual: c_n g~ and D_jj t_i . C_t on active nodes, D_jj |lambda_j| on the
   // others; summed over the owners of the nodes (each has the normals of its own nodes).

@@ -41,6 +41,11 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
          config.time.integrator != io::Integrator::energy_momentum;
 }
 
+bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
+  return master_held_in_part(itf, config) &&
+         config.parallel.interface_distribution == io::InterfaceDistribution::bulk;
+}
+
 local_index SideIds::facet(std::int64_t id) const {
   return index_of(facets, id, "facet");
 }

@@ -56,6 +56,15 @@ struct SideIds {
 /// interface); every other interface keeps its master side whole.
 bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 
+/// Whether the slave side of interface `itf` is held in part too: each rank holds the slave
+/// facets of its own and ghost cells (those of its own cells are the slave elements it
+/// evaluates, the ghost layer gives their nodes' rings for the averaged normals), and the
+/// nodal arrays are per held slave node. Two-body contact whose master side is held in part
+/// (with or without friction), with the bulk distribution of the interface (`parallel:
+/// interface_distribution: bulk`: no slave facet leaves the rank that holds it); every other
+/// interface keeps its slave side whole.
+bool slave_held_in_part(const io::Interface& itf, const io::Config& config);
+
 class ContactSearch {
 public:
   /// The skin of the reused ghosting as a fraction of the slave side's mean edge: 0.25, or the

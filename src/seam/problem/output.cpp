@@ -639,7 +639,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 27;
+  constexpr std::size_t n_counts = 28;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -674,6 +674,7 @@ void Output::finish(bool converged, int n_steps) {
       mine[24] += static_cast<double>(c.local_owned_nodes);
       mine[25] += static_cast<double>(c.local_side_facets_held);
       mine[26] += static_cast<double>(c.local_side_facets_read);
+      mine[27] += static_cast<double>(c.local_slave_facets_held);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -755,6 +756,7 @@ void Output::finish(bool converged, int n_steps) {
     e["contact_slave_nodes_owned"] = static_cast<std::int64_t>(d[24]);
     e["contact_side_facets_held"] = static_cast<std::int64_t>(d[25]);
     e["contact_side_facets_read"] = static_cast<std::int64_t>(d[26]);
+    e["contact_slave_facets_held"] = static_cast<std::int64_t>(d[27]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

@@ -118,6 +118,8 @@ struct ContactReport {
   /// facets and ghosts: what it would hold with the sides distributed).
   std::int64_t local_side_facets_held = 0;
   std::int64_t local_side_facets_read = 0;
+  /// The slave facets among them (a self-contact surface counted once, as a slave side).
+  std::int64_t local_slave_facets_held = 0;
 };
 
 /// The rows of all ranks on rank 0 in their order (empty on the other ranks). Collective.

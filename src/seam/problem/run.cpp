@@ -113,12 +113,13 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
                                             const std::filesystem::path& scratch, bool quiet) {
   // Sides held whole on every rank: those of contact and of saddle-point tying. The sides of
   // condensed tying are set up distributed (meshtying::distributed_tying): each rank needs
-  // only its own cells' facets and the master facets ghosted to it; so is the master side of
-  // two-body contact held in part (master_held_in_part).
+  // only its own cells' facets and the master facets ghosted to it; so are the master side of
+  // two-body contact held in part (master_held_in_part) and its slave side with the bulk
+  // distribution (slave_held_in_part).
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     if (meshtying::distributed_tying(itf)) continue;
-    sides.push_back(itf.slave.name);
+    if (!slave_held_in_part(itf, config)) sides.push_back(itf.slave.name);
     if (itf.master && !master_held_in_part(itf, config)) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
   }

@@ -138,5 +138,49 @@ TEST(ActiveSetCycles, ARetractedTrialLeavesTheSequenceOfIterates) {
   EXPECT_EQ(last_period(true, false), 5u);
 }
 
+TEST(ActiveSetCycles, PartsAgreeOnTheWholeSetsCycle) {
+  // Nodes 0, 1 on one part, 2, 3 on another (a slave side held in part): the whole set
+  // alternates at node 0 only. Each part compares its own nodes and the parts agree (equal
+  // where equal on both: here the whole's comparisons, in the same order); the part whose
+  // nodes never change then takes the cycle too, as the whole does, and freezes nothing.
+  const std::vector<Set> whole{{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 0, 0, 0}};
+  std::vector<bool> results;
+  ActiveSetCycles all;
+  all.start(whole[0]);
+  Set alternating, next;
+  std::size_t period = 0;
+  for (std::size_t i = 1; i < whole.size(); ++i) {
+    next = whole[i];
+    period = all.guard(next, alternating, [&](bool equal) {
+      results.push_back(equal);
+      return equal;
+    });
+  }
+  ASSERT_EQ(period, 2u);
+  EXPECT_EQ(next, (Set{1, 0, 0, 0}));
+  for (const std::size_t first : {std::size_t{0}, std::size_t{2}}) {
+    const auto part = [&](const Set& set) { return Set{set[first], set[first + 1]}; };
+    ActiveSetCycles guard, alone;
+    guard.start(part(whole[0]));
+    alone.start(part(whole[0]));
+    std::size_t k = 0, mine = 0, without = 0;
+    Set p, q;
+    for (std::size_t i = 1; i < whole.size(); ++i) {
+      p = part(whole[i]);
+      q = p;
+      mine = guard.guard(p, alternating, [&](bool equal) {
+        const bool others = results[k++];
+        return equal && others;
+      });
+      without = alone.guard(q, alternating);
+    }
+    EXPECT_EQ(k, results.size()) << "part " << first;
+    EXPECT_EQ(mine, 2u) << "part " << first;
+    EXPECT_EQ(p, part(next)) << "part " << first;
+    // Alone, the part whose nodes keep their status sees no cycle.
+    EXPECT_EQ(without, first == 0 ? 2u : 0u) << "part " << first;
+  }
+}
+
 } // namespace
 } // namespace seam::contact

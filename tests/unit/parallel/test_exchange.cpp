@@ -67,5 +67,39 @@ TEST(PublishFromOwners, EveryRankGetsTheOwnersValues) {
       EXPECT_EQ(v[k * width + c], k % 3 == 0 ? 0.0 : k + 0.5 * c) << "item " << k;
 }
 
+TEST(HolderPublisher, TheHoldersGetTheOwnersValuesAndNoOtherRank) {
+  // Rank r holds item k if it owns it or (k + r) % 3 != 0: items held by some ranks only,
+  // listed in a rank-dependent order.
+  std::vector<std::int64_t> keys;
+  std::vector<int> owners;
+  for (int k = n_items - 1; k >= 0; --k)
+    if (owner_of(k) == rank() || (k + rank()) % 3 != 0) {
+      keys.push_back(5 * k + 1);
+      owners.push_back(owner_of(k));
+    }
+  const HolderPublisher publisher(world(), keys, owners);
+  const auto value = [](int k, int c) { return k % 4 == 0 ? 0.0 : k + 0.5 * c; };
+  std::vector<double> v(keys.size() * width);
+  std::size_t published = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const int k = static_cast<int>(keys[i] / 5);
+    const bool mine = owners[i] == rank();
+    for (int c = 0; c < width; ++c) v[i * width + c] = mine ? value(k, c) : -1.0 - rank();
+  }
+  // The records sent: one per other rank holding a nonzero owned item.
+  for (int k = 0; k < n_items; ++k)
+    if (owner_of(k) == rank() && k % 4 != 0)
+      for (int r = 0; r < size(); ++r) published += r != rank() && (k + r) % 3 != 0;
+  EXPECT_EQ(publisher.publish(v, width), published);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    for (int c = 0; c < width; ++c)
+      EXPECT_EQ(v[i * width + c], value(static_cast<int>(keys[i] / 5), c)) << "key " << keys[i];
+  // Again with other values: the publisher is reused.
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    for (int c = 0; c < width; ++c) v[i * width + c] = owners[i] == rank() ? 2.0 : 7.0;
+  publisher.publish(v, width);
+  for (const double x : v) EXPECT_EQ(x, 2.0);
+}
+
 } // namespace
 } // namespace seam::parallel::test
