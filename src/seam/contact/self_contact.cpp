@@ -126,7 +126,7 @@ void orient_pairs(const meshtying::InterfaceSide& side,
 }
 
 void orient_pairs(local_index n_facets, std::span<const FacingPair> pairs,
-                  std::vector<mortar::CandidatePair>& out) {
+                  std::vector<mortar::CandidatePair>& out, std::span<search::Role> roles) {
   std::vector<search::CandidatePair> sorted;
   sorted.reserve(pairs.size());
   std::vector<std::array<double, 3>> axis(static_cast<std::size_t>(n_facets));
@@ -137,7 +137,8 @@ void orient_pairs(local_index n_facets, std::span<const FacingPair> pairs,
     axis[static_cast<std::size_t>(b)] = p.master_axis;
   }
   std::sort(sorted.begin(), sorted.end());
-  const auto oriented = search::assign_roles(axis, sorted);
+  const auto oriented = roles.empty() ? search::assign_roles(axis, sorted)
+                                      : search::assign_roles(axis, sorted, roles);
   out.clear();
   for (const auto& p : oriented) out.push_back({p.slave, p.master});
   std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) {

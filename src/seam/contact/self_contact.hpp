@@ -8,12 +8,15 @@
 // (search::assign_roles: roles alternate across the contact pairs, as in 4C's self-contact binary
 // tree; in each connected group of pairs the lowest facet is slave). The multipliers live on the
 // slave nodes of the current search; every other node of the surface has D_jj = 0 and stays
-// inactive.
+// inactive. In a run (problem/contact_search.hpp) the roles are kept within a time step: those of
+// the step's first search hold through its Newton iterations, and a facet that meets anew later
+// in the step takes a role once; roles change only between steps.
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"
 #include "seam/mortar/interface.hpp"
 #include "seam/mortar/linearization.hpp"
+#include "seam/search/interface_search.hpp"
 #include "seam/search/traversal.hpp"
 #include "seam/search/tree.hpp"
 
@@ -72,8 +75,10 @@ void with_axes(const meshtying::InterfaceSide& side, std::span<const search::Can
                std::vector<FacingPair>& out);
 
 /// orient_pairs with the axes given with the pairs; `n_facets`: the surface's facets.
+/// `roles` (empty, or one per facet): the roles kept from the earlier searches of the step
+/// (search::assign_roles with roles kept), completed with those of the facets that meet anew.
 void orient_pairs(local_index n_facets, std::span<const FacingPair> pairs,
-                  std::vector<mortar::CandidatePair>& out);
+                  std::vector<mortar::CandidatePair>& out, std::span<search::Role> roles = {});
 
 /// The slave facets of the current pairs as a facet set over the surface's nodes. The mortar
 /// integration and the averaged nodal normals use these facets only, so that the normal of a

@@ -374,6 +374,8 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     if (first) {
       s.pair_history.clear();
       s.pairs_held = false;
+      // Self contact: the roles of this search are kept through the step's iterations.
+      if (s.search) s.search->start_step();
     } else if (retrial && !s.pairs_held && !s.pair_history.empty()) {
       s.pair_history.pop_back(); // the shortened correction's search stands for the iteration
     }

@@ -176,6 +176,10 @@ void ContactSearch::hand_in_part(contact::ContactInterface& itf,
   itf.set_candidates(pairs_);
 }
 
+void ContactSearch::start_step() {
+  if (ghosts_) roles_.assign(slave_ids_.facets.size(), search::Role::none);
+}
+
 void ContactSearch::find_self(contact::ContactInterface& itf) {
   const auto& side = itf.slave();
   const auto owned = itf.owned_facets();
@@ -223,7 +227,7 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
     with[i] = {{slave_ids_.facet(all[i].slave), slave_ids_.facet(all[i].master)},
                all[i].slave_axis,
                all[i].master_axis};
-  contact::orient_pairs(side.n_facets(), with, pairs_);
+  contact::orient_pairs(side.n_facets(), with, pairs_, roles_);
   hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }

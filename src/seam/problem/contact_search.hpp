@@ -13,7 +13,8 @@
 // one whole search (normal cones, no neighbouring facets, facing); a pair is kept by the rank
 // of its lower facet, so that every pair is found once. The facing pairs of all ranks are
 // gathered (the contact graph, O(pairs)) and every rank assigns the roles as one whole search
-// does (contact::orient_pairs).
+// does (contact::orient_pairs). The roles of a step's first search are kept through the step
+// (start_step), so that a facet's role changes only between steps.
 //
 // The ghosting is reused between searches (parallel::VerletGhosts): boxes widened by a skin of
 // a fraction of the mean facet size, exchanged anew only when a surface node has moved more
@@ -108,6 +109,11 @@ public:
   std::int64_t n_searches() const;
   /// The absolute skin of the ghosting.
   double skin() const { return skin_; }
+  /// Self contact: a new time step. The roles the step's first find() assigns are kept through
+  /// the step's later finds (its Newton iterations): a facet that has been slave or master in
+  /// the step keeps that role, one that meets anew takes a role once (search::assign_roles with
+  /// roles kept). Without a call the roles are assigned anew at every find().
+  void start_step();
   /// Self contact: the oriented pairs of all ranks found by the last find() (the same on every
   /// rank).
   std::span<const mortar::CandidatePair> self_pairs() const { return pairs_; }
@@ -137,6 +143,9 @@ private:
   std::optional<parallel::VerletGhosts> ghosts_;
   std::optional<search::Tree> tree_;
   std::vector<global_index> tree_facets_;
+  /// Self contact: the roles kept in the current step (one per surface facet; empty before the
+  /// first start_step()), the same on every rank.
+  std::vector<search::Role> roles_;
 };
 
 } // namespace seam::problem

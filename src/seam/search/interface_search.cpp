@@ -95,7 +95,16 @@ std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const Candid
 
 std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> axis,
                                         std::span<const CandidatePair> pairs) {
+  std::vector<Role> roles(axis.size(), Role::none);
+  return assign_roles(axis, pairs, roles);
+}
+
+std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> axis,
+                                        std::span<const CandidatePair> pairs,
+                                        std::span<Role> roles) {
   const auto n = static_cast<local_index>(axis.size());
+  SEAM_CHECK(roles.size() == axis.size(), InternalError, "search: ", roles.size(), " roles for ", n,
+             " facets");
   std::vector<std::pair<double, std::size_t>> order(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const auto& p = pairs[k];
@@ -108,9 +117,16 @@ std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> a
   std::sort(order.begin(), order.end());
 
   // Union-find with parity: parity[f] is f's role relative to its parent (0 same, 1 other).
-  std::vector<local_index> parent(n);
+  // Node n stands for the role slave: the facets with a role hang from it with their role as
+  // parity, so that every group joined to one of them is coloured around the roles kept.
+  std::vector<local_index> parent(static_cast<std::size_t>(n) + 1);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<std::uint8_t> parity(n, 0);
+  std::vector<std::uint8_t> parity(static_cast<std::size_t>(n) + 1, 0);
+  for (local_index f = 0; f < n; ++f)
+    if (roles[f] != Role::none) {
+      parent[f] = n;
+      parity[f] = static_cast<std::uint8_t>(roles[f]);
+    }
   auto find = [&](local_index f) {
     std::uint8_t par = 0;
     local_index r = f;
@@ -137,10 +153,15 @@ std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> a
     parent[rb] = ra;
     parity[rb] = static_cast<std::uint8_t>(pa ^ pb ^ 1); // opposite roles across the pair
   }
-  // Each connected group of pairs is oriented so that its lowest facet number is slave: the
-  // roles then depend only on which facets meet, not on the order of the pairs, and a slave
-  // patch stays slave while its contact zone persists.
-  std::vector<std::uint8_t> flip(n, 2); // per root: the role of its lowest facet (2: unset)
+  // The group of the roles kept is coloured by them (node n slave); each other connected group
+  // of pairs so that its lowest facet number is slave: the roles then depend only on which
+  // facets meet, not on the order of the pairs, and a slave patch stays slave while its contact
+  // zone persists.
+  std::vector<std::uint8_t> flip(static_cast<std::size_t>(n) + 1, 2); // per root (2: unset)
+  {
+    const auto [r, par] = find(n);
+    flip[r] = par;
+  }
   std::vector<char> paired(n, 0);
   for (const auto& p : pairs) paired[p.slave] = paired[p.master] = 1;
   for (local_index f = 0; f < n; ++f)
@@ -148,17 +169,22 @@ std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> a
       const auto [r, par] = find(f);
       if (flip[r] == 2) flip[r] = par;
     }
+  const auto role = [&](local_index f) {
+    const auto [r, par] = find(f);
+    return static_cast<std::uint8_t>(par ^ flip[r]);
+  };
   std::vector<CandidatePair> out;
   out.reserve(pairs.size());
   for (const auto& p : pairs) {
     const local_index lo = std::min(p.slave, p.master), hi = std::max(p.slave, p.master);
-    const auto [root, par_lo] = find(lo);
-    const std::uint8_t role_lo = par_lo ^ flip[root], role_hi = find(hi).second ^ flip[root];
+    const std::uint8_t role_lo = role(lo), role_hi = role(hi);
     if (role_lo == role_hi || role_lo == 0)
       out.push_back({lo, hi});
     else
       out.push_back({hi, lo});
   }
+  for (local_index f = 0; f < n; ++f)
+    if (paired[f] && roles[f] == Role::none) roles[f] = static_cast<Role>(role(f));
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include "seam/search/tree.hpp"
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -80,5 +81,17 @@ std::vector<CandidatePair> assign_roles(const Tree& tree, std::span<const Candid
 /// normal cone (facet_normal_cone) for every facet f of the pairs; axis.size() facets in all.
 std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> axis,
                                         std::span<const CandidatePair> pairs);
+
+/// A facet's role in assign_roles with roles kept: none yet, slave or master (the two colours).
+enum class Role : std::int8_t { none = -1, slave = 0, master = 1 };
+/// assign_roles with the roles of earlier searches kept (one entry per facet, axis.size()):
+/// a facet with a role keeps it, and the pairs are coloured around those roles (a group of pairs
+/// joined to a facet with a role takes its colours from it; a group without one gets the lowest
+/// facet slave, as above); a pair of two facets of the same role is oriented as an odd cycle,
+/// lower facet slave. The facets of `pairs` without a role get the role they were given. With
+/// every entry none, the pairs are oriented as by assign_roles above.
+std::vector<CandidatePair> assign_roles(std::span<const std::array<double, 3>> axis,
+                                        std::span<const CandidatePair> pairs,
+                                        std::span<Role> roles);
 
 } // namespace seam::search

@@ -129,3 +129,55 @@ TEST(SelfContactSearch, RolesAlternateAndTheLowestFacetIsSlave) {
         found.begin(), found.end(),
         CandidatePair{std::min(p.slave, p.master), std::max(p.slave, p.master)}));
 }
+
+TEST(SelfContactSearch, RolesKeptThroughAStep) {
+  // Facets 1, 3, 4 of a strip whose contact graph changes between the searches of one step (as
+  // between Newton iterations): first 3 faces 4, then 1 comes in on 3's side, then 4 leaves.
+  // Assigned anew at each search, 3 and 4 swap roles (the lowest facet 1 of the group is slave);
+  // kept, 3 stays slave, 4 master, and the newcomer 1 is given master once.
+  const std::vector<std::array<double, 3>> axis{{0, 1, 0}, {0, -1, 0}, {0, 1, 0},
+                                                {0, 1, 0}, {0, -1, 0}, {0, 1, 0}};
+  const std::vector<std::vector<CandidatePair>> searches{{{3, 4}}, {{1, 3}, {3, 4}}, {{1, 3}}};
+  std::vector<Role> roles(axis.size(), Role::none);
+  // Oriented pairs of the step: kept roles, and assigned anew for comparison.
+  const std::vector<std::vector<CandidatePair>> kept{{{3, 4}}, {{3, 1}, {3, 4}}, {{3, 1}}};
+  const std::vector<std::vector<CandidatePair>> anew{{{3, 4}}, {{1, 3}, {4, 3}}, {{1, 3}}};
+  for (std::size_t k = 0; k < searches.size(); ++k) {
+    EXPECT_EQ(sorted(assign_roles(axis, searches[k], roles)), sorted(kept[k])) << "search " << k;
+    EXPECT_EQ(sorted(assign_roles(axis, searches[k])), sorted(anew[k])) << "search " << k;
+  }
+  EXPECT_EQ(roles, (std::vector<Role>{Role::none, Role::master, Role::none, Role::slave,
+                                      Role::master, Role::none}));
+  // Two master facets that meet later in the step: oriented as an odd cycle (lower facet slave),
+  // their roles unchanged; a new group not joined to the kept roles is oriented as anew.
+  EXPECT_EQ(assign_roles(axis, std::vector<CandidatePair>{{4, 1}}, roles),
+            (std::vector<CandidatePair>{{1, 4}}));
+  EXPECT_EQ(assign_roles(axis, std::vector<CandidatePair>{{5, 0}}, roles),
+            (std::vector<CandidatePair>{{0, 5}}));
+  EXPECT_EQ(roles, (std::vector<Role>{Role::slave, Role::master, Role::none, Role::slave,
+                                      Role::master, Role::master}));
+}
+
+TEST(SelfContactSearch, RolesKeptEqualRolesAnewAtTheFirstSearch) {
+  // No role kept yet (a step's first search): the same orientation as assign_roles, on a
+  // folded strip and on a crumpled one (odd cycles).
+  for (int variant = 0; variant < 2; ++variant) {
+    const Mesh m =
+        variant == 0 ? test::folded_strip(1.0, 0.05, 0.2, 40, 12, 8) : crumpled(2, 1500, 2);
+    const Tree t(m.view(), cone_tree(variant == 0 ? 0.06 : 0.3 * min_edge_length(m.view())));
+    const auto pairs = find_self_pairs(t);
+    ASSERT_FALSE(pairs.empty());
+    std::vector<std::array<double, 3>> axis(static_cast<std::size_t>(t.n_facets()));
+    std::visit(
+        [&](const auto& b) {
+          for (local_index s = 0; s < t.n_facets(); ++s)
+            axis[b.facet_of_slot[s]] = b.facet_cones[s].axis;
+        },
+        t.bvh());
+    std::vector<Role> roles(axis.size(), Role::none);
+    const auto first = assign_roles(axis, pairs, roles);
+    EXPECT_EQ(sorted(first), sorted(assign_roles(t, pairs))) << "variant " << variant;
+    // The same pairs again with the roles of the first search: unchanged.
+    EXPECT_EQ(sorted(assign_roles(axis, pairs, roles)), sorted(first)) << "variant " << variant;
+  }
+}
