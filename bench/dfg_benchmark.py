@@ -37,9 +37,9 @@ EXAMPLE = os.path.join(HERE, "..", "examples", "dfg_cylinder")
 CD_REF = 5.57954
 
 
-def run(seam, np, level, solver, case, options=()):
-    if solver == "pcd":
-        solver, options = "iterative", ["-fluid_schur", "pcd"] + list(options)
+def level_folder(level):
+    """A new temporary folder holding the example's dfg.geo with the cell sizes
+    (h, hc) = (0.08, 0.012) / 2^level."""
     folder = tempfile.mkdtemp(prefix="seam_bench_dfg_")
     with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
         geo = f.read()
@@ -47,6 +47,13 @@ def run(seam, np, level, solver, case, options=()):
     geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % (0.012 / 2 ** level))
     with open(os.path.join(folder, "dfg.geo"), "w") as f:
         f.write(geo)
+    return folder
+
+
+def run(seam, np, level, solver, case, options=()):
+    if solver == "pcd":
+        solver, options = "iterative", ["-fluid_schur", "pcd"] + list(options)
+    folder = level_folder(level)
     with open(os.path.join(EXAMPLE, "dfg_%s.yaml" % case)) as f:
         yaml = f.read() + "solver: {linear: %s}\n" % solver
     if case == "2d3":

@@ -16,7 +16,7 @@ import json
 import os
 import shutil
 import subprocess
-import tempfile
+import sys
 
 import matplotlib
 
@@ -24,6 +24,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "bench"))
+import dfg_benchmark  # noqa: E402  (the meshes of the benchmark's levels)
+
 EXAMPLE = os.path.join(HERE, "..", "examples", "dfg_cylinder")
 REFERENCE = {"c_D": 5.57954, "c_L": 0.010619, "dp": 0.11752}
 TOLERANCE = {"c_D": 5e-3, "c_L": 5e-2, "dp": 5e-3}
@@ -35,13 +38,7 @@ def rows(path):
 
 
 def run(seam, level):
-    work = tempfile.mkdtemp(prefix="seam_dfg_2d1_")
-    with open(os.path.join(EXAMPLE, "dfg.geo")) as f:
-        geo = f.read()
-    geo = geo.replace("DefineNumber[0.04,", "DefineNumber[%g," % (0.08 / 2 ** level))
-    geo = geo.replace("DefineNumber[0.006,", "DefineNumber[%g," % (0.012 / 2 ** level))
-    with open(os.path.join(work, "dfg.geo"), "w") as f:
-        f.write(geo)
+    work = dfg_benchmark.level_folder(level)
     shutil.copy(os.path.join(EXAMPLE, "dfg_2d1.yaml"), os.path.join(work, "case.yaml"))
     out = os.path.join(work, "out")
     subprocess.run([seam, "run", os.path.join(work, "case.yaml"), "-o", out, "--quiet"],
