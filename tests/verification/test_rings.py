@@ -14,7 +14,13 @@
   the momentum along the plane (or the angular momentum about the sphere's centre) stays to
   1e-12, the normal momentum changes by the plane's impulse in every step; np = 3 equals
   np = 1 (2D).
+- Roles fixed within a step: the 10-ring pile to t = 0.25 (the second row lands on the
+  first). summary.json counts the facets' role changes between the searches of a step attempt
+  and between steps: none within a step, some between steps (the counter is alive), the same
+  at np = 3 as at np = 1; with the roles assigned anew at every search (SEAM_SELF_ROLES_ANEW=1,
+  a diagnostic) the same case changes roles within steps.
 """
+import json
 import math
 import os
 import sys
@@ -669,7 +675,47 @@ def test_rings_example():
         raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
 
 
+def role_changes(np=1, anew=False):
+    """The role changes (within a step attempt, between steps) of the `rings` interface of the
+    10-ring pile to t = 0.25 (summary.json), the roles assigned anew at every search if
+    `anew`."""
+    old = os.environ.pop("SEAM_SELF_ROLES_ANEW", None)
+    if anew:
+        os.environ["SEAM_SELF_ROLES_ANEW"] = "1"
+    try:
+        _, _, work, out, _ = rings_case(np=np, end=0.25)
+    finally:
+        os.environ.pop("SEAM_SELF_ROLES_ANEW", None)
+        if old is not None:
+            os.environ["SEAM_SELF_ROLES_ANEW"] = old
+    with open(os.path.join(out, "summary.json")) as f:
+        itf = {i["name"]: i for i in json.load(f)["interfaces"]}["rings"]
+    H.cleanup(work, out)
+    changes = itf["role_changes_within_step"], itf["role_changes_between_steps"]
+    print("   np %d, roles %s: role changes within a step %d, between steps %d"
+          % (np, "anew at every search" if anew else "kept through the step", *changes))
+    return changes
+
+
+def test_roles_fixed_within_a_step():
+    """The 10-ring pile to t = 0.25 with the energy-momentum scheme (100 steps): no facet of
+    the `surface:` interface changes its role between two searches of a step attempt, facets
+    do change roles between steps (24 measured), np = 3 counts as np = 1 (every rank holds the
+    same roles). With the roles assigned anew at every search the same run changes roles
+    within steps (24 measured), so the counter sees what keeping the roles prevents."""
+    within, between = role_changes()
+    if within != 0 or between <= 0:
+        raise AssertionError("roles kept: %d changes within a step (expected 0), %d between "
+                             "steps (expected > 0)" % (within, between))
+    three = role_changes(np=3)
+    if three != (within, between):
+        raise AssertionError("np 3 counts %s role changes, np 1 %s" % (three, (within, between)))
+    anew, _ = role_changes(anew=True)
+    if anew <= 0:
+        raise AssertionError("roles anew at every search: no change within a step")
+
+
 if __name__ == "__main__":
     H.main([test_free_bodies_2d, test_free_bodies_3d, test_start_inside_energy_momentum,
             test_ring_on_obstacles_2d,
-            test_ring_on_obstacles_3d, test_rings_example])
+            test_ring_on_obstacles_3d, test_rings_example, test_roles_fixed_within_a_step])

@@ -1566,6 +1566,10 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.surface_facets = s.itf.self_contact() ? static_cast<int>(s.itf.slave().n_facets()) : 0;
     rep.local_ghost_exchanges = s.share.ghost_exchanges;
     rep.local_searches = s.share.searches;
+    if (s.search && s.search->self()) {
+      rep.role_changes_within_step = s.search->role_changes().within;
+      rep.role_changes_between_steps = s.search->role_changes().between;
+    }
     rep.local_pairs = s.part.n_pairs;
     rep.local_integration_cells = s.part.n_cells;
     rep.local_contact_nodes = s.nodal.decided;

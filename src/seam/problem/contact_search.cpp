@@ -79,6 +79,15 @@ double ContactSearch::skin_factor() {
   return value;
 }
 
+bool ContactSearch::roles_kept() {
+  const char* text = std::getenv("SEAM_SELF_ROLES_ANEW");
+  if (text == nullptr || *text == '\0') return true;
+  const std::string value = text;
+  SEAM_CHECK(value == "0" || value == "1", InputError, "SEAM_SELF_ROLES_ANEW='", value,
+             "': expected 0 or 1 (1: self-contact roles assigned anew at every search)");
+  return value == "0";
+}
+
 ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
                              std::vector<local_index> held, SideIds slave, SideIds master,
                              bool master_in_part)
@@ -93,6 +102,9 @@ ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
                InternalError, "contact search: side ids not increasing");
   if (itf.self_contact()) {
     ghosts_.emplace(comm, itf.search_inflation(), skin_);
+    keep_roles_ = roles_kept();
+    role_in_step_.assign(slave_ids_.facets.size(), search::Role::none);
+    role_before_ = role_in_step_;
   } else {
     parallel::DistributedSearchOptions options;
     options.skin = skin_;
@@ -177,7 +189,32 @@ void ContactSearch::hand_in_part(contact::ContactInterface& itf,
 }
 
 void ContactSearch::start_step() {
-  if (ghosts_) roles_.assign(slave_ids_.facets.size(), search::Role::none);
+  if (!ghosts_) return;
+  if (keep_roles_) roles_.assign(slave_ids_.facets.size(), search::Role::none);
+  for (std::size_t f = 0; f < role_in_step_.size(); ++f)
+    if (role_in_step_[f] != search::Role::none) {
+      role_before_[f] = role_in_step_[f];
+      role_in_step_[f] = search::Role::none;
+    }
+}
+
+void ContactSearch::count_role_changes() {
+  // Per facet: bit 0 slave of a pair, bit 1 master of a pair.
+  std::vector<std::uint8_t> seen(role_in_step_.size(), 0);
+  for (const auto& p : pairs_) {
+    seen[static_cast<std::size_t>(p.slave)] |= 1;
+    seen[static_cast<std::size_t>(p.master)] |= 2;
+  }
+  for (std::size_t f = 0; f < seen.size(); ++f) {
+    if (seen[f] != 1 && seen[f] != 2) continue;
+    const auto role = seen[f] == 1 ? search::Role::slave : search::Role::master;
+    auto& in_step = role_in_step_[f];
+    if (in_step != search::Role::none)
+      role_changes_.within += in_step != role;
+    else if (role_before_[f] != search::Role::none)
+      role_changes_.between += role_before_[f] != role;
+    in_step = role;
+  }
 }
 
 void ContactSearch::find_self(contact::ContactInterface& itf) {
@@ -227,7 +264,9 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
     with[i] = {{slave_ids_.facet(all[i].slave), slave_ids_.facet(all[i].master)},
                all[i].slave_axis,
                all[i].master_axis};
-  contact::orient_pairs(side.n_facets(), with, pairs_, roles_);
+  contact::orient_pairs(side.n_facets(), with, pairs_,
+                        keep_roles_ ? std::span<search::Role>(roles_) : std::span<search::Role>());
+  count_role_changes();
   hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
 }

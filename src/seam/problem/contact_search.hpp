@@ -72,6 +72,11 @@ public:
   /// value of SEAM_GHOST_SKIN in the environment (0: a ghost exchange at every search; for
   /// tests). InputError for a value that is not a number >= 0.
   static double skin_factor();
+  /// Whether self contact keeps the roles of a step's first search through the step: yes,
+  /// unless SEAM_SELF_ROLES_ANEW=1 is in the environment (a diagnostic: the roles are then
+  /// assigned anew at every search, as before the roles were kept). InputError for a value
+  /// other than 0 or 1.
+  static bool roles_kept();
 
   /// `held`: the facets (side-local: master facets of two bodies, surface facets of self
   /// contact) this rank hands in to the ghosting, each on one rank (e.g. those of the cells it
@@ -114,6 +119,17 @@ public:
   /// the step keeps that role, one that meets anew takes a role once (search::assign_roles with
   /// roles kept). Without a call the roles are assigned anew at every find().
   void start_step();
+  /// Self contact: the role changes of the surface's facets so far (the same on every rank).
+  /// A facet's role at a search is read from the oriented pairs: slave (master) if it is the
+  /// slave (master) of each of its pairs; a facet without a pair, or slave of one pair and
+  /// master of another (an odd cycle), has none then. `within`: changes against its role at the
+  /// latest earlier search of the same step attempt (between two start_step()); `between`: at
+  /// the first search of a step attempt that gives it a role, changes against the role it had
+  /// at the last search that gave it one before the attempt.
+  struct RoleChanges {
+    std::int64_t within = 0, between = 0;
+  };
+  RoleChanges role_changes() const { return role_changes_; }
   /// Self contact: the oriented pairs of all ranks found by the last find() (the same on every
   /// rank).
   std::span<const mortar::CandidatePair> self_pairs() const { return pairs_; }
@@ -123,6 +139,8 @@ public:
 
 private:
   void find_self(contact::ContactInterface& itf);
+  /// Counts the role changes of the pairs of the last find_self() (role_changes()).
+  void count_role_changes();
   /// The ghosts to the interface's integration, in side-local ids.
   void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts);
 
@@ -146,6 +164,11 @@ private:
   /// Self contact: the roles kept in the current step (one per surface facet; empty before the
   /// first start_step()), the same on every rank.
   std::vector<search::Role> roles_;
+  bool keep_roles_ = true; ///< roles_kept()
+  /// Self contact, per surface facet: its role at the latest search of the current step
+  /// attempt that gave it one, and at the last such search before the attempt (none if none).
+  std::vector<search::Role> role_in_step_, role_before_;
+  RoleChanges role_changes_;
 };
 
 } // namespace seam::problem

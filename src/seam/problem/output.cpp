@@ -731,6 +731,10 @@ void Output::finish(bool converged, int n_steps) {
     e["active_nodes"] = c.active_nodes;
     e["normal_force"] = c.normal_force;
     e["contact_area"] = c.contact_area;
+    if (c.surface_facets > 0) { // a surface: interface (docs/input.md)
+      e["role_changes_within_step"] = c.role_changes_within_step;
+      e["role_changes_between_steps"] = c.role_changes_between_steps;
+    }
     itfs.push_back(std::move(e));
   }
   auto& ranks = j["ranks_detail"];
