@@ -16,7 +16,12 @@ namespace seam::problem {
 
 namespace {
 
-constexpr const char* magic = "seam checkpoint 1\n";
+// The format's number is raised whenever the records change meaning (format 2: records keyed by
+// mesh-file node ids, contact sides and fluid-structure state per owner); a checkpoint of
+// another format is refused with its number, not read as damaged or as another mesh.
+constexpr const char* magic_prefix = "seam checkpoint ";
+constexpr int format = 2;
+const std::string magic = magic_prefix + std::to_string(format) + "\n";
 constexpr char real_type = 'r', integer_type = 'i', text_type = 't';
 
 std::string read_file(const std::filesystem::path& file, bool& ok) {
@@ -144,8 +149,18 @@ RecordReader::RecordReader(std::filesystem::path file) : file_(std::move(file)) 
   bool ok = false;
   const std::string bytes = read_file(file_, ok);
   if (!ok) fail("cannot be read (missing file)");
-  const std::size_t head = std::strlen(magic);
-  if (bytes.compare(0, head, magic) != 0) fail("is not a seam checkpoint (unknown first line)");
+  const std::size_t head = magic.size();
+  if (bytes.compare(0, head, magic) != 0) {
+    const std::size_t prefix = std::strlen(magic_prefix);
+    if (bytes.compare(0, prefix, magic_prefix) != 0)
+      fail("is not a seam checkpoint (unknown first line)");
+    const auto eol = bytes.find('\n', prefix);
+    fail("is of checkpoint format " +
+         bytes.substr(prefix,
+                      eol == std::string::npos ? 8 : std::min<std::size_t>(eol - prefix, 8)) +
+         ", written by another version of seam; this seam reads format " + std::to_string(format) +
+         ": rerun to write a checkpoint of this version");
+  }
   if (bytes.size() < head + 16) fail("is truncated");
   std::size_t pos = bytes.size() - 16;
   const auto size = take<std::uint64_t>(bytes, pos, ok);

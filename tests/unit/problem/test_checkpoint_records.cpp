@@ -89,7 +89,7 @@ TEST(CheckpointRecords, DamageIsAnInputError) {
     write(file, good.substr(0, n));
     EXPECT_THROW(RecordReader r(file), InputError) << "cut at " << n;
   }
-  const std::size_t head = std::string("seam checkpoint 1\n").size();
+  const std::size_t head = good.find('\n') + 1;
   for (std::size_t i = head; i < good.size(); ++i) {
     std::string bad = good;
     bad[i] = static_cast<char>(bad[i] ^ 0x10);
@@ -99,6 +99,11 @@ TEST(CheckpointRecords, DamageIsAnInputError) {
   }
   expect_rejected(good + "x", "trailing");
   expect_rejected("step,time\n1,0.5\n", "not a seam checkpoint");
+  // A checkpoint of another format (the first line's number) names both formats.
+  ASSERT_EQ(good.compare(0, 18, "seam checkpoint 2\n"), 0);
+  expect_rejected("seam checkpoint 1\n" + good.substr(18),
+                  "is of checkpoint format 1, written by another version of seam; this seam "
+                  "reads format 2");
   EXPECT_THROW(RecordReader r(scratch("no_such_file.bin")), InputError);
 }
 
