@@ -19,13 +19,15 @@
 //   of cylinder and flag: its facets there are hc / wall, growing back to hc within
 //   wall_layer (0.02) of them (the flag's own cells stay: non-matching when structure = 1).
 //   wake > 0 holds the fluid's cells at that size in the box [0.1, 1.4] x [0.1, 0.31].
-//   refine, quads, depth, structure, wall, wall_layer and wake may be set before this file
+//   refine, fluid_ratio, quads, depth, structure, wall, wall_layer and wake may be set before this file
 //   is included.
 // Mesh with order 2: quad9 structure, tri6 fluid (Taylor-Hood).
 If (!Exists(refine))
   refine = 1;
 EndIf
-fluid_ratio = 1;
+If (!Exists(fluid_ratio))
+  fluid_ratio = 1;
+EndIf
 If (!Exists(quads))
   quads = 0;
 EndIf
