@@ -1,14 +1,14 @@
-#include "seam/problem/fluid_solver.hpp"
+#include "seam/flow/fluid_solver.hpp"
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
+#include "seam/flow/fluid_layout.hpp"
+#include "seam/flow/fluid_mesh_motion.hpp"
+#include "seam/flow/fluid_model.hpp"
+#include "seam/flow/fluid_output.hpp"
+#include "seam/flow/fluid_pcd.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/problem/checkpoint.hpp"
-#include "seam/problem/fluid_layout.hpp"
-#include "seam/problem/fluid_mesh_motion.hpp"
-#include "seam/problem/fluid_model.hpp"
-#include "seam/problem/fluid_output.hpp"
-#include "seam/problem/fluid_pcd.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/step_control.hpp"
 #include "seam/problem/tying_constraint.hpp"
@@ -22,7 +22,20 @@
 #include <memory>
 #include <optional>
 
-namespace seam::problem {
+namespace seam::flow {
+
+using problem::BodyLoad;
+using problem::CanonicalOrder;
+using problem::Checkpoints;
+using problem::find_region;
+using problem::LinearSolverChoice;
+using problem::MeshIdentity;
+using problem::RecordWriter;
+using problem::RestartFrom;
+using problem::StepControl;
+using problem::SystemKind;
+using problem::tied_dofs;
+using problem::TyingConstraint;
 
 namespace {
 
@@ -879,4 +892,4 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
       [&] { return identity; }, dir, quiet, check_only, restart);
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

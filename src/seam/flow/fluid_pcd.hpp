@@ -41,7 +41,7 @@
 #include <span>
 #include <vector>
 
-namespace seam::problem {
+namespace seam::flow {
 
 class FluidLayout;
 struct FluidModel;
@@ -108,4 +108,4 @@ private:
   double state_ = 1.0, mass_ = 0.0, coupling_ = 1.0;
 };
 
-} // namespace seam::problem
+} // namespace seam::flow

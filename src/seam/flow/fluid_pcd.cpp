@@ -1,17 +1,17 @@
-#include "seam/problem/fluid_pcd.hpp"
+#include "seam/flow/fluid_pcd.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/flow/fluid_layout.hpp"
+#include "seam/flow/fluid_model.hpp"
 #include "seam/fluid/pressure_operators.hpp"
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
-#include "seam/problem/fluid_layout.hpp"
-#include "seam/problem/fluid_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-namespace seam::problem {
+namespace seam::flow {
 
 namespace {
 
@@ -350,4 +350,4 @@ void PressureConvectionDiffusion::apply(Vec x, Vec y) const {
   la::check(VecScale(y, -1.0 / coupling_), "VecScale");
 }
 
-} // namespace seam::problem
+} // namespace seam::flow
