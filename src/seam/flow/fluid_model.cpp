@@ -212,6 +212,7 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
       model.values.emplace_back(0.0);
     }
   }
+  model.tied_nodes = std::move(tied);
   std::stable_sort(dirichlet.begin(), dirichlet.end(),
                    [](const auto& a, const auto& b) { return a.dof < b.dof; });
   for (std::size_t i = 0; i < dirichlet.size(); ++i)

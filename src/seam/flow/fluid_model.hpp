@@ -40,6 +40,8 @@ struct FluidModel {
   /// The flow is enclosed (the velocity is prescribed on the whole boundary): its pressure is
   /// fixed at one vertex, and errors and output remove the mean instead.
   bool pressure_pinned = false;
+  /// Per mesh node: 1 on a side of a tied interface (mesh tying of fluid subdomains).
+  std::vector<char> tied_nodes;
 };
 
 /// True if some body of the input is made of a fluid material.

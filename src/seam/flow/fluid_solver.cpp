@@ -365,8 +365,6 @@ public:
       solver_.set_fields(velocity, pressure, fluid_velocity_block(config));
       // `-fluid_schur pcd`: the pressure convection-diffusion Schur block (fluid_pcd.hpp).
       if (pcd_requested()) {
-        SEAM_CHECK(!tying, InputError,
-                   "command line: -fluid_schur pcd does not support tied fluid subdomains");
         pcd_ = std::make_unique<PressureConvectionDiffusion>(model, layout);
         solver_.set_schur_preconditioner([this](Vec x, Vec y) { pcd_->apply(x, y); });
       }
