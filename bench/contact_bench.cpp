@@ -14,7 +14,7 @@
 // per step) and summary.json (seconds per phase, maximum over ranks).
 #include "registry.hpp"
 
-#include "seam/problem/run.hpp"
+#include "seam/app/run.hpp"
 
 #include <mpi.h>
 #include <yaml-cpp/yaml.h>
@@ -61,8 +61,8 @@ struct Measurement {
 const char* const phases[] = {"search",   "mortar",       "condensation",
                               "assembly", "linear_solve", "output"};
 
-Measurement measure(const seam::problem::RunOptions& options, int argc, char** argv) {
-  seam::problem::run(options, argc, argv);
+Measurement measure(const seam::app::RunOptions& options, int argc, char** argv) {
+  seam::app::run(options, argc, argv);
   std::ifstream newton(std::filesystem::path(options.output_dir) / "newton.csv");
   std::string line;
   std::getline(newton, line);
@@ -117,7 +117,7 @@ std::filesystem::path frictionless_copy(const std::filesystem::path& input) {
 }
 
 /// MPI for the benchmark's lifetime, so that each run's PETSc session (initialized and
-/// finalized inside seam::problem::run) leaves it open for the next run.
+/// finalized inside seam::app::run) leaves it open for the next run.
 struct MpiLifetime {
   int was_initialized = 0;
   MpiLifetime(int& argc, char**& argv) {
@@ -133,7 +133,7 @@ struct MpiLifetime {
 
 int run_contact_bench(int argc, char** argv) {
   MpiLifetime mpi(argc, argv);
-  seam::problem::RunOptions options;
+  seam::app::RunOptions options;
   options.quiet = true;
   bool compare = false;
   for (int i = 1; i < argc; ++i) {
@@ -167,7 +167,7 @@ int run_contact_bench(int argc, char** argv) {
   print(with, options.input);
   if (!compare) return 0;
 
-  seam::problem::RunOptions plain = options;
+  seam::app::RunOptions plain = options;
   const auto copy = frictionless_copy(options.input);
   plain.input = copy.string();
   plain.output_dir = options.output_dir + "_frictionless";

@@ -16,13 +16,18 @@ function(seam_module name)
 endfunction()
 
 # seam_unit_test(MODULE DEPS ... [MPI_RANKS n ...]): tests/unit/MODULE/*.cpp -> one GoogleTest
-# executable unit_MODULE. With MPI_RANKS the test directory brings its own main() (which
-# initializes MPI) and the executable also runs under mpiexec on each number of ranks given.
+# executable unit_MODULE. With MPI_RANKS the executable has a main() that initializes MPI (the
+# directory's main.cpp, or else tests/unit/mpi_main.cpp) and also runs under mpiexec on each
+# number of ranks given.
 function(seam_unit_test name)
   cmake_parse_arguments(ARG "" "" "DEPS;MPI_RANKS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/unit/${name}/*.cpp)
   if(NOT sources)
     return()
+  endif()
+  # Without a main() of its own, an MPI test directory takes tests/unit/mpi_main.cpp.
+  if(ARG_MPI_RANKS AND NOT EXISTS ${PROJECT_SOURCE_DIR}/tests/unit/${name}/main.cpp)
+    list(APPEND sources ${PROJECT_SOURCE_DIR}/tests/unit/mpi_main.cpp)
   endif()
   add_executable(unit_${name} ${sources})
   if(ARG_MPI_RANKS)

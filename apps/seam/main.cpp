@@ -1,7 +1,7 @@
 // seam command line: `seam run INPUT.yaml`, `seam check INPUT.yaml`, `seam --help | --version`.
 // Exit codes (CONTRACT.md): 0 success, 1 bad input, 2 solver gave up, 3 internal error.
+#include "seam/app/run.hpp"
 #include "seam/common/error.hpp"
-#include "seam/problem/run.hpp"
 
 #include <CLI/CLI.hpp>
 #include <mpi.h>
@@ -35,9 +35,9 @@ int dispatch(int argc, char** argv) {
     }
 
   CLI::App app{"seam: mortar finite element methods for mesh tying and contact"};
-  app.set_version_flag("--version", std::string("seam ") + seam::problem::version());
+  app.set_version_flag("--version", std::string("seam ") + seam::app::version());
   app.require_subcommand(1);
-  seam::problem::RunOptions run_opts;
+  seam::app::RunOptions run_opts;
   auto* run = app.add_subcommand("run", "solve the problem described by INPUT.yaml");
   run->add_option("input", run_opts.input, "input file (YAML)")->required();
   run->add_option("-o,--output", run_opts.output_dir, "output directory (default <stem>_out)");
@@ -57,8 +57,8 @@ int dispatch(int argc, char** argv) {
   }
 
   run_opts.petsc_args = petsc_args;
-  if (*check) return seam::problem::check(check_input, petsc_args);
-  return seam::problem::run(run_opts, argc, argv);
+  if (*check) return seam::app::check(check_input, petsc_args);
+  return seam::app::run(run_opts, argc, argv);
 }
 
 } // namespace

@@ -21,7 +21,7 @@ solid::MaterialModel to_solid(io::MaterialModel m) {
   case io::MaterialModel::neo_hooke:
     return solid::MaterialModel::neo_hooke;
   case io::MaterialModel::newtonian_fluid:
-    break; // a fluid has no solid model (fluid_model.cpp, fsi_setup.cpp)
+    break; // a fluid has no solid model (flow/fluid_model.cpp, fsi/fsi_setup.cpp)
   }
   return solid::MaterialModel::linear_elastic;
 }

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace seam::problem {
+namespace seam::app {
 
 struct RunOptions {
   std::string input;
@@ -21,4 +21,4 @@ int run(const RunOptions& options, int argc, char** argv);
 /// `seam check`: parse, validate, load the mesh, print a summary; returns the exit code.
 int check(const std::string& input, const std::vector<std::string>& petsc_args);
 
-} // namespace seam::problem
+} // namespace seam::app

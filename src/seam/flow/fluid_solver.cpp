@@ -1,14 +1,14 @@
-#include "seam/problem/fluid_solver.hpp"
+#include "seam/flow/fluid_solver.hpp"
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
+#include "seam/flow/fluid_layout.hpp"
+#include "seam/flow/fluid_mesh_motion.hpp"
+#include "seam/flow/fluid_model.hpp"
+#include "seam/flow/fluid_output.hpp"
+#include "seam/flow/fluid_pcd.hpp"
 #include "seam/fluid/navier_stokes.hpp"
 #include "seam/problem/checkpoint.hpp"
-#include "seam/problem/fluid_layout.hpp"
-#include "seam/problem/fluid_mesh_motion.hpp"
-#include "seam/problem/fluid_model.hpp"
-#include "seam/problem/fluid_output.hpp"
-#include "seam/problem/fluid_pcd.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/step_control.hpp"
 #include "seam/problem/tying_constraint.hpp"
@@ -22,7 +22,20 @@
 #include <memory>
 #include <optional>
 
-namespace seam::problem {
+namespace seam::flow {
+
+using problem::BodyLoad;
+using problem::CanonicalOrder;
+using problem::Checkpoints;
+using problem::find_region;
+using problem::LinearSolverChoice;
+using problem::MeshIdentity;
+using problem::RecordWriter;
+using problem::RestartFrom;
+using problem::StepControl;
+using problem::SystemKind;
+using problem::tied_dofs;
+using problem::TyingConstraint;
 
 namespace {
 
@@ -352,8 +365,6 @@ public:
       solver_.set_fields(velocity, pressure, fluid_velocity_block(config));
       // `-fluid_schur pcd`: the pressure convection-diffusion Schur block (fluid_pcd.hpp).
       if (pcd_requested()) {
-        SEAM_CHECK(!tying, InputError,
-                   "command line: -fluid_schur pcd does not support tied fluid subdomains");
         pcd_ = std::make_unique<PressureConvectionDiffusion>(model, layout);
         solver_.set_schur_preconditioner([this](Vec x, Vec y) { pcd_->apply(x, y); });
       }
@@ -879,4 +890,4 @@ FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
       [&] { return identity; }, dir, quiet, check_only, restart);
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

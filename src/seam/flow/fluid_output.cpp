@@ -1,4 +1,4 @@
-#include "seam/problem/fluid_output.hpp"
+#include "seam/flow/fluid_output.hpp"
 
 #include "seam/common/collective.hpp"
 #include "seam/problem/checkpoint.hpp"
@@ -12,7 +12,16 @@
 
 #include <cstdio>
 
-namespace seam::problem {
+namespace seam::flow {
+
+using problem::Checkpoints;
+using problem::locate_probe;
+using problem::n_rank_detail_basics;
+using problem::print_step_line;
+using problem::put_rank_detail_basics;
+using problem::RecordWriter;
+using problem::time_left;
+using problem::write_step_fields;
 
 FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
                          const FluidModel& model, std::filesystem::path dir, bool quiet,
@@ -285,4 +294,4 @@ void FluidOutput::write_checkpoint(RecordWriter& out) const {
   put_pvd(out, pvd_.get());
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

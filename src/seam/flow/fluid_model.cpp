@@ -1,4 +1,4 @@
-#include "seam/problem/fluid_model.hpp"
+#include "seam/flow/fluid_model.hpp"
 
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
@@ -9,7 +9,11 @@
 #include <map>
 #include <sstream>
 
-namespace seam::problem {
+namespace seam::flow {
+
+using problem::body_load;
+using problem::find_region;
+using problem::surface_load;
 
 namespace {
 
@@ -208,6 +212,7 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
       model.values.emplace_back(0.0);
     }
   }
+  model.tied_nodes = std::move(tied);
   std::stable_sort(dirichlet.begin(), dirichlet.end(),
                    [](const auto& a, const auto& b) { return a.dof < b.dof; });
   for (std::size_t i = 0; i < dirichlet.size(); ++i)
@@ -230,4 +235,4 @@ FluidModel build_fluid_model(const io::Config& config, const FluidLayout& layout
   return model;
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

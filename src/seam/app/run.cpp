@@ -1,8 +1,11 @@
-#include "seam/problem/run.hpp"
+#include "seam/app/run.hpp"
 
 #include "seam/common/collective.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/mpi.hpp"
+#include "seam/flow/fluid_model.hpp"
+#include "seam/flow/fluid_solver.hpp"
+#include "seam/fsi/fsi_solver.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
@@ -16,9 +19,6 @@
 #include "seam/problem/contact_search.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/dynamic_solver.hpp"
-#include "seam/problem/fluid_model.hpp"
-#include "seam/problem/fluid_solver.hpp"
-#include "seam/problem/fsi_solver.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/newton.hpp"
 #include "seam/problem/output.hpp"
@@ -32,7 +32,23 @@
 #include <optional>
 #include <system_error>
 
-namespace seam::problem {
+namespace seam::app {
+
+using flow::has_fluid;
+using flow::run_fluid;
+using fsi::has_fsi;
+using fsi::run_fsi;
+using problem::Checkpoints;
+using problem::ContactConstraint;
+using problem::Discretization;
+using problem::identify;
+using problem::master_held_in_part;
+using problem::MeshIdentity;
+using problem::Output;
+using problem::restart_output_directory;
+using problem::SaddlePoint;
+using problem::slave_held_in_part;
+using problem::TyingConstraint;
 
 const char* version() {
   return "0.1.0";
@@ -356,4 +372,4 @@ int check(const std::string& input, const std::vector<std::string>& petsc_args) 
   return 0;
 }
 
-} // namespace seam::problem
+} // namespace seam::app

@@ -1,7 +1,7 @@
 // The set-up of FsiSystem (fsi_system.hpp): bodies, checks of the input, P = D^-1 M of
 // every interface, the condensed numbering and the maps T_c and R, the pseudo-elastic
 // mesh moduli.
-#include "seam/problem/fsi_system.hpp"
+#include "seam/fsi/fsi_system.hpp"
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
@@ -19,7 +19,11 @@
 #include <map>
 #include <span>
 
-namespace seam::problem {
+namespace seam::fsi {
+
+using problem::CanonicalOrder;
+using problem::find_region;
+using problem::to_solid;
 
 namespace {
 
@@ -589,4 +593,4 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     held_column_[q] = held_position(columns_.index[q]);
 }
 
-} // namespace seam::problem
+} // namespace seam::fsi

@@ -1,17 +1,17 @@
-#include "seam/problem/fluid_pcd.hpp"
+#include "seam/flow/fluid_pcd.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/flow/fluid_layout.hpp"
+#include "seam/flow/fluid_model.hpp"
 #include "seam/fluid/pressure_operators.hpp"
 #include "seam/mesh/cell_geometry.hpp"
 #include "seam/mesh/facets.hpp"
-#include "seam/problem/fluid_layout.hpp"
-#include "seam/problem/fluid_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-namespace seam::problem {
+namespace seam::flow {
 
 namespace {
 
@@ -149,6 +149,10 @@ PressureConvectionDiffusion::PressureConvectionDiffusion(const FluidModel& model
       facet_local_.push_back(exterior.local[k]);
       const auto nodes = mesh.cell(c);
       const auto local = fem::facet_nodes(mesh.cell_type[c], exterior.local[k]);
+      facet_tied_.push_back(!model.tied_nodes.empty() &&
+                            std::all_of(local.begin(), local.end(), [&](int a) {
+                              return model.tied_nodes[static_cast<std::size_t>(nodes[a])] != 0;
+                            }));
       bool open = false;
       for (int a : local)
         for (int i = 0; i < dim; ++i) open = open || p[layout.local_dof(nodes[a], i)] == 0.0;
@@ -256,8 +260,10 @@ void PressureConvectionDiffusion::mark_dirichlet(std::span<const double> u,
           flux += c * facet_normal_[k][i];
           speed += std::abs(c);
         }
-      // Inflow: the velocity prescribed and entering (a wall's c . n is round-off).
-      if (!prescribed || !(flux < -1e-8 * speed)) continue;
+      // Inflow: the velocity prescribed and entering (a wall's c . n is round-off), or a side
+      // of a tied interface through which the flow enters this subdomain (its pressure space
+      // ends there: the pressure is not tied).
+      if (!(prescribed || facet_tied_[k]) || !(flux < -1e-8 * speed)) continue;
       any_inflow = true;
       for (int a : local)
         if (layout_.has_pressure(nodes[a])) m[layout_.local_dof(nodes[a], dim)] = 1.0;
@@ -350,4 +356,4 @@ void PressureConvectionDiffusion::apply(Vec x, Vec y) const {
   la::check(VecScale(y, -1.0 / coupling_), "VecScale");
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

@@ -1,9 +1,10 @@
-#include "seam/problem/fsi_solver.hpp"
+#include "seam/fsi/fsi_solver.hpp"
 
 #include "seam/common/collective.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/timer.hpp"
 #include "seam/fluid/navier_stokes.hpp"
+#include "seam/fsi/fsi_system.hpp"
 #include "seam/io/json.hpp"
 #include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
@@ -12,7 +13,6 @@
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/parallel/memory_trace.hpp"
 #include "seam/problem/checkpoint.hpp"
-#include "seam/problem/fsi_system.hpp"
 #include "seam/problem/linear_solver_choice.hpp"
 #include "seam/problem/model.hpp"
 #include "seam/problem/output.hpp"
@@ -28,7 +28,20 @@
 #include <optional>
 #include <sstream>
 
-namespace seam::problem {
+namespace seam::fsi {
+
+using problem::Checkpoints;
+using problem::find_region;
+using problem::MeshIdentity;
+using problem::n_rank_detail_basics;
+using problem::print_step_line;
+using problem::put_rank_detail_basics;
+using problem::RecordWriter;
+using problem::RestartFrom;
+using problem::StepControl;
+using problem::SystemKind;
+using problem::time_left;
+using problem::write_step_fields;
 
 namespace {
 
@@ -822,4 +835,4 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   return info;
 }
 
-} // namespace seam::problem
+} // namespace seam::fsi

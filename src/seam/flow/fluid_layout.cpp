@@ -1,4 +1,4 @@
-#include "seam/problem/fluid_layout.hpp"
+#include "seam/flow/fluid_layout.hpp"
 
 #include "seam/mesh/node_cells.hpp"
 #include "seam/mesh/partition.hpp"
@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-namespace seam::problem {
+namespace seam::flow {
 
 FluidLayout::FluidLayout(const mesh::Mesh& mesh, Comm comm)
     : mesh_(&mesh), comm_(comm), dim_(mesh.dim) {
@@ -262,4 +262,4 @@ la::Matrix FluidLayout::make_matrix() const {
   return A;
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

@@ -12,8 +12,10 @@
 #include <string>
 
 namespace seam::problem {
-
 struct MeshIdentity;
+} // namespace seam::problem
+
+namespace seam::flow {
 
 struct FluidRunInfo {
   long long n_dofs = 0;
@@ -26,7 +28,8 @@ struct FluidRunInfo {
 /// `check_only` (`seam check`) stops after the checks and the set-up of tied interfaces, whose
 /// mesh initialization moves slave nodes of `part`. Throws InputError or SolverError.
 FluidRunInfo run_fluid(const io::Config& config, mesh::DistributedMesh& part,
-                       const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
-                       bool quiet, const RestartFrom& restart = {}, bool check_only = false);
+                       const problem::MeshIdentity& identity, Comm comm,
+                       const std::filesystem::path& dir, bool quiet,
+                       const problem::RestartFrom& restart = {}, bool check_only = false);
 
-} // namespace seam::problem
+} // namespace seam::flow

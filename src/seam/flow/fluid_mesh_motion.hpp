@@ -10,17 +10,17 @@
 // every step, so its factorization is kept. On a distributed mesh the solve is distributed
 // too (a Discretization of the part): each rank sets up its owned rows and returns the
 // displacement of the nodes of its cells, made consistent by one ghost update.
+#include "seam/flow/fluid_layout.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/problem/discretization.hpp"
-#include "seam/problem/fluid_layout.hpp"
 
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
 
-namespace seam::problem {
+namespace seam::flow {
 
 class FluidMeshMotion {
 public:
@@ -52,12 +52,12 @@ private:
   std::vector<Source> source_;              // per mesh node
   std::vector<char> elastic_;               // per mesh node: in a pseudo-elastic cell
   std::vector<std::int32_t> elastic_cells_; // sorted
-  std::vector<int> cell_body_;           // per cell: the body whose mesh motion it follows, or -1
-  std::unique_ptr<Discretization> disc_; // of the pseudo-elastic solve, if any
-  std::optional<la::Matrix> K_;          // the stiffness
-  std::optional<la::Matrix> K_system_;   // the same, prescribed rows and columns as identity
+  std::vector<int> cell_body_; // per cell: the body whose mesh motion it follows, or -1
+  std::unique_ptr<problem::Discretization> disc_; // of the pseudo-elastic solve, if any
+  std::optional<la::Matrix> K_;                   // the stiffness
+  std::optional<la::Matrix> K_system_; // the same, prescribed rows and columns as identity
   std::unique_ptr<la::LinearSolver> solver_;
   std::vector<PetscInt> fixed_; // owned dofs of the solve with a given value
 };
 
-} // namespace seam::problem
+} // namespace seam::flow

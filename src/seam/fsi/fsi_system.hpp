@@ -40,8 +40,10 @@
 #include <vector>
 
 namespace seam::problem {
-
 struct CanonicalOrder;
+} // namespace seam::problem
+
+namespace seam::fsi {
 
 /// A sparse map from raw dofs to condensed indices: per raw dof a list of (index, weight).
 struct DofMap {
@@ -108,7 +110,7 @@ public:
   /// owned nodes' slots owned, the other held nodes' slots ghosts. Their stored order is by
   /// global node id (raw_id), independent of the number of ranks.
   la::Vector make_raw_vector() const;
-  CanonicalOrder raw_order() const;
+  problem::CanonicalOrder raw_order() const;
   /// Raw values (n_raw) into such a vector (owned and ghost entries) and back.
   void raw_to_vector(std::span<const double> raw, la::Vector& v) const;
   void vector_to_raw(const la::Vector& v, std::vector<double>& raw) const;
@@ -279,4 +281,4 @@ private:
   mutable std::size_t pattern_size_ = 0;
 };
 
-} // namespace seam::problem
+} // namespace seam::fsi

@@ -1,6 +1,7 @@
-// unit_problem runs serially and under mpiexec (tests/CMakeLists.txt: np = 3). Every test is
-// collective: ranks run the same tests in the same order and check what they computed
-// collectively, so that a failure on one rank never leaves the others in a collective.
+// The main() of the unit tests that run serially and under mpiexec (unit_parallel, unit_problem,
+// unit_fsi; tests/CMakeLists.txt: np = 2, 3, 4 and 3). Every test is collective: ranks run the same
+// tests in the same order and check what they computed collectively, so that a failure on one rank
+// never leaves the others in a collective.
 #include "seam/la/petsc.hpp"
 
 #include <gtest/gtest.h>
@@ -27,7 +28,9 @@ private:
 } // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  // PT-Scotch 7 (the chunked reader's partitioner, through PETSc) runs threads that call MPI.
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);
   testing::InitGoogleTest(&argc, argv);
   int failed = 0, any = 0;
   {
@@ -41,7 +44,7 @@ int main(int argc, char** argv) {
     }
     failed = RUN_ALL_TESTS();
     MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    if (rank == 0 && any && !failed) std::fprintf(stderr, "unit_problem: FAILED on another rank\n");
+    if (rank == 0 && any && !failed) std::fprintf(stderr, "%s: FAILED on another rank\n", argv[0]);
   }
   MPI_Finalize();
   return any;

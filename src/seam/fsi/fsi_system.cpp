@@ -1,6 +1,6 @@
 // The evaluation of FsiSystem (fsi_system.hpp): g(t), T_c x + g, the rates of a step, and
 // the assembly of R^T r and R^T J T_c.
-#include "seam/problem/fsi_system.hpp"
+#include "seam/fsi/fsi_system.hpp"
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
@@ -12,7 +12,7 @@
 #include <array>
 #include <cmath>
 
-namespace seam::problem {
+namespace seam::fsi {
 
 namespace {
 
@@ -504,4 +504,4 @@ std::vector<double> FsiSystem::structure_rigid_modes() const {
   return modes;
 }
 
-} // namespace seam::problem
+} // namespace seam::fsi

@@ -19,7 +19,7 @@
 #include <span>
 #include <vector>
 
-namespace seam::problem {
+namespace seam::flow {
 
 class FluidLayout {
 public:
@@ -100,4 +100,4 @@ private:
   std::int64_t n_global_nodes_ = 0, n_global_cells_ = 0;
 };
 
-} // namespace seam::problem
+} // namespace seam::flow

@@ -18,8 +18,10 @@ struct DistributedMesh;
 }
 
 namespace seam::problem {
-
 struct MeshIdentity;
+} // namespace seam::problem
+
+namespace seam::fsi {
 
 /// True if the input has an interface of type fsi.
 bool has_fsi(const io::Config& config);
@@ -35,7 +37,8 @@ struct FsiRunInfo {
 /// by the owners, so that any number of ranks continues, fsi_solver.cpp). `check_only` stops
 /// after the checks. Throws InputError or SolverError.
 FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
-                   const MeshIdentity& identity, Comm comm, const std::filesystem::path& dir,
-                   bool quiet, bool check_only = false, const RestartFrom& restart = {});
+                   const problem::MeshIdentity& identity, Comm comm,
+                   const std::filesystem::path& dir, bool quiet, bool check_only = false,
+                   const problem::RestartFrom& restart = {});
 
-} // namespace seam::problem
+} // namespace seam::fsi

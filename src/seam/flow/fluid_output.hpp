@@ -9,12 +9,12 @@
 // The VTU holds the reference mesh and the point field `mesh_displacement` (warp by it for the
 // current).
 #include "seam/common/timer.hpp"
+#include "seam/flow/fluid_layout.hpp"
+#include "seam/flow/fluid_model.hpp"
 #include "seam/io/config.hpp"
 #include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
 #include "seam/la/petsc.hpp"
-#include "seam/problem/fluid_layout.hpp"
-#include "seam/problem/fluid_model.hpp"
 
 #include <array>
 #include <filesystem>
@@ -24,6 +24,11 @@
 #include <vector>
 
 namespace seam::problem {
+class Checkpoints;
+class RecordWriter;
+} // namespace seam::problem
+
+namespace seam::flow {
 
 struct FluidErrors {
   double velocity_l2 = 0.0;
@@ -39,14 +44,11 @@ struct FluidStepRecord {
   std::optional<FluidErrors> errors;
 };
 
-class Checkpoints;
-class RecordWriter;
-
 class FluidOutput {
 public:
   /// With `restart` the tables and results.pvd continue from the checkpoint (output.hpp).
   FluidOutput(const io::Config& config, const FluidLayout& layout, const FluidModel& model,
-              std::filesystem::path dir, bool quiet, const Checkpoints* restart = nullptr);
+              std::filesystem::path dir, bool quiet, const problem::Checkpoints* restart = nullptr);
   ~FluidOutput();
 
   PhaseTimers& timers() { return timers_; }
@@ -70,7 +72,7 @@ public:
   /// summary.json. Collective.
   void finish(bool converged, int n_steps);
   /// The output counters in a checkpoint (results.pvd's entries so far).
-  void write_checkpoint(RecordWriter& out) const;
+  void write_checkpoint(problem::RecordWriter& out) const;
 
 private:
   void write_fields(int step, double time, std::span<const double> local,
@@ -106,4 +108,4 @@ private:
   std::array<double, 4> interface_counts_{};
 };
 
-} // namespace seam::problem
+} // namespace seam::flow

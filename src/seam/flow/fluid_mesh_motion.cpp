@@ -1,4 +1,4 @@
-#include "seam/problem/fluid_mesh_motion.hpp"
+#include "seam/flow/fluid_mesh_motion.hpp"
 
 #include "seam/ale/mesh_motion.hpp"
 #include "seam/common/error.hpp"
@@ -12,7 +12,10 @@
 #include <cmath>
 #include <limits>
 
-namespace seam::problem {
+namespace seam::flow {
+
+using problem::Discretization;
+using problem::find_region;
 
 namespace {
 
@@ -207,4 +210,4 @@ bool FluidMeshMotion::displacement(double t, std::vector<double>& d) {
   return true;
 }
 
-} // namespace seam::problem
+} // namespace seam::flow

@@ -34,6 +34,13 @@
 // the Dirichlet vertices are those of the outflow facets, else the pinned pressure vertex. A_r
 // carries them on the outflow facets (or the pin), as B M_u^-1 B^T does: Neumann where the
 // velocity is prescribed.
+//
+// Tied fluid subdomains (mesh tying condenses the velocity only, u = T u~): the pressure rows
+// and the zero pressure block are unchanged, S couples the two sides' pressures through G T.
+// The operators are assembled per pressure space (block-diagonal across the interface, the
+// pressure is not tied), and a side of a tied interface through which the flow enters its
+// subdomain is that subdomain's inflow: A_p's Dirichlet vertices (docs/fluid.md, "PCD with
+// tied fluid subdomains").
 #include "seam/la/petsc.hpp"
 
 #include <array>
@@ -41,7 +48,7 @@
 #include <span>
 #include <vector>
 
-namespace seam::problem {
+namespace seam::flow {
 
 class FluidLayout;
 struct FluidModel;
@@ -96,6 +103,7 @@ private:
   std::vector<double> values_;           ///< scratch: triplet values
   std::vector<std::int32_t> facet_cell_; ///< the exterior facets of local cells
   std::vector<std::int8_t> facet_local_;
+  std::vector<char> facet_tied_; ///< per exterior facet: on a side of a tied interface
   std::vector<std::array<double, 3>> facet_normal_; ///< at the facet's centre, in geometry_
   la::Vector prescribed_;   ///< 1 at the prescribed velocity dofs, with ghosts
   la::Vector fallback_;     ///< 1 at the pressure dofs of the outflow vertices (or the pin)
@@ -108,4 +116,4 @@ private:
   double state_ = 1.0, mass_ = 0.0, coupling_ = 1.0;
 };
 
-} // namespace seam::problem
+} // namespace seam::flow

@@ -17,12 +17,12 @@
 // hex27 (3 x 3 x 3): non-matching tri6 : tri6 or quad9 : tri6 facets.
 #include "seam/common/mpi.hpp"
 #include "seam/common/timer.hpp"
+#include "seam/fsi/fsi_system.hpp"
 #include "seam/io/config.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
 #include "seam/mesh/gmsh_reader.hpp"
 #include "seam/meshtying/tied_interface.hpp"
-#include "seam/problem/fsi_system.hpp"
 
 #include <gtest/gtest.h>
 
@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-namespace seam::problem {
+namespace seam::fsi {
 namespace {
 
 double noise(std::int64_t i, int k) {
@@ -339,4 +339,4 @@ TEST(FsiJacobian, DynamicTet10NonMatching3dAgreesWithFiniteDifferences) {
 }
 
 } // namespace
-} // namespace seam::problem
+} // namespace seam::fsi
