@@ -184,7 +184,7 @@ bool ContactInterface::has_gap_blocks() const {
   };
   for (const auto t : slave_.types)
     if (!supported(t)) return false;
-  if (rigid_) return obstacle_.shape != Obstacle::Shape::cylinder;
+  if (rigid_) return true;
   for (const auto t : master_.types)
     if (!supported(t)) return false;
   return true;

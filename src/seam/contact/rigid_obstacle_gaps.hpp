@@ -1,7 +1,7 @@
 #pragma once
 // The weighted gaps of one slave facet against a rigid obstacle with their exact first and
-// second derivatives: the constraint functions of energy-momentum contact against a plane or a
-// sphere (docs/contact_dynamics.md §5).
+// second derivatives: the constraint functions of energy-momentum contact against a plane, a
+// sphere or a cylinder (docs/contact_dynamics.md §5).
 #include <vector>
 
 #include "seam/contact/rigid_obstacle_facet.hpp"
