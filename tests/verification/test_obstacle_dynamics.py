@@ -1,4 +1,5 @@
-"""Energy-momentum contact against a rigid cylinder (issue 13; docs/contact_dynamics.md §5).
+"""Energy-momentum contact against a rigid cylinder (issue 13; docs/contact_dynamics.md §5;
+friction against rigid obstacles: test_obstacle_friction.py).
 
 The ring of test_rings.py extruded by 0.5 along z (6 cells per quarter circle, 2 through the
 wall, hexahedra: quad4 faces), thrown obliquely (v = (0.4, -1, 0.1)) and spinning (0.5 about
