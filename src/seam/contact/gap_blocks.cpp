@@ -182,8 +182,10 @@ bool ContactInterface::has_gap_blocks() const {
     return dim() == 2 ? t == fem::CellType::line2
                       : t == fem::CellType::tri3 || t == fem::CellType::quad4;
   };
+  // Against a rigid obstacle the whole-facet kernel takes line3 faces as well (2D; quadratic
+  // 3D faces: rigid_obstacle_facet.cpp).
   for (const auto t : slave_.types)
-    if (!supported(t)) return false;
+    if (!supported(t) && !(rigid_ && t == fem::CellType::line3)) return false;
   if (rigid_) return true;
   for (const auto t : master_.types)
     if (!supported(t)) return false;

@@ -20,16 +20,18 @@ template <int Dim> mortar::Facet<Dim> facet(fem::CellType type) {
   mortar::Facet<Dim> f;
   f.type = type;
   if (Dim == 2) {
-    f.n_nodes = 2;
+    f.n_nodes = type == fem::CellType::line3 ? 3 : 2;
     f.x.col(0) << 0.1, 0.03;
     f.x.col(1) << 0.62, -0.02;
-  } else {
-    const double xs[4][3] = {
-        {0.0, 0.0, 0.02}, {0.55, 0.05, -0.01}, {0.6, 0.48, 0.04}, {-0.05, 0.5, 0.0}};
-    f.n_nodes = type == fem::CellType::tri3 ? 3 : 4;
-    for (int i = 0; i < f.n_nodes; ++i)
-      for (int a = 0; a < Dim; ++a) f.x(a, i) = xs[i][a];
+    // line3: the mid node off the chord (a curved facet).
+    if (f.n_nodes == 3) f.x.col(2) << 0.37, 0.035;
+    return f;
   }
+  const double xs[4][3] = {
+      {0.0, 0.0, 0.02}, {0.55, 0.05, -0.01}, {0.6, 0.48, 0.04}, {-0.05, 0.5, 0.0}};
+  f.n_nodes = type == fem::CellType::tri3 ? 3 : 4;
+  for (int i = 0; i < f.n_nodes; ++i)
+    for (int a = 0; a < Dim; ++a) f.x(a, i) = xs[i][a];
   return f;
 }
 
@@ -124,6 +126,18 @@ TEST(RigidObstacleGaps, Tri3AndQuad4PlaneSphereAndCylinder) {
                     m == mortar::Multiplier::dual ? "dual" : "standard", e.first, e.second);
         expect_exact(e);
       }
+}
+
+/// line3 facets (energy-momentum contact against an obstacle takes them too in 2D).
+TEST(RigidObstacleGaps, Line3PlaneAndCircle) {
+  for (const auto shape : {Obstacle::Shape::plane, Obstacle::Shape::sphere})
+    for (const auto m : {mortar::Multiplier::dual, mortar::Multiplier::standard}) {
+      const auto e = check<2>(fem::CellType::line3, shape, m);
+      std::printf("  line3 %s %s: gradient %.2e, Hessian %.2e\n",
+                  shape == Obstacle::Shape::plane ? "plane" : "circle",
+                  m == mortar::Multiplier::dual ? "dual" : "standard", e.first, e.second);
+      expect_exact(e);
+    }
 }
 
 /// The cylinder's gaps do not change when the facet slides along the axis or turns about it

@@ -629,6 +629,29 @@ TEST(EnergyMomentumTangent, RigidCylinder3dQuad4DualAndTri3) {
   }
 }
 
+/// line3 faces against a rigid obstacle (2D).
+TEST(EnergyMomentumTangent, RigidPlane2dLine3Dual) {
+  expect_frictionless(check(energy_momentum_obstacle_case(
+                                "em_plane_2d_line3_dual", 2, rectangle_geo(0.125, 2, false),
+                                "rigid_plane: {point: [0, 0], normal: [0, 1]}"),
+                            3),
+                      tolerance_3d);
+}
+
+/// The circle's constraint rows: the cancellation in |x - c| - R (2.8e-9 at np 1, 1.9e-8 at
+/// np 3, the summation order; the line2 block 4.6e-10), 3e-8 for them as for the sphere.
+TEST(EnergyMomentumTangent, RigidCircle2dLine3Standard) {
+  const Errors e = check(energy_momentum_obstacle_case("em_circle_2d_line3_standard", 2,
+                                                       rectangle_geo(0.125, 2, false),
+                                                       "rigid_sphere: {center: [0.5, -1], "
+                                                       "radius: 1}, multiplier: standard"),
+                         3);
+  EXPECT_GT(e.inactive, 0);
+  EXPECT_GT(e.slip, 0);
+  EXPECT_LT(e.displacement, tolerance_3d);
+  EXPECT_LT(e.constraint, 3e-8);
+}
+
 /// Friction with energy-momentum contact (contact_energy_momentum_friction.cpp): the normal part
 /// of the Cartesian multiplier takes the discrete-gradient force, the tangential part the
 /// mortar force of D and M at x_{n+1}, the slip increment is sum_k D_jk dx_k - sum_l M_jl dx_l.
@@ -713,6 +736,13 @@ TEST(EnergyMomentumTangent, FrictionRigidPlane2dLine2Dual) {
                                                               rectangle_geo(0.0625, 1, false), "")),
             3),
       tolerance_friction);
+}
+
+TEST(EnergyMomentumTangent, FrictionRigidPlane2dLine3Dual) {
+  expect_mixed(check(energy_momentum_obstacle_friction_case(plane_case(
+                         "em_friction_plane_2d_line3_dual", 2, rectangle_geo(0.125, 2, false), "")),
+                     2),
+               tolerance_friction);
 }
 
 TEST(EnergyMomentumTangent, FrictionRigidCircle2dLine2Standard) {
