@@ -59,13 +59,7 @@ def ring_on_cylinder(multiplier="dual", np=1, steps=40):
 
 def check_cylinder(r):
     rows = r["rows"]
-    if sum(f > 0 for f in r["force"]) < 5:
-        raise AssertionError("the ring touched in %d steps only" % sum(f > 0 for f in r["force"]))
-    if len(r["persistent"]) < 3:
-        raise AssertionError("only %d steps of persistent contact" % len(r["persistent"]))
-    if r["rise"] > 1e-8 or r["change"] > 1e-8:
-        raise AssertionError("a step gained %.3e of the energy; %.3e in persistent contact"
-                             % (r["rise"], r["change"]))
+    R.check_obstacle_energy(r)
     m = math.pi * (1.0 - 0.36) * 0.5
     scale = m * (1.0 + 0.4 ** 2 + 0.1 ** 2) ** 0.5
     first = components(rows[0])

@@ -443,6 +443,18 @@ def ring_on_obstacle(dimension, obstacle, multiplier="dual", np=1, n=8, steps=60
                 persistent=persistent)
 
 
+def check_obstacle_energy(r):
+    """The ring touched in 5 steps or more, 3 of them persistent; no step gains more than 1e-8
+    of the energy, and in persistent contact it changes by less than that."""
+    if sum(f > 0 for f in r["force"]) < 5:
+        raise AssertionError("the ring touched in %d steps only" % sum(f > 0 for f in r["force"]))
+    if len(r["persistent"]) < 3:
+        raise AssertionError("only %d steps of persistent contact" % len(r["persistent"]))
+    if r["rise"] > 1e-8 or r["change"] > 1e-8:
+        raise AssertionError("a step gained %.3e of the energy; %.3e in persistent contact"
+                             % (r["rise"], r["change"]))
+
+
 def check_ring_on_obstacle(r, dimension, obstacle):
     """The discrete-gradient force against a rigid obstacle (docs/contact_dynamics.md §5):
     no step gains more than 1e-8 of the energy and, in persistent contact, it changes by less
@@ -452,13 +464,7 @@ def check_ring_on_obstacle(r, dimension, obstacle):
     sphere the angular momentum about its centre stays (its reaction points through the
     centre): the ring's about the centre to 1e-12 of m |v| R."""
     rows = r["rows"]
-    if sum(f > 0 for f in r["force"]) < 5:
-        raise AssertionError("the ring touched in %d steps only" % sum(f > 0 for f in r["force"]))
-    if len(r["persistent"]) < 3:
-        raise AssertionError("only %d steps of persistent contact" % len(r["persistent"]))
-    if r["rise"] > 1e-8 or r["change"] > 1e-8:
-        raise AssertionError("a step gained %.3e of the energy; %.3e in persistent contact"
-                             % (r["rise"], r["change"]))
+    check_obstacle_energy(r)
     m = math.pi * (1.0 - 0.36) * (0.5 if dimension == 3 else 1.0)
     scale = m * (1.0 + 0.4 ** 2) ** 0.5
     if obstacle == "plane":
