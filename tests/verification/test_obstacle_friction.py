@@ -11,6 +11,7 @@ the step E + D rose by 6.0e-5 (plane, standard), 4.1e-5 (circle) and 2.6e-4 (cyl
 """
 import os
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
@@ -18,18 +19,22 @@ import test_rings as R  # noqa: E402
 from test_obstacle_dynamics import CYLINDER  # noqa: E402
 
 
-def ring_with_friction(dimension, obstacle, multiplier="dual", np=1, n=8, steps=60, mu=0.3):
-    """The ring of test_rings.py (2D: 8 cells per quarter circle; 3D: extruded, n = 6) thrown
-    obliquely and spinning onto a rigid plane (or the cylinder) with Coulomb friction, mu =
-    0.3, energy_momentum to t = 0.3. Returns E = kinetic + strain energy and D =
-    frictional_dissipation of interfaces.csv per step, the slip and active node counts."""
+def friction_yaml(dimension, obstacle, multiplier, steps, mu):
     R.OBSTACLES.setdefault("cylinder", {3: CYLINDER})
-    yaml = (R.OBSTACLE_YAML.replace("DIM", str(dimension))
+    return (R.OBSTACLE_YAML.replace("DIM", str(dimension))
             .replace("VELOCITY", R.OBSTACLE_VELOCITY[dimension])
             .replace("MULTIPLIER", "multiplier: %s, friction: {model: coulomb, coefficient: %r},"
                      % (multiplier, mu))
             .replace("OBSTACLE", R.OBSTACLES[obstacle][dimension])
             .replace("STEPS", str(steps)).replace("END", "0.3"))
+
+
+def ring_with_friction(dimension, obstacle, multiplier="dual", np=1, n=8, steps=60, mu=0.3):
+    """The ring of test_rings.py (2D: 8 cells per quarter circle; 3D: extruded, n = 6) thrown
+    obliquely and spinning onto a rigid plane (or the cylinder) with Coulomb friction, mu =
+    0.3, energy_momentum to t = 0.3. Returns E = kinetic + strain energy and D =
+    frictional_dissipation of interfaces.csv per step, the slip and active node counts."""
+    yaml = friction_yaml(dimension, obstacle, multiplier, steps, mu)
     rows, itf, newton = R.run_rings(dimension, ((0.0, 1.05),), n, yaml, np)
     e = [r["total_energy"] for r in rows]
     d = [r["frictional_dissipation"] for r in itf]
@@ -91,5 +96,37 @@ def test_friction_on_obstacles():
           "(cylinder)")
 
 
+def test_restart_friction_on_plane_np3():
+    """The ring on the plane (standard multipliers, mu = 0.3) with a checkpoint every 5 steps,
+    continued from the checkpoint of step 30 (sliding on the plane) on 3 ranks: the step's mean
+    D needs the last converged step's D (the checkpoint's friction history). Energy and
+    dissipation of the continued steps equal the uninterrupted run's to 1e-10 of E_0."""
+    yaml = friction_yaml(2, "plane", "standard", 60, 0.3).replace(
+        "output: {every: 1000}", "output: {every: 1000, checkpoint_every: 5}")
+    work = tempfile.mkdtemp(prefix="seam_obstacle_friction_restart_")
+    H.write_case(work, "case.geo", R.ring_geo(((0.0, 1.05),), 8, 2))
+    path = H.write_case(work, "case.yaml", yaml)
+    full = H.solve(path)
+    again = H.solve(path, np=3, extra=["--restart", os.path.join(full, "checkpoint_00030")])
+    tables = {}
+    for name, out in (("full", full), ("again", again)):
+        steps = {r["step"]: r for r in H.read_csv(os.path.join(out, "steps.csv"))}
+        itf = {r["step"]: r for r in H.read_csv(os.path.join(out, "interfaces.csv"))}
+        tables[name] = (steps, itf)
+    a, ai = tables["full"]
+    b, bi = tables["again"]
+    e0 = a[min(a)]["total_energy"]
+    de = max(abs(a[k]["total_energy"] - b[k]["total_energy"]) for k in b) / e0
+    dd = max(abs(ai[k]["frictional_dissipation"] - bi[k]["frictional_dissipation"])
+             for k in bi) / e0
+    slipping = sum(bi[k]["slip_nodes"] > 0 for k in bi)
+    print("   restart from step 30 on 3 ranks: %d steps (%d with slip), energy %.2e, "
+          "dissipation %.2e" % (len(b), slipping, de, dd))
+    H.cleanup(work, full, again)
+    if len(b) != 30 or slipping == 0 or de > 1e-10 or dd > 1e-10:
+        raise AssertionError("restart: %d steps, %d with slip, energy %.3e, dissipation %.3e"
+                             % (len(b), slipping, de, dd))
+
+
 if __name__ == "__main__":
-    H.main([test_friction_on_obstacles])
+    H.main([test_friction_on_obstacles, test_restart_friction_on_plane_np3])
