@@ -15,6 +15,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
+import test_friction_dynamics as F  # noqa: E402
 import test_rings as R  # noqa: E402
 from test_obstacle_dynamics import CYLINDER  # noqa: E402
 
@@ -106,23 +107,10 @@ def test_restart_friction_on_plane_np3():
     work = tempfile.mkdtemp(prefix="seam_obstacle_friction_restart_")
     H.write_case(work, "case.geo", R.ring_geo(((0.0, 1.05),), 8, 2))
     path = H.write_case(work, "case.yaml", yaml)
-    full = H.solve(path)
-    again = H.solve(path, np=3, extra=["--restart", os.path.join(full, "checkpoint_00030")])
-    tables = {}
-    for name, out in (("full", full), ("again", again)):
-        steps = {r["step"]: r for r in H.read_csv(os.path.join(out, "steps.csv"))}
-        itf = {r["step"]: r for r in H.read_csv(os.path.join(out, "interfaces.csv"))}
-        tables[name] = (steps, itf)
-    a, ai = tables["full"]
-    b, bi = tables["again"]
-    e0 = a[min(a)]["total_energy"]
-    de = max(abs(a[k]["total_energy"] - b[k]["total_energy"]) for k in b) / e0
-    dd = max(abs(ai[k]["frictional_dissipation"] - bi[k]["frictional_dissipation"])
-             for k in bi) / e0
+    b, bi, de, dd = F.continued_on_3_ranks(work, path, "checkpoint_00030")
     slipping = sum(bi[k]["slip_nodes"] > 0 for k in bi)
     print("   restart from step 30 on 3 ranks: %d steps (%d with slip), energy %.2e, "
           "dissipation %.2e" % (len(b), slipping, de, dd))
-    H.cleanup(work, full, again)
     if len(b) != 30 or slipping == 0 or de > 1e-10 or dd > 1e-10:
         raise AssertionError("restart: %d steps, %d with slip, energy %.3e, dissipation %.3e"
                              % (len(b), slipping, de, dd))

@@ -116,10 +116,13 @@ MOMENTUM_BOUND = 1e-12
 # energy by up to 1.5e-11 of it per step (2D rings, before they touch).
 ENERGY_TOLERANCE = 1e-10
 
-def run_rings(dimension, centres, n, yaml, np):
-    """Rings at `centres` (n cells per quarter circle, 2 through the wall; 3D extruded):
-    the rows of steps.csv, interfaces.csv and newton.csv of the run of `yaml`."""
+def run_rings(dimension, centres, n, yaml, np, order=1):
+    """Rings at `centres` (n cells per quarter circle, 2 through the wall; 3D extruded; order 2:
+    quadratic cells): the rows of steps.csv, interfaces.csv and newton.csv of the run of
+    `yaml`."""
     geo = ring_geo(centres, n, 2) if dimension == 2 else ring_geo_3d(centres, n, 2)
+    if order == 2:
+        geo += "Mesh.ElementOrder = 2;\n"
     work, out = T.run_case(geo, yaml, np=np)
     rows = H.read_csv(os.path.join(out, "steps.csv"))
     itf = H.read_csv(os.path.join(out, "interfaces.csv"))
@@ -128,12 +131,12 @@ def run_rings(dimension, centres, n, yaml, np):
     return rows, itf, newton
 
 
-def free_bodies(dimension, integrator, np=1, n=4, steps=40, centres=CENTRES):
+def free_bodies(dimension, integrator, np=1, n=4, steps=40, centres=CENTRES, order=1):
     va, vb = VELOCITIES[dimension]
     yaml = (FREE_YAML.replace("DIM", str(dimension)).replace("VA", va).replace("VB", vb)
             .replace("INTEGRATOR", integrator).replace("STEPS", str(steps))
             .replace("SETFACTORY\n", ""))
-    rows, itf, newton = run_rings(dimension, centres, n, yaml, np)
+    rows, itf, newton = run_rings(dimension, centres, n, yaml, np, order)
     first = rows[0]
     p0 = [first["momentum_%s" % c] for c in "xyz"]
     l0 = [first["angular_momentum_%s" % c] for c in "xyz"]

@@ -306,8 +306,8 @@ public:
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
                  Linearization& out, std::span<const double> step_start = {}) const;
 
-  /// Whether gap_blocks is available: line2 facets (2D) or tri3 and quad4 facets (3D) on both
-  /// sides, two bodies or self contact, or the slave side against a rigid plane, sphere or
+  /// Whether gap_blocks is available: line2 or line3 facets (2D) or tri3 and quad4 facets (3D) on
+  /// both sides, two bodies or self contact, or the slave side against a rigid plane, sphere or
   /// cylinder.
   bool has_gap_blocks() const;
   /// The weighted gaps g~_j as functions of the positions: each candidate pair of the owned

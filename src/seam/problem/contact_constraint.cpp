@@ -1352,8 +1352,8 @@ std::vector<std::string> ContactConstraint::describe() const {
                   : ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
       text += ", contact force of the end of the step (energy-momentum contact needs line2 "
-              "faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a rigid plane, "
-              "sphere or cylinder, against which line3 faces in 2D too)";
+              "or line3 faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a "
+              "rigid plane, sphere or cylinder)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",

@@ -1,5 +1,5 @@
 // Friction in energy-momentum contact (docs/contact_dynamics.md §5, "Friction"): two bodies,
-// self contact and rigid obstacles with line2 (2D) or tri3/quad4 (3D) faces.
+// self contact and rigid obstacles with line2 or line3 (2D) or tri3/quad4 (3D) faces.
 //
 // The Cartesian multiplier lambda_j of slave node j splits along the averaged normal n_j of
 // x_{n+1} into lambda_n,j = n_j . lambda_j and lambda_t,j = P_j lambda_j (P_j = I - n_j n_j^T).

@@ -482,8 +482,8 @@ void expect_frictionless(const Errors& e, double tolerance) {
   EXPECT_LT(e.constraint, tolerance);
 }
 
-Case energy_momentum_case(std::string name, const std::string& interface) {
-  Case c = blocks_case(std::move(name), 1, "");
+Case energy_momentum_case(std::string name, const std::string& interface, int order = 1) {
+  Case c = blocks_case(std::move(name), order, "");
   c.interface = interface;
   c.integrator = "energy_momentum";
   c.top_x = "0.02";
@@ -512,6 +512,30 @@ TEST(EnergyMomentumTangent, SelfContact2dLine2Dual) {
                                                  "base_top]}"),
                             3),
                       tolerance);
+}
+
+/// line3 faces between two bodies and in self contact (the blocks of quad9 cells): the
+/// weighted gaps of the curved facets, their projections and the dual basis of the curved
+/// slave facet on the scalar types.
+TEST(EnergyMomentumTangent, TwoBodies2dLine3DualAndStandard) {
+  for (const bool dual : {true, false})
+    expect_frictionless(
+        check(energy_momentum_case(dual ? "em_blocks_2d_line3_dual" : "em_blocks_2d_line3_standard",
+                                   std::string("{name: joint, type: contact, slave: bottom, "
+                                               "master: base_top") +
+                                       (dual ? "}" : ", multiplier: standard}"),
+                                   2),
+              3),
+        1e-9);
+}
+
+TEST(EnergyMomentumTangent, SelfContact2dLine3Dual) {
+  expect_frictionless(check(energy_momentum_case("em_surface_2d_line3_dual",
+                                                 "{name: joint, type: contact, surface: [bottom, "
+                                                 "base_top]}",
+                                                 2),
+                            3),
+                      1e-9);
 }
 
 /// energy_momentum_case in 3D: the hex8 (quad4 faces) or tet4 (tri3 faces) boxes of
@@ -657,8 +681,8 @@ TEST(EnergyMomentumTangent, RigidCircle2dLine3Standard) {
 /// mortar force of D and M at x_{n+1}, the slip increment is sum_k D_jk dx_k - sum_l M_jl dx_l.
 /// The block pressed onto the base and dragged (stick, slip and lifted nodes).
 Case energy_momentum_friction_case(std::string name, const std::string& interface, int dim,
-                                   bool tets = false) {
-  Case c = dim == 2 ? energy_momentum_case(std::move(name), interface)
+                                   bool tets = false, int order = 1) {
+  Case c = dim == 2 ? energy_momentum_case(std::move(name), interface, order)
                     : energy_momentum_boxes_case(std::move(name), interface, tets);
   c.top_x = "0.002";
   return c;
@@ -679,6 +703,13 @@ TEST(EnergyMomentumTangent, Friction2dLine2Standard) {
                                           std::string(blocks_2d) + ", multiplier: standard}", 2),
             3),
       tolerance_friction);
+}
+
+TEST(EnergyMomentumTangent, Friction2dLine3Dual) {
+  expect_mixed(check(energy_momentum_friction_case("em_friction_2d_line3_dual",
+                                                   std::string(blocks_2d) + "}", 2, false, 2),
+                     2),
+               tolerance_friction);
 }
 
 TEST(EnergyMomentumTangent, FrictionSelfContact2dLine2Dual) {
