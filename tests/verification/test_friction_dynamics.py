@@ -123,20 +123,12 @@ def test_free_rings_friction_2d():
     check(rings("two_bodies"))
 
 
-def test_restart_friction_np3():
-    """The two-body rings (standard multipliers) with a checkpoint every 5 steps, continued
-    from the checkpoint of step 25 (in contact) on 3 ranks: the mean operators of the step need
-    the last converged step's D and M (the friction history of the checkpoint). Energies and
-    dissipation of the continued steps equal the uninterrupted run's to 1e-10 of the energy
-    (measured 4.9e-15 and 5.1e-16)."""
-    yaml = rings_yaml("two_bodies", 40, 2).replace("output: {every: 1000}",
-                                                   "output: {every: 1000, checkpoint_every: 5}")
-    work = tempfile.mkdtemp(prefix="seam_friction_restart_")
-    H.write_case(work, "case.geo", R.ring_geo(R.CENTRES, 8, 2))
-    path = H.write_case(work, "case.yaml", yaml)
+def continued_on_3_ranks(work, path, checkpoint):
+    """Runs `path` whole at np 1 and continued from its `checkpoint` at np 3: the continued
+    run's steps.csv and interfaces.csv rows by step, and the largest differences of the energy
+    and of the frictional dissipation from the whole run, relative to the first energy."""
     full = H.solve(path)
-    again = H.solve(path, np=3,
-                    extra=["--restart", os.path.join(full, "checkpoint_00025")])
+    again = H.solve(path, np=3, extra=["--restart", os.path.join(full, checkpoint)])
     tables = {}
     for name, out in (("full", full), ("again", again)):
         steps = {r["step"]: r for r in H.read_csv(os.path.join(out, "steps.csv"))}
@@ -148,10 +140,25 @@ def test_restart_friction_np3():
     de = max(abs(a[k]["total_energy"] - b[k]["total_energy"]) for k in b) / e0
     dd = max(abs(ai[k]["frictional_dissipation"] - bi[k]["frictional_dissipation"])
              for k in bi) / e0
+    H.cleanup(work, full, again)
+    return b, bi, de, dd
+
+
+def test_restart_friction_np3():
+    """The two-body rings (standard multipliers) with a checkpoint every 5 steps, continued
+    from the checkpoint of step 25 (in contact) on 3 ranks: the mean operators of the step need
+    the last converged step's D and M (the friction history of the checkpoint). Energies and
+    dissipation of the continued steps equal the uninterrupted run's to 1e-10 of the energy
+    (measured 4.9e-15 and 5.1e-16)."""
+    yaml = rings_yaml("two_bodies", 40, 2).replace("output: {every: 1000}",
+                                                   "output: {every: 1000, checkpoint_every: 5}")
+    work = tempfile.mkdtemp(prefix="seam_friction_restart_")
+    H.write_case(work, "case.geo", R.ring_geo(R.CENTRES, 8, 2))
+    path = H.write_case(work, "case.yaml", yaml)
+    b, bi, de, dd = continued_on_3_ranks(work, path, "checkpoint_00025")
     active = sum(bi[k]["active_nodes"] > 0 for k in bi)
     print("   restart from step 25 on 3 ranks: %d steps (%d in contact), energy %.2e, "
           "dissipation %.2e" % (len(b), active, de, dd))
-    H.cleanup(work, full, again)
     if len(b) != 15 or active == 0 or de > 1e-10 or dd > 1e-10:
         raise AssertionError("restart: %d steps, %d in contact, energy %.3e, dissipation %.3e"
                              % (len(b), active, de, dd))

@@ -383,10 +383,12 @@ BAR_SURFACE = "{name: impact, type: contact, surface: [a_boundary, b_boundary]}"
 BAR_TWO_BODY = "{name: impact, type: contact, slave: a_end, master: b_end}"
 
 
-def bar_impact(interface, integrator, nx=40, steps=160, np=1, gap=0.01):
+def bar_impact(interface, integrator, nx=40, steps=160, np=1, gap=0.01, order=1):
     v, c, L, height = 0.01, 1.0, 1.0, 0.1
     dt = 4.0 / steps
     geo = BAR_GEO.replace("GAP", repr(gap)).replace("NX", str(nx))
+    if order == 2:
+        geo += "Mesh.ElementOrder = 2;\n"
     yaml = BAR_YAML.replace("INTERFACE", interface).replace("INTEGRATOR", integrator)
     work, out = T.run_case(geo, yaml.replace("STEPS", str(steps)), np=np)
     steps_rows = H.read_csv(os.path.join(out, "steps.csv"))

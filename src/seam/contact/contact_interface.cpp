@@ -639,7 +639,8 @@ double ContactInterface::multiplier(std::span<const double> lambda, std::size_t 
 }
 
 void ContactInterface::linearize_rigid(std::span<const double> lambda,
-                                       std::span<const char> want_gap, Linearization& out) const {
+                                       std::span<const char> want_gap, Linearization& out,
+                                       std::span<const double> step_start) const {
   const int dim = this->dim();
   RigidObstacleFacet rf;
   std::vector<std::int64_t> column;
@@ -673,9 +674,23 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
                  rf.dgap.data() + static_cast<std::size_t>(j * nv), 1.0);
         // The nodal weight sum_k D_jk with standard multipliers (D_jj with dual ones).
         if (frictional_)
-          for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k)
-            push_row(out.D_gradient, static_cast<std::int64_t>(sj),
-                     rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv), 1.0);
+          for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k) {
+            const double* dD = rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv);
+            push_row(out.D_gradient, static_cast<std::int64_t>(sj), dD, 1.0);
+            if (step_start.empty()) continue;
+            // Energy-momentum friction: d(sum_k D_jk dx_k) at fixed dx.
+            const auto mk = static_cast<std::size_t>(
+                slave_.mesh_nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)])]);
+            for (int a = 0; a < dim; ++a) {
+              const auto i = mk * dim + static_cast<std::size_t>(a);
+              const double dx =
+                  slave_.coordinates[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)]) *
+                                         dim +
+                                     a] -
+                  mesh_->x[i] - step_start[i];
+              push_row(out.operator_gradient, static_cast<std::int64_t>(sj * dim) + a, dD, dx);
+            }
+          }
       }
       if (!carries_multiplier(lambda, static_cast<local_index>(sj))) continue;
       // Frictionless against a round obstacle the multiplier vector lambda_n,j n_j turns with
@@ -716,7 +731,7 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
   out.D_gradient.clear();
   out.operator_gradient.clear();
   if (rigid_) {
-    linearize_rigid(lambda, want_gap, out);
+    linearize_rigid(lambda, want_gap, out, step_start);
     return;
   }
   mortar::SlaveFacetLinearization lin;

@@ -299,14 +299,16 @@ public:
   /// of the slave nodes with `want_gap[j]` != 0. Only slave facets with a node that has a
   /// nonzero multiplier or a wanted gap are linearized.
   /// With `step_start` (the mesh displacement at the start of the step, dim per mesh node;
-  /// two bodies and self contact) operator_gradient is instead the derivative of
-  /// sum_k D_jk dx_k - sum_l M_jl dx_l at fixed dx = x - x_start (the slip increment of
-  /// energy-momentum friction, problem/contact_energy_momentum_friction.cpp).
+  /// two bodies, self contact and rigid obstacles) operator_gradient is instead the derivative
+  /// of sum_k D_jk dx_k - sum_l M_jl dx_l at fixed dx = x - x_start (the slip increment of
+  /// energy-momentum friction, problem/contact_energy_momentum_friction.cpp; no M against an
+  /// obstacle).
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
                  Linearization& out, std::span<const double> step_start = {}) const;
 
-  /// Whether gap_blocks is available: line2 facets (2D) or tri3 and quad4 facets (3D) on both
-  /// sides, two bodies or self contact, or the slave side against a rigid plane or sphere.
+  /// Whether gap_blocks is available: line2 or line3 facets (2D) or tri3 and quad4 facets (3D) on
+  /// both sides, two bodies or self contact, or the slave side against a rigid plane, sphere or
+  /// cylinder.
   bool has_gap_blocks() const;
   /// The weighted gaps g~_j as functions of the positions: each candidate pair of the owned
   /// slave facets of the last update (same pairs, slave patch and nodal normal averaging),
@@ -348,7 +350,7 @@ private:
   void index_pairs();
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
-                       Linearization& out) const;
+                       Linearization& out, std::span<const double> step_start) const;
   /// The slave facets the mortar integration and the nodal normals use: the whole slave side,
   /// or on a self-contact interface the current slave patch; facet f of the side is facet
   /// slave_index(f) of that set.

@@ -1,5 +1,6 @@
-// The weighted gaps of 2D line2 contact as functions of the nodal positions with exact first
-// and second derivatives (energy-momentum contact, docs/contact_dynamics.md §4).
+// The weighted gaps of 2D line2 and line3 contact as functions of the nodal positions with exact
+// first and second derivatives (energy-momentum contact, docs/contact_dynamics.md §4; line3:
+// pair_gaps_line3, the same steps on curved facets).
 //
 // The kernel follows integrate_pair of segmentation_2d.cpp step by step on a scalar type S
 // (double, Dual<12> or Hyper<12>): averaged unit nodal normals of the slave facet's nodes, the
@@ -45,14 +46,92 @@ template <class S> S clamp_unit(const S& xi) {
   return 0.5 * (lower + 1.0 - sqrt(e * e + smoothing * smoothing));
 }
 
-/// One pair in the frame of the slave facet's first node: the 6 slots of GapBlock and, per
-/// slave node, the slots of the (at most two) facets whose unit normals it averages.
-struct PairInput {
-  std::array<Eigen::Vector2d, 6> x;
-  std::array<int, 2> n_adjacent{};
-  std::array<std::array<std::array<int, 2>, 2>, 2> adjacent{};
+/// The overlap segment [xa, xb] of the slave parameter from the end-node projections, as
+/// overlap_segment of segmentation_2d.cpp decides it on values: the master end nodes that land
+/// on the slave bound it (their parameters `on_slave(k)` on the scalar type), else the slave
+/// lies inside the master or there is no overlap. `forward(k)`: the master runs from its end k
+/// towards +xi. The ends are clamped (rounded); false without overlap.
+template <class S, class OnSlave, class Forward>
+bool overlap_ends(const std::array<geometry::CurveProjection, 2>& master_on_slave,
+                  const std::array<geometry::CurveProjection, 2>& slave_on_master, double tol,
+                  const OnSlave& on_slave, const Forward& forward, S& xa, S& xb) {
+  const auto inside = [tol](const geometry::CurveProjection& r) {
+    return r.converged && r.xi >= -1.0 - tol && r.xi <= 1.0 + tol;
+  };
+  const bool in0 = inside(master_on_slave[0]), in1 = inside(master_on_slave[1]);
+  xa = -1.0;
+  xb = 1.0;
+  if (in0 && in1) {
+    const S e0 = on_slave(0), e1 = on_slave(1);
+    const bool first = master_on_slave[0].xi < master_on_slave[1].xi;
+    xa = first ? e0 : e1;
+    xb = first ? e1 : e0;
+  } else if (in0 || in1) {
+    const std::size_t k = in0 ? 0 : 1;
+    const S xi_in = on_slave(k);
+    if (forward(k))
+      xa = xi_in;
+    else
+      xb = xi_in;
+  } else if (!(inside(slave_on_master[0]) && inside(slave_on_master[1]))) {
+    return false;
+  }
+  xa = clamp_unit(xa);
+  xb = clamp_unit(xb);
+  return value_of(xb) - value_of(xa) > 1e-12;
+}
+
+/// b.gap (and b.gradient, b.hessian as `order` asks) of the R slave rows of a pair from
+/// `kernel` (a generic callable filling std::array<S, R>) on double, Dual<N> or Hyper<N>.
+template <int N, std::size_t R, class Kernel>
+void block_gaps(GapOrder order, GapBlock& b, const Kernel& kernel) {
+  b.gap.assign(R, 0.0);
+  if (order == GapOrder::value) {
+    std::array<double, R> g{};
+    kernel(g);
+    std::copy(g.begin(), g.end(), b.gap.begin());
+    return;
+  }
+  const auto store = [&b](const auto& g) {
+    for (std::size_t j = 0; j < R; ++j) {
+      b.gap[j] = g[j].value;
+      b.gradient.insert(b.gradient.end(), g[j].gradient.begin(), g[j].gradient.end());
+      if constexpr (requires { g[j].hessian; })
+        b.hessian.insert(b.hessian.end(), g[j].hessian.begin(), g[j].hessian.end());
+    }
+  };
+  if (order == GapOrder::gradient) {
+    std::array<Dual<N>, R> g;
+    kernel(g);
+    store(g);
+  } else {
+    std::array<Hyper<N>, R> g;
+    kernel(g);
+    store(g);
+  }
+}
+
+/// No overlap: the pair adds nothing.
+bool empty_block(const GapBlock& b) {
+  const auto zero = [](double v) { return v == 0.0; };
+  return std::all_of(b.gap.begin(), b.gap.end(), zero) &&
+         std::all_of(b.gradient.begin(), b.gradient.end(), zero);
+}
+
+/// One pair of facets with P nodes (line2: 2, line3: 3) in the frame of the slave facet's first
+/// node: slots 0 to P - 1 the slave facet's nodes (ends, then line3's mid node), up to 2 (P - 1)
+/// more for the other nodes of the facets around them (the nodal normals average those facets'
+/// unit normals at the node), then the P master nodes; per slave node the slots of its (at most
+/// two) facets in facet order and its local index in each.
+template <int P> struct PairInputT {
+  static constexpr int slave_slots = 3 * P - 2;
+  std::array<Eigen::Vector2d, slave_slots + P> x;
+  std::array<int, P> n_adjacent{};
+  std::array<std::array<std::array<int, P>, 2>, P> adjacent{};
+  std::array<std::array<int, 2>, P> local{};
   bool dual = true;
 };
+using PairInput = PairInputT<2>;
 
 template <class S>
 void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::array<S, 2>& g) {
@@ -115,34 +194,15 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
     }
     return xi;
   };
-  const double tol = options.projection_range_tolerance;
-  const auto inside = [tol](const geometry::CurveProjection& r) {
-    return r.converged && r.xi >= -1.0 - tol && r.xi <= 1.0 + tol;
-  };
-  const bool in0 = inside(master_on_slave[0]), in1 = inside(master_on_slave[1]);
-  S xa = -1.0, xb = 1.0;
-  if (in0 && in1) {
-    const S e0 = on_slave(0), e1 = on_slave(1);
-    const bool first = master_on_slave[0].xi < master_on_slave[1].xi;
-    xa = first ? e0 : e1;
-    xb = first ? e1 : e0;
-  } else if (in0 || in1) {
-    const std::size_t k = in0 ? 0 : 1;
-    const S xi_in = on_slave(k);
+  // The master runs from its end k (on the slave) towards its other end: along +xi?
+  const auto forward = [&](std::size_t k) {
     const Eigen::Vector2d towards_other = k == 0 ? Eigen::Vector2d(m1v - m0v) : m0v - m1v;
-    if (towards_other.dot(ts) > 0.0) {
-      xa = xi_in;
-      xb = 1.0;
-    } else {
-      xa = -1.0;
-      xb = xi_in;
-    }
-  } else if (!(inside(slave_on_master[0]) && inside(slave_on_master[1]))) {
+    return towards_other.dot(ts) > 0.0;
+  };
+  S xa, xb;
+  if (!overlap_ends(master_on_slave, slave_on_master, options.projection_range_tolerance, on_slave,
+                    forward, xa, xb))
     return;
-  }
-  xa = clamp_unit(xa);
-  xb = clamp_unit(xb);
-  if (!(value_of(xb) - value_of(xa) > 1e-12)) return;
 
   using Rule = geometry::LineRule5;
   const S segment_jacobian = (xb - xa) * 0.5;
@@ -175,16 +235,180 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   }
 }
 
+/// line3 (nodes at xi = -1, 1, 0): N = (xi (xi - 1) / 2, xi (xi + 1) / 2, 1 - xi^2).
+template <class S, class T> V2<S> line3_at(const std::array<V2<S>, 3>& p, const T& xi) {
+  return p[0] * (0.5 * xi * (xi - 1.0)) + p[1] * (0.5 * xi * (xi + 1.0)) + p[2] * (1.0 - xi * xi);
+}
+template <class S, class T> V2<S> line3_tangent(const std::array<V2<S>, 3>& p, const T& xi) {
+  return p[0] * (xi - 0.5) + p[1] * (xi + 0.5) + p[2] * (-2.0 * xi);
+}
+
+using PairInput3 = PairInputT<3>;
+
+/// The weighted gaps of the three slave nodes of a line3 pair, as pair_gaps does for line2 and
+/// integrate_pair (segmentation_2d.cpp) for line3: averaged unit nodal normals (the facets'
+/// normals at the node), the centre-normal pre-check, the end-node projections decided on
+/// values and polished on S, five Gauss points on the segment, the image on the curved master
+/// polished on S by Newton steps from its converged value, and the dual basis of the curved
+/// facet, A = D_e M_e^-1, on S.
+template <class S>
+void pair_gaps_line3(const PairInput3& in, const mortar::PairOptions& options,
+                     std::array<S, 3>& g) {
+  using std::sqrt;
+  g = {S(0.0), S(0.0), S(0.0)};
+  std::array<V2<S>, 10> X;
+  for (int i = 0; i < 10; ++i)
+    X[static_cast<std::size_t>(i)] = {
+        independent_variable<S>(in.x[static_cast<std::size_t>(i)].x(), 2 * i),
+        independent_variable<S>(in.x[static_cast<std::size_t>(i)].y(), 2 * i + 1)};
+  constexpr std::array<double, 3> node_xi = {-1.0, 1.0, 0.0};
+  std::array<V2<S>, 3> nn;
+  for (std::size_t k = 0; k < 3; ++k) {
+    V2<S> sum;
+    for (int f = 0; f < in.n_adjacent[k]; ++f) {
+      const auto& slots = in.adjacent[k][static_cast<std::size_t>(f)];
+      const std::array<V2<S>, 3> p = {X[static_cast<std::size_t>(slots[0])],
+                                      X[static_cast<std::size_t>(slots[1])],
+                                      X[static_cast<std::size_t>(slots[2])]};
+      const V2<S> t = line3_tangent(
+          p, node_xi[static_cast<std::size_t>(in.local[k][static_cast<std::size_t>(f)])]);
+      const S l = length(t);
+      sum = sum + V2<S>{t.y / l, -t.x / l};
+    }
+    const S l = length(sum);
+    nn[k] = {sum.x / l, sum.y / l};
+  }
+  const std::array<V2<S>, 3> xs3 = {X[0], X[1], X[2]}, xm3 = {X[7], X[8], X[9]};
+  std::array<Eigen::Vector2d, 3> xv, mv, nv;
+  std::array<V2<double>, 3> xd, md, nd;
+  for (std::size_t k = 0; k < 3; ++k) {
+    xv[k] = value(xs3[k]);
+    mv[k] = value(xm3[k]);
+    nv[k] = value(nn[k]);
+    xd[k] = {xv[k].x(), xv[k].y()};
+    md[k] = {mv[k].x(), mv[k].y()};
+    nd[k] = {nv[k].x(), nv[k].y()};
+  }
+  const auto curve = [](const std::array<V2<double>, 3>& p) {
+    return [p](double xi) {
+      const V2<double> x = line3_at(p, xi), t = line3_tangent(p, xi);
+      return geometry::CurvePoint{Eigen::Vector2d(x.x, x.y), Eigen::Vector2d(t.x, t.y)};
+    };
+  };
+  const auto slave_curve = curve(xd), normal_field = curve(nd), master_curve = curve(md);
+  const Eigen::Vector2d ts = slave_curve(0.0).dx, tm = master_curve(0.0).dx;
+  const Eigen::Vector2d ns = Eigen::Vector2d(ts.y(), -ts.x()).normalized();
+  const Eigen::Vector2d nm = Eigen::Vector2d(tm.y(), -tm.x()).normalized();
+  if (!(ns.dot(nm) < options.max_normal_alignment_2d)) return;
+  std::array<geometry::CurveProjection, 2> master_on_slave, slave_on_master;
+  for (std::size_t k = 0; k < 2; ++k) {
+    master_on_slave[k] = geometry::project_onto_curve_along_field(slave_curve, normal_field, mv[k],
+                                                                  0.0, options.newton);
+    slave_on_master[k] =
+        geometry::project_onto_curve(master_curve, xv[k], nv[k], 0.0, options.newton);
+  }
+  // Master end node k on the slave along n~(xi) = sum_i N_i n_i: the root of
+  // F(xi) = (x_s(xi) - m_k) x n~(xi), polished on S.
+  const auto on_slave = [&](std::size_t k) {
+    S xi = master_on_slave[k].xi;
+    for (int it = 0; it < 3; ++it) {
+      const V2<S> r = line3_at(xs3, xi) - xm3[k];
+      const V2<S> d = line3_at(nn, xi);
+      xi = xi - cross(r, d) / (cross(line3_tangent(xs3, xi), d) + cross(r, line3_tangent(nn, xi)));
+    }
+    return xi;
+  };
+  const auto forward = [&](std::size_t k) {
+    const Eigen::Vector2d towards_other = mv[1 - k] - mv[k];
+    return towards_other.dot(slave_curve(std::clamp(master_on_slave[k].xi, -1.0, 1.0)).dx) > 0.0;
+  };
+  S xa, xb;
+  if (!overlap_ends(master_on_slave, slave_on_master, options.projection_range_tolerance, on_slave,
+                    forward, xa, xb))
+    return;
+
+  using Rule = geometry::LineRule5;
+  const auto shape = [](const S& xi) {
+    return std::array<S, 3>{0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi};
+  };
+  // The dual coefficients A = D_e M_e^-1 of the curved facet (dual_basis.cpp, exact rule).
+  std::array<std::array<S, 3>, 3> A{};
+  if (in.dual) {
+    std::array<std::array<S, 3>, 3> Me{};
+    std::array<S, 3> De{};
+    for (int q = 0; q < Rule::n_points; ++q) {
+      const double xi = Rule::points[static_cast<std::size_t>(q)];
+      const S J = length(line3_tangent(xs3, xi)) * Rule::weights[static_cast<std::size_t>(q)];
+      const std::array<double, 3> N = {0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi};
+      for (std::size_t i = 0; i < 3; ++i) {
+        De[i] += J * N[i];
+        for (std::size_t j = 0; j < 3; ++j) Me[i][j] += J * (N[i] * N[j]);
+      }
+    }
+    // M_e^-1 by cofactors (symmetric).
+    const auto& m = Me;
+    std::array<std::array<S, 3>, 3> C;
+    C[0][0] = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    C[0][1] = m[0][2] * m[2][1] - m[0][1] * m[2][2];
+    C[0][2] = m[0][1] * m[1][2] - m[0][2] * m[1][1];
+    C[1][0] = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    C[1][1] = m[0][0] * m[2][2] - m[0][2] * m[2][0];
+    C[1][2] = m[0][2] * m[1][0] - m[0][0] * m[1][2];
+    C[2][0] = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    C[2][1] = m[0][1] * m[2][0] - m[0][0] * m[2][1];
+    C[2][2] = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    const S det = m[0][0] * C[0][0] + m[0][1] * C[1][0] + m[0][2] * C[2][0];
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j) A[i][j] = De[i] * C[i][j] / det;
+  }
+  const S segment_jacobian = (xb - xa) * 0.5;
+  double eta_guess = 0.0;
+  for (int q = 0; q < Rule::n_points; ++q) {
+    const double gp = Rule::points[static_cast<std::size_t>(q)];
+    const S xi = 0.5 * ((1.0 - gp) * xa + (1.0 + gp) * xb);
+    const std::array<S, 3> N = shape(xi);
+    const V2<S> xs = line3_at(xs3, xi);
+    const V2<S> nt = line3_at(nn, xi);
+    const S nl = length(nt);
+    const V2<S> n = {nt.x / nl, nt.y / nl};
+    // The image on the curved master: (x_m(eta) - x_s) x n = 0, from its value by Newton on S.
+    const geometry::CurveProjection image =
+        geometry::project_onto_curve(master_curve, value(xs), value(n), eta_guess, options.newton);
+    if (!image.converged) continue;
+    eta_guess = image.xi;
+    S eta = image.xi;
+    for (int it = 0; it < 3; ++it)
+      eta = eta - cross(line3_at(xm3, eta) - xs, n) / cross(line3_tangent(xm3, eta), n);
+    const V2<S> xm = line3_at(xm3, eta);
+    const S w = Rule::weights[static_cast<std::size_t>(q)] * length(line3_tangent(xs3, xi)) *
+                segment_jacobian;
+    const S wg = w * dot(n, xm - xs);
+    for (std::size_t j = 0; j < 3; ++j) {
+      S phi = in.dual ? A[j][0] * N[0] + A[j][1] * N[1] + A[j][2] * N[2] : N[j];
+      g[j] += wg * phi;
+    }
+  }
+}
+
 } // namespace
 
 bool ContactInterface::has_gap_blocks() const {
-  const auto supported = [this](fem::CellType t) {
-    return dim() == 2 ? t == fem::CellType::line2
+  // 2D: line2 or line3 faces, one kind on both sides (the kind of any facet this rank holds: a
+  // side held in part may have none here).
+  fem::CellType line = fem::CellType::line2;
+  if (!slave_.types.empty())
+    line = slave_.types.front();
+  else if (!rigid_ && !master_.types.empty())
+    line = master_.types.front();
+  const auto supported = [this, line](fem::CellType t) {
+    return dim() == 2 ? t == line && (t == fem::CellType::line2 || t == fem::CellType::line3)
                       : t == fem::CellType::tri3 || t == fem::CellType::quad4;
   };
+  // Against a rigid obstacle the slave side only (its whole-facet kernel; quadratic 3D faces
+  // not: rigid_obstacle_facet.cpp).
   for (const auto t : slave_.types)
     if (!supported(t)) return false;
-  if (rigid_) return obstacle_.shape != Obstacle::Shape::cylinder;
+  if (rigid_) return true;
   for (const auto t : master_.types)
     if (!supported(t)) return false;
   return true;
@@ -261,76 +485,69 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
   const mortar::FacetSet slaves = slave_set();
   const mortar::FacetSet masters = integration_master().facet_set();
   const mortar::NodeFacets& adjacency = slave_adjacency();
+  // The pair's slots (PairInputT) and their mesh dofs.
+  const auto gather = [&]<int P>(auto sn, auto mn, PairInputT<P>& in, GapBlock& b) {
+    constexpr int n_slave = PairInputT<P>::slave_slots;
+    b.dofs.assign(static_cast<std::size_t>(n_slave + P), -1);
+    std::array<local_index, n_slave> slots{};
+    int n_slots = 0;
+    const auto slot_of = [&](local_index node) {
+      for (int t = 0; t < n_slots; ++t)
+        if (slots[static_cast<std::size_t>(t)] == node) return t;
+      SEAM_ASSERT(n_slots < n_slave);
+      slots[static_cast<std::size_t>(n_slots)] = node;
+      return n_slots++;
+    };
+    for (int k = 0; k < P; ++k) slot_of(sn[static_cast<std::size_t>(k)]);
+    in.dual = options_.multiplier == mortar::Multiplier::dual;
+    for (std::size_t k = 0; k < P; ++k) {
+      const auto facets = adjacency.of(sn[k]);
+      SEAM_CHECK(facets.size() <= 2, InputError, "interface '", name_, "': slave node ",
+                 slave_.mesh_nodes[static_cast<std::size_t>(sn[k])],
+                 " lies on more than two facets");
+      in.n_adjacent[k] = static_cast<int>(facets.size());
+      for (std::size_t e = 0; e < facets.size(); ++e) {
+        const auto nodes = slaves.facet_nodes(facets[e]);
+        SEAM_ASSERT(nodes.size() == P);
+        for (std::size_t c = 0; c < P; ++c) {
+          in.adjacent[k][e][c] = slot_of(nodes[c]);
+          if (nodes[c] == sn[k]) in.local[k][e] = static_cast<int>(c);
+        }
+      }
+    }
+    for (int t = 0; t < n_slots; ++t) {
+      const auto node =
+          slave_.mesh_nodes[static_cast<std::size_t>(slots[static_cast<std::size_t>(t)])];
+      b.dofs[static_cast<std::size_t>(t)] = static_cast<std::int64_t>(node) * 2;
+      in.x[static_cast<std::size_t>(t)] = position(node);
+    }
+    for (std::size_t l = 0; l < P; ++l) {
+      const auto node = integration_node(mn[l]);
+      b.dofs[n_slave + l] = static_cast<std::int64_t>(node) * 2;
+      in.x[n_slave + l] = position(node);
+    }
+    // The frame of the slave facet's first node (as integrate_pair).
+    const Eigen::Vector2d origin = in.x[0];
+    for (auto& x : in.x) x -= origin;
+    b.slave.assign(sn.begin(), sn.begin() + P);
+  };
   for (const auto f : owned_)
     for (const auto& pair : pairs_of(f)) {
       const auto sn = slaves.facet_nodes(slave_index(pair.slave));
       const auto mn = masters.facet_nodes(integration_facet(pair.master));
       GapBlock b;
-      b.dofs.assign(6, -1);
-      std::array<local_index, 4> slave_slots{sn[0], sn[1], -1, -1};
-      PairInput in;
-      in.dual = options_.multiplier == mortar::Multiplier::dual;
-      int n_slave_slots = 2;
-      for (std::size_t k = 0; k < 2; ++k) {
-        const auto facets = adjacency.of(sn[k]);
-        SEAM_CHECK(facets.size() <= 2, InputError, "interface '", name_, "': slave node ",
-                   slave_.mesh_nodes[static_cast<std::size_t>(sn[k])],
-                   " lies on more than two facets");
-        in.n_adjacent[k] = static_cast<int>(facets.size());
-        for (std::size_t e = 0; e < facets.size(); ++e) {
-          const auto nodes = slaves.facet_nodes(facets[e]);
-          for (std::size_t c = 0; c < 2; ++c) {
-            int slot = -1;
-            for (int s = 0; s < n_slave_slots; ++s)
-              if (slave_slots[static_cast<std::size_t>(s)] == nodes[c]) slot = s;
-            if (slot < 0) {
-              SEAM_ASSERT(n_slave_slots < 4);
-              slot = n_slave_slots++;
-              slave_slots[static_cast<std::size_t>(slot)] = nodes[c];
-            }
-            in.adjacent[k][e][c] = slot;
-          }
-        }
-      }
-      for (int s = 0; s < n_slave_slots; ++s) {
-        const auto node = slave_.mesh_nodes[static_cast<std::size_t>(slave_slots[s])];
-        b.dofs[static_cast<std::size_t>(s)] = static_cast<std::int64_t>(node) * 2;
-        in.x[static_cast<std::size_t>(s)] = position(node);
-      }
-      for (std::size_t l = 0; l < 2; ++l) {
-        const auto node = integration_node(mn[l]);
-        b.dofs[4 + l] = static_cast<std::int64_t>(node) * 2;
-        in.x[4 + l] = position(node);
-      }
-      // The frame of the slave facet's first node (as integrate_pair).
-      const Eigen::Vector2d origin = in.x[0];
-      for (auto& x : in.x) x -= origin;
-      b.slave = {sn[0], sn[1]};
-      b.gap.assign(2, 0.0);
-      const GapOrder block_order = order_of(b.slave);
-      if (block_order == GapOrder::value) {
-        std::array<double, 2> g{};
-        pair_gaps(in, options_.pair, g);
-        b.gap = {g[0], g[1]};
-      } else if (block_order == GapOrder::gradient) {
-        std::array<Dual<12>, 2> g;
-        pair_gaps(in, options_.pair, g);
-        for (std::size_t j = 0; j < 2; ++j) {
-          b.gap[j] = g[j].value;
-          b.gradient.insert(b.gradient.end(), g[j].gradient.begin(), g[j].gradient.end());
-        }
+      if (sn.size() == 3) {
+        PairInput3 in;
+        gather.template operator()<3>(sn, mn, in, b);
+        block_gaps<20, 3>(order_of(b.slave), b,
+                          [&in, this](auto& g) { pair_gaps_line3(in, options_.pair, g); });
       } else {
-        std::array<Hyper<12>, 2> g;
-        pair_gaps(in, options_.pair, g);
-        for (std::size_t j = 0; j < 2; ++j) {
-          b.gap[j] = g[j].value;
-          b.gradient.insert(b.gradient.end(), g[j].gradient.begin(), g[j].gradient.end());
-          b.hessian.insert(b.hessian.end(), g[j].hessian.begin(), g[j].hessian.end());
-        }
+        PairInput in;
+        gather.template operator()<2>(sn, mn, in, b);
+        block_gaps<12, 2>(order_of(b.slave), b,
+                          [&in, this](auto& g) { pair_gaps(in, options_.pair, g); });
       }
-      if (b.gap[0] == 0.0 && b.gap[1] == 0.0 &&
-          std::all_of(b.gradient.begin(), b.gradient.end(), [](double v) { return v == 0.0; }))
-        continue; // no overlap: the pair adds nothing
+      if (empty_block(b)) continue;
       out.push_back(std::move(b));
     }
 }

@@ -124,10 +124,16 @@ void rigid_obstacle_gap_hessians(const mortar::Facet<Dim>& facet, const Obstacle
                                  std::vector<double>& gradient, std::vector<double>& hessian) {
   const int nv = Dim * facet.n_nodes;
   if constexpr (Dim == 2) {
-    SEAM_CHECK(nv == 4, InputError,
-               "energy-momentum contact against a rigid obstacle: line2 slave facets only");
-    with_hessians<2, 4>(facet, obstacle, multiplier, gap, gradient, hessian);
+    SEAM_CHECK(nv == 4 || nv == 6, InputError,
+               "energy-momentum contact against a rigid obstacle: line2 and line3 slave facets "
+               "only");
+    if (nv == 4)
+      with_hessians<2, 4>(facet, obstacle, multiplier, gap, gradient, hessian);
+    else
+      with_hessians<2, 6>(facet, obstacle, multiplier, gap, gradient, hessian);
   } else {
+    // Quadratic 3D facets would need Hyper<18> to Hyper<27> in the kernel's 9 x 9 matrices,
+    // beyond Eigen's stack allocation limit: tri3 and quad4 only (has_gap_blocks).
     SEAM_CHECK(nv == 9 || nv == 12, InputError,
                "energy-momentum contact against a rigid obstacle: tri3 and quad4 slave facets "
                "only");

@@ -131,10 +131,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
     // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
     // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
-    // With friction between deformable bodies (contact_energy_momentum_friction.cpp); friction
-    // against a rigid obstacle keeps the force of the end of the step.
-    s.discrete_gradient = config.time.integrator == io::Integrator::energy_momentum &&
-                          s.itf.has_gap_blocks() && !(s.friction && s.itf.rigid());
+    // With friction the normal part (contact_energy_momentum_friction.cpp).
+    s.discrete_gradient =
+        config.time.integrator == io::Integrator::energy_momentum && s.itf.has_gap_blocks();
     saddle_point_ = saddle_point_ || s.discrete_gradient;
     // The slave facets start with the bulk partition (the facets of this rank's cells).
     const mesh::Region region = itf.surface.empty()
@@ -1345,13 +1344,16 @@ std::vector<std::string> ContactConstraint::describe() const {
     std::string text = line;
     if (s.discrete_gradient)
       text += s.friction
-                  ? ", energy-momentum contact force (discrete gradient of the weighted "
-                    "gaps; friction: frame-indifferent slip over the step's mean D and M)"
+                  ? (s.itf.rigid() ? ", energy-momentum contact force (discrete gradient of the "
+                                     "weighted gaps; friction: slip over the step's mean D)"
+                                   : ", energy-momentum contact force (discrete gradient of the "
+                                     "weighted gaps; friction: frame-indifferent slip over the "
+                                     "step's mean D and M)")
                   : ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
       text += ", contact force of the end of the step (energy-momentum contact needs line2 "
-              "faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a rigid plane or "
-              "sphere, and no friction against a rigid obstacle)";
+              "or line3 faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a "
+              "rigid plane, sphere or cylinder)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",
@@ -1545,9 +1547,10 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     if (s.discrete_gradient && s.itf.rigid() &&
         s.itf.obstacle().shape == contact::Obstacle::Shape::plane) {
       const auto& normal = s.itf.obstacle().direction;
+      const auto lambda_n = normal_multipliers(s); // with friction the normal parts
       double f = 0.0;
       for (const auto& e : s.em_gradient)
-        f -= s.lambda[e.j] * e.value * normal[static_cast<std::size_t>(e.dof % dim)];
+        f -= lambda_n[e.j] * e.value * normal[static_cast<std::size_t>(e.dof % dim)];
       rep.normal_force = disc_.comm().sum(f);
     }
     // The frictional work including this step (save() adds it once the step is accepted).

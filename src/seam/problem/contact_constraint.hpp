@@ -91,7 +91,7 @@ public:
   /// evaluate() of the step. Collective.
   void start_step(const la::Vector& u_n);
   /// Interfaces with the discrete-gradient force, and those that keep the force of the end of
-  /// the step (friction, quadratic faces, rigid cylinders).
+  /// the step (friction against a rigid obstacle, quadratic faces).
   int n_discrete_gradient() const;
   int n_end_of_step() const;
   /// After a converged energy-momentum step, at its last evaluate(): the energy the step gained

@@ -53,7 +53,8 @@ struct DiscreteGradient {
 /// correction's direction w: translations along `translations` and rotations about `axes`
 /// through `centre` (through the centroid of the nodes if `about_centroid`). Two bodies: all
 /// rigid motions; a rigid plane: the translations along it and (3D) the rotation about its
-/// normal; a rigid sphere: the rotations about its centre. The discrete gradient is then free
+/// normal; a rigid sphere: the rotations about its centre; a rigid cylinder: the translations
+/// along its axis and the rotations about it. The discrete gradient is then free
 /// of force along those translations and of moment about those axes, as the gradient of a
 /// function invariant under them is.
 struct Invariance {
@@ -92,9 +93,16 @@ Invariance invariance_of(const contact::ContactInterface& itf, int dim) {
     }
     return inv;
   }
-  // A sphere (a circle in 2D): the rotations about its centre.
   inv.about_centroid = false;
   for (int k = 0; k < dim; ++k) inv.centre(k) = o.point[static_cast<std::size_t>(k)];
+  if (o.shape == contact::Obstacle::Shape::cylinder) {
+    // A cylinder (3D only): the translations along its axis and the rotations about it.
+    const Eigen::Vector3d a(o.direction[0], o.direction[1], o.direction[2]);
+    inv.translations.push_back(a);
+    inv.axes.push_back(a);
+    return inv;
+  }
+  // A sphere (a circle in 2D): the rotations about its centre.
   if (dim == 2)
     inv.axes.push_back(unit(2));
   else

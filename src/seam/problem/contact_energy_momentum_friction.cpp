@@ -1,5 +1,5 @@
-// Friction in energy-momentum contact (docs/contact_dynamics.md §5, "Friction"): two bodies
-// and self contact with line2 (2D) or tri3/quad4 (3D) faces.
+// Friction in energy-momentum contact (docs/contact_dynamics.md §5, "Friction"): two bodies,
+// self contact and rigid obstacles with line2 or line3 (2D) or tri3/quad4 (3D) faces.
 //
 // The Cartesian multiplier lambda_j of slave node j splits along the averaged normal n_j of
 // x_{n+1} into lambda_n,j = n_j . lambda_j and lambda_t,j = P_j lambda_j (P_j = I - n_j n_j^T).
@@ -18,6 +18,9 @@
 // dissipation of interfaces.csv, >= 0 by the condition: lambda_t,j is parallel to P_j u~_j in
 // slip, P_j u~_j = 0 in stick), and the force has neither resultant (equal row sums of D and M;
 // the couple) nor moment: linear and angular momentum are exact.
+// Against a rigid obstacle (M = 0) the obstacle is the frame: u~_j = G_j(dx) - (sum_k D_jk) dc
+// with dc the obstacle's displacement in the step, no rotation taken out and no couple; the
+// energy statement is the same, and the frictional force changes the momenta as it should.
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/parallel/exchange.hpp"
@@ -137,6 +140,22 @@ void ContactConstraint::energy_momentum_slip(Side& s, std::span<const double> u_
     }
   });
   parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, s.slip, dim);
+  if (s.itf.rigid()) {
+    // Against a rigid obstacle the obstacle is the frame: u~_j = sum_k D_jk (dx_k - dc) with
+    // dc the obstacle's displacement in the step, and no rotation is taken out (a body turning
+    // on the obstacle slips on it). No couple: G_j(x_mid) is set to zero.
+    const auto obstacle = s.itf.plane_displacement();
+    std::vector<double> weight(s.node_owners.size(), 0.0);
+    for_each_mean_operator(s, [&](std::size_t j, std::int32_t, double w) { weight[j] += w; });
+    parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, weight, 1);
+    for (std::size_t j = 0; j < s.node_owners.size(); ++j)
+      if (s.node_owners[j] == disc_.comm().rank())
+        for (int c = 0; c < dim; ++c)
+          s.slip[j * dim + c] -= weight[j] * (obstacle[static_cast<std::size_t>(c)] -
+                                              s.plane_old[static_cast<std::size_t>(c)]);
+    s.em_gap_mid.assign(s.slip.size(), 0.0);
+    return;
+  }
   // Frame indifference: u~_j - theta_j x G_j(x_mid), theta_j the step's rotation of the nodes
   // around j. A rigid rotation then slips nowhere, and the work conjugate force (the mortar
   // force of lambda_t and the couple -Omega x y_b, add_energy_momentum_friction_force) has no
@@ -246,6 +265,8 @@ void ContactConstraint::energy_momentum_friction_tangent(Side& s) {
     }
   };
   for_each_mean_operator(s, add_turning);
+  // Against a rigid obstacle there is no frame-indifference correction (energy_momentum_slip).
+  if (s.itf.rigid()) return;
 
   // The frame-indifference correction (energy_momentum_slip): u~_j -= theta_j x G_j and the
   // couple -Omega_j x y_b on the ring of j, Omega_j = J^-1 (G_j x lambda_t,j).

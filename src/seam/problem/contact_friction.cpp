@@ -368,8 +368,9 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
   const auto coef_u = [](const contact::FrictionRow& r, int a) { return r.a_u[a]; };
   const auto coef_n = [](const contact::FrictionRow& r, int a) { return r.a_n[a]; };
   const auto coef_g = [](const contact::FrictionRow& r, int) { return r.a_g; };
-  const bool rigid = s.itf.rigid();
   // Against a rigid plane u~ = D s with s = P (x~ - x~^n - (c - c^n)): dD enters through u~ too.
+  // (Energy-momentum contact: u~ over the mean operators, as between two bodies.)
+  const bool rigid = s.itf.rigid() && !s.discrete_gradient;
   std::vector<double> s_nodal(n * dim, 0.0);
   for (std::size_t j = 0; j < n; ++j)
     if (s.active[j] && rigid)
@@ -618,9 +619,11 @@ double ContactConstraint::dissipation_increment(const Side& s) const {
   // misses sum_jk D_jk lambda_t,j . (d_k - d_j), a share of the neighbours' relative motion
   // that does not fall with the time step (5.4e-6 E0 at dt and 1.6e-5 at dt / 2 on the
   // thrown block of test_friction.py). Between two bodies the condition's slip already
-  // carries the coupling (Gitterle et al. 2010, eq. 31).
+  // carries the coupling (Gitterle et al. 2010, eq. 31), and so does the energy-momentum
+  // increment over the mean operators (contact_energy_momentum_friction.cpp), also against an
+  // obstacle.
   const int dim = disc_.dim();
-  const bool coupled = s.itf.rigid() && s.itf.standard();
+  const bool coupled = s.itf.rigid() && s.itf.standard() && !s.discrete_gradient;
   const std::vector<double> w = coupled ? rigid_motion_weighted(s) : std::vector<double>{};
   const std::vector<double>& slip = coupled ? w : s.slip;
   // Summed over the owners of the nodes: a rank has the normals of the slave nodes it reads.

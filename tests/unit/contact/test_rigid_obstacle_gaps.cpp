@@ -1,8 +1,8 @@
 // The weighted gaps of a slave facet against a rigid obstacle with their second derivatives
 // (rigid_obstacle_gaps.hpp, energy-momentum contact): the Hessian against central differences
 // of the gradient (rigid_obstacle_facet with derivatives), the gradient against central
-// differences of the values, on a distorted facet near a plane and a sphere, dual and
-// standard multipliers, line2, tri3 and quad4.
+// differences of the values, on a distorted facet near a plane, a sphere and (3D) a cylinder,
+// dual and standard multipliers, line2, tri3 and quad4.
 #include "seam/contact/rigid_obstacle_gaps.hpp"
 
 #include <gtest/gtest.h>
@@ -20,43 +20,51 @@ template <int Dim> mortar::Facet<Dim> facet(fem::CellType type) {
   mortar::Facet<Dim> f;
   f.type = type;
   if (Dim == 2) {
-    f.n_nodes = 2;
+    f.n_nodes = type == fem::CellType::line3 ? 3 : 2;
     f.x.col(0) << 0.1, 0.03;
     f.x.col(1) << 0.62, -0.02;
-  } else {
-    const double xs[4][3] = {
-        {0.0, 0.0, 0.02}, {0.55, 0.05, -0.01}, {0.6, 0.48, 0.04}, {-0.05, 0.5, 0.0}};
-    f.n_nodes = type == fem::CellType::tri3 ? 3 : 4;
-    for (int i = 0; i < f.n_nodes; ++i)
-      for (int a = 0; a < Dim; ++a) f.x(a, i) = xs[i][a];
+    // line3: the mid node off the chord (a curved facet).
+    if (f.n_nodes == 3) f.x.col(2) << 0.37, 0.035;
+    return f;
   }
+  const double xs[4][3] = {
+      {0.0, 0.0, 0.02}, {0.55, 0.05, -0.01}, {0.6, 0.48, 0.04}, {-0.05, 0.5, 0.0}};
+  f.n_nodes = type == fem::CellType::tri3 ? 3 : 4;
+  for (int i = 0; i < f.n_nodes; ++i)
+    for (int a = 0; a < Dim; ++a) f.x(a, i) = xs[i][a];
   return f;
 }
 
-Obstacle obstacle(int dim, bool sphere) {
+Obstacle obstacle(int dim, Obstacle::Shape shape) {
   Obstacle o;
-  if (sphere) {
-    o.shape = Obstacle::Shape::sphere;
+  o.shape = shape;
+  if (shape == Obstacle::Shape::sphere) {
     o.point =
         dim == 2 ? std::array<double, 3>{0.3, -2.0, 0.0} : std::array<double, 3>{0.3, 0.2, -2.0};
+    o.radius = 2.0;
+  } else if (shape == Obstacle::Shape::cylinder) {
+    // An oblique axis under the facet: the distance depends on all three coordinates.
+    o.point = {0.3, 0.2, -2.0};
+    o.direction = {0.3, 1.0, 0.1};
     o.radius = 2.0;
   } else {
     o.point = {0.0, 0.0, 0.0};
     o.direction = dim == 2 ? std::array<double, 3>{0.1, 0.995, 0.0}
                            : std::array<double, 3>{0.1, -0.05, 0.9937};
-    double l = 0.0;
-    for (const double d : o.direction) l += d * d;
-    for (auto& d : o.direction) d /= std::sqrt(l);
   }
+  double l = 0.0;
+  for (const double d : o.direction) l += d * d;
+  if (l > 0.0)
+    for (auto& d : o.direction) d /= std::sqrt(l);
   return o;
 }
 
 /// Largest differences of the gradient and of the Hessian from central differences, relative
 /// to the largest entry of each.
 template <int Dim>
-std::pair<double, double> check(fem::CellType type, bool sphere, mortar::Multiplier m) {
+std::pair<double, double> check(fem::CellType type, Obstacle::Shape shape, mortar::Multiplier m) {
   const auto f = facet<Dim>(type);
-  const Obstacle o = obstacle(Dim, sphere);
+  const Obstacle o = obstacle(Dim, shape);
   std::vector<double> gap, gradient, hessian;
   rigid_obstacle_gap_hessians<Dim>(f, o, m, gap, gradient, hessian);
   const int n = f.n_nodes, nv = Dim * n;
@@ -100,21 +108,65 @@ void expect_exact(std::pair<double, double> e) {
 }
 
 TEST(RigidObstacleGaps, Line2PlaneAndCircle) {
-  for (const bool sphere : {false, true})
+  for (const auto shape : {Obstacle::Shape::plane, Obstacle::Shape::sphere})
     for (const auto m : {mortar::Multiplier::dual, mortar::Multiplier::standard})
-      expect_exact(check<2>(fem::CellType::line2, sphere, m));
+      expect_exact(check<2>(fem::CellType::line2, shape, m));
 }
 
-TEST(RigidObstacleGaps, Tri3AndQuad4PlaneAndSphere) {
+TEST(RigidObstacleGaps, Tri3AndQuad4PlaneSphereAndCylinder) {
   for (const auto type : {fem::CellType::tri3, fem::CellType::quad4})
-    for (const bool sphere : {false, true})
+    for (const auto shape :
+         {Obstacle::Shape::plane, Obstacle::Shape::sphere, Obstacle::Shape::cylinder})
       for (const auto m : {mortar::Multiplier::dual, mortar::Multiplier::standard}) {
-        const auto e = check<3>(type, sphere, m);
+        const auto e = check<3>(type, shape, m);
+        Obstacle o;
+        o.shape = shape;
         std::printf("  %s %s %s: gradient %.2e, Hessian %.2e (relative to central differences)\n",
-                    std::string(fem::name(type)).c_str(), sphere ? "sphere" : "plane",
+                    std::string(fem::name(type)).c_str(), o.name(),
                     m == mortar::Multiplier::dual ? "dual" : "standard", e.first, e.second);
         expect_exact(e);
       }
+}
+
+/// line3 facets (energy-momentum contact against an obstacle takes them too in 2D).
+TEST(RigidObstacleGaps, Line3PlaneAndCircle) {
+  for (const auto shape : {Obstacle::Shape::plane, Obstacle::Shape::sphere})
+    for (const auto m : {mortar::Multiplier::dual, mortar::Multiplier::standard}) {
+      const auto e = check<2>(fem::CellType::line3, shape, m);
+      std::printf("  line3 %s %s: gradient %.2e, Hessian %.2e\n",
+                  shape == Obstacle::Shape::plane ? "plane" : "circle",
+                  m == mortar::Multiplier::dual ? "dual" : "standard", e.first, e.second);
+      expect_exact(e);
+    }
+}
+
+/// The cylinder's gaps do not change when the facet slides along the axis or turns about it
+/// (the invariance the energy-momentum correction's direction leaves out): the gradient has no
+/// resultant along the axis and no moment about it.
+TEST(RigidObstacleGaps, CylinderGradientFreeAlongAndAboutTheAxis) {
+  const auto f = facet<3>(fem::CellType::quad4);
+  const Obstacle o = obstacle(3, Obstacle::Shape::cylinder);
+  std::vector<double> gap, gradient, hessian;
+  rigid_obstacle_gap_hessians<3>(f, o, mortar::Multiplier::dual, gap, gradient, hessian);
+  const int n = f.n_nodes, nv = 3 * n;
+  double largest = 0.0;
+  for (const double g : gradient) largest = std::max(largest, std::abs(g));
+  for (int j = 0; j < n; ++j) {
+    double along = 0.0, about = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double* g = gradient.data() + j * nv + 3 * i;
+      double r[3];
+      for (int a = 0; a < 3; ++a) r[a] = f.x(a, i) - o.point[static_cast<std::size_t>(a)];
+      const double moment[3] = {r[1] * g[2] - r[2] * g[1], r[2] * g[0] - r[0] * g[2],
+                                r[0] * g[1] - r[1] * g[0]};
+      for (int a = 0; a < 3; ++a) {
+        along += o.direction[static_cast<std::size_t>(a)] * g[a];
+        about += o.direction[static_cast<std::size_t>(a)] * moment[a];
+      }
+    }
+    EXPECT_LT(std::abs(along), 1e-14 * largest);
+    EXPECT_LT(std::abs(about), 1e-13 * largest);
+  }
 }
 
 } // namespace
