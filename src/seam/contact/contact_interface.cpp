@@ -179,6 +179,24 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   owned_nodes_ = slave_.nodes;
 }
 
+void ContactInterface::hold_slave_facets(const mesh::Region& region) {
+  SEAM_ASSERT(!self_ && !rigid_);
+  slave_ = meshtying::extract_side(*mesh_, region);
+  slave_adjacency_ = mortar::node_facets(slave_.facet_set());
+  transformation_ =
+      mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
+  transformation_inverse_ = mortar::inverse_transformation(transformation_);
+  normals_.assign(slave_.coordinates.size(), 0.0);
+  all_normals_ = true;
+  normal_nodes_.clear();
+  pairs_.clear();
+  pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
+  owned_.clear();
+  owned_offsets_.assign(1, 0);
+  owned_nodes_.clear();
+  search_.reset();
+}
+
 void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
   std::sort(facets.begin(), facets.end());
   facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
