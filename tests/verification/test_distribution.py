@@ -52,6 +52,10 @@ Each test can fail:
   holds strictly fewer master facets than the side has, the ranks together at most 1.4 x of
   it, and every output equals np 1 to 1e-10; the same equality on 2D ironing without
   friction at np 3;
+- the slave side of two-body contact held in part, with the bulk distribution (with and
+  without friction) and with the independent one (without friction; Hertz and 2D ironing at
+  np 3, and after the rebalancings of the Hertz case at np 4): no rank holds the whole slave
+  side, and every output equals np 1 to 1e-10;
 - the ghosting reused (Verlet skin): on the two blocks and on the Hertz sphere (bodies that
   move little) at np = 3 the ghosts are exchanged at fewer searches than there are searches,
   and the results equal those of a run that exchanges at every search (SEAM_GHOST_SKIN=0,
