@@ -297,6 +297,9 @@ def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12):
 
 
 def test_static_friction_two_bodies():
+    """Two blocks with Coulomb friction, the independent distribution of the interface (the
+    default): at np 3 the slave side is held in part; a restart holds the slave nodes of the
+    part of M^n it reads (docs/parallel.md, "Converting the contact sides", step 3)."""
     check_case(TWO_BLOCKS_GEO, two_blocks_yaml, 3, "static friction, two bodies")
 
 

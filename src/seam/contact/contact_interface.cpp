@@ -181,12 +181,24 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
 
 void ContactInterface::hold_slave_facets(const mesh::Region& region) {
   SEAM_ASSERT(!self_ && !rigid_);
-  slave_ = meshtying::extract_side(*mesh_, region);
+  auto side = meshtying::extract_side(*mesh_, region);
+  // The normals of the nodes held before and after are kept (read until the next place()).
+  const auto d = static_cast<std::size_t>(dim());
+  std::vector<double> normals(side.mesh_nodes.size() * d, 0.0);
+  for (std::size_t j = 0; j < side.mesh_nodes.size(); ++j) {
+    const auto& before = slave_.mesh_nodes;
+    const auto it = std::lower_bound(before.begin(), before.end(), side.mesh_nodes[j]);
+    if (it == before.end() || *it != side.mesh_nodes[j]) continue;
+    const auto i = static_cast<std::size_t>(it - before.begin());
+    std::copy_n(normals_.begin() + static_cast<std::ptrdiff_t>(i * d), d,
+                normals.begin() + static_cast<std::ptrdiff_t>(j * d));
+  }
+  slave_ = std::move(side);
   slave_adjacency_ = mortar::node_facets(slave_.facet_set());
   transformation_ =
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
   transformation_inverse_ = mortar::inverse_transformation(transformation_);
-  normals_.assign(slave_.coordinates.size(), 0.0);
+  normals_ = std::move(normals);
   all_normals_ = true;
   normal_nodes_.clear();
   pairs_.clear();

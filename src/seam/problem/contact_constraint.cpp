@@ -1278,18 +1278,25 @@ void ContactConstraint::distribute(Side& s) {
   const auto mine = s.distribution->distribute(ids, centroids, work);
   // The slave side follows the facets this rank evaluates now (the independent distribution
   // with the slave side held in part).
-  if (s.slave_region) hold_slave_part(s, mine);
+  if (s.slave_region) hold_slave_part(s, mine, {}, false);
   std::vector<local_index> facets(mine.size());
   for (std::size_t i = 0; i < mine.size(); ++i) facets[i] = s.slave_ids.facet(mine[i]);
   s.itf.set_owned_facets(std::move(facets));
   s.distributed = true;
 }
 
-void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evaluated) {
+void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evaluated,
+                                        std::vector<std::int64_t> kept, bool own_cells) {
   const auto& mesh = disc_.mesh();
   const auto& full = *s.slave_region;
   const auto ids = meshtying::facet_gids(full, [&](std::int32_t c) { return disc_.cell_gid(c); });
   std::sort(evaluated.begin(), evaluated.end());
+  // With friction this rank's part of M^n (summed by slave node into the slip increments)
+  // keeps its slave nodes held until it is replaced.
+  if (s.friction)
+    for (const auto* m : {&s.M_old, &s.part.M})
+      for (const auto& e : *m) kept.push_back(s.node_keys[static_cast<std::size_t>(e.slave)]);
+  std::sort(kept.begin(), kept.end());
   const auto n_full = static_cast<std::size_t>(full.n_facets());
   const auto for_nodes = [&](std::size_t f, auto&& visit) {
     const auto c = full.facet_cell[f];
@@ -1298,14 +1305,18 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
          fem::facet_nodes(mesh.cell_type[static_cast<std::size_t>(c)], full.facet_local[f]))
       visit(cell[static_cast<std::size_t>(k)]);
   };
-  // The rings of the nodes this rank owns (it decides their status from their normals) and
-  // of the nodes of the facets it evaluates.
+  // Before the first distribution the facets of its own and ghost cells (the bulk share it
+  // starts from); after it the rings of the nodes this rank owns (it decides their status from
+  // their normals). Always the rings of the nodes of the facets it evaluates and of `kept`.
   std::vector<char> keep(n_full, 0);
   std::vector<std::int32_t> ring;
   for (std::size_t f = 0; f < n_full; ++f) {
+    keep[f] = own_cells && !disc_.interface_only_cell(full.facet_cell[f]);
     const bool mine = std::binary_search(evaluated.begin(), evaluated.end(), ids[f]);
     for_nodes(f, [&](std::int32_t node) {
-      if (mine || disc_.owns_node(node)) ring.push_back(node);
+      if (mine || (!own_cells && disc_.owns_node(node)) ||
+          std::binary_search(kept.begin(), kept.end(), disc_.node_gid(node)))
+        ring.push_back(node);
     });
   }
   std::sort(ring.begin(), ring.end());
@@ -1335,38 +1346,49 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
     }
     values = std::move(out);
   };
-  const int dim = disc_.dim();
-  for (auto* v : {&s.lambda, &s.lambda_saved, &s.D, &s.gap}) moved(*v, 1);
-  for (auto* v : {&s.active, &s.active_previous, &s.active_accepted}) moved(*v, 1);
-  moved(s.dirichlet, static_cast<std::size_t>(dim));
-  const auto n = after.size();
-  std::vector<double> values(n * 4), fixed(n * dim);
-  for (std::size_t j = 0; j < n; ++j) {
-    values[j * 4] = s.lambda[j];
-    values[j * 4 + 1] = s.lambda_saved[j];
-    values[j * 4 + 2] = s.D[j];
-    values[j * 4 + 3] = s.gap[j];
+  const auto dim = static_cast<std::size_t>(disc_.dim());
+  // Moved, then the owners' values published (every array is the owners' on every holder).
+  std::vector<double> buffer;
+  const auto follow = [&](auto& values, std::size_t width) {
+    moved(values, width);
+    buffer.assign(values.begin(), values.end());
+    publish(s, buffer, static_cast<int>(width));
+    for (std::size_t i = 0; i < buffer.size(); ++i)
+      values[i] = static_cast<std::remove_reference_t<decltype(values[i])>>(buffer[i]);
+  };
+  const std::size_t per_node = s.friction ? dim : 1;
+  for (auto* v : {&s.lambda, &s.lambda_saved}) follow(*v, per_node);
+  for (auto* v : {&s.D, &s.gap}) follow(*v, 1);
+  for (auto* v : {&s.active, &s.active_previous, &s.active_accepted}) follow(*v, 1);
+  moved(s.dirichlet, dim);
+  buffer.assign(s.dirichlet.begin(), s.dirichlet.end());
+  publish(s, buffer, static_cast<int>(dim));
+  for (std::size_t i = 0; i < buffer.size(); ++i) s.dirichlet[i] = buffer[i] > 0.0;
+  if (s.friction) {
+    for (auto* v : {&s.status, &s.status_previous, &s.status_accepted, &s.frozen_nodes})
+      follow(*v, 1);
+    for (auto* v : {&s.slip, &s.x, &s.x_old}) follow(*v, dim);
+    for (auto* v : {&s.D_diag, &s.D_diag_old}) follow(*v, 1);
   }
-  publish(s, values, 4);
-  for (std::size_t j = 0; j < n; ++j) {
-    s.lambda[j] = values[j * 4];
-    s.lambda_saved[j] = values[j * 4 + 1];
-    s.D[j] = values[j * 4 + 2];
-    s.gap[j] = values[j * 4 + 3];
-    values[j * 4] = s.active[j];
-    values[j * 4 + 1] = s.active_previous[j];
-    values[j * 4 + 2] = s.active_accepted[j];
-    values[j * 4 + 3] = 0.0;
+  // This rank's parts of M^n and of M (M^n at the next save()) by their slave nodes' new
+  // indices (held with friction: `kept`; without, M is read no more before the next
+  // evaluation, and its rows of nodes no longer held are dropped); its nodal sums of the last
+  // evaluation by node.
+  for (auto* m : {&s.M_old, &s.part.M}) {
+    std::size_t k = 0;
+    for (auto e : *m) {
+      const auto id = before[static_cast<std::size_t>(e.slave)];
+      const auto it = std::lower_bound(after.begin(), after.end(), id);
+      const bool held = it != after.end() && *it == id;
+      SEAM_CHECK(held || !s.friction, InternalError, "contact: slave node ", id,
+                 " of M is not held after the distribution");
+      if (!held) continue;
+      e.slave = static_cast<local_index>(it - after.begin());
+      (*m)[k++] = e;
+    }
+    m->resize(k);
   }
-  publish(s, values, 4);
-  for (std::size_t j = 0; j < n; ++j) {
-    s.active[j] = static_cast<char>(values[j * 4]);
-    s.active_previous[j] = static_cast<char>(values[j * 4 + 1]);
-    s.active_accepted[j] = static_cast<char>(values[j * 4 + 2]);
-  }
-  for (std::size_t i = 0; i < fixed.size(); ++i) fixed[i] = s.dirichlet[i];
-  publish(s, fixed, dim);
-  for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
+  for (auto* v : {&s.part.D, &s.part.gap}) moved(*v, 1);
   s.cycles = {};
   s.held_frames.clear();
   collect_interface_nodes();
@@ -1539,9 +1561,7 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              reused + ") and the mortar integration of the own slave elements";
     else if (s.search && s.master_in_part)
       text += "the slave side (" + n_slave +
-              " facets, nodes, positions; with friction held in part only with "
-              "interface_distribution: bulk), " +
-              arrays + read +
+              " facets, nodes, positions; held in part at np > 1), " + arrays + read +
               "; in part: the master side (the facets of its own and ghost cells, " +
               std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
               ", the others read as ghosts)" +

@@ -483,10 +483,17 @@ private:
   /// A slave side held in part with the independent distribution: after a distribution that
   /// gives this rank the slave facets `evaluated` (global ids), the side holds the rings of
   /// the slave nodes it owns (it decides their status from their normals) and of the nodes of
-  /// the evaluated facets (the averaged normals, the output rows); the nodal arrays follow by
-  /// node id (the owners, who hold their nodes before and after, publish their values to the
-  /// new holders). Collective.
-  void hold_slave_part(Side& s, std::vector<std::int64_t> evaluated);
+  /// the evaluated facets (the averaged normals, the output rows), with friction also of the
+  /// slave nodes of its parts of M^n and M (its slip sums until the next save); the nodal
+  /// arrays (friction's included) follow by node id (the owners, who hold their nodes before
+  /// and after, publish their values to the new holders), M^n and M by slave node.
+  /// Collective.
+  /// Always also the rings of the slave nodes of this rank's part of M^n and of `kept` (ids).
+  /// `own_cells` (a restart, before the first distribution: `kept` the slave nodes of the
+  /// part of M^n read): the facets of its own and ghost cells instead of the owned nodes'
+  /// rings.
+  void hold_slave_part(Side& s, std::vector<std::int64_t> evaluated, std::vector<std::int64_t> kept,
+                       bool own_cells);
   /// The node ids, owners and holder publication of the slave nodes `s` holds, and the ids,
   /// own facets and search ids of its slave side (after the side changed).
   void index_slave_side(Side& s, const mesh::Region& region);

@@ -42,9 +42,7 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
 }
 
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
-  return master_held_in_part(itf, config) &&
-         (config.parallel.interface_distribution == io::InterfaceDistribution::bulk ||
-          itf.friction.model == io::FrictionModel::frictionless);
+  return master_held_in_part(itf, config);
 }
 
 bool slave_cells_in_part(const io::Interface& itf, const io::Config& config) {

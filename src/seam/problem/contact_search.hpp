@@ -62,10 +62,10 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 /// the slave elements it evaluates, the ghost layer gives their nodes' rings for the averaged
 /// normals); with the independent distribution, after each distribution, the rings of the
 /// slave nodes it owns and of the nodes of the slave facets it evaluates (its mesh holds every
-/// slave cell, slave_cells_in_part); the nodal arrays are per held slave node. Two-body contact
-/// whose master side is held in part: with the bulk distribution of the interface (`parallel:
-/// interface_distribution: bulk`) with or without friction, with the independent one
-/// without friction; every other interface keeps its slave side whole.
+/// slave cell, slave_cells_in_part; with friction also the rings of the slave nodes of its
+/// part of M^n); the nodal arrays are per held slave node. Two-body contact whose master side
+/// is held in part (with or without friction, with either distribution of the interface,
+/// `parallel: interface_distribution`); every other interface keeps its slave side whole.
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config);
 
 /// Whether the distributed mesh holds the cells of the slave side of `itf` in part (its own
