@@ -131,11 +131,11 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   // condensed tying are set up distributed (meshtying::distributed_tying): each rank needs
   // only its own cells' facets and the master facets ghosted to it; so are the master side of
   // two-body contact held in part (master_held_in_part) and its slave side with the bulk
-  // distribution (slave_held_in_part).
+  // distribution (slave_cells_in_part).
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     if (meshtying::distributed_tying(itf)) continue;
-    if (!slave_held_in_part(itf, config)) sides.push_back(itf.slave.name);
+    if (!slave_cells_in_part(itf, config)) sides.push_back(itf.slave.name);
     if (itf.master && !master_held_in_part(itf, config)) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
   }

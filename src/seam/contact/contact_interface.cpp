@@ -179,6 +179,36 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   owned_nodes_ = slave_.nodes;
 }
 
+void ContactInterface::hold_slave_facets(const mesh::Region& region) {
+  SEAM_ASSERT(!self_ && !rigid_);
+  auto side = meshtying::extract_side(*mesh_, region);
+  // The normals of the nodes held before and after are kept (read until the next place()).
+  const auto d = static_cast<std::size_t>(dim());
+  std::vector<double> normals(side.mesh_nodes.size() * d, 0.0);
+  for (std::size_t j = 0; j < side.mesh_nodes.size(); ++j) {
+    const auto& before = slave_.mesh_nodes;
+    const auto it = std::lower_bound(before.begin(), before.end(), side.mesh_nodes[j]);
+    if (it == before.end() || *it != side.mesh_nodes[j]) continue;
+    const auto i = static_cast<std::size_t>(it - before.begin());
+    std::copy_n(normals_.begin() + static_cast<std::ptrdiff_t>(i * d), d,
+                normals.begin() + static_cast<std::ptrdiff_t>(j * d));
+  }
+  slave_ = std::move(side);
+  slave_adjacency_ = mortar::node_facets(slave_.facet_set());
+  transformation_ =
+      mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
+  transformation_inverse_ = mortar::inverse_transformation(transformation_);
+  normals_ = std::move(normals);
+  all_normals_ = true;
+  normal_nodes_.clear();
+  pairs_.clear();
+  pair_offsets_.assign(static_cast<std::size_t>(slave_.n_facets()) + 1, 0);
+  owned_.clear();
+  owned_offsets_.assign(1, 0);
+  owned_nodes_.clear();
+  search_.reset();
+}
+
 void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
   std::sort(facets.begin(), facets.end());
   facets.erase(std::unique(facets.begin(), facets.end()), facets.end());

@@ -271,6 +271,12 @@ public:
 
   /// The slave facets evaluate() and linearize() integrate (sorted, unique; all by default).
   void set_owned_facets(std::vector<local_index> facets);
+  /// Two bodies, a slave side held in part: the slave side becomes the facets of `region` (a
+  /// subset of the slave region's facets in the mesh, in its order), the side-local indices
+  /// those of `region`. The candidate pairs, the owned facets and the normal nodes are
+  /// dropped (set anew by the caller); the normals of the nodes held before and after, the
+  /// mesh size, the search inflation and the quadrature degree are kept.
+  void hold_slave_facets(const mesh::Region& region);
   std::span<const local_index> owned_facets() const { return owned_; }
   /// Candidate pairs of slave facet f at the last update.
   local_index n_pairs_of(local_index f) const {

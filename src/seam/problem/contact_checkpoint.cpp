@@ -190,6 +190,17 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     s.D_coupling_old.clear();
     // A master side held in part: master nodes outside this rank's part (found below).
     std::vector<std::int64_t> outside_ids;
+    // A slave side held in part with the independent distribution: the slave nodes of the
+    // part of M^n read are held with their rings (collective), found in a first pass.
+    if (s.slave_region) {
+      std::vector<std::int64_t> kept;
+      checkpoints.read_parts([&](const RecordReader& part) {
+        const auto slave = part.integers(p + "M_old.slave_node");
+        kept.insert(kept.end(), slave.begin(), slave.end());
+      });
+      hold_slave_part(s, {}, std::move(kept), true);
+      s.itf.set_owned_facets(s.bulk_facets);
+    }
     checkpoints.read_parts([&](const RecordReader& part) {
       const auto slave = part.integers(p + "M_old.slave_node");
       const auto master = part.integers(p + "M_old.master", slave.size());

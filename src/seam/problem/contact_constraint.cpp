@@ -2,6 +2,7 @@
 
 #include "seam/common/error.hpp"
 #include "seam/contact/self_contact.hpp"
+#include "seam/fem/cell.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/parallel/exchange.hpp"
 
@@ -52,6 +53,20 @@ SideIds side_ids(const Discretization& disc, const mesh::Region& region,
   return ids;
 }
 
+/// The facets f of `full` for which keep(f) holds, in its order: a part of the side.
+template <class Keep> mesh::Region region_part(const mesh::Region& full, Keep keep) {
+  mesh::Region part;
+  part.name = full.name;
+  part.dim = full.dim;
+  part.tag = full.tag;
+  for (std::int32_t f = 0; f < full.n_facets(); ++f)
+    if (keep(f)) {
+      part.facet_cell.push_back(full.facet_cell[static_cast<std::size_t>(f)]);
+      part.facet_local.push_back(full.facet_local[static_cast<std::size_t>(f)]);
+    }
+  return part;
+}
+
 } // namespace
 
 ContactConstraint::ContactConstraint(const io::Config& config, const Discretization& disc,
@@ -66,10 +81,23 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     const bool slave_part = slave_held_in_part(itf, config) && disc.comm().size() > 1;
     Side s(contact::ContactInterface(itf, disc.mesh(), slave_part));
     s.slave_in_part = slave_part;
+    // The slave facets the side holds. In part with the independent distribution: those of
+    // the rank's own and ghost cells until the first distribution (its mesh holds every
+    // slave cell; hold_slave_part takes the facets it is sent from there).
+    mesh::Region region;
+    if (slave_part && !slave_cells_in_part(itf, config)) {
+      s.slave_region = &meshtying::side_region(disc.mesh(), itf.slave);
+      region = region_part(*s.slave_region, [&](std::int32_t f) {
+        return !disc.interface_only_cell(s.slave_region->facet_cell[static_cast<std::size_t>(f)]);
+      });
+      s.itf.hold_slave_facets(region);
+    } else {
+      region = itf.surface.empty() ? meshtying::side_region(disc.mesh(), itf.slave)
+                                   : contact::surface_region(disc.mesh(), itf.surface);
+    }
     if (slave_part) {
       // Every part agrees on the slave side's mean edge (c_n, the skin of the ghosting): the
       // sums over the slave facets of each part's own cells, each facet counted once.
-      const mesh::Region region = meshtying::side_region(disc.mesh(), itf.slave);
       std::vector<local_index> own;
       for (std::int32_t f = 0; f < region.n_facets(); ++f)
         if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)])) own.push_back(f);
@@ -106,15 +134,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.active_previous = s.active;
     s.active_accepted = s.active;
     const auto& nodes = s.itf.slave().mesh_nodes;
-    s.node_keys.resize(n);
-    s.node_owners.resize(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      s.node_keys[j] = disc.node_gid(nodes[j]); // the same id on every rank
-      s.node_owners[j] = disc.node_owner(nodes[j]);
-    }
-    if (slave_part)
-      s.holders = std::make_shared<parallel::HolderPublisher>(disc.comm().get(), s.node_keys,
-                                                              s.node_owners);
+    index_slave_side(s, region);
     // Prescribed components of the slave nodes: known on the owning rank only (the model
     // holds the owned rows), published by the owners (in proportion to the prescribed nodes).
     std::vector<double> fixed(n * dim, 0.0);
@@ -135,14 +155,6 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.discrete_gradient =
         config.time.integrator == io::Integrator::energy_momentum && s.itf.has_gap_blocks();
     saddle_point_ = saddle_point_ || s.discrete_gradient;
-    // The slave facets start with the bulk partition (the facets of this rank's cells).
-    const mesh::Region region = itf.surface.empty()
-                                    ? meshtying::side_region(disc.mesh(), itf.slave)
-                                    : contact::surface_region(disc.mesh(), itf.surface);
-    for (std::int32_t f = 0; f < region.n_facets(); ++f)
-      if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
-        s.bulk_facets.push_back(f);
-    s.slave_ids = side_ids(disc, region, s.itf.slave().mesh_nodes);
     if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
         disc.comm().size() > 1)
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
@@ -194,15 +206,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                     "interface '" + sides_[k].itf.name() +
                         "': quadratic faces with dual multipliers cannot share a run with "
                         "standard multipliers or energy-momentum contact (saddle point)");
-  for (const auto& s : sides_) {
-    const auto& slave = s.itf.slave().mesh_nodes;
-    interface_nodes_.insert(interface_nodes_.end(), slave.begin(), slave.end());
-    const auto master = s.itf.master_nodes();
-    interface_nodes_.insert(interface_nodes_.end(), master.begin(), master.end());
-  }
-  std::sort(interface_nodes_.begin(), interface_nodes_.end());
-  interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
-                         interface_nodes_.end());
+  collect_interface_nodes();
   // The interface nodes of all ranks, each counted by its owner (a master side held in part
   // is not whole on any rank).
   interface_total_ = static_cast<std::int64_t>(disc.comm().sum(
@@ -233,6 +237,41 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     comm.sum_in_place(index);
     s.lm_index.assign(index.begin(), index.end());
   }
+}
+
+void ContactConstraint::collect_interface_nodes() {
+  interface_nodes_.clear();
+  for (const auto& s : sides_) {
+    const auto& slave = s.itf.slave().mesh_nodes;
+    interface_nodes_.insert(interface_nodes_.end(), slave.begin(), slave.end());
+    const auto master = s.itf.master_nodes();
+    interface_nodes_.insert(interface_nodes_.end(), master.begin(), master.end());
+  }
+  std::sort(interface_nodes_.begin(), interface_nodes_.end());
+  interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
+                         interface_nodes_.end());
+  interface_numbers_.clear(); // made anew at the next node_of_gid
+}
+
+void ContactConstraint::index_slave_side(Side& s, const mesh::Region& region) {
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const auto n = nodes.size();
+  s.node_keys.resize(n);
+  s.node_owners.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    s.node_keys[j] = disc_.node_gid(nodes[j]); // the same id on every rank
+    s.node_owners[j] = disc_.node_owner(nodes[j]);
+  }
+  if (s.slave_in_part)
+    s.holders =
+        std::make_shared<parallel::HolderPublisher>(disc_.comm().get(), s.node_keys, s.node_owners);
+  // The slave facets start with the bulk partition (the facets of this rank's cells).
+  s.bulk_facets.clear();
+  for (std::int32_t f = 0; f < region.n_facets(); ++f)
+    if (disc_.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
+      s.bulk_facets.push_back(f);
+  s.slave_ids = side_ids(disc_, region, nodes);
+  if (s.search) s.search->set_slave_ids(s.slave_ids);
 }
 
 std::int32_t ContactConstraint::node_of_gid(std::int64_t number) const {
@@ -1236,10 +1275,122 @@ void ContactConstraint::distribute(Side& s) {
       work[i] += static_cast<double>(s.part.facet_cells[static_cast<std::size_t>(f)]);
   }
   const auto mine = s.distribution->distribute(ids, centroids, work);
+  // The slave side follows the facets this rank evaluates now (the independent distribution
+  // with the slave side held in part).
+  if (s.slave_region) hold_slave_part(s, mine, {}, false);
   std::vector<local_index> facets(mine.size());
   for (std::size_t i = 0; i < mine.size(); ++i) facets[i] = s.slave_ids.facet(mine[i]);
   s.itf.set_owned_facets(std::move(facets));
   s.distributed = true;
+}
+
+void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evaluated,
+                                        std::vector<std::int64_t> kept, bool own_cells) {
+  const auto& mesh = disc_.mesh();
+  const auto& full = *s.slave_region;
+  const auto ids = meshtying::facet_gids(full, [&](std::int32_t c) { return disc_.cell_gid(c); });
+  std::sort(evaluated.begin(), evaluated.end());
+  // With friction this rank's part of M^n (summed by slave node into the slip increments)
+  // keeps its slave nodes held until it is replaced.
+  if (s.friction)
+    for (const auto* m : {&s.M_old, &s.part.M})
+      for (const auto& e : *m) kept.push_back(s.node_keys[static_cast<std::size_t>(e.slave)]);
+  std::sort(kept.begin(), kept.end());
+  const auto n_full = static_cast<std::size_t>(full.n_facets());
+  const auto for_nodes = [&](std::size_t f, auto&& visit) {
+    const auto c = full.facet_cell[f];
+    const auto cell = mesh.cell(c);
+    for (const int k :
+         fem::facet_nodes(mesh.cell_type[static_cast<std::size_t>(c)], full.facet_local[f]))
+      visit(cell[static_cast<std::size_t>(k)]);
+  };
+  // Before the first distribution the facets of its own and ghost cells (the bulk share it
+  // starts from); after it the rings of the nodes this rank owns (it decides their status from
+  // their normals). Always the rings of the nodes of the facets it evaluates and of `kept`.
+  std::vector<char> keep(n_full, 0);
+  std::vector<std::int32_t> ring;
+  for (std::size_t f = 0; f < n_full; ++f) {
+    keep[f] = own_cells && !disc_.interface_only_cell(full.facet_cell[f]);
+    const bool mine = std::binary_search(evaluated.begin(), evaluated.end(), ids[f]);
+    for_nodes(f, [&](std::int32_t node) {
+      if (mine || (!own_cells && disc_.owns_node(node)) ||
+          std::binary_search(kept.begin(), kept.end(), disc_.node_gid(node)))
+        ring.push_back(node);
+    });
+  }
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  for (std::size_t f = 0; f < n_full; ++f)
+    for_nodes(f, [&](std::int32_t node) {
+      keep[f] = keep[f] || std::binary_search(ring.begin(), ring.end(), node);
+    });
+  const auto region =
+      region_part(full, [&](std::int32_t f) { return keep[static_cast<std::size_t>(f)] != 0; });
+  // The nodal state by node id: kept where this rank held the node, zero elsewhere, then the
+  // owners' values published to every holder (an owner holds its nodes before and after).
+  const std::vector<std::int64_t> before = s.node_keys;
+  s.itf.hold_slave_facets(region);
+  index_slave_side(s, region);
+  s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
+  const auto& after = s.node_keys;
+  const auto moved = [&](auto& values, std::size_t width) {
+    values.resize(before.size() * width, {}); // D and g~ are sized at the first sums
+    std::remove_reference_t<decltype(values)> out(after.size() * width, {});
+    for (std::size_t j = 0; j < after.size(); ++j) {
+      const auto it = std::lower_bound(before.begin(), before.end(), after[j]);
+      if (it == before.end() || *it != after[j]) continue;
+      const auto i = static_cast<std::size_t>(it - before.begin());
+      std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(i * width), width,
+                  out.begin() + static_cast<std::ptrdiff_t>(j * width));
+    }
+    values = std::move(out);
+  };
+  const auto dim = static_cast<std::size_t>(disc_.dim());
+  // Moved, then the owners' values published (every array is the owners' on every holder).
+  std::vector<double> buffer;
+  const auto follow = [&](auto& values, std::size_t width) {
+    moved(values, width);
+    buffer.assign(values.begin(), values.end());
+    publish(s, buffer, static_cast<int>(width));
+    for (std::size_t i = 0; i < buffer.size(); ++i)
+      values[i] = static_cast<std::remove_reference_t<decltype(values[i])>>(buffer[i]);
+  };
+  const std::size_t per_node = s.friction ? dim : 1;
+  for (auto* v : {&s.lambda, &s.lambda_saved}) follow(*v, per_node);
+  for (auto* v : {&s.D, &s.gap}) follow(*v, 1);
+  for (auto* v : {&s.active, &s.active_previous, &s.active_accepted}) follow(*v, 1);
+  moved(s.dirichlet, dim);
+  buffer.assign(s.dirichlet.begin(), s.dirichlet.end());
+  publish(s, buffer, static_cast<int>(dim));
+  for (std::size_t i = 0; i < buffer.size(); ++i) s.dirichlet[i] = buffer[i] > 0.0;
+  if (s.friction) {
+    for (auto* v : {&s.status, &s.status_previous, &s.status_accepted, &s.frozen_nodes})
+      follow(*v, 1);
+    for (auto* v : {&s.slip, &s.x, &s.x_old}) follow(*v, dim);
+    for (auto* v : {&s.D_diag, &s.D_diag_old}) follow(*v, 1);
+  }
+  // This rank's parts of M^n and of M (M^n at the next save()) by their slave nodes' new
+  // indices (held with friction: `kept`; without, M is read no more before the next
+  // evaluation, and its rows of nodes no longer held are dropped); its nodal sums of the last
+  // evaluation by node.
+  for (auto* m : {&s.M_old, &s.part.M}) {
+    std::size_t k = 0;
+    for (auto e : *m) {
+      const auto id = before[static_cast<std::size_t>(e.slave)];
+      const auto it = std::lower_bound(after.begin(), after.end(), id);
+      const bool held = it != after.end() && *it == id;
+      SEAM_CHECK(held || !s.friction, InternalError, "contact: slave node ", id,
+                 " of M is not held after the distribution");
+      if (!held) continue;
+      e.slave = static_cast<local_index>(it - after.begin());
+      (*m)[k++] = e;
+    }
+    m->resize(k);
+  }
+  for (auto* v : {&s.part.D, &s.part.gap}) moved(*v, 1);
+  s.cycles = {};
+  s.held_frames.clear();
+  collect_interface_nodes();
 }
 
 void ContactConstraint::balance() {
@@ -1397,8 +1548,12 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               "ghosted surface facets)";
     else if (s.search && s.slave_in_part)
       text = "interface " + s.itf.name() +
-             ": held in part: both sides (the facets of its own and ghost cells: " + n_slave +
-             " of " + std::to_string(s.slave_facets) + " slave and " +
+             ": held in part: both sides (the facets of its own and ghost cells" +
+             (s.slave_region ? " at set-up; then the rings of the slave nodes it owns and of "
+                               "the nodes of the slave facets it evaluates, taken anew at each "
+                               "distribution"
+                             : "") +
+             ": " + n_slave + " of " + std::to_string(s.slave_facets) + " slave and " +
              std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
              " master facets, the other master facets read as ghosts), the nodal arrays per "
              "held slave node (D, g~, multipliers, active set" +
@@ -1408,9 +1563,7 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              reused + ") and the mortar integration of the own slave elements";
     else if (s.search && s.master_in_part)
       text += "the slave side (" + n_slave +
-              " facets, nodes, positions; held in part only with "
-              "interface_distribution: bulk), " +
-              arrays + read +
+              " facets, nodes, positions; held in part at np > 1), " + arrays + read +
               "; in part: the master side (the facets of its own and ghost cells, " +
               std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
               ", the others read as ghosts)" +

@@ -260,6 +260,10 @@ private:
     /// and the nodal arrays of their nodes; the slave facets of the whole side.
     bool slave_in_part = false;
     int slave_facets = 0;
+    /// A slave side held in part with the independent distribution: the slave region of the
+    /// mesh (every rank's mesh holds its cells), from which the held facets are taken anew at
+    /// each distribution (hold_slave_part).
+    const mesh::Region* slave_region = nullptr;
     /// A slave side held in part: the owners publish to the ranks that hold each node
     /// (publish()).
     std::shared_ptr<const parallel::HolderPublisher> holders;
@@ -476,6 +480,25 @@ private:
   /// The first distribution of side s (at its first evaluation, when its candidate pairs are
   /// known), or a redistribution with the current pairs.
   void distribute(Side& s);
+  /// A slave side held in part with the independent distribution: after a distribution that
+  /// gives this rank the slave facets `evaluated` (global ids), the side holds the rings of
+  /// the slave nodes it owns (it decides their status from their normals) and of the nodes of
+  /// the evaluated facets (the averaged normals, the output rows), with friction also of the
+  /// slave nodes of its parts of M^n and M (its slip sums until the next save); the nodal
+  /// arrays (friction's included) follow by node id (the owners, who hold their nodes before
+  /// and after, publish their values to the new holders), M^n and M by slave node.
+  /// Collective.
+  /// Always also the rings of the slave nodes of this rank's part of M^n and of `kept` (ids).
+  /// `own_cells` (a restart, before the first distribution: `kept` the slave nodes of the
+  /// part of M^n read): the facets of its own and ghost cells instead of the owned nodes'
+  /// rings.
+  void hold_slave_part(Side& s, std::vector<std::int64_t> evaluated, std::vector<std::int64_t> kept,
+                       bool own_cells);
+  /// The node ids, owners and holder publication of the slave nodes `s` holds, and the ids,
+  /// own facets and search ids of its slave side (after the side changed).
+  void index_slave_side(Side& s, const mesh::Region& region);
+  /// interface_nodes_ from the sides' nodes.
+  void collect_interface_nodes();
 
   const Discretization& disc_;
   io::ParallelConfig parallel_;

@@ -42,7 +42,11 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
 }
 
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
-  return master_held_in_part(itf, config) &&
+  return master_held_in_part(itf, config);
+}
+
+bool slave_cells_in_part(const io::Interface& itf, const io::Config& config) {
+  return slave_held_in_part(itf, config) &&
          config.parallel.interface_distribution == io::InterfaceDistribution::bulk;
 }
 

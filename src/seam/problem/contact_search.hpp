@@ -58,13 +58,21 @@ struct SideIds {
 bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 
 /// Whether the slave side of interface `itf` is held in part too: each rank holds the slave
-/// facets of its own and ghost cells (those of its own cells are the slave elements it
-/// evaluates, the ghost layer gives their nodes' rings for the averaged normals), and the
-/// nodal arrays are per held slave node. Two-body contact whose master side is held in part
-/// (with or without friction), with the bulk distribution of the interface (`parallel:
-/// interface_distribution: bulk`: no slave facet leaves the rank that holds it); every other
-/// interface keeps its slave side whole.
+/// facets of its own and ghost cells (with the bulk distribution those of its own cells are
+/// the slave elements it evaluates, the ghost layer gives their nodes' rings for the averaged
+/// normals); with the independent distribution, after each distribution, the rings of the
+/// slave nodes it owns and of the nodes of the slave facets it evaluates (its mesh holds every
+/// slave cell, slave_cells_in_part; with friction also the rings of the slave nodes of its
+/// part of M^n); the nodal arrays are per held slave node. Two-body contact whose master side
+/// is held in part (with or without friction, with either distribution of the interface,
+/// `parallel: interface_distribution`); every other interface keeps its slave side whole.
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config);
+
+/// Whether the distributed mesh holds the cells of the slave side of `itf` in part (its own
+/// and ghost cells only): a slave side held in part with the bulk distribution. With the
+/// independent distribution every rank's mesh still holds the slave side's cells (the facets
+/// it is sent are taken from them).
+bool slave_cells_in_part(const io::Interface& itf, const io::Config& config);
 
 class ContactSearch {
 public:
@@ -93,6 +101,8 @@ public:
   /// master facets being indices into master_ghosts().
   void find(contact::ContactInterface& itf, std::span<const double> ghost_positions = {});
   bool master_in_part() const { return in_part_; }
+  /// The slave side `itf` holds changed (ContactInterface::hold_slave_facets): its ids.
+  void set_slave_ids(SideIds slave) { slave_ids_ = std::move(slave); }
   /// The master facets ghosted to this rank at the last find() (two bodies).
   const parallel::SurfacePart& master_ghosts() const { return search_->ghosts(); }
   /// A master side held in part: the ghosts and pairs of the last find() to `itf`, with the

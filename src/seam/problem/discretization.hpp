@@ -41,6 +41,10 @@ public:
   /// Held cells of a role (mesh/distribute.hpp): owned, ghost layer, or held only for an
   /// interface side. A replicated mesh counts its cells of other ranks as ghosts.
   std::int32_t n_cells_held(mesh::CellRole role) const;
+  /// Whether cell c is held only for an interface side (neither owned nor in the ghost layer).
+  bool interface_only_cell(std::int32_t c) const {
+    return distributed_ && cell_role_[static_cast<std::size_t>(c)] == mesh::CellRole::interface;
+  }
 
   /// Cells this rank assembles (all cells whose partition is this rank).
   std::span<const std::int32_t> local_cells() const { return local_cells_; }
