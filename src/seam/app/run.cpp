@@ -135,7 +135,7 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     if (meshtying::distributed_tying(itf)) continue;
-    if (!slave_cells_in_part(itf, config)) sides.push_back(itf.slave.name);
+    if (!problem::slave_cells_in_part(itf, config)) sides.push_back(itf.slave.name);
     if (itf.master && !master_held_in_part(itf, config)) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
   }
