@@ -41,6 +41,10 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts"))
+import periodic_state as PS  # noqa: E402
+
 REFERENCE = {"ux": 0.0227e-3, "uy": 0.8209e-3, "drag": 14.295, "lift": 0.7638}
 
 
@@ -663,6 +667,72 @@ def test_flap3d_energy():
     check_second_order(misfits, 3.0, 3.0, "flap")
 
 
+def periodic_checks(out, kind, last=3):
+    """Issue 15's tolerances on the periodic state of a run's output (scripts/periodic_state.py,
+    the last `last` periods): FSI3's four (u_y(A) amplitude 5 %, frequency 3 %, mean drag
+    2 %, lift amplitude 15 %), FSI2's amplitude of u_y(A) (5 %; its frequency is bounded by
+    5 %, against a wrong mode, the issue names no tolerance). Each periodic history must have
+    settled: the amplitudes of the periods measured within 1 % of their mean."""
+    reference, checks = ((PS.FSI3, PS.FSI3_CHECKS) if kind == "fsi3"
+                         else (PS.FSI2, PS.FSI2_CHECKS[:1] + [("u_y(A) frequency", "uy",
+                                                               "frequency", 0.05)]))
+    h = PS.histories(out)
+    failures = []
+    for what, key, part, tol in checks:
+        s = PS.periodic_state(*h[key], last)
+        if s is None:
+            failures.append("%s: fewer than %d periods" % (what, last))
+            continue
+        err = s[part] / reference[key][("mean", "amplitude", "frequency").index(part)] - 1
+        spread = max(abs(p[2] / s["amplitude"] - 1) for p in PS.periods(*h[key])[:last])
+        print("   %s %s: %+.2f %% (tolerance %g %%), last %d periods to t = %.2f, amplitude "
+              "spread %.2f %%" % (kind.upper(), what, 100 * err, 100 * tol, last, s["t_end"],
+                                  100 * spread))
+        if abs(err) > tol:
+            failures.append("%s %+.2f %% (tolerance %g %%)" % (what, 100 * err, 100 * tol))
+        if spread > 0.01:
+            failures.append("%s: not periodic yet (amplitude spread %.2f %%)"
+                            % (what, 100 * spread))
+    if failures:
+        raise AssertionError("%s periodic state: %s" % (kind.upper(), "; ".join(failures)))
+
+
+def run_fine(example, end, np=1):
+    """examples/turek_hron/EXAMPLE (fsi3_fine.yaml, end 20, or fsi2_fine.yaml, end 15: 61,089
+    unknowns, dt = 0.01) to t = end on np ranks; returns (work folder, output directory)."""
+    full = {"fsi3_fine.yaml": 20, "fsi2_fine.yaml": 15}[example]
+    work, path = H.copy_example("turek_hron", example, [("end: %d, dt: 0.01" % full,
+                                                         "end: %g, dt: 0.01" % end)])
+    out = os.path.join(work, "out")
+    H.run(["run", path, "-o", out, "--quiet"], np=np, timeout=12 * 3600)
+    return work, out
+
+
+@H.full_only
+def test_fsi3_fine_periodic():
+    """FSI3 on the CFD3 mesh (examples/turek_hron/fsi3_fine.yaml) to t = 6.4: periodic from
+    t = 5.4, issue 15's four tolerances over the last three periods (measured: u_y(A)
+    amplitude +4.54 %, frequency +2.18 %, mean drag +0.84 %, lift amplitude +9.43 %; about
+    1.1 h on one rank of the shared machine, docs/fsi.md)."""
+    work, out = run_fine("fsi3_fine.yaml", 6.4)
+    try:
+        periodic_checks(out, "fsi3")
+    finally:
+        H.cleanup(work)
+
+
+@H.full_only
+def test_fsi2_fine_periodic():
+    """FSI2 on the same mesh (examples/turek_hron/fsi2_fine.yaml) to t = 12: periodic from
+    t = 10, u_y(A) amplitude within 5 % over the last three periods (measured +3.56 %; the
+    frequency -3.56 %, bounded here by 5 %; about 1.1 h on one rank, docs/fsi.md)."""
+    work, out = run_fine("fsi2_fine.yaml", 12)
+    try:
+        periodic_checks(out, "fsi2")
+    finally:
+        H.cleanup(work)
+
+
 def expect_bad(what, replace, must, line):
     work, path = fsi_case(replace=replace)
     name = os.path.basename(path)
@@ -707,5 +777,5 @@ if __name__ == "__main__":
              test_fsi1_nonmatching,
              test_fsi1_extruded, test_fsi1_extruded_parallel, test_flap3d_energy,
              test_fsi3_startup, test_fsi3_against_cfd3, test_fsi3_step_cut, test_fsi3_restart_other_dt, test_fsi3_energy, test_fsi1_refinement,
-             test_fsi3_time_order]
+             test_fsi3_time_order, test_fsi3_fine_periodic, test_fsi2_fine_periodic]
     H.main(tests)
