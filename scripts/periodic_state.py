@@ -62,7 +62,9 @@ def periods(t, u):
     """Per period, from the last backwards: (t_end, mean, amplitude, frequency), each period
     from one maximum to the next with the minimum between them. A history with secondary
     extrema (a drag with a small bump per period) keeps, per period, the largest maximum and
-    the smallest minimum: maxima closer than half the dominant period are merged."""
+    the smallest minimum: only maxima above the middle of the extremes start periods, so a
+    secondary maximum below it is merged and one above it is taken for a period (FSI2's lift;
+    tests/verification/test_periodic_state.py)."""
     maxima, minima = extrema(t, u)
     if len(maxima) < 2:
         return []

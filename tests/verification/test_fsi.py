@@ -41,6 +41,10 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness as H  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts"))
+import periodic_state as PS  # noqa: E402
+
 REFERENCE = {"ux": 0.0227e-3, "uy": 0.8209e-3, "drag": 14.295, "lift": 0.7638}
 
 
@@ -503,6 +507,70 @@ def test_fsi3_step_cut():
     H.cleanup(work, out)
 
 
+def test_fsi3_restart_other_dt():
+    """A restart may change the time step (docs/input.md "Checkpoints"): the state at the
+    checkpoint (displacement, velocity and generalized-alpha's acceleration of the structure,
+    the fluid's velocity, pressure and rates, the mesh motion) does not depend on it, and the
+    integrators take each step's size as it comes. The FSI3 start-up to t = 0.32 with the
+    Newton limits of test_fsi3_step_cut: a run of dt = 0.16 is cut to 0.08 in its first step,
+    tries 0.16 again from t = 0.08, is cut and grows back (steps end at 0.08, 0.16, 0.2, 0.24,
+    0.28, 0.32). The same steps from t = 0.08: the run of dt = 0.08 (checkpoint after its first
+    step) restarted with the input's dt changed to 0.16 (the only change). The restart says
+    so, tries 0.16 and is cut (a restart that kept the checkpoint's step would converge in
+    steps of 0.08, ending at 0.16, 0.24, 0.32), takes the cut run's steps and equals it to 1e-9
+    (u_y(A), drag, the structure's energy, the fluid's budget; the cut run's Newton scale
+    includes its failed first attempt). An input that changes the step and anything else is
+    refused."""
+    newton = ("time: {", "solver: {newton: {tolerance: 3.0e-9, max_iterations: 2}}\ntime: {")
+    every = ("output:\n", "output:\n  checkpoint_every: 1\n")
+    work_cut, path_cut = fsi3_case(0.32, 0.16, [newton, every])
+    work_08, path_08 = fsi3_case(0.32, 0.08, [newton, every])
+    outs = [tempfile.mkdtemp(prefix="seam_verif_") for _ in range(3)]
+    try:
+        H.run(["run", path_cut, "-o", outs[0], "--quiet"])
+        H.run(["run", path_08, "-o", outs[1], "--quiet"])
+        checkpoint = os.path.join(outs[1], "checkpoint_00001")
+        _, stdout, _ = H.run(["run", path_cut, "--restart", checkpoint, "-o", outs[2]])
+        line = next((ln for ln in stdout.splitlines() if "restarting with dt" in ln), None)
+        if line is None:
+            raise AssertionError("the restart with another dt does not say so:\n" + stdout[-2000:])
+        print("   " + line.strip())
+
+        def table(out, name):
+            return {round(r["time"], 12): r for r in H.read_csv(os.path.join(out, name))}
+
+        cut, restarted = [(table(o, "steps.csv"), table(o, "probes.csv"), table(o, "forces.csv"))
+                          for o in (outs[0], outs[2])]
+        times = sorted(restarted[0])
+        cuts = stdout.count("cutting the step to dt")
+        print("   steps end at %s in the cut run, at %s after the restart (%d cuts)"
+              % (sorted(cut[0]), times, cuts))
+        if times != sorted(cut[0])[1:] or not cuts:
+            raise AssertionError("steps end at %s after the restart with %d cuts, at %s in the "
+                                 "cut run" % (times, cuts, sorted(cut[0])))
+        for t in times:
+            (s_c, p_c, f_c), (s_r, p_r, f_r) = ([x[t] for x in run] for run in (cut, restarted))
+            print("   t = %.2f: u_y(A) %.9e cut run, %.9e restarted; drag %.9f, %.9f"
+                  % (t, p_c["uy"], p_r["uy"], f_c["fx"], f_r["fx"]))
+            for what, a, b in (("u_y(A)", p_c["uy"], p_r["uy"]), ("drag", f_c["fx"], f_r["fx"]),
+                               ("structure energy", s_c["kinetic_energy"] + s_c["internal_energy"],
+                                s_r["kinetic_energy"] + s_r["internal_energy"])):
+                H.assert_close(b, a, rtol=1e-9, what="%s at t = %g, restarted with dt = 0.16" % (
+                    what, t))
+            for key in ("fluid_kinetic_energy", "viscous_dissipation", "boundary_work"):
+                H.assert_close(s_r[key], s_c[key], rtol=1e-9, what="%s at t = %g" % (key, t))
+        other = path_cut.replace(".yaml", "_rho.yaml")
+        with open(path_cut) as f, open(other, "w") as g:
+            g.write(f.read().replace("rho_inf: 0.5", "rho_inf: 0.6"))
+        code, out, err = H.run(["run", other, "--restart", checkpoint, "-o", outs[2]],
+                               check=False)
+        if code != 1 or "another input" not in out + err:
+            raise AssertionError("dt and rho_inf changed: exit %d, expected 1 (another input)\n%s"
+                                 % (code, (out + err)[-2000:]))
+    finally:
+        H.cleanup(work_cut, work_08, *outs)
+
+
 def energy_closure(steps):
     """The largest misfits of the energy budget over the steps (docs/fsi.md): of the fluid
     (kinetic energy - boundary work + dissipation - work of the structure on it) relative to
@@ -599,6 +667,72 @@ def test_flap3d_energy():
     check_second_order(misfits, 3.0, 3.0, "flap")
 
 
+def periodic_checks(out, kind, last=3):
+    """Issue 15's tolerances on the periodic state of a run's output (scripts/periodic_state.py,
+    the last `last` periods): FSI3's four (u_y(A) amplitude 5 %, frequency 3 %, mean drag
+    2 %, lift amplitude 15 %), FSI2's amplitude of u_y(A) (5 %; its frequency is bounded by
+    5 %, against a wrong mode, the issue names no tolerance). Each periodic history must have
+    settled: the amplitudes of the periods measured within 1 % of their mean."""
+    reference, checks = ((PS.FSI3, PS.FSI3_CHECKS) if kind == "fsi3"
+                         else (PS.FSI2, PS.FSI2_CHECKS[:1] + [("u_y(A) frequency", "uy",
+                                                               "frequency", 0.05)]))
+    h = PS.histories(out)
+    failures = []
+    for what, key, part, tol in checks:
+        s = PS.periodic_state(*h[key], last)
+        if s is None:
+            failures.append("%s: fewer than %d periods" % (what, last))
+            continue
+        err = s[part] / reference[key][("mean", "amplitude", "frequency").index(part)] - 1
+        spread = max(abs(p[2] / s["amplitude"] - 1) for p in PS.periods(*h[key])[:last])
+        print("   %s %s: %+.2f %% (tolerance %g %%), last %d periods to t = %.2f, amplitude "
+              "spread %.2f %%" % (kind.upper(), what, 100 * err, 100 * tol, last, s["t_end"],
+                                  100 * spread))
+        if abs(err) > tol:
+            failures.append("%s %+.2f %% (tolerance %g %%)" % (what, 100 * err, 100 * tol))
+        if spread > 0.01:
+            failures.append("%s: not periodic yet (amplitude spread %.2f %%)"
+                            % (what, 100 * spread))
+    if failures:
+        raise AssertionError("%s periodic state: %s" % (kind.upper(), "; ".join(failures)))
+
+
+def run_fine(example, end, np=1):
+    """examples/turek_hron/EXAMPLE (fsi3_fine.yaml, end 20, or fsi2_fine.yaml, end 15: 61,089
+    unknowns, dt = 0.01) to t = end on np ranks; returns (work folder, output directory)."""
+    full = {"fsi3_fine.yaml": 20, "fsi2_fine.yaml": 15}[example]
+    work, path = H.copy_example("turek_hron", example, [("end: %d, dt: 0.01" % full,
+                                                         "end: %g, dt: 0.01" % end)])
+    out = os.path.join(work, "out")
+    H.run(["run", path, "-o", out, "--quiet"], np=np, timeout=12 * 3600)
+    return work, out
+
+
+@H.full_only
+def test_fsi3_fine_periodic():
+    """FSI3 on the CFD3 mesh (examples/turek_hron/fsi3_fine.yaml) to t = 6.4: periodic from
+    t = 5.4, issue 15's four tolerances over the last three periods (measured: u_y(A)
+    amplitude +4.54 %, frequency +2.18 %, mean drag +0.84 %, lift amplitude +9.43 %; about
+    1.1 h on one rank of the shared machine, docs/fsi.md)."""
+    work, out = run_fine("fsi3_fine.yaml", 6.4)
+    try:
+        periodic_checks(out, "fsi3")
+    finally:
+        H.cleanup(work)
+
+
+@H.full_only
+def test_fsi2_fine_periodic():
+    """FSI2 on the same mesh (examples/turek_hron/fsi2_fine.yaml) to t = 12: periodic from
+    t = 10, u_y(A) amplitude within 5 % over the last three periods (measured +3.56 %; the
+    frequency -3.56 %, bounded here by 5 %; about 1.1 h on one rank, docs/fsi.md)."""
+    work, out = run_fine("fsi2_fine.yaml", 12)
+    try:
+        periodic_checks(out, "fsi2")
+    finally:
+        H.cleanup(work)
+
+
 def expect_bad(what, replace, must, line):
     work, path = fsi_case(replace=replace)
     name = os.path.basename(path)
@@ -642,6 +776,6 @@ if __name__ == "__main__":
     tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_fieldsplit,
              test_fsi1_nonmatching,
              test_fsi1_extruded, test_fsi1_extruded_parallel, test_flap3d_energy,
-             test_fsi3_startup, test_fsi3_against_cfd3, test_fsi3_step_cut, test_fsi3_energy, test_fsi1_refinement,
-             test_fsi3_time_order]
+             test_fsi3_startup, test_fsi3_against_cfd3, test_fsi3_step_cut, test_fsi3_restart_other_dt, test_fsi3_energy, test_fsi1_refinement,
+             test_fsi3_time_order, test_fsi3_fine_periodic, test_fsi2_fine_periodic]
     H.main(tests)

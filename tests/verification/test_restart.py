@@ -593,6 +593,31 @@ def test_after_step_cuts():
     check_case(TWO_BLOCKS_GEO, cut_steps_yaml, 2, "after step cuts", cross_np="1 -> 3")
 
 
+def test_other_steps():
+    """An input that differs only in its `steps:` continues with the new step size (the
+    static friction case, 8 steps to t = 3, restarted after step 4 at t = 1.5 with `steps: 4`):
+    the restart says so and takes two steps of 0.75 (ending at 2.25 and 3), not the
+    checkpoint's 0.375; the contact stays active. An input that changes `end` as well is
+    refused. (Dynamic runs with another dt: test_fsi.py test_fsi3_restart_other_dt.)"""
+    work, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(4))
+    one = full_run(yaml, 1)
+    coarse = H.write_case(work, "coarse.yaml", two_blocks_yaml(4).replace("steps: 8", "steps: 4"))
+    out = os.path.join(work, "coarse_out")
+    _, stdout, _ = H.run(["run", coarse, "--restart", os.path.join(one, "checkpoint_00004"),
+                          "-o", out])
+    line = next((ln for ln in stdout.splitlines() if "restarting with dt" in ln), "")
+    if "dt = 0.75" not in line or "had dt = 0.375" not in line:
+        raise AssertionError("the restart does not name the new step:\n" + stdout[-2000:])
+    rows = H.read_csv(os.path.join(out, "steps.csv"))
+    print("   %s; steps end at t = %s" % (line.strip(), [r["time"] for r in rows]))
+    if [r["time"] for r in rows] != [2.25, 3.0] or not all(r["active_nodes"] > 0 for r in rows):
+        raise AssertionError("expected steps ending at 2.25 and 3 in contact: %s" % rows)
+    other = H.write_case(work, "other.yaml", two_blocks_yaml(4).replace(
+        "end: 3.0, steps: 8", "end: 4.0, steps: 4"))
+    expect_input_error(["run", other, "--restart", os.path.join(one, "checkpoint_00004"), "-o",
+                        os.path.join(work, "o")], ["another input"], "steps and end changed")
+
+
 def moving_sphere_yaml(every):
     """A rigid circle pressed into a block and moved along it (its motion is a function of
     t: the restart must place it where the uninterrupted run had it), Coulomb friction."""
@@ -794,6 +819,6 @@ if __name__ == "__main__":
                 test_friction_3d_rigid_plane,
                 test_fluid_generalized_alpha, test_fluid_tied, test_fluid_moving_mesh, test_fsi_generalized_alpha,
                 test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,
-                test_after_step_cuts, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
+                test_after_step_cuts, test_other_steps, test_moving_obstacle, test_bad_checkpoints, test_parts_not_gathered])
     finally:
         H.cleanup(*_dirs)

@@ -7,6 +7,8 @@
 #include "seam/parallel/exchange.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -62,6 +64,32 @@ std::string hex(std::uint64_t v) {
   char s[32];
   std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(v));
   return s;
+}
+
+// `text` with the value of its entry `key:` (the time step: `dt` or `steps`) replaced by
+// `value`; empty when the text has not exactly one such entry.
+std::string with_entry(const std::string& text, const std::string& key, const std::string& value) {
+  std::string out;
+  int found = 0;
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    if (at > 0 && std::string(" \t\n{,").find(text[at - 1]) == std::string::npos) continue;
+    std::size_t v = at + key.size();
+    while (v < text.size() && (text[v] == ' ' || text[v] == '\t')) ++v;
+    if (v >= text.size() || text[v] != ':') continue;
+    for (++v; v < text.size() && (text[v] == ' ' || text[v] == '\t');) ++v;
+    std::size_t end = v;
+    while (end < text.size() && std::string(",}# \t\r\n").find(text[end]) == std::string::npos)
+      ++end;
+    if (++found > 1) return {};
+    out = text.substr(0, v) + value + text.substr(end);
+  }
+  return out;
+}
+
+std::string shortest(double v) {
+  char s[32];
+  const auto r = std::to_chars(s, s + sizeof s, v);
+  return std::string(s, r.ptr);
 }
 
 } // namespace
@@ -256,7 +284,7 @@ Checkpoints::Checkpoints(const io::Config& config, std::string problem, MeshIden
                          Comm comm, CanonicalOrder order, const std::string& input,
                          std::filesystem::path output_dir, const std::string& restart)
     : problem_(std::move(problem)), mesh_(mesh), comm_(comm), order_(std::move(order)),
-      every_(config.output.checkpoint_every), dir_(std::move(output_dir)) {
+      every_(config.output.checkpoint_every), dt_(config.time.dt), dir_(std::move(output_dir)) {
   bool ok = false;
   const std::string text = read_file(input, ok);
   input_hash_ = fnv1a(text.data(), text.size());
@@ -283,10 +311,34 @@ Checkpoints::Checkpoints(const io::Config& config, std::string problem, MeshIden
                                   " cells"));
   if (static_cast<std::uint64_t>(r.integer("mesh_hash")) != m.hash)
     r.fail("was written for another mesh (same size, other coordinates or connectivity)");
-  if (static_cast<std::uint64_t>(r.integer("input_hash")) != input_hash_)
-    r.fail("was written for another input file (hash " +
-           hex(static_cast<std::uint64_t>(r.integer("input_hash"))) + ", " + input + " has " +
-           hex(input_hash_) + "); restart with the input that wrote it");
+  const auto stored_hash = static_cast<std::uint64_t>(r.integer("input_hash"));
+  if (stored_hash != input_hash_) {
+    // An input that differs only in the time step continues with the new step: the state at
+    // the restart time (displacement, velocity, generalized-alpha's acceleration, the fluid's
+    // rates) does not depend on the step, and the integrators take each step's size as it
+    // comes (as after a step cut). The checkpoint's step: its record, or (checkpoints of
+    // earlier versions) the step in effect when no cut was.
+    const double old_dt = r.has("time.dt") ? r.real("time.dt")
+                          : r.has("control.dt") && r.integer("control.cuts") == 0
+                              ? r.real("control.dt")
+                              : 0.0;
+    bool only_dt = false;
+    if (old_dt > 0.0 && old_dt != dt_) {
+      const std::string steps = std::to_string(std::llround(config.time.end / old_dt));
+      for (const auto& candidate :
+           {with_entry(text, "dt", shortest(old_dt)), with_entry(text, "steps", steps)})
+        only_dt |= !candidate.empty() && fnv1a(candidate.data(), candidate.size()) == stored_hash;
+    }
+    if (!only_dt)
+      r.fail("was written for another input file (hash " + hex(stored_hash) + ", " + input +
+             " has " + hex(input_hash_) +
+             "); restart with the input that wrote it (only the "
+             "time step may differ)");
+    if (comm_.is_root())
+      std::printf("  restarting with dt = %g: the checkpoint's run had dt = %g (the state at "
+                  "t = %g continues with the new step)\n",
+                  dt_, old_dt, r.real("time"));
+  }
   restart_dir_ = restart_output_directory(restart);
   restart_step_ = static_cast<int>(r.integer("step"));
   restart_time_ = r.real("time");
@@ -336,6 +388,7 @@ RecordWriter Checkpoints::begin(int step, double time) const {
   w.put_integer("vector_parts", comm_.size());
   w.put_integer("step", step);
   w.put_real("time", time);
+  w.put_real("time.dt", dt_); // the input's step (a restart may change it)
   std::vector<std::int64_t> owned;
   for (std::size_t k = 0; k < order_.index.size(); ++k)
     if (order_.owned[k]) owned.push_back(order_.index[k]);

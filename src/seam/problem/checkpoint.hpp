@@ -12,7 +12,8 @@
 // whole vector); per-rank pieces of operators (triplets) stay in the part of the rank that
 // integrated them and are taken by the rank that reads that part.
 // The input file's and the mesh's hashes are stored with them: a checkpoint of another input
-// or mesh is an input error.
+// or mesh is an input error, except an input that differs only in its time step (`dt:` or
+// `steps:`), which continues with the new step (StepControl::set_state).
 #include "seam/io/config.hpp"
 #include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
@@ -172,6 +173,7 @@ private:
   Comm comm_;
   CanonicalOrder order_;
   int every_ = 0;
+  double dt_ = 0.0; ///< the input's time step
   std::filesystem::path dir_;
   std::uint64_t input_hash_ = 0;
   bool restarting_ = false;

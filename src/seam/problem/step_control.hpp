@@ -5,6 +5,8 @@
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
 
+#include <algorithm>
+
 namespace seam::problem {
 
 struct NewtonResult;
@@ -33,9 +35,11 @@ public:
     int cuts;
   };
   State state() const { return {t_, dt_, cuts_}; }
+  /// A restart: the step in effect, or the input's step when no cut is (a restart may change
+  /// the step, Checkpoints).
   void set_state(const State& s) {
     t_ = s.t;
-    dt_ = s.dt;
+    dt_ = s.cuts == 0 ? tc_.dt : std::min(s.dt, tc_.dt);
     cuts_ = s.cuts;
   }
 
