@@ -865,6 +865,99 @@ def test_slave_side_in_part_independent_np3():
     H.cleanup(*_dirs)
 
 
+def run_case(geo, yaml, np):
+    """Runs case.yaml with case.geo in a new folder; returns the output directory."""
+    work = tempfile.mkdtemp(prefix="seam_dist_")
+    _dirs.append(work)
+    H.write_case(work, "case.geo", geo)
+    out = H.solve(H.write_case(work, "case.yaml", yaml), np=np)
+    _dirs.append(out)
+    return out
+
+
+def drag_on_plane_yaml(bulk):
+    """A 1 x 0.25 block (h = 1/16: 16 slave facets) pressed onto a rigid plane and dragged
+    along it with Coulomb friction (mu 0.3), static, 8 steps: test_friction.py's drag."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {m: {model: neo_hooke, young: 100.0, poisson: 0.0}}",
+        "bodies: [{region: body, material: m}]",
+        "boundary_conditions:",
+        "  - {region: top, type: dirichlet, components: [x, y], "
+        "value: ['0.05*max(t-1,0)', '-0.01*min(t,1)']}",
+        "interfaces:",
+        "  - {name: floor, type: contact, slave: bottom, friction: {model: coulomb, "
+        "coefficient: 0.3}, rigid_plane: {point: [0, 0], normal: [0, 1]}}",
+        "time: {integrator: static, end: 3.0, steps: 8}",
+        "solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}"]
+        + (["parallel: {interface_distribution: bulk}"] if bulk else [])) + "\n"
+
+
+def ring_on_circle_yaml(bulk):
+    """test_rings.py's ring (8 cells per quarter circle, 64 slave facets on its two circles)
+    thrown obliquely and spinning onto a rigid circle (radius 6) with Coulomb friction (mu
+    0.3), generalized-alpha, 30 steps to t = 0.3."""
+    return "\n".join([
+        "dimension: 2", "mesh: {geo: case.geo}",
+        "materials: {rubber: {model: neo_hooke, young: 1000, poisson: 0.3, density: 1}}",
+        "bodies: [{region: r0, material: rubber}]",
+        "initial_conditions:",
+        "  - {region: r0, velocity: [\"0.4 - 0.5*(y - 1.05)\", \"-1 + 0.5*x\"]}",
+        "interfaces:",
+        "  - {name: floor, type: contact, slave: r0_boundary, multiplier: dual, friction: "
+        "{model: coulomb, coefficient: 0.3}, rigid_sphere: {center: [0, -6], radius: 6}}",
+        "time: {integrator: generalized_alpha, rho_inf: 0.5, end: 0.3, steps: 30}",
+        "solver: {newton: {tolerance: 1.0e-11, max_iterations: 30}}",
+        "output: {every: 1000}"]
+        + (["parallel: {interface_distribution: bulk}"] if bulk else [])) + "\n"
+
+
+def check_rigid_in_part(what, run, bounds):
+    """A contact interface against a rigid obstacle at np 1 and at np 3 with the bulk and the
+    independent distribution (`run(np, bulk)`: the output directory): at np 3 the slave side
+    is held in part (check_slave_in_part with bounds[bulk]; the active sets and every output
+    equal np 1 to 1e-10). Returns the slave facets held per rank, bulk then independent."""
+    one = run(1, False)
+    held = []
+    for bulk in (True, False):
+        name = what + (" bulk" if bulk else " independent")
+        three = run(3, bulk)
+        held.append(check_slave_in_part(three, name, False, bounds[bulk]))
+        compare_outputs(one, three, 1e-10, name + " np 3 vs np 1")
+        if max(r["active_nodes"] for r in rows_of(one, "steps.csv")) == 0:
+            raise AssertionError("%s: no contact" % what)
+    return held
+
+
+def test_rigid_slave_side_in_part_np3():
+    """The slave side of contact against a rigid obstacle held in part (docs/parallel.md,
+    "Converting the contact sides", step 3): with the bulk distribution a rank holds the slave
+    facets of its own and ghost cells, with the independent one the rings of the slave nodes
+    it owns and of the nodes of the facets it evaluates; the nodal arrays per held slave node.
+    At np 3, bulk and independent (check_rigid_in_part): the Hertz sphere on a rigid plane
+    (examples/hertz_3d/hertz_3d.yaml, two load steps, frictionless), a 2D block pressed onto a
+    rigid plane and dragged with Coulomb friction, and a 2D ring thrown onto a rigid circle
+    with Coulomb friction, generalized-alpha. Held on every rank before: 473 of 473 (Hertz),
+    16 of 16 (block), 64 of 64 (ring)."""
+    steps = (("steps: 5", "steps: 2"),)
+    check_rigid_in_part(
+        "hertz on a rigid plane",
+        lambda np, bulk: run_example("hertz_3d", "hertz_3d.yaml", np,
+                                     steps + ((BULK,) if bulk else ())),
+        {True: 1.5, False: 1.3})
+    import geometry  # noqa: E402
+    block = geometry.rectangle("quad_structured", 0.0625, lx=1.0, ly=0.25)
+    check_rigid_in_part("block dragged on a rigid plane",
+                        lambda np, bulk: run_case(block, drag_on_plane_yaml(bulk), np),
+                        {True: 1.5, False: 1.6})
+    import test_rings  # noqa: E402
+    ring = test_rings.ring_geo(((0.0, 1.05),), 8, 2)
+    check_rigid_in_part("ring on a rigid circle, generalized-alpha",
+                        lambda np, bulk: run_case(ring, ring_on_circle_yaml(bulk), np),
+                        {True: 1.5, False: 1.6})
+    H.cleanup(*_dirs)
+
+
 def test_ironing_master_ghosted():
     """2D ironing with Coulomb friction: pressed in and slid a little, coarse steps."""
     check_master_ghosted("ironing", "ironing_2d.yaml", IRONING_SHORT, 0.5)

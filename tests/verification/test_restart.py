@@ -378,6 +378,21 @@ def test_dynamic_friction_generalized_alpha():
                "generalized-alpha friction", cross_np=True if H.FULL else "1 -> 3")
 
 
+def test_rigid_slave_side_in_part():
+    """A block under gravity on a rigid plane, pushed along by a growing body force (it sticks,
+    then slides; Coulomb friction, generalized-alpha: sliding_block_yaml, h = 1/16), with the
+    bulk and with the independent distribution of the interface: at np 3 each rank holds part
+    of the slave side and the state of the slave nodes it holds (docs/parallel.md, "Converting
+    the contact sides", step 3); the checkpoint is keyed by node id, so a restart on another
+    number of ranks continues the run: 1 -> 1 bit for bit, 1 -> 3 and 3 -> 1 to 1e-12."""
+    block = G.rectangle("quad_structured", 0.0625, lx=1.0, ly=0.25)
+    bulk = "parallel: {interface_distribution: bulk}\n"
+    check_case(block, lambda e: sliding_block_yaml(e) + bulk, 8,
+               "generalized-alpha friction on a rigid plane, bulk, slave side in part")
+    check_case(block, sliding_block_yaml, 8,
+               "generalized-alpha friction on a rigid plane, independent, slave side in part")
+
+
 def drop_yaml(every):
     """test_contact.py's Neo-Hooke block dropped on a rigid plane (frictionless, dual
     multipliers), generalized-alpha, to t = 0.1: the checkpoint after step 27 lies in the

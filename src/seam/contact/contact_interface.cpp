@@ -78,59 +78,22 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
     plane_motion_ = round.motion;
     master_.dim = dim;
   } else if (rigid_) {
-    // One master facet that covers every place the slave surface can reach: centred at the
-    // slave surface's projection onto the plane, ten times its extent.
     const auto& plane = *config.rigid_plane;
+    master_.dim = dim;
     std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::size_t i = 0; i < slave_.mesh_nodes.size(); ++i)
       for (int c = 0; c < dim; ++c) {
         lo[c] = std::min(lo[c], slave_.coordinates[i * dim + c]);
         hi[c] = std::max(hi[c], slave_.coordinates[i * dim + c]);
       }
-    std::array<double, 3> centre{}, n = plane.normal;
-    double diagonal = 0.0, height = 0.0;
-    for (int c = 0; c < dim; ++c) {
-      centre[c] = 0.5 * (lo[c] + hi[c]);
-      diagonal += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-      height += (centre[c] - plane.point[c]) * n[c];
-    }
-    for (int c = 0; c < dim; ++c) centre[c] -= height * n[c];
-    const double h = 10.0 * std::sqrt(diagonal) + std::abs(height);
-    master_.dim = dim;
-    if (dim == 2) {
-      // line2 from c - h t to c + h t with t = (-n_y, n_x): its normal (t_y, -t_x) is n.
-      const double t[2] = {-n[1], n[0]};
-      plane_corners_ = {centre[0] - h * t[0], centre[1] - h * t[1], centre[0] + h * t[0],
-                        centre[1] + h * t[1]};
-      master_.types = {fem::CellType::line2};
-      master_.offsets = {0, 2};
-      master_.nodes = {0, 1};
-    } else {
-      // quad4 with edges along a and b, a x b = n.
-      std::array<double, 3> a{};
-      const int axis = std::abs(n[0]) < 0.9 ? 0 : 1;
-      std::array<double, 3> e{};
-      e[axis] = 1.0;
-      a = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
-      const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-      for (auto& v : a) v /= la;
-      const std::array<double, 3> b{n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2],
-                                    n[0] * a[1] - n[1] * a[0]};
-      const double s[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (const auto& st : s)
-        for (int c = 0; c < 3; ++c)
-          plane_corners_.push_back(centre[c] + h * (st[0] * a[c] + st[1] * b[c]));
-      master_.types = {fem::CellType::quad4};
-      master_.offsets = {0, 4};
-      master_.nodes = {0, 1, 2, 3};
-    }
-    master_.coordinates = plane_corners_;
+    if (slave_.mesh_nodes.empty()) lo = hi = plane.point; // a part without slave facets
     plane_motion_ = plane.motion;
     // The plane only translates: its normal, towards the body, is the contact normal of
     // every slave node (the slave normal points out of the body, at the plane).
     obstacle_.shape = Obstacle::Shape::plane;
     obstacle_.point = plane.point;
-    obstacle_.direction = n;
+    obstacle_.direction = plane.normal;
+    span_plane(lo, hi);
   } else if (self_) {
     // Both sides are the whole surface; the pairs say which facet is slave (self_contact.hpp).
     master_ = slave_;
@@ -179,8 +142,62 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
   owned_nodes_ = slave_.nodes;
 }
 
+void ContactInterface::span_plane(const std::array<double, 3>& lo,
+                                  const std::array<double, 3>& hi) {
+  SEAM_ASSERT(rigid_ && obstacle_.shape == Obstacle::Shape::plane);
+  // One master facet that covers every place the slave surface can reach: centred at the
+  // projection of the box lo..hi (the slave surface's) onto the plane, ten times its extent.
+  const int dim = this->dim();
+  const auto& n = obstacle_.direction;
+  std::array<double, 3> centre{};
+  double diagonal = 0.0, height = 0.0;
+  for (int c = 0; c < dim; ++c) {
+    centre[c] = 0.5 * (lo[c] + hi[c]);
+    diagonal += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+    height += (centre[c] - obstacle_.point[c]) * n[c];
+  }
+  for (int c = 0; c < dim; ++c) centre[c] -= height * n[c];
+  const double h = 10.0 * std::sqrt(diagonal) + std::abs(height);
+  plane_corners_.clear();
+  if (dim == 2) {
+    // line2 from c - h t to c + h t with t = (-n_y, n_x): its normal (t_y, -t_x) is n.
+    const double t[2] = {-n[1], n[0]};
+    plane_corners_ = {centre[0] - h * t[0], centre[1] - h * t[1], centre[0] + h * t[0],
+                      centre[1] + h * t[1]};
+    master_.types = {fem::CellType::line2};
+    master_.offsets = {0, 2};
+    master_.nodes = {0, 1};
+  } else {
+    // quad4 with edges along a and b, a x b = n.
+    std::array<double, 3> a{};
+    const int axis = std::abs(n[0]) < 0.9 ? 0 : 1;
+    std::array<double, 3> e{};
+    e[axis] = 1.0;
+    a = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+    const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (auto& v : a) v /= la;
+    const std::array<double, 3> b{n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2],
+                                  n[0] * a[1] - n[1] * a[0]};
+    const double s[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const auto& st : s)
+      for (int c = 0; c < 3; ++c)
+        plane_corners_.push_back(centre[c] + h * (st[0] * a[c] + st[1] * b[c]));
+    master_.types = {fem::CellType::quad4};
+    master_.offsets = {0, 4};
+    master_.nodes = {0, 1, 2, 3};
+  }
+  master_.coordinates = plane_corners_;
+  for (std::size_t i = 0; i < plane_corners_.size(); ++i)
+    master_.coordinates[i] += obstacle_displacement_[i % static_cast<std::size_t>(dim)];
+  search_.reset();
+  if (!owned_.empty() && !external_)
+    search_ = std::make_unique<search::InterfaceSearch>(
+        search::FacetSurface{dim, slave_.coordinates, owned_offsets_, owned_nodes_},
+        master_.surface(), search_options_);
+}
+
 void ContactInterface::hold_slave_facets(const mesh::Region& region) {
-  SEAM_ASSERT(!self_ && !rigid_);
+  SEAM_ASSERT(!self_);
   auto side = meshtying::extract_side(*mesh_, region);
   // The normals of the nodes held before and after are kept (read until the next place()).
   const auto d = static_cast<std::size_t>(dim());

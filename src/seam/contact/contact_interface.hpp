@@ -167,7 +167,15 @@ public:
   /// configuration), and the mean edge length agreed over the parts of a slave side held in
   /// part (their sums over the facets each part evaluates).
   std::pair<double, double> slave_edge_sum(std::span<const local_index> facets) const;
-  void set_slave_mesh_size(double size) { mesh_size_ = size; }
+  /// (Against a round obstacle the candidates' inflation follows it: 0.75 x the mean edge.)
+  void set_slave_mesh_size(double size) {
+    mesh_size_ = size;
+    if (obstacle_.round()) search_options_.inflation = search_options_.inflation_factor * size;
+  }
+  /// A rigid plane: its one master facet spanned anew over the box lo..hi (dim entries; the
+  /// whole slave side's box, so that every part of a slave side held in part searches against
+  /// the same facet). The set-up spans it over the box of the slave facets the mesh holds.
+  void span_plane(const std::array<double, 3>& lo, const std::array<double, 3>& hi);
   local_index n_slave_nodes() const { return static_cast<local_index>(slave_.mesh_nodes.size()); }
 
   /// Places both sides at the mesh displacement `u` (dim values per mesh node; only interface
@@ -271,11 +279,12 @@ public:
 
   /// The slave facets evaluate() and linearize() integrate (sorted, unique; all by default).
   void set_owned_facets(std::vector<local_index> facets);
-  /// Two bodies, a slave side held in part: the slave side becomes the facets of `region` (a
-  /// subset of the slave region's facets in the mesh, in its order), the side-local indices
-  /// those of `region`. The candidate pairs, the owned facets and the normal nodes are
+  /// Two bodies or a rigid obstacle, a slave side held in part: the slave side becomes the facets
+  /// of `region` (a subset of the slave region's facets in the mesh, in its order), the side-local
+  /// indices those of `region`. The candidate pairs, the owned facets and the normal nodes are
   /// dropped (set anew by the caller); the normals of the nodes held before and after, the
-  /// mesh size, the search inflation and the quadrature degree are kept.
+  /// mesh size, the search inflation, the quadrature degree and a rigid plane's facet are
+  /// kept.
   void hold_slave_facets(const mesh::Region& region);
   std::span<const local_index> owned_facets() const { return owned_; }
   /// Candidate pairs of slave facet f at the last update.

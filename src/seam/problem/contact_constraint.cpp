@@ -106,6 +106,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       if (!(total > 0.0))
         io::fail_at(itf.slave.mark, "the slave region '" + itf.slave.name + "' has no facets");
       s.itf.set_slave_mesh_size(disc.comm().sum(sum) / total);
+      if (s.itf.rigid()) agree_on_obstacle_search(s);
     }
     if (s.itf.standard()) {
       saddle_point_ = true;
@@ -119,6 +120,8 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                                     "friction; use multiplier: dual");
     }
     s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
+    s.compact =
+        slave_part && s.itf.rigid() && disc.comm().max(s.T_inverse.empty() ? 0.0 : 1.0) == 0.0;
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain;
     // E of the softer body in contact, whose strain sets the pressure a penetration stands
     // for (a stiff die on a soft slab with the die's E makes every set decision a gap test,
@@ -196,6 +199,8 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
           disc.comm().get(), s.itf, std::move(held), s.slave_ids,
           side_ids(disc, master, s.itf.master_nodes()), s.master_in_part);
       s.itf.set_owned_facets(s.bulk_facets);
+    } else {
+      s.slave_facets = static_cast<int>(disc.comm().sum(static_cast<double>(s.bulk_facets.size())));
     }
     sides_.push_back(std::move(s));
   }
@@ -237,6 +242,31 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     comm.sum_in_place(index);
     s.lm_index.assign(index.begin(), index.end());
   }
+}
+
+void ContactConstraint::agree_on_obstacle_search(Side& s) const {
+  const auto& comm = disc_.comm();
+  const int dim = disc_.dim();
+  if (s.itf.obstacle().shape != contact::Obstacle::Shape::plane) return; // round: mesh size
+  // The plane's facet spans the whole slave side's box (the parts' boxes together) and the
+  // search inflation is the whole side's: 0.75 x the shortest edge of all parts and the plane.
+  const auto& slave = s.itf.slave();
+  std::array<double, 3> lo{}, hi{};
+  for (int c = 0; c < dim; ++c) {
+    double a = std::numeric_limits<double>::max(), b = -a;
+    for (std::size_t j = 0; j < slave.mesh_nodes.size(); ++j) {
+      a = std::min(a, slave.coordinates[j * dim + c]);
+      b = std::max(b, slave.coordinates[j * dim + c]);
+    }
+    lo[static_cast<std::size_t>(c)] = comm.min(a);
+    hi[static_cast<std::size_t>(c)] = comm.max(b);
+  }
+  s.itf.span_plane(lo, hi);
+  const double huge = std::numeric_limits<double>::max();
+  const double part = search::min_edge_length(slave.surface());
+  const double ls = comm.min(part > 0.0 ? part : huge);
+  const double lm = search::min_edge_length(s.itf.master().surface());
+  s.itf.set_search_edge(std::min(ls, lm));
 }
 
 void ContactConstraint::collect_interface_nodes() {
@@ -1309,15 +1339,35 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
   // their normals). Always the rings of the nodes of the facets it evaluates and of `kept`.
   std::vector<char> keep(n_full, 0);
   std::vector<std::int32_t> ring;
+  // Against a rigid obstacle (s.compact) no ring is read: the facets it evaluates, and for
+  // each node it owns that none of them has, the first facet of the side that has it.
+  std::vector<char> covered(s.compact ? static_cast<std::size_t>(mesh.n_nodes()) : 0, 0);
   for (std::size_t f = 0; f < n_full; ++f) {
     keep[f] = own_cells && !disc_.interface_only_cell(full.facet_cell[f]);
     const bool mine = std::binary_search(evaluated.begin(), evaluated.end(), ids[f]);
+    if (s.compact && mine) {
+      keep[f] = 1;
+      for_nodes(f, [&](std::int32_t node) { covered[static_cast<std::size_t>(node)] = 1; });
+    }
     for_nodes(f, [&](std::int32_t node) {
-      if (mine || (!own_cells && disc_.owns_node(node)) ||
+      if ((!s.compact && (mine || (!own_cells && disc_.owns_node(node)))) ||
           std::binary_search(kept.begin(), kept.end(), disc_.node_gid(node)))
         ring.push_back(node);
     });
   }
+  // First the facets all of whose nodes it owns and needs (few facets cover many nodes), then
+  // one for each node still without.
+  for (const bool all : {true, false})
+    for (std::size_t f = 0; s.compact && !own_cells && f < n_full; ++f) {
+      int wanted = 0, nodes = 0;
+      for_nodes(f, [&](std::int32_t node) {
+        ++nodes;
+        wanted += disc_.owns_node(node) && !covered[static_cast<std::size_t>(node)];
+      });
+      if (wanted == 0 || (all && wanted < nodes)) continue;
+      keep[f] = 1;
+      for_nodes(f, [&](std::int32_t node) { covered[static_cast<std::size_t>(node)] = 1; });
+    }
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
   for (std::size_t f = 0; f < n_full; ++f)
@@ -1582,8 +1632,22 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               reused +
               ") and the mortar integration of the own slave "
               "elements (against the ghosted master facets)";
+    else if (s.slave_in_part)
+      text = "interface " + s.itf.name() + ": held in part: the slave side (the facets of its " +
+             "own and ghost cells" +
+             (s.slave_region ? " at set-up; then the rings of the slave nodes it owns and of "
+                               "the nodes of the slave facets it evaluates, taken anew at each "
+                               "distribution"
+                             : "") +
+             ": " + n_slave + " of " + std::to_string(s.slave_facets) +
+             " slave facets), the nodal arrays per held slave node (D, g~, multipliers, active "
+             "set" +
+             (s.friction ? ", friction history" : "") + "; the owners' values published)" +
+             "; on every rank: " + s.itf.obstacle().name() + read +
+             "; distributed: the search and the integration of the own slave elements";
     else
-      text += "the slave side (" + n_slave + " facets, nodes, positions), the " +
+      text += "the slave side (" + n_slave + " facets, nodes, positions; held in part with " +
+              "dual multipliers outside saddle-point runs and energy-momentum contact), the " +
               s.itf.obstacle().name() + ", " + arrays + read +
               "; distributed: the search and the integration of the slave elements";
     out.push_back(std::move(text));
@@ -1598,11 +1662,12 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
   const int dim = disc_.dim();
   const auto& comm = disc_.comm();
   const auto& mesh = disc_.mesh();
-  // Each slave node's row is computed by one rank: the rank that evaluates the first slave
-  // facet around it (the lowest index; each facet is evaluated by one rank), so the rows follow
-  // the distribution of the slave elements, not the bulk partition (which may give one rank
-  // every slave node). That rank reads the node's displacement and those of the facets around
-  // it (its normal) through its own scatter (nodes_read() holds them), and the node's
+  // Each slave node's row is computed by one rank (against a rigid obstacle held in part, whose
+  // normals are the obstacle's at the node, s.compact: the node's owner): the rank that
+  // evaluates the first slave facet around it (the lowest index; each facet is evaluated by one
+  // rank), so the rows follow the distribution of the slave elements, not the bulk partition (which
+  // may give one rank every slave node). That rank reads the node's displacement and those of the
+  // facets around it (its normal) through its own scatter (nodes_read() holds them), and the node's
   // multipliers, gap and status are published to every rank: no scatter of the whole
   // interface, no exchange. The owners compute the multiplier vectors of their nodes (VTU).
   SEAM_ASSERT(gather_made_);
@@ -1626,8 +1691,9 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
         if (first[static_cast<std::size_t>(j)] < 0) first[static_cast<std::size_t>(j)] = f;
     const auto own = s.itf.owned_facets();
     for (std::size_t j = 0; j < n; ++j) {
-      const bool row = std::binary_search(own.begin(), own.end(), first[j]);
       rep.owned[j] = s.node_owners[j] == comm.rank();
+      const bool row =
+          s.compact ? rep.owned[j] != 0 : std::binary_search(own.begin(), own.end(), first[j]);
       rep.local_owned_nodes += rep.owned[j];
       if (rep.owned[j] || row) mine.push_back(static_cast<local_index>(j));
       if (row) rows.push_back(static_cast<local_index>(j));

@@ -264,6 +264,11 @@ private:
     /// mesh (every rank's mesh holds its cells), from which the held facets are taken anew at
     /// each distribution (hold_slave_part).
     const mesh::Region* slave_region = nullptr;
+    /// A slave side held in part against a rigid obstacle, without a modified slave basis: the
+    /// normals are the obstacle's at each node (no ring of facets around a node is read), so
+    /// after a distribution a rank holds the facets it evaluates and one facet of each slave
+    /// node it owns (hold_slave_part), and the owner of a slave node writes its output row.
+    bool compact = false;
     /// A slave side held in part: the owners publish to the ranks that hold each node
     /// (publish()).
     std::shared_ptr<const parallel::HolderPublisher> holders;
@@ -498,6 +503,9 @@ private:
   /// own facets and search ids of its slave side (after the side changed).
   void index_slave_side(Side& s, const mesh::Region& region);
   /// interface_nodes_ from the sides' nodes.
+  /// A slave side held in part against a rigid plane: the plane's facet and the search
+  /// inflation agreed over the parts (those of the whole side). Collective.
+  void agree_on_obstacle_search(Side& s) const;
   void collect_interface_nodes();
 
   const Discretization& disc_;

@@ -64,8 +64,10 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 /// slave nodes it owns and of the nodes of the slave facets it evaluates (its mesh holds every
 /// slave cell, slave_cells_in_part; with friction also the rings of the slave nodes of its
 /// part of M^n); the nodal arrays are per held slave node. Two-body contact whose master side
-/// is held in part (with or without friction, with either distribution of the interface,
-/// `parallel: interface_distribution`); every other interface keeps its slave side whole.
+/// is held in part, and contact against a rigid plane, sphere or cylinder under the same
+/// conditions (dual multipliers, no saddle point in the run, not energy-momentum contact),
+/// with or without friction, with either distribution of the interface (`parallel:
+/// interface_distribution`); every other interface keeps its slave side whole.
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config);
 
 /// Whether the distributed mesh holds the cells of the slave side of `itf` in part (its own
