@@ -908,21 +908,29 @@ def ring_on_circle_yaml(bulk):
         "{model: coulomb, coefficient: 0.3}, rigid_sphere: {center: [0, -6], radius: 6}}",
         "time: {integrator: generalized_alpha, rho_inf: 0.5, end: 0.3, steps: 30}",
         "solver: {newton: {tolerance: 1.0e-11, max_iterations: 30}}",
-        "output: {every: 1000}"]
-        + (["parallel: {interface_distribution: bulk}"] if bulk else [])) + "\n"
+        "output: {every: 1000}",
+        # Independent: redistributed after every step whose integration cells are not even.
+        "parallel: {interface_distribution: bulk}" if bulk else
+        "parallel: {work: integration_cells, rebalance_tolerance: 1.0}"]) + "\n"
 
 
-def check_rigid_in_part(what, run, bounds):
+def check_rigid_in_part(what, run, bounds, rebalanced=0):
     """A contact interface against a rigid obstacle at np 1 and at np 3 with the bulk and the
     independent distribution (`run(np, bulk)`: the output directory): at np 3 the slave side
     is held in part (check_slave_in_part with bounds[bulk]; the active sets and every output
-    equal np 1 to 1e-10). Returns the slave facets held per rank, bulk then independent."""
+    equal np 1 to 1e-10); the independent run redistributed after at least `rebalanced` steps
+    (parallel.csv). Returns the slave facets held per rank, bulk then independent."""
     one = run(1, False)
     held = []
     for bulk in (True, False):
         name = what + (" bulk" if bulk else " independent")
         three = run(3, bulk)
         held.append(check_slave_in_part(three, name, False, bounds[bulk]))
+        if not bulk:
+            steps = [r["step"] for r in rows_of(three, "parallel.csv") if r["redistributed"]]
+            print("   %s: redistributed after %d steps" % (name, len(steps)))
+            if len(steps) < rebalanced:
+                raise AssertionError("%s: redistributed after steps %s" % (name, steps))
         compare_outputs(one, three, 1e-10, name + " np 3 vs np 1")
         if max(r["active_nodes"] for r in rows_of(one, "steps.csv")) == 0:
             raise AssertionError("%s: no contact" % what)
@@ -937,7 +945,8 @@ def test_rigid_slave_side_in_part_np3():
     At np 3, bulk and independent (check_rigid_in_part): the Hertz sphere on a rigid plane
     (examples/hertz_3d/hertz_3d.yaml, two load steps, frictionless), a 2D block pressed onto a
     rigid plane and dragged with Coulomb friction, and a 2D ring thrown onto a rigid circle
-    with Coulomb friction, generalized-alpha. Held on every rank before: 473 of 473 (Hertz),
+    with Coulomb friction, generalized-alpha (independent: rebalanced after every uneven
+    step, at least 5 times, the state following the parts). Held on every rank before: 473 of 473 (Hertz),
     16 of 16 (block), 64 of 64 (ring)."""
     steps = (("steps: 5", "steps: 2"),)
     check_rigid_in_part(
@@ -954,7 +963,7 @@ def test_rigid_slave_side_in_part_np3():
     ring = test_rings.ring_geo(((0.0, 1.05),), 8, 2)
     check_rigid_in_part("ring on a rigid circle, generalized-alpha",
                         lambda np, bulk: run_case(ring, ring_on_circle_yaml(bulk), np),
-                        {True: 1.5, False: 1.6})
+                        {True: 1.5, False: 1.6}, rebalanced=5)
     H.cleanup(*_dirs)
 
 

@@ -1647,7 +1647,7 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              "; distributed: the search and the integration of the own slave elements";
     else
       text += "the slave side (" + n_slave + " facets, nodes, positions; held in part with " +
-              "dual multipliers outside saddle-point runs and energy-momentum contact), the " +
+              "dual multipliers outside saddle-point runs and energy-momentum contact), " +
               s.itf.obstacle().name() + ", " + arrays + read +
               "; distributed: the search and the integration of the slave elements";
     out.push_back(std::move(text));
