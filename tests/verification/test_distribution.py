@@ -56,6 +56,11 @@ Each test can fail:
   distribution, with and without friction (Hertz and 2D ironing at np 3, and after the
   rebalancings of the Hertz case and of the sliding ironing at np 4): no rank holds the whole
   slave side, and every output equals np 1 to 1e-10;
+- the slave side of contact against a rigid obstacle held in part, bulk and independent (Hertz
+  sphere on a rigid plane, a block dragged on a rigid plane with Coulomb friction, a ring
+  thrown onto a rigid circle with Coulomb friction and generalized-alpha, rebalanced while it
+  rolls; np 3): no rank holds the whole slave side, the ranks together at most 1.3 to 1.6 x
+  of it, and every output equals np 1 to 1e-10;
 - the ghosting reused (Verlet skin): on the two blocks and on the Hertz sphere (bodies that
   move little) at np = 3 the ghosts are exchanged at fewer searches than there are searches,
   and the results equal those of a run that exchanges at every search (SEAM_GHOST_SKIN=0,
