@@ -22,7 +22,8 @@ level, the ratio of its CPU time to the direct one's. The rule of `auto` for flu
 (src/seam/problem/linear_solver_choice.hpp) rests on these ratios.
 
 With --variant 'label|options' (repeatable) every level and solver is run once per variant,
-each with the variant's PETSc options added after --, interleaved level by level so that the
+each with the variant's PETSc options added after -- (a NAME=value word sets the run's
+environment instead, e.g. GLIBC_TUNABLES=glibc.malloc.hugetlb=1), interleaved level by level so that the
 variants share the machine's load; --repeat N runs each N times. A last table gives, per solver
 and variant, the smallest CPU time per Newton iteration over the repeats and its growth from
 level to level against the dofs' (docs/fluid.md, "PCD's cost on the finest mesh").
@@ -69,6 +70,9 @@ def run(seam, np, level, solver, case, options=()):
     with open(os.path.join(folder, "case.yaml"), "w") as f:
         f.write(yaml)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    # NAME=value words among the options set the run's environment instead.
+    env.update(o.split("=", 1) for o in options if "=" in o and not o.startswith("-"))
+    options = [o for o in options if "=" not in o or o.startswith("-")]
     out = os.path.join(folder, "out")
     cmd = [seam, "run", os.path.join(folder, "case.yaml"), "-o", out, "--quiet"]
     if options:
