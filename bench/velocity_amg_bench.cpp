@@ -12,12 +12,13 @@
 // Times are the process's CPU time, the smallest over --repeat runs.
 //
 // usage: seam-bench velocity_amg [--repeat 3] [--cycles 20] [--rcm] [--bs 2]
-//            [--copies 4] [--stream]
+//            [--copies 4] [--stream] [--per-level]
 //            [--setting "label|-u_pc_hypre_boomeramg_P_max 4 ..."]... J0.bin J1.bin ...
 // --rcm: every matrix also reordered by reverse Cuthill-McKee. --bs 2: block size 2 on A
 // (BoomerAMG's number of functions). --copies K: MatMult and the V-cycle also on K copies of
 // A (K hierarchies) in turn, the same work on a working set K times larger. --stream: a
-// STREAM-like triad's bandwidth against its working set first.
+// STREAM-like triad's bandwidth against its working set first. --per-level: each hierarchy's
+// operators and interpolations level by level (rows, nonzeros, MB).
 #include "registry.hpp"
 
 #include "seam/la/petsc.hpp"
@@ -36,6 +37,9 @@
 namespace {
 
 using seam::la::check;
+
+// --per-level: the hierarchy's rows, nonzeros and bytes level by level.
+bool per_level = false;
 
 double cpu_seconds() {
   timespec t{};
@@ -246,6 +250,22 @@ void amg_row(Mat A, const Setting& setting, int repeat, int cycles, int copies) 
     touched += 2 * z;
     bytes += csr_bytes(interps[l]);
   }
+  if (per_level) {
+    // Level k >= 1 is ops[nl - 1 - k]; the interpolation from level k + 1 to k is
+    // interps[nl - 2 - k].
+    for (PetscInt k = 0; k < nl; ++k) {
+      const Mat Ak = k == 0 ? A : ops[nl - 1 - k];
+      PetscInt m = 0;
+      check(MatGetSize(Ak, &m, &nc), "MatGetSize");
+      std::printf("      level %d: %d rows, %.0f nonzeros, %.2f MB", int(k), int(m),
+                  double(nonzeros(Ak)), csr_bytes(Ak) / 1048576.0);
+      if (k + 1 < nl) {
+        const Mat P = interps[nl - 2 - k];
+        std::printf("; P: %.0f nonzeros, %.2f MB", double(nonzeros(P)), csr_bytes(P) / 1048576.0);
+      }
+      std::printf("\n");
+    }
+  }
   for (PetscInt l = 0; l + 1 < nl; ++l) check(MatDestroy(&ops[l]), "MatDestroy");
   for (PetscInt l = 0; l + 1 < ni; ++l) check(MatDestroy(&interps[l]), "MatDestroy");
   check(PetscFree(ops), "PetscFree");
@@ -337,7 +357,7 @@ int run(int argc, char** argv) {
     };
     if (a == "--help" || a == "-h") {
       std::printf("usage: seam-bench velocity_amg [--repeat 3] [--cycles 20] [--rcm] [--bs 2]\n"
-                  "  [--copies K] [--stream]\n"
+                  "  [--copies K] [--stream] [--per-level]\n"
                   "  [--setting 'label|-u_pc_hypre_boomeramg_... value']... J.bin ...\n");
       return 0;
     } else if (a == "--repeat") {
@@ -348,6 +368,8 @@ int run(int argc, char** argv) {
       copies = std::max(1, std::stoi(value()));
     } else if (a == "--bs") {
       bs = std::stoi(value());
+    } else if (a == "--per-level") {
+      per_level = true;
     } else if (a == "--stream") {
       stream = true;
     } else if (a == "--rcm") {
