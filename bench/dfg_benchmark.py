@@ -21,8 +21,16 @@ Newton step, and the linear solver the run names in summary.json; after the iter
 level, the ratio of its CPU time to the direct one's. The rule of `auto` for fluids
 (src/seam/problem/linear_solver_choice.hpp) rests on these ratios.
 
+With --variant 'label|options' (repeatable) every level and solver is run once per variant,
+each with the variant's PETSc options added after -- (a NAME=value word sets the run's
+environment instead, e.g. GLIBC_TUNABLES=glibc.malloc.hugetlb=1), interleaved level by level so that the
+variants share the machine's load; --repeat N runs each N times. A last table gives, per solver
+and variant, the smallest CPU time per Newton iteration over the repeats and its growth from
+level to level against the dofs' (docs/fluid.md, "PCD's cost on the finest mesh").
+
 Usage: /usr/bin/python3 bench/dfg_benchmark.py [--seam build/bin/seam] [--levels 0,1,2]
            [--solvers direct,iterative,pcd] [--np 1] [--case 2d1|2d3]
+           [--variant 'label|-fieldsplit_u_pc_hypre_boomeramg_P_max 4']... [--repeat 1]
 """
 import argparse
 import json
@@ -62,6 +70,9 @@ def run(seam, np, level, solver, case, options=()):
     with open(os.path.join(folder, "case.yaml"), "w") as f:
         f.write(yaml)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    # NAME=value words among the options set the run's environment instead.
+    env.update(o.split("=", 1) for o in options if "=" in o and not o.startswith("-"))
+    options = [o for o in options if "=" not in o or o.startswith("-")]
     out = os.path.join(folder, "out")
     cmd = [seam, "run", os.path.join(folder, "case.yaml"), "-o", out, "--quiet"]
     if options:
@@ -105,7 +116,12 @@ def main():
     parser.add_argument("--options", default="",
                         help="PETSc options passed after -- to every run, e.g. "
                         "'-pc_fieldsplit_schur_precondition selfp'")
+    parser.add_argument("--variant", action="append", default=[],
+                        help="'label|PETSc options' added to --options; repeatable")
+    parser.add_argument("--repeat", type=int, default=1)
     args = parser.parse_args()
+    variants = [(v.split("|", 1)[0], v.split("|", 1)[1].split() if "|" in v else [])
+                for v in args.variant] or [("", [])]
     levels = [int(k) for k in args.levels.split(",")]
     solvers = args.solvers.split(",")
     if args.case == "2d1":
@@ -115,11 +131,21 @@ def main():
     print("%5s %8s %-9s %9s %9s %9s %8s %8s %9s %9s %8s %5s %6s %7s  %s" % (
         "level", "dofs", "linear", "c_D", "error", "CPU [s]", "CPU/newt", "wall [s]", "wall/newt",
         "solve/newt", "RSS [MB]", "load", "newton", "krylov", "linear solver of the run"))
+    best = {}
     for level in levels:
         cpu = {}
-        for solver in solvers:
-            r = run(args.seam, args.np, level, solver, args.case, args.options.split())
+        for _, solver, (label, extra) in ((i, s, v) for i in range(args.repeat)
+                                          for s in solvers for v in variants):
+            r = run(args.seam, args.np, level, solver, args.case, args.options.split() + extra)
             cpu[solver] = r["cpu"]
+            key = (solver, label)
+            per_newton = r["cpu"] / r["solves"]
+            old = best.setdefault(key, {}).get(level)
+            if old is None or per_newton < old[1]:
+                best[key][level] = (r["dofs"], per_newton,
+                                    None if r["solver"].startswith("direct") else r["krylov"])
+            if label:
+                print("      variant: %s" % label)
             direct = r["solver"].startswith("direct")
             error = "%+8.4f%%" % (100 * (r["cd"] / CD_REF - 1)) if args.case == "2d1" else "-"
             row = "%5d %8d %-9s %9.6f %9s %9.2f %8.3f %8.2f %9.3f %10.3f %8.0f %5.2f %6d %7s  %s"
@@ -130,9 +156,23 @@ def main():
                 "-" if direct else "%.1f" % r["krylov"],
                 r["solver"]), flush=True)
         for solver in ("iterative", "pcd"):
-            if "direct" in cpu and solver in cpu:
+            if "direct" in cpu and solver in cpu and len(variants) == 1:
                 print("%5d %8s %s / direct CPU time: %.2f" % (
                     level, "", solver, cpu[solver] / cpu["direct"]), flush=True)
+    print("\nCPU per Newton iteration, the smallest of %d run(s), and its growth against the "
+          "dofs' from the level before" % args.repeat)
+    for (solver, label), rows in best.items():
+        print("%s %s" % (solver, label))
+        previous = None
+        for level in levels:
+            dofs, t, krylov = rows[level]
+            growth = "" if previous is None else "x%.2f for x%.2f dofs" % (
+                t / previous[1], dofs / previous[0])
+            print("  %8d dofs %9.3f s %7s Krylov/Newton  %s" % (
+                dofs, t, "-" if krylov is None else "%.1f" % krylov, growth))
+            previous = (dofs, t)
+        first, last = rows[levels[0]], rows[levels[-1]]
+        print("  over the range: x%.1f for x%.1f dofs" % (last[1] / first[1], last[0] / first[0]))
 
 
 if __name__ == "__main__":
