@@ -59,16 +59,21 @@ bool overlap_ends(const std::array<geometry::CurveProjection, 2>& master_on_slav
     return r.converged && r.xi >= -1.0 - tol && r.xi <= 1.0 + tol;
   };
   const bool in0 = inside(master_on_slave[0]), in1 = inside(master_on_slave[1]);
+  // Only the ends that are master nodes' projections are clamped: an end that is the slave's
+  // end node is -1 or 1 exactly, the limit of the rounded clamp of a projection beyond the end
+  // (within smoothing^2 / (4 tol) of it where the projection leaves the range, xi = 1 + tol).
+  // Clamping it too put it at 1 - smoothing / 2, so g~ jumped by the integrand over
+  // smoothing / 2 where a master end node's projection crossed 1 + tol.
   xa = -1.0;
   xb = 1.0;
   if (in0 && in1) {
     const S e0 = on_slave(0), e1 = on_slave(1);
     const bool first = master_on_slave[0].xi < master_on_slave[1].xi;
-    xa = first ? e0 : e1;
-    xb = first ? e1 : e0;
+    xa = clamp_unit(first ? e0 : e1);
+    xb = clamp_unit(first ? e1 : e0);
   } else if (in0 || in1) {
     const std::size_t k = in0 ? 0 : 1;
-    const S xi_in = on_slave(k);
+    const S xi_in = clamp_unit(on_slave(k));
     if (forward(k))
       xa = xi_in;
     else
@@ -76,8 +81,6 @@ bool overlap_ends(const std::array<geometry::CurveProjection, 2>& master_on_slav
   } else if (!(inside(slave_on_master[0]) && inside(slave_on_master[1]))) {
     return false;
   }
-  xa = clamp_unit(xa);
-  xb = clamp_unit(xb);
   return value_of(xb) - value_of(xa) > 1e-12;
 }
 
