@@ -27,6 +27,10 @@
 
 namespace seam::contact {
 
+namespace detail {
+long gap_rejections[3] = {0, 0, 0};
+} // namespace detail
+
 namespace {
 
 using namespace gap_vectors;
@@ -165,7 +169,10 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   const Eigen::Vector2d ts = 0.5 * (x1v - x0v), tm = 0.5 * (m1v - m0v);
   const Eigen::Vector2d ns = Eigen::Vector2d(ts.y(), -ts.x()).normalized();
   const Eigen::Vector2d nm = Eigen::Vector2d(tm.y(), -tm.x()).normalized();
-  if (!(ns.dot(nm) < options.max_normal_alignment_2d)) return;
+  if (!(ns.dot(nm) < options.max_normal_alignment_2d)) {
+    ++detail::gap_rejections[0];
+    return;
+  }
 
   const auto slave_curve = [&](double xi) {
     return geometry::CurvePoint{0.5 * (1.0 - xi) * x0v + 0.5 * (1.0 + xi) * x1v, ts};
@@ -204,8 +211,13 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   };
   S xa, xb;
   if (!overlap_ends(master_on_slave, slave_on_master, options.projection_range_tolerance, on_slave,
-                    forward, xa, xb))
+                    forward, xa, xb)) {
+    ++detail::gap_rejections[1];
+    if (!master_on_slave[0].converged || !master_on_slave[1].converged ||
+        !slave_on_master[0].converged || !slave_on_master[1].converged)
+      ++detail::gap_rejections[2];
     return;
+  }
 
   using Rule = geometry::LineRule5;
   const S segment_jacobian = (xb - xa) * 0.5;

@@ -353,6 +353,9 @@ private:
     /// and a hash of their slave rows and dofs.
     std::size_t em_blocks = 0;
     std::uint64_t em_blocks_hash = 0;
+    /// Pairs without a block then: dropped by the pre-check, without overlap, and of those
+    /// with an unconverged projection (line2).
+    long em_rejections[3] = {0, 0, 0};
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
   /// Whether slave node j has a pair at the last evaluate(): a nodal weight D_jj above 1e-12

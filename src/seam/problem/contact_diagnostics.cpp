@@ -27,11 +27,13 @@ std::vector<std::string> ContactConstraint::trace() const {
     }
     char line[320];
     std::snprintf(line, sizeof line,
-                  "%s: pairs %zu (hash %016llx%s), gap blocks %zu (hash %016llx), active %d, "
-                  "gap rows %d",
+                  "%s: pairs %zu (hash %016llx%s), gap blocks %zu (hash %016llx; pairs "
+                  "dropped: pre-check %ld, no overlap %ld, of which unconverged projections "
+                  "%ld), active %d, gap rows %d",
                   s.itf.name().c_str(), pairs, static_cast<unsigned long long>(hash),
                   s.pairs_held ? ", held" : "", s.em_blocks,
-                  static_cast<unsigned long long>(s.em_blocks_hash), active, rows);
+                  static_cast<unsigned long long>(s.em_blocks_hash), s.em_rejections[0],
+                  s.em_rejections[1], s.em_rejections[2], active, rows);
     out.emplace_back(line);
   }
   return out;

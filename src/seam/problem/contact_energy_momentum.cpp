@@ -238,7 +238,12 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   for (std::size_t i = 0; i < u.size(); ++i) mid[i] = 0.5 * (u[i] + u0[i]);
   std::vector<contact::GapBlock> start, end, middle;
   s.itf.gap_blocks(u0, contact::GapOrder::value, start);
+  const long r0 = contact::detail::gap_rejections[0], r1 = contact::detail::gap_rejections[1],
+             r2 = contact::detail::gap_rejections[2];
   s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
+  s.em_rejections[0] = contact::detail::gap_rejections[0] - r0;
+  s.em_rejections[1] = contact::detail::gap_rejections[1] - r1;
+  s.em_rejections[2] = contact::detail::gap_rejections[2] - r2;
   // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built,
   // and only of the blocks with a slave node that carries a multiplier: the Hessian enters
   // the matrix times lambda_j (H / 2 and, through H dx, the correction's derivative).
