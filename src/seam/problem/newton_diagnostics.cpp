@@ -29,11 +29,24 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
+#include <span>
 #include <string>
 
 namespace seam::problem {
 
 namespace {
+
+/// The indices of the (at most 12) entries of `values` with the largest magnitudes, largest
+/// first.
+std::vector<std::size_t> largest_entries(std::span<const double> values) {
+  std::vector<std::size_t> order(values.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t n = std::min<std::size_t>(12, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), order.end(),
+                    [&](auto a, auto b) { return std::abs(values[a]) > std::abs(values[b]); });
+  order.resize(n);
+  return order;
+}
 
 bool parse_check(int& step, int& iteration) {
   const char* v = std::getenv("SEAM_NEWTON_CHECK");
@@ -104,14 +117,8 @@ bool NewtonSolver::check_requested(int step, int iteration) {
     if (!root) return;
     la::Vector::LocalView view(d, false);
     const auto values = view.values();
-    std::vector<std::size_t> order(values.size());
-    std::iota(order.begin(), order.end(), 0);
-    const std::size_t n = std::min<std::size_t>(12, order.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), order.end(),
-                      [&](auto a, auto b) { return std::abs(values[a]) > std::abs(values[b]); });
     std::printf("  %s, displacement rows:\n", what);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto i = order[k];
+    for (const auto i : largest_entries(values)) {
       const auto [node, comp] = dof_node[i];
       const auto p = static_cast<std::size_t>(node) * dim;
       std::printf("    %11.4e  node %lld %c at (%.5f, %.5f)  %s\n", values[i],
@@ -197,15 +204,9 @@ bool NewtonSolver::check_requested(int step, int iteration) {
   const auto largest = [&](const char* what, const la::Vector& d, const std::vector<double>& c) {
     if (!root) return;
     largest_rows(what, d);
-    std::vector<std::size_t> corder(c.size());
-    std::iota(corder.begin(), corder.end(), 0);
-    const std::size_t m = std::min<std::size_t>(12, corder.size());
-    std::partial_sort(corder.begin(), corder.begin() + static_cast<std::ptrdiff_t>(m), corder.end(),
-                      [&](auto a, auto b) { return std::abs(c[a]) > std::abs(c[b]); });
     std::printf("  %s, constraint rows:\n", what);
-    for (std::size_t k = 0; k < m; ++k)
-      std::printf("    %11.4e  %s\n", c[corder[k]],
-                  contact_.describe_multiplier(corder[k]).c_str());
+    for (const auto k : largest_entries(c))
+      std::printf("    %11.4e  %s\n", c[k], contact_.describe_multiplier(k).c_str());
   };
   // Statuses and multipliers of d + dd for the descriptions of F(v)'s rows.
   F(1.0, Fa, Fac);
