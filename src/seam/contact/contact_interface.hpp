@@ -109,6 +109,9 @@ namespace detail {
 /// Tests only: what the 3D gap Hessians leave out, to show that the Newton matrix needs it.
 enum class GapHessianTerms { all, without_normal_curvature, none };
 extern GapHessianTerms gap_hessian_terms;
+/// Diagnostics: line2 pairs gap_blocks dropped by the centre-normal pre-check, for want of
+/// an overlap, and of those with an unconverged projection (counted, never reset).
+extern long gap_rejections[3];
 } // namespace detail
 
 /// What gap_blocks computes: values, first or second derivatives.

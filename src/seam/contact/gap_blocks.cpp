@@ -27,6 +27,10 @@
 
 namespace seam::contact {
 
+namespace detail {
+long gap_rejections[3] = {0, 0, 0};
+} // namespace detail
+
 namespace {
 
 using namespace gap_vectors;
@@ -59,16 +63,21 @@ bool overlap_ends(const std::array<geometry::CurveProjection, 2>& master_on_slav
     return r.converged && r.xi >= -1.0 - tol && r.xi <= 1.0 + tol;
   };
   const bool in0 = inside(master_on_slave[0]), in1 = inside(master_on_slave[1]);
+  // Only the ends that are master nodes' projections are clamped: an end that is the slave's
+  // end node is -1 or 1 exactly, the limit of the rounded clamp of a projection beyond the end
+  // (within smoothing^2 / (4 tol) of it where the projection leaves the range, xi = 1 + tol).
+  // Clamping it too put it at 1 - smoothing / 2, so g~ jumped by the integrand over
+  // smoothing / 2 where a master end node's projection crossed 1 + tol.
   xa = -1.0;
   xb = 1.0;
   if (in0 && in1) {
     const S e0 = on_slave(0), e1 = on_slave(1);
     const bool first = master_on_slave[0].xi < master_on_slave[1].xi;
-    xa = first ? e0 : e1;
-    xb = first ? e1 : e0;
+    xa = clamp_unit(first ? e0 : e1);
+    xb = clamp_unit(first ? e1 : e0);
   } else if (in0 || in1) {
     const std::size_t k = in0 ? 0 : 1;
-    const S xi_in = on_slave(k);
+    const S xi_in = clamp_unit(on_slave(k));
     if (forward(k))
       xa = xi_in;
     else
@@ -76,8 +85,6 @@ bool overlap_ends(const std::array<geometry::CurveProjection, 2>& master_on_slav
   } else if (!(inside(slave_on_master[0]) && inside(slave_on_master[1]))) {
     return false;
   }
-  xa = clamp_unit(xa);
-  xb = clamp_unit(xb);
   return value_of(xb) - value_of(xa) > 1e-12;
 }
 
@@ -162,7 +169,10 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   const Eigen::Vector2d ts = 0.5 * (x1v - x0v), tm = 0.5 * (m1v - m0v);
   const Eigen::Vector2d ns = Eigen::Vector2d(ts.y(), -ts.x()).normalized();
   const Eigen::Vector2d nm = Eigen::Vector2d(tm.y(), -tm.x()).normalized();
-  if (!(ns.dot(nm) < options.max_normal_alignment_2d)) return;
+  if (!(ns.dot(nm) < options.max_normal_alignment_2d)) {
+    ++detail::gap_rejections[0];
+    return;
+  }
 
   const auto slave_curve = [&](double xi) {
     return geometry::CurvePoint{0.5 * (1.0 - xi) * x0v + 0.5 * (1.0 + xi) * x1v, ts};
@@ -201,8 +211,13 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   };
   S xa, xb;
   if (!overlap_ends(master_on_slave, slave_on_master, options.projection_range_tolerance, on_slave,
-                    forward, xa, xb))
+                    forward, xa, xb)) {
+    ++detail::gap_rejections[1];
+    if (!master_on_slave[0].converged || !master_on_slave[1].converged ||
+        !slave_on_master[0].converged || !slave_on_master[1].converged)
+      ++detail::gap_rejections[2];
     return;
+  }
 
   using Rule = geometry::LineRule5;
   const S segment_jacobian = (xb - xa) * 0.5;

@@ -1146,6 +1146,13 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     ScopedTimer solve_timer(timers, "linear_solve");
     if (!solver.solve(A, b, x)) return false;
   }
+  static const bool measure = std::getenv("SEAM_NEWTON_CHECK") != nullptr;
+  if (measure) {
+    la::Vector Ax(mpi, n_disp + n_lm_);
+    A.mult(x, Ax);
+    Ax.axpy(-1.0, b);
+    last_solve_residual_ = Ax.norm() / b.norm();
+  }
   la::Vector::LocalView xv(x, false), dw(dd, true);
   const auto xl = xv.values();
   auto dl = dw.values();

@@ -204,6 +204,21 @@ public:
   /// lambda_j,c in prescribed components c. Frictionless sides: lambda_j or g~_j.
   std::vector<double> constraint_values() const;
 
+  /// Diagnostics (docs/contact_dynamics.md, "Diagnosing a stalled Newton step"), one line
+  /// per side: candidate pairs (and a hash of the oriented pairs), overlapping gap blocks at
+  /// x_{n+1} (and a hash of their slave rows and dofs), active nodes, nodes with a gap row,
+  /// whether the pairs are held. At the last evaluate(); np = 1 figures on a distributed side
+  /// are this rank's.
+  std::vector<std::string> trace() const;
+  /// The slave node behind entry k of multipliers() / constraint_values(): interface, mesh
+  /// node, whether active, its multiplier, g~_j and D_jj.
+  std::string describe_multiplier(std::size_t k) const;
+  /// The interface side(s) and status of a mesh node ("" if it is on no slave side).
+  std::string describe_node(std::int32_t node) const;
+  /// |A x - b| / |b| of the last saddle-point solve, measured only while SEAM_NEWTON_CHECK is
+  /// set (-1 otherwise).
+  double last_solve_residual() const { return last_solve_residual_; }
+
 private:
   /// Free-direction data of an active slave node: w, the row that carries the gap and the
   /// tangent rows.
@@ -339,6 +354,13 @@ private:
     /// row in the Newton step (paired()).
     std::vector<char> em_row;
     bool em_tangent_current = false;
+    /// Diagnostics (trace()): the overlapping gap blocks at x_{n+1} of the last evaluate()
+    /// and a hash of their slave rows and dofs.
+    std::size_t em_blocks = 0;
+    std::uint64_t em_blocks_hash = 0;
+    /// Pairs without a block then: dropped by the pre-check, without overlap, and of those
+    /// with an unconverged projection (line2).
+    long em_rejections[3] = {0, 0, 0};
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
   /// Whether slave node j has a pair at the last evaluate(): a nodal weight D_jj above 1e-12
@@ -539,11 +561,12 @@ private:
   bool directory_made_ = false;
   la::Matrix Kc_, dP_;
   bool saddle_point_ = false;
-  bool energy_momentum_ = false; ///< integrator: energy_momentum
-  bool held_ = false;            ///< hold_sets
-  int released_ = 0;             ///< n_released()
-  PetscInt n_lm_ = 0;            ///< multipliers this rank owns (those of its slave nodes)
-  PetscInt first_lm_ = 0;        ///< global index of the first of them
+  bool energy_momentum_ = false;      ///< integrator: energy_momentum
+  bool held_ = false;                 ///< hold_sets
+  int released_ = 0;                  ///< n_released()
+  double last_solve_residual_ = -1.0; ///< last_solve_residual()
+  PetscInt n_lm_ = 0;                 ///< multipliers this rank owns (those of its slave nodes)
+  PetscInt first_lm_ = 0;             ///< global index of the first of them
 };
 
 } // namespace seam::problem

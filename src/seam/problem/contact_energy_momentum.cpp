@@ -19,7 +19,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <string_view>
 
 namespace seam::problem {
 
@@ -47,6 +50,7 @@ enum Kind : std::int32_t { g0 = 0, g1 = 1, mid_gradient = 2, end_gradient = 3, h
 struct DiscreteGradient {
   Eigen::VectorXd value;
   Eigen::MatrixXd correction_jacobian;
+  double w_norm = 0.0, dx_norm = 0.0, N = 0.0, ratio = 0.0; ///< diagnostics
 };
 
 /// The motions that change no weighted gap of a side, removed from the increment to make the
@@ -171,6 +175,10 @@ DiscreteGradient discrete_gradient(int dim, const Invariance& inv, const Eigen::
   if (!(den > 0.0)) return out;
   const double N = gap_end - gap_start - G.dot(dx);
   const double ratio = N / den;
+  out.w_norm = std::sqrt(Q);
+  out.dx_norm = dx.norm();
+  out.N = N;
+  out.ratio = ratio;
   out.value += ratio * w;
   if (!jacobian) return out;
   // dw/dx_{n+1} = P (I - dR a) - R A^-1 dR^T w with dR = d R / d x_{n+1} (x_mid moves by half).
@@ -230,7 +238,12 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   for (std::size_t i = 0; i < u.size(); ++i) mid[i] = 0.5 * (u[i] + u0[i]);
   std::vector<contact::GapBlock> start, end, middle;
   s.itf.gap_blocks(u0, contact::GapOrder::value, start);
+  const long r0 = contact::detail::gap_rejections[0], r1 = contact::detail::gap_rejections[1],
+             r2 = contact::detail::gap_rejections[2];
   s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
+  s.em_rejections[0] = contact::detail::gap_rejections[0] - r0;
+  s.em_rejections[1] = contact::detail::gap_rejections[1] - r1;
+  s.em_rejections[2] = contact::detail::gap_rejections[2] - r2;
   // The Hessians at the midpoint (the bulk of the cost) only when the Newton matrix is built,
   // and only of the blocks with a slave node that carries a multiplier: the Hessian enters
   // the matrix times lambda_j (H / 2 and, through H dx, the correction's derivative).
@@ -248,6 +261,15 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
     const std::int64_t id = disc_.node_gid(static_cast<std::int32_t>(d / dim)) * dim + d % dim;
     return Entry{id, key(j), kind, 0, value, u[i] - u0[i], X[i] + mid[i]};
   };
+  s.em_blocks = end.size();
+  s.em_blocks_hash = 1469598103934665603ull;
+  for (const auto& b : end) {
+    const auto mix = [&s](std::int64_t v) {
+      s.em_blocks_hash = (s.em_blocks_hash ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+    };
+    for (const auto j : b.slave) mix(j);
+    for (const auto d : b.dofs) mix(d);
+  }
   // The gap rows of the Newton step: this rank's part of d g~_j / dx at x_{n+1}, of the same
   // function whose discrete gradient is the force (so that g~_j(x_{n+1}) = 0 holds for it).
   s.lin.gap_gradient.clear();
@@ -315,6 +337,21 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   }
   std::stable_sort(all.begin(), all.end(),
                    [](const Entry& a, const Entry& b) { return a.node < b.node; });
+  // SEAM_CONTACT_TRACE=2 (docs/contact_dynamics.md, "Diagnosing a stalled Newton step"): the
+  // slave nodes with the largest correction force lambda_j |N| / sqrt(den) at each Newton
+  // matrix, with |w|, |dx|, N and the gaps at both ends of the step.
+  static const bool trace = [] {
+    const char* v = std::getenv("SEAM_CONTACT_TRACE");
+    return v != nullptr && std::string_view(v) == "2";
+  }();
+  struct Traced {
+    double force;
+    std::int64_t node;
+    double lambda, w, dx, N, g0, g1;
+    int nodes;
+    std::string list;
+  };
+  std::vector<Traced> traced;
   for (std::size_t begin = 0; begin < all.size();) {
     std::size_t stop = begin;
     while (stop < all.size() && all[stop].node == all[begin].node) ++stop;
@@ -354,6 +391,23 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
     }
     const DiscreteGradient dg =
         discrete_gradient(dim, invariance, dx, x_mid, gap_start, gap_end, G, G1, Hdx, tangent);
+    if (trace && tangent && lambda[j] != 0.0)
+      traced.push_back(
+          {std::abs(lambda[j] * dg.ratio) *
+               std::sqrt(dg.w_norm * dg.w_norm + 1e-6 * dg.dx_norm * dg.dx_norm),
+           disc_.node_gid(nodes[j]), lambda[j], dg.w_norm, dg.dx_norm, dg.N, gap_start, gap_end,
+           static_cast<int>(n / dim), [&] {
+             // The nodes of g~_j with |G| and |H dx| per node.
+             std::string list;
+             for (Eigen::Index a = 0; a < n / dim; ++a) {
+               char item[120];
+               std::snprintf(item, sizeof item, " %lld (|G| %.2e, |Hdx| %.2e)",
+                             static_cast<long long>(dofs[static_cast<std::size_t>(a * dim)] / dim),
+                             G.segment(a * dim, dim).norm(), Hdx.segment(a * dim, dim).norm());
+               list += item;
+             }
+             return list;
+           }()});
     for (Eigen::Index i = 0; i < n; ++i)
       if (dg.value(i) != 0.0)
         s.em_gradient.push_back({j, dofs[static_cast<std::size_t>(i)], -dg.value(i)});
@@ -364,6 +418,18 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
             s.em_tangent.push_back({dofs[static_cast<std::size_t>(i)],
                                     dofs[static_cast<std::size_t>(k)], -lambda[j] * v});
     begin = stop;
+  }
+  if (trace && tangent) {
+    const std::size_t n = std::min<std::size_t>(6, traced.size());
+    std::partial_sort(traced.begin(), traced.begin() + static_cast<std::ptrdiff_t>(n), traced.end(),
+                      [](auto& a, auto& b) { return a.force > b.force; });
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& e = traced[k];
+      std::printf("  %s: correction of node %lld: lambda |N| / sqrt(den) %.3e, lambda %.4e, "
+                  "|w| %.3e, |dx| %.3e, N %.3e, g~(x_n) %.3e, g~(x_n+1) %.3e, %d nodes:%s\n",
+                  s.itf.name().c_str(), static_cast<long long>(e.node), e.force, e.lambda, e.w,
+                  e.dx, e.N, e.g0, e.g1, e.nodes, e.list.c_str());
+    }
   }
 }
 

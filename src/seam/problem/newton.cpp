@@ -271,6 +271,9 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         changes > 0 && contact_.active() && changes == contact_.n_inconsistent();
     stalled = frozen_only && (conv.meets_tolerance || conv.at_floor) ? stalled + 1 : 0;
     if (logging_) out_.newton({step, it, norm, it == 0 ? 0.0 : last_increment_, changes});
+    if (logging_ && contact_.active() && trace_contact())
+      for (const auto& line : contact_.trace())
+        out_.note(::seam::detail::concat("step ", step, "  iteration ", it, "  ", line));
     if (const int released = contact_.active() ? contact_.n_released() : 0;
         logging_ && released > 0) {
       char line[200];
@@ -320,12 +323,15 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       rt_.copy_from(r_);
       zero_dirichlet_rows(model_, disc_, rt_);
       rt_.scale(-1.0);
+      const bool check = logging_ && check_requested(step, it);
+      const auto lambda_old = check ? contact_.multipliers() : std::vector<double>();
       if (!contact_.solve_saddle_point(K_, rt_, dirichlet_rows_, predictor ? &g_ : nullptr, solver_,
                                        du_, out_.timers())) {
         res.failure = "the linear solver failed";
         return res;
       }
       if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
+      if (check) check_correction(u, t, step, it, evaluate, lambda_old);
       apply_increment(u, t, predictor);
       continue;
     }

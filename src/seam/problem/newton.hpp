@@ -172,6 +172,15 @@ private:
   /// Returns why the iterate is unusable, or "".
   const char* evaluate_state(const la::Vector& u, double t, bool first, bool retrial,
                              const Evaluator& evaluate, State& state);
+  /// Diagnostics (newton_diagnostics.cpp): SEAM_CONTACT_TRACE=1 (or 2) and
+  /// SEAM_NEWTON_CHECK=STEP:IT.
+  static bool trace_contact();
+  static bool check_requested(int step, int iteration);
+  /// The correction du_ (and the multipliers' change from lambda_old) against differences of
+  /// the residual along it; prints and ends the run.
+  [[noreturn]] void check_correction(la::Vector& u, double t, int step, int it,
+                                     const Evaluator& evaluate,
+                                     const std::vector<double>& lambda_old);
   /// u += du_ (and the prescribed values made exact after a predictor); ghosts updated.
   void apply_increment(la::Vector& u, double t, bool predictor);
 

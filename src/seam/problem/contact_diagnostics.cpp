@@ -1,0 +1,79 @@
+// Diagnostics of the contact state for a stalled Newton step (docs/contact_dynamics.md,
+// "Diagnosing a stalled Newton step"): what the pairs, gap blocks and statuses are at the
+// last evaluate(), and which slave node a row of the Newton system belongs to.
+#include "seam/problem/contact_constraint.hpp"
+
+#include <cstdio>
+
+namespace seam::problem {
+
+std::vector<std::string> ContactConstraint::trace() const {
+  std::vector<std::string> out;
+  for (const auto& s : sides_) {
+    std::uint64_t hash = 1469598103934665603ull;
+    std::size_t pairs = s.itf.n_candidates();
+    if (s.search && s.search->self()) {
+      const auto oriented = s.search->self_pairs();
+      pairs = oriented.size();
+      for (const auto& p : oriented) {
+        hash = (hash ^ static_cast<std::uint64_t>(p.slave)) * 1099511628211ull;
+        hash = (hash ^ static_cast<std::uint64_t>(p.master)) * 1099511628211ull;
+      }
+    }
+    int active = 0, rows = 0;
+    for (std::size_t j = 0; j < s.active.size(); ++j) {
+      active += s.active[j] != 0;
+      rows += s.discrete_gradient && s.em_row[j] != 0;
+    }
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "%s: pairs %zu (hash %016llx%s), gap blocks %zu (hash %016llx; pairs "
+                  "dropped: pre-check %ld, no overlap %ld, of which unconverged projections "
+                  "%ld), active %d, gap rows %d",
+                  s.itf.name().c_str(), pairs, static_cast<unsigned long long>(hash),
+                  s.pairs_held ? ", held" : "", s.em_blocks,
+                  static_cast<unsigned long long>(s.em_blocks_hash), s.em_rejections[0],
+                  s.em_rejections[1], s.em_rejections[2], active, rows);
+    out.emplace_back(line);
+  }
+  return out;
+}
+
+std::string ContactConstraint::describe_multiplier(std::size_t k) const {
+  const int dim = disc_.dim();
+  for (const auto& s : sides_) {
+    const std::size_t width = s.friction ? static_cast<std::size_t>(dim) : 1;
+    const std::size_t n = s.active.size() * width;
+    if (k >= n) {
+      k -= n;
+      continue;
+    }
+    const std::size_t j = k / width;
+    const auto node = s.itf.slave().mesh_nodes[j];
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "%s slave node %lld (%s, lambda %.4e, g~ %.4e, D %.4e, gap row %d)",
+                  s.itf.name().c_str(), static_cast<long long>(disc_.node_gid(node)),
+                  s.active[j] ? "active" : "inactive", s.lambda[k], s.gap[j], s.D[j],
+                  s.discrete_gradient ? static_cast<int>(s.em_row[j]) : -1);
+    return line;
+  }
+  return "?";
+}
+
+std::string ContactConstraint::describe_node(std::int32_t node) const {
+  std::string out;
+  for (const auto& s : sides_) {
+    const auto& nodes = s.itf.slave().mesh_nodes;
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      if (nodes[j] != node) continue;
+      char line[200];
+      std::snprintf(line, sizeof line, "%s%s: %s, g~ %.3e", out.empty() ? "" : "; ",
+                    s.itf.name().c_str(), s.active[j] ? "active" : "inactive", s.gap[j]);
+      out += line;
+    }
+  }
+  return out;
+}
+
+} // namespace seam::problem
