@@ -2,10 +2,23 @@
 // "Diagnosing a stalled Newton step"): what the pairs, gap blocks and statuses are at the
 // last evaluate(), and which slave node a row of the Newton system belongs to.
 #include "seam/problem/contact_constraint.hpp"
+#include "seam/problem/diagnostics.hpp"
 
 #include <cstdio>
+#include <cstdlib>
+#include <string_view>
 
 namespace seam::problem {
+
+int contact_trace_level() {
+  static const int level = [] {
+    const char* v = std::getenv("SEAM_CONTACT_TRACE");
+    if (v == nullptr) return 0;
+    const std::string_view text(v);
+    return text == "1" ? 1 : text == "2" ? 2 : 0;
+  }();
+  return level;
+}
 
 std::vector<std::string> ContactConstraint::trace() const {
   std::vector<std::string> out;

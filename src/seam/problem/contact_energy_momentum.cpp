@@ -10,6 +10,7 @@
 // matrix takes its exact derivative with respect to x_{n+1}: lambda_j H/2 (H the Hessian of g~_j at
 // x_mid) plus the derivative of the correction.
 #include "seam/problem/contact_constraint.hpp"
+#include "seam/problem/diagnostics.hpp"
 
 #include "seam/common/error.hpp"
 #include "seam/parallel/exchange.hpp"
@@ -340,10 +341,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   // SEAM_CONTACT_TRACE=2 (docs/contact_dynamics.md, "Diagnosing a stalled Newton step"): the
   // slave nodes with the largest correction force lambda_j |N| / sqrt(den) at each Newton
   // matrix, with |w|, |dx|, N and the gaps at both ends of the step.
-  static const bool trace = [] {
-    const char* v = std::getenv("SEAM_CONTACT_TRACE");
-    return v != nullptr && std::string_view(v) == "2";
-  }();
+  const bool trace = contact_trace_level() == 2;
   struct Traced {
     double force;
     std::int64_t node;

@@ -22,6 +22,7 @@
 //    of the central-difference error at a = 1e-3, with their nodes, positions and contact
 //    statuses.
 // Then the run stops (exit code 3). np = 1 (the rows listed are rank 0's).
+#include "seam/problem/diagnostics.hpp"
 #include "seam/problem/newton.hpp"
 
 #include <algorithm>
@@ -56,11 +57,7 @@ bool parse_check(int& step, int& iteration) {
 } // namespace
 
 bool NewtonSolver::trace_contact() {
-  static const bool on = [] {
-    const char* v = std::getenv("SEAM_CONTACT_TRACE");
-    return v != nullptr && (std::string(v) == "1" || std::string(v) == "2");
-  }();
-  return on;
+  return contact_trace_level() >= 1;
 }
 
 bool NewtonSolver::check_requested(int step, int iteration) {
