@@ -68,22 +68,7 @@ FluidOutput::FluidOutput(const io::Config& config, const FluidLayout& layout,
   });
   // The piece of this rank: its cells over the nodes they touch (owned or ghost here).
   const auto& cells_mesh = layout.mesh();
-  std::vector<std::int32_t> point_of(cells_mesh.n_nodes(), -1);
-  for (auto c : layout.local_cells()) {
-    const auto type = cells_mesh.cell_type[c];
-    const auto nodes = cells_mesh.cell(c);
-    for (int k : fem::vtk_node_order(type)) {
-      auto& p = point_of[nodes[k]];
-      if (p < 0) {
-        p = static_cast<std::int32_t>(piece_nodes_.size());
-        piece_nodes_.push_back(nodes[k]);
-      }
-      connectivity_.push_back(p);
-    }
-    offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
-    types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
-    cell_rank_.push_back(layout.comm().rank());
-  }
+  grid_.emplace(cells_mesh, layout.local_cells(), layout.comm().rank());
   // Probes: the rank whose cell the whole-mesh search would pick evaluates each (output.hpp).
   for (const auto& p : config.output.probes) {
     const auto loc = locate_probe(
@@ -176,7 +161,7 @@ void FluidOutput::step(const FluidStepRecord& r, const la::Vector& w,
 
 std::vector<double> FluidOutput::nodal_pressure(std::span<const double> local) const {
   const auto& mesh = layout_.mesh();
-  std::vector<double> pressure(piece_nodes_.size(), 0.0);
+  std::vector<double> pressure(grid_->nodes.size(), 0.0);
   // The pressure is linear on each cell: its value at a node that is not a vertex is that of
   // the linear interpolant of the cell's vertices there.
   std::size_t next = 0;
@@ -184,7 +169,7 @@ std::vector<double> FluidOutput::nodal_pressure(std::span<const double> local) c
     const auto type = mesh.cell_type[c];
     const auto xi = fem::reference_nodes(type);
     for (int k : fem::vtk_node_order(type))
-      pressure[connectivity_[next++]] = evaluate_at(layout_, local, c, &xi[k * mesh.dim])[3];
+      pressure[grid_->connectivity[next++]] = evaluate_at(layout_, local, c, &xi[k * mesh.dim])[3];
   }
   return pressure;
 }
@@ -193,10 +178,10 @@ void FluidOutput::write_fields(int step, double time, std::span<const double> lo
                                std::span<const double> mesh_displacement) {
   const auto& mesh = layout_.mesh();
   const int dim = mesh.dim;
-  const auto n = piece_nodes_.size();
+  const auto n = grid_->nodes.size();
   std::vector<double> points(n * dim), velocity(n * 3, 0.0), displacement(n * 3, 0.0);
   for (std::size_t p = 0; p < n; ++p) {
-    const auto node = piece_nodes_[p];
+    const auto node = grid_->nodes[p];
     for (int i = 0; i < dim; ++i) {
       points[p * dim + i] = mesh.x[static_cast<std::size_t>(node) * dim + i];
       velocity[p * 3 + i] = local[layout_.local_dof(node, i)];
@@ -205,18 +190,10 @@ void FluidOutput::write_fields(int step, double time, std::span<const double> lo
     }
   }
   const auto pressure = nodal_pressure(local);
-  io::VtuPiece piece;
-  piece.point_dim = dim;
-  piece.points = points;
-  piece.connectivity = connectivity_;
-  piece.offsets = offsets_;
-  piece.types = types_;
+  auto piece = grid_->piece(dim, points, time, step);
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(velocity));
   piece.point_data.emplace_back("pressure", 1, std::span<const double>(pressure));
   piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(displacement));
-  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(cell_rank_));
-  piece.time = time;
-  piece.cycle = step;
   const auto file = write_step_fields(dir_, step, piece, layout_.comm());
   if (layout_.comm().is_root()) pvd_->add(time, file);
 }

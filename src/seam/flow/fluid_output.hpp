@@ -15,6 +15,7 @@
 #include "seam/io/table.hpp"
 #include "seam/io/vtu.hpp"
 #include "seam/la/petsc.hpp"
+#include "seam/problem/piece_grid.hpp"
 
 #include <array>
 #include <filesystem>
@@ -98,9 +99,7 @@ private:
   std::vector<Probe> located_;
   std::unique_ptr<io::PvdCollection> pvd_;
   // This rank's piece: the nodes of its cells (mesh numbering) and the cells over them.
-  std::vector<std::int32_t> piece_nodes_;
-  std::vector<std::int32_t> connectivity_, offsets_, cell_rank_;
-  std::vector<std::uint8_t> types_;
+  std::optional<problem::PieceGrid> grid_;
   std::optional<FluidErrors> last_errors_;
   long long linear_iterations_ = 0, linear_solves_ = 0;
   std::string linear_solver_;

@@ -89,18 +89,13 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
                   Writer& w) {
   const auto& mesh = sys.mesh();
   const int dim = mesh.dim;
-  std::vector<std::int32_t> local(static_cast<std::size_t>(mesh.n_nodes()), -1), nodes_of;
-  for (auto c : sys.local_cells())
-    for (auto n : mesh.cell(c))
-      if (local[n] < 0) {
-        local[n] = static_cast<std::int32_t>(nodes_of.size());
-        nodes_of.push_back(n);
-      }
-  const auto nn = nodes_of.size();
+  const problem::PieceGrid grid(mesh, sys.local_cells(), sys.comm().rank());
+  const auto& local = grid.point_of;
+  const auto nn = grid.nodes.size();
   std::vector<double> points(nn * dim), disp(nn * 3, 0.0), mdisp(nn * 3, 0.0), vel(nn * 3, 0.0),
       pres(nn, 0.0);
   for (std::size_t q = 0; q < nn; ++q) {
-    const auto node = nodes_of[q];
+    const auto node = grid.nodes[q];
     for (int i = 0; i < dim; ++i) {
       points[q * dim + i] = mesh.x[static_cast<std::size_t>(node) * dim + i];
       if (sys.is_solid_node(node)) disp[q * 3 + i] = raw[sys.d_dof(node, i)];
@@ -111,18 +106,11 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
       }
     }
   }
-  std::vector<std::int32_t> conn, offsets, rank;
-  std::vector<std::uint8_t> types;
   for (auto c : sys.local_cells()) {
-    const auto type = mesh.cell_type[c];
-    const auto nodes = mesh.cell(c);
-    for (int k : fem::vtk_node_order(type)) conn.push_back(local[nodes[k]]);
-    offsets.push_back(static_cast<std::int32_t>(conn.size()));
-    types.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
-    rank.push_back(sys.comm().rank());
     if (!sys.is_fluid_cell(c)) continue;
-    const auto pcell = fluid::pressure_cell(type);
-    const auto xi = fem::reference_nodes(type);
+    const auto nodes = mesh.cell(c);
+    const auto pcell = fluid::pressure_cell(mesh.cell_type[c]);
+    const auto xi = fem::reference_nodes(mesh.cell_type[c]);
     std::array<double, 8> N{};
     for (std::size_t a = 0; a < nodes.size(); ++a) {
       fem::shape_values(pcell, &xi[a * dim], N.data());
@@ -131,19 +119,11 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
       pres[local[nodes[a]]] = p;
     }
   }
-  io::VtuPiece piece;
-  piece.point_dim = dim;
-  piece.points = points;
-  piece.connectivity = conn;
-  piece.offsets = offsets;
-  piece.types = types;
+  auto piece = grid.piece(dim, points, t, step);
   piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
   piece.point_data.emplace_back("pressure", 1, std::span<const double>(pres));
   piece.point_data.emplace_back("mesh_displacement", 3, std::span<const double>(mdisp));
-  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(rank));
-  piece.time = t;
-  piece.cycle = step;
   const auto file = write_step_fields(w.dir, step, piece, sys.comm());
   if (sys.comm().is_root()) w.pvd->add(t, file);
 }

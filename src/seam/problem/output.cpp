@@ -216,18 +216,11 @@ Output::Output(const io::Config& config, const Discretization& disc, const Model
   }
 
   // The VTU topology of this rank's piece: its local cells over its local nodes.
-  for (auto c : disc.local_cells()) {
-    const auto type = mesh.cell_type[c];
-    const auto nodes = mesh.cell(c);
-    for (int k : fem::vtk_node_order(type)) {
-      const auto n = nodes[k];
-      connectivity_.push_back(disc.local_dof(n, 0) / disc.dim());
-    }
-    offsets_.push_back(static_cast<std::int32_t>(connectivity_.size()));
-    types_.push_back(static_cast<std::uint8_t>(fem::vtk_type(type)));
-    cell_rank_.push_back(comm.rank());
-    cell_material_.push_back(model.cell_material[c]);
-  }
+  std::vector<std::int32_t> point_of(static_cast<std::size_t>(mesh.n_nodes()), -1);
+  for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+    if (disc.local_dof(n, 0) >= 0) point_of[n] = disc.local_dof(n, 0) / disc.dim();
+  grid_.emplace(mesh, disc.local_cells(), comm.rank(), std::move(point_of));
+  for (auto c : disc.local_cells()) cell_material_.push_back(model.cell_material[c]);
 }
 
 Output::~Output() = default;
@@ -543,12 +536,7 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
     }
   }
 
-  io::VtuPiece piece;
-  piece.point_dim = 3;
-  piece.points = points;
-  piece.connectivity = connectivity_;
-  piece.offsets = offsets_;
-  piece.types = types_;
+  auto piece = grid_->piece(3, points, time, step);
   piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
   // Interface fields on the slave nodes: multiplier, weighted gap, status (-1 off the
@@ -604,10 +592,7 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   }
   piece.cell_data.emplace_back("cauchy_stress", 6, std::span<const double>(stress));
   piece.cell_data.emplace_back("von_mises", 1, std::span<const double>(mises));
-  piece.cell_data.emplace_back("rank", 1, std::span<const std::int32_t>(cell_rank_));
   piece.cell_data.emplace_back("material", 1, std::span<const std::int32_t>(cell_material_));
-  piece.time = time;
-  piece.cycle = step;
 
   const auto file = write_step_fields(dir_, step, piece, comm);
   if (comm.is_root()) pvd_->add(time, file);

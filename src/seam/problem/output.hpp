@@ -10,6 +10,7 @@
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/problem/discretization.hpp"
 #include "seam/problem/model.hpp"
+#include "seam/problem/piece_grid.hpp"
 
 #include <array>
 #include <filesystem>
@@ -242,9 +243,8 @@ private:
   std::unique_ptr<io::PvdCollection> pvd_;
   int last_field_step_ = -1;
   // VTU piece of this rank (fixed topology): connectivity in VTK order over local nodes.
-  std::vector<std::int32_t> connectivity_, offsets_;
-  std::vector<std::uint8_t> types_;
-  std::vector<std::int32_t> cell_rank_, cell_material_;
+  std::optional<PieceGrid> grid_;
+  std::vector<std::int32_t> cell_material_;
 };
 
 } // namespace seam::problem
