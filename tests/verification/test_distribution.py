@@ -61,6 +61,10 @@ Each test can fail:
   thrown onto a rigid circle with Coulomb friction and generalized-alpha, rebalanced while it
   rolls; np 3): no rank holds the whole slave side, the ranks together at most 1.3 to 1.6 x
   of it, and every output equals np 1 to 1e-10;
+- the cells a rank holds with contact sides held in part and the independent distribution
+  (Hertz sphere on a block and on a rigid plane, np 3): no rank holds more than (its owned +
+  ghost cells) x 1.1, the slave facets beyond them reaching it as facets, and every output
+  equals np 1 to 1e-10;
 - the ghosting reused (Verlet skin): on the two blocks and on the Hertz sphere (bodies that
   move little) at np = 3 the ghosts are exchanged at fewer searches than there are searches,
   and the results equal those of a run that exchanges at every search (SEAM_GHOST_SKIN=0,
