@@ -61,6 +61,10 @@ Each test can fail:
   thrown onto a rigid circle with Coulomb friction and generalized-alpha, rebalanced while it
   rolls; np 3): no rank holds the whole slave side, the ranks together at most 1.3 to 1.6 x
   of it, and every output equals np 1 to 1e-10;
+- the cells a rank holds with contact sides held in part and the independent distribution
+  (Hertz sphere on a block and on a rigid plane, np 3): no rank holds more than (its owned +
+  ghost cells) x 1.1, the slave facets beyond them reaching it as facets, and every output
+  equals np 1 to 1e-10;
 - the ghosting reused (Verlet skin): on the two blocks and on the Hertz sphere (bodies that
   move little) at np = 3 the ghosts are exchanged at fewer searches than there are searches,
   and the results equal those of a run that exchanges at every search (SEAM_GHOST_SKIN=0,
@@ -972,6 +976,43 @@ def test_rigid_slave_side_in_part_np3():
     H.cleanup(*_dirs)
 
 
+def check_held_cells(three, what):
+    """Issue 12's held-cells bound for the contact sides at np 3: no rank holds more cells than
+    (its owned cells + its ghost cells) * 1.1 (ranks_detail: `ghost_cells` counts every held
+    cell it does not assemble, the cells held only for an interface side, `interface_cells`,
+    among them). Returns (owned, ghosts, interface cells) per rank."""
+    detail = ranks_detail(three)
+    shares = [(r["cells"], r["ghost_cells"] - r["interface_cells"], r["interface_cells"])
+              for r in detail]
+    print("   %s np 3: cells owned / ghost / held for the interface per rank %s"
+          % (what, ", ".join("%d / %d / %d" % s for s in shares)))
+    for r, (own, ghosts, extra) in enumerate(shares):
+        if own + ghosts + extra > 1.1 * (own + ghosts):
+            raise AssertionError("%s: rank %d holds %d cells, more than 1.1 x (%d owned + %d "
+                                 "ghost cells)" % (what, r, own + ghosts + extra, own, ghosts))
+    return shares
+
+
+def test_contact_held_cells_np3():
+    """The slave side of contact held in part with the independent distribution (the default)
+    no longer brings its cells to every rank's mesh (docs/parallel.md, "Converting the contact
+    sides", step 3 (a)): the facets a rank needs beyond its own and ghost cells reach it as
+    facets (ids, nodes' global dofs and coordinates). At np 3 on the Hertz sphere on a block
+    (two bodies, two load steps) and on the Hertz sphere on a rigid plane (two load steps) no
+    rank holds more than (owned + ghost cells) * 1.1 cells (check_held_cells), the slave side
+    is held in part, and every output equals np 1 to 1e-10. Before, every rank held every
+    cell with a slave facet (e.g. 358 more cells on the rank of the block)."""
+    steps = (("steps: 5", "steps: 2"),)
+    for yaml, what, bound in (("sphere_block.yaml", "hertz on a block", 2.2),
+                              ("hertz_3d.yaml", "hertz on a rigid plane", 1.3)):
+        one = run_example("hertz_3d", yaml, 1, steps)
+        three = run_example("hertz_3d", yaml, 3, steps)
+        check_held_cells(three, what)
+        check_slave_in_part(three, what, False, bound)
+        compare_outputs(one, three, 1e-10, what + " held cells np 3 vs np 1")
+    H.cleanup(*_dirs)
+
+
 def test_ironing_master_ghosted():
     """2D ironing with Coulomb friction: pressed in and slid a little, coarse steps."""
     check_master_ghosted("ironing", "ironing_2d.yaml", IRONING_SHORT, 0.5)
@@ -1173,5 +1214,6 @@ if __name__ == "__main__":
             test_check_distributed_np3, test_tied_interface_part_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
-            test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2])
+            test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2,
+            test_contact_held_cells_np3])
 

@@ -130,12 +130,13 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   // Sides held whole on every rank: those of contact and of saddle-point tying. The sides of
   // condensed tying are set up distributed (meshtying::distributed_tying): each rank needs
   // only its own cells' facets and the master facets ghosted to it; so are the master side of
-  // two-body contact held in part (master_held_in_part) and its slave side with the bulk
-  // distribution (slave_cells_in_part).
+  // two-body contact held in part (master_held_in_part) and the slave side held in part
+  // (slave_held_in_part; with the independent distribution the facets a rank needs beyond
+  // its own and ghost cells reach it as facets, ContactConstraint::hold_slave_part).
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     if (meshtying::distributed_tying(itf)) continue;
-    if (!problem::slave_cells_in_part(itf, config)) sides.push_back(itf.slave.name);
+    if (!slave_held_in_part(itf, config)) sides.push_back(itf.slave.name);
     if (itf.master && !master_held_in_part(itf, config)) sides.push_back(itf.master->name);
     for (const auto& group : itf.surface) sides.push_back(group.name);
   }

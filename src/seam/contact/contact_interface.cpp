@@ -197,19 +197,25 @@ void ContactInterface::span_plane(const std::array<double, 3>& lo,
 }
 
 void ContactInterface::hold_slave_facets(const mesh::Region& region) {
+  hold_slave_facets(meshtying::extract_side(*mesh_, region));
+}
+
+void ContactInterface::hold_slave_facets(meshtying::InterfaceSide side) {
   SEAM_ASSERT(!self_);
-  auto side = meshtying::extract_side(*mesh_, region);
   // The normals of the nodes held before and after are kept (read until the next place()).
   const auto d = static_cast<std::size_t>(dim());
+  std::vector<std::pair<std::int32_t, std::size_t>> before(slave_.mesh_nodes.size());
+  for (std::size_t i = 0; i < before.size(); ++i) before[i] = {slave_.mesh_nodes[i], i};
+  std::sort(before.begin(), before.end());
   std::vector<double> normals(side.mesh_nodes.size() * d, 0.0);
   for (std::size_t j = 0; j < side.mesh_nodes.size(); ++j) {
-    const auto& before = slave_.mesh_nodes;
-    const auto it = std::lower_bound(before.begin(), before.end(), side.mesh_nodes[j]);
-    if (it == before.end() || *it != side.mesh_nodes[j]) continue;
-    const auto i = static_cast<std::size_t>(it - before.begin());
-    std::copy_n(normals_.begin() + static_cast<std::ptrdiff_t>(i * d), d,
+    const auto it = std::lower_bound(before.begin(), before.end(),
+                                     std::pair<std::int32_t, std::size_t>{side.mesh_nodes[j], 0});
+    if (it == before.end() || it->first != side.mesh_nodes[j]) continue;
+    std::copy_n(normals_.begin() + static_cast<std::ptrdiff_t>(it->second * d), d,
                 normals.begin() + static_cast<std::ptrdiff_t>(j * d));
   }
+  slave_reference_ = side.coordinates;
   slave_ = std::move(side);
   slave_adjacency_ = mortar::node_facets(slave_.facet_set());
   transformation_ =
@@ -224,6 +230,20 @@ void ContactInterface::hold_slave_facets(const mesh::Region& region) {
   owned_offsets_.assign(1, 0);
   owned_nodes_.clear();
   search_.reset();
+}
+
+void ContactInterface::place_slave(meshtying::InterfaceSide& side,
+                                   std::span<const double> u) const {
+  if (slave_reference_.empty()) {
+    side.update_coordinates(*mesh_, u);
+    return;
+  }
+  const auto d = static_cast<std::size_t>(dim());
+  side.coordinates = slave_reference_;
+  if (u.empty()) return;
+  for (std::size_t j = 0; j < side.mesh_nodes.size(); ++j)
+    for (std::size_t c = 0; c < d; ++c)
+      side.coordinates[j * d + c] += u[static_cast<std::size_t>(side.mesh_nodes[j]) * d + c];
 }
 
 void ContactInterface::set_owned_facets(std::vector<local_index> facets) {
@@ -359,7 +379,7 @@ local_index ContactInterface::integration_facet(local_index f) const {
 
 void ContactInterface::place(std::span<const double> u, double t) {
   const int dim = this->dim();
-  slave_.update_coordinates(*mesh_, u);
+  place_slave(slave_, u);
   if (rigid_) {
     for (int c = 0; c < dim; ++c) {
       obstacle_displacement_[c] = plane_motion_.empty() ? 0.0 : plane_motion_[c](t);
@@ -433,7 +453,7 @@ std::vector<double> ContactInterface::averaged_normals(const meshtying::Interfac
 std::vector<double> ContactInterface::normals_at(std::span<const double> u,
                                                  std::span<const local_index> nodes) const {
   meshtying::InterfaceSide side = slave_;
-  side.update_coordinates(*mesh_, u);
+  place_slave(side, u);
   return averaged_normals(side, false, nodes);
 }
 

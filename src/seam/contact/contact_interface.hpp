@@ -289,6 +289,11 @@ public:
   /// mesh size, the search inflation, the quadrature degree and a rigid plane's facet are
   /// kept.
   void hold_slave_facets(const mesh::Region& region);
+  /// The same with the facets given as a side: `side.coordinates` are the reference
+  /// coordinates of its nodes and `side.mesh_nodes` need not be sorted nor nodes of the mesh
+  /// (numbers at or beyond the mesh's node count name nodes outside this part, as in
+  /// set_master_facets; the displacement place() reads is indexed by them alike).
+  void hold_slave_facets(meshtying::InterfaceSide side);
   std::span<const local_index> owned_facets() const { return owned_; }
   /// Candidate pairs of slave facet f at the last update.
   local_index n_pairs_of(local_index f) const {
@@ -401,6 +406,11 @@ private:
   bool self_ = false;
   bool external_ = false; ///< use_external_search
   meshtying::InterfaceSide slave_, master_;
+  /// A slave side given by hold_slave_facets(side): its reference coordinates (dim per side
+  /// node), read instead of the mesh's.
+  std::vector<double> slave_reference_;
+  /// `side` (slave_ or a copy) at the mesh displacement u (empty: the reference configuration).
+  void place_slave(meshtying::InterfaceSide& side, std::span<const double> u) const;
   // The master facets ghosted to this part (set_master_facets): their side-local ids (sorted)
   // and, as a side, their nodes (mesh_nodes: the mesh node of each, not sorted) and current
   // coordinates.

@@ -231,7 +231,7 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     if (s.master_in_part) {
       // Collective (the sides are the same on every rank): the outside nodes of M^n.
       std::vector<std::int32_t> found;
-      map_master_nodes(outside_ids, found);
+      map_nodes(outside_ids, found);
       for (auto& e : s.M_old)
         if (e.master_node < 0) e.master_node = found[static_cast<std::size_t>(-1 - e.master_node)];
     }

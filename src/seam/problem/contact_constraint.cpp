@@ -53,6 +53,51 @@ SideIds side_ids(const Discretization& disc, const mesh::Region& region,
   return ids;
 }
 
+/// `records` sent to the home rank of their keys (key % size), sorted by (home, key): what
+/// this rank received, and in `from` where each source's records start.
+template <class T, class Key>
+std::vector<T> to_homes(MPI_Comm comm, std::vector<T>& records, Key key,
+                        std::vector<std::int64_t>& from) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  const auto home = [&](const T& r) { return static_cast<int>(key(r) % size); };
+  std::sort(records.begin(), records.end(), [&](const T& a, const T& b) {
+    return home(a) != home(b) ? home(a) < home(b) : key(a) < key(b);
+  });
+  std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
+  for (const auto& r : records) ++offsets[static_cast<std::size_t>(home(r)) + 1];
+  for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
+  return parallel::alltoallv<T>(comm, records, offsets, from);
+}
+
+/// Collective. The records filed under `keys` in a directory whose part on this rank is
+/// `directory` (sorted by key; the rank key % size keeps a key's records): every record of
+/// every key asked, in the order of (home, key).
+template <class T, class Key>
+std::vector<T> ask_homes(MPI_Comm comm, std::span<const T> directory,
+                         std::vector<std::int64_t> keys, Key key) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<std::int64_t> from;
+  const auto asked = to_homes(
+      comm, keys, [](std::int64_t k) { return k; }, from);
+  std::vector<T> answers;
+  std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
+  for (int r = 0; r < size; ++r) {
+    for (auto i = from[r]; i < from[r + 1]; ++i) {
+      const auto id = asked[static_cast<std::size_t>(i)];
+      auto it = std::lower_bound(directory.begin(), directory.end(), id,
+                                 [&](const T& d, std::int64_t k) { return key(d) < k; });
+      for (; it != directory.end() && key(*it) == id; ++it) answers.push_back(*it);
+    }
+    offsets[r + 1] = static_cast<std::int64_t>(answers.size());
+  }
+  std::vector<std::int64_t> received;
+  return parallel::alltoallv<T>(comm, answers, offsets, received);
+}
+
 /// The facets f of `full` for which keep(f) holds, in its order: a part of the side.
 template <class Keep> mesh::Region region_part(const mesh::Region& full, Keep keep) {
   mesh::Region part;
@@ -82,10 +127,11 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     Side s(contact::ContactInterface(itf, disc.mesh(), slave_part));
     s.slave_in_part = slave_part;
     // The slave facets the side holds. In part with the independent distribution: those of
-    // the rank's own and ghost cells until the first distribution (its mesh holds every
-    // slave cell; hold_slave_part takes the facets it is sent from there).
+    // the rank's own and ghost cells until the first distribution (its mesh holds only those;
+    // hold_slave_part takes the facets it is sent from there and from the directories).
     mesh::Region region;
-    if (slave_part && !slave_cells_in_part(itf, config)) {
+    if (slave_part &&
+        config.parallel.interface_distribution == io::InterfaceDistribution::independent) {
       s.slave_region = &meshtying::side_region(disc.mesh(), itf.slave);
       region = region_part(*s.slave_region, [&](std::int32_t f) {
         return !disc.interface_only_cell(s.slave_region->facet_cell[static_cast<std::size_t>(f)]);
@@ -137,7 +183,12 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.active_previous = s.active;
     s.active_accepted = s.active;
     const auto& nodes = s.itf.slave().mesh_nodes;
-    index_slave_side(s, region);
+    auto facet_ids =
+        meshtying::facet_gids(region, [&](std::int32_t c) { return disc.cell_gid(c); });
+    for (std::int32_t f = 0; f < region.n_facets(); ++f)
+      if (disc.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
+        s.own_facet_ids.push_back(facet_ids[static_cast<std::size_t>(f)]);
+    index_slave_side(s, std::move(facet_ids));
     // Prescribed components of the slave nodes: known on the owning rank only (the model
     // holds the owned rows), published by the owners (in proportion to the prescribed nodes).
     std::vector<double> fixed(n * dim, 0.0);
@@ -271,9 +322,11 @@ void ContactConstraint::agree_on_obstacle_search(Side& s) const {
 
 void ContactConstraint::collect_interface_nodes() {
   interface_nodes_.clear();
+  const auto n_mesh = disc_.mesh().n_nodes();
   for (const auto& s : sides_) {
-    const auto& slave = s.itf.slave().mesh_nodes;
-    interface_nodes_.insert(interface_nodes_.end(), slave.begin(), slave.end());
+    // The mesh nodes only (a slave side held in part may hold outside nodes).
+    for (const auto node : s.itf.slave().mesh_nodes)
+      if (node < n_mesh) interface_nodes_.push_back(node);
     const auto master = s.itf.master_nodes();
     interface_nodes_.insert(interface_nodes_.end(), master.begin(), master.end());
   }
@@ -283,25 +336,45 @@ void ContactConstraint::collect_interface_nodes() {
   interface_numbers_.clear(); // made anew at the next node_of_gid
 }
 
-void ContactConstraint::index_slave_side(Side& s, const mesh::Region& region) {
+void ContactConstraint::index_slave_side(Side& s, std::vector<std::int64_t> facet_ids) {
   const auto& nodes = s.itf.slave().mesh_nodes;
   const auto n = nodes.size();
   s.node_keys.resize(n);
   s.node_owners.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
-    s.node_keys[j] = disc_.node_gid(nodes[j]); // the same id on every rank
-    s.node_owners[j] = disc_.node_owner(nodes[j]);
+    s.node_keys[j] = node_id(nodes[j]); // the same id on every rank
+    s.node_owners[j] = owner_of(nodes[j]);
   }
   if (s.slave_in_part)
     s.holders =
         std::make_shared<parallel::HolderPublisher>(disc_.comm().get(), s.node_keys, s.node_owners);
   // The slave facets start with the bulk partition (the facets of this rank's cells).
   s.bulk_facets.clear();
-  for (std::int32_t f = 0; f < region.n_facets(); ++f)
-    if (disc_.is_local_cell(region.facet_cell[static_cast<std::size_t>(f)]))
-      s.bulk_facets.push_back(f);
-  s.slave_ids = side_ids(disc_, region, nodes);
+  for (std::size_t f = 0; f < facet_ids.size(); ++f)
+    if (std::binary_search(s.own_facet_ids.begin(), s.own_facet_ids.end(), facet_ids[f]))
+      s.bulk_facets.push_back(static_cast<local_index>(f));
+  s.slave_ids.facets = std::move(facet_ids);
+  s.slave_ids.nodes = s.node_keys;
   if (s.search) s.search->set_slave_ids(s.slave_ids);
+}
+
+std::int32_t ContactConstraint::mesh_node_of(std::int64_t id) const {
+  // The local numbering is monotone in the ids (mesh/distribute.hpp): bisection.
+  const auto n = disc_.mesh().n_nodes();
+  std::int32_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::int32_t mid = lo + (hi - lo) / 2;
+    if (disc_.node_gid(mid) < id)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < n && disc_.node_gid(lo) == id ? lo : -1;
+}
+
+int ContactConstraint::owner_of(std::int32_t node) const {
+  const auto n = disc_.mesh().n_nodes();
+  return node < n ? disc_.node_owner(node) : outside_[static_cast<std::size_t>(node - n)].owner;
 }
 
 std::int32_t ContactConstraint::node_of_gid(std::int64_t number) const {
@@ -371,8 +444,9 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
     gather_ = la::Gather(u, dofs);
     gather_made_ = true;
     start_read_ = false;
-    u_mesh_.resize((static_cast<std::size_t>(disc_.mesh().n_nodes()) + outside_.size()) * dim, 0.0);
   }
+  // Over the mesh and outside nodes (a slave side held in part may have found new ones).
+  u_mesh_.resize((static_cast<std::size_t>(disc_.mesh().n_nodes()) + outside_.size()) * dim, 0.0);
   const auto read = [&](const la::Vector& v, std::vector<double>& out) {
     std::vector<double> values;
     gather_(v, values);
@@ -581,7 +655,7 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
     std::vector<double> positions;
     node_positions(s.ghost_nodes, positions);
     s.search->find(s.itf, positions);
-    map_master_nodes(s.search->master_ghosts().node_ids, s.ghost_nodes);
+    map_nodes(s.search->master_ghosts().node_ids, s.ghost_nodes);
     s.search->hand_in_part(s.itf, s.ghost_nodes);
     return;
   }
@@ -783,7 +857,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
       if (s.active[j]) frames[j] = frame(s, j);
     for (const auto& e : s.lin.gap_gradient) {
       const auto j = static_cast<std::size_t>(e.row);
-      gi.push_back(disc_.global_dof(nodes[j], frames[j].gap_component));
+      gi.push_back(dof_of(nodes[j], frames[j].gap_component));
       gj.push_back(global_dof(e.col));
       gv.push_back(s.c_n * e.value);
     }
@@ -804,25 +878,25 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
           const double v = scale * normals[j * dim + a] * f.w[b];
           if (v == 0.0) continue;
           li.push_back(dof_of(e.master_node, a));
-          lj.push_back(disc_.global_dof(nodes[j], b));
+          lj.push_back(dof_of(nodes[j], b));
           lv.push_back(v);
         }
     }
     // Free rows of the active slave nodes this rank owns: the gap row and the tangent rows.
     for (std::size_t j = 0; j < nodes.size(); ++j) {
-      if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+      if (!s.active[j] || !owns(nodes[j])) continue;
       const NodeFrame& f = frames[j];
-      const PetscInt gap_row = disc_.global_dof(nodes[j], f.gap_component);
+      const PetscInt gap_row = dof_of(nodes[j], f.gap_component);
       replaced[static_cast<std::size_t>(gap_row - first)] = 1;
       gap_rows.push_back(gap_row);
       gap_values.push_back(s.c_n * s.gap[j]);
       for (int i = 0; i < f.n_tangents; ++i) {
-        const PetscInt row = disc_.global_dof(nodes[j], f.tangent_component[i]);
+        const PetscInt row = dof_of(nodes[j], f.tangent_component[i]);
         replaced[static_cast<std::size_t>(row - first)] = 1;
         for (int b = 0; b < dim; ++b)
           if (f.tangent[i][b] != 0.0) {
             li.push_back(row);
-            lj.push_back(disc_.global_dof(nodes[j], b));
+            lj.push_back(dof_of(nodes[j], b));
             lv.push_back(f.tangent[i][b]);
           }
       }
@@ -885,11 +959,11 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
       // lambda_j = -P_V y_j / D_jj: the Cartesian multiplier in the free directions.
       std::vector<double> lambda(nodes.size() * dim, 0.0);
       for (std::size_t j = 0; j < nodes.size(); ++j) {
-        if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+        if (!s.active[j] || !owns(nodes[j])) continue;
         for (int b = 0; b < dim; ++b)
           if (!s.dirichlet[j * dim + b])
             lambda[j * dim + b] =
-                -values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)] / s.D[j];
+                -values[static_cast<std::size_t>(dof_of(nodes[j], b) - first)] / s.D[j];
       }
       publish(s, lambda, dim);
       s.lambda = std::move(lambda);
@@ -897,11 +971,11 @@ void ContactConstraint::recover(const la::Matrix& K, const la::Vector& r, const 
     }
     std::vector<double> lambda(nodes.size(), 0.0);
     for (std::size_t j = 0; j < nodes.size(); ++j) {
-      if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+      if (!s.active[j] || !owns(nodes[j])) continue;
       const NodeFrame f = frame(s, j);
       double wy = 0.0;
       for (int b = 0; b < dim; ++b)
-        wy += f.w[b] * values[static_cast<std::size_t>(disc_.global_dof(nodes[j], b) - first)];
+        wy += f.w[b] * values[static_cast<std::size_t>(dof_of(nodes[j], b) - first)];
       lambda[j] = -wy / (s.D[j] * f.wn);
     }
     // The owners' multipliers (nonzero at active nodes only) to every rank.
@@ -962,71 +1036,93 @@ void ContactConstraint::node_positions(std::span<const std::int32_t> nodes,
   }
 }
 
-void ContactConstraint::map_master_nodes(std::span<const std::int64_t> ids,
-                                         std::vector<std::int32_t>& out) {
+void ContactConstraint::make_directories() {
+  if (directory_made_) return;
   const auto& comm = disc_.comm();
-  const int size = comm.size(), dim = disc_.dim();
-  const auto home = [size](std::int64_t id) { return static_cast<int>(id % size); };
-  const auto by_id = [](const OutsideNode& a, const OutsideNode& b) { return a.id < b.id; };
-  const auto send = [&](std::vector<OutsideNode>& records) {
-    std::sort(records.begin(), records.end(), [&](const OutsideNode& a, const OutsideNode& b) {
-      return home(a.id) != home(b.id) ? home(a.id) < home(b.id) : a.id < b.id;
-    });
-    std::vector<std::int64_t> offsets(static_cast<std::size_t>(size) + 1, 0);
-    for (const auto& r : records) ++offsets[static_cast<std::size_t>(home(r.id)) + 1];
-    for (int r = 0; r < size; ++r) offsets[r + 1] += offsets[r];
-    std::vector<std::int64_t> recv_offsets;
-    return std::pair(parallel::alltoallv<OutsideNode>(comm.get(), records, offsets, recv_offsets),
-                     recv_offsets);
+  const auto& mesh = disc_.mesh();
+  const int dim = disc_.dim();
+  // Every master node of the facets the ranks hand in and every slave node of the slave
+  // facets of their own cells, at its home rank (made at the first search or distribution:
+  // `seam check` builds the constraint without the dof numbering).
+  std::vector<OutsideNode> mine;
+  const auto record = [&](std::int32_t node) {
+    OutsideNode r;
+    r.id = disc_.node_gid(node);
+    r.owner = disc_.node_owner(node);
+    for (int c = 0; c < dim; ++c) {
+      r.dofs[c] = disc_.global_dof(node, c);
+      r.x[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
+    }
+    mine.push_back(r);
   };
-  if (!directory_made_) {
-    // Every master node of the facets the ranks hand in, at its home rank (made at the first
-    // search: `seam check` builds the constraint without the dof numbering).
-    std::vector<OutsideNode> mine;
-    for (const auto& s : sides_) {
-      if (!s.master_in_part) continue;
+  const auto key = [](const SlaveFacet& f) { return f.key; };
+  const auto by_key = [](const SlaveFacet& a, const SlaveFacet& b) {
+    return a.key != b.key ? a.key < b.key : a.id < b.id;
+  };
+  std::vector<std::int64_t> from;
+  for (auto& s : sides_) {
+    if (s.master_in_part) {
       std::vector<local_index> nodes;
       s.search->nodes_read(s.itf, nodes);
       const auto masters = s.itf.master_nodes();
-      for (const auto p : nodes) {
-        const auto node = masters[static_cast<std::size_t>(p)];
-        OutsideNode r;
-        r.id = disc_.node_gid(node);
-        for (int c = 0; c < dim; ++c) {
-          r.dofs[c] = disc_.global_dof(node, c);
-          r.x[c] = disc_.mesh().x[static_cast<std::size_t>(node) * dim + c];
-        }
-        mine.push_back(r);
+      for (const auto p : nodes) record(masters[static_cast<std::size_t>(p)]);
+    }
+    if (!s.slave_region) continue;
+    // The slave facets of this rank's own cells (each on one rank) at the homes of their ids
+    // and of their nodes' ids (the rings).
+    std::vector<SlaveFacet> facets, rings;
+    const auto& region = *s.slave_region;
+    for (std::int32_t f = 0; f < region.n_facets(); ++f) {
+      const auto c = region.facet_cell[static_cast<std::size_t>(f)];
+      if (!disc_.is_local_cell(c)) continue;
+      const auto cell = mesh.cell(c);
+      const auto local = region.facet_local[static_cast<std::size_t>(f)];
+      SlaveFacet r;
+      r.id = disc_.cell_gid(c) * 8 + local;
+      r.key = r.id;
+      r.type = static_cast<std::int32_t>(
+          fem::facet_type(mesh.cell_type[static_cast<std::size_t>(c)], local));
+      for (const int k : fem::facet_nodes(mesh.cell_type[static_cast<std::size_t>(c)], local)) {
+        const auto node = cell[static_cast<std::size_t>(k)];
+        r.nodes[r.n_nodes++] = disc_.node_gid(node);
+        record(node);
+      }
+      facets.push_back(r);
+      for (std::int32_t k = 0; k < r.n_nodes; ++k) {
+        rings.push_back(r);
+        rings.back().key = r.nodes[k];
       }
     }
-    directory_ = send(mine).first;
-    std::sort(directory_.begin(), directory_.end(), by_id);
-    directory_.erase(
-        std::unique(directory_.begin(), directory_.end(),
-                    [](const OutsideNode& a, const OutsideNode& b) { return a.id == b.id; }),
-        directory_.end());
-    directory_made_ = true;
+    s.facet_directory = to_homes(comm.get(), facets, key, from);
+    s.ring_directory = to_homes(comm.get(), rings, key, from);
+    std::sort(s.facet_directory.begin(), s.facet_directory.end(), by_key);
+    std::sort(s.ring_directory.begin(), s.ring_directory.end(), by_key);
   }
+  directory_ = to_homes(
+      comm.get(), mine, [](const OutsideNode& r) { return r.id; }, from);
+  const auto by_id = [](const OutsideNode& a, const OutsideNode& b) { return a.id < b.id; };
+  std::sort(directory_.begin(), directory_.end(), by_id);
+  directory_.erase(
+      std::unique(directory_.begin(), directory_.end(),
+                  [](const OutsideNode& a, const OutsideNode& b) { return a.id == b.id; }),
+      directory_.end());
+  directory_made_ = true;
+}
+
+void ContactConstraint::map_nodes(std::span<const std::int64_t> ids,
+                                  std::vector<std::int32_t>& out) {
+  make_directories();
   const auto outside_node = [&](std::int64_t id) {
     const auto it = std::lower_bound(outside_index_.begin(), outside_index_.end(),
                                      std::pair<std::int64_t, std::int32_t>{id, -1});
     return it != outside_index_.end() && it->first == id ? it->second : -1;
   };
   // Ids neither interface nodes of this part nor known outside nodes: asked at their homes.
-  std::vector<OutsideNode> asked;
+  std::vector<std::int64_t> asked;
   for (const auto id : ids)
-    if (node_of_gid(id) < 0 && outside_node(id) < 0) asked.emplace_back().id = id;
-  auto [requests, from] = send(asked);
-  std::vector<OutsideNode> answers(requests.size());
-  for (std::size_t i = 0; i < requests.size(); ++i) {
-    const auto it = std::lower_bound(directory_.begin(), directory_.end(), requests[i], by_id);
-    SEAM_CHECK(it != directory_.end() && it->id == requests[i].id, InternalError,
-               "contact: master node ", requests[i].id, " is in no rank's master facets");
-    answers[i] = *it;
-  }
-  // Back to the asking ranks, in the order they asked.
-  std::vector<std::int64_t> recv_offsets;
-  const auto found = parallel::alltoallv<OutsideNode>(comm.get(), answers, from, recv_offsets);
+    if (node_of_gid(id) < 0 && outside_node(id) < 0) asked.push_back(id);
+  const auto found = ask_homes<OutsideNode>(disc_.comm().get(), directory_, std::move(asked),
+                                            [](const OutsideNode& r) { return r.id; });
   for (const auto& r : found) {
     if (outside_node(r.id) >= 0) continue;
     const auto node = static_cast<std::int32_t>(disc_.mesh().n_nodes() + outside_.size());
@@ -1039,7 +1135,43 @@ void ContactConstraint::map_master_nodes(std::span<const std::int64_t> ids,
   for (std::size_t i = 0; i < ids.size(); ++i) {
     const auto node = node_of_gid(ids[i]);
     out[i] = node >= 0 ? node : outside_node(ids[i]);
+    SEAM_CHECK(out[i] >= 0, InternalError, "contact: node ", ids[i],
+               " is in no rank's interface facets");
   }
+}
+
+meshtying::InterfaceSide ContactConstraint::slave_side_of(std::span<const SlaveFacet> facets) {
+  const int dim = disc_.dim();
+  // The nodes in increasing id (the side's order on every part): mesh nodes of this part, or
+  // outside nodes from the directory.
+  std::vector<std::int64_t> ids;
+  for (const auto& f : facets) ids.insert(ids.end(), f.nodes, f.nodes + f.n_nodes);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::vector<std::int32_t> nodes(ids.size()), mapped;
+  std::vector<std::int64_t> outside;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    nodes[i] = mesh_node_of(ids[i]);
+    if (nodes[i] < 0) outside.push_back(ids[i]);
+  }
+  map_nodes(outside, mapped);
+  std::size_t k = 0;
+  for (auto& node : nodes)
+    if (node < 0) node = mapped[k++];
+  meshtying::InterfaceSide side;
+  side.dim = dim;
+  side.mesh_nodes = std::move(nodes);
+  side.coordinates.resize(ids.size() * static_cast<std::size_t>(dim));
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (int c = 0; c < dim; ++c) side.coordinates[i * dim + c] = reference(side.mesh_nodes[i], c);
+  for (const auto& f : facets) {
+    side.types.push_back(static_cast<fem::CellType>(f.type));
+    for (std::int32_t a = 0; a < f.n_nodes; ++a)
+      side.nodes.push_back(static_cast<local_index>(
+          std::lower_bound(ids.begin(), ids.end(), f.nodes[a]) - ids.begin()));
+    side.offsets.push_back(static_cast<local_index>(side.nodes.size()));
+  }
+  return side;
 }
 
 bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector& minus_r,
@@ -1065,7 +1197,7 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
         const double v =
             s.friction ? value : value * normals[j * dim + static_cast<std::size_t>(a)];
         if (v == 0.0) continue;
-        bi.push_back(disc_.global_dof(mesh_node, a));
+        bi.push_back(dof_of(mesh_node, a));
         bj.push_back(s.lm_index[j] + (s.friction ? a : 0));
         bv.push_back(v);
       }
@@ -1102,7 +1234,7 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     // Inactive nodes outside the contact zone (D_j = 0) get the mean nodal weight.
     const double weight = mean_weight(s);
     for (std::size_t j = 0; j < nodes.size(); ++j) {
-      if (!disc_.owns_node(nodes[j])) continue;
+      if (!owns(nodes[j])) continue;
       ei.push_back(s.lm_index[j]);
       ej.push_back(s.lm_index[j]);
       ev.push_back(s.active[j] ? 0.0 : (s.D[j] > 0.0 ? s.D[j] : weight));
@@ -1163,7 +1295,7 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     const std::size_t per_node = s.friction ? static_cast<std::size_t>(dim) : 1;
     std::vector<double> lambda(nodes.size() * per_node, 0.0);
     for (std::size_t j = 0; j < nodes.size(); ++j)
-      if (disc_.owns_node(nodes[j]))
+      if (owns(nodes[j]))
         for (std::size_t c = 0; c < per_node; ++c) lambda[j * per_node + c] = xl[next++];
     parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
                                   static_cast<int>(per_node));
@@ -1265,13 +1397,13 @@ la::Matrix ContactConstraint::transformation_delta() const {
     }
     for (const auto& e : s.itf.transformation()) {
       const auto j = static_cast<std::size_t>(e.col), k = static_cast<std::size_t>(e.row);
-      if (!zone[j] || !disc_.owns_node(nodes[j])) continue;
+      if (!zone[j] || !owns(nodes[j])) continue;
       for (int c = 0; c < dim; ++c) {
         if (k != j && s.dirichlet[k * dim + c]) continue;
-        const PetscInt row = disc_.global_dof(nodes[j], c);
+        const PetscInt row = dof_of(nodes[j], c);
         has_row[static_cast<std::size_t>(row - first)] = 1;
         pi.push_back(row);
-        pj.push_back(disc_.global_dof(nodes[k], c));
+        pj.push_back(dof_of(nodes[k], c));
         pv.push_back(e.value);
       }
     }
@@ -1323,71 +1455,105 @@ void ContactConstraint::distribute(Side& s) {
 
 void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evaluated,
                                         std::vector<std::int64_t> kept, bool own_cells) {
+  make_directories();
+  const auto& comm = disc_.comm();
   const auto& mesh = disc_.mesh();
-  const auto& full = *s.slave_region;
-  const auto ids = meshtying::facet_gids(full, [&](std::int32_t c) { return disc_.cell_gid(c); });
+  const auto& region = *s.slave_region; // the facets of its own and ghost cells
+  const auto key = [](const SlaveFacet& f) { return f.key; };
+  // The facets of its mesh, by id (increasing along the region).
+  std::vector<SlaveFacet> local(static_cast<std::size_t>(region.n_facets()));
+  for (std::size_t f = 0; f < local.size(); ++f) {
+    const auto c = region.facet_cell[f];
+    const auto cell = mesh.cell(c);
+    auto& r = local[f];
+    r.id = disc_.cell_gid(c) * 8 + region.facet_local[f];
+    r.key = r.id;
+    r.type = static_cast<std::int32_t>(
+        fem::facet_type(mesh.cell_type[static_cast<std::size_t>(c)], region.facet_local[f]));
+    for (const int k :
+         fem::facet_nodes(mesh.cell_type[static_cast<std::size_t>(c)], region.facet_local[f]))
+      r.nodes[r.n_nodes++] = disc_.node_gid(cell[static_cast<std::size_t>(k)]);
+  }
+  const auto owned = [&](std::int64_t id) {
+    const auto node = mesh_node_of(id);
+    return node >= 0 && owns(node);
+  };
   std::sort(evaluated.begin(), evaluated.end());
   // With friction this rank's part of M^n (summed by slave node into the slip increments)
   // keeps its slave nodes held until it is replaced.
   if (s.friction)
     for (const auto* m : {&s.M_old, &s.part.M})
       for (const auto& e : *m) kept.push_back(s.node_keys[static_cast<std::size_t>(e.slave)]);
-  std::sort(kept.begin(), kept.end());
-  const auto n_full = static_cast<std::size_t>(full.n_facets());
-  const auto for_nodes = [&](std::size_t f, auto&& visit) {
-    const auto c = full.facet_cell[f];
-    const auto cell = mesh.cell(c);
-    for (const int k :
-         fem::facet_nodes(mesh.cell_type[static_cast<std::size_t>(c)], full.facet_local[f]))
-      visit(cell[static_cast<std::size_t>(k)]);
-  };
-  // Before the first distribution the facets of its own and ghost cells (the bulk share it
-  // starts from); after it the rings of the nodes this rank owns (it decides their status from
-  // their normals). Always the rings of the nodes of the facets it evaluates and of `kept`.
-  std::vector<char> keep(n_full, 0);
-  std::vector<std::int32_t> ring;
-  // Against a rigid obstacle (s.compact) no ring is read: the facets it evaluates, and for
-  // each node it owns that none of them has, the first facet of the side that has it.
-  std::vector<char> covered(s.compact ? static_cast<std::size_t>(mesh.n_nodes()) : 0, 0);
-  for (std::size_t f = 0; f < n_full; ++f) {
-    keep[f] = own_cells && !disc_.interface_only_cell(full.facet_cell[f]);
-    const bool mine = std::binary_search(evaluated.begin(), evaluated.end(), ids[f]);
-    if (s.compact && mine) {
-      keep[f] = 1;
-      for_nodes(f, [&](std::int32_t node) { covered[static_cast<std::size_t>(node)] = 1; });
-    }
-    for_nodes(f, [&](std::int32_t node) {
-      if ((!s.compact && (mine || (!own_cells && disc_.owns_node(node)))) ||
-          std::binary_search(kept.begin(), kept.end(), disc_.node_gid(node)))
-        ring.push_back(node);
-    });
+  // The facets it evaluates: from its mesh, or sent from the facet directory.
+  std::vector<SlaveFacet> held;
+  std::vector<std::int64_t> asked;
+  for (const auto id : evaluated) {
+    const auto it = std::lower_bound(local.begin(), local.end(), id,
+                                     [](const SlaveFacet& f, std::int64_t i) { return f.id < i; });
+    if (it != local.end() && it->id == id)
+      held.push_back(*it);
+    else
+      asked.push_back(id);
   }
-  // First the facets all of whose nodes it owns and needs (few facets cover many nodes), then
-  // one for each node still without.
-  for (const bool all : {true, false})
-    for (std::size_t f = 0; s.compact && !own_cells && f < n_full; ++f) {
-      int wanted = 0, nodes = 0;
-      for_nodes(f, [&](std::int32_t node) {
-        ++nodes;
-        wanted += disc_.owns_node(node) && !covered[static_cast<std::size_t>(node)];
-      });
-      if (wanted == 0 || (all && wanted < nodes)) continue;
-      keep[f] = 1;
-      for_nodes(f, [&](std::int32_t node) { covered[static_cast<std::size_t>(node)] = 1; });
-    }
+  const auto sent = ask_homes<SlaveFacet>(comm.get(), s.facet_directory, std::move(asked), key);
+  held.insert(held.end(), sent.begin(), sent.end());
+  // The nodes whose rings it holds: those of the facets it evaluates (unless s.compact: against
+  // a rigid obstacle no ring is read) and `kept`; after the first distribution also the nodes
+  // it owns (it decides their status from their normals), whose rings its mesh holds.
+  std::vector<std::int64_t> ring = std::move(kept);
+  if (!s.compact)
+    for (const auto& f : held) ring.insert(ring.end(), f.nodes, f.nodes + f.n_nodes);
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  for (std::size_t f = 0; f < n_full; ++f)
-    for_nodes(f, [&](std::int32_t node) {
-      keep[f] = keep[f] || std::binary_search(ring.begin(), ring.end(), node);
-    });
-  const auto region =
-      region_part(full, [&](std::int32_t f) { return keep[static_cast<std::size_t>(f)] != 0; });
+  // Before the first distribution the facets of its own and ghost cells (the bulk share it
+  // starts from).
+  if (own_cells) held.insert(held.end(), local.begin(), local.end());
+  // Against a rigid obstacle, for each node it owns that none of the evaluated facets has, one
+  // facet of its mesh that has it: first the facets all of whose nodes it owns and needs (few
+  // facets cover many nodes), then one for each node still without.
+  if (s.compact && !own_cells) {
+    std::vector<std::int64_t> covered;
+    for (const auto& f : held) covered.insert(covered.end(), f.nodes, f.nodes + f.n_nodes);
+    std::sort(covered.begin(), covered.end());
+    for (const bool all : {true, false})
+      for (const auto& f : local) {
+        int wanted = 0;
+        for (std::int32_t a = 0; a < f.n_nodes; ++a)
+          wanted +=
+              owned(f.nodes[a]) && !std::binary_search(covered.begin(), covered.end(), f.nodes[a]);
+        if (wanted == 0 || (all && wanted < f.n_nodes)) continue;
+        held.push_back(f);
+        for (std::int32_t a = 0; a < f.n_nodes; ++a)
+          covered.insert(std::lower_bound(covered.begin(), covered.end(), f.nodes[a]), f.nodes[a]);
+      }
+  }
+  // The rings: of the nodes it owns from its mesh (which holds every cell around them), of the
+  // others from the ring directory.
+  std::vector<std::int64_t> ring_asked;
+  for (const auto id : ring)
+    if (!owned(id)) ring_asked.push_back(id);
+  for (const auto& f : local) {
+    bool in_ring = false;
+    for (std::int32_t a = 0; a < f.n_nodes && !in_ring; ++a)
+      in_ring = (!s.compact && !own_cells && owned(f.nodes[a])) ||
+                std::binary_search(ring.begin(), ring.end(), f.nodes[a]);
+    if (in_ring) held.push_back(f);
+  }
+  const auto around =
+      ask_homes<SlaveFacet>(comm.get(), s.ring_directory, std::move(ring_asked), key);
+  held.insert(held.end(), around.begin(), around.end());
+  std::sort(held.begin(), held.end(),
+            [](const SlaveFacet& a, const SlaveFacet& b) { return a.id < b.id; });
+  held.erase(std::unique(held.begin(), held.end(),
+                         [](const SlaveFacet& a, const SlaveFacet& b) { return a.id == b.id; }),
+             held.end());
+  std::vector<std::int64_t> facet_ids(held.size());
+  for (std::size_t f = 0; f < held.size(); ++f) facet_ids[f] = held[f].id;
   // The nodal state by node id: kept where this rank held the node, zero elsewhere, then the
   // owners' values published to every holder (an owner holds its nodes before and after).
   const std::vector<std::int64_t> before = s.node_keys;
-  s.itf.hold_slave_facets(region);
-  index_slave_side(s, region);
+  s.itf.hold_slave_facets(slave_side_of(held));
+  index_slave_side(s, std::move(facet_ids));
   s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
   const auto& after = s.node_keys;
   const auto moved = [&](auto& values, std::size_t width) {
@@ -1608,7 +1774,7 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              ": held in part: both sides (the facets of its own and ghost cells" +
              (s.slave_region ? " at set-up; then the rings of the slave nodes it owns and of "
                                "the nodes of the slave facets it evaluates, taken anew at each "
-                               "distribution"
+                               "distribution, those beyond its mesh sent as facets"
                              : "") +
              ": " + n_slave + " of " + std::to_string(s.slave_facets) + " slave and " +
              std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
@@ -1644,7 +1810,7 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              "own and ghost cells" +
              (s.slave_region ? " at set-up; then the rings of the slave nodes it owns and of "
                                "the nodes of the slave facets it evaluates, taken anew at each "
-                               "distribution"
+                               "distribution, those beyond its mesh sent as facets"
                              : "") +
              ": " + n_slave + " of " + std::to_string(s.slave_facets) +
              " slave facets), the nodal arrays per held slave node (D, g~, multipliers, active "
@@ -1668,7 +1834,6 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
   refresh_displacement(u);
   const int dim = disc_.dim();
   const auto& comm = disc_.comm();
-  const auto& mesh = disc_.mesh();
   // Each slave node's row is computed by one rank (against a rigid obstacle held in part, whose
   // normals are the obstacle's at the node, s.compact: the node's owner): the rank that
   // evaluates the first slave facet around it (the lowest index; each facet is evaluated by one
@@ -1728,11 +1893,11 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
       lambda_of(j, lj);
       InterfaceNodeRow row;
       const auto node = rep.slave_nodes[j];
-      row.node = disc_.node_gid(node);
+      row.node = node_id(node);
       row.order = row.node; // the side's order (ids increase along it), on every part
       for (int c = 0; c < dim; ++c) {
         row.normal += lj[c] * nj[c];
-        row.x[c] = mesh.x[static_cast<std::size_t>(node) * dim + c];
+        row.x[c] = reference(node, c);
         row.u[c] = u_mesh[static_cast<std::size_t>(node) * dim + c];
       }
       double lt2 = 0.0;

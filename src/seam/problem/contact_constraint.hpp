@@ -230,6 +230,16 @@ private:
     int tangent_component[2] = {0, 0};
     double tangent[2][3] = {{0, 0, 0}, {0, 0, 0}};
   };
+  /// A slave facet as it crosses the ranks (a slave side held in part with the independent
+  /// distribution): its id, facet type and node ids in the facet's order, filed under `key`
+  /// (its own id in the facet directory, the id of one of its nodes in the ring directory).
+  struct SlaveFacet {
+    std::int64_t key = 0;
+    std::int64_t id = 0;
+    std::int32_t type = 0;
+    std::int32_t n_nodes = 0;
+    std::int64_t nodes[fem::max_facet_nodes] = {};
+  };
   struct Side {
     explicit Side(contact::ContactInterface i) : itf(std::move(i)) {}
     contact::ContactInterface itf;
@@ -276,9 +286,14 @@ private:
     bool slave_in_part = false;
     int slave_facets = 0;
     /// A slave side held in part with the independent distribution: the slave region of the
-    /// mesh (every rank's mesh holds its cells), from which the held facets are taken anew at
-    /// each distribution (hold_slave_part).
+    /// mesh (the facets of the rank's own and ghost cells), from which the held facets are
+    /// taken at each distribution (hold_slave_part), the others coming from the directories:
+    /// the rank id % size keeps the slave facets of id `id` (facet_directory) and those
+    /// around the node of id `id` (ring_directory) of the facets of the ranks' own cells.
     const mesh::Region* slave_region = nullptr;
+    std::vector<SlaveFacet> facet_directory, ring_directory;
+    /// The ids of the slave facets of this rank's own cells (sorted): the bulk share.
+    std::vector<std::int64_t> own_facet_ids;
     /// A slave side held in part against a rigid obstacle, without a modified slave basis: the
     /// normals are the obstacle's at each node (no ring of facets around a node is read), so
     /// after a distribution a rank holds the facets it evaluates and one facet of each slave
@@ -469,10 +484,19 @@ private:
   /// The global dof of component c of node `node` (a mesh node or an outside node).
   PetscInt dof_of(std::int32_t node, int c) const;
   /// Collective. The node of every id in `ids` (node ids of the mesh as read of the ghosts of
-  /// a master side held in part): its mesh node if it is an interface node of this part, else
-  /// an outside node, whose global dofs and reference coordinates come from the directory
-  /// (the rank id % size keeps those of the nodes of the master facets the ranks hand in).
-  void map_master_nodes(std::span<const std::int64_t> ids, std::vector<std::int32_t>& out);
+  /// a master side held in part, of the slave facets sent to a slave side held in part): its
+  /// mesh node if it is an interface node of this part, else an outside node, whose global
+  /// dofs, owner and reference coordinates come from the directory (the rank id % size keeps
+  /// those of the nodes of the master facets the ranks hand in and of the slave facets of
+  /// their own cells).
+  void map_nodes(std::span<const std::int64_t> ids, std::vector<std::int32_t>& out);
+  /// The mesh node of node id `id` (any node of the part), -1 if the part has none.
+  std::int32_t mesh_node_of(std::int64_t id) const;
+  /// Whether this rank owns a mesh or outside node (never an outside node), and its owner.
+  bool owns(std::int32_t node) const {
+    return node < disc_.mesh().n_nodes() && disc_.owns_node(node);
+  }
+  int owner_of(std::int32_t node) const;
   /// Reference coordinate c and id in the mesh as read of a mesh or outside node.
   double reference(std::int32_t node, int c) const;
   std::int64_t node_id(std::int32_t node) const;
@@ -521,9 +545,15 @@ private:
   /// rings.
   void hold_slave_part(Side& s, std::vector<std::int64_t> evaluated, std::vector<std::int64_t> kept,
                        bool own_cells);
-  /// The node ids, owners and holder publication of the slave nodes `s` holds, and the ids,
-  /// own facets and search ids of its slave side (after the side changed).
-  void index_slave_side(Side& s, const mesh::Region& region);
+  /// The node ids, owners and holder publication of the slave nodes `s` holds, and the ids
+  /// (`facet_ids`, those of its facets), own facets and search ids of its slave side (after the
+  /// side changed).
+  void index_slave_side(Side& s, std::vector<std::int64_t> facet_ids);
+  /// The slave facets of ids `ids` (sorted, unique) as a side: nodes in increasing id, each a
+  /// mesh node or an outside node (map_nodes), with reference coordinates. Collective.
+  meshtying::InterfaceSide slave_side_of(std::span<const SlaveFacet> facets);
+  /// The directories of the outside nodes and of the slave facets, made once (collective).
+  void make_directories();
   /// interface_nodes_ from the sides' nodes.
   /// A slave side held in part against a rigid plane: the plane's facet and the search
   /// inflation agreed over the parts (those of the whole side). Collective.
@@ -548,11 +578,14 @@ private:
   bool start_read_ = false; ///< u_mesh_start_ holds u_start_ at the nodes read
   std::vector<double> u_mesh_start_;
   std::vector<Side> sides_;
-  /// Master nodes of the ghosts outside this rank's part (master sides held in part): outside
-  /// node k is node n_nodes + k of u_mesh_ and of the mortar entries; kept once found.
+  /// Nodes outside this rank's part: master nodes of the ghosts (master sides held in part)
+  /// and slave nodes of the facets sent to it (slave sides held in part, the independent
+  /// distribution). Outside node k is node n_nodes + k of u_mesh_, of the slave side and of the
+  /// mortar entries; kept once found.
   struct OutsideNode {
     std::int64_t id = 0;
     std::int64_t dofs[3] = {0, 0, 0};
+    int owner = -1;
     double x[3] = {0, 0, 0}; ///< reference coordinates
   };
   std::vector<OutsideNode> outside_;

@@ -66,7 +66,7 @@ std::string ContactConstraint::describe_multiplier(std::size_t k) const {
     char line[320];
     std::snprintf(line, sizeof line,
                   "%s slave node %lld (%s, lambda %.4e, g~ %.4e, D %.4e, gap row %d)",
-                  s.itf.name().c_str(), static_cast<long long>(disc_.node_gid(node)),
+                  s.itf.name().c_str(), static_cast<long long>(node_id(node)),
                   s.active[j] ? "active" : "inactive", s.lambda[k], s.gap[j], s.D[j],
                   s.discrete_gradient ? static_cast<int>(s.em_row[j]) : -1);
     return line;

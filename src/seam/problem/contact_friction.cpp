@@ -64,8 +64,7 @@ void ContactConstraint::init_friction(Side& s, const io::Interface& config, doub
   const auto& nodes = s.itf.slave().mesh_nodes;
   s.x.resize(n * dim);
   for (std::size_t j = 0; j < n; ++j)
-    for (int c = 0; c < dim; ++c)
-      s.x[j * dim + c] = disc_.mesh().x[static_cast<std::size_t>(nodes[j]) * dim + c];
+    for (int c = 0; c < dim; ++c) s.x[j * dim + c] = reference(nodes[j], c);
   s.x_old = s.x;
   contact::apply_inverse_transformation(s.T_inverse, dim, s.x, s.x_old);
   s.x = s.x_old;
@@ -90,13 +89,11 @@ int ContactConstraint::evaluate_friction(Side& s, std::span<const double> u_mesh
   const auto& comm = disc_.comm();
   const auto& nodes = s.itf.slave().mesh_nodes;
   const auto n = nodes.size();
-  const auto& X = disc_.mesh().x;
   std::vector<double> x(n * dim);
   for (std::size_t j = 0; j < n; ++j)
-    for (int c = 0; c < dim; ++c) {
-      const auto i = static_cast<std::size_t>(nodes[j]) * dim + c;
-      x[j * dim + c] = X[i] + u_mesh[i];
-    }
+    for (int c = 0; c < dim; ++c)
+      x[j * dim + c] =
+          reference(nodes[j], c) + u_mesh[static_cast<std::size_t>(nodes[j]) * dim + c];
   // With a modified slave basis (tri6/quad8, d = T d~) D multiplies x~ = T^-1 x: the slip
   // increment below is objective only in these positions (sum_k D_jk x~_k = int Phi_j x dA).
   contact::apply_inverse_transformation(s.T_inverse, dim, x, s.x);
@@ -415,7 +412,7 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
     // operators' derivatives and the rotation's correction are in s.lin.operator_gradient).
     for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
       if (s.active[j])
-        for (int a = 0; a < dim; ++a) add_gradient(j, disc_.global_dof(node, a), coef_u, a, w);
+        for (int a = 0; a < dim; ++a) add_gradient(j, dof_of(node, a), coef_u, a, w);
     });
   } else if (!rigid) {
     // u~ at fixed operators: sum_l (M_jl - M_jl^n) dx_l (this rank's parts of M and M^n) and,
@@ -436,7 +433,7 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
         if (!s.active[j]) continue;
         for (const auto& [k, tk] : inverse_row[static_cast<std::size_t>(e.col)])
           for (int a = 0; a < dim; ++a)
-            add_gradient(j, disc_.global_dof(nodes[k], a), coef_u, a, scale * tk * e.value);
+            add_gradient(j, dof_of(nodes[k], a), coef_u, a, scale * tk * e.value);
       }
     };
     coupling(s.part.D_coupling, -1.0);
@@ -444,7 +441,7 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
   }
   std::vector<contact::DofTriplet> dn;
   for (std::size_t j = 0; j < n; ++j) {
-    if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+    if (!s.active[j] || !owns(nodes[j])) continue;
     // The normal's derivative; the slip increment at fixed operators on the slave node:
     // -(D_jj - D_jj^n) dx~_j (two bodies) or D_j P dx~_j (rigid plane), dx~ = T^-1 dx.
     dn.clear();
@@ -476,7 +473,7 @@ void ContactConstraint::friction_gradients(const Side& s, const FrictionRows& fr
             v = s.D[j] * ((a == b ? 1.0 : 0.0) - normal[a] * normal[b]);
           else if (a == b)
             v = s.discrete_gradient ? 0.0 : -(s.D_diag[j] - s.D_diag_old[j]);
-          if (v != 0.0) add_gradient(j, disc_.global_dof(nodes[k], b), coef_u, a, tk * v);
+          if (v != 0.0) add_gradient(j, dof_of(nodes[k], b), coef_u, a, tk * v);
         }
   }
 }
@@ -493,7 +490,7 @@ void ContactConstraint::condense_friction(
   const FrictionRows fr = friction_rows(s);
   const auto& frames = fr.frames;
   const auto tangent_row = [&](std::size_t j, int i) {
-    return disc_.global_dof(nodes[j], frames[j].tangent_component[i]);
+    return dof_of(nodes[j], frames[j].tangent_component[i]);
   };
   // G += -D_jj beta: the tangent rows multiplied by -D_jj (contact_constraint.hpp).
   friction_gradients(s, fr, tangent_row, -1.0, gi, gj, gv);
@@ -504,14 +501,14 @@ void ContactConstraint::condense_friction(
     for (int a = 0; a < dim; ++a) {
       if (s.dirichlet[j * dim + a]) continue;
       li.push_back(dof_of(e.master_node, a));
-      lj.push_back(disc_.global_dof(nodes[j], a));
+      lj.push_back(dof_of(nodes[j], a));
       lv.push_back(e.value / s.D[j]);
     }
   }
   for (std::size_t j = 0; j < n; ++j) {
-    if (!s.active[j] || !disc_.owns_node(nodes[j])) continue;
+    if (!s.active[j] || !owns(nodes[j])) continue;
     const NodeFrame& f = frames[j];
-    const PetscInt gap_row = disc_.global_dof(nodes[j], f.gap_component);
+    const PetscInt gap_row = dof_of(nodes[j], f.gap_component);
     replaced[static_cast<std::size_t>(gap_row - first)] = 1;
     set_rows.push_back(gap_row);
     set_values.push_back(s.c_n * s.gap[j]);
@@ -525,7 +522,7 @@ void ContactConstraint::condense_friction(
         alpha_lambda += r.alpha[b] * s.lambda[j * dim + b];
         if (s.dirichlet[j * dim + b] || r.alpha[b] == 0.0) continue;
         li.push_back(row);
-        lj.push_back(disc_.global_dof(nodes[j], b));
+        lj.push_back(dof_of(nodes[j], b));
         lv.push_back(r.alpha[b]);
       }
       add_rows.push_back(row);
@@ -576,7 +573,7 @@ void ContactConstraint::saddle_friction(Side& s, std::vector<PetscInt>& ci,
   }
   const double weight = mean_weight(s);
   for (std::size_t j = 0; j < n; ++j) {
-    if (!disc_.owns_node(nodes[j])) continue;
+    if (!owns(nodes[j])) continue;
     const double Dj = s.D[j] > 0.0 ? s.D[j] : weight;
     std::vector<double> rhs(static_cast<std::size_t>(dim), 0.0);
     std::vector<char> done(static_cast<std::size_t>(dim), 0);

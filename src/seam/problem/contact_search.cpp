@@ -57,11 +57,6 @@ bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
   return (itf.master || rigid) && condensed_dual(itf, config);
 }
 
-bool slave_cells_in_part(const io::Interface& itf, const io::Config& config) {
-  return slave_held_in_part(itf, config) &&
-         config.parallel.interface_distribution == io::InterfaceDistribution::bulk;
-}
-
 local_index SideIds::facet(std::int64_t id) const {
   return index_of(facets, id, "facet");
 }

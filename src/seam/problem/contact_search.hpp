@@ -57,24 +57,20 @@ struct SideIds {
 /// interface); every other interface keeps its master side whole.
 bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 
-/// Whether the slave side of interface `itf` is held in part too: each rank holds the slave
-/// facets of its own and ghost cells (with the bulk distribution those of its own cells are
-/// the slave elements it evaluates, the ghost layer gives their nodes' rings for the averaged
-/// normals); with the independent distribution, after each distribution, the rings of the
-/// slave nodes it owns and of the nodes of the slave facets it evaluates (its mesh holds every
-/// slave cell, slave_cells_in_part; with friction also the rings of the slave nodes of its
-/// part of M^n); the nodal arrays are per held slave node. Two-body contact whose master side
-/// is held in part, and contact against a rigid plane, sphere or cylinder under the same
-/// conditions (dual multipliers, no saddle point in the run, not energy-momentum contact),
-/// with or without friction, with either distribution of the interface (`parallel:
-/// interface_distribution`); every other interface keeps its slave side whole.
+/// Whether the slave side of interface `itf` is held in part too: the distributed mesh holds
+/// the slave facets of a rank's own and ghost cells only (with the bulk distribution those of
+/// its own cells are the slave elements it evaluates, the ghost layer gives their nodes'
+/// rings for the averaged normals); with the independent distribution, after each
+/// distribution, the side holds the rings of the slave nodes the rank owns and of the nodes
+/// of the slave facets it evaluates, the facets beyond its mesh sent as facets with their
+/// nodes' ids, global dofs and coordinates (ContactConstraint::hold_slave_part; with friction
+/// also the rings of the slave nodes of its part of M^n); the nodal arrays are per held slave
+/// node. Two-body contact whose master side is held in part, and contact against a rigid
+/// plane, sphere or cylinder under the same conditions (dual multipliers, no saddle point in
+/// the run, not energy-momentum contact), with or without friction, with either distribution
+/// of the interface (`parallel: interface_distribution`); every other interface keeps its
+/// slave side whole.
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config);
-
-/// Whether the distributed mesh holds the cells of the slave side of `itf` in part (its own
-/// and ghost cells only): a slave side held in part with the bulk distribution. With the
-/// independent distribution every rank's mesh still holds the slave side's cells (the facets
-/// it is sent are taken from them).
-bool slave_cells_in_part(const io::Interface& itf, const io::Config& config);
 
 class ContactSearch {
 public:
