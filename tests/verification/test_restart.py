@@ -213,9 +213,9 @@ def spoil_rows_after(path, step):
         f.write("\n".join(out) + "\n")
 
 
-def restarted_run(yaml, full_out, step, np, petsc=()):
+def restarted_run(yaml, full_out, step, np, petsc=(), said=()):
     """A copy of the uninterrupted run's output with its later rows spoiled, continued from
-    checkpoint `step` on np ranks."""
+    checkpoint `step` on np ranks; its terminal output must contain every line of `said`."""
     copy = tempfile.mkdtemp(prefix="seam_restart_copy_")
     _dirs.append(copy)
     shutil.rmtree(copy)
@@ -228,15 +228,17 @@ def restarted_run(yaml, full_out, step, np, petsc=()):
         raise AssertionError("no checkpoint_%05d in %s" % (step, full_out))
     code, stdout, _ = H.run(["run", yaml, "--restart", checkpoint]
                             + (["--"] + list(petsc) if petsc else []), np=np)
-    if "restarting from" not in stdout:
-        raise AssertionError("the restart does not say where it continues:\n" + stdout[-2000:])
+    for line in ("restarting from",) + tuple(said):
+        if line not in stdout:
+            raise AssertionError("the restart does not say '%s':\n%s" % (line, stdout[-2000:]))
     return copy
 
 
-def compare(full, restarted, rtol, what):
-    """Every table row by row; rtol 0: bit for bit. Returns the largest relative difference."""
+def compare(full, restarted, rtol, what, extra=()):
+    """Every table (and the tables `extra`) row by row; rtol 0: bit for bit. Returns the
+    largest relative difference."""
     worst = 0.0
-    for name in TABLES + (["newton.csv"] if rtol == 0.0 else []):
+    for name in TABLES + (["newton.csv"] if rtol == 0.0 else []) + list(extra):
         a_path, b_path = os.path.join(full, name), os.path.join(restarted, name)
         if not os.path.exists(a_path):
             continue
@@ -370,6 +372,37 @@ def test_static_slave_side_in_part_independent():
     restarted = restarted_run(yaml, first, step, 3, REPRODUCIBLE)
     d33 = compare(first, restarted, 1e-12, what + " 3 -> 3")
     print("   %s: largest relative difference 3 -> 3 %.2e" % (what, d33))
+
+
+def test_same_ranks_rebalanced_np3():
+    """Two blocks without friction on 3 ranks, the interface redistributed deterministically
+    (`work: integration_cells`, `rebalance_tolerance: 1`) after steps before and after the
+    checkpoint, with the reproducible direct solve: the 3 -> 3 restart from step 3 equals the
+    uninterrupted run bit for bit (every table, newton.csv and parallel.csv included). The
+    checkpoint keeps the cut of the slave elements (each rank's facets in its part file, the
+    cut trees in state.bin), so the restarted run evaluates them where the uninterrupted one
+    did and moves its planes from the same trees; cut anew from the pairs of the restart step,
+    the sums ran in another order (docs/parallel.md, "Converting the contact sides"). On
+    another number of ranks the cut is made anew (the run says so), to round-off."""
+    what = "static frictionless, redistributed, 3 -> 3"
+    step = 3
+    balance = "parallel: {work: integration_cells, rebalance_tolerance: 1.0}\n"
+    _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(step, "multiplier: dual") + balance)
+    first = full_run(yaml, 3, REPRODUCIBLE)
+    rows = H.read_csv(os.path.join(first, "parallel.csv"))
+    moves = [r["step"] for r in rows if r["redistributed"]]
+    if not any(m <= step for m in moves) or not any(m > step for m in moves):
+        raise AssertionError("%s: redistributed after steps %s, wanted before and after step %d"
+                             % (what, moves, step))
+    restarted = restarted_run(yaml, first, step, 3, REPRODUCIBLE,
+                              said=["the slave elements keep the checkpoint's cut on 3 ranks"])
+    compare(first, restarted, 0.0, what, extra=["parallel.csv"])
+    print("   %s: bit for bit (redistributed after steps %s)" % (what, [int(m) for m in moves]))
+    one = full_run(yaml, 1)
+    d13 = compare(one, restarted_run(yaml, one, step, 3, REPRODUCIBLE,
+                                     said=["the slave elements are cut anew on 3"]),
+                  1e-12, what + " 1 -> 3")
+    print("   %s: 1 -> 3 cut anew, largest relative difference %.2e" % (what, d13))
 
 
 def test_dynamic_friction_generalized_alpha():
@@ -827,7 +860,8 @@ def ints(data):
 if __name__ == "__main__":
     try:
         H.main([test_static_friction_two_bodies, test_static_slave_side_in_part,
-                test_static_slave_side_in_part_independent, test_same_ranks_np3, test_partition_reproducible,
+                test_static_slave_side_in_part_independent, test_same_ranks_np3,
+                test_same_ranks_rebalanced_np3, test_partition_reproducible,
                 test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
