@@ -7,7 +7,9 @@ those of the uninterrupted run: bit for bit on one rank, and to 1e-12 relative (
 column's scale) on another number of ranks (1 -> 3 and 3 -> 1) or on 3 ranks with MUMPS's
 parallel factorization (which is not reproducible from run to run). On 3 ranks with the
 reproducible direct solve (REPRODUCIBLE, docs/parallel.md "Reproducible runs") two
-uninterrupted runs and a 3 -> 3 restart are bit for bit the same (test_same_ranks_np3).
+uninterrupted runs and a 3 -> 3 restart are bit for bit the same (test_same_ranks_np3), also
+after redistributions of a contact interface, whose cut the checkpoint keeps
+(test_same_ranks_rebalanced_np3).
 - static frictional contact of two elastic blocks (the mortar operators of the last converged
   step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
