@@ -7,7 +7,9 @@ those of the uninterrupted run: bit for bit on one rank, and to 1e-12 relative (
 column's scale) on another number of ranks (1 -> 3 and 3 -> 1) or on 3 ranks with MUMPS's
 parallel factorization (which is not reproducible from run to run). On 3 ranks with the
 reproducible direct solve (REPRODUCIBLE, docs/parallel.md "Reproducible runs") two
-uninterrupted runs and a 3 -> 3 restart are bit for bit the same (test_same_ranks_np3).
+uninterrupted runs and a 3 -> 3 restart are bit for bit the same (test_same_ranks_np3), also
+after redistributions of a contact interface, whose cut the checkpoint keeps
+(test_same_ranks_rebalanced_np3).
 - static frictional contact of two elastic blocks (the mortar operators of the last converged
   step M^n, D^n enter the slip increment), and frictionless with standard multipliers,
 - dynamic frictional contact on a rigid plane with generalized-alpha (velocity, acceleration),
@@ -213,9 +215,9 @@ def spoil_rows_after(path, step):
         f.write("\n".join(out) + "\n")
 
 
-def restarted_run(yaml, full_out, step, np, petsc=()):
+def restarted_run(yaml, full_out, step, np, petsc=(), said=()):
     """A copy of the uninterrupted run's output with its later rows spoiled, continued from
-    checkpoint `step` on np ranks."""
+    checkpoint `step` on np ranks; its terminal output must contain every line of `said`."""
     copy = tempfile.mkdtemp(prefix="seam_restart_copy_")
     _dirs.append(copy)
     shutil.rmtree(copy)
@@ -228,15 +230,17 @@ def restarted_run(yaml, full_out, step, np, petsc=()):
         raise AssertionError("no checkpoint_%05d in %s" % (step, full_out))
     code, stdout, _ = H.run(["run", yaml, "--restart", checkpoint]
                             + (["--"] + list(petsc) if petsc else []), np=np)
-    if "restarting from" not in stdout:
-        raise AssertionError("the restart does not say where it continues:\n" + stdout[-2000:])
+    for line in ("restarting from",) + tuple(said):
+        if line not in stdout:
+            raise AssertionError("the restart does not say '%s':\n%s" % (line, stdout[-2000:]))
     return copy
 
 
-def compare(full, restarted, rtol, what):
-    """Every table row by row; rtol 0: bit for bit. Returns the largest relative difference."""
+def compare(full, restarted, rtol, what, extra=()):
+    """Every table (and the tables `extra`) row by row; rtol 0: bit for bit. Returns the
+    largest relative difference."""
     worst = 0.0
-    for name in TABLES + (["newton.csv"] if rtol == 0.0 else []):
+    for name in TABLES + (["newton.csv"] if rtol == 0.0 else []) + list(extra):
         a_path, b_path = os.path.join(full, name), os.path.join(restarted, name)
         if not os.path.exists(a_path):
             continue
@@ -357,12 +361,11 @@ def test_static_slave_side_in_part_independent():
     default): at np 3 each rank holds the rings of the slave nodes it owns and of the nodes of
     the slave facets it evaluates, taken anew at each distribution, and the state of the slave
     nodes it holds (docs/parallel.md, "Converting the contact sides", step 3). A restart
-    distributes anew from the checkpointed state (keyed by node id): 1 -> 1 bit for bit,
-    1 -> 3, 3 -> 1 and 3 -> 3 (with the reproducible direct solve) to 1e-12. Not bit for bit
-    3 -> 3: the checkpoint does not keep the cut of the slave elements, so the restarted run
-    cuts them anew from the pairs of the restart step and sums its nodal values in another
-    order (the same with the slave side held whole: a Newton residual of 2.1e-14 differs in
-    its fifth digit)."""
+    on another number of ranks distributes anew from the checkpointed state (keyed by node
+    id): 1 -> 1 bit for bit, 1 -> 3 and 3 -> 1 to 1e-12; 3 -> 3 (with the reproducible direct
+    solve) keeps the checkpoint's cut, compared to 1e-12 here because `work: time` (the
+    default) redistributes at steps that depend on timing (bit for bit with `work:
+    integration_cells`: test_same_ranks_rebalanced_np3)."""
     what = "static frictionless, independent, slave side in part"
     step = 3
     yaml = check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: dual"), step, what)
@@ -370,6 +373,44 @@ def test_static_slave_side_in_part_independent():
     restarted = restarted_run(yaml, first, step, 3, REPRODUCIBLE)
     d33 = compare(first, restarted, 1e-12, what + " 3 -> 3")
     print("   %s: largest relative difference 3 -> 3 %.2e" % (what, d33))
+
+
+def test_same_ranks_rebalanced_np3():
+    """Two blocks without friction on 3 ranks, the interface redistributed deterministically
+    (`work: integration_cells`, `rebalance_tolerance: 1`) after steps before and after the
+    checkpoint, with the reproducible direct solve: the 3 -> 3 restart from step 3 equals the
+    uninterrupted run bit for bit (every table, newton.csv and parallel.csv included). The
+    checkpoint keeps the cut of the slave elements (each rank's facets in its part file, the
+    cut trees in state.bin), so the restarted run evaluates them where the uninterrupted one
+    did and moves its planes from the same trees; cut anew from the pairs of the restart step,
+    the sums ran in another order (docs/parallel.md, "Converting the contact sides"). On
+    another number of ranks the cut is made anew (the run says so), to round-off."""
+    what = "static frictionless, redistributed, 3 -> 3"
+    step = 3
+    balance = "parallel: {work: integration_cells, rebalance_tolerance: 1.0}\n"
+    _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(step, "multiplier: dual") + balance)
+    first = full_run(yaml, 3, REPRODUCIBLE)
+    rows = H.read_csv(os.path.join(first, "parallel.csv"))
+    moves = [r["step"] for r in rows if r["redistributed"]]
+    if not any(m <= step for m in moves) or not any(m > step for m in moves):
+        raise AssertionError("%s: redistributed after steps %s, wanted before and after step %d"
+                             % (what, moves, step))
+    restarted = restarted_run(yaml, first, step, 3, REPRODUCIBLE,
+                              said=["the slave elements keep the checkpoint's cut on 3 ranks"])
+    compare(first, restarted, 0.0, what, extra=["parallel.csv"])
+    print("   %s: bit for bit (redistributed after steps %s)" % (what, [int(m) for m in moves]))
+    # A part whose cut names a facet outside the slave side (checksum intact): exit 1.
+    bad = os.path.join(restarted, "bad_cut")
+    shutil.copytree(os.path.join(first, "checkpoint_%05d" % step), bad)
+    replace_record(os.path.join(bad, "part_00001.bin"), "contact.0.cut.facets", [1])
+    expect_input_error(["run", yaml, "--restart", bad, "-o", os.path.join(restarted, "o")],
+                       ["part_00001.bin", "contact.0.cut.facets", "outside the slave side"],
+                       "a cut naming a facet outside the side, np 3", np=3)
+    one = full_run(yaml, 1)
+    d13 = compare(one, restarted_run(yaml, one, step, 3, REPRODUCIBLE,
+                                     said=["the slave elements are cut anew on 3"]),
+                  1e-12, what + " 1 -> 3")
+    print("   %s: 1 -> 3 cut anew, largest relative difference %.2e" % (what, d13))
 
 
 def test_dynamic_friction_generalized_alpha():
@@ -748,7 +789,8 @@ def test_parts_not_gathered():
     interface_slide.csv it computed, ranks_detail contact_output_rows), the parts together hold
     each slave node once, and state.bin holds no per-node record of the interface (only its
     size, a hash of its node ids and the rigid plane's position: at most 3 values per record).
-    The M^n triplets are in the parts of the ranks that integrated them. Saddle-point mesh tying
+    The M^n triplets are in the parts of the ranks that integrated them, the slave facets each
+    rank evaluates (the cut of the independent distribution) in its part. Saddle-point mesh tying
     (the energy-momentum flight): the parts hold each multiplier once, state.bin none. Read
     through the records' byte counts (the format of checkpoint.hpp)."""
     _, yaml = make_case(TWO_BLOCKS_GEO, two_blocks_yaml(3))
@@ -780,6 +822,18 @@ def test_parts_not_gathered():
                              % ([len(n) for n in nodes], owned))
     if not any(len(p["contact.0.M_old.value"]) for p in parts):
         raise AssertionError("no part holds M^n")
+    # The cut of the slave elements (the independent distribution): part r lists the slave
+    # facets rank r evaluates, each facet of the side in one part; state.bin the ranks of the
+    # cut.
+    cut = [ints(p["contact.0.cut.facets"]) for p in parts]
+    facets = H.read_json(os.path.join(three_out, "summary.json"))["interfaces"][0]["slave_elements"]
+    print("   slave facets evaluated per part at np 3: %s of %d" % ([len(c) for c in cut], facets))
+    flat = sorted(i for c in cut for i in c)
+    if len(flat) != facets or len(set(flat)) != facets or not all(cut):
+        raise AssertionError("the parts do not list each of the %d slave facets once: %s"
+                             % (facets, cut))
+    if ints(records(os.path.join(three, "state.bin"))["contact.0.cut.ranks"]) != [3]:
+        raise AssertionError("state.bin does not give the 3 ranks of the cut")
     # Saddle-point mesh tying: the multipliers by their owners, each (slave node, component)
     # in one part, none in state.bin.
     _, flight = make_case(G.tied_rectangles(0.3, 0.2), flight_yaml("saddle_point", 10))
@@ -818,6 +872,29 @@ def records(path):
     return out
 
 
+def replace_record(path, name, values):
+    """Rewrites record `name` (int64) of a checkpoint file with `values`, its byte count and
+    checksum made anew (FNV-1a over the records), as seam would have written it."""
+    import struct
+    data = open(path, "rb").read()
+    head = data.index(b"\n") + 1
+    pos, out = head, b""
+    while pos < len(data) - 16:
+        (n,) = struct.unpack_from("<I", data, pos)
+        (size,) = struct.unpack_from("<Q", data, pos + 5 + n)
+        start = pos + 13 + n
+        body = data[start:start + size]
+        if data[pos + 4:pos + 4 + n].decode() == name:
+            body = struct.pack("<%dq" % len(values), *values)
+        out += data[pos:pos + 5 + n] + struct.pack("<Q", len(body)) + body
+        pos = start + size
+    h = 0xcbf29ce484222325
+    for b in out:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    with open(path, "wb") as f:
+        f.write(data[:head] + out + struct.pack("<QQ", len(out), h))
+
+
 def ints(data):
     """The int64 values of a record."""
     import struct
@@ -827,7 +904,8 @@ def ints(data):
 if __name__ == "__main__":
     try:
         H.main([test_static_friction_two_bodies, test_static_slave_side_in_part,
-                test_static_slave_side_in_part_independent, test_same_ranks_np3, test_partition_reproducible,
+                test_static_slave_side_in_part_independent, test_same_ranks_np3,
+                test_same_ranks_rebalanced_np3, test_partition_reproducible,
                 test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,

@@ -41,4 +41,25 @@ std::vector<global_index> FacetDistribution::distribute(std::span<const global_i
   return mine;
 }
 
+FacetDistribution::State FacetDistribution::state() const {
+  State s;
+  s.n_partitions = n_partitions_;
+  if (n_partitions_ == 0) return s;
+  s.n_parts = partition_.close().n_parts();
+  s.close = partition_.close().cuts();
+  s.far = partition_.far().cuts();
+  return s;
+}
+
+void FacetDistribution::restore(const State& state) {
+  int size = 1;
+  MPI_Comm_size(comm_, &size);
+  SEAM_CHECK(state.n_partitions > 0 && state.n_parts == size, InputError,
+             "facet distribution: a cut of ", state.n_parts, " parts (", state.n_partitions,
+             " partitions) cannot continue on ", size, " ranks");
+  partition_.restore(state.n_parts, state.close, state.far);
+  n_partitions_ = state.n_partitions;
+  moved_ = 0;
+}
+
 } // namespace seam::parallel

@@ -36,6 +36,20 @@ public:
   /// Partitions made so far (the first one included).
   int n_partitions() const { return n_partitions_; }
 
+  /// What the next distribute() continues from besides its arguments (the same on every
+  /// rank): the partitions made so far and the cuts of the proximity split's two trees, whose
+  /// axes a repartition keeps. Empty cuts before the first partition.
+  struct State {
+    int n_parts = 0;
+    int n_partitions = 0;
+    std::vector<RcbCut> close, far;
+  };
+  State state() const;
+  /// Local. Continues from the state() of a distribution on as many ranks (a restart that
+  /// keeps the facets where the checkpointed run had them). InputError for a state of
+  /// another number of ranks or of malformed trees.
+  void restore(const State& state);
+
 private:
   MPI_Comm comm_;
   int dim_;

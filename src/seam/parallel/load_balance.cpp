@@ -85,6 +85,12 @@ void ProximityPartition::repartition(MPI_Comm comm, std::span<const double> poin
   run(comm, points, work, ids, parts, true);
 }
 
+void ProximityPartition::restore(int n_parts, std::span<const RcbCut> close,
+                                 std::span<const RcbCut> far) {
+  close_.restore(n_parts, close);
+  far_.restore(n_parts, far);
+}
+
 void ProximityPartition::run(MPI_Comm comm, std::span<const double> points,
                              std::span<const double> work, std::span<const global_index> ids,
                              std::span<int> parts, bool keep) {

@@ -83,6 +83,8 @@ public:
 
   const Rcb& close() const { return close_; }
   const Rcb& far() const { return far_; }
+  /// Local. Both trees as a partition into `n_parts` parts left them (Rcb::restore).
+  void restore(int n_parts, std::span<const RcbCut> close, std::span<const RcbCut> far);
 
 private:
   void run(MPI_Comm comm, std::span<const double> points, std::span<const double> work,

@@ -74,6 +74,30 @@ std::vector<RcbCut> Rcb::cuts() const {
   return out;
 }
 
+void Rcb::shape(int n_parts) {
+  n_parts_ = n_parts;
+  nodes_.assign(1, Node{0, n_parts, {}, -1, -1});
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    if (nodes_[k].n_parts < 2) continue;
+    const int first = nodes_[k].first_part, np = nodes_[k].n_parts, n_low = np / 2;
+    nodes_[k].low = static_cast<int>(nodes_.size());
+    nodes_[k].high = nodes_[k].low + 1;
+    nodes_.push_back({first, n_low, {}, -1, -1});
+    nodes_.push_back({first + n_low, np - n_low, {}, -1, -1});
+  }
+}
+
+void Rcb::restore(int n_parts, std::span<const RcbCut> cuts) {
+  bool bad = n_parts < 1 || cuts.size() != static_cast<std::size_t>(n_parts - 1);
+  for (const auto& c : cuts) bad |= c.axis < 0 || c.axis >= dim_;
+  SEAM_CHECK(!bad, InputError, "rcb: a tree of ", n_parts, " parts has ", n_parts - 1,
+             " cuts along axes below ", dim_, ", got ", cuts.size());
+  shape(n_parts);
+  std::size_t next = 0;
+  for (auto& node : nodes_)
+    if (node.low >= 0) node.cut = cuts[next++];
+}
+
 void Rcb::run(MPI_Comm comm, std::span<const double> points, std::span<const double> weights,
               std::span<const global_index> ids, std::span<int> parts, bool keep_axes) {
   int size = 1;
@@ -90,16 +114,7 @@ void Rcb::run(MPI_Comm comm, std::span<const double> points, std::span<const dou
   // The tree shape depends only on the number of parts; keep the axes if asked and possible.
   std::vector<Node> old = std::move(nodes_);
   keep_axes = keep_axes && n_parts_ == size && !old.empty();
-  n_parts_ = size;
-  nodes_.assign(1, Node{0, size, {}, -1, -1});
-  for (std::size_t k = 0; k < nodes_.size(); ++k) {
-    if (nodes_[k].n_parts < 2) continue;
-    const int first = nodes_[k].first_part, np = nodes_[k].n_parts, n_low = np / 2;
-    nodes_[k].low = static_cast<int>(nodes_.size());
-    nodes_[k].high = nodes_[k].low + 1;
-    nodes_.push_back({first, n_low, {}, -1, -1});
-    nodes_.push_back({first + n_low, np - n_low, {}, -1, -1});
-  }
+  shape(size);
   if (keep_axes)
     for (std::size_t k = 0; k < nodes_.size(); ++k) nodes_[k].cut.axis = old[k].cut.axis;
 

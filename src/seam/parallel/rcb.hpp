@@ -69,6 +69,10 @@ public:
   std::vector<RcbCut> cuts() const;
   /// Histogram rounds (Allreduce pairs) the last call took, over all levels.
   int n_rounds() const { return n_rounds_; }
+  /// Local. The cut tree of `n_parts` parts with `cuts` (as cuts() lists them, n_parts - 1),
+  /// as the partition that made them left it: a restart continues the repartitions of a
+  /// checkpointed run. InputError for another number of cuts.
+  void restore(int n_parts, std::span<const RcbCut> cuts);
 
 private:
   struct Node {
@@ -80,6 +84,8 @@ private:
   };
   void run(MPI_Comm comm, std::span<const double> points, std::span<const double> weights,
            std::span<const global_index> ids, std::span<int> parts, bool keep_axes);
+  /// nodes_ of a tree of `n_parts` parts, without cuts.
+  void shape(int n_parts);
 
   int dim_;
   RcbOptions options_;

@@ -11,15 +11,22 @@
 //   of the mesh as read, never an index in the side) into its part file, and a restart gives each
 //   part file to the rank that reads it. Only the sum over the ranks enters (the slip increment is
 //   summed, the tangent rows are added into the matrix), so any number of ranks can reload them;
+// - the cut of the slave elements of the independent distribution: each rank writes the ids of
+//   the slave facets it evaluates into its part file; a restart on as many ranks gives every
+//   rank its own part's facets back and continues the repartitions from the cut trees, so that
+//   it sums in the order of the uninterrupted run (on another number of ranks it cuts anew);
 // - state.bin holds only what is O(1) per side: the slave side's size and a hash of its node
 //   ids (a checkpoint of another interface is refused), the rigid plane's displacement, the
-//   frictional work so far.
+//   frictional work so far, the ranks of the cut of the independent distribution (its trees,
+//   O(ranks), in every part file).
 #include "seam/common/error.hpp"
+#include "seam/meshtying/interface_side.hpp"
 #include "seam/parallel/exchange.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
 
 #include <algorithm>
+#include <functional>
 
 namespace seam::problem {
 
@@ -60,6 +67,42 @@ std::int64_t node_count(const Discretization& disc, std::span<const int> owners)
   return static_cast<std::int64_t>(disc.comm().sum(static_cast<double>(mine)));
 }
 
+/// The cut of the independent distribution: in state.bin its ranks (0: no cut) and the
+/// partitions made; in every part file the cut trees (the same on every rank, O(ranks)): per
+/// cut of both trees (close, then far) its axis and id cut (integers) and its planes lo, hi
+/// (reals).
+void put_cut(RecordWriter& out, const std::string& p,
+             const parallel::FacetDistribution::State& cut) {
+  out.put_integer(p + "cut.ranks", cut.n_parts);
+  out.put_integer(p + "cut.partitions", cut.n_partitions);
+  std::vector<std::int64_t> axes;
+  std::vector<double> planes;
+  for (const auto* tree : {&cut.close, &cut.far})
+    for (const auto& c : *tree) {
+      axes.push_back(c.axis);
+      axes.push_back(c.id_cut);
+      planes.push_back(c.lo);
+      planes.push_back(c.hi);
+    }
+  out.put_part(p + "cut.axes", axes);
+  out.put_part(p + "cut.planes", planes);
+}
+
+/// The cut trees put_cut wrote into `part`, of a cut of `n_parts` parts.
+void get_cut_trees(const RecordReader& part, const std::string& p,
+                   parallel::FacetDistribution::State& cut) {
+  const auto n = 2 * static_cast<std::size_t>(cut.n_parts - 1);
+  const auto axes = part.integers(p + "cut.axes", 2 * n);
+  const auto planes = part.reals(p + "cut.planes", 2 * n);
+  cut.close.clear();
+  cut.far.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const parallel::RcbCut c{static_cast<int>(axes[2 * i]), planes[2 * i], planes[2 * i + 1],
+                             axes[2 * i + 1]};
+    (i < n / 2 ? cut.close : cut.far).push_back(c);
+  }
+}
+
 } // namespace
 
 void ContactConstraint::write_checkpoint(RecordWriter& out) const {
@@ -89,6 +132,16 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     }
     out.put_part(p + "nodes", ids);
     out.put_part(p + "state", state);
+    // The independent distribution: the slave facets this rank evaluates and the cut trees.
+    parallel::FacetDistribution::State cut;
+    if (s.distribution && s.distributed) cut = s.distribution->state();
+    put_cut(out, p, cut);
+    std::vector<std::int64_t> evaluated;
+    if (cut.n_parts > 0)
+      for (const auto f : s.itf.owned_facets())
+        evaluated.push_back(s.slave_ids.facets[static_cast<std::size_t>(f)]);
+    std::sort(evaluated.begin(), evaluated.end());
+    out.put_part(p + "cut.facets", evaluated);
     if (!s.friction) continue;
     out.put(p + "plane_old", std::span<const double>(s.plane_old));
     out.put_real(p + "dissipation", s.dissipation);
@@ -117,7 +170,63 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
   }
 }
 
-void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
+std::optional<std::vector<std::int64_t>>
+ContactConstraint::read_cut(const Checkpoints& checkpoints, Side& s, std::size_t k,
+                            std::vector<std::string>& notes) {
+  if (!s.distribution) return std::nullopt;
+  const auto& in = checkpoints.restart();
+  const auto& comm = disc_.comm();
+  const std::string p = "contact." + std::to_string(k) + ".";
+  const std::string which =
+      "contact interface " + std::to_string(k + 1) + " '" + s.itf.name() + "'";
+  // state.bin: the ranks of the cut (none in a checkpoint written before seam kept it).
+  parallel::FacetDistribution::State cut;
+  if (in.has(p + "cut.ranks")) {
+    cut.n_parts = static_cast<int>(in.integer(p + "cut.ranks"));
+    cut.n_partitions = static_cast<int>(in.integer(p + "cut.partitions"));
+  }
+  if (cut.n_parts != comm.size()) {
+    notes.push_back(which + ": the checkpoint was written on " +
+                    std::to_string(in.integer("ranks")) + " rank(s)" +
+                    (cut.n_parts > 0 ? "" : " without a cut of its slave elements") +
+                    "; the slave elements are cut anew on " + std::to_string(comm.size()));
+    return std::nullopt;
+  }
+  // The facets of the whole slave side, by id (a side held in part: of the mesh's region).
+  auto side = s.slave_region
+                  ? meshtying::facet_gids(*s.slave_region,
+                                          [&](std::int32_t c) { return disc_.cell_gid(c); })
+                  : s.slave_ids.facets;
+  std::sort(side.begin(), side.end());
+  // As many ranks: this rank reads its own part file, which lists the facets it evaluated.
+  std::vector<std::int64_t> evaluated;
+  checkpoints.read_parts([&](const RecordReader& part) {
+    get_cut_trees(part, p, cut);
+    try {
+      s.distribution->restore(cut);
+    } catch (const InputError& e) {
+      part.fail("records '" + p + "cut.*': " + e.what());
+    }
+    evaluated = part.integers(p + "cut.facets");
+    bool bad = std::adjacent_find(evaluated.begin(), evaluated.end(), std::greater_equal<>()) !=
+               evaluated.end();
+    for (const auto id : evaluated) bad = bad || !std::binary_search(side.begin(), side.end(), id);
+    if (bad)
+      part.fail("record '" + p + "cut.facets' names a facet outside the slave side, or twice");
+  });
+  // Each facet of the side on one rank: as many as the ranks' own cells have.
+  const auto total = comm.sum(static_cast<double>(evaluated.size()));
+  const auto expected = comm.sum(static_cast<double>(s.bulk_facets.size()));
+  if (total != expected)
+    in.fail(which + ": its cut names " + std::to_string(static_cast<std::int64_t>(total)) +
+            " slave facets, the side has " + std::to_string(static_cast<std::int64_t>(expected)));
+  notes.push_back(which + ": the slave elements keep the checkpoint's cut on " +
+                  std::to_string(comm.size()) + " ranks");
+  return evaluated;
+}
+
+std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
+  std::vector<std::string> notes;
   const auto& in = checkpoints.restart();
   const auto& comm = disc_.comm();
   const int dim = disc_.dim();
@@ -172,6 +281,11 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
     for (std::size_t j = 0; j < n; ++j) s.active[j] = flags[j * 3] != 0.0;
     s.active_previous = s.active;
     s.active_accepted = s.active;
+    // The slave elements this rank evaluated, on as many ranks (otherwise the first
+    // evaluation cuts anew); with friction and the slave side held in part they are taken
+    // below with the slave nodes of M^n.
+    const auto cut = read_cut(checkpoints, s, k, notes);
+    if (cut && !(s.friction && s.slave_region)) evaluate_facets(s, *cut, {});
     if (!s.friction) continue;
     for (std::size_t j = 0; j < n; ++j) s.status[j] = static_cast<char>(flags[j * 3 + 1]);
     s.status_previous = s.status;
@@ -198,8 +312,12 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
         const auto slave = part.integers(p + "M_old.slave_node");
         kept.insert(kept.end(), slave.begin(), slave.end());
       });
-      hold_slave_part(s, {}, std::move(kept), true);
-      s.itf.set_owned_facets(s.bulk_facets);
+      if (cut) {
+        evaluate_facets(s, *cut, std::move(kept));
+      } else {
+        hold_slave_part(s, {}, std::move(kept), true);
+        s.itf.set_owned_facets(s.bulk_facets);
+      }
     }
     checkpoints.read_parts([&](const RecordReader& part) {
       const auto slave = part.integers(p + "M_old.slave_node");
@@ -236,6 +354,7 @@ void ContactConstraint::read_checkpoint(const Checkpoints& checkpoints) {
         if (e.master_node < 0) e.master_node = found[static_cast<std::size_t>(-1 - e.master_node)];
     }
   }
+  return notes;
 }
 
 } // namespace seam::problem

@@ -1443,12 +1443,16 @@ void ContactConstraint::distribute(Side& s) {
     if (s.distributed)
       work[i] += static_cast<double>(s.part.facet_cells[static_cast<std::size_t>(f)]);
   }
-  const auto mine = s.distribution->distribute(ids, centroids, work);
+  evaluate_facets(s, s.distribution->distribute(ids, centroids, work), {});
+}
+
+void ContactConstraint::evaluate_facets(Side& s, std::vector<std::int64_t> ids,
+                                        std::vector<std::int64_t> kept) {
   // The slave side follows the facets this rank evaluates now (the independent distribution
   // with the slave side held in part).
-  if (s.slave_region) hold_slave_part(s, mine, {}, false);
-  std::vector<local_index> facets(mine.size());
-  for (std::size_t i = 0; i < mine.size(); ++i) facets[i] = s.slave_ids.facet(mine[i]);
+  if (s.slave_region) hold_slave_part(s, ids, std::move(kept), false);
+  std::vector<local_index> facets(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) facets[i] = s.slave_ids.facet(ids[i]);
   s.itf.set_owned_facets(std::move(facets));
   s.distributed = true;
 }

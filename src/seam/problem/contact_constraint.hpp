@@ -63,6 +63,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -151,8 +152,10 @@ public:
   void restore();
   /// The state of the last converged step in a checkpoint, and back (contact_checkpoint.cpp).
   /// write_checkpoint is collective.
+  /// read_checkpoint returns what the terminal should say of it (e.g. whether the slave
+  /// elements keep the checkpoint's cut).
   void write_checkpoint(RecordWriter& out) const;
-  void read_checkpoint(const Checkpoints& in);
+  std::vector<std::string> read_checkpoint(const Checkpoints& in);
 
   int n_active() const;
   /// Whether no interface carries friction.
@@ -531,6 +534,15 @@ private:
   /// The first distribution of side s (at its first evaluation, when its candidate pairs are
   /// known), or a redistribution with the current pairs.
   void distribute(Side& s);
+  /// This rank evaluates the slave facets `ids` (global ids) of side s from now on (with the
+  /// slave side held in part, hold_slave_part(s, ids, kept, false) first). Collective.
+  void evaluate_facets(Side& s, std::vector<std::int64_t> ids, std::vector<std::int64_t> kept);
+  /// The cut of the independent distribution of side k in the restart checkpoint, if it was
+  /// made on as many ranks: the trees restored into s.distribution, and the ids of the slave
+  /// facets this rank evaluated (its own part file). Otherwise none, and the first evaluation
+  /// cuts anew. Either way a line of `notes` says which. Collective.
+  std::optional<std::vector<std::int64_t>> read_cut(const Checkpoints& checkpoints, Side& s,
+                                                    std::size_t k, std::vector<std::string>& notes);
   /// A slave side held in part with the independent distribution: after a distribution that
   /// gives this rank the slave facets `evaluated` (global ids), the side holds the rings of
   /// the slave nodes it owns (it decides their status from their normals) and of the nodes of

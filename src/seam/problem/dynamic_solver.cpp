@@ -323,7 +323,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   }
   bool restored_transient = false;
   if (checkpoints.restarting()) {
-    const auto state = read_checkpoint(checkpoints, control, contact, saddle, tied, state_in);
+    const auto state = read_checkpoint(checkpoints, control, contact, saddle, tied, out, state_in);
     step = state.step;
     external_work = state.external_work;
     restored_transient = state.impact_transient;

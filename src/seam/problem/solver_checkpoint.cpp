@@ -51,7 +51,7 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
 
 DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control,
                             ContactConstraint& contact, SaddlePoint& saddle,
-                            const std::vector<meshtying::TiedInterface>& tied,
+                            const std::vector<meshtying::TiedInterface>& tied, const Output& out,
                             const std::vector<std::pair<const char*, la::Vector*>>& vectors) {
   const auto& r = checkpoints.restart();
   DriverState state;
@@ -64,7 +64,8 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   control.set_state({checkpoints.restart_time(), r.real("control.dt"),
                      static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);
-  if (contact.active()) contact.read_checkpoint(checkpoints);
+  if (contact.active())
+    for (const auto& line : contact.read_checkpoint(checkpoints)) out.note(line);
   if (saddle.active() && r.has("saddle_point.0"))
     r.fail("was written by an earlier seam, which stored the multipliers in state.bin; rerun "
            "to write a checkpoint of this version");

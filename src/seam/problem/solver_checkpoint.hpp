@@ -35,10 +35,11 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
                       const Output& out,
                       const std::vector<std::pair<const char*, const la::Vector*>>& vectors);
 
-/// Restores everything write_checkpoint wrote from the restart checkpoint. Collective.
+/// Restores everything write_checkpoint wrote from the restart checkpoint; what the terminal
+/// should say of it goes to out.note(). Collective.
 DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control,
                             ContactConstraint& contact, SaddlePoint& saddle,
-                            const std::vector<meshtying::TiedInterface>& tied,
+                            const std::vector<meshtying::TiedInterface>& tied, const Output& out,
                             const std::vector<std::pair<const char*, la::Vector*>>& vectors);
 
 } // namespace seam::problem

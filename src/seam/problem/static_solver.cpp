@@ -41,7 +41,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
   int n_known = 0;
   if (checkpoints.restarting()) {
     const auto state = read_checkpoint(
-        checkpoints, control, contact, saddle, tied,
+        checkpoints, control, contact, saddle, tied, out,
         {{"u", &u}, {"force_old", &force_old}, {"u_older", &u_older}, {"u_oldest", &u_oldest}});
     step = state.step;
     external_work = state.external_work;

@@ -151,5 +151,53 @@ TEST(FacetDistribution, MovesFacetsByTheirGlobalIds) {
   EXPECT_EQ(distribution.moved(), 0);
 }
 
+// A restart continues the repartitions from a checkpoint: a distribution restored from
+// another's state() hands out the same facets as the original at its next call, where a new
+// one partitions anew (the contact zone has turned, so new cuts take other axes).
+TEST(FacetDistribution, RestoredStateContinuesTheRepartitions) {
+  const auto facets = [](auto&& zone, std::span<const global_index> ids, std::vector<double>& c,
+                         std::vector<double>& w) {
+    c.clear();
+    w.clear();
+    for (const auto f : ids) {
+      const double x = static_cast<double>(f % 30) / 30.0, y = static_cast<double>(f / 30) / 20.0;
+      c.push_back(x);
+      c.push_back(y);
+      w.push_back(zone(x, y) ? 5.0 : 0.0);
+    }
+  };
+  std::vector<global_index> ids;
+  for (global_index f = rank(); f < 600; f += size()) ids.push_back(f);
+  std::vector<double> c, w;
+  facets([](double x, double) { return x < 0.3; }, ids, c, w); // along y
+  FacetDistribution original(world(), 2);
+  EXPECT_EQ(original.state().n_partitions, 0);
+  const auto mine = original.distribute(ids, c, w);
+  const auto state = original.state();
+  EXPECT_EQ(state.n_parts, size());
+  EXPECT_EQ(state.n_partitions, 1);
+  EXPECT_EQ(state.close.size(), static_cast<std::size_t>(size() - 1));
+  FacetDistribution restored(world(), 2), fresh(world(), 2);
+  restored.restore(state);
+  EXPECT_EQ(restored.n_partitions(), 1);
+  facets([](double, double y) { return y < 0.3; }, mine, c, w); // along x
+  const auto next = original.distribute(mine, c, w);
+  EXPECT_EQ(restored.distribute(mine, c, w), next);
+  EXPECT_EQ(restored.n_partitions(), 2);
+  const auto anew = fresh.distribute(mine, c, w);
+  int differs = anew != next;
+  MPI_Allreduce(MPI_IN_PLACE, &differs, 1, MPI_INT, MPI_MAX, world());
+  if (size() > 1) {
+    EXPECT_EQ(differs, 1);
+  }
+  // A state of another number of ranks, or trees of another size, is refused.
+  auto other = state;
+  other.n_parts = size() + 1;
+  EXPECT_THROW(restored.restore(other), InputError);
+  other = state;
+  other.close.emplace_back();
+  EXPECT_THROW(restored.restore(other), InputError);
+}
+
 } // namespace
 } // namespace seam::parallel::test
