@@ -145,8 +145,14 @@ std::string document_of(const std::string& records) {
   return out;
 }
 
-// Throws `error` of the lowest rank that has one as InputError on every rank (the same message
-// everywhere, so that rank 0 prints the file another rank could not read or write).
+std::string part_name(std::int64_t rank) {
+  char name[32];
+  std::snprintf(name, sizeof name, "part_%05lld.bin", static_cast<long long>(rank));
+  return name;
+}
+
+} // namespace
+
 void throw_collectively(const Comm& comm, std::string error) {
   const int mine = error.empty() ? comm.size() : comm.rank();
   int first = mine;
@@ -155,14 +161,6 @@ void throw_collectively(const Comm& comm, std::string error) {
   comm.broadcast(error, first);
   SEAM_THROW(InputError, error);
 }
-
-std::string part_name(std::int64_t rank) {
-  char name[32];
-  std::snprintf(name, sizeof name, "part_%05lld.bin", static_cast<long long>(rank));
-  return name;
-}
-
-} // namespace
 
 std::string RecordWriter::document() const {
   return document_of(records_);

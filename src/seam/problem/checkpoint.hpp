@@ -117,6 +117,11 @@ CanonicalOrder nodal_order(const Discretization& disc);
 
 /// The checkpoints of one run: writing them every `output.checkpoint_every` converged steps,
 /// and the one it restarts from.
+/// Throws `error` of the lowest rank that has one (non-empty) as InputError on every rank: the
+/// same message everywhere, so that rank 0 prints the file another rank could not read or
+/// write. Collective.
+void throw_collectively(const Comm& comm, std::string error);
+
 class Checkpoints {
 public:
   /// `problem` names the kind of run ("solid", "fluid", "fluid-structure"), recorded in every

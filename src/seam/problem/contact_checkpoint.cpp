@@ -20,7 +20,6 @@
 //   frictional work so far, the ranks of the cut of the independent distribution (its trees,
 //   O(ranks), in every part file).
 #include "seam/common/error.hpp"
-#include "seam/meshtying/interface_side.hpp"
 #include "seam/parallel/exchange.hpp"
 #include "seam/problem/checkpoint.hpp"
 #include "seam/problem/contact_constraint.hpp"
@@ -192,15 +191,15 @@ ContactConstraint::read_cut(const Checkpoints& checkpoints, Side& s, std::size_t
                     "; the slave elements are cut anew on " + std::to_string(comm.size()));
     return std::nullopt;
   }
-  // The facets of the whole slave side, by id (a side held in part: of the mesh's region).
-  auto side = s.slave_region
-                  ? meshtying::facet_gids(*s.slave_region,
-                                          [&](std::int32_t c) { return disc_.cell_gid(c); })
-                  : s.slave_ids.facets;
+  // The facets of the whole slave side, by id; a side held in part (its facets beyond the
+  // rank's mesh in the facet directory) is asked below.
+  auto side = s.slave_ids.facets;
   std::sort(side.begin(), side.end());
   // As many ranks: this rank reads its own part file, which lists the facets it evaluated.
   std::vector<std::int64_t> evaluated;
+  std::string part_file;
   checkpoints.read_parts([&](const RecordReader& part) {
+    part_file = part.path().string();
     get_cut_trees(part, p, cut);
     try {
       s.distribution->restore(cut);
@@ -210,10 +209,17 @@ ContactConstraint::read_cut(const Checkpoints& checkpoints, Side& s, std::size_t
     evaluated = part.integers(p + "cut.facets");
     bool bad = std::adjacent_find(evaluated.begin(), evaluated.end(), std::greater_equal<>()) !=
                evaluated.end();
-    for (const auto id : evaluated) bad = bad || !std::binary_search(side.begin(), side.end(), id);
+    if (!s.slave_region)
+      for (const auto id : evaluated)
+        bad = bad || !std::binary_search(side.begin(), side.end(), id);
     if (bad)
       part.fail("record '" + p + "cut.facets' names a facet outside the slave side, or twice");
   });
+  if (s.slave_region)
+    throw_collectively(comm, count_outside_side(s, evaluated) == 0
+                                 ? std::string()
+                                 : "checkpoint " + part_file + ": record '" + p +
+                                       "cut.facets' names a facet outside the slave side");
   // Each facet of the side on one rank: as many as the ranks' own cells have.
   const auto total = comm.sum(static_cast<double>(evaluated.size()));
   const auto expected = comm.sum(static_cast<double>(s.bulk_facets.size()));

@@ -1457,6 +1457,14 @@ void ContactConstraint::evaluate_facets(Side& s, std::vector<std::int64_t> ids,
   s.distributed = true;
 }
 
+std::size_t ContactConstraint::count_outside_side(Side& s, std::vector<std::int64_t> ids) {
+  make_directories();
+  const auto n = ids.size();
+  const auto found = ask_homes<SlaveFacet>(disc_.comm().get(), s.facet_directory, std::move(ids),
+                                           [](const SlaveFacet& f) { return f.key; });
+  return n - std::min(n, found.size());
+}
+
 void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evaluated,
                                         std::vector<std::int64_t> kept, bool own_cells) {
   make_directories();

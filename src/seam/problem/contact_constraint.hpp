@@ -566,6 +566,10 @@ private:
   meshtying::InterfaceSide slave_side_of(std::span<const SlaveFacet> facets);
   /// The directories of the outside nodes and of the slave facets, made once (collective).
   void make_directories();
+  /// How many of the slave facets `ids` (global ids, sorted, unique) of side s, a slave side
+  /// held in part with the independent distribution, are not in the side: asked of the facet
+  /// directory. Collective.
+  std::size_t count_outside_side(Side& s, std::vector<std::int64_t> ids);
   /// interface_nodes_ from the sides' nodes.
   /// A slave side held in part against a rigid plane: the plane's facet and the search
   /// inflation agreed over the parts (those of the whole side). Collective.
