@@ -572,6 +572,18 @@ void Matrix::set_near_null_space(const Vector& coordinates) {
   check(VecDestroy(&blocked), "VecDestroy");
 }
 
+void Matrix::share_near_null_space(const Matrix& from) {
+  MatNullSpace own = nullptr, nsp = nullptr;
+  check(MatGetNearNullSpace(m_, &own), "MatGetNearNullSpace");
+  check(MatGetNearNullSpace(from.m_, &nsp), "MatGetNearNullSpace");
+  if (own || !nsp) return;
+  PetscInt bs = 1, own_bs = 1;
+  check(MatGetBlockSize(from.m_, &bs), "MatGetBlockSize");
+  check(MatGetBlockSize(m_, &own_bs), "MatGetBlockSize");
+  if (own_bs != bs) check(MatSetBlockSize(m_, bs), "MatSetBlockSize");
+  check(MatSetNearNullSpace(m_, nsp), "MatSetNearNullSpace");
+}
+
 BlockAdder::BlockAdder(Matrix& m) : m_(m.get()) {
   check(MatGetBlockSize(m_, &bs_), "MatGetBlockSize");
   check(MatGetOwnershipRange(m_, &row_begin_, &row_end_), "MatGetOwnershipRange");

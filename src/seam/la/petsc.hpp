@@ -184,6 +184,12 @@ public:
   void zero_rows_columns(std::span<const PetscInt> rows, const Vector* x = nullptr,
                          Vector* b = nullptr);
   void set_near_null_space(const Vector& coordinates);
+  /// The block size and near-null space of `from` (same row layout) on this matrix, unless it
+  /// has its own near-null space already: a condensed system (T^T K T, contact) is formed with
+  /// block size 1 and no near-null space, and GAMG would then aggregate it as a scalar problem
+  /// whose only near-null vector is the constant (docs/parallel.md, "GAMG on the condensed
+  /// system"). Collective.
+  void share_near_null_space(const Matrix& from);
 
 private:
   /// Whether every nonzero of X (owned rows) lies in this matrix's pattern. Collective.

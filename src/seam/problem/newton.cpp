@@ -330,6 +330,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         res.failure = "the linear solver failed";
         return res;
       }
+      if (logging_) out_.linear_solve(solver_.last_iterations());
       if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
       if (check) check_correction(u, t, step, it, evaluate, lambda_old);
       apply_increment(u, t, predictor);
@@ -352,10 +353,13 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       solved = saddle_.solve(K_, r_, u, dirichlet_rows_, predictor ? &g_ : nullptr, solver_, du_);
     } else {
       K_sys->zero_rows_columns(fixed_rows_, predictor ? &g_ : nullptr, predictor ? r_sys : nullptr);
+      // GAMG needs the bulk's block size and rigid-body modes on the condensed system too.
+      if (iterative_ && K_sys != &K_) K_sys->share_near_null_space(K_);
       ScopedTimer timer(out_.timers(), "linear_solve");
       d_sys->zero();
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
     }
+    if (logging_) out_.linear_solve(solver_.last_iterations());
     if (solved && tying_.active()) tying_.expand(dut_, du_);
     // A corrector leaves the prescribed values as they are. Its constrained rows return zero
     // only up to the Krylov tolerance of an iterative solve; left in, those errors would move

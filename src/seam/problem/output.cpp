@@ -681,6 +681,11 @@ void Output::finish(bool converged, int n_steps) {
   j["dofs"] = static_cast<std::int64_t>(disc_.n_global_dofs());
   j["ranks"] = comm.size();
   j["wall_seconds"] = wall;
+  j["linear_solves"] = linear_solves_;
+  j["linear_iterations"] = linear_iterations_;
+  // Both members exist before either is referenced: adding a member may move the others.
+  j["timings"] = io::Json::object();
+  j["cpu_timings"] = io::Json::object();
   auto& t = j["timings"];
   auto& tc = j["cpu_timings"];
   for (std::size_t k = 0; k < phases.size(); ++k)
