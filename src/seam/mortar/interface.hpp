@@ -34,7 +34,7 @@ struct MortarOptions {
   /// contact keeps a pair that passed it once in a step attempt (contact::ContactInterface::
   /// keep_prechecked_pairs), so that the pair does not leave and enter from one Newton
   /// iterate to the next.
-  std::vector<std::pair<local_index, local_index>> prechecked;
+  std::vector<std::pair<local_index, local_index>> prechecked = {};
   /// The options of pair (slave, master): `pair`, without the 2D pre-check for a pair of
   /// `prechecked`.
   PairOptions pair_options(local_index slave, local_index master) const {
