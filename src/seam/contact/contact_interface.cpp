@@ -202,6 +202,7 @@ void ContactInterface::hold_slave_facets(const mesh::Region& region) {
 
 void ContactInterface::hold_slave_facets(meshtying::InterfaceSide side) {
   SEAM_ASSERT(!self_);
+  forget_prechecked_pairs(); // side-local facet ids of the side dropped
   // The normals of the nodes held before and after are kept (read until the next place()).
   const auto d = static_cast<std::size_t>(dim());
   std::vector<std::pair<std::int32_t, std::size_t>> before(slave_.mesh_nodes.size());
@@ -539,6 +540,51 @@ void ContactInterface::index_pairs() {
   for (const auto& p : pairs_) ++pair_offsets_[static_cast<std::size_t>(p.slave) + 1];
   for (std::size_t f = 0; f < static_cast<std::size_t>(slave_.n_facets()); ++f)
     pair_offsets_[f + 1] += pair_offsets_[f];
+  index_prechecked();
+}
+
+void ContactInterface::keep_prechecked_pairs() {
+  if (rigid_ || dim() != 2) return;
+  const mortar::FacetSet slaves = slave_set();
+  const mortar::FacetSet masters = integration_master().facet_set();
+  // The chord from end node 0 to end node 1 (line2 and line3): the pre-check's centre normals
+  // are the chords turned by 90 degrees, so their dot product is that of the unit chords.
+  const auto chord = [](const mortar::FacetSet& set, local_index f) {
+    const auto nodes = set.facet_nodes(f);
+    const auto a = static_cast<std::size_t>(nodes[0]) * 2,
+               b = static_cast<std::size_t>(nodes[1]) * 2;
+    return Eigen::Vector2d(set.coordinates[b] - set.coordinates[a],
+                           set.coordinates[b + 1] - set.coordinates[a + 1])
+        .normalized();
+  };
+  const std::size_t kept = prechecked_.size();
+  for (const auto f : owned_)
+    for (const auto& p : pairs_of(f)) {
+      const std::pair key(p.slave, p.master);
+      if (std::binary_search(prechecked_.begin(), prechecked_.begin() + kept, key)) continue;
+      if (chord(slaves, slave_index(p.slave)).dot(chord(masters, integration_facet(p.master))) <
+          options_.pair.max_normal_alignment_2d)
+        prechecked_.push_back(key);
+    }
+  if (prechecked_.size() == kept) return;
+  std::sort(prechecked_.begin(), prechecked_.end());
+  prechecked_.erase(std::unique(prechecked_.begin(), prechecked_.end()), prechecked_.end());
+  index_prechecked();
+}
+
+void ContactInterface::forget_prechecked_pairs() {
+  prechecked_.clear();
+  options_.prechecked.clear();
+}
+
+void ContactInterface::index_prechecked() {
+  options_.prechecked.clear();
+  if (prechecked_.empty()) return;
+  for (const auto f : owned_)
+    for (const auto& p : pairs_of(f))
+      if (std::binary_search(prechecked_.begin(), prechecked_.end(), std::pair(p.slave, p.master)))
+        options_.prechecked.emplace_back(slave_index(p.slave), integration_facet(p.master));
+  std::sort(options_.prechecked.begin(), options_.prechecked.end());
 }
 
 void ContactInterface::evaluate(NodalValues& out) const {

@@ -280,6 +280,23 @@ public:
   /// Candidate pairs of the owned slave facets at the last update (after the facing test).
   local_index n_candidates() const { return static_cast<local_index>(pairs_.size()); }
 
+  /// 2D, two bodies and self contact: the centre-normal pre-check of a pair (n_s . n_m below
+  /// PairOptions::max_normal_alignment_2d, the facets' chords more than 95.7 degrees apart) is
+  /// decided once per step attempt. keep_prechecked_pairs() takes the candidate pairs of the
+  /// owned slave facets that pass it at the last update (or place() and set_candidates());
+  /// from then on until forget_prechecked_pairs() they are integrated without it (evaluate,
+  /// linearize, gap_blocks), wherever their facets turn. A pair then leaves the integration
+  /// at most once in a step attempt, never back and forth between Newton iterates: a pair
+  /// whose facets' angle sat at the threshold made the weighted gaps jump between the
+  /// iterates of a period-2 cycle (examples/rings, 200 rings at t = 0.77;
+  /// docs/contact_dynamics.md, "Pre-check kept within a step").
+  void keep_prechecked_pairs();
+  void forget_prechecked_pairs();
+  /// The pairs (side-local slave facet, master facet) kept so far in the step attempt.
+  std::span<const std::pair<local_index, local_index>> prechecked_pairs() const {
+    return prechecked_;
+  }
+
   /// The slave facets evaluate() and linearize() integrate (sorted, unique; all by default).
   void set_owned_facets(std::vector<local_index> facets);
   /// Two bodies or a rigid obstacle, a slave side held in part: the slave side becomes the facets
@@ -371,6 +388,9 @@ private:
   void take_self_pairs(std::span<const mortar::CandidatePair> all);
   /// pairs_ (of the owned slave facets) sorted, their offsets per slave facet.
   void index_pairs();
+  /// options_.prechecked: the kept pairs among pairs_, in the indices of the facet sets
+  /// integrated (slave_set(), integration_master()).
+  void index_prechecked();
   void evaluate_rigid(NodalValues& out) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out, std::span<const double> step_start) const;
@@ -433,7 +453,9 @@ private:
   SlavePatch patch_;                         ///< self contact: the current slave facets
   std::vector<mortar::CandidatePair> pairs_; ///< sorted by slave facet
   std::vector<local_index> pair_offsets_;    ///< per slave facet into pairs_
-  std::vector<local_index> owned_;           ///< slave facets this part evaluates
+  /// keep_prechecked_pairs: side-local (slave facet, master facet), sorted.
+  std::vector<std::pair<local_index, local_index>> prechecked_;
+  std::vector<local_index> owned_; ///< slave facets this part evaluates
   // The search runs on the owned slave facets only (their offsets and nodes), with the
   // inflation of the whole interface so that every part finds the pairs a whole search would.
   std::vector<local_index> owned_offsets_, owned_nodes_;

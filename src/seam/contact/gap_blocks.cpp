@@ -17,6 +17,7 @@
 #include "seam/common/dual_number.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/hyper_dual.hpp"
+#include "seam/contact/gap_pair_log.hpp"
 #include "seam/contact/gap_vectors.hpp"
 #include "seam/contact/rigid_obstacle_gaps.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
@@ -29,6 +30,7 @@ namespace seam::contact {
 
 namespace detail {
 long gap_rejections[3] = {0, 0, 0};
+std::vector<GapPairRecord>* gap_pair_log = nullptr;
 } // namespace detail
 
 namespace {
@@ -548,19 +550,38 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
   };
   for (const auto f : owned_)
     for (const auto& pair : pairs_of(f)) {
-      const auto sn = slaves.facet_nodes(slave_index(pair.slave));
-      const auto mn = masters.facet_nodes(integration_facet(pair.master));
+      const local_index sf = slave_index(pair.slave), mf = integration_facet(pair.master);
+      const auto sn = slaves.facet_nodes(sf);
+      const auto mn = masters.facet_nodes(mf);
+      const mortar::PairOptions pair_options = options_.pair_options(sf, mf);
       GapBlock b;
       if (sn.size() == 3) {
         PairInput3 in;
         gather.template operator()<3>(sn, mn, in, b);
         block_gaps<20, 3>(order_of(b.slave), b,
-                          [&in, this](auto& g) { pair_gaps_line3(in, options_.pair, g); });
+                          [&in, &pair_options](auto& g) { pair_gaps_line3(in, pair_options, g); });
       } else {
         PairInput in;
         gather.template operator()<2>(sn, mn, in, b);
+        const long r0 = detail::gap_rejections[0], r1 = detail::gap_rejections[1];
         block_gaps<12, 2>(order_of(b.slave), b,
-                          [&in, this](auto& g) { pair_gaps(in, options_.pair, g); });
+                          [&in, &pair_options](auto& g) { pair_gaps(in, pair_options, g); });
+        if (detail::gap_pair_log) {
+          GapPairRecord r;
+          for (int k = 0; k < 2; ++k) {
+            r.slave_nodes[k] = b.dofs[static_cast<std::size_t>(k)] / 2;
+            r.master_nodes[k] = b.dofs[static_cast<std::size_t>(PairInput::slave_slots + k)] / 2;
+            r.gap[k] = b.gap[static_cast<std::size_t>(k)];
+          }
+          r.status = detail::gap_rejections[0] != r0 ? 1 : detail::gap_rejections[1] != r1 ? 2 : 0;
+          r.kept = !options_.prechecked.empty() &&
+                   pair_options.max_normal_alignment_2d != options_.pair.max_normal_alignment_2d;
+          const Eigen::Vector2d ts = (in.x[1] - in.x[0]).normalized();
+          const Eigen::Vector2d tm =
+              (in.x[PairInput::slave_slots + 1] - in.x[PairInput::slave_slots]).normalized();
+          r.alignment = ts.dot(tm);
+          detail::gap_pair_log->push_back(r);
+        }
       }
       if (empty_block(b)) continue;
       out.push_back(std::move(b));

@@ -54,7 +54,7 @@ void assemble(const FacetSet& slave, const FacetSet& master,
       if (bound_mask != 0) R = boundary_transformation(sf.facet.n_nodes, bound_mask);
     }
     const Facet<Dim> mf = gather_facet<Dim>(master, pair.master);
-    PairContribution c = integrate_pair(sf, mf, options.pair);
+    PairContribution c = integrate_pair(sf, mf, options.pair_options(pair.slave, pair.master));
     ops.n_projection_failures += c.n_projection_failures;
     if (c.n_cells == 0) continue;
     if (bound_mask != 0) {

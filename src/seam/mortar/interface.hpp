@@ -4,7 +4,10 @@
 // into node-indexed triplets. No PETSc: the strategy layer (mesh tying, contact) moves the
 // triplets into distributed matrices, expanding each scalar entry by the ndim identity block
 // of the seed paper, eqs. (15)-(16).
+#include <algorithm>
+#include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "seam/mortar/pair_integration.hpp"
@@ -26,6 +29,22 @@ struct CandidatePair {
 struct MortarOptions {
   Multiplier multiplier = Multiplier::dual;
   PairOptions pair;
+  /// 2D: the pairs (slave facet, master facet of the facet sets integrated; sorted) that are
+  /// integrated without the centre-normal pre-check (PairOptions::max_normal_alignment_2d):
+  /// contact keeps a pair that passed it once in a step attempt (contact::ContactInterface::
+  /// keep_prechecked_pairs), so that the pair does not leave and enter from one Newton
+  /// iterate to the next.
+  std::vector<std::pair<local_index, local_index>> prechecked = {};
+  /// The options of pair (slave, master): `pair`, without the 2D pre-check for a pair of
+  /// `prechecked`.
+  PairOptions pair_options(local_index slave, local_index master) const {
+    if (prechecked.empty() ||
+        !std::binary_search(prechecked.begin(), prechecked.end(), std::pair(slave, master)))
+      return pair;
+    PairOptions o = pair;
+    o.max_normal_alignment_2d = std::numeric_limits<double>::infinity();
+    return o;
+  }
 };
 
 struct MortarOperators {

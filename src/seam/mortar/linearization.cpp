@@ -348,7 +348,8 @@ void linearize_slave_facet_impl(const FacetSet& slave, const FacetSet& master,
     if constexpr (Dim == 3) {
       ad::linearize_pair_3d(sf, mf, options.pair, dual ? &coefficients : nullptr, out.pair);
     } else {
-      linearize_pair_2d(sf, mf, options.pair, dual ? &coefficients : nullptr, out.pair);
+      linearize_pair_2d(sf, mf, options.pair_options(slave_facet, f),
+                        dual ? &coefficients : nullptr, out.pair);
     }
     const PairLinearization& p = out.pair;
     out.n_projection_failures += p.values.n_projection_failures;

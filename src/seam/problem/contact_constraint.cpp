@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <string>
 #include <string_view>
 
 namespace seam::problem {
@@ -501,6 +502,25 @@ ContactConstraint::NodeFrame ContactConstraint::frame(const Side& s, std::size_t
   return f;
 }
 
+namespace {
+
+/// Whether a pair's 2D pre-check is decided once per step attempt
+/// (ContactInterface::keep_prechecked_pairs): yes unless SEAM_PRECHECK_ANEW=1 is in the
+/// environment (a diagnostic: decided at every evaluation, as before; docs/input.md §6.6).
+bool prechecks_kept() {
+  static const bool kept = [] {
+    const char* text = std::getenv("SEAM_PRECHECK_ANEW");
+    if (text == nullptr || *text == '\0') return true;
+    const std::string value = text;
+    SEAM_CHECK(value == "0" || value == "1", InputError, "SEAM_PRECHECK_ANEW='", value,
+               "': expected 0 or 1 (1: the contact pairs' pre-check decided at every evaluation)");
+    return value == "0";
+  }();
+  return kept;
+}
+
+} // namespace
+
 int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, PhaseTimers& timers,
                                 bool retrial) {
   const auto& comm = disc_.comm();
@@ -518,6 +538,7 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       s.pairs_held = false;
       // Self contact: the roles of this search are kept through the step's iterations.
       if (s.search) s.search->start_step();
+      s.itf.forget_prechecked_pairs();
     } else if (retrial && !s.pairs_held && !s.pair_history.empty()) {
       s.pair_history.pop_back(); // the shortened correction's search stands for the iteration
     }
@@ -527,6 +548,7 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     {
       ScopedTimer timer(timers, "search");
       search(s, u_mesh, t);
+      if (prechecks_kept()) s.itf.keep_prechecked_pairs();
     }
     if (!s.distributed) {
       // The first distribution needs the candidate pairs of the slave elements each rank
@@ -537,6 +559,7 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
       u_mesh = u_mesh_;
       ScopedTimer timer(timers, "search");
       search(s, u_mesh, t);
+      if (prechecks_kept()) s.itf.keep_prechecked_pairs();
     }
     // New ghosts (an exchange) come with their positions; their nodes' displacements are read
     // from here on (friction reads the master nodes of M).

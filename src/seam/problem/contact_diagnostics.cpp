@@ -4,9 +4,12 @@
 #include "seam/problem/contact_constraint.hpp"
 #include "seam/problem/diagnostics.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string_view>
+#include <tuple>
 
 namespace seam::problem {
 
@@ -15,9 +18,49 @@ int contact_trace_level() {
     const char* v = std::getenv("SEAM_CONTACT_TRACE");
     if (v == nullptr) return 0;
     const std::string_view text(v);
-    return text == "1" ? 1 : text == "2" ? 2 : 0;
+    return text == "1" ? 1 : text == "2" ? 2 : text == "3" ? 3 : 0;
   }();
   return level;
+}
+
+void trace_gap_pairs(const std::string& name, std::vector<contact::GapPairRecord>& records) {
+  static std::map<std::string, std::vector<contact::GapPairRecord>> last;
+  const auto key = [](const contact::GapPairRecord& r) {
+    return std::tie(r.slave_nodes[0], r.slave_nodes[1], r.master_nodes[0], r.master_nodes[1]);
+  };
+  const auto less = [&key](const auto& a, const auto& b) { return key(a) < key(b); };
+  std::sort(records.begin(), records.end(), less);
+  auto& before = last[name];
+  const char* status[] = {"block", "pre-check", "no overlap"};
+  const auto print = [&](const char* what, const contact::GapPairRecord& r,
+                         const contact::GapPairRecord* old) {
+    std::printf("  %s pair %s: slave %lld-%lld master %lld-%lld: %s%s, n_s.n_m %.6f, g~ "
+                "%.4e %.4e",
+                name.c_str(), what, static_cast<long long>(r.slave_nodes[0]),
+                static_cast<long long>(r.slave_nodes[1]), static_cast<long long>(r.master_nodes[0]),
+                static_cast<long long>(r.master_nodes[1]), status[r.status],
+                r.kept ? " (kept)" : "", r.alignment, r.gap[0], r.gap[1]);
+    if (old)
+      std::printf("; was %s%s, n_s.n_m %.6f, g~ %.4e %.4e", status[old->status],
+                  old->kept ? " (kept)" : "", old->alignment, old->gap[0], old->gap[1]);
+    std::printf("\n");
+  };
+  std::size_t i = 0, j = 0;
+  while (i < records.size() || j < before.size()) {
+    if (j == before.size() || (i < records.size() && less(records[i], before[j]))) {
+      if (records[i].status == 0) print("new", records[i], nullptr);
+      ++i;
+    } else if (i == records.size() || less(before[j], records[i])) {
+      if (before[j].status == 0) print("gone", before[j], nullptr);
+      ++j;
+    } else {
+      if (records[i].status != before[j].status) print("changed", records[i], &before[j]);
+      ++i;
+      ++j;
+    }
+  }
+  std::fflush(stdout);
+  before = records;
 }
 
 std::vector<std::string> ContactConstraint::trace() const {

@@ -241,7 +241,11 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   s.itf.gap_blocks(u0, contact::GapOrder::value, start);
   const long r0 = contact::detail::gap_rejections[0], r1 = contact::detail::gap_rejections[1],
              r2 = contact::detail::gap_rejections[2];
+  std::vector<contact::GapPairRecord> pair_log;
+  if (contact_trace_level() == 3) contact::detail::gap_pair_log = &pair_log;
   s.itf.gap_blocks(u, contact::GapOrder::gradient, end);
+  contact::detail::gap_pair_log = nullptr;
+  if (contact_trace_level() == 3) trace_gap_pairs(s.itf.name(), pair_log);
   s.em_rejections[0] = contact::detail::gap_rejections[0] - r0;
   s.em_rejections[1] = contact::detail::gap_rejections[1] - r1;
   s.em_rejections[2] = contact::detail::gap_rejections[2] - r2;
