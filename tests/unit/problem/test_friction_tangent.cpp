@@ -770,13 +770,15 @@ Case energy_momentum_obstacle_friction_case(Case c) {
 /// press and drag of 0.002 on a circle of R = 1 gives 4.8e-9 / 1.4e-7 (displacement /
 /// constraint rows), of R = 8 1.3e-7 / 2.0e-6; with friction the error falls with R (circle,
 /// dual: 1.8e-7, 3.7e-8, 1.1e-8, 3.4e-10 in the displacement rows at R = 4, 1, 0.5, 0.25),
-/// which a missing curvature term would not do. Small radii, and 1e-8 / 1e-7 for them.
+/// which a missing curvature term would not do. Small radii, and 1e-8 / 2e-7 for them (the
+/// 3D cylinder's constraint rows gave 6.3e-8 on 1 rank, 8.2e-8 and 1.05e-7 in two runs on 3: the
+/// sums in another order).
 void expect_mixed_round(const Errors& e) {
   EXPECT_GT(e.inactive, 0);
   EXPECT_GT(e.stick, 0);
   EXPECT_GT(e.slip, 0);
   EXPECT_LT(e.displacement, 1e-8);
-  EXPECT_LT(e.constraint, 1e-7);
+  EXPECT_LT(e.constraint, 2e-7);
 }
 
 TEST(EnergyMomentumTangent, FrictionRigidPlane2dLine2Dual) {
