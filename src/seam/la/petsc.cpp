@@ -769,8 +769,8 @@ LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
     // GAMG's Galerkin products P^T A P on several ranks: PETSc's default algorithm for these
     // sizes keeps more intermediate data with the product than "allatonce" (the same product,
     // as the condensation T^T K T uses). On the tied blocks at 68 799 dofs, np 4, the largest
-    // rank's peak fell from 214 to 184 MB (docs/parallel.md, "Memory per rank at np 4").
-    // -matptap_via on the command line overrides it.
+    // rank's peak fell from 214 to 186 MB (docs/parallel.md, "Memory per rank at np 4 against
+    // np 1"). -matptap_via on the command line overrides it.
     int size = 1;
     MPI_Comm_size(comm, &size);
     if (size > 1) default_option("-matptap_via", "allatonce");
