@@ -1166,6 +1166,53 @@ def test_two_blocks_self_search_np3():
     H.cleanup(*_dirs)
 
 
+def check_surface_in_part(one, three, what):
+    """The surface of self contact held in part at np 3 (docs/parallel.md, "Converting the
+    contact sides", step 4): no rank holds more cells than (owned + ghost cells) * 1.1
+    (check_held_cells), no rank holds the whole surface (`contact_side_facets_held`, a
+    surface counted once, below `contact_surface_facets`, the same count as np 1), and every
+    output equals np 1 to 1e-10."""
+    check_held_cells(three, what)
+    detail = ranks_detail(three)
+    n = ranks_detail(one)[0]["contact_surface_facets"]
+    held = [r["contact_side_facets_held"] for r in detail]
+    print("   %s np 3: surface facets held per rank %s of %d"
+          % (what, " / ".join(map(str, held)), n))
+    if n <= 0 or any(r["contact_surface_facets"] != n for r in detail):
+        raise AssertionError("%s: surface sizes %s against %d at np 1"
+                             % (what, [r["contact_surface_facets"] for r in detail], n))
+    if max(held) >= n or min(held) <= 0:
+        raise AssertionError("%s: surface facets held per rank %s of %d: the surface is not "
+                             "held in part" % (what, held, n))
+    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+
+
+def test_self_contact_held_cells_np3():
+    """Self contact (`surface:`) with dual multipliers, outside energy-momentum contact: the
+    surface held in part, each rank's mesh only its own and ghost cells, the surface facets
+    it pairs beyond them read as ghosts through the directories of two-body contact, the roles
+    from the facing pairs gathered by facet id. The two blocks of test_self_contact.py as one
+    surface (static, 3 load steps) and test_self_contact.py's ring squeezed between two rigid
+    planes until its hole closes onto itself (2D, static, 30 steps) at np 1 and np 3
+    (check_surface_in_part). Before, every rank held every cell with a surface facet and the
+    whole surface."""
+    one, three = two_blocks_case(1), two_blocks_case(3)
+    check_surface_in_part(one, three, "two blocks (self contact)")
+    import test_self_contact as S
+
+    def ring(np):
+        work, out = S.T.run_case(S.RING_GEO.replace("NC", "24").replace("NR", "6"),
+                                 S.RING_YAML.replace("STEPS", "30"), np=np)
+        _dirs.extend([work, out])
+        return out
+
+    one, three = ring(1), ring(3)
+    if S.last_interface_rows(one)["inner"]["active_nodes"] <= 0:
+        raise AssertionError("ring: the hole did not close")
+    check_surface_in_part(one, three, "ring closing onto itself")
+    H.cleanup(*_dirs)
+
+
 def with_env(name, value, run):
     old = os.environ.get(name)
     os.environ[name] = value
@@ -1215,5 +1262,5 @@ if __name__ == "__main__":
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2,
-            test_contact_held_cells_np3])
+            test_contact_held_cells_np3, test_self_contact_held_cells_np3])
 

@@ -131,14 +131,17 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
   // condensed tying are set up distributed (meshtying::distributed_tying): each rank needs
   // only its own cells' facets and the master facets ghosted to it; so are the master side of
   // two-body contact held in part (master_held_in_part) and the slave side held in part
-  // (slave_held_in_part; with the independent distribution the facets a rank needs beyond
-  // its own and ghost cells reach it as facets, ContactConstraint::hold_slave_part).
+  // (slave_held_in_part, a self-contact surface too; with the independent distribution the
+  // facets a rank needs beyond its own and ghost cells reach it as facets,
+  // ContactConstraint::hold_slave_part).
   std::vector<std::string> sides;
   for (const auto& itf : config.interfaces) {
     if (meshtying::distributed_tying(itf)) continue;
-    if (!slave_held_in_part(itf, config)) sides.push_back(itf.slave.name);
+    const bool slave_part = slave_held_in_part(itf, config);
+    if (!slave_part) sides.push_back(itf.slave.name);
     if (itf.master && !master_held_in_part(itf, config)) sides.push_back(itf.master->name);
-    for (const auto& group : itf.surface) sides.push_back(group.name);
+    if (!slave_part)
+      for (const auto& group : itf.surface) sides.push_back(group.name);
   }
   std::filesystem::path file = config.mesh.file;
   const bool generated = !config.mesh.geo.empty();

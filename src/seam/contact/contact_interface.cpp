@@ -62,7 +62,7 @@ ContactInterface::ContactInterface(const io::Interface& config, const mesh::Mesh
       self_(!config.surface.empty()) {
   SEAM_ASSERT(config.type == io::InterfaceType::contact);
   const int dim = mesh.dim;
-  slave_ = self_ ? extract_surface(mesh, config.surface)
+  slave_ = self_ ? extract_surface(mesh, config.surface, slave_part)
                  : meshtying::extract_side(mesh, meshtying::side_region(mesh, config.slave));
   if (slave_.n_facets() == 0 && !slave_part)
     io::fail_at(config.slave.mark, "the slave region '" + config.slave.name + "' has no facets");
@@ -201,7 +201,6 @@ void ContactInterface::hold_slave_facets(const mesh::Region& region) {
 }
 
 void ContactInterface::hold_slave_facets(meshtying::InterfaceSide side) {
-  SEAM_ASSERT(!self_);
   forget_prechecked_pairs(); // side-local facet ids of the side dropped
   // The normals of the nodes held before and after are kept (read until the next place()).
   const auto d = static_cast<std::size_t>(dim());
@@ -218,6 +217,12 @@ void ContactInterface::hold_slave_facets(meshtying::InterfaceSide side) {
   }
   slave_reference_ = side.coordinates;
   slave_ = std::move(side);
+  if (self_) {
+    // The surface held in part is both sides; the slave patch follows the next pairs.
+    master_ = slave_;
+    master_mesh_nodes_ = slave_.mesh_nodes;
+    patch_ = {};
+  }
   slave_adjacency_ = mortar::node_facets(slave_.facet_set());
   transformation_ =
       mortar::assemble_mortar_operators(slave_.facet_set(), master_.facet_set(), {}, options_).T;
@@ -370,6 +375,11 @@ void ContactInterface::refresh_master_coordinates() {
       x[i * dim + c] = source[static_cast<std::size_t>(ghost_side_nodes_[i]) * dim + c];
 }
 
+void ContactInterface::set_master_coordinates(std::span<const double> coords) {
+  SEAM_ASSERT(ghosted_ && coords.size() == ghost_master_.coordinates.size());
+  ghost_master_.coordinates.assign(coords.begin(), coords.end());
+}
+
 local_index ContactInterface::integration_facet(local_index f) const {
   if (!ghosted_) return f;
   const auto it = std::lower_bound(ghost_ids_.begin(), ghost_ids_.end(), std::int64_t{f});
@@ -392,9 +402,14 @@ void ContactInterface::place(std::span<const double> u, double t) {
     normals_ = averaged_normals(slave_, all_normals_);
     return;
   }
+  // Self contact: the surface is both sides (held in part, it may have nodes beyond the mesh);
+  // the normals of the current slave patch are known after the search.
+  if (self_) {
+    master_.coordinates = slave_.coordinates;
+    return;
+  }
   master_.update_coordinates(*mesh_, u);
-  // Self contact: the normals of the current slave patch, known after the search.
-  if (!self_) normals_ = averaged_normals(slave_, all_normals_);
+  normals_ = averaged_normals(slave_, all_normals_);
 }
 
 void ContactInterface::set_normal_nodes(std::vector<local_index> nodes) {
@@ -481,8 +496,12 @@ void ContactInterface::set_candidates(std::span<const mortar::CandidatePair> pai
 void ContactInterface::take_self_pairs(std::span<const mortar::CandidatePair> all) {
   // Each part keeps the pairs of its own slave facets; the slave patch and its normals are
   // those of all pairs.
+  // (A pair whose master facet is not among the ghosts, master < 0, only shapes the patch:
+  // the pairs of a surface held in part handed in after a redistribution, before the next
+  // search.)
   for (const auto& p : all)
-    if (std::binary_search(owned_.begin(), owned_.end(), p.slave)) pairs_.push_back(p);
+    if (p.master >= 0 && std::binary_search(owned_.begin(), owned_.end(), p.slave))
+      pairs_.push_back(p);
   build_slave_patch(slave_, all, patch_);
   normals_ = averaged_normals(slave_, all_normals_);
 }

@@ -227,6 +227,12 @@ public:
   /// state (place()), for an iteration that keeps the candidate pairs of an earlier search
   /// instead of searching (the search hands the ghosts with their coordinates).
   void refresh_master_coordinates();
+  /// The same for ghosts given with `mesh_nodes`: their current coordinates from the caller
+  /// (dim per ghost node, in their order).
+  void set_master_coordinates(std::span<const double> coords);
+  /// The master facets the integration reads as a side (the ghosted ones in their order, or
+  /// the whole master side).
+  const meshtying::InterfaceSide& master_read() const { return integration_master(); }
   /// Master facets and nodes the integration reads (the ghosted ones, or the whole side).
   local_index n_master_facets_read() const { return integration_master().n_facets(); }
   local_index n_master_nodes_read() const {
@@ -299,7 +305,8 @@ public:
 
   /// The slave facets evaluate() and linearize() integrate (sorted, unique; all by default).
   void set_owned_facets(std::vector<local_index> facets);
-  /// Two bodies or a rigid obstacle, a slave side held in part: the slave side becomes the facets
+  /// Two bodies, a rigid obstacle or a self-contact surface, a slave side held in part: the
+  /// slave side (the surface, both sides, of self contact) becomes the facets
   /// of `region` (a subset of the slave region's facets in the mesh, in its order), the side-local
   /// indices those of `region`. The candidate pairs, the owned facets and the normal nodes are
   /// dropped (set anew by the caller); the normals of the nodes held before and after, the

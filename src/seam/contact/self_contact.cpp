@@ -26,14 +26,15 @@ std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_i
   return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
 }
 
-mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRef> groups) {
+mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRef> groups,
+                            bool part) {
   // One region with the facets of every group, each (cell, local facet) once.
   mesh::Region all;
   all.name = groups.front().name;
   all.dim = mesh.dim - 1;
   for (const auto& group : groups) {
     const auto& region = meshtying::side_region(mesh, group);
-    if (region.n_facets() == 0)
+    if (region.n_facets() == 0 && !part)
       io::fail_at(group.mark, "the surface group '" + group.name + "' has no facets");
     all.facet_cell.insert(all.facet_cell.end(), region.facet_cell.begin(), region.facet_cell.end());
     all.facet_local.insert(all.facet_local.end(), region.facet_local.begin(),
@@ -44,8 +45,8 @@ mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRe
 }
 
 meshtying::InterfaceSide extract_surface(const mesh::Mesh& mesh,
-                                         std::span<const io::RegionRef> groups) {
-  return meshtying::extract_side(mesh, surface_region(mesh, groups));
+                                         std::span<const io::RegionRef> groups, bool part) {
+  return meshtying::extract_side(mesh, surface_region(mesh, groups, part));
 }
 
 search::Tree self_contact_tree(const search::FacetSurface& surface, double inflation) {

@@ -31,11 +31,13 @@ std::array<double, 3> facet_normal(const meshtying::InterfaceSide& side, local_i
 
 /// One facet region with the facets of all `groups` (a facet listed in two groups is taken
 /// once), sorted by (cell, local facet) as every facet region. Located InputError for a group
-/// without facets.
-mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRef> groups);
+/// without facets, unless `part` (the mesh is a rank's part: the caller checks the groups
+/// over all parts).
+mesh::Region surface_region(const mesh::Mesh& mesh, std::span<const io::RegionRef> groups,
+                            bool part = false);
 /// Its side: facet f of the side is facet f of the region.
 meshtying::InterfaceSide extract_surface(const mesh::Mesh& mesh,
-                                         std::span<const io::RegionRef> groups);
+                                         std::span<const io::RegionRef> groups, bool part = false);
 
 /// The self-contact search tree of `surface` (normal cones on), its volumes widened by
 /// `inflation`.

@@ -131,16 +131,32 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     // the rank's own and ghost cells until the first distribution (its mesh holds only those;
     // hold_slave_part takes the facets it is sent from there and from the directories).
     mesh::Region region;
+    const bool self = !itf.surface.empty();
+    if (slave_part && self) {
+      // A surface held in part: the facets of the rank's own and ghost cells; every group
+      // must have facets on some rank. Its facets are filed in the directories (the ghosts'
+      // nodes are found there) with either distribution.
+      for (const auto& group : itf.surface) {
+        const auto& facets = meshtying::side_region(disc.mesh(), group);
+        double own = 0.0;
+        for (const auto c : facets.facet_cell) own += disc.is_local_cell(c) ? 1.0 : 0.0;
+        if (!(disc.comm().sum(own) > 0.0))
+          io::fail_at(group.mark, "the surface group '" + group.name + "' has no facets");
+      }
+      s.surface_region = std::make_shared<const mesh::Region>(
+          contact::surface_region(disc.mesh(), itf.surface, true));
+      s.slave_region = s.surface_region.get();
+    }
     if (slave_part &&
         config.parallel.interface_distribution == io::InterfaceDistribution::independent) {
-      s.slave_region = &meshtying::side_region(disc.mesh(), itf.slave);
+      if (!self) s.slave_region = &meshtying::side_region(disc.mesh(), itf.slave);
       region = region_part(*s.slave_region, [&](std::int32_t f) {
         return !disc.interface_only_cell(s.slave_region->facet_cell[static_cast<std::size_t>(f)]);
       });
       s.itf.hold_slave_facets(region);
     } else {
-      region = itf.surface.empty() ? meshtying::side_region(disc.mesh(), itf.slave)
-                                   : contact::surface_region(disc.mesh(), itf.surface);
+      region = !self ? meshtying::side_region(disc.mesh(), itf.slave)
+                     : contact::surface_region(disc.mesh(), itf.surface, slave_part);
     }
     if (slave_part) {
       // Every part agrees on the slave side's mean edge (c_n, the skin of the ghosting): the
@@ -215,9 +231,20 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       s.distribution = std::make_unique<parallel::FacetDistribution>(disc.comm().get(), dim);
     if (s.itf.self_contact()) {
       // Self contact: each rank searches the surface facets it evaluates against the surface
-      // facets ghosted to it; it hands in those of its own cells.
+      // facets ghosted to it; it hands in those of its own cells. A surface held in part: the
+      // parts agree on the search inflation (the shortest edge of all parts, as the whole
+      // surface's) and on the quadrature.
+      s.slave_facets = static_cast<int>(disc.comm().sum(static_cast<double>(s.bulk_facets.size())));
+      if (slave_part) {
+        const double huge = std::numeric_limits<double>::max();
+        const double part = search::min_edge_length(s.itf.slave().surface());
+        const double edge = disc.comm().min(part > 0.0 ? part : huge);
+        s.itf.set_search_edge(edge < huge ? edge : 0.0);
+        s.itf.set_cell_quadrature_degree(
+            static_cast<int>(disc.comm().max(static_cast<double>(s.itf.cell_quadrature_degree()))));
+      }
       s.search = std::make_unique<ContactSearch>(disc.comm().get(), s.itf, s.bulk_facets,
-                                                 s.slave_ids, s.slave_ids);
+                                                 s.slave_ids, s.slave_ids, slave_part);
       s.itf.set_owned_facets(s.bulk_facets);
     } else if (!s.itf.rigid()) {
       // Two bodies: each rank searches the slave facets it evaluates against the master
@@ -328,8 +355,8 @@ void ContactConstraint::collect_interface_nodes() {
     // The mesh nodes only (a slave side held in part may hold outside nodes).
     for (const auto node : s.itf.slave().mesh_nodes)
       if (node < n_mesh) interface_nodes_.push_back(node);
-    const auto master = s.itf.master_nodes();
-    interface_nodes_.insert(interface_nodes_.end(), master.begin(), master.end());
+    for (const auto node : s.itf.master_nodes())
+      if (node < n_mesh) interface_nodes_.push_back(node);
   }
   std::sort(interface_nodes_.begin(), interface_nodes_.end());
   interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
@@ -666,23 +693,38 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
     return;
   }
   s.itf.place(u, t);
+  const bool self_in_part = s.slave_in_part && s.itf.self_contact();
+  std::vector<double> positions;
   if (s.pairs_held) {
-    s.itf.refresh_master_coordinates(); // no search: the ghosts' positions are not handed
+    // No search: the ghosts' positions are not handed.
+    if (self_in_part) {
+      node_positions(s.ghost_nodes, positions);
+      s.itf.set_master_coordinates(positions);
+    } else {
+      s.itf.refresh_master_coordinates();
+    }
     s.itf.set_candidates(s.held_pairs);
     return;
   }
-  if (s.master_in_part) {
+  if (self_in_part) {
+    // As a master side held in part: the ghosts' nodes are mesh or outside nodes.
+    node_positions(s.ghost_nodes, positions);
+    s.search->find(s.itf, positions, [&](std::span<const std::int64_t> ids) {
+      map_nodes(ids, s.ghost_nodes);
+      return std::span<const std::int32_t>(s.ghost_nodes);
+    });
+  } else if (s.master_in_part) {
     // The ghosts' nodes need not be nodes of this part: their positions (for reused ghosts)
     // are their reference coordinates plus the displacement read, and the mortar entries
     // name them by mesh node or outside node.
-    std::vector<double> positions;
     node_positions(s.ghost_nodes, positions);
     s.search->find(s.itf, positions);
     map_nodes(s.search->master_ghosts().node_ids, s.ghost_nodes);
     s.search->hand_in_part(s.itf, s.ghost_nodes);
     return;
+  } else {
+    s.search->find(s.itf);
   }
-  s.search->find(s.itf);
   if (!s.search->self()) return;
   // Pair cycling guard (self contact). Whether two facets are a candidate pair is decided on
   // the facets' normals and positions with hard thresholds (normal cones, facing test), so the
@@ -702,15 +744,12 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
     return v != nullptr && std::string_view(v) == "1";
   }();
   if (hold_for_tests && !history.empty()) {
-    s.held_pairs.assign(current.begin(), current.end());
+    s.search->to_interface(current, s.held_pairs);
     s.pairs_held = true;
     return;
   }
-  const auto same = [](std::span<const mortar::CandidatePair> a,
-                       std::span<const mortar::CandidatePair> b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](auto& x, auto& y) {
-             return x.slave == y.slave && x.master == y.master;
-           });
+  const auto same = [](std::span<const FacetIdPair> a, std::span<const FacetIdPair> b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
   };
   const std::size_t n = history.size();
   for (std::size_t k = 2; k <= std::min(ContactSearch::max_pair_period, n); ++k) {
@@ -719,8 +758,9 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
     for (std::size_t i = n - k + 1; i < n; ++i)
       if (history[i].size() > (largest == n ? current.size() : history[largest].size()))
         largest = i;
-    s.held_pairs = largest == n ? std::vector<mortar::CandidatePair>(current.begin(), current.end())
-                                : history[largest];
+    // In the interface's indices (the ghosts are those of this search until the step ends).
+    s.search->to_interface(largest == n ? current : std::span<const FacetIdPair>(history[largest]),
+                           s.held_pairs);
     s.pairs_held = true;
     if (largest != n) s.itf.set_candidates(s.held_pairs);
     return;
@@ -1477,6 +1517,13 @@ void ContactConstraint::evaluate_facets(Side& s, std::vector<std::int64_t> ids,
   std::vector<local_index> facets(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) facets[i] = s.slave_ids.facet(ids[i]);
   s.itf.set_owned_facets(std::move(facets));
+  if (s.slave_region && s.itf.self_contact()) {
+    // The slave patch of the last search's pairs over the new part: the output rows of the
+    // step read its normals before the next search.
+    std::vector<mortar::CandidatePair> pairs;
+    s.search->to_interface(s.search->self_pairs(), pairs);
+    s.itf.set_candidates(pairs);
+  }
   s.distributed = true;
 }
 
@@ -1541,8 +1588,12 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
   // Before the first distribution the facets of its own and ghost cells (the bulk share it
-  // starts from).
+  // starts from); on a self-contact surface always those of its own cells (it hands them in
+  // to the search).
   if (own_cells) held.insert(held.end(), local.begin(), local.end());
+  if (s.itf.self_contact() && !own_cells)
+    for (std::size_t f = 0; f < local.size(); ++f)
+      if (disc_.is_local_cell(region.facet_cell[f])) held.push_back(local[f]);
   // Against a rigid obstacle, for each node it owns that none of the evaluated facets has, one
   // facet of its mesh that has it: first the facets all of whose nodes it owns and needs (few
   // facets cover many nodes), then one for each node still without.
@@ -1794,7 +1845,22 @@ std::vector<std::string> ContactConstraint::held_whole() const {
     const std::string reused =
         s.search ? std::string(", the ghosts reused while no node moved half the skin ") + skin
                  : std::string();
-    if (s.itf.self_contact())
+    if (s.itf.self_contact() && s.slave_in_part)
+      text = "interface " + s.itf.name() +
+             ": held in part: the surface (the facets of its own and ghost cells" +
+             (s.distribution ? " at set-up; then those of its own cells and the rings of the "
+                               "nodes it owns and of the nodes of the facets it evaluates, taken "
+                               "anew at each distribution, those beyond its mesh sent as facets"
+                             : "") +
+             ": " + n_slave + " of " + std::to_string(s.slave_facets) +
+             " surface facets, the others it pairs read as ghosts), the facing pairs of each "
+             "search by facet id (gathered for the roles, O(pairs)), the nodal arrays per held "
+             "surface node (D, g~, multipliers, active set" +
+             (s.friction ? ", friction history" : "") + "; the owners' values published)" + read +
+             "; distributed: the search (own surface facets against the surface facets "
+             "ghosted by bounding boxes" +
+             reused + ") and the mortar integration of the own slave elements";
+    else if (s.itf.self_contact())
       text += "the surface (" + n_slave +
               " facets, nodes, positions), the facing pairs of each search (gathered "
               "for the roles and the slave patch), " +
@@ -1992,7 +2058,9 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_master_ghosts = s.share.master_ghosts;
     rep.local_master_received = s.share.master_received;
     rep.local_surface_received = s.share.surface_received;
-    rep.surface_facets = s.itf.self_contact() ? static_cast<int>(s.itf.slave().n_facets()) : 0;
+    rep.surface_facets = !s.itf.self_contact() ? 0
+                         : s.slave_in_part     ? s.slave_facets
+                                               : static_cast<int>(s.itf.slave().n_facets());
     rep.local_ghost_exchanges = s.share.ghost_exchanges;
     rep.local_searches = s.share.searches;
     if (s.search && s.search->self()) {

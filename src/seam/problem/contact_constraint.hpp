@@ -294,6 +294,8 @@ private:
     /// the rank id % size keeps the slave facets of id `id` (facet_directory) and those
     /// around the node of id `id` (ring_directory) of the facets of the ranks' own cells.
     const mesh::Region* slave_region = nullptr;
+    /// A self-contact surface held in part: its region in the mesh (slave_region points here).
+    std::shared_ptr<const mesh::Region> surface_region;
     std::vector<SlaveFacet> facet_directory, ring_directory;
     /// The ids of the slave facets of this rank's own cells (sorted): the bulk share.
     std::vector<std::int64_t> own_facet_ids;
@@ -309,7 +311,7 @@ private:
     /// Self contact: the oriented pairs of the searches of the current step (newest last, at
     /// most ContactSearch::max_pair_period + 1) and the pairs held for the rest of the step
     /// once the search returned to an earlier set (pair cycling guard, see search()).
-    std::deque<std::vector<mortar::CandidatePair>> pair_history;
+    std::deque<std::vector<FacetIdPair>> pair_history;
     std::vector<mortar::CandidatePair> held_pairs;
     bool pairs_held = false;
     bool distributed = false;  ///< the first distribution is done

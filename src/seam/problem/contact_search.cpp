@@ -41,20 +41,19 @@ bool condensed_dual(const io::Interface& itf, const io::Config& config) {
   for (const auto& other : config.interfaces)
     if (other.type == io::InterfaceType::contact && other.multiplier != io::Multiplier::dual)
       return false;
-  return itf.type == io::InterfaceType::contact && itf.surface.empty() &&
-         itf.multiplier == io::Multiplier::dual &&
+  return itf.type == io::InterfaceType::contact && itf.multiplier == io::Multiplier::dual &&
          config.time.integrator != io::Integrator::energy_momentum;
 }
 
 } // namespace
 
 bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
-  return itf.master && condensed_dual(itf, config);
+  return itf.master && itf.surface.empty() && condensed_dual(itf, config);
 }
 
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
   const bool rigid = itf.rigid_plane.has_value() || itf.rigid_obstacle.has_value();
-  return (itf.master || rigid) && condensed_dual(itf, config);
+  return (itf.master || rigid || !itf.surface.empty()) && condensed_dual(itf, config);
 }
 
 local_index SideIds::facet(std::int64_t id) const {
@@ -114,8 +113,8 @@ ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
   if (itf.self_contact()) {
     ghosts_.emplace(comm, itf.search_inflation(), skin_);
     keep_roles_ = roles_kept();
-    role_in_step_.assign(slave_ids_.facets.size(), search::Role::none);
-    role_before_ = role_in_step_;
+    // The facets handed in by id: a surface held in part changes with each distribution.
+    for (const auto f : held_) held_ids_.push_back(slave_ids_.facets[static_cast<std::size_t>(f)]);
   } else {
     parallel::DistributedSearchOptions options;
     options.skin = skin_;
@@ -140,17 +139,22 @@ void ContactSearch::nodes_read(const contact::ContactInterface& itf,
                                std::vector<local_index>& out) const {
   const auto& side = itf.self_contact() ? itf.slave() : itf.master();
   const auto set = side.facet_set();
-  for (const auto f : held_)
-    for (const auto n : set.facet_nodes(f)) out.push_back(n);
+  if (itf.self_contact())
+    for (const auto id : held_ids_)
+      for (const auto n : set.facet_nodes(slave_ids_.facet(id))) out.push_back(n);
+  else
+    for (const auto f : held_)
+      for (const auto n : set.facet_nodes(f)) out.push_back(n);
   if (in_part_) return;
   const auto& ghosts = search_ ? search_->ghosts() : ghosts_->ghosts();
   const auto& ids = ghosts_ ? slave_ids_ : master_ids_;
   for (const auto id : ghosts.node_ids) out.push_back(ids.node(id));
 }
 
-void ContactSearch::find(contact::ContactInterface& itf, std::span<const double> ghost_positions) {
+void ContactSearch::find(contact::ContactInterface& itf, std::span<const double> ghost_positions,
+                         const NodeMap& mesh_nodes) {
   if (ghosts_) {
-    find_self(itf);
+    find_self(itf, ghost_positions, mesh_nodes);
     return;
   }
   const auto owned = itf.owned_facets();
@@ -159,17 +163,8 @@ void ContactSearch::find(contact::ContactInterface& itf, std::span<const double>
   meshtying::side_part(itf.master(), master_ids_.facets, master_ids_.nodes, held_, local_,
                        master_part_);
   if (in_part_) {
-    // Reused ghosts take their positions from the caller: their nodes need not be held.
-    position_ids_ = search_->ghosts().node_ids;
-    const auto dim = static_cast<std::size_t>(itf.dim());
-    SEAM_CHECK(ghost_positions.size() == position_ids_.size() * dim, InternalError,
-               "contact search: ", ghost_positions.size() / dim, " ghost positions for ",
-               position_ids_.size(), " ghost nodes");
-    static constexpr double none[3] = {0.0, 0.0, 0.0};
-    search_->find_pairs(slave_part_, master_part_,
-                        ghost_positions.empty() ? std::span<const double>(none, dim)
-                                                : ghost_positions,
-                        position_ids_);
+    const auto positions = reused_positions(itf, search_->ghosts(), ghost_positions);
+    search_->find_pairs(slave_part_, master_part_, positions, position_ids_);
     pairs_.clear();
     for (const auto& p : search_->pairs())
       pairs_.push_back({owned[static_cast<std::size_t>(p.slave)], p.master});
@@ -184,6 +179,19 @@ void ContactSearch::find(contact::ContactInterface& itf, std::span<const double>
   // The integration reads the master facets from the ghosts, not from the side held whole.
   hand_ghosts(itf, ghosts);
   itf.set_candidates(pairs_);
+}
+
+std::span<const double> ContactSearch::reused_positions(const contact::ContactInterface& itf,
+                                                        const parallel::SurfacePart& ghosts,
+                                                        std::span<const double> positions) {
+  // Reused ghosts take their positions from the caller: their nodes need not be held.
+  position_ids_ = ghosts.node_ids;
+  const auto dim = static_cast<std::size_t>(itf.dim());
+  SEAM_CHECK(positions.size() == position_ids_.size() * dim, InternalError,
+             "contact search: ", positions.size() / dim, " ghost positions for ",
+             position_ids_.size(), " ghost nodes");
+  static constexpr double none[3] = {0.0, 0.0, 0.0};
+  return positions.empty() ? std::span<const double>(none, dim) : positions;
 }
 
 void ContactSearch::hand_in_part(contact::ContactInterface& itf,
@@ -201,40 +209,80 @@ void ContactSearch::hand_in_part(contact::ContactInterface& itf,
 
 void ContactSearch::start_step() {
   if (!ghosts_) return;
-  if (keep_roles_) roles_.assign(slave_ids_.facets.size(), search::Role::none);
-  for (std::size_t f = 0; f < role_in_step_.size(); ++f)
-    if (role_in_step_[f] != search::Role::none) {
-      role_before_[f] = role_in_step_[f];
-      role_in_step_[f] = search::Role::none;
-    }
+  roles_.clear();
+  roles_started_ = keep_roles_;
+  for (const auto& [id, role] : role_in_step_) role_before_[id] = role;
+  role_in_step_.clear();
 }
 
 void ContactSearch::count_role_changes() {
   // Per facet: bit 0 slave of a pair, bit 1 master of a pair.
-  std::vector<std::uint8_t> seen(role_in_step_.size(), 0);
-  for (const auto& p : pairs_) {
-    seen[static_cast<std::size_t>(p.slave)] |= 1;
-    seen[static_cast<std::size_t>(p.master)] |= 2;
+  std::map<std::int64_t, std::uint8_t> seen;
+  for (const auto& p : pair_ids_) {
+    seen[p.slave] |= 1;
+    seen[p.master] |= 2;
   }
-  for (std::size_t f = 0; f < seen.size(); ++f) {
-    if (seen[f] != 1 && seen[f] != 2) continue;
-    const auto role = seen[f] == 1 ? search::Role::slave : search::Role::master;
-    auto& in_step = role_in_step_[f];
-    if (in_step != search::Role::none)
-      role_changes_.within += in_step != role;
-    else if (role_before_[f] != search::Role::none)
-      role_changes_.between += role_before_[f] != role;
-    in_step = role;
+  for (const auto& [id, bits] : seen) {
+    if (bits != 1 && bits != 2) continue;
+    const auto role = bits == 1 ? search::Role::slave : search::Role::master;
+    const auto in_step = role_in_step_.find(id);
+    if (in_step != role_in_step_.end()) {
+      role_changes_.within += in_step->second != role;
+    } else {
+      const auto before = role_before_.find(id);
+      if (before != role_before_.end()) role_changes_.between += before->second != role;
+    }
+    role_in_step_[id] = role;
   }
 }
 
-void ContactSearch::find_self(contact::ContactInterface& itf) {
+void ContactSearch::to_interface(std::span<const FacetIdPair> pairs,
+                                 std::vector<mortar::CandidatePair>& out) {
+  const auto& facets = slave_ids_.facets;
+  const auto& ghosts = ghosts_->ghosts().facet_ids;
+  const auto index = [](std::span<const std::int64_t> ids, std::int64_t id) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? static_cast<local_index>(it - ids.begin())
+                                        : local_index{-1};
+  };
+  out.clear();
+  for (const auto& p : pairs) {
+    const auto slave = index(facets, p.slave);
+    if (slave < 0) continue;
+    out.push_back({slave, index(in_part_ ? std::span<const std::int64_t>(ghosts)
+                                         : std::span<const std::int64_t>(facets),
+                                p.master)});
+  }
+}
+
+void ContactSearch::find_self(contact::ContactInterface& itf, std::span<const double> positions,
+                              const NodeMap& mesh_nodes) {
   const auto& side = itf.slave();
   const auto owned = itf.owned_facets();
+  std::vector<local_index> held(held_ids_.size());
+  for (std::size_t i = 0; i < held.size(); ++i) held[i] = slave_ids_.facet(held_ids_[i]);
   meshtying::side_part(side, slave_ids_.facets, slave_ids_.nodes, owned, local_, slave_part_);
-  meshtying::side_part(side, slave_ids_.facets, slave_ids_.nodes, held_, local_, master_part_);
-  ghosts_->update(slave_part_, master_part_, side.coordinates, slave_ids_.nodes);
+  meshtying::side_part(side, slave_ids_.facets, slave_ids_.nodes, held, local_, master_part_);
+  if (in_part_) {
+    const auto reused = reused_positions(itf, ghosts_->ghosts(), positions);
+    ghosts_->update(slave_part_, master_part_, reused, position_ids_);
+  } else {
+    ghosts_->update(slave_part_, master_part_, side.coordinates, slave_ids_.nodes);
+  }
   const auto& ghosts = ghosts_->ghosts();
+  // The ghosts to the integration (a surface held in part: their nodes as mesh or outside
+  // nodes); the facing test and the axes below read the facets as the ghosts have them.
+  if (in_part_) {
+    ghost_facets_.resize(ghosts.facet_ids.size());
+    for (std::size_t f = 0; f < ghost_facets_.size(); ++f)
+      ghost_facets_[f] = static_cast<std::int64_t>(f);
+    const auto nodes = mesh_nodes(ghosts.node_ids);
+    itf.set_master_facets(ghost_facets_, ghosts.offsets, ghosts.connectivity, ghosts.node_ids,
+                          ghosts.coords, nodes);
+  } else {
+    hand_ghosts(itf, ghosts);
+  }
+  const auto& surface = itf.master_read();
   // The self pairs among this rank's facets and its ghosts; the tree is kept while the ghosts
   // are the same facets.
   std::vector<search::CandidatePair> found, mine, facing;
@@ -250,35 +298,58 @@ void ContactSearch::find_self(contact::ContactInterface& itf) {
     tree_.reset();
   }
   // Each pair once: on the rank that evaluates its lower facet (every facet of the surface is
-  // evaluated on one rank, and a facet's partners are all ghosted to that rank).
+  // evaluated on one rank, and a facet's partners are all ghosted to that rank). The pairs in
+  // ghost indices, which increase with the facet ids.
   for (const auto& p : found) {
-    const auto a = slave_ids_.facet(ghosts.facet_ids[static_cast<std::size_t>(p.slave)]);
-    const auto b = slave_ids_.facet(ghosts.facet_ids[static_cast<std::size_t>(p.master)]);
-    const auto lo = std::min(a, b);
-    if (std::binary_search(owned.begin(), owned.end(), lo)) mine.push_back({lo, std::max(a, b)});
+    const auto lo = std::min(p.slave, p.master);
+    if (std::binary_search(slave_part_.facet_ids.begin(), slave_part_.facet_ids.end(),
+                           ghosts.facet_ids[static_cast<std::size_t>(lo)]))
+      mine.push_back({lo, std::max(p.slave, p.master)});
   }
-  contact::keep_facing_pairs(side, itf.search_inflation(), mine, facing);
+  contact::keep_facing_pairs(surface, itf.search_inflation(), mine, facing);
   // The contact graph of all ranks: the roles of a group of pairs depend on the whole group.
   // Each pair comes with its facets' normal axes from the rank that found it (which reads
   // both facets; the others' positions of them may be stale).
   std::vector<contact::FacingPair> with;
-  contact::with_axes(side, facing, with);
+  contact::with_axes(surface, facing, with);
   std::vector<GlobalFacingPair> send(with.size());
   for (std::size_t i = 0; i < with.size(); ++i)
-    send[i] = {slave_ids_.facets[static_cast<std::size_t>(with[i].pair.slave)],
-               slave_ids_.facets[static_cast<std::size_t>(with[i].pair.master)], with[i].slave_axis,
+    send[i] = {ghosts.facet_ids[static_cast<std::size_t>(with[i].pair.slave)],
+               ghosts.facet_ids[static_cast<std::size_t>(with[i].pair.master)], with[i].slave_axis,
                with[i].master_axis};
   std::vector<std::int64_t> offsets;
   const auto all = parallel::allgatherv<GlobalFacingPair>(comm_, send, offsets);
+  // The roles over the facets of the pairs only (O(pairs), not O(surface)), numbered in the
+  // order of their ids, so that "the lowest facet" is the one of lowest id.
+  std::vector<std::int64_t> ids;
+  for (const auto& p : all) {
+    ids.push_back(p.slave);
+    ids.push_back(p.master);
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  const auto number = [&](std::int64_t id) { return index_of(ids, id, "paired facet"); };
   with.resize(all.size());
   for (std::size_t i = 0; i < all.size(); ++i)
-    with[i] = {{slave_ids_.facet(all[i].slave), slave_ids_.facet(all[i].master)},
-               all[i].slave_axis,
-               all[i].master_axis};
-  contact::orient_pairs(side.n_facets(), with, pairs_,
-                        keep_roles_ ? std::span<search::Role>(roles_) : std::span<search::Role>());
+    with[i] = {
+        {number(all[i].slave), number(all[i].master)}, all[i].slave_axis, all[i].master_axis};
+  std::vector<search::Role> roles;
+  if (roles_started_) {
+    roles.resize(ids.size(), search::Role::none);
+    for (std::size_t f = 0; f < ids.size(); ++f) {
+      const auto it = roles_.find(ids[f]);
+      if (it != roles_.end()) roles[f] = it->second;
+    }
+  }
+  contact::orient_pairs(static_cast<local_index>(ids.size()), with, pairs_, roles);
+  for (std::size_t f = 0; f < roles.size(); ++f)
+    if (roles[f] != search::Role::none) roles_[ids[f]] = roles[f];
+  pair_ids_.resize(pairs_.size());
+  for (std::size_t i = 0; i < pairs_.size(); ++i)
+    pair_ids_[i] = {ids[static_cast<std::size_t>(pairs_[i].slave)],
+                    ids[static_cast<std::size_t>(pairs_[i].master)]};
   count_role_changes();
-  hand_ghosts(itf, ghosts);
+  to_interface(pair_ids_, pairs_);
   itf.set_candidates(pairs_);
 }
 

@@ -12,9 +12,12 @@
 // against the surface facets ghosted to it by bounding boxes, with the self-contact tests of
 // one whole search (normal cones, no neighbouring facets, facing); a pair is kept by the rank
 // of its lower facet, so that every pair is found once. The facing pairs of all ranks are
-// gathered (the contact graph, O(pairs)) and every rank assigns the roles as one whole search
-// does (contact::orient_pairs). The roles of a step's first search are kept through the step
-// (start_step), so that a facet's role changes only between steps.
+// gathered by facet id (the contact graph, O(pairs)) and every rank assigns the roles as one
+// whole search does (contact::orient_pairs over the facets of the pairs, numbered in the order
+// of their ids). The roles of a step's first search are kept through the step (start_step), so
+// that a facet's role changes only between steps. With dual multipliers outside
+// energy-momentum contact the surface is held in part (slave_held_in_part): the ghosts' nodes
+// are then mesh or outside nodes of the rank (as for a master side held in part).
 //
 // The ghosting is reused between searches (parallel::VerletGhosts): boxes widened by a skin of
 // a fraction of the mean facet size, exchanged anew only when a surface node has moved more
@@ -22,9 +25,7 @@
 //
 // What crosses the ranks names facets and nodes by their global ids (SideIds: cell of the mesh
 // as read and local facet, node of the mesh as read), not by their index in the side, so that
-// the side a rank holds need not be whole. The interface still holds its sides whole on every
-// rank (the placement reads them, and the reused ghosts take their positions from them); what
-// this removes is every rank's search against the whole surface.
+// the side a rank holds need not be whole.
 #include "seam/contact/contact_interface.hpp"
 #include "seam/parallel/distributed_search.hpp"
 #include "seam/parallel/ghosting.hpp"
@@ -33,6 +34,8 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <vector>
@@ -46,6 +49,12 @@ struct SideIds {
   /// The side-local index of facet (node) id `id`; InternalError if the side has none.
   local_index facet(std::int64_t id) const;
   local_index node(std::int64_t id) const;
+};
+
+/// A self-contact pair by the global ids of its facets (meshtying::facet_gids).
+struct FacetIdPair {
+  std::int64_t slave = 0, master = 0;
+  friend bool operator==(const FacetIdPair&, const FacetIdPair&) = default;
 };
 
 /// Whether the master side of interface `itf` is held in part: each rank holds the master
@@ -68,8 +77,10 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 /// node. Two-body contact whose master side is held in part, and contact against a rigid
 /// plane, sphere or cylinder under the same conditions (dual multipliers, no saddle point in
 /// the run, not energy-momentum contact), with or without friction, with either distribution
-/// of the interface (`parallel: interface_distribution`); every other interface keeps its
-/// slave side whole.
+/// of the interface (`parallel: interface_distribution`); and the surface of self contact
+/// (`surface:`) under the same conditions, the rank's own surface facets handed in to the
+/// search and the surface facets it pairs beyond its part read as ghosts. Every other
+/// interface keeps its slave side whole.
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config);
 
 class ContactSearch {
@@ -88,7 +99,8 @@ public:
   /// contact) this rank hands in to the ghosting, each on one rank (e.g. those of the cells it
   /// assembles). `slave`, `master`: the global ids of the slave and the master side (of the
   /// surface twice on self contact). Switches `itf` to the external search.
-  /// `master_in_part`: the master side `itf` holds is a part (master_held_in_part).
+  /// `master_in_part`: the master side `itf` holds is a part (master_held_in_part; self
+  /// contact: the surface held in part, slave_held_in_part).
   ContactSearch(MPI_Comm comm, contact::ContactInterface& itf, std::vector<local_index> held,
                 SideIds slave, SideIds master, bool master_in_part = false);
 
@@ -97,7 +109,12 @@ public:
   /// master_ghosts() as the last find() left them (dim per node; read when the ghosts are
   /// reused), and the ghosts and pairs are handed to `itf` by hand_in_part(), the pairs'
   /// master facets being indices into master_ghosts().
-  void find(contact::ContactInterface& itf, std::span<const double> ghost_positions = {});
+  /// Self contact with the surface held in part: `mesh_nodes` maps the node ids of the ghosts
+  /// to the mesh or outside nodes of this part (collective), and the pairs' master facets are
+  /// indices into the ghosts.
+  using NodeMap = std::function<std::span<const std::int32_t>(std::span<const std::int64_t>)>;
+  void find(contact::ContactInterface& itf, std::span<const double> ghost_positions = {},
+            const NodeMap& mesh_nodes = {});
   bool master_in_part() const { return in_part_; }
   /// The slave side `itf` holds changed (ContactInterface::hold_slave_facets): its ids.
   void set_slave_ids(SideIds slave) { slave_ids_ = std::move(slave); }
@@ -139,14 +156,26 @@ public:
   };
   RoleChanges role_changes() const { return role_changes_; }
   /// Self contact: the oriented pairs of all ranks found by the last find() (the same on every
-  /// rank).
-  std::span<const mortar::CandidatePair> self_pairs() const { return pairs_; }
+  /// rank), by facet id, sorted by (slave, master).
+  std::span<const FacetIdPair> self_pairs() const { return pair_ids_; }
+  /// Self contact: `pairs` (e.g. of an earlier find() of the step) in the indices of the
+  /// interface: slave facets side-local (pairs of facets the side does not hold left out),
+  /// master facets side-local or, the surface held in part, indices into the ghosts of the
+  /// last find() (-1 for one not among them: a pair of a slave facet this rank does not
+  /// evaluate).
+  void to_interface(std::span<const FacetIdPair> pairs, std::vector<mortar::CandidatePair>& out);
   bool self() const { return ghosts_.has_value(); }
   /// Periods of the search's pair set that the pair cycling guard recognizes (2 .. 8).
   static constexpr std::size_t max_pair_period = 8;
 
 private:
-  void find_self(contact::ContactInterface& itf);
+  void find_self(contact::ContactInterface& itf, std::span<const double> positions,
+                 const NodeMap& mesh_nodes);
+  /// The positions of the last ghosts' nodes given by the caller (position_ids_ set to their
+  /// ids), for ghosts whose nodes need not be held; a placeholder when there are none.
+  std::span<const double> reused_positions(const contact::ContactInterface& itf,
+                                           const parallel::SurfacePart& ghosts,
+                                           std::span<const double> positions);
   /// Counts the role changes of the pairs of the last find_self() (role_changes()).
   void count_role_changes();
   /// The ghosts to the interface's integration, in side-local ids.
@@ -169,13 +198,16 @@ private:
   std::optional<parallel::VerletGhosts> ghosts_;
   std::optional<search::Tree> tree_;
   std::vector<global_index> tree_facets_;
-  /// Self contact: the roles kept in the current step (one per surface facet; empty before the
-  /// first start_step()), the same on every rank.
-  std::vector<search::Role> roles_;
-  bool keep_roles_ = true; ///< roles_kept()
-  /// Self contact, per surface facet: its role at the latest search of the current step
-  /// attempt that gave it one, and at the last such search before the attempt (none if none).
-  std::vector<search::Role> role_in_step_, role_before_;
+  /// Self contact: the roles kept in the current step by facet id (those of the facets that
+  /// met in the step), the same on every rank.
+  std::map<std::int64_t, search::Role> roles_;
+  bool keep_roles_ = true;     ///< roles_kept()
+  bool roles_started_ = false; ///< start_step() was called
+  /// Self contact, by facet id: its role at the latest search of the current step attempt
+  /// that gave it one, and at the last such search before the attempt (none if none).
+  std::map<std::int64_t, search::Role> role_in_step_, role_before_;
+  std::vector<FacetIdPair> pair_ids_;  ///< self contact: the oriented pairs by facet id
+  std::vector<std::int64_t> held_ids_; ///< self contact: the facets handed in, by id
   RoleChanges role_changes_;
 };
 
