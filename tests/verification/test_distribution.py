@@ -1166,25 +1166,26 @@ def test_two_blocks_self_search_np3():
     H.cleanup(*_dirs)
 
 
-def check_surface_in_part(one, three, what):
+def check_surface_in_part(one, three, what, floor=0.0):
     """The surface of self contact held in part at np 3 (docs/parallel.md, "Converting the
     contact sides", step 4): no rank holds more cells than (owned + ghost cells) * 1.1
-    (check_held_cells), no rank holds the whole surface (`contact_side_facets_held`, a
-    surface counted once, below `contact_surface_facets`, the same count as np 1), and every
-    output equals np 1 to 1e-10."""
+    (check_held_cells), no rank holds the contact sides whole (`contact_side_facets_held`,
+    a surface counted once, below np 1's, where the sides are whole; the surface's size
+    `contact_surface_facets` that of np 1), and every output equals np 1 to 1e-10."""
     check_held_cells(three, what)
     detail = ranks_detail(three)
     n = ranks_detail(one)[0]["contact_surface_facets"]
+    whole = ranks_detail(one)[0]["contact_side_facets_held"]
     held = [r["contact_side_facets_held"] for r in detail]
-    print("   %s np 3: surface facets held per rank %s of %d"
-          % (what, " / ".join(map(str, held)), n))
+    print("   %s np 3: side facets held per rank %s of %d (the surface: %d)"
+          % (what, " / ".join(map(str, held)), whole, n))
     if n <= 0 or any(r["contact_surface_facets"] != n for r in detail):
         raise AssertionError("%s: surface sizes %s against %d at np 1"
                              % (what, [r["contact_surface_facets"] for r in detail], n))
-    if max(held) >= n or min(held) <= 0:
-        raise AssertionError("%s: surface facets held per rank %s of %d: the surface is not "
-                             "held in part" % (what, held, n))
-    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    if max(held) >= whole or min(held) <= 0:
+        raise AssertionError("%s: side facets held per rank %s of %d: the surface is not "
+                             "held in part" % (what, held, whole))
+    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1", floor)
 
 
 def test_self_contact_held_cells_np3():
@@ -1209,7 +1210,9 @@ def test_self_contact_held_cells_np3():
     one, three = ring(1), ring(3)
     if S.last_interface_rows(one)["inner"]["active_nodes"] <= 0:
         raise AssertionError("ring: the hole did not close")
-    check_surface_in_part(one, three, "ring closing onto itself")
+    # The pinned points' reactions are zero up to the Newton tolerance (1e-8 of the plane
+    # force, 35): compared against a floor of 1 (force and displacement units alike).
+    check_surface_in_part(one, three, "ring closing onto itself", floor=1.0)
     H.cleanup(*_dirs)
 
 
