@@ -9,7 +9,10 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -48,6 +51,24 @@ struct TiedInterface {
 /// The boundary region (dimension mesh.dim - 1) an interface side names; a located InputError
 /// if the mesh has none.
 const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref);
+
+/// The nodes a slave and a master side share, each counted by its owner (who holds every facet
+/// around it, so that a node in one rank's part only is found).
+struct SharedNodes {
+  std::int64_t count = 0;    ///< over all ranks
+  std::int64_t first = -1;   ///< the lowest id of a shared node (node id of the output)
+  std::array<double, 3> x{}; ///< its coordinates
+  /// "share N node(s) (the first: node I at (x, y[, z]))", the same on every rank.
+  std::string describe(int dim) const;
+};
+
+/// Collective over `comm` (MPI_COMM_SELF for sides held whole). `slave` and `master`: the
+/// sides' mesh nodes (sorted); `owned(n)`: this rank owns mesh node n; `id(n)`: its id in the
+/// mesh as read.
+SharedNodes shared_nodes(MPI_Comm comm, const mesh::Mesh& mesh, std::span<const std::int32_t> slave,
+                         std::span<const std::int32_t> master,
+                         const std::function<bool(std::int32_t)>& owned,
+                         const std::function<std::int64_t(std::int32_t)>& id);
 
 /// Sets up every mesh-tying interface of the input: extracts both sides, searches candidate
 /// pairs (k-DOP trees), integrates D and M, relocates the slave nodes of the mesh so that the

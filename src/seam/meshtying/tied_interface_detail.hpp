@@ -15,7 +15,7 @@ mortar::MortarOptions mortar_options(const io::Interface& itf, const InterfaceSi
 /// One interface with both sides whole in `mesh` (replicated form).
 TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, mesh::Mesh& mesh,
                           PhaseTimers& timers, io::InterfaceType type);
-[[noreturn]] void fail_shared_nodes(const io::Interface& itf, std::int64_t n);
+[[noreturn]] void fail_shared_nodes(const io::Interface& itf, const SharedNodes& shared, int dim);
 [[noreturn]] void fail_no_overlap(const io::Interface& itf);
 
 } // namespace seam::meshtying::detail
