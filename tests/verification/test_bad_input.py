@@ -845,6 +845,18 @@ def test_contact_side_of_another_dimension():
                            "an interface side needs a region of dimension 1"], name)
 
 
+def test_tying_sides_share_a_node():
+    """Mesh tying: distributed (condensed) and whole on every rank (saddle point), the node
+    named by its id in the mesh as read on every rank."""
+    for extra in ("", ", multiplier: standard, strategy: saddle_point"):
+        text = (SIDES_YAML % ("slave: upper_bottom, master: master_overlap" + extra)).replace(
+            "type: contact", "type: mesh_tying")
+        expect_input_error(text, ["interfaces[0]", "share 1 node (the first: node ", " at (1, 1))",
+                                  "mesh tying couples two separate meshes"],
+                           at=position(text, "name: contact", "{name"),
+                           files=[("blocks.msh", sides_msh())], nps=(1, 3), timeout=60)
+
+
 def test_tying_slave_node_tied_twice():
     """Two condensed interfaces with the same slave side: each node's owner finds it tied
     twice (only a run sets up the condensation)."""
@@ -912,5 +924,5 @@ if __name__ == "__main__":
         test_solver_gives_up_exit_2_on_3_ranks,
         test_contact_sides_share_a_node, test_contact_slave_group_without_facets,
         test_contact_master_group_without_facets, test_contact_side_of_another_dimension,
-        test_tying_slave_node_tied_twice,
+        test_tying_sides_share_a_node, test_tying_slave_node_tied_twice,
     ])

@@ -349,7 +349,7 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Dist
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::mesh_tying) continue;
     if (!distributed_tying(itf)) {
-      out.push_back(detail::setup_whole(config, itf, part.mesh, timers, itf.type));
+      out.push_back(detail::setup_whole(config, itf, part.mesh, timers, itf.type, part.node_gid));
       owned_master_nodes.emplace_back();
       continue;
     }

@@ -61,7 +61,8 @@ mortar::MortarOptions mortar_options(const io::Interface& itf, const InterfaceSi
 }
 
 TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, mesh::Mesh& mesh,
-                          PhaseTimers& timers, io::InterfaceType type) {
+                          PhaseTimers& timers, io::InterfaceType type,
+                          std::span<const std::int64_t> node_gid) {
   TiedInterface t;
   t.name = itf.name;
   t.multiplier = itf.multiplier;
@@ -74,7 +75,10 @@ TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, me
   // Both sides whole on every rank: each rank finds the same nodes.
   const auto shared = shared_nodes(
       MPI_COMM_SELF, mesh, t.slave.mesh_nodes, t.master.mesh_nodes,
-      [](std::int32_t) { return true; }, [](std::int32_t n) { return std::int64_t{n}; });
+      [](std::int32_t) { return true; },
+      [&](std::int32_t n) {
+        return node_gid.empty() ? std::int64_t{n} : node_gid[static_cast<std::size_t>(n)];
+      });
   if (shared.count > 0) fail_shared_nodes(itf, shared, mesh.dim);
 
   std::vector<mortar::CandidatePair> candidates;
@@ -181,10 +185,12 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
 }
 
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
-                                            PhaseTimers& timers, io::InterfaceType type) {
+                                            PhaseTimers& timers, io::InterfaceType type,
+                                            std::span<const std::int64_t> node_gid) {
   std::vector<TiedInterface> out;
   for (const auto& itf : config.interfaces)
-    if (itf.type == type) out.push_back(detail::setup_whole(config, itf, mesh, timers, type));
+    if (itf.type == type)
+      out.push_back(detail::setup_whole(config, itf, mesh, timers, type, node_gid));
   return out;
 }
 

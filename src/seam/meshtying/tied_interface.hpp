@@ -75,10 +75,12 @@ SharedNodes shared_nodes(MPI_Comm comm, const mesh::Mesh& mesh, std::span<const 
 /// constraint holds exactly for the reference geometry. Throws InputError (located at the
 /// interface in the YAML) for sides that share nodes or do not face each other.
 /// `type` fsi: the same for the `fsi` interfaces (fluid side = slave, structure = master),
-/// where the coupling wins over velocity conditions (no bound slave nodes).
+/// where the coupling wins over velocity conditions (no bound slave nodes). `node_gid`: the
+/// ids of `mesh`'s nodes in the mesh as read when it is a rank's part (the messages name them).
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
                                             PhaseTimers& timers,
-                                            io::InterfaceType type = io::InterfaceType::mesh_tying);
+                                            io::InterfaceType type = io::InterfaceType::mesh_tying,
+                                            std::span<const std::int64_t> node_gid = {});
 
 /// True for the mesh-tying interfaces set up distributed on a distributed mesh (condensed, hence
 /// dual): their sides need not be held whole on every rank.
