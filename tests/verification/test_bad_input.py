@@ -17,6 +17,7 @@ late in the load history, and the converged steps before that must be written an
 Representative cases also run on 3 ranks: every rank exits with the same code and the
 message appears once.
 """
+import functools
 import os
 import re
 import subprocess
@@ -148,19 +149,27 @@ def commands(yaml_name):
     return (["check", yaml_name], ["run", yaml_name, "-o", "out", "--quiet"])
 
 
-def expect_input_error(text, must, at=None, files=(), yaml_name="case.yaml", nps=(1,)):
-    """Runs `seam check` and `seam run` on `text`; both must exit with 1 and a message that
-    starts with the location (FILE:LINE:COL when `at` is given, else FILE) and contains
-    every string of `must`."""
+def expect_input_error(text, must, at=None, files=(), yaml_name="case.yaml", nps=(1,),
+                       timeout=300, run_only=False):
+    """Runs `seam check` and `seam run` on `text` (`run_only`: `seam run`, for what `seam
+    check` does not set up); both must exit with 1 and a message that starts with the location
+    (FILE:LINE:COL when `at` is given, else FILE; `at` False: no location) and contains every
+    string of `must`, the same message on every number of ranks of `nps`. A run longer than
+    `timeout` seconds (a rank left waiting in a collective) fails."""
     work = workdir(files)
     if text is not None:
         H.write_case(work, yaml_name, text)
-    where = yaml_name if at is None else "%s:%d:%d:" % (yaml_name, at[0], at[1])
+    where = yaml_name if at is None else "" if at is False else "%s:%d:%d:" % (yaml_name, *at)
+    messages = {}
     try:
         for np in nps:
-            for args in commands(yaml_name):
+            for args in commands(yaml_name)[1 if run_only else 0:]:
                 label = "seam %s (np=%d)" % (args[0], np)
-                code, out, err = H.run(args, np=np, cwd=work, check=False, timeout=300)
+                try:
+                    code, out, err = H.run(args, np=np, cwd=work, check=False, timeout=timeout)
+                except subprocess.TimeoutExpired:
+                    raise AssertionError("%s: no exit within %d s (a rank waiting for the others?)"
+                                         % (label, timeout))
                 both = out + err
                 check_clean(both, label)
                 if code != 1:
@@ -177,18 +186,27 @@ def expect_input_error(text, must, at=None, files=(), yaml_name="case.yaml", nps
                 for piece in must:
                     if piece not in message:
                         raise AssertionError("%s: message lacks %r:\n%s" % (label, piece, message))
+                line = message.splitlines()[0]
+                first = messages.setdefault(args[0], (np, line))
+                if first[1] != line:
+                    raise AssertionError("%s: message differs from np=%d:\n%s\n%s"
+                                         % (label, first[0], first[1], message))
                 if np > 1:
-                    expect_every_rank(args, np, work, 1)
+                    expect_every_rank(args, np, work, 1, timeout)
     finally:
         H.cleanup(work)
 
 
-def expect_every_rank(args, np, cwd, code):
+def expect_every_rank(args, np, cwd, code, timeout=300):
     """Runs seam under mpirun with each rank's exit code reported by a shell around it (the
     shell then exits 0 so that mpirun does not end the other ranks early)."""
     script = '"$0" "$@"; echo "seam-rank-exit $?" >&2; exit 0'
     cmd = [H.MPIEXEC, "--oversubscribe", "-np", str(np), "sh", "-c", script, H.SEAM] + list(args)
-    p = subprocess.run(cmd, cwd=cwd, env=H.mpi_env(), capture_output=True, text=True, timeout=300)
+    try:
+        p = subprocess.run(cmd, cwd=cwd, env=H.mpi_env(), capture_output=True, text=True,
+                           timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise AssertionError("seam %s (np=%d, per rank): no exit within %d s" % (args[0], np, timeout))
     codes = [int(c) for c in re.findall(r"seam-rank-exit (\d+)", p.stderr)]
     if codes != [code] * np:
         raise AssertionError("seam %s: rank exit codes %s, expected %d on each of %d ranks\n%s"
@@ -704,6 +722,153 @@ def test_contact_rigid_plane_and_master():
     expect_input_error(text, ["either 'master' or 'rigid_plane', not both"])
 
 
+# --- contact sides checked over the ranks' parts ---------------------------------------
+# Two unit squares stacked in y and meshed apart (no node in common). 'master_overlap' is the
+# lower square's top and the upper square's right side, whose end (1, 1) is the first node of
+# the upper square's bottom ('upper_bottom'): one shared node, held by the ranks around that
+# corner only (on 3 ranks a check made on each rank's part finds it on some ranks, and the
+# others wait in the next collective). 'empty' names a curve whose elements were taken out of
+# the mesh file: a boundary group without facets. With dual multipliers the sides are held in
+# part on 3 ranks, with standard multipliers whole; the slave side against the rigid circle
+# in part.
+SIDES_GEO = """\
+Geometry.AutoCoherence = 0;
+Point(1) = {0, 0, 0, 0.2}; Point(2) = {1, 0, 0, 0.2};
+Point(3) = {1, 1, 0, 0.2}; Point(4) = {0, 1, 0, 0.2};
+Point(5) = {0, 1, 0, 0.15}; Point(6) = {1, 1, 0, 0.15};
+Point(7) = {1, 2, 0, 0.15}; Point(8) = {0, 2, 0, 0.15};
+Point(9) = {0.5, 3, 0, 0.2}; Point(10) = {0.7, 3, 0, 0.2};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Line(9) = {9, 10};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Physical Surface("lower") = {1}; Physical Surface("upper") = {2};
+Physical Curve("bottom") = {1}; Physical Curve("top") = {7};
+Physical Curve("lower_top") = {3}; Physical Curve("upper_bottom") = {5};
+Physical Curve("master_overlap") = {3, 6};
+Physical Curve("empty") = {9};
+Physical Point("corner") = {1};
+"""
+
+SIDES_YAML = """\
+title: contact sides checked on 3 ranks
+dimension: 2
+mesh: {file: blocks.msh}
+materials:
+  lo: {model: linear_elastic, young: 100, poisson: 0.3}
+  up: {model: linear_elastic, young: 40, poisson: 0.3}
+bodies:
+  - {region: lower, material: lo}
+  - {region: upper, material: up}
+boundary_conditions:
+  - {region: bottom, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: top, type: dirichlet, components: [x, y], value: [0, "-0.01*t"]}
+interfaces:
+  - {name: contact, type: contact, %s}
+time: {integrator: static, end: 1, steps: 1}
+"""
+
+SIDE_CASES = {
+    "dual": "slave: %s, master: %s",
+    "standard": "slave: %s, master: %s, multiplier: standard",
+    "rigid circle": "slave: %s, rigid_sphere: {center: [0.5, 3], radius: 0.5}",
+}
+
+
+@functools.lru_cache(maxsize=None)
+def sides_msh():
+    """SIDES_GEO meshed by Gmsh (MSH 4.1, ASCII), without the elements of curve 9."""
+    work = tempfile.mkdtemp(prefix="seam_sides_")
+    try:
+        H.write_case(work, "blocks.geo", SIDES_GEO)
+        subprocess.run([os.environ.get("GMSH", "gmsh"), "-2", "-format", "msh41", "blocks.geo",
+                        "-o", "blocks.msh"], cwd=work, check=True, capture_output=True)
+        with open(os.path.join(work, "blocks.msh")) as f:
+            lines = f.read().split("\n")
+    finally:
+        H.cleanup(work)
+    at = lines.index("$Elements")
+    blocks, count, low, high = (int(v) for v in lines[at + 1].split())
+    kept, k = [], at + 2
+    while lines[k] != "$EndElements":
+        dim, tag, _, n = (int(v) for v in lines[k].split())
+        if (dim, tag) == (1, 9):
+            blocks, count = blocks - 1, count - n
+        else:
+            kept += lines[k:k + 1 + n]
+        k += 1 + n
+    if count == int(lines[at + 1].split()[1]):
+        raise AssertionError("test set-up: curve 9 has no elements in Gmsh's mesh")
+    return "\n".join(lines[:at + 1] + ["%d %d %d %d" % (blocks, count, low, high)] + kept
+                     + lines[k:])
+
+
+def expect_side_error(case, sides, must, token):
+    """The interface of SIDE_CASES[case] with `sides` fails alike on 1 and 3 ranks, within 60 s."""
+    text = SIDES_YAML % (SIDE_CASES[case] % sides)
+    expect_input_error(text, must, at=position(text, "name: contact", token),
+                       files=[("blocks.msh", sides_msh())], nps=(1, 3), timeout=60)
+
+
+def test_contact_sides_share_a_node():
+    """The shared node is found by its owner and counted once; the message names it by the
+    node id of the output and its position."""
+    for case in ("dual", "standard"):
+        expect_side_error(case, ("upper_bottom", "master_overlap"),
+                          ["interfaces[0]", "'upper_bottom'", "'master_overlap'",
+                           "share 1 node (the first: node ", " at (1, 1))",
+                           "self contact is not available"], "{name")
+
+
+def test_contact_slave_group_without_facets():
+    for case in SIDE_CASES:
+        sides = ("empty", "lower_top") if case != "rigid circle" else ("empty",)
+        expect_side_error(case, sides, ["interfaces[0].slave", "the slave region 'empty' has no "
+                                        "facets"], "empty")
+
+
+def test_contact_master_group_without_facets():
+    for case in ("dual", "standard"):
+        expect_side_error(case, ("upper_bottom", "empty"),
+                          ["interfaces[0].master", "the master region 'empty' has no facets"],
+                          "empty")
+
+
+def test_contact_side_of_another_dimension():
+    for case, sides, key, name, dim in (
+            ("dual", ("upper_bottom", "lower"), "master", "lower", 2),
+            ("standard", ("upper_bottom", "corner"), "master", "corner", 0),
+            ("rigid circle", ("upper",), "slave", "upper", 2)):
+        expect_side_error(case, sides,
+                          ["interfaces[0].%s" % key, "region '%s' has dimension %d" % (name, dim),
+                           "an interface side needs a region of dimension 1"], name)
+
+
+def test_tying_sides_share_a_node():
+    """Mesh tying: distributed (condensed) and whole on every rank (saddle point), the node
+    named by its id in the mesh as read on every rank."""
+    for extra in ("", ", multiplier: standard, strategy: saddle_point"):
+        text = (SIDES_YAML % ("slave: upper_bottom, master: master_overlap" + extra)).replace(
+            "type: contact", "type: mesh_tying")
+        expect_input_error(text, ["interfaces[0]", "share 1 node (the first: node ", " at (1, 1))",
+                                  "mesh tying couples two separate meshes"],
+                           at=position(text, "name: contact", "{name"),
+                           files=[("blocks.msh", sides_msh())], nps=(1, 3), timeout=60)
+
+
+def test_tying_slave_node_tied_twice():
+    """Two condensed interfaces with the same slave side: each node's owner finds it tied
+    twice (only a run sets up the condensation)."""
+    text = SIDES_YAML % "slave: upper_bottom, master: lower_top}\n" \
+        "  - {name: again, type: mesh_tying, slave: upper_bottom, master: lower_top"
+    text = text.replace("type: contact", "type: mesh_tying")
+    expect_input_error(text, ["interface 'again': 8 slave nodes are tied by two interfaces "
+                              "(the first: node ", "slave sides must not share nodes"], at=False,
+                       files=[("blocks.msh", sides_msh())], nps=(1, 3), timeout=60,
+                       run_only=True)
+
+
 # --- on 3 ranks ------------------------------------------------------------------------
 
 def test_bad_expression_on_3_ranks():
@@ -757,4 +922,7 @@ if __name__ == "__main__":
         test_parallel_tolerance_below_one, test_parallel_unknown_distribution,
         test_solver_gives_up_exit_2, test_bad_expression_on_3_ranks,
         test_solver_gives_up_exit_2_on_3_ranks,
+        test_contact_sides_share_a_node, test_contact_slave_group_without_facets,
+        test_contact_master_group_without_facets, test_contact_side_of_another_dimension,
+        test_tying_sides_share_a_node, test_tying_slave_node_tied_twice,
     ])

@@ -280,7 +280,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   PhaseTimers timers;
   // Every rank holds the fsi sides whole: the couplings are set up on each rank's part as on
   // the whole mesh.
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
+  const auto tied =
+      meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi, part.node_gid);
   FsiSystem sys(config, mesh, tied, comm, &part);
   const long long n_nodes = part.n_global_nodes, n_cells = part.n_global_cells;
   FsiRunInfo info;

@@ -127,16 +127,11 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   const auto master_owned = owned_facets(part, master_region, rank);
 
   // Shared nodes, each counted by its owner (who holds every facet around it).
-  {
-    std::vector<std::int32_t> shared;
-    std::set_intersection(t.slave.mesh_nodes.begin(), t.slave.mesh_nodes.end(),
-                          master_held.mesh_nodes.begin(), master_held.mesh_nodes.end(),
-                          std::back_inserter(shared));
-    std::int64_t n = 0;
-    for (auto s : shared) n += part.node_owner[static_cast<std::size_t>(s)] == rank;
-    MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT64_T, MPI_SUM, comm);
-    if (n > 0) detail::fail_shared_nodes(itf, n);
-  }
+  const auto shared = shared_nodes(
+      comm, mesh, t.slave.mesh_nodes, master_held.mesh_nodes,
+      [&](std::int32_t n) { return part.node_owner[static_cast<std::size_t>(n)] == rank; },
+      [&](std::int32_t n) { return part.node_gid[static_cast<std::size_t>(n)]; });
+  if (shared.count > 0) detail::fail_shared_nodes(itf, shared, dim);
   for (auto n : master_held.mesh_nodes)
     if (part.node_owner[static_cast<std::size_t>(n)] == rank)
       result.owned_master_nodes.push_back(n);
@@ -354,7 +349,7 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Dist
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::mesh_tying) continue;
     if (!distributed_tying(itf)) {
-      out.push_back(detail::setup_whole(config, itf, part.mesh, timers, itf.type));
+      out.push_back(detail::setup_whole(config, itf, part.mesh, timers, itf.type, part.node_gid));
       owned_master_nodes.emplace_back();
       continue;
     }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace seam::meshtying {
@@ -60,7 +61,8 @@ mortar::MortarOptions mortar_options(const io::Interface& itf, const InterfaceSi
 }
 
 TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, mesh::Mesh& mesh,
-                          PhaseTimers& timers, io::InterfaceType type) {
+                          PhaseTimers& timers, io::InterfaceType type,
+                          std::span<const std::int64_t> node_gid) {
   TiedInterface t;
   t.name = itf.name;
   t.multiplier = itf.multiplier;
@@ -70,11 +72,14 @@ TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, me
   t.n_slave_facets = t.slave.n_facets();
   t.n_master_facets = t.master.n_facets();
 
-  std::vector<std::int32_t> shared;
-  std::set_intersection(t.slave.mesh_nodes.begin(), t.slave.mesh_nodes.end(),
-                        t.master.mesh_nodes.begin(), t.master.mesh_nodes.end(),
-                        std::back_inserter(shared));
-  if (!shared.empty()) fail_shared_nodes(itf, static_cast<std::int64_t>(shared.size()));
+  // Both sides whole on every rank: each rank finds the same nodes.
+  const auto shared = shared_nodes(
+      MPI_COMM_SELF, mesh, t.slave.mesh_nodes, t.master.mesh_nodes,
+      [](std::int32_t) { return true; },
+      [&](std::int32_t n) {
+        return node_gid.empty() ? std::int64_t{n} : node_gid[static_cast<std::size_t>(n)];
+      });
+  if (shared.count > 0) fail_shared_nodes(itf, shared, mesh.dim);
 
   std::vector<mortar::CandidatePair> candidates;
   {
@@ -117,10 +122,10 @@ TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, me
   return t;
 }
 
-void fail_shared_nodes(const io::Interface& itf, std::int64_t n) {
+void fail_shared_nodes(const io::Interface& itf, const SharedNodes& shared, int dim) {
   io::fail_at(itf.mark, "the slave side '" + itf.slave.name + "' and the master side '" +
-                            itf.master->name + "' share " + std::to_string(n) +
-                            " nodes; mesh tying couples two separate meshes");
+                            itf.master->name + "' " + shared.describe(dim) +
+                            "; mesh tying couples two separate meshes");
 }
 
 void fail_no_overlap(const io::Interface& itf) {
@@ -129,6 +134,47 @@ void fail_no_overlap(const io::Interface& itf) {
 }
 
 } // namespace detail
+
+std::string SharedNodes::describe(int dim) const {
+  std::ostringstream s;
+  s.precision(6);
+  s << "share " << count << (count == 1 ? " node" : " nodes") << " (the first: node " << first
+    << " at (";
+  for (int c = 0; c < dim; ++c) s << (c ? ", " : "") << x[static_cast<std::size_t>(c)];
+  s << "))";
+  return s.str();
+}
+
+SharedNodes shared_nodes(MPI_Comm comm, const mesh::Mesh& mesh, std::span<const std::int32_t> slave,
+                         std::span<const std::int32_t> master,
+                         const std::function<bool(std::int32_t)>& owned,
+                         const std::function<std::int64_t(std::int32_t)>& id) {
+  std::vector<std::int32_t> shared;
+  std::set_intersection(slave.begin(), slave.end(), master.begin(), master.end(),
+                        std::back_inserter(shared));
+  SharedNodes out;
+  std::int64_t first = std::numeric_limits<std::int64_t>::max();
+  std::int32_t first_node = -1;
+  for (const auto n : shared) {
+    if (!owned(n)) continue;
+    ++out.count;
+    if (id(n) < first) {
+      first = id(n);
+      first_node = n;
+    }
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &out.count, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT64_T, MPI_MIN, comm);
+  if (out.count == 0) return out;
+  out.first = first;
+  // The coordinates from the node's owner (the only rank that counted it).
+  if (first_node >= 0 && id(first_node) == first)
+    for (int c = 0; c < mesh.dim; ++c)
+      out.x[static_cast<std::size_t>(c)] =
+          mesh.x[static_cast<std::size_t>(first_node) * mesh.dim + c];
+  MPI_Allreduce(MPI_IN_PLACE, out.x.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
+  return out;
+}
 
 const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref) {
   const auto* r = mesh.find_region(ref.name, mesh.dim - 1);
@@ -139,10 +185,12 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
 }
 
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
-                                            PhaseTimers& timers, io::InterfaceType type) {
+                                            PhaseTimers& timers, io::InterfaceType type,
+                                            std::span<const std::int64_t> node_gid) {
   std::vector<TiedInterface> out;
   for (const auto& itf : config.interfaces)
-    if (itf.type == type) out.push_back(detail::setup_whole(config, itf, mesh, timers, type));
+    if (itf.type == type)
+      out.push_back(detail::setup_whole(config, itf, mesh, timers, type, node_gid));
   return out;
 }
 

@@ -9,7 +9,10 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,15 +52,35 @@ struct TiedInterface {
 /// if the mesh has none.
 const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref);
 
+/// The nodes a slave and a master side share, each counted by its owner (who holds every facet
+/// around it, so that a node in one rank's part only is found).
+struct SharedNodes {
+  std::int64_t count = 0;    ///< over all ranks
+  std::int64_t first = -1;   ///< the lowest id of a shared node (node id of the output)
+  std::array<double, 3> x{}; ///< its coordinates
+  /// "share N node(s) (the first: node I at (x, y[, z]))", the same on every rank.
+  std::string describe(int dim) const;
+};
+
+/// Collective over `comm` (MPI_COMM_SELF for sides held whole). `slave` and `master`: the
+/// sides' mesh nodes (sorted); `owned(n)`: this rank owns mesh node n; `id(n)`: its id in the
+/// mesh as read.
+SharedNodes shared_nodes(MPI_Comm comm, const mesh::Mesh& mesh, std::span<const std::int32_t> slave,
+                         std::span<const std::int32_t> master,
+                         const std::function<bool(std::int32_t)>& owned,
+                         const std::function<std::int64_t(std::int32_t)>& id);
+
 /// Sets up every mesh-tying interface of the input: extracts both sides, searches candidate
 /// pairs (k-DOP trees), integrates D and M, relocates the slave nodes of the mesh so that the
 /// constraint holds exactly for the reference geometry. Throws InputError (located at the
 /// interface in the YAML) for sides that share nodes or do not face each other.
 /// `type` fsi: the same for the `fsi` interfaces (fluid side = slave, structure = master),
-/// where the coupling wins over velocity conditions (no bound slave nodes).
+/// where the coupling wins over velocity conditions (no bound slave nodes). `node_gid`: the
+/// ids of `mesh`'s nodes in the mesh as read when it is a rank's part (the messages name them).
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,
                                             PhaseTimers& timers,
-                                            io::InterfaceType type = io::InterfaceType::mesh_tying);
+                                            io::InterfaceType type = io::InterfaceType::mesh_tying,
+                                            std::span<const std::int64_t> node_gid = {});
 
 /// True for the mesh-tying interfaces set up distributed on a distributed mesh (condensed, hence
 /// dual): their sides need not be held whole on every rank.

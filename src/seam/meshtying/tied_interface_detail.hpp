@@ -12,10 +12,12 @@ std::vector<char> bound_slave_nodes(const io::Config& config, const mesh::Mesh& 
                                     const InterfaceSide& slave, mortar::Multiplier multiplier);
 mortar::MortarOptions mortar_options(const io::Interface& itf, const InterfaceSide& slave,
                                      const InterfaceSide& master);
-/// One interface with both sides whole in `mesh` (replicated form).
+/// One interface with both sides whole in `mesh` (replicated form). `node_gid`: the mesh's
+/// nodes' ids in the mesh as read (empty: their indices), for messages.
 TiedInterface setup_whole(const io::Config& config, const io::Interface& itf, mesh::Mesh& mesh,
-                          PhaseTimers& timers, io::InterfaceType type);
-[[noreturn]] void fail_shared_nodes(const io::Interface& itf, std::int64_t n);
+                          PhaseTimers& timers, io::InterfaceType type,
+                          std::span<const std::int64_t> node_gid);
+[[noreturn]] void fail_shared_nodes(const io::Interface& itf, const SharedNodes& shared, int dim);
 [[noreturn]] void fail_no_overlap(const io::Interface& itf);
 
 } // namespace seam::meshtying::detail

@@ -127,6 +127,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     const bool slave_part = slave_held_in_part(itf, config) && disc.comm().size() > 1;
     Side s(contact::ContactInterface(itf, disc.mesh(), slave_part));
     s.slave_in_part = slave_part;
+    if (!s.itf.rigid() && !s.itf.self_contact()) check_shared_nodes(s, itf);
     // The slave facets the side holds. In part with the independent distribution: those of
     // the rank's own and ghost cells until the first distribution (its mesh holds only those;
     // hold_slave_part takes the facets it is sent from there and from the directories).
@@ -256,6 +257,8 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
       s.master_in_part = master_held_in_part(itf, config);
       s.master_facets = static_cast<int>(disc.comm().sum(static_cast<double>(held.size())));
       s.slave_facets = static_cast<int>(disc.comm().sum(static_cast<double>(s.bulk_facets.size())));
+      if (s.master_facets == 0)
+        io::fail_at(itf.master->mark, "the master region '" + itf.master->name + "' has no facets");
       if (s.master_in_part) {
         // The parts agree on the search inflation (from the shortest edge of both sides, as
         // search::InterfaceSearch takes it) and on the quadrature (a part may hold no curved
@@ -321,6 +324,19 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     comm.sum_in_place(index);
     s.lm_index.assign(index.begin(), index.end());
   }
+}
+
+void ContactConstraint::check_shared_nodes(const Side& s, const io::Interface& itf) const {
+  // Each shared node is counted by its owner, which holds every facet around it (the ghost
+  // layer), whether the sides are held whole or in part.
+  const auto shared = meshtying::shared_nodes(
+      disc_.comm().get(), disc_.mesh(), s.itf.slave().mesh_nodes, s.itf.master_nodes(),
+      [&](std::int32_t n) { return disc_.owns_node(n); },
+      [&](std::int32_t n) { return disc_.node_gid(n); });
+  if (shared.count > 0)
+    io::fail_at(itf.mark, "the slave side '" + itf.slave.name + "' and the master side '" +
+                              itf.master->name + "' " + shared.describe(disc_.dim()) +
+                              "; self contact is not available in this version (use 'surface')");
 }
 
 void ContactConstraint::agree_on_obstacle_search(Side& s) const {

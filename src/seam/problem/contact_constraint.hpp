@@ -572,6 +572,9 @@ private:
   /// held in part with the independent distribution, are not in the side: asked of the facet
   /// directory. Collective.
   std::size_t count_outside_side(Side& s, std::vector<std::int64_t> ids);
+  /// A two-body interface whose sides share nodes: the same InputError on every rank (the
+  /// nodes counted by their owners). Collective.
+  void check_shared_nodes(const Side& s, const io::Interface& itf) const;
   /// interface_nodes_ from the sides' nodes.
   /// A slave side held in part against a rigid plane: the plane's facet and the search
   /// inflation agreed over the parts (those of the whole side). Collective.

@@ -4,9 +4,35 @@
 #include "seam/parallel/exchange.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 
 namespace seam::problem {
+
+namespace {
+
+/// Nodes some rank found at fault (by their ids in the mesh as read).
+struct Offenders {
+  std::vector<std::int64_t> ids;
+  void add(std::int64_t id) { ids.push_back(id); }
+  struct Agreed {
+    std::int64_t count = 0; ///< the ranks' distinct ids summed
+    std::int64_t first = -1;
+  };
+  /// Collective: the same on every rank; first -1 if no rank found any.
+  Agreed agree(const Comm& comm) {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    Agreed a{static_cast<std::int64_t>(ids.size()),
+             ids.empty() ? std::numeric_limits<std::int64_t>::max() : ids.front()};
+    MPI_Allreduce(MPI_IN_PLACE, &a.count, 1, MPI_INT64_T, MPI_SUM, comm.get());
+    MPI_Allreduce(MPI_IN_PLACE, &a.first, 1, MPI_INT64_T, MPI_MIN, comm.get());
+    if (a.count == 0) a.first = -1;
+    return a;
+  }
+};
+
+} // namespace
 
 TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& interfaces,
                                  TiedDofs dofs)
@@ -85,6 +111,7 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
     }
     std::vector<Row> P(diag.size());
     std::vector<char> tied(diag.size(), 0);
+    Offenders twice, chained;
     const auto add_term = [&](local_index j, local_index node, double weight) {
       if (diag[node] != 0.0) {
         tied[j] = 1;
@@ -108,9 +135,10 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
         // components are not tied.
         if (dirichlet[row - first]) continue;
         auto& entries = rows[row];
-        if (!entries.empty())
-          SEAM_THROW(InputError, "interface '", t.name, "': slave node ", s,
-                     " is tied by two interfaces; slave sides must not share nodes");
+        if (!entries.empty()) {
+          twice.add(disc.node_id(s));
+          break;
+        }
         for (const auto& [key, v] : P[j]) {
           if (key < 0) {
             entries.emplace_back(disc.global_dof(t.slave.mesh_nodes[-1 - key], c), v);
@@ -121,13 +149,20 @@ TyingConstraint::TyingConstraint(const std::vector<meshtying::TiedInterface>& in
             continue;
           }
           const auto master = t.master.mesh_nodes[key];
-          if (is_slave_node[master])
-            SEAM_THROW(InputError, "interface '", t.name, "': master node ", master,
-                       " is a slave node of another interface; chained tying is not supported");
+          if (is_slave_node[master]) chained.add(disc.node_id(master));
           entries.emplace_back(disc.global_dof(master, c), v);
         }
       }
     }
+    // Found by the slave nodes' owners: thrown on every rank alike.
+    if (const auto n = twice.agree(disc.comm); n.first >= 0)
+      SEAM_THROW(InputError, "interface '", t.name, "': ", n.count,
+                 n.count == 1 ? " slave node is" : " slave nodes are",
+                 " tied by two interfaces (the first: node ", n.first,
+                 "); slave sides must not share nodes");
+    if (const auto n = chained.agree(disc.comm); n.first >= 0)
+      SEAM_THROW(InputError, "interface '", t.name, "': master node ", n.first,
+                 " is a slave node of another interface; chained tying is not supported");
     if (!ops.T.empty()) transforms_[k] = ops.T;
   }
   active_ = disc.comm.any(active_);

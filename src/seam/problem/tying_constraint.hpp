@@ -30,6 +30,8 @@ struct TiedDofs {
   int dim = 0;
   PetscInt first_owned = 0, n_owned = 0;
   std::function<bool(std::int32_t)> owns_node;
+  /// A node's id in the mesh as read (the node id of the output), for messages.
+  std::function<std::int64_t(std::int32_t)> node_id;
   /// Owner rank of a node (solid layout; distributed interfaces need it).
   std::function<int(std::int32_t)> node_owner;
   std::function<PetscInt(std::int32_t, int)> global_dof;
@@ -53,6 +55,7 @@ TiedDofs tied_dofs(const Layout& layout, const Prescribed& model) {
   dofs.first_owned = layout.first_owned_dof();
   dofs.n_owned = layout.n_owned_dofs();
   dofs.owns_node = [&layout](std::int32_t n) { return layout.owns_node(n); };
+  dofs.node_id = [&layout](std::int32_t n) { return layout.node_gid(n); };
   if constexpr (requires { layout.node_owner(std::int32_t{0}); })
     dofs.node_owner = [&layout](std::int32_t n) { return layout.node_owner(n); };
   dofs.global_dof = [&layout](std::int32_t n, int c) { return layout.global_dof(n, c); };
