@@ -42,7 +42,7 @@ using namespace gap_vectors;
 constexpr double clamp_width = 0.5;
 
 /// max(x, 0) rounded over |x| < w, C2 and exact outside: w q(x / w + 1) with
-/// q(u) = u^3 (4 - u) / 16 (q = q' = q'' = 0 at u = 0; q = 2 - 1 + ..., q' = 1, q'' = 0 at u = 2).
+/// q(u) = u^3 (4 - u) / 16 (q = q' = q'' = 0 at u = 0; w q = x, q' = 1, q'' = 0 at u = 2).
 template <class S> S smooth_ramp(const S& x, double w) {
   if (value_of(x) <= -w) return S(0.0);
   if (value_of(x) >= w) return x;
@@ -58,10 +58,10 @@ template <class S> S smooth_ramp(const S& x, double w) {
 /// between Newton iterations. Two master facets that meet at a master node take the same
 /// clamped value of its projection, so they still tile the slave facet; where the paired
 /// master region ends at that node (the next master facet is not a pair of this slave facet),
-/// the kink is that of the dual basis function of the slave facet's other node, -1 at the end,
-/// times the gap there, and its curvature is 3 / (4 w) of that slope (docs/contact_dynamics.md,
-/// "The kink where a master node passes a slave end node"). The rounding moves a segment end
-/// by at most 3 w / 16.
+/// g~ of the slave facet's nodes changes slope by the gap there times their dual basis
+/// functions at the end (-1 for the other node), and the rounding spreads that change over 2 w
+/// with a curvature of at most 3 / (4 w) times it (docs/contact_dynamics.md, "The kink where a
+/// master node passes a slave end node"). The rounding moves a segment end by at most 3 w / 16.
 template <class S> S clamp_unit(const S& xi, double w) {
   return xi - smooth_ramp(S(xi - 1.0), w) + smooth_ramp(S(-1.0 - xi), w);
 }

@@ -10,7 +10,7 @@
 //   the slave facet's nodes changes slope by the gap times their dual basis function at the
 //   end (-1 and 2): the clamp spreads that over 2 w of the slave parameter (w = tol / 2), so
 //   the curvature stays near 3 / (4 w) of the slope's change (the old rounding over 1e-4 gave
-//   500 times more, and Newton cycled on the 200 rings at t = 0.789);
+//   170 times more, and Newton cycled on the 200 rings at t = 0.789);
 // - where an interior master node passes a slave node, the two master facets share its
 //   clamped projection and still tile the slave facet: g~ of a constant gap is exact.
 #include "two_blocks_2d.hpp"
