@@ -37,19 +37,33 @@ namespace {
 
 using namespace gap_vectors;
 
-/// xi clamped to [-1, 1] with rounded corners: max(a, b) ~ (a + b + sqrt((a - b)^2 + d^2)) / 2.
-/// A segment end is a master node's projection until it passes the slave's end, and the slave
-/// end after: with a sharp clamp g~ has a kink where a master node meets a slave end node
-/// (equal meshes, the bar impact), the solution sits on it, and the midpoint gradient (taken
-/// at a nonzero gap) jumps between Newton iterations. The rounding moves a segment end by at
-/// most smoothing / 2 and only within a few smoothing widths of the slave end.
-template <class S> S clamp_unit(const S& xi) {
-  using std::sqrt;
-  constexpr double smoothing = 1e-4;
-  const S d1 = xi + 1.0;
-  const S lower = 0.5 * (xi - 1.0 + sqrt(d1 * d1 + smoothing * smoothing));
-  const S e = lower - 1.0;
-  return 0.5 * (lower + 1.0 - sqrt(e * e + smoothing * smoothing));
+/// Half width of the clamp's rounding (clamp_unit) as a fraction of the projection range
+/// tolerance: below 1, so that a projection leaves the range where its clamp is exact.
+constexpr double clamp_width = 0.5;
+
+/// max(x, 0) rounded over |x| < w, C2 and exact outside: w q(x / w + 1) with
+/// q(u) = u^3 (4 - u) / 16 (q = q' = q'' = 0 at u = 0; w q = x, q' = 1, q'' = 0 at u = 2).
+template <class S> S smooth_ramp(const S& x, double w) {
+  if (value_of(x) <= -w) return S(0.0);
+  if (value_of(x) >= w) return x;
+  const S u = x / w + 1.0;
+  return w / 16.0 * (u * u * u * (4.0 - u));
+}
+
+/// xi clamped to [-1, 1] with C2 corners of half width w: xi - ramp(xi - 1) + ramp(-1 - xi),
+/// xi itself for |xi| <= 1 - w and -1 or 1 exactly for |xi| >= 1 + w. A segment end is a
+/// master node's projection until it passes the slave's end, and the slave end after: with a
+/// sharp clamp g~ has a kink where a master node meets a slave end node (equal meshes, the bar
+/// impact), the solution sits on it, and the midpoint gradient (taken at a nonzero gap) jumps
+/// between Newton iterations. Two master facets that meet at a master node take the same
+/// clamped value of its projection, so they still tile the slave facet; where the paired
+/// master region ends at that node (the next master facet is not a pair of this slave facet),
+/// g~ of the slave facet's nodes changes slope by the gap there times their dual basis
+/// functions at the end (-1 for the other node), and the rounding spreads that change over 2 w
+/// with a curvature of at most 3 / (4 w) times it (docs/contact_dynamics.md, "The kink where a
+/// master node passes a slave end node"). The rounding moves a segment end by at most 3 w / 16.
+template <class S> S clamp_unit(const S& xi, double w) {
+  return xi - smooth_ramp(S(xi - 1.0), w) + smooth_ramp(S(-1.0 - xi), w);
 }
 
 /// The overlap segment [xa, xb] of the slave parameter from the end-node projections, as
@@ -66,20 +80,21 @@ bool overlap_ends(const std::array<geometry::CurveProjection, 2>& master_on_slav
   };
   const bool in0 = inside(master_on_slave[0]), in1 = inside(master_on_slave[1]);
   // Only the ends that are master nodes' projections are clamped: an end that is the slave's
-  // end node is -1 or 1 exactly, the limit of the rounded clamp of a projection beyond the end
-  // (within smoothing^2 / (4 tol) of it where the projection leaves the range, xi = 1 + tol).
-  // Clamping it too put it at 1 - smoothing / 2, so g~ jumped by the integrand over
-  // smoothing / 2 where a master end node's projection crossed 1 + tol.
+  // end node is -1 or 1 exactly, the value of the clamp of a projection beyond 1 + w, so
+  // nothing jumps where the projection leaves the range at xi = 1 + tol (w = tol / 2).
+  // Clamping the slave's ends too put them inside, and g~ jumped by the integrand over
+  // that distance where a master end node's projection crossed 1 + tol.
+  const double w = clamp_width * tol;
   xa = -1.0;
   xb = 1.0;
   if (in0 && in1) {
     const S e0 = on_slave(0), e1 = on_slave(1);
     const bool first = master_on_slave[0].xi < master_on_slave[1].xi;
-    xa = clamp_unit(first ? e0 : e1);
-    xb = clamp_unit(first ? e1 : e0);
+    xa = clamp_unit(first ? e0 : e1, w);
+    xb = clamp_unit(first ? e1 : e0, w);
   } else if (in0 || in1) {
     const std::size_t k = in0 ? 0 : 1;
-    const S xi_in = clamp_unit(on_slave(k));
+    const S xi_in = clamp_unit(on_slave(k), w);
     if (forward(k))
       xa = xi_in;
     else

@@ -325,6 +325,11 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       rt_.scale(-1.0);
       const bool check = logging_ && check_requested(step, it);
       const auto lambda_old = check ? contact_.multipliers() : std::vector<double>();
+      search = line_search_ && !predictor;
+      if (search) {
+        u_base_.copy_from(u);
+        lambda_base_ = contact_.multipliers();
+      }
       if (!contact_.solve_saddle_point(K_, rt_, dirichlet_rows_, predictor ? &g_ : nullptr, solver_,
                                        du_, out_.timers())) {
         res.failure = "the linear solver failed";
@@ -333,7 +338,13 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       if (logging_) out_.linear_solve(solver_.last_iterations());
       if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
       if (check) check_correction(u, t, step, it, evaluate, lambda_old);
+      if (search) {
+        // The solve returns the new multipliers, not their correction.
+        lambda_full_ = contact_.multipliers();
+        lambda_trial_.resize(lambda_full_.size());
+      }
       apply_increment(u, t, predictor);
+      full_increment_ = last_increment_;
       continue;
     }
     la::Matrix* K_sys = tying_.active() ? &Kt_ : &K_;

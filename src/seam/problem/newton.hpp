@@ -60,8 +60,7 @@ public:
         u_base_(disc.make_vector()),
         solver_(disc.comm().get(),
                 linear_solver_kind(config, disc, saddle.active() || contact.saddle_point())),
-        line_search_(config.solver.newton.line_search && contact.active() &&
-                     !contact.saddle_point() && !saddle.active()) {
+        line_search_(config.solver.newton.line_search && contact.active() && !saddle.active()) {
     for (const auto& d : model_.dirichlet) dirichlet_rows_.push_back(d.dof);
     // Rows fixed in the Newton system: Dirichlet dofs and (with condensed tying) the
     // eliminated slave dofs, whose rows of T^T K T are empty.
