@@ -15,9 +15,9 @@ namespace seam::problem {
 /// bench/peers/getfem/compare.py, docs/performance.md "Choosing the linear solver") since GAMG
 /// gets the rigid-body modes on the condensed contact system too: on a hex8 cube pressed by a
 /// rigid plane GAMG took 0.70, 0.29, 0.21, 0.12 of MUMPS's CPU time at 4.0k, 20.6k, 36.5k and
-/// 59.0k dofs, on the tet10 Hertz ball 0.78 and 0.32 at 9.8k and 74.0k; on the thin-walled
-/// torus (68 % of the hex8 mesh's nodes and 86 % of the hex20 one's on the boundary) MUMPS
-/// stayed 4.3 and 2.7 times faster at 26.4k and 49.1k dofs (20 to 400 GMRES iterations per
+/// 59.0k dofs, on the tet10 Hertz ball 0.78, 0.57 and 0.32 at 9.8k, 21.9k and 74.0k; on the
+/// thin-walled torus (68 % of the hex8 mesh's nodes and 86 % of the hex20 one's on the boundary)
+/// MUMPS stayed 4.3 and 2.7 times faster at 26.4k and 49.1k dofs (20 to 400 GMRES iterations per
 /// solve, against a factorization of 2e10 flops at 49.1k hex20 dofs). From 100 000 dofs MUMPS's
 /// fill costs gigabytes on compact bodies, and thin ones go iterative as well. 2D systems stay
 /// direct (nested dissection keeps their fill small), as do saddle points (standard
