@@ -132,7 +132,7 @@ def reference_tractions(rows, facets):
 def run_seam(seam, work, msh, steps, tolerance, linear):
     yaml = os.path.join(work, "hertz_seam.yaml")
     open(yaml, "w").write(YAML.format(mesh=msh, steps=steps, tolerance=tolerance, linear=linear))
-    out_dir = os.path.join(work, "seam_out")
+    out_dir = os.path.join(work, "seam_out_" + linear)
     stdout, wall, cpu = timed([seam, "run", yaml, "-o", out_dir, "--quiet"])
     steps_rows = read_csv(os.path.join(out_dir, "steps.csv"))
     summary = json.load(open(os.path.join(out_dir, "summary.json")))
@@ -141,7 +141,7 @@ def run_seam(seam, work, msh, steps, tolerance, linear):
     facets, _ = ca.slave_facets(ca.read_msh(msh), "surface")
     tractions = reference_tractions(rows, facets)
     p0, radius = ca.fitted_hertz(rows, 3, current=False, tractions=tractions)
-    return {"code": "seam", "dofs": summary.get("dofs", 0) or 0,
+    return {"code": "seam" if linear == "auto" else "seam:" + linear, "dofs": summary.get("dofs", 0) or 0,
             "newton": [int(r["newton_iterations"]) for r in steps_rows], "force": force,
             "radius": radius, "p0": p0, "active": sum(1 for r in rows if ca.is_active(r)),
             "wall": wall, "cpu": cpu, "own": summary["wall_seconds"]}
@@ -157,6 +157,7 @@ def main():
     ap.add_argument("--tolerance", type=float, default=1e-8)
     ap.add_argument("--linear", default="auto", choices=["auto", "direct", "iterative"])
     ap.add_argument("--r", type=float, default=10.0, help="GetFEM's augmentation parameter")
+    # seam:direct, seam:iterative run seam with that `solver.linear` (seam alone: --linear).
     ap.add_argument("--codes", nargs="+", default=["getfem", "seam"])
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="peers_getfem_")
@@ -165,23 +166,28 @@ def main():
     for code in a.codes:
         if code == "getfem":
             results.append(run_getfem(a.python, m22, a.steps, a.tolerance, a.r))
+        elif code in ("seam", "seam:auto", "seam:direct", "seam:iterative"):
+            linear = code.split(":")[1] if ":" in code else a.linear
+            results.append(run_seam(a.seam, work, m41, a.steps, a.tolerance, linear))
         else:
-            results.append(run_seam(a.seam, work, m41, a.steps, a.tolerance, a.linear))
+            sys.exit("unknown code %r (getfem, seam, seam:direct, seam:iterative)" % code)
         print(json.dumps(results[-1]), flush=True)
     print("\nrefine %s, %d load step(s), relative tolerance %g (work directory %s)"
           % (a.refine, a.steps, a.tolerance, work))
-    print("%-7s %7s %-12s %7s %11s %9s %8s %9s %8s %9s" % (
+    print("%-14s %7s %-12s %7s %11s %9s %8s %9s %8s %9s" % (
         "code", "dofs", "Newton", "active", "F", "a", "a err", "p0", "p0 err", "wall [s]") + "  own [s]  CPU [s]")
     for r in results:
         a_h, p0_h = ca.hertz_3d(r["force"], R, ESTAR)
-        print("%-7s %7d %-12s %7d %11.6g %9.6f %+7.2f%% %9.6f %+7.2f%% %9.2f" % (
+        print("%-14s %7d %-12s %7d %11.6g %9.6f %+7.2f%% %9.6f %+7.2f%% %9.2f" % (
             r["code"], r["dofs"], "+".join(str(n) for n in r["newton"]), r["active"],
             r["force"], r["radius"], 100 * (r["radius"] - a_h) / a_h, r["p0"],
             100 * (r["p0"] - p0_h) / p0_h, r["wall"]) + "  %7.2f  %7.2f" % (r["own"], r["cpu"]))
-    if len(results) == 2:
-        g, s = results
-        print("seam / GetFEM: wall time %.3f, CPU time %.3f; load F: seam / GetFEM - 1 = %+.3f %%"
-              % (s["wall"] / g["wall"], s["cpu"] / g["cpu"], 100 * (s["force"] / g["force"] - 1)))
+    g = next((r for r in results if r["code"] == "getfem"), None)
+    for s in results:
+        if g is not None and s is not g:
+            print("%s / GetFEM: wall time %.3f, CPU time %.3f; load F: seam / GetFEM - 1 = %+.3f %%"
+                  % (s["code"], s["wall"] / g["wall"], s["cpu"] / g["cpu"],
+                     100 * (s["force"] / g["force"] - 1)))
 
 
 if __name__ == "__main__":

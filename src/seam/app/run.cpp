@@ -260,10 +260,10 @@ int run(const RunOptions& options, int argc, char** argv) {
                 static_cast<int>(disc.n_global_nodes()), static_cast<int>(disc.n_global_cells()),
                 static_cast<long long>(disc.n_global_dofs()), comm.size(),
                 out.directory().string().c_str());
-  if (comm.is_root() && !options.quiet)
-    std::printf(
-        "  linear solver: %s\n",
-        describe_linear_solver(config, disc, saddle.active() || contact.saddle_point()).c_str());
+  // Collective: `auto` may count the boundary nodes over all ranks.
+  const auto linear_solver =
+      describe_linear_solver(config, disc, saddle.active() || contact.saddle_point());
+  if (comm.is_root() && !options.quiet) std::printf("  linear solver: %s\n", linear_solver.c_str());
   if (comm.is_root() && !options.quiet)
     for (const auto& line : contact.held_whole()) std::printf("  %s\n", line.c_str());
   parallel::mark_memory(comm.get(), "output_setup");

@@ -1,9 +1,11 @@
 #include "seam/problem/linear_solver_choice.hpp"
 
+#include <cmath>
+
 namespace seam::problem {
 
 LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, PetscInt dofs,
-                                        SystemKind system) {
+                                        SystemKind system, double boundary_fraction) {
   switch (setting) {
   case io::LinearSolverKind::direct:
     return {la::SolverKind::direct, ""};
@@ -26,7 +28,16 @@ LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, P
   const auto n = std::to_string(dofs), limit = std::to_string(auto_iterative_dofs);
   if (dofs >= auto_iterative_dofs)
     return {la::SolverKind::iterative, "auto: 3D, " + n + " dofs >= " + limit};
-  return {la::SolverKind::direct, "auto: " + n + " dofs < " + limit};
+  const auto compact = std::to_string(auto_iterative_compact_dofs);
+  if (dofs < auto_iterative_compact_dofs)
+    return {la::SolverKind::direct, "auto: " + n + " dofs < " + compact};
+  const auto percent =
+      std::to_string(static_cast<int>(std::lround(100.0 * boundary_fraction))) + " %";
+  if (boundary_fraction < auto_thin_boundary_fraction)
+    return {la::SolverKind::iterative, "auto: 3D, " + n + " dofs >= " + compact + ", " + percent +
+                                           " of the nodes on the boundary"};
+  return {la::SolverKind::direct, "auto: " + n + " dofs < " + limit + ", a thin body (" + percent +
+                                      " of the nodes on the boundary)"};
 }
 
 std::string describe(const LinearSolverChoice& choice, std::string_view iterative) {

@@ -8,18 +8,23 @@
 
 namespace seam::problem {
 
-/// `solver.linear: auto` (the default) picks GMRES + GAMG for 3D solids of at least
-/// `auto_iterative_dofs` dofs whose Newton system is not a saddle point, MUMPS otherwise. On
-/// this 2-core machine (bench/linear_solver_choice.py, docs/performance.md) a hex8 cube pressed
-/// by a rigid plane cost within 15 % the same CPU time either way up to 20.6k dofs, and 0.53
-/// of MUMPS's CPU time and 0.34 of its memory with GAMG at 36.5k; step-42's 107.8k-dof cube
-/// took 0.22 of MUMPS's time with GAMG. But on the thin-walled torus (26.4k dofs, hex8, 10
-/// load steps) GAMG took 3.9 times MUMPS's CPU time: AMG converges slowly on thin walls. The
-/// threshold sits where MUMPS's fill starts to cost gigabytes, so that thin structures of
-/// moderate size keep the direct solver. 2D systems stay direct (nested dissection keeps their
-/// fill small), as do saddle points (standard multipliers), on which GAMG has no smoother,
-/// and fluids (below).
+/// `solver.linear: auto` (the default) picks GMRES + GAMG for 3D solids whose Newton system
+/// is not a saddle point from `auto_iterative_dofs` dofs, and from `auto_iterative_compact_dofs`
+/// if the body is compact (fewer than `auto_thin_boundary_fraction` of its nodes on the mesh's
+/// boundary); MUMPS otherwise. Measured on this 2-core machine (bench/linear_solver_choice.py,
+/// bench/peers/getfem/compare.py, docs/performance.md "Choosing the linear solver") since GAMG
+/// gets the rigid-body modes on the condensed contact system too: on a hex8 cube pressed by a
+/// rigid plane GAMG took 0.70, 0.29, 0.21, 0.12 of MUMPS's CPU time at 4.0k, 20.6k, 36.5k and
+/// 59.0k dofs, on the tet10 Hertz ball 0.78, 0.57 and 0.32 at 9.8k, 21.9k and 74.0k; on the
+/// thin-walled torus (68 % of the hex8 mesh's nodes and 86 % of the hex20 one's on the boundary)
+/// MUMPS stayed 4.3 and 2.7 times faster at 26.4k and 49.1k dofs (20 to 400 GMRES iterations per
+/// solve, against a factorization of 2e10 flops at 49.1k hex20 dofs). From 100 000 dofs MUMPS's
+/// fill costs gigabytes on compact bodies, and thin ones go iterative as well. 2D systems stay
+/// direct (nested dissection keeps their fill small), as do saddle points (standard
+/// multipliers), on which GAMG has no smoother, and fluids (below).
 inline constexpr PetscInt auto_iterative_dofs = 100000;
+inline constexpr PetscInt auto_iterative_compact_dofs = 20000;
+inline constexpr double auto_thin_boundary_fraction = 0.5;
 
 /// 2D fluids stay direct at any size (bench/dfg_benchmark.py, docs/performance.md
 /// "Incompressible flow: direct against iterative"): on DFG 2D-1 the fieldsplit solver
@@ -49,8 +54,11 @@ struct LinearSolverChoice {
   std::string reason;
 };
 
+/// `boundary_fraction`: the share of the mesh's nodes that lie on its boundary (exterior
+/// facets), which tells a thin wall (most nodes on the surface) from a compact body; it only
+/// matters for 3D solids between the two thresholds.
 LinearSolverChoice choose_linear_solver(io::LinearSolverKind setting, int dim, PetscInt dofs,
-                                        SystemKind system);
+                                        SystemKind system, double boundary_fraction = 1.0);
 
 /// The choice as the run's header prints it: "direct (MUMPS)", "iterative (GMRES + GAMG; auto:
 /// 3D, 107811 dofs >= 100000)"; `iterative`: the name of the iterative solver.

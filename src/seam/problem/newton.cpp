@@ -1,6 +1,8 @@
 #include "seam/problem/newton.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/fem/cell.hpp"
+#include "seam/mesh/facets.hpp"
 #include "seam/parallel/memory_trace.hpp"
 
 #include <algorithm>
@@ -87,18 +89,50 @@ bool constant_tangent(const Model& model, const Discretization& disc, bool saddl
   return !saddle_point && linear && !disc.comm().any(follower);
 }
 
+double boundary_node_fraction(const Discretization& disc) {
+  // The ghost layer holds every cell around an owned node, so a facet through an owned node is
+  // exterior on this rank exactly when it is exterior in the whole mesh.
+  const auto& mesh = disc.mesh();
+  std::vector<char> on_boundary(static_cast<std::size_t>(mesh.n_nodes()), 0);
+  const auto facets = mesh::exterior_facets(mesh);
+  for (std::int32_t f = 0; f < facets.size(); ++f) {
+    const auto c = facets.cell[static_cast<std::size_t>(f)];
+    const auto nodes = mesh.cell(c);
+    for (const int k :
+         fem::facet_nodes(mesh.cell_type[c], facets.local[static_cast<std::size_t>(f)]))
+      on_boundary[static_cast<std::size_t>(nodes[k])] = 1;
+  }
+  std::int64_t count = 0;
+  for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+    if (on_boundary[static_cast<std::size_t>(n)] && disc.owns_node(n)) ++count;
+  const auto total = disc.n_global_nodes();
+  return total > 0 ? static_cast<double>(disc.comm().sum(count)) / static_cast<double>(total) : 0.0;
+}
+
+namespace {
+
+LinearSolverChoice solid_linear_solver(const io::Config& config, const Discretization& disc,
+                                       bool saddle_point) {
+  const auto dofs = disc.n_global_dofs();
+  // The share of boundary nodes decides only between the two thresholds of `auto`.
+  const bool between = config.solver.linear == io::LinearSolverKind::automatic && disc.dim() == 3 &&
+                       !saddle_point && dofs >= auto_iterative_compact_dofs &&
+                       dofs < auto_iterative_dofs;
+  return choose_linear_solver(config.solver.linear, disc.dim(), dofs,
+                              saddle_point ? SystemKind::saddle_point : SystemKind::solid,
+                              between ? boundary_node_fraction(disc) : 1.0);
+}
+
+} // namespace
+
 la::SolverKind linear_solver_kind(const io::Config& config, const Discretization& disc,
                                   bool saddle_point) {
-  return choose_linear_solver(config.solver.linear, disc.dim(), disc.n_global_dofs(),
-                              saddle_point ? SystemKind::saddle_point : SystemKind::solid)
-      .kind;
+  return solid_linear_solver(config, disc, saddle_point).kind;
 }
 
 std::string describe_linear_solver(const io::Config& config, const Discretization& disc,
                                    bool saddle_point) {
-  return describe(
-      choose_linear_solver(config.solver.linear, disc.dim(), disc.n_global_dofs(),
-                           saddle_point ? SystemKind::saddle_point : SystemKind::solid));
+  return describe(solid_linear_solver(config, disc, saddle_point));
 }
 
 const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool first, bool retrial,

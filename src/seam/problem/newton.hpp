@@ -40,11 +40,15 @@ struct NewtonResult {
 /// strain), no follower (pressure) loads on any rank, no saddle-point system. Collective.
 bool constant_tangent(const Model& model, const Discretization& disc, bool saddle_point);
 
+/// The share of the mesh's nodes on its boundary (nodes of exterior facets), over all ranks.
+/// Collective.
+double boundary_node_fraction(const Discretization& disc);
+
 /// The linear solver of a solid's Newton system (linear_solver_choice.hpp).
 la::SolverKind linear_solver_kind(const io::Config& config, const Discretization& disc,
                                   bool saddle_point);
-/// The solver and why, for the run's header: "direct (MUMPS)", "iterative (GMRES + GAMG; auto:
-/// 3D, 107811 dofs >= 100000)".
+/// The solver and why, for the run's header (collective): "direct (MUMPS)", "iterative (GMRES +
+/// GAMG; auto: 3D, 107811 dofs >= 100000)".
 std::string describe_linear_solver(const io::Config& config, const Discretization& disc,
                                    bool saddle_point);
 
