@@ -150,6 +150,13 @@ const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool fir
   state.status_changes = 0;
   if (contact_.active()) {
     state.changes = contact_.evaluate(u, t, first, out_.timers(), retrial);
+    // A folded contact surface is an unusable iterate, as an inverted element is.
+    if (const auto node = contact_.folded_node(); node >= 0) {
+      failure_ = ::seam::detail::concat("the contact surface folds back onto itself at slave "
+                                        "node ",
+                                        node, " (the normals of its facets cancel)");
+      return failure_.c_str();
+    }
     state.status_changes = state.changes - contact_.n_inconsistent();
     state.decided = true;
   }
