@@ -838,6 +838,78 @@ def test_inexact_solves_keep_prescribed_values():
                                  % (np, lateral))
 
 
+FOLD_GEO = """Point(1) = {0, 0, 0}; Point(2) = {0.25, 0, 0}; Point(3) = {0.5, 0, 0}; Point(4) = {1, 0, 0};
+Point(5) = {1, 1, 0}; Point(6) = {0, 1, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5}; Line(5) = {5, 6};
+Line(6) = {6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6}; Plane Surface(1) = {1};
+Transfinite Curve{1, 2, 4, 6} = 2; Transfinite Curve{3} = 3; Transfinite Curve{5} = 5;
+Transfinite Surface{1} = {1, 4, 5, 6}; Recombine Surface{1};
+Point(11) = {-0.5, -1.5, 0}; Point(12) = {1.5, -1.5, 0}; Point(13) = {1.5, -0.5, 0};
+Point(14) = {-0.5, -0.5, 0};
+Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};
+Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};
+Transfinite Curve{11, 12, 13, 14} = 3; Transfinite Surface{11}; Recombine Surface{11};
+Physical Curve("bottom") = {1, 2, 3}; Physical Curve("top") = {5};
+Physical Point("pushed") = {2}; Physical Point("held") = {3};
+Physical Curve("base_top") = {13}; Physical Curve("base_bottom") = {11};
+Physical Surface("body") = {1}; Physical Surface("base") = {11};
+"""
+
+FOLD_YAML = """dimension: 2
+mesh: {geo: case.geo}
+materials:
+  m: {model: neo_hooke, young: 100.0, poisson: 0.3, density: 1.0}
+bodies:
+  - {region: body, material: m}
+  - {region: base, material: m}
+boundary_conditions:
+  - {region: top, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: held, type: dirichlet, components: [x, y], value: [0, 0]}
+  - {region: pushed, type: dirichlet, components: [x, y], value: ['0.275*t', 0]}
+  - {region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}
+interfaces:
+  - {name: joint, type: contact, surface: [bottom, base_top]}
+time: {end: 1.0, steps: 10}
+"""
+
+
+def test_folded_surface_cuts_steps():
+    """A slave surface folding back onto itself during a run is a failed iterate, cut like an
+    inverted element (docs/input.md §6.1), not an input error. One row of quad4 (1 high), the
+    slave bottom with nodes at x = 0, 0.25, 0.5, 0.75, 1; the node at 0.25 pushed to
+    0.25 + 0.275 t, the one at 0.5 held: beyond t = 1/1.1 the two facets between and beside
+    them run in opposite directions and the normals at both nodes cancel, while the Gauss points
+    of the quads keep det F > 0 (the fold is 0.1 of the width at t = 1). The base below is
+    never touched. Expected: every step up to the fold converges (last t in [0.9, 1/1.1)), the
+    step cuts run out, exit 2 naming node 2 (the held node, counted from 0 in the mesh as read;
+    the larger of the two), on 1 and 3 ranks alike. (Before, with no pair at these nodes their
+    normals were not computed and the run ended at t = 1 with exit 0, folded.)"""
+    work = tempfile.mkdtemp(prefix="seam_contact_")
+    _dirs.append(work)
+    H.write_case(work, "case.geo", FOLD_GEO)
+    H.write_case(work, "case.yaml", FOLD_YAML)
+    results = []
+    for np in (1, 3):
+        out = os.path.join(work, "out%d" % np)
+        code, stdout, err = H.run(["run", "case.yaml", "-o", out, "--quiet"], np=np, cwd=work,
+                                  check=False, timeout=300)
+        text = stdout + err
+        failed = [l for l in text.splitlines() if "solver failed" in l]
+        print("   np %d: exit %d; %s" % (np, code, failed[0] if failed else "no failure line"))
+        if code != 2 or not failed:
+            raise AssertionError("np %d: exit %d, expected 2\n%s" % (np, code, text[-2000:]))
+        if "the contact surface folds back onto itself at slave node 2 " not in failed[0]:
+            raise AssertionError("np %d: the failure names no folded node 2: %s" % (np, failed[0]))
+        last = float(H.read_csv(os.path.join(out, "steps.csv"))[-1]["time"])
+        print("   np %d: last converged t = %.6g" % (np, last))
+        if not 0.9 <= last < 1 / 1.1:
+            raise AssertionError("np %d: last converged t = %g, expected [0.9, 1/1.1)" % (np, last))
+        results.append((failed[0].split(" written in ")[0], last))
+    if results[0] != results[1]:
+        raise AssertionError("np 3 differs from np 1:\n%s\n%s" % (results[0], results[1]))
+
+
 def cleanup_runs():
     H.cleanup(*_dirs)
 
@@ -856,7 +928,7 @@ if __name__ == "__main__":
                 test_hertz_2d_standard, test_drop_energy_momentum, test_drop_generalized_alpha,
                 test_hertz_2d_coarse, test_hertz_2d_fine, test_hertz_2d_no_penetration_and_balance,
                 test_hertz_2d_parallel, test_hertz_2d_newton_quadratic,
-                test_inverting_correction_shortened,
+                test_inverting_correction_shortened, test_folded_surface_cuts_steps,
                 test_hertz_3d_coarse, test_hertz_3d_fine, test_hertz_3d_parallel,
                 test_hertz_3d_sphere_on_block,
                 test_torus_coarse, test_torus_hex20_coarse, test_torus_hex20_parallel,

@@ -465,6 +465,14 @@ std::vector<double> ContactInterface::normals_at(std::span<const double> u,
   return averaged_normals(side, false, nodes);
 }
 
+std::int32_t ContactInterface::folded_slave_node(std::span<const double> u) const {
+  if (rigid_ || slave_.n_facets() == 0) return -1;
+  meshtying::InterfaceSide side = slave_;
+  place_slave(side, u);
+  const local_index j = mortar::folded_node(side.facet_set());
+  return j < 0 ? -1 : side.mesh_nodes[static_cast<std::size_t>(j)];
+}
+
 void ContactInterface::use_external_search() {
   SEAM_CHECK(!rigid_, InputError, "interface '", name_,
              "': an external search is for two-body and self-contact interfaces only");

@@ -281,6 +281,11 @@ public:
   /// computation; the state is not changed (for the output rows a rank computes).
   std::vector<double> normals_at(std::span<const double> u,
                                  std::span<const local_index> nodes) const;
+  /// The mesh node of the first slave node at which the normals of the slave facets cancel at
+  /// the mesh displacement `u` (the surface folds back onto itself there), -1 if there is none
+  /// or the slave faces a rigid obstacle (whose normals it uses). All slave facets held are
+  /// summed; the state is not changed.
+  std::int32_t folded_slave_node(std::span<const double> u) const;
   /// Standard (not dual) multipliers: D is not diagonal.
   bool standard() const { return options_.multiplier == mortar::Multiplier::standard; }
   /// Candidate pairs of the owned slave facets at the last update (after the facing test).

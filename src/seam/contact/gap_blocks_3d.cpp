@@ -29,6 +29,7 @@
 #include "seam/contact/gap_vectors.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
 #include "seam/mortar/linearization_clip.hpp"
+#include "seam/mortar/normals.hpp"
 #include "seam/mortar/pair_integration_detail.hpp"
 
 #include <algorithm>
@@ -385,7 +386,7 @@ void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacen
     sum = sum + facet_unit_normal(fx, static_cast<int>(nodes.size()), here);
   }
   const S length = norm(sum);
-  SEAM_CHECK(value_of(length) > 1e-8, InputError, "slave node ", node,
+  SEAM_CHECK(value_of(length) > mortar::min_normal_sum, InputError, "slave node ", node,
              ": the normals of its facets cancel (the surface folds back onto itself)");
   n = {sum.x / length, sum.y / length, sum.z / length};
 }

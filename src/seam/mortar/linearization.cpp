@@ -5,6 +5,7 @@
 
 #include "seam/common/error.hpp"
 #include "seam/mortar/linearization_pair.hpp"
+#include "seam/mortar/normals.hpp"
 
 namespace seam::mortar {
 
@@ -241,7 +242,7 @@ void linearize_nodal_normal(const FacetSet& facets, local_index node,
   for (int a = 0; a < dim; ++a)
     length += sum[static_cast<std::size_t>(a)] * sum[static_cast<std::size_t>(a)];
   length = std::sqrt(length);
-  SEAM_CHECK(length > 1e-8, InputError, "slave node ", node,
+  SEAM_CHECK(length > min_normal_sum, InputError, "slave node ", node,
              ": the normals of its facets cancel (the surface folds back onto itself)");
   for (int a = 0; a < dim; ++a)
     out.normal[static_cast<std::size_t>(a)] = sum[static_cast<std::size_t>(a)] / length;

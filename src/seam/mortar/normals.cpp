@@ -37,9 +37,12 @@ void accumulate_facet_normals(const FacetSet& facets, const std::vector<local_in
 namespace {
 
 /// The averaged normals of the nodes `nodes` (every node on a facet if null) from the facets
-/// `which` (all if null), which must hold every facet around those nodes.
+/// `which` (all if null), which must hold every facet around those nodes. A node whose facet
+/// normals cancel throws InputError, or, with `folded`, is stored there (the first such node;
+/// -1 if none) and keeps a zero normal.
 std::vector<double> averaged_normals(const FacetSet& facets, const std::vector<local_index>* which,
-                                     std::span<const local_index>* nodes) {
+                                     std::span<const local_index>* nodes,
+                                     local_index* folded = nullptr) {
   validate(facets, "slave");
   const auto dim = static_cast<std::size_t>(facets.dim);
   std::vector<double> normals(facets.coordinates.size(), 0.0);
@@ -69,7 +72,12 @@ std::vector<double> averaged_normals(const FacetSet& facets, const std::vector<l
     for (std::size_t a = 0; a < dim; ++a)
       length += normals[node * dim + a] * normals[node * dim + a];
     length = std::sqrt(length);
-    SEAM_CHECK(length > 1e-8, InputError, "slave node ", node,
+    if (folded && !(length > min_normal_sum)) {
+      if (*folded < 0) *folded = static_cast<local_index>(node);
+      for (std::size_t a = 0; a < dim; ++a) normals[node * dim + a] = 0.0;
+      continue;
+    }
+    SEAM_CHECK(length > min_normal_sum, InputError, "slave node ", node,
                ": the normals of its facets cancel (the surface folds back onto itself)");
     for (std::size_t a = 0; a < dim; ++a) normals[node * dim + a] /= length;
   }
@@ -88,6 +96,12 @@ std::vector<double> averaged_nodal_normals(const FacetSet& facets,
   SEAM_ASSERT(std::is_sorted(adjacent.begin(), adjacent.end()));
   const std::vector<local_index> which(adjacent.begin(), adjacent.end());
   return averaged_normals(facets, &which, &nodes);
+}
+
+local_index folded_node(const FacetSet& facets) {
+  local_index folded = -1;
+  averaged_normals(facets, nullptr, nullptr, &folded);
+  return folded;
 }
 
 } // namespace seam::mortar

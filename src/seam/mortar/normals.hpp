@@ -9,6 +9,10 @@
 
 namespace seam::mortar {
 
+/// Below this length the sum of the unit facet normals at a node has no direction: the normals
+/// cancel.
+inline constexpr double min_normal_sum = 1e-8;
+
 /// dim values per node of the set's coordinate array; zero vectors for nodes on no facet.
 /// Throws InputError if the normals at a node cancel (a surface folded onto itself).
 std::vector<double> averaged_nodal_normals(const FacetSet& facets);
@@ -19,6 +23,11 @@ std::vector<double> averaged_nodal_normals(const FacetSet& facets);
 std::vector<double> averaged_nodal_normals(const FacetSet& facets,
                                            std::span<const local_index> adjacent,
                                            std::span<const local_index> nodes);
+
+/// The first node of the set at which the normals of its facets cancel (their sum is shorter
+/// than min_normal_sum: the surface folds back onto itself there), -1 if there is none. Throws
+/// only on a degenerate facet, as averaged_nodal_normals.
+local_index folded_node(const FacetSet& facets);
 
 /// Unit normal interpolated from nodal normals (columns) with shape values N.
 template <int Dim>

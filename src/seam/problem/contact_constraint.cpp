@@ -573,6 +573,25 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
   refresh_displacement(u);
   // Taken anew after each refresh: outside nodes found by a search extend u_mesh_.
   std::span<const double> u_mesh = u_mesh_;
+  // A slave surface folded back onto itself has no normal at the fold: the iterate is unusable
+  // (no mortar quantity is computed there), and on the mesh as read the input is wrong. Agreed
+  // over the ranks before anything collective (the largest id of the nodes found).
+  folded_node_ = -1;
+  for (const auto& s : sides_) {
+    const std::int32_t node = s.itf.folded_slave_node(u_mesh);
+    const std::int64_t id =
+        node >= 0 && node < disc_.mesh().n_nodes() ? disc_.node_gid(node) : std::int64_t{-1};
+    folded_node_ = std::max(folded_node_, id);
+  }
+  const std::int64_t folded = comm.max(folded_node_);
+  if (folded >= 0) {
+    SEAM_CHECK(evaluated_, InputError, "contact: slave node ", folded,
+               ": the normals of its facets cancel (the surface folds back onto itself in the "
+               "mesh as read)");
+    folded_node_ = folded;
+    return 0;
+  }
+  evaluated_ = true;
   int changes = 0;
   for (auto& s : sides_) {
     if (retrial) s.cycles.retract();

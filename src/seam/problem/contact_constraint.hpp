@@ -192,6 +192,11 @@ public:
   /// (D_jj = 0: no gap row, no force column) and were released; counted among its changes.
   /// Same on every rank.
   int n_released() const { return released_; }
+  /// The node (its id in the mesh as read) at which a slave surface folded back onto itself at
+  /// the last evaluate() (the normals of its facets cancel), -1 if none: an unusable iterate,
+  /// evaluated no further, whose step Newton cuts. Same on every rank. At the first evaluate()
+  /// of the run (the mesh as read) such a node is an InputError instead.
+  std::int64_t folded_node() const { return folded_node_; }
 
   /// Diagnostics and tests of the linearization. While the sets are held, evaluate() keeps
   /// every node's status (active, stick, slip) and tangent frame as they are, so that the
@@ -618,6 +623,8 @@ private:
   bool energy_momentum_ = false;      ///< integrator: energy_momentum
   bool held_ = false;                 ///< hold_sets
   int released_ = 0;                  ///< n_released()
+  std::int64_t folded_node_ = -1;     ///< folded_node()
+  bool evaluated_ = false;            ///< evaluate() ran before (the run has started)
   double last_solve_residual_ = -1.0; ///< last_solve_residual()
   PetscInt n_lm_ = 0;                 ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0;             ///< global index of the first of them

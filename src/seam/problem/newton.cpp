@@ -150,6 +150,18 @@ const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool fir
   state.status_changes = 0;
   if (contact_.active()) {
     state.changes = contact_.evaluate(u, t, first, out_.timers(), retrial);
+    // A folded contact surface is an unusable iterate, as an inverted element is.
+    if (const auto node = contact_.folded_node(); node >= 0) {
+      // Its text is read through the pointer returned (the line search keeps that of the full
+      // correction while it evaluates shorter ones): the capacity holds any such message, so
+      // the buffer is never moved once it was returned.
+      const std::string message =
+          ::seam::detail::concat("the contact surface folds back onto itself at slave node ", node,
+                                 " (the normals of its facets cancel)");
+      failure_.reserve(256);
+      failure_.assign(message.data(), message.size());
+      return failure_.c_str();
+    }
     state.status_changes = state.changes - contact_.n_inconsistent();
     state.decided = true;
   }

@@ -208,6 +208,7 @@ private:
   std::vector<PetscInt> dirichlet_rows_;
   double last_increment_ = 0.0;
   double last_norm_ = 0.0; // residual norm of the previous iteration
+  std::string failure_;    // the message of the last failed evaluation that names a node
   bool logging_ = true;
   bool iterative_ = false;             // the Newton systems go to GMRES + GAMG (inexact Newton)
   bool constant_tangent_ = false;      // set_constant_tangent

@@ -175,3 +175,24 @@ TEST(NodalNormals, CylinderAndBoxCorner) {
   for (int a = 0; a < 3; ++a)
     EXPECT_NEAR(nc[static_cast<std::size_t>(a)], 1 / std::sqrt(3.0), 1e-15);
 }
+
+TEST(NodalNormals, FoldedNodeIsFound) {
+  // Three nodes on the x axis, node 1 beyond node 2: facet (0, 1) runs in +x, facet (1, 2) in
+  // -x, so their unit normals at node 1 are (0, -1) and (0, 1) and cancel there. Node 2's
+  // single facet gives it a normal; node 0 likewise.
+  test::Surface folded;
+  folded.dim = 2;
+  folded.coordinates = {0, 0, 2, 0, 1, 0};
+  folded.add_facet(CellType::line2, {0, 1});
+  folded.add_facet(CellType::line2, {1, 2});
+  EXPECT_EQ(folded_node(folded.view()), 1);
+  EXPECT_THROW(averaged_nodal_normals(folded.view()), seam::InputError);
+  const std::vector<local_index> adjacent{0, 1};
+  const std::vector<local_index> node{1};
+  EXPECT_THROW(averaged_nodal_normals(folded.view(), adjacent, node), seam::InputError);
+  // Node 1 back between its neighbours: no fold.
+  folded.coordinates[2] = 0.5;
+  EXPECT_EQ(folded_node(folded.view()), -1);
+  const auto normals = averaged_nodal_normals(folded.view());
+  EXPECT_NEAR(normals[3], -1.0, 1e-15);
+}

@@ -26,17 +26,6 @@
 namespace seam::problem {
 namespace {
 
-constexpr const char* geo =
-    "h = 0.0625;\n"
-    "Point(1) = {0, 0, 0, h}; Point(2) = {1, 0, 0, h};\n"
-    "Point(3) = {1, 0.25, 0, h}; Point(4) = {0, 0.25, 0, h};\n"
-    "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n"
-    "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
-    "Transfinite Curve{1, 3} = 17; Transfinite Curve{2, 4} = 5;\n"
-    "Transfinite Surface{1}; Recombine Surface{1};\n"
-    "Physical Curve(\"bottom\") = {1}; Physical Curve(\"top\") = {3};\n"
-    "Physical Surface(\"body\") = {1};\n";
-
 struct Outcome {
   int active_before = 0, active_after = 0, released = 0;
   bool solved = false, finite = false;
@@ -46,25 +35,10 @@ struct Outcome {
 /// the saddle point there.
 Outcome held_set_after_motion(const std::string& name, double dx, double dy) {
   Comm comm;
-  const auto folder = std::filesystem::temp_directory_path() /
-                      ("seam_released_" + name + "_np" + std::to_string(comm.size()));
-  const std::string yaml =
-      "dimension: 2\nmesh: {geo: case.geo}\n"
-      "materials:\n  m: {model: neo_hooke, young: 100.0, poisson: 0.3, density: 1.0}\n"
-      "bodies:\n  - {region: body, material: m}\n  - {region: base, material: m}\n"
-      "boundary_conditions:\n"
-      "  - {region: top, type: dirichlet, components: [x, y], value: [0, '-0.01*t']}\n"
-      "  - {region: base_bottom, type: dirichlet, components: [x, y], value: [0, 0]}\n"
-      "interfaces:\n  - {name: joint, type: contact, surface: [bottom, base_top]}\n"
-      "time: {integrator: energy_momentum, end: 2.0, steps: 2}\n"
-      "solver: {newton: {tolerance: 1e-11, max_iterations: 40}}\n";
-  if (comm.is_root()) {
-    std::filesystem::remove_all(folder);
-    std::filesystem::create_directories(folder);
-    std::ofstream(folder / "case.geo") << geo << kWideBase;
-    std::ofstream(folder / "case.yaml") << yaml;
-  }
-  comm.barrier();
+  const auto folder =
+      write_block_on_base(comm, "released_" + name, "'-0.01*t'",
+                          "time: {integrator: energy_momentum, end: 2.0, steps: 2}\n"
+                          "solver: {newton: {tolerance: 1e-11, max_iterations: 40}}\n");
   ContactRun run(comm, folder, false);
   const Discretization& disc = run.disc;
   const Model& model = run.model;
