@@ -1136,10 +1136,11 @@ def test_energy_momentum_friction_part_np3():
     H.cleanup(*_dirs)
 
 
-def two_blocks_case(np):
+def two_blocks_case(np, bulk=False):
     """The two blocks of test_self_contact.py (3D tetrahedra, tilted top) as one surface,
     stretched to 3 x 1 x 1 so that the partition cuts the contact faces (stacked unit cubes
-    are cut across z: one rank then evaluates both faces whole)."""
+    are cut across z: one rank then evaluates both faces whole); `bulk`: with
+    `interface_distribution: bulk`."""
     import geometry
     import test_self_contact as S
     geo = geometry.tied_boxes(0.35, 0.25, kind="tet")
@@ -1148,8 +1149,13 @@ def two_blocks_case(np):
         if box not in geo:
             raise AssertionError("tied_boxes: '%s' not found" % box)
         geo = geo.replace(box, "{0, 0, %s, 3, 1, 1};" % z)
-    work, out = S.T.run_case(geo, S.blocks_yaml(
-        3, "{name: contact, type: contact, surface: [lower_top, upper_bottom]}", True), np=np)
+    yaml = S.blocks_yaml(
+        3, "{name: contact, type: contact, surface: [lower_top, upper_bottom]}", True)
+    if bulk:
+        if BULK[0] not in yaml:
+            raise AssertionError("blocks_yaml: '%s' not found" % BULK[0])
+        yaml = yaml.replace(*BULK)
+    work, out = S.T.run_case(geo, yaml, np=np)
     _dirs.extend([work, out])
     return out
 
@@ -1195,10 +1201,12 @@ def test_self_contact_held_cells_np3():
     from the facing pairs gathered by facet id. The two blocks of test_self_contact.py as one
     surface (static, 3 load steps) and test_self_contact.py's ring squeezed between two rigid
     planes until its hole closes onto itself (2D, static, 30 steps) at np 1 and np 3
-    (check_surface_in_part). Before, every rank held every cell with a surface facet and the
-    whole surface."""
+    (check_surface_in_part; the blocks also with `interface_distribution: bulk`). Before, every
+    rank held every cell with a surface facet and the whole surface."""
     one, three = two_blocks_case(1), two_blocks_case(3)
     check_surface_in_part(one, three, "two blocks (self contact)")
+    check_surface_in_part(one, two_blocks_case(3, bulk=True),
+                          "two blocks (self contact, bulk distribution)")
     import test_self_contact as S
 
     def ring(np):
