@@ -846,8 +846,8 @@ def test_contact_side_of_another_dimension():
 
 
 def test_tying_sides_share_a_node():
-    """Mesh tying: distributed (condensed) and whole on every rank (saddle point), the node
-    named by its id in the mesh as read on every rank."""
+    """Mesh tying, condensed and saddle point (both distributed), the node named by its id in
+    the mesh as read on every rank."""
     for extra in ("", ", multiplier: standard, strategy: saddle_point"):
         text = (SIDES_YAML % ("slave: upper_bottom, master: master_overlap" + extra)).replace(
             "type: contact", "type: mesh_tying")

@@ -460,10 +460,16 @@ def test_held_cells_np3():
     H.cleanup(*_dirs)
 
 
-def wide_tied_case():
+SADDLE_POINT = (("multiplier: dual", "multiplier: standard"),
+                ("strategy: condensed", "strategy: saddle_point"))
+
+
+def wide_tied_case(replace=()):
     """The tied blocks example stretched to two 3 x 1 x 1 blocks (one step): the bulk
-    partition cuts the bar along its length, so every rank owns a part of the interface."""
-    work, path = H.copy_example("tied_blocks", "blocks.yaml", (("steps: 5}", "steps: 1}"),))
+    partition cuts the bar along its length, so every rank owns a part of the interface.
+    `replace`: further (old, new) edits of the input (SADDLE_POINT: standard multipliers)."""
+    work, path = H.copy_example("tied_blocks", "blocks.yaml",
+                                (("steps: 5}", "steps: 1}"),) + tuple(replace))
     _dirs.append(work)
     geo = os.path.join(work, "blocks.geo")
     with open(geo) as f:
@@ -485,7 +491,95 @@ def test_tied_interface_part_np3():
     overlaps: one rank, two or three near the cuts between the parts, so the master copies
     exceed the master facets only by the facets along the cuts (1.25 x the whole interface
     bounds both together). Replicated, every rank held all interface cells."""
-    path = wide_tied_case()
+    check_tied_part(wide_tied_case())
+
+
+def test_saddle_point_tying_part_np3():
+    """The same with standard multipliers as unknowns of the saddle-point system (docs/
+    parallel.md, "Saddle-point tying distributed"): the mesh initialization D X_S = M X_M (D
+    not diagonal) solved distributed, the multipliers numbered by the slave nodes' owners.
+    Held whole before, every rank integrated the whole interface (np 3: each rank's slave
+    facets the whole side's, failing the sum)."""
+    check_tied_part(wide_tied_case(SADDLE_POINT))
+
+
+def curved_saddle_yaml(slave, master):
+    """A disk tied into a plate's hole by standard multipliers (test_mesh_tying.py's curved
+    patch test, stretched by a traction): the non-matching circles make the mesh
+    initialization move the slave nodes."""
+    return "\n".join([
+        "dimension: 2", "plane: strain", "mesh: {geo: case.geo}",
+        "materials: {m: {model: linear_elastic, young: 100, poisson: 0.3}}",
+        "bodies: [{region: plate, material: m}, {region: disk, material: m}]",
+        "boundary_conditions:",
+        "  - {region: left, type: dirichlet, components: [x], value: [0]}",
+        "  - {region: bottom, type: dirichlet, components: [y], value: [0]}",
+        "  - {region: right, type: traction, value: [2, 0]}",
+        "interfaces:",
+        "  - {name: tie, type: mesh_tying, slave: %s, master: %s, multiplier: standard, "
+        "strategy: saddle_point}" % (slave, master),
+        "time: {integrator: static, end: 1, steps: 1}",
+        "output: {probes: [[0.1, 0.2], [0.45, 0.1], [-0.8, 0.7], [0.0, 0.5]]}"]) + "\n"
+
+
+def test_saddle_point_mesh_initialization_np3():
+    """The mesh initialization D X_S = M X_M with standard multipliers (D not diagonal) solved
+    distributed on the slave nodes' owners (docs/parallel.md, "Saddle-point tying
+    distributed"), linear and quadratic curved interfaces: the relocated slave nodes
+    (interface_tie.csv's x, y), the largest move and the results at np 3 equal np 1; the
+    slave nodes move (1.8e-3 and 1.3e-6 of the radius 0.5), and each slave facet is integrated
+    once."""
+    import geometry
+    for order, slave, master in ((1, "rim", "hole"), (2, "hole", "rim")):
+        geo = geometry.plate_with_inclusion(0.1, 0.06, order)
+        outs = {np: run_case(geo, curved_saddle_yaml(slave, master), np) for np in (1, 3)}
+        what = "curved, order %d" % order
+        moved = [H.read_json(os.path.join(outs[np], "summary.json"))["interfaces"][0]
+                 ["max_slave_relocation"] for np in (1, 3)]
+        detail = ranks_detail(outs[3])
+        n_s = H.read_json(os.path.join(outs[3], "summary.json"))["interfaces"][0]["slave_elements"]
+        print("   %s: slave nodes moved by at most %.6e (np 1), %.6e (np 3); slave facets per "
+              "rank %s of %d" % (what, moved[0], moved[1], [d["slave_elements"] for d in detail],
+                                 n_s))
+        if not moved[0] > 1e-9:
+            raise AssertionError("%s: the slave nodes did not move (%.3e)" % (what, moved[0]))
+        if abs(moved[0] - moved[1]) > 1e-12 * moved[0]:
+            raise AssertionError("%s: largest move %.17g at np 1, %.17g at np 3" % (what, *moved))
+        if sum(d["slave_elements"] for d in detail) != n_s or max(
+                d["slave_elements"] for d in detail) == n_s:
+            raise AssertionError("%s: slave facets per rank %s of %d"
+                                 % (what, [d["slave_elements"] for d in detail], n_s))
+        compare_tied(outs[1], outs[3], what)
+    H.cleanup(*_dirs)
+
+
+def compare_tied(one, three, what):
+    """probes, reactions, interfaces.csv and interface_tie.csv: np 3 against np 1, relative to
+    the largest value of each group of columns (a vector's components together: a component
+    that vanishes is compared with the vector's size, not with its own round-off)."""
+    for name, groups in (("probes.csv", (("ux", "uy", "uz"),)),
+                         ("reactions.csv", (("fx", "fy", "fz"),)),
+                         ("interfaces.csv", (("normal_force", "tangential_force"),)),
+                         ("interface_tie.csv", (("x", "y", "z"), ("ux", "uy", "uz"),
+                                                ("normal_traction", "tangential_traction")))):
+        a, b = rows_of(one, name), rows_of(three, name)
+        if len(a) != len(b):
+            raise AssertionError("%s: %s: %d rows at np 1, %d at np 3" % (what, name, len(a), len(b)))
+        worst = 0.0
+        for keys in groups:
+            scale = max(abs(r[k]) for r in a for k in keys) or 1.0
+            worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(a, b) for k in keys])
+        if name == "interface_tie.csv" and any(x["node"] != y["node"] or x["status"] != y["status"]
+                                               for x, y in zip(a, b)):
+            raise AssertionError("%s: interface_tie.csv: nodes or status differ" % what)
+        print("   %s: %s: np 3 against np 1, largest difference %.2e (relative)" % (what, name, worst))
+        # The sums run in another order at np 3 and PT-Scotch's cut varies from run to run:
+        # 2.8e-13, 8.95e-13 and 1.6e-12 measured in three runs; 1e-10 is far below any tying error.
+        if worst > 1e-10:
+            raise AssertionError("%s: %s differs by %.3e" % (what, name, worst))
+
+
+def check_tied_part(path):
     outs = {}
     for np in (1, 3):
         out = H.solve(path, np=np)
@@ -519,26 +613,7 @@ def test_tied_interface_part_np3():
                              % (sum(held), total))
     if max(held) >= 0.75 * total:
         raise AssertionError("a rank holds %d of the %d interface elements" % (max(held), total))
-    # Results: np 3 = np 1.
-    for name, keys in (("probes.csv", ("ux", "uy", "uz")), ("reactions.csv", ("fx", "fy", "fz")),
-                       ("interfaces.csv", ("normal_force", "tangential_force")),
-                       ("interface_tie.csv", ("x", "y", "z", "ux", "uy", "uz", "normal_traction",
-                                              "tangential_traction"))):
-        a, b = rows_of(outs[1], name), rows_of(outs[3], name)
-        if len(a) != len(b):
-            raise AssertionError("%s: %d rows at np 1, %d at np 3" % (name, len(a), len(b)))
-        worst = 0.0
-        for k in keys:
-            scale = max(abs(r[k]) for r in a) or 1.0
-            worst = max([worst] + [abs(x[k] - y[k]) / scale for x, y in zip(a, b)])
-        if name == "interface_tie.csv" and any(x["node"] != y["node"] or x["status"] != y["status"]
-                                               for x, y in zip(a, b)):
-            raise AssertionError("interface_tie.csv: nodes or status differ")
-        print("   %s: np 3 against np 1, largest difference %.2e (relative)" % (name, worst))
-        # The sums run in another order at np 3 and PT-Scotch's cut varies from run to run:
-        # 2.8e-13, 8.95e-13 and 1.6e-12 measured in three runs; 1e-10 is far below any tying error.
-        if worst > 1e-10:
-            raise AssertionError("%s differs by %.3e" % (name, worst))
+    compare_tied(outs[1], outs[3], "np 3")
     H.cleanup(*_dirs)
 
 
@@ -1269,7 +1344,8 @@ if __name__ == "__main__":
     H.main([test_hertz_master_side_in_part_np3, test_slave_side_in_part_np3,
             test_slave_side_in_part_independent_np3, test_rings_self_search_np3, test_two_blocks_self_search_np3,
             test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3,
-            test_check_distributed_np3, test_tied_interface_part_np3,
+            test_check_distributed_np3, test_tied_interface_part_np3, test_saddle_point_tying_part_np3,
+            test_saddle_point_mesh_initialization_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2,

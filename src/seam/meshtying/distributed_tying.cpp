@@ -11,6 +11,8 @@
 #include "seam/parallel/ghosting.hpp"
 #include "seam/search/interface_search.hpp"
 
+#include <petscksp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -18,7 +20,7 @@
 namespace seam::meshtying {
 
 bool distributed_tying(const io::Interface& itf) {
-  return itf.type == io::InterfaceType::mesh_tying && itf.strategy == io::Strategy::condensed;
+  return itf.type == io::InterfaceType::mesh_tying;
 }
 
 namespace {
@@ -96,6 +98,129 @@ std::vector<T> by_rank(int size, const std::vector<std::pair<int, T>>& items,
   std::vector<std::int64_t> next(offsets.begin(), offsets.end() - 1);
   for (const auto& [r, x] : items) out[static_cast<std::size_t>(next[r]++)] = x;
   return out;
+}
+
+void petsc_check(PetscErrorCode code, const char* what) {
+  SEAM_CHECK(code == 0, InternalError, "PETSc error ", static_cast<int>(code), " in ", what);
+}
+
+/// Mesh initialization with a non-diagonal D (standard multipliers): D_SS X_S = M X_M - D_SB X_B
+/// over the whole side as one distributed linear system, its rows the slave nodes with a row of
+/// D on their owners (`rows`: the complete rows of the nodes this rank owns, sorted), solved by
+/// a parallel LU (MUMPS). Returns X_S - X of the nodes this rank owns (dim values per held
+/// slave node, zero elsewhere and for nodes not moved). Bound columns (no row of their own)
+/// keep their place; their coordinates are those held here (a column of an owned row is a
+/// neighbour on a facet around an owned node, held by the ghost layer).
+std::vector<double>
+standard_initialization(MPI_Comm comm, const TiedInterface& t, const std::vector<RowEntry>& rows,
+                        const std::unordered_map<std::int64_t, local_index>& slave_local,
+                        const std::vector<int>& owners) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int dim = t.slave.dim;
+  // This rank's unknowns: its owned nodes with a row of D, in the order of their numbers.
+  std::vector<std::int64_t> mine;
+  for (const auto& e : rows)
+    if (e.kind == 0 && (mine.empty() || mine.back() != e.row)) mine.push_back(e.row);
+  PetscInt n_local = static_cast<PetscInt>(mine.size()), first = 0;
+  MPI_Exscan(&n_local, &first, 1, MPIU_INT, MPI_SUM, comm);
+  if (rank == 0) first = 0;
+  const auto number_of_mine = [&](std::int64_t node) -> PetscInt {
+    const auto it = std::lower_bound(mine.begin(), mine.end(), node);
+    return it != mine.end() && *it == node ? first + static_cast<PetscInt>(it - mine.begin()) : -1;
+  };
+  // The numbers of the columns of D from their owners (-1: a bound node without a row).
+  std::vector<std::int64_t> columns;
+  for (const auto& e : rows)
+    if (e.kind == 0) columns.push_back(e.col);
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  std::vector<std::pair<int, std::int64_t>> requests;
+  for (auto c : columns)
+    requests.emplace_back(owners[static_cast<std::size_t>(slave_local.at(c))], c);
+  std::vector<std::int64_t> offsets, recv_offsets;
+  const auto send = by_rank(size, requests, offsets);
+  const auto asked = parallel::alltoallv<std::int64_t>(comm, send, offsets, recv_offsets);
+  std::vector<std::int64_t> answers(asked.size());
+  for (std::size_t k = 0; k < asked.size(); ++k) answers[k] = number_of_mine(asked[k]);
+  const auto replies = parallel::alltoallv<std::int64_t>(comm, answers, recv_offsets, offsets);
+  std::unordered_map<std::int64_t, PetscInt> number;
+  for (std::size_t k = 0; k < send.size(); ++k)
+    number.emplace(send[k], static_cast<PetscInt>(replies[k]));
+
+  // D_SS and the right-hand sides M X_M - D_SB X_B, one column per coordinate.
+  std::vector<PetscInt> d_nnz(static_cast<std::size_t>(n_local), 0),
+      o_nnz(static_cast<std::size_t>(n_local), 0);
+  std::vector<double> rhs(static_cast<std::size_t>(n_local) * dim, 0.0);
+  for (const auto& e : rows) {
+    const auto i = static_cast<std::size_t>(number_of_mine(e.row) - first);
+    if (e.kind == 1) {
+      for (int c = 0; c < dim; ++c) rhs[i * dim + c] += e.value * e.x[c];
+      continue;
+    }
+    const PetscInt col = number.at(e.col);
+    if (col < 0) {
+      const auto b = static_cast<std::size_t>(slave_local.at(e.col));
+      for (int c = 0; c < dim; ++c) rhs[i * dim + c] -= e.value * t.slave.coordinates[b * dim + c];
+      continue;
+    }
+    ++(col >= first && col < first + n_local ? d_nnz[i] : o_nnz[i]);
+  }
+  Mat D = nullptr;
+  petsc_check(MatCreateAIJ(comm, n_local, n_local, PETSC_DETERMINE, PETSC_DETERMINE, 0,
+                           d_nnz.data(), 0, o_nnz.data(), &D),
+              "MatCreateAIJ");
+  for (const auto& e : rows) {
+    if (e.kind != 0 || number.at(e.col) < 0) continue;
+    const PetscInt row = number_of_mine(e.row), col = number.at(e.col);
+    petsc_check(MatSetValue(D, row, col, e.value, ADD_VALUES), "MatSetValue");
+  }
+  petsc_check(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(D, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  KSP ksp = nullptr;
+  PC pc = nullptr;
+  petsc_check(KSPCreate(comm, &ksp), "KSPCreate");
+  petsc_check(KSPSetOperators(ksp, D, D), "KSPSetOperators");
+  petsc_check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+  petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  petsc_check(PCSetType(pc, PCLU), "PCSetType");
+  petsc_check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  petsc_check(KSPSetOptionsPrefix(ksp, "mesh_initialization_"), "KSPSetOptionsPrefix");
+  petsc_check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+  PetscErrorCode setup = KSPSetUp(ksp);
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  std::vector<double> delta(t.slave.mesh_nodes.size() * dim, 0.0);
+  Vec b = nullptr, x = nullptr;
+  petsc_check(MatCreateVecs(D, &x, &b), "MatCreateVecs");
+  bool singular = setup != 0;
+  for (int c = 0; c < dim && !singular; ++c) {
+    PetscScalar* bv = nullptr;
+    petsc_check(VecGetArray(b, &bv), "VecGetArray");
+    for (PetscInt i = 0; i < n_local; ++i) bv[i] = rhs[static_cast<std::size_t>(i) * dim + c];
+    petsc_check(VecRestoreArray(b, &bv), "VecRestoreArray");
+    singular = KSPSolve(ksp, b, x) != 0;
+    if (!singular) {
+      petsc_check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+      singular = reason < 0;
+    }
+    if (singular) break;
+    const PetscScalar* xv = nullptr;
+    petsc_check(VecGetArrayRead(x, &xv), "VecGetArrayRead");
+    for (PetscInt i = 0; i < n_local; ++i) {
+      const auto j = static_cast<std::size_t>(slave_local.at(mine[static_cast<std::size_t>(i)]));
+      delta[j * dim + c] = xv[i] - t.slave.coordinates[j * dim + c];
+    }
+    petsc_check(VecRestoreArrayRead(x, &xv), "VecRestoreArrayRead");
+  }
+  VecDestroy(&b);
+  VecDestroy(&x);
+  KSPDestroy(&ksp);
+  MatDestroy(&D);
+  int bad = singular ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
+  SEAM_CHECK(bad == 0, InputError, "mesh initialization: the mortar matrix D is singular");
+  return delta;
 }
 
 struct SetupResult {
@@ -319,14 +444,30 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   t.master = std::move(master);
   t.master_index = std::move(master_index);
 
-  // Mesh initialization (D X_S = M X_M) from the complete rows, for the nodes of the rank's
-  // cells: every rank that holds such a node computes the same position from the same rows.
-  const auto moved =
-      mortar::initialize_slave_coordinates(t.operators, t.slave.coordinates, t.master.coordinates);
+  // Mesh initialization (D X_S = M X_M). Dual multipliers (D diagonal): from the complete
+  // rows, for the nodes of the rank's cells; every rank that holds such a node computes the
+  // same position from the same rows. Standard multipliers: one distributed solve over the
+  // side, each node's move published by its owner to every rank that holds the node.
+  std::vector<double> moved;
+  std::vector<char> update(n_slave, 0);
+  if (t.operators.multiplier == mortar::Multiplier::standard) {
+    std::vector<int> owners(n_slave);
+    for (std::size_t i = 0; i < n_slave; ++i) owners[i] = owner(i);
+    auto delta = standard_initialization(comm, t, rows, slave_local, owners);
+    parallel::HolderPublisher(comm, t.slave_index, owners).publish(delta, dim);
+    moved = t.slave.coordinates;
+    for (std::size_t k = 0; k < moved.size(); ++k) moved[k] += delta[k];
+    std::fill(update.begin(), update.end(), 1);
+  } else {
+    moved = mortar::initialize_slave_coordinates(t.operators, t.slave.coordinates,
+                                                 t.master.coordinates);
+    for (std::size_t i = 0; i < n_slave; ++i)
+      update[i] = in_owned_cell[static_cast<std::size_t>(t.slave.mesh_nodes[i])];
+  }
   double max_relocation = 0.0;
   for (std::size_t i = 0; i < n_slave; ++i) {
     const auto node = static_cast<std::size_t>(t.slave.mesh_nodes[i]);
-    if (!in_owned_cell[node]) continue;
+    if (!update[i]) continue;
     double d2 = 0.0;
     for (int c = 0; c < dim; ++c) {
       const double delta = moved[i * dim + c] - t.slave.coordinates[i * dim + c];

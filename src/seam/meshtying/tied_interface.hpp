@@ -82,15 +82,16 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh
                                             io::InterfaceType type = io::InterfaceType::mesh_tying,
                                             std::span<const std::int64_t> node_gid = {});
 
-/// True for the mesh-tying interfaces set up distributed on a distributed mesh (condensed, hence
-/// dual): their sides need not be held whole on every rank.
+/// True for the mesh-tying interfaces set up distributed on a distributed mesh (condensed and
+/// saddle point): their sides need not be held whole on every rank.
 bool distributed_tying(const io::Interface& interface);
 
 /// Collective. The mesh-tying interfaces on a distributed mesh: the distributed_tying ones
 /// integrated by the ranks that own their slave facets' cells against the master facets ghosted
 /// to them by bounding boxes, the rows of D and M summed on the slave nodes' owners and sent to
-/// the ranks that hold the nodes; the others (saddle point) whole on every rank, as above
-/// (their sides are held whole). Relocates the slave nodes of `part` like the replicated set-up.
+/// the ranks that hold the nodes. Relocates the slave nodes of `part` like the replicated
+/// set-up; with standard multipliers (D not diagonal) by one distributed solve of D on the
+/// slave nodes' owners.
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::DistributedMesh& part,
                                             MPI_Comm comm, PhaseTimers& timers);
 

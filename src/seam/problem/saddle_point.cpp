@@ -89,7 +89,11 @@ SaddlePoint::SaddlePoint(const std::vector<meshtying::TiedInterface>& interfaces
     }
     const auto [m_begin, m_end] = row_range(t.operators.M, lm.slave_node);
     for (auto e = m_begin; e != m_end; ++e) {
-      const PetscInt col = disc.global_dof(t.master.mesh_nodes[e->col], lm.component);
+      // A distributed interface names its master nodes by global number (the solid's layout:
+      // dof = number * dim + component); they need not be held here.
+      const PetscInt col = t.distributed
+                               ? static_cast<PetscInt>(t.master_index[e->col]) * dim + lm.component
+                               : disc.global_dof(t.master.mesh_nodes[e->col], lm.component);
       check(MatSetValue(B_, row, col, -e->value, ADD_VALUES), "MatSetValue");
     }
   }
@@ -178,7 +182,7 @@ std::vector<double> SaddlePoint::multipliers(std::size_t k) const {
       if (lm_dofs_[i].interface == k)
         out[lm_dofs_[i].slave_node * dim + lm_dofs_[i].component] = ll[i];
   }
-  disc_.comm().sum_in_place(out);
+  if (!interfaces_[k].distributed) disc_.comm().sum_in_place(out);
   return out;
 }
 

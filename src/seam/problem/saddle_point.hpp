@@ -41,7 +41,8 @@ public:
   /// Keeps the multipliers of the last converged state (restore after a failed step).
   void save();
   void restore();
-  /// lambda of interface k per slave node (dim values each), on every rank (collective).
+  /// lambda of interface k per slave node (dim values each), on every rank (collective); of a
+  /// distributed interface, those of the slave nodes this rank owns (zero elsewhere).
   std::vector<double> multipliers(std::size_t k) const;
   /// Sets lambda (and the saved copy) of every interface from values per slave node as
   /// multipliers() returns them (a restart).
