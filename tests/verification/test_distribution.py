@@ -1013,6 +1013,46 @@ def test_contact_held_cells_np3():
     H.cleanup(*_dirs)
 
 
+STANDARD = ("multiplier: dual", "multiplier: standard")
+
+
+def test_standard_multipliers_held_in_part_np3():
+    """Contact with standard multipliers (a saddle point: the multipliers are unknowns) with
+    its sides held in part (docs/parallel.md, "Converting the contact sides", step 6): the
+    multiplier rows numbered by the slave nodes' owners and reached by node id, each rank's
+    mesh only its own and ghost cells. At np 1 and 3: the Hertz sphere on a block (two bodies,
+    two load steps), the Hertz sphere on a rigid plane (two load steps), test_friction.py's
+    block pressed onto a rigid plane and dragged with Coulomb friction (8 steps) and the 2D
+    ironing with Coulomb friction (IRONING_SHORT): at np 3 no rank holds more than (owned +
+    ghost cells) * 1.1 cells (check_held_cells), the slave side is held in part
+    (check_slave_in_part) and every output equals np 1 to 1e-10. Before, the sides of such a
+    run were held whole on every rank."""
+    steps = (("steps: 5", "steps: 2"), STANDARD)
+    for yaml, what, bound in (("sphere_block.yaml", "hertz on a block, standard", 2.2),
+                              ("hertz_3d.yaml", "hertz on a rigid plane, standard", 1.3)):
+        one = run_example("hertz_3d", yaml, 1, steps)
+        three = run_example("hertz_3d", yaml, 3, steps)
+        check_held_cells(three, what)
+        check_slave_in_part(three, what, False, bound)
+        compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    import geometry  # noqa: E402
+    block = geometry.rectangle("quad_structured", 0.0625, lx=1.0, ly=0.25)
+    yaml = drag_on_plane_yaml(False).replace("type: contact,", "type: contact, multiplier: standard,")
+    what = "block dragged on a rigid plane, standard"
+    one, three = run_case(block, yaml, 1), run_case(block, yaml, 3)
+    check_held_cells(three, what)
+    check_slave_in_part(three, what, False, 1.6)
+    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    friction = ("friction: {model: coulomb", "multiplier: standard\n    friction: {model: coulomb")
+    what = "ironing with friction, standard"
+    one = run_example("ironing", "ironing_2d.yaml", 1, IRONING_SHORT + (friction,))
+    three = run_example("ironing", "ironing_2d.yaml", 3, IRONING_SHORT + (friction,))
+    check_held_cells(three, what)
+    check_slave_in_part(three, what, False, 2.5)
+    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    H.cleanup(*_dirs)
+
+
 def test_ironing_master_ghosted():
     """2D ironing with Coulomb friction: pressed in and slid a little, coarse steps."""
     check_master_ghosted("ironing", "ironing_2d.yaml", IRONING_SHORT, 0.5)
@@ -1273,5 +1313,6 @@ if __name__ == "__main__":
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2,
-            test_contact_held_cells_np3, test_self_contact_held_cells_np3])
+            test_contact_held_cells_np3, test_self_contact_held_cells_np3,
+            test_standard_multipliers_held_in_part_np3])
 

@@ -317,6 +317,11 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
       checkpoints.read_parts([&](const RecordReader& part) {
         const auto slave = part.integers(p + "M_old.slave_node");
         kept.insert(kept.end(), slave.begin(), slave.end());
+        // Standard multipliers: both nodes of D^n_jk.
+        for (const auto* key : {"D_coupling_old.row_node", "D_coupling_old.col_node"}) {
+          const auto nodes = part.integers(p + key);
+          kept.insert(kept.end(), nodes.begin(), nodes.end());
+        }
       });
       if (cut) {
         evaluate_facets(s, *cut, std::move(kept));

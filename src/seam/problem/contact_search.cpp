@@ -34,26 +34,24 @@ struct GlobalFacingPair {
 
 namespace {
 
-/// Contact with dual multipliers, condensed: no interface of the run has standard multipliers
-/// (a saddle point) and the run is not energy-momentum contact (gap blocks over the start of
-/// the step).
-bool condensed_dual(const io::Interface& itf, const io::Config& config) {
-  for (const auto& other : config.interfaces)
-    if (other.type == io::InterfaceType::contact && other.multiplier != io::Multiplier::dual)
-      return false;
-  return itf.type == io::InterfaceType::contact && itf.multiplier == io::Multiplier::dual &&
+/// Contact outside energy-momentum contact (whose gap blocks read the whole sides at the start
+/// of the step): with dual multipliers condensed, or in a saddle point (standard multipliers on
+/// some interface of the run), whose multiplier rows the slave nodes' owners number and the
+/// other ranks reach by node id (ContactConstraint::number_multipliers).
+bool outside_energy_momentum(const io::Interface& itf, const io::Config& config) {
+  return itf.type == io::InterfaceType::contact &&
          config.time.integrator != io::Integrator::energy_momentum;
 }
 
 } // namespace
 
 bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
-  return itf.master && itf.surface.empty() && condensed_dual(itf, config);
+  return itf.master && itf.surface.empty() && outside_energy_momentum(itf, config);
 }
 
 bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
   const bool rigid = itf.rigid_plane.has_value() || itf.rigid_obstacle.has_value();
-  return (itf.master || rigid || !itf.surface.empty()) && condensed_dual(itf, config);
+  return (itf.master || rigid || !itf.surface.empty()) && outside_energy_momentum(itf, config);
 }
 
 local_index SideIds::facet(std::int64_t id) const {
