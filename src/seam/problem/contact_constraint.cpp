@@ -122,10 +122,12 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   const int dim = disc.dim();
   double young = 0.0;
   for (const auto& m : model.materials) young = std::max(young, m.young);
+  reference_x_ = disc.mesh().x;
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::contact) continue;
     const bool slave_part = slave_held_in_part(itf, config) && disc.comm().size() > 1;
     Side s(contact::ContactInterface(itf, disc.mesh(), slave_part));
+    s.itf.set_reference_coordinates(&reference_x_);
     s.slave_in_part = slave_part;
     if (!s.itf.rigid() && !s.itf.self_contact()) check_shared_nodes(s, itf);
     // The slave facets the side holds. In part with the independent distribution: those of
@@ -517,8 +519,8 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
   read(u, u_mesh_);
   // The start of an energy-momentum step at the same nodes, by the same scatter (again after
   // a new scatter: new ghosts, a redistribution). The same decision on every rank.
+  if (has_start_) u_mesh_start_.resize(u_mesh_.size(), 0.0); // outside nodes found since
   if (has_start_ && !start_read_) {
-    if (u_mesh_start_.size() != u_mesh_.size()) u_mesh_start_.assign(u_mesh_.size(), 0.0);
     read(u_start_, u_mesh_start_);
     start_read_ = true;
   }
@@ -1241,6 +1243,7 @@ void ContactConstraint::map_nodes(std::span<const std::int64_t> ids,
     if (outside_node(r.id) >= 0) continue;
     const auto node = static_cast<std::int32_t>(disc_.mesh().n_nodes() + outside_.size());
     outside_.push_back(r);
+    reference_x_.insert(reference_x_.end(), r.x, r.x + disc_.dim());
     outside_index_.insert(std::lower_bound(outside_index_.begin(), outside_index_.end(),
                                            std::pair<std::int64_t, std::int32_t>{r.id, -1}),
                           {r.id, node});
@@ -1772,6 +1775,18 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
     d->resize(k);
   }
   for (auto* v : {&s.part.D, &s.part.gap}) moved(*v, 1);
+  if (s.discrete_gradient) {
+    // The gap rows and the discrete gradients of the last evaluation (the owner's nodes, which
+    // it holds before and after: read by the reports of the step).
+    moved(s.em_row, 1);
+    if (s.friction) moved(s.em_gap_mid, dim);
+    for (auto& e : s.em_gradient) {
+      const auto j = index_after(static_cast<std::int32_t>(e.j));
+      SEAM_CHECK(j >= 0, InternalError, "contact: an owned slave node is not held after the ",
+                 "distribution");
+      e.j = static_cast<std::size_t>(j);
+    }
+  }
   if (lm_numbered_) number_multipliers(s);
   s.cycles = {};
   s.held_frames.clear();

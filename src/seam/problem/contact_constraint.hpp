@@ -81,6 +81,9 @@ class Checkpoints;
 class ContactConstraint {
 public:
   ContactConstraint(const io::Config& config, const Discretization& disc, const Model& model);
+  /// Not copied nor moved: the interfaces point at reference_x_.
+  ContactConstraint(const ContactConstraint&) = delete;
+  ContactConstraint& operator=(const ContactConstraint&) = delete;
 
   bool active() const { return !sides_.empty(); }
 
@@ -623,6 +626,9 @@ private:
     double x[3] = {0, 0, 0}; ///< reference coordinates
   };
   std::vector<OutsideNode> outside_;
+  /// Reference coordinates of the mesh nodes, then of the outside nodes (dim per node): what
+  /// the interfaces' gap blocks read (ContactInterface::set_reference_coordinates).
+  std::vector<double> reference_x_;
   std::vector<std::pair<std::int64_t, std::int32_t>> outside_index_; ///< (id, node), sorted
   std::vector<OutsideNode> directory_; ///< this rank's part of the directory, sorted by id
   bool directory_made_ = false;

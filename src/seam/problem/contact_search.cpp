@@ -40,7 +40,8 @@ namespace {
 /// other ranks reach by node id (ContactConstraint::number_multipliers).
 bool outside_energy_momentum(const io::Interface& itf, const io::Config& config) {
   return itf.type == io::InterfaceType::contact &&
-         config.time.integrator != io::Integrator::energy_momentum;
+         (config.time.integrator != io::Integrator::energy_momentum ||
+          itf.friction.model == io::FrictionModel::frictionless);
 }
 
 } // namespace
