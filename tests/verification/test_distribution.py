@@ -1176,6 +1176,51 @@ def test_energy_momentum_friction_part_np3():
     H.cleanup(*_dirs)
 
 
+def two_rings_em_case(np):
+    """test_rings.py's two free rings (8 cells per quarter circle) thrown at each other with
+    energy-momentum contact, frictionless, as two bodies (slave: the first ring, master: the
+    second; dual multipliers, a saddle point: the discrete gradient), 40 steps."""
+    import test_rings
+    va, vb = test_rings.VELOCITIES[2]
+    surface = "{name: impact, type: contact, surface: [r0_boundary, r1_boundary]}"
+    if surface not in test_rings.FREE_YAML:
+        raise AssertionError("FREE_YAML: '%s' not found" % surface)
+    yaml = (test_rings.FREE_YAML.replace("DIM", "2").replace("VA", va).replace("VB", vb)
+            .replace("INTEGRATOR", "energy_momentum").replace("STEPS", "40")
+            .replace("SETFACTORY\n", "")
+            .replace(surface, "{name: impact, type: contact, slave: r0_boundary, "
+                              "master: r1_boundary}"))
+    return run_case(test_rings.ring_geo(test_rings.CENTRES, 8, 2), yaml, np)
+
+
+def test_energy_momentum_held_in_part_np3():
+    """Energy-momentum contact without friction with its sides held in part (docs/parallel.md,
+    "Converting the contact sides", step 6): the gap blocks read the reference coordinates of
+    mesh and outside nodes, the owner of a slave node maps the dofs of its discrete gradient by
+    node id (outside nodes from the directories), the multiplier rows are the owners'. At np 1
+    and 3: the 7-ring pile (self contact of the rings' surface, rigid floor and walls, 120
+    steps) and two free rings as two bodies (40 steps): at np 3 no rank holds more than
+    (owned + ghost cells) * 1.1 cells, no rank holds the contact sides whole (side facets
+    held below np 1's) and every output equals np 1 to 1e-10 (the free rings' momenta against
+    one ring's, 0.5). Before, every rank held every cell with a contact facet."""
+    for what, case, floor in (("7-ring pile, energy-momentum", pile_case, 0.0),
+                              ("two rings as two bodies, energy-momentum", two_rings_em_case,
+                               0.5)):
+        one, three = case(1), case(3)
+        if max(r["active_nodes"] for r in rows_of(one, "steps.csv")) == 0:
+            raise AssertionError("%s: no contact" % what)
+        check_held_cells(three, what)
+        whole = ranks_detail(one)[0]["contact_side_facets_held"]
+        held = [r["contact_side_facets_held"] for r in ranks_detail(three)]
+        print("   %s np 3: side facets held per rank %s of %d"
+              % (what, " / ".join(map(str, held)), whole))
+        if max(held) >= whole:
+            raise AssertionError("%s: side facets held per rank %s of %d: not in part"
+                                 % (what, held, whole))
+        compare_outputs(one, three, 1e-10, what + " np 3 vs np 1", floor)
+    H.cleanup(*_dirs)
+
+
 def two_blocks_case(np, bulk=False):
     """The two blocks of test_self_contact.py (3D tetrahedra, tilted top) as one surface,
     stretched to 3 x 1 x 1 so that the partition cuts the contact faces (stacked unit cubes
@@ -1314,5 +1359,5 @@ if __name__ == "__main__":
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2,
             test_contact_held_cells_np3, test_self_contact_held_cells_np3,
-            test_standard_multipliers_held_in_part_np3])
+            test_standard_multipliers_held_in_part_np3, test_energy_momentum_held_in_part_np3])
 
