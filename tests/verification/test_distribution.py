@@ -1149,12 +1149,13 @@ def test_rings_self_search_np3():
     H.cleanup(*_dirs)
 
 
-def friction_rings_case(np):
+def friction_rings_case(np, interface="surface"):
     """test_friction_dynamics.py's two free rings with energy-momentum contact and Coulomb
-    friction (`surface:`, dual multipliers; 8 cells per quarter circle, 40 steps)."""
+    friction (`surface:`, dual multipliers, or with interface "two_bodies" slave and master
+    rings with standard multipliers; 8 cells per quarter circle, 40 steps)."""
     import test_friction_dynamics as F
     import test_rings
-    yaml = F.rings_yaml("surface", 40, 2)
+    yaml = F.rings_yaml(interface, 40, 2)
     work, out = test_rings.T.run_case(test_rings.ring_geo(test_rings.CENTRES, 8, 2), yaml,
                                       np=np)
     _dirs.extend([work, out])
@@ -1194,18 +1195,23 @@ def two_rings_em_case(np):
 
 
 def test_energy_momentum_held_in_part_np3():
-    """Energy-momentum contact without friction with its sides held in part (docs/parallel.md,
-    "Converting the contact sides", step 6): the gap blocks read the reference coordinates of
-    mesh and outside nodes, the owner of a slave node maps the dofs of its discrete gradient by
-    node id (outside nodes from the directories), the multiplier rows are the owners'. At np 1
-    and 3: the 7-ring pile (self contact of the rings' surface, rigid floor and walls, 120
-    steps) and two free rings as two bodies (40 steps): at np 3 no rank holds more than
+    """Energy-momentum contact with its sides held in part (docs/parallel.md, "Converting the
+    contact sides", step 6): the gap blocks read the reference coordinates of mesh and outside
+    nodes, the owner of a slave node maps the dofs of its discrete gradient by node id (outside
+    nodes from the directories), the multiplier rows are the owners'. At np 1 and 3: the
+    7-ring pile (self contact of the rings' surface, rigid floor and walls, 120 steps), two
+    free rings as two bodies (40 steps), and test_friction_dynamics.py's two rings with Coulomb
+    friction as one surface (dual multipliers) and as two bodies (standard multipliers), both
+    redistributed after several steps: at np 3 no rank holds more than
     (owned + ghost cells) * 1.1 cells, no rank holds the contact sides whole (side facets
     held below np 1's) and every output equals np 1 to 1e-10 (the free rings' momenta against
     one ring's, 0.5). Before, every rank held every cell with a contact facet."""
-    for what, case, floor in (("7-ring pile, energy-momentum", pile_case, 0.0),
-                              ("two rings as two bodies, energy-momentum", two_rings_em_case,
-                               0.5)):
+    for what, case, floor in (
+            ("7-ring pile, energy-momentum", pile_case, 0.0),
+            ("two rings as two bodies, energy-momentum", two_rings_em_case, 0.5),
+            ("two rings with friction, surface, energy-momentum", friction_rings_case, 0.5),
+            ("two rings with friction, two bodies, standard multipliers, energy-momentum",
+             lambda np: friction_rings_case(np, "two_bodies"), 0.5)):
         one, three = case(1), case(3)
         if max(r["active_nodes"] for r in rows_of(one, "steps.csv")) == 0:
             raise AssertionError("%s: no contact" % what)

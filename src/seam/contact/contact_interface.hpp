@@ -268,6 +268,13 @@ public:
   /// owners, which computed them from the same facets) for the nodes whose normal this part
   /// did not compute; the others keep theirs.
   void set_normals_from_owners(std::span<const double> normals);
+  /// Replaces the nodal normals (dim per slave node), e.g. by those kept through a change of
+  /// the held slave facets that set_candidates() averaged anew over the side's reference
+  /// coordinates.
+  void set_normals(std::span<const double> normals) {
+    SEAM_ASSERT(normals.size() == normals_.size());
+    normals_.assign(normals.begin(), normals.end());
+  }
   /// The slave nodes whose normals place() computes.
   local_index n_normals_computed() const {
     return all_normals_ ? n_slave_nodes() : static_cast<local_index>(normal_nodes_.size());

@@ -1576,7 +1576,12 @@ void ContactConstraint::evaluate_facets(Side& s, std::vector<std::int64_t> ids,
     // step read its normals before the next search.
     std::vector<mortar::CandidatePair> pairs;
     s.search->to_interface(s.search->self_pairs(), pairs);
+    // set_candidates averages the normals anew over the side as made (reference coordinates):
+    // the normals kept through the cut are read until the next placement (the frictional work
+    // of the step, summed by the owners).
+    const std::vector<double> normals(s.itf.normals().begin(), s.itf.normals().end());
     s.itf.set_candidates(pairs);
+    s.itf.set_normals(normals);
   }
   s.distributed = true;
 }

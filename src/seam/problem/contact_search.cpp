@@ -32,27 +32,13 @@ struct GlobalFacingPair {
 
 } // namespace
 
-namespace {
-
-/// Contact outside energy-momentum contact (whose gap blocks read the whole sides at the start
-/// of the step): with dual multipliers condensed, or in a saddle point (standard multipliers on
-/// some interface of the run), whose multiplier rows the slave nodes' owners number and the
-/// other ranks reach by node id (ContactConstraint::number_multipliers).
-bool outside_energy_momentum(const io::Interface& itf, const io::Config& config) {
-  return itf.type == io::InterfaceType::contact &&
-         (config.time.integrator != io::Integrator::energy_momentum ||
-          itf.friction.model == io::FrictionModel::frictionless);
+bool master_held_in_part(const io::Interface& itf, const io::Config&) {
+  return itf.type == io::InterfaceType::contact && itf.master && itf.surface.empty();
 }
 
-} // namespace
-
-bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
-  return itf.master && itf.surface.empty() && outside_energy_momentum(itf, config);
-}
-
-bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
+bool slave_held_in_part(const io::Interface& itf, const io::Config&) {
   const bool rigid = itf.rigid_plane.has_value() || itf.rigid_obstacle.has_value();
-  return (itf.master || rigid || !itf.surface.empty()) && outside_energy_momentum(itf, config);
+  return itf.type == io::InterfaceType::contact && (itf.master || rigid || !itf.surface.empty());
 }
 
 local_index SideIds::facet(std::int64_t id) const {
