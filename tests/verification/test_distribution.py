@@ -1002,15 +1002,27 @@ def test_contact_held_cells_np3():
     rank holds more than (owned + ghost cells) * 1.1 cells (check_held_cells), the slave side
     is held in part, and every output equals np 1 to 1e-10. Before, every rank held every
     cell with a slave facet (e.g. 358 more cells on the rank of the block)."""
-    steps = (("steps: 5", "steps: 2"),)
+    check_hertz_held_cells((), "")
+    H.cleanup(*_dirs)
+
+
+def check_held_part(one, three, what, bound):
+    """At np 3 no rank holds more than (owned + ghost cells) * 1.1 cells (check_held_cells),
+    the slave side is held in part (check_slave_in_part, the ranks together at most `bound` x
+    the side) and every output equals np 1 to 1e-10."""
+    check_held_cells(three, what)
+    check_slave_in_part(three, what, False, bound)
+    compare_outputs(one, three, 1e-10, what + " held cells np 3 vs np 1")
+
+
+def check_hertz_held_cells(replace, label):
+    """check_held_part on the Hertz sphere on a block and on a rigid plane (two load steps,
+    the input with the replacements `replace`)."""
+    steps = (("steps: 5", "steps: 2"),) + tuple(replace)
     for yaml, what, bound in (("sphere_block.yaml", "hertz on a block", 2.2),
                               ("hertz_3d.yaml", "hertz on a rigid plane", 1.3)):
-        one = run_example("hertz_3d", yaml, 1, steps)
-        three = run_example("hertz_3d", yaml, 3, steps)
-        check_held_cells(three, what)
-        check_slave_in_part(three, what, False, bound)
-        compare_outputs(one, three, 1e-10, what + " held cells np 3 vs np 1")
-    H.cleanup(*_dirs)
+        check_held_part(run_example("hertz_3d", yaml, 1, steps),
+                        run_example("hertz_3d", yaml, 3, steps), what + label, bound)
 
 
 STANDARD = ("multiplier: dual", "multiplier: standard")
@@ -1027,29 +1039,18 @@ def test_standard_multipliers_held_in_part_np3():
     ghost cells) * 1.1 cells (check_held_cells), the slave side is held in part
     (check_slave_in_part) and every output equals np 1 to 1e-10. Before, the sides of such a
     run were held whole on every rank."""
-    steps = (("steps: 5", "steps: 2"), STANDARD)
-    for yaml, what, bound in (("sphere_block.yaml", "hertz on a block, standard", 2.2),
-                              ("hertz_3d.yaml", "hertz on a rigid plane, standard", 1.3)):
-        one = run_example("hertz_3d", yaml, 1, steps)
-        three = run_example("hertz_3d", yaml, 3, steps)
-        check_held_cells(three, what)
-        check_slave_in_part(three, what, False, bound)
-        compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    check_hertz_held_cells((STANDARD,), ", standard")
     import geometry  # noqa: E402
     block = geometry.rectangle("quad_structured", 0.0625, lx=1.0, ly=0.25)
-    yaml = drag_on_plane_yaml(False).replace("type: contact,", "type: contact, multiplier: standard,")
-    what = "block dragged on a rigid plane, standard"
-    one, three = run_case(block, yaml, 1), run_case(block, yaml, 3)
-    check_held_cells(three, what)
-    check_slave_in_part(three, what, False, 1.6)
-    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
-    friction = ("friction: {model: coulomb", "multiplier: standard\n    friction: {model: coulomb")
-    what = "ironing with friction, standard"
-    one = run_example("ironing", "ironing_2d.yaml", 1, IRONING_SHORT + (friction,))
-    three = run_example("ironing", "ironing_2d.yaml", 3, IRONING_SHORT + (friction,))
-    check_held_cells(three, what)
-    check_slave_in_part(three, what, False, 2.5)
-    compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    yaml = drag_on_plane_yaml(False).replace("type: contact,",
+                                             "type: contact, multiplier: standard,")
+    check_held_part(run_case(block, yaml, 1), run_case(block, yaml, 3),
+                    "block dragged on a rigid plane, standard", 1.6)
+    friction = (("friction: {model: coulomb",
+                 "multiplier: standard\n    friction: {model: coulomb"),)
+    check_held_part(run_example("ironing", "ironing_2d.yaml", 1, IRONING_SHORT + friction),
+                    run_example("ironing", "ironing_2d.yaml", 3, IRONING_SHORT + friction),
+                    "ironing with friction, standard", 2.5)
     H.cleanup(*_dirs)
 
 

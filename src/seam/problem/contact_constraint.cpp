@@ -1998,9 +1998,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               "elements (against the ghosted master facets)";
     else if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.master_facets) +
-              " master facets, their nodes and positions; the master side whole with "
-              "energy-momentum contact), " +
-              arrays + read +
+              " master facets, their nodes and positions; held in part at np > 1), " + arrays +
+              read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +
               reused +
@@ -2020,9 +2019,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              "; on every rank: " + s.itf.obstacle().name() + read +
              "; distributed: the search and the integration of the own slave elements";
     else
-      text += "the slave side (" + n_slave + " facets, nodes, positions; held in part with " +
-              "dual or standard multipliers outside energy-momentum contact), " +
-              s.itf.obstacle().name() + ", " + arrays + read +
+      text += "the slave side (" + n_slave + " facets, nodes, positions; held in part at " +
+              "np > 1), " + s.itf.obstacle().name() + ", " + arrays + read +
               "; distributed: the search and the integration of the slave elements";
     out.push_back(std::move(text));
   }
