@@ -1077,14 +1077,55 @@ def test_contact_held_cells_np3():
     rank holds more than (owned + ghost cells) * 1.1 cells (check_held_cells), the slave side
     is held in part, and every output equals np 1 to 1e-10. Before, every rank held every
     cell with a slave facet (e.g. 358 more cells on the rank of the block)."""
-    steps = (("steps: 5", "steps: 2"),)
+    check_hertz_held_cells((), "")
+    H.cleanup(*_dirs)
+
+
+def check_held_part(one, three, what, bound):
+    """At np 3 no rank holds more than (owned + ghost cells) * 1.1 cells (check_held_cells),
+    the slave side is held in part (check_slave_in_part, the ranks together at most `bound` x
+    the side) and every output equals np 1 to 1e-10."""
+    check_held_cells(three, what)
+    check_slave_in_part(three, what, False, bound)
+    compare_outputs(one, three, 1e-10, what + " held cells np 3 vs np 1")
+
+
+def check_hertz_held_cells(replace, label):
+    """check_held_part on the Hertz sphere on a block and on a rigid plane (two load steps,
+    the input with the replacements `replace`)."""
+    steps = (("steps: 5", "steps: 2"),) + tuple(replace)
     for yaml, what, bound in (("sphere_block.yaml", "hertz on a block", 2.2),
                               ("hertz_3d.yaml", "hertz on a rigid plane", 1.3)):
-        one = run_example("hertz_3d", yaml, 1, steps)
-        three = run_example("hertz_3d", yaml, 3, steps)
-        check_held_cells(three, what)
-        check_slave_in_part(three, what, False, bound)
-        compare_outputs(one, three, 1e-10, what + " held cells np 3 vs np 1")
+        check_held_part(run_example("hertz_3d", yaml, 1, steps),
+                        run_example("hertz_3d", yaml, 3, steps), what + label, bound)
+
+
+STANDARD = ("multiplier: dual", "multiplier: standard")
+
+
+def test_standard_multipliers_held_in_part_np3():
+    """Contact with standard multipliers (a saddle point: the multipliers are unknowns) with
+    its sides held in part (docs/parallel.md, "Converting the contact sides", step 6): the
+    multiplier rows numbered by the slave nodes' owners and reached by node id, each rank's
+    mesh only its own and ghost cells. At np 1 and 3: the Hertz sphere on a block (two bodies,
+    two load steps), the Hertz sphere on a rigid plane (two load steps), test_friction.py's
+    block pressed onto a rigid plane and dragged with Coulomb friction (8 steps) and the 2D
+    ironing with Coulomb friction (IRONING_SHORT): at np 3 no rank holds more than (owned +
+    ghost cells) * 1.1 cells (check_held_cells), the slave side is held in part
+    (check_slave_in_part) and every output equals np 1 to 1e-10. Before, the sides of such a
+    run were held whole on every rank."""
+    check_hertz_held_cells((STANDARD,), ", standard")
+    import geometry  # noqa: E402
+    block = geometry.rectangle("quad_structured", 0.0625, lx=1.0, ly=0.25)
+    yaml = drag_on_plane_yaml(False).replace("type: contact,",
+                                             "type: contact, multiplier: standard,")
+    check_held_part(run_case(block, yaml, 1), run_case(block, yaml, 3),
+                    "block dragged on a rigid plane, standard", 1.6)
+    friction = (("friction: {model: coulomb",
+                 "multiplier: standard\n    friction: {model: coulomb"),)
+    check_held_part(run_example("ironing", "ironing_2d.yaml", 1, IRONING_SHORT + friction),
+                    run_example("ironing", "ironing_2d.yaml", 3, IRONING_SHORT + friction),
+                    "ironing with friction, standard", 2.5)
     H.cleanup(*_dirs)
 
 
@@ -1184,12 +1225,13 @@ def test_rings_self_search_np3():
     H.cleanup(*_dirs)
 
 
-def friction_rings_case(np):
+def friction_rings_case(np, interface="surface"):
     """test_friction_dynamics.py's two free rings with energy-momentum contact and Coulomb
-    friction (`surface:`, dual multipliers; 8 cells per quarter circle, 40 steps)."""
+    friction (`surface:`, dual multipliers, or with interface "two_bodies" slave and master
+    rings with standard multipliers; 8 cells per quarter circle, 40 steps)."""
     import test_friction_dynamics as F
     import test_rings
-    yaml = F.rings_yaml("surface", 40, 2)
+    yaml = F.rings_yaml(interface, 40, 2)
     work, out = test_rings.T.run_case(test_rings.ring_geo(test_rings.CENTRES, 8, 2), yaml,
                                       np=np)
     _dirs.extend([work, out])
@@ -1208,6 +1250,56 @@ def test_energy_momentum_friction_part_np3():
     # The momenta and the external work are zero up to round-off (3e-13, free bodies): against
     # the momentum of one ring (0.5, as test_rings.py scales it).
     compare_outputs(one, three, 1e-10, "friction rings np 3 vs np 1", floor=0.5)
+    H.cleanup(*_dirs)
+
+
+def two_rings_em_case(np):
+    """test_rings.py's two free rings (8 cells per quarter circle) thrown at each other with
+    energy-momentum contact, frictionless, as two bodies (slave: the first ring, master: the
+    second; dual multipliers, a saddle point: the discrete gradient), 40 steps."""
+    import test_rings
+    va, vb = test_rings.VELOCITIES[2]
+    surface = "{name: impact, type: contact, surface: [r0_boundary, r1_boundary]}"
+    if surface not in test_rings.FREE_YAML:
+        raise AssertionError("FREE_YAML: '%s' not found" % surface)
+    yaml = (test_rings.FREE_YAML.replace("DIM", "2").replace("VA", va).replace("VB", vb)
+            .replace("INTEGRATOR", "energy_momentum").replace("STEPS", "40")
+            .replace("SETFACTORY\n", "")
+            .replace(surface, "{name: impact, type: contact, slave: r0_boundary, "
+                              "master: r1_boundary}"))
+    return run_case(test_rings.ring_geo(test_rings.CENTRES, 8, 2), yaml, np)
+
+
+def test_energy_momentum_held_in_part_np3():
+    """Energy-momentum contact with its sides held in part (docs/parallel.md, "Converting the
+    contact sides", step 6): the gap blocks read the reference coordinates of mesh and outside
+    nodes, the owner of a slave node maps the dofs of its discrete gradient by node id (outside
+    nodes from the directories), the multiplier rows are the owners'. At np 1 and 3: the
+    7-ring pile (self contact of the rings' surface, rigid floor and walls, 120 steps), two
+    free rings as two bodies (40 steps), and test_friction_dynamics.py's two rings with Coulomb
+    friction as one surface (dual multipliers) and as two bodies (standard multipliers), both
+    redistributed after several steps: at np 3 no rank holds more than
+    (owned + ghost cells) * 1.1 cells, no rank holds the contact sides whole (side facets
+    held below np 1's) and every output equals np 1 to 1e-10 (the free rings' momenta against
+    one ring's, 0.5). Before, every rank held every cell with a contact facet."""
+    for what, case, floor in (
+            ("7-ring pile, energy-momentum", pile_case, 0.0),
+            ("two rings as two bodies, energy-momentum", two_rings_em_case, 0.5),
+            ("two rings with friction, surface, energy-momentum", friction_rings_case, 0.5),
+            ("two rings with friction, two bodies, standard multipliers, energy-momentum",
+             lambda np: friction_rings_case(np, "two_bodies"), 0.5)):
+        one, three = case(1), case(3)
+        if max(r["active_nodes"] for r in rows_of(one, "steps.csv")) == 0:
+            raise AssertionError("%s: no contact" % what)
+        check_held_cells(three, what)
+        whole = ranks_detail(one)[0]["contact_side_facets_held"]
+        held = [r["contact_side_facets_held"] for r in ranks_detail(three)]
+        print("   %s np 3: side facets held per rank %s of %d"
+              % (what, " / ".join(map(str, held)), whole))
+        if max(held) >= whole:
+            raise AssertionError("%s: side facets held per rank %s of %d: not in part"
+                                 % (what, held, whole))
+        compare_outputs(one, three, 1e-10, what + " np 3 vs np 1", floor)
     H.cleanup(*_dirs)
 
 
@@ -1349,5 +1441,6 @@ if __name__ == "__main__":
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,
             test_hertz_held_never_redistributes, test_ironing_rebalances_np4, test_shared_master_patch_np3, test_time_measure_np2,
-            test_contact_held_cells_np3, test_self_contact_held_cells_np3])
+            test_contact_held_cells_np3, test_self_contact_held_cells_np3,
+            test_standard_multipliers_held_in_part_np3, test_energy_momentum_held_in_part_np3])
 

@@ -76,9 +76,12 @@ GROUPS = [("kinetic_energy", "internal_energy", "external_work", "total_energy")
            "interface_work_structure")]
 
 
-def column_scale(rows, col):
+def column_scale(rows, col, floors=None):
+    """The largest value of the column's group, at least floors[col] (columns zero up to
+    round-off, such as the momenta of free bodies, against a scale of the case)."""
     group = next((g for g in GROUPS if col in g), (col,))
-    return max(max(abs(r[c]) for r in rows for c in group if c in r), 1e-300)
+    return max(max(abs(r[c]) for r in rows for c in group if c in r),
+               (floors or {}).get(col, 1e-300))
 
 # The two blocks of test_friction.py: base 2 x 0.5 (h = 0.15), slider 1 x 0.25 (h = 0.1) on it.
 TWO_BLOCKS_GEO = F.TWO_BLOCKS_GEO % {"hb": 0.15, "hs": 0.1}
@@ -236,7 +239,7 @@ def restarted_run(yaml, full_out, step, np, petsc=(), said=()):
     return copy
 
 
-def compare(full, restarted, rtol, what, extra=()):
+def compare(full, restarted, rtol, what, extra=(), floors=None):
     """Every table (and the tables `extra`) row by row; rtol 0: bit for bit. Returns the
     largest relative difference."""
     worst = 0.0
@@ -260,7 +263,7 @@ def compare(full, restarted, rtol, what, extra=()):
                 continue
             if col == "residual" and rtol > 0.0:
                 continue
-            scale = column_scale(a, col)
+            scale = column_scale(a, col, floors)
             for i, (x, y) in enumerate(zip(va, vb)):
                 d = abs(x - y) / scale
                 worst = max(worst, d)
@@ -275,7 +278,7 @@ def compare(full, restarted, rtol, what, extra=()):
     return worst
 
 
-def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12):
+def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12, floors=None):
     _, yaml = make_case(geo, yaml_of(step))
     one = full_run(yaml, 1)
     rows = H.read_csv(os.path.join(one, "steps.csv"))
@@ -285,14 +288,15 @@ def check_case(geo, yaml_of, step, what, cross_np=True, rtol=1e-12):
     print("   %s: 1 -> 1 bit for bit (max %.1e)" % (what, same))
     if not cross_np:
         return yaml
-    d13 = compare(one, restarted_run(yaml, one, step, 3), rtol, what + " 1 -> 3")
+    d13 = compare(one, restarted_run(yaml, one, step, 3), rtol, what + " 1 -> 3", floors=floors)
     print("   %s: largest relative difference 1 -> 3 %.2e" % (what, d13))
     if cross_np == "1 -> 3":
         return yaml
     # On 3 ranks two uninterrupted runs differ at round-off already (MUMPS's parallel
     # factorization, test_same_ranks_np3), so 3 -> 3 is compared to 1e-12 as well.
     three = full_run(yaml, 3)
-    d31 = compare(three, restarted_run(yaml, three, step, 1), rtol, what + " 3 -> 1")
+    d31 = compare(three, restarted_run(yaml, three, step, 1), rtol, what + " 3 -> 1",
+                  floors=floors)
     print("   %s: largest relative difference 3 -> 1 %.2e" % (what, d31))
     if H.FULL:
         d33 = compare(three, restarted_run(yaml, three, step, 3), rtol, what + " 3 -> 3")
@@ -338,9 +342,21 @@ def test_same_ranks_np3():
 
 
 def test_static_standard_multipliers():
-    """Frictionless, standard multipliers: the multipliers are unknowns of the saddle point."""
+    """Standard multipliers (the multipliers are unknowns of the saddle point), frictionless and
+    with Coulomb friction, two bodies, and a block sliding on a rigid plane with Coulomb friction
+    (generalized-alpha): the sides held in part at np 3, the multiplier rows numbered by the
+    slave nodes' owners (docs/parallel.md, "Converting the contact sides", step 6); the state
+    is checkpointed by node id (with friction D^n_jk by its two nodes), so 1 -> 1 is bit for bit
+    and 1 -> 3, 3 -> 1 equal the uninterrupted runs to 1e-12."""
     check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(e, "multiplier: standard"), 3,
-               "static contact, standard multipliers", cross_np="1 -> 3")
+               "static contact, standard multipliers")
+    check_case(TWO_BLOCKS_GEO, lambda e: two_blocks_yaml(
+        e, "multiplier: standard, friction: {model: coulomb, coefficient: 0.3}"), 3,
+        "static friction, standard multipliers")
+    block = G.rectangle("quad_structured", 0.0625, lx=1.0, ly=0.25)
+    check_case(block, lambda e: sliding_block_yaml(e).replace(
+        "type: contact,", "type: contact, multiplier: standard,"), 8,
+        "generalized-alpha friction on a rigid plane, standard multipliers")
 
 
 def test_static_slave_side_in_part():
@@ -527,6 +543,27 @@ def test_energy_momentum_tied_saddle_point():
     continue 1 -> 3 and 3 -> 1."""
     check_case(G.tied_rectangles(0.3, 0.2), lambda e: flight_yaml("saddle_point", e), 10,
                "energy-momentum, saddle-point tying")
+
+
+def test_energy_momentum_contact():
+    """test_friction_dynamics.py's two free rings with energy-momentum contact and Coulomb
+    friction, as one surface (dual multipliers) and as two bodies (standard multipliers): at
+    np 3 the sides are held in part (docs/parallel.md, "Converting the contact sides", step 6);
+    the checkpoint after step 20 (in contact) continues the run: 1 -> 1 bit for bit, 1 -> 3 and
+    3 -> 1 to 1e-12."""
+    import test_friction_dynamics as F
+    import test_rings as R
+    geo = R.ring_geo(R.CENTRES, 8, 2)
+    for interface in ("surface", "two_bodies"):
+        def yaml_of(every, interface=interface):
+            text = F.rings_yaml(interface, 40, 2)
+            old = "output: {every: 1000}"
+            if old not in text:
+                raise AssertionError("rings_yaml: '%s' not found" % old)
+            return text.replace(old, "output: {every: 1000, checkpoint_every: %d}" % every)
+        # The momenta of the free rings are zero up to round-off: against one ring's, 0.5.
+        check_case(geo, yaml_of, 20, "energy-momentum friction, rings, " + interface,
+                   floors={"momentum_%s" % c: 0.5 for c in "xyz"})
 
 
 def test_friction_3d_rigid_plane():
@@ -912,6 +949,7 @@ if __name__ == "__main__":
                 test_static_standard_multipliers,
                 test_dynamic_friction_generalized_alpha, test_dynamic_contact_generalized_alpha,
                 test_energy_momentum_tied_condensed, test_energy_momentum_tied_saddle_point,
+                test_energy_momentum_contact,
                 test_friction_3d_rigid_plane,
                 test_fluid_generalized_alpha, test_fluid_tied, test_fluid_moving_mesh, test_fsi_generalized_alpha,
                 test_fsi_static, test_fsi_bad_checkpoints, test_self_contact_surface,

@@ -819,7 +819,7 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
                   slave_.coordinates[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)]) *
                                          dim +
                                      a] -
-                  mesh_->x[i] - step_start[i];
+                  reference_x()[i] - step_start[i];
               push_row(out.operator_gradient, static_cast<std::int64_t>(sj * dim) + a, dD, dx);
             }
           }
@@ -931,7 +931,9 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
               const double w =
                   step_start.empty()
                       ? -xk
-                      : xk - mesh_->x[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim + a] -
+                      : xk -
+                            reference_x()[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim +
+                                          a] -
                             step_start[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim + a];
               add_row(out.operator_gradient, row, lin.dD(j, k), w, nullptr, 0.0);
             }
@@ -944,7 +946,7 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
               if (!step_start.empty()) {
                 const auto d = mesh_dof_of_master(lin.master_nodes[static_cast<std::size_t>(p)]);
                 w = d < 0 ? 0.0
-                          : -(xp - mesh_->x[static_cast<std::size_t>(d + a)] -
+                          : -(xp - reference_x()[static_cast<std::size_t>(d + a)] -
                               step_start[static_cast<std::size_t>(d + a)]);
               }
               add_row(out.operator_gradient, row, lin.dM(j, p), w, nullptr, 0.0);

@@ -268,6 +268,13 @@ public:
   /// owners, which computed them from the same facets) for the nodes whose normal this part
   /// did not compute; the others keep theirs.
   void set_normals_from_owners(std::span<const double> normals);
+  /// Replaces the nodal normals (dim per slave node), e.g. by those kept through a change of
+  /// the held slave facets that set_candidates() averaged anew over the side's reference
+  /// coordinates.
+  void set_normals(std::span<const double> normals) {
+    SEAM_ASSERT(normals.size() == normals_.size());
+    normals_.assign(normals.begin(), normals.end());
+  }
   /// The slave nodes whose normals place() computes.
   local_index n_normals_computed() const {
     return all_normals_ ? n_slave_nodes() : static_cast<local_index>(normal_nodes_.size());
@@ -372,6 +379,11 @@ public:
   /// `hessian`): the Newton matrix needs the Hessians of the gaps with a nonzero multiplier.
   void gap_blocks(std::span<const double> u, GapOrder order, std::vector<GapBlock>& out,
                   std::span<const char> hessian_rows = {}) const;
+  /// The reference coordinates gap_blocks and the energy-momentum linearization read (dim per
+  /// node, numbered as the displacement they read): the mesh's nodes, then the nodes outside
+  /// this part (sides held in part, problem::ContactConstraint); null: the mesh's. The vector
+  /// is the caller's and must outlive the interface.
+  void set_reference_coordinates(const std::vector<double>* x) { reference_x_ = x; }
 
   /// d n_j / d(displacement) of the averaged normal of slave node j at the last update: row =
   /// component, column = mesh dof, appended to `out`. Nothing for a rigid plane (its normal is
@@ -441,6 +453,8 @@ private:
   /// A slave side given by hold_slave_facets(side): its reference coordinates (dim per side
   /// node), read instead of the mesh's.
   std::vector<double> slave_reference_;
+  const std::vector<double>* reference_x_ = nullptr; ///< set_reference_coordinates
+  const std::vector<double>& reference_x() const { return reference_x_ ? *reference_x_ : mesh_->x; }
   /// `side` (slave_ or a copy) at the mesh displacement u (empty: the reference configuration).
   void place_slave(meshtying::InterfaceSide& side, std::span<const double> u) const;
   // The master facets ghosted to this part (set_master_facets): their side-local ids (sorted)

@@ -468,7 +468,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
     for (std::size_t k = 0; k < slave_.mesh_nodes.size(); ++k)
       for (int a = 0; a < dim; ++a) {
         const auto i = static_cast<std::size_t>(slave_.mesh_nodes[k]) * dim + a;
-        x[k * dim + a] = mesh_->x[i] + u[i];
+        x[k * dim + a] = reference_x()[i] + u[i];
       }
     facets.coordinates = x;
     RigidObstacleFacet rf;
@@ -509,7 +509,7 @@ void ContactInterface::gap_blocks(std::span<const double> u, GapOrder order,
     gap_blocks_3d(u, order, out, hessian_rows);
     return;
   }
-  const auto& X = mesh_->x;
+  const auto& X = reference_x();
   const auto position = [&](std::int32_t node) {
     const auto i = static_cast<std::size_t>(node) * 2;
     return Eigen::Vector2d(X[i] + u[i], X[i + 1] + u[i + 1]);

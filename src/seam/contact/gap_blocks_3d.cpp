@@ -396,7 +396,7 @@ void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacen
 void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder requested,
                                      std::vector<GapBlock>& out,
                                      std::span<const char> hessian_rows) const {
-  const auto& X = mesh_->x;
+  const auto& X = reference_x();
   const auto position = [&](std::int32_t node) {
     const auto i = static_cast<std::size_t>(node) * 3;
     return Eigen::Vector3d(X[i] + u[i], X[i + 1] + u[i + 1], X[i + 2] + u[i + 2]);

@@ -308,7 +308,9 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
     // The operator pieces of the part files this rank read.
     s.M_old.clear();
     s.D_coupling_old.clear();
-    // A master side held in part: master nodes outside this rank's part (found below).
+    // A master side held in part (or a self-contact surface held in part, its own master
+    // side): master nodes outside this rank's part (found below).
+    const bool outside_masters = s.master_in_part || (s.itf.self_contact() && s.slave_in_part);
     std::vector<std::int64_t> outside_ids;
     // A slave side held in part with the independent distribution: the slave nodes of the
     // part of M^n read are held with their rings (collective), found in a first pass.
@@ -317,6 +319,11 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
       checkpoints.read_parts([&](const RecordReader& part) {
         const auto slave = part.integers(p + "M_old.slave_node");
         kept.insert(kept.end(), slave.begin(), slave.end());
+        // Standard multipliers: both nodes of D^n_jk.
+        for (const auto* key : {"D_coupling_old.row_node", "D_coupling_old.col_node"}) {
+          const auto nodes = part.integers(p + key);
+          kept.insert(kept.end(), nodes.begin(), nodes.end());
+        }
       });
       if (cut) {
         evaluate_facets(s, *cut, std::move(kept));
@@ -332,7 +339,7 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
       for (std::size_t i = 0; i < slave.size(); ++i) {
         const auto j = slave_of_id(s.slave_ids, slave[i]);
         auto master_node = node_of_gid(master[i]);
-        if (j < 0 || (master_node < 0 && !s.master_in_part))
+        if (j < 0 || (master_node < 0 && !outside_masters))
           part.fail("record '" + p + "M_old' names a node outside the interface or the mesh");
         if (master_node < 0) {
           // Numbered after the collective look-up below; -1 - k names outside_ids[k] until then.
@@ -352,7 +359,7 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
             {static_cast<std::int32_t>(j), static_cast<std::int32_t>(k), coupling[i]});
       }
     });
-    if (s.master_in_part) {
+    if (outside_masters) {
       // Collective (the sides are the same on every rank): the outside nodes of M^n.
       std::vector<std::int32_t> found;
       map_nodes(outside_ids, found);

@@ -122,10 +122,12 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   const int dim = disc.dim();
   double young = 0.0;
   for (const auto& m : model.materials) young = std::max(young, m.young);
+  reference_x_ = disc.mesh().x;
   for (const auto& itf : config.interfaces) {
     if (itf.type != io::InterfaceType::contact) continue;
     const bool slave_part = slave_held_in_part(itf, config) && disc.comm().size() > 1;
     Side s(contact::ContactInterface(itf, disc.mesh(), slave_part));
+    s.itf.set_reference_coordinates(&reference_x_);
     s.slave_in_part = slave_part;
     if (!s.itf.rigid() && !s.itf.self_contact()) check_shared_nodes(s, itf);
     // The slave facets the side holds. In part with the independent distribution: those of
@@ -288,7 +290,7 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
   }
   if (saddle_point_)
     for (std::size_t k = 0; k < sides_.size(); ++k)
-      if (!sides_[k].T_inverse.empty())
+      if (disc.comm().max(sides_[k].T_inverse.empty() ? 0.0 : 1.0) > 0.0)
         io::fail_at(config.interfaces[k].mark,
                     "interface '" + sides_[k].itf.name() +
                         "': quadratic faces with dual multipliers cannot share a run with "
@@ -301,28 +303,44 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                                         [&](std::int32_t node) { return disc.owns_node(node); }))));
   if (!saddle_point_) return;
   // One multiplier per slave node (dim with friction), owned with the node; numbered rank by
-  // rank.
+  // rank, on a rank side by side (a side held in part holds every slave node its rank owns).
   const auto& comm = disc.comm();
-  for (const auto& s : sides_)
+  std::vector<PetscInt> side_lm(sides_.size(), 0);
+  for (std::size_t k = 0; k < sides_.size(); ++k) {
+    const auto& s = sides_[k];
     for (const auto node : s.itf.slave().mesh_nodes)
-      n_lm_ += disc.owns_node(node) ? (s.friction ? dim : 1) : 0;
-  std::vector<double> counts(static_cast<std::size_t>(comm.size()), 0.0);
-  counts[static_cast<std::size_t>(comm.rank())] = static_cast<double>(n_lm_);
-  comm.sum_in_place(counts);
-  PetscInt next = 0;
-  for (int r = 0; r < comm.rank(); ++r)
-    next += static_cast<PetscInt>(counts[static_cast<std::size_t>(r)]);
-  first_lm_ = next;
-  for (auto& s : sides_) {
-    const auto& nodes = s.itf.slave().mesh_nodes;
-    std::vector<double> index(nodes.size(), 0.0);
-    for (std::size_t j = 0; j < nodes.size(); ++j)
-      if (disc.owns_node(nodes[j])) {
-        index[j] = static_cast<double>(next);
-        next += s.friction ? dim : 1;
-      }
-    comm.sum_in_place(index);
-    s.lm_index.assign(index.begin(), index.end());
+      side_lm[k] += owns(node) ? (s.friction ? dim : 1) : 0;
+    n_lm_ += side_lm[k];
+  }
+  PetscInt mine = n_lm_;
+  MPI_Exscan(&mine, &first_lm_, 1, MPIU_INT, MPI_SUM, comm.get());
+  if (comm.rank() == 0) first_lm_ = 0;
+  PetscInt next = first_lm_;
+  for (std::size_t k = 0; k < sides_.size(); ++k) {
+    sides_[k].lm_first = next;
+    next += side_lm[k];
+    number_multipliers(sides_[k]);
+  }
+  lm_numbered_ = true;
+}
+
+void ContactConstraint::number_multipliers(Side& s) const {
+  const auto& nodes = s.itf.slave().mesh_nodes;
+  const PetscInt per_node = s.friction ? disc_.dim() : 1;
+  // Row + 1 (the publication sends nonzero records), 0 for the nodes of other owners.
+  std::vector<double> row(nodes.size(), 0.0);
+  PetscInt next = s.lm_first;
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    if (owns(nodes[j])) {
+      row[j] = static_cast<double>(next + 1);
+      next += per_node;
+    }
+  publish(s, row, 1);
+  s.lm_index.resize(nodes.size());
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    SEAM_CHECK(row[j] > 0.0, InternalError, "contact saddle point: slave node ", s.node_keys[j],
+               " has no multiplier row");
+    s.lm_index[j] = static_cast<PetscInt>(row[j]) - 1;
   }
 }
 
@@ -501,8 +519,8 @@ void ContactConstraint::refresh_displacement(const la::Vector& u) {
   read(u, u_mesh_);
   // The start of an energy-momentum step at the same nodes, by the same scatter (again after
   // a new scatter: new ghosts, a redistribution). The same decision on every rank.
+  if (has_start_) u_mesh_start_.resize(u_mesh_.size(), 0.0); // outside nodes found since
   if (has_start_ && !start_read_) {
-    if (u_mesh_start_.size() != u_mesh_.size()) u_mesh_start_.assign(u_mesh_.size(), 0.0);
     read(u_start_, u_mesh_start_);
     start_read_ = true;
   }
@@ -1225,6 +1243,7 @@ void ContactConstraint::map_nodes(std::span<const std::int64_t> ids,
     if (outside_node(r.id) >= 0) continue;
     const auto node = static_cast<std::int32_t>(disc_.mesh().n_nodes() + outside_.size());
     outside_.push_back(r);
+    reference_x_.insert(reference_x_.end(), r.x, r.x + disc_.dim());
     outside_index_.insert(std::lower_bound(outside_index_.begin(), outside_index_.end(),
                                            std::pair<std::int64_t, std::int32_t>{r.id, -1}),
                           {r.id, node});
@@ -1395,22 +1414,22 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     for (std::size_t j = 0; j < nodes.size(); ++j)
       if (owns(nodes[j]))
         for (std::size_t c = 0; c < per_node; ++c) lambda[j * per_node + c] = xl[next++];
-    parallel::publish_from_owners(comm.get(), s.node_keys, s.node_owners, lambda,
-                                  static_cast<int>(per_node));
+    publish(s, lambda, static_cast<int>(per_node));
     s.lambda = std::move(lambda);
   }
   return true;
 }
 
-double ContactConstraint::mean_weight(const Side& s) {
-  double weight = 0.0;
-  int n_weights = 0;
-  for (const double d : s.D) {
-    if (d <= 0.0) continue;
-    weight += d;
-    ++n_weights;
+double ContactConstraint::mean_weight(const Side& s) const {
+  // Each node by its owner: the same mean on every rank, whatever part of the side it holds.
+  double sums[2] = {0.0, 0.0};
+  for (std::size_t j = 0; j < s.D.size(); ++j) {
+    if (!(s.D[j] > 0.0) || s.node_owners[j] != disc_.comm().rank()) continue;
+    sums[0] += s.D[j];
+    sums[1] += 1.0;
   }
-  return n_weights > 0 ? weight / n_weights : 1.0;
+  disc_.comm().sum_in_place(std::span<double>(sums, 2));
+  return sums[1] > 0.0 ? sums[0] / sums[1] : 1.0;
 }
 
 void ContactConstraint::hold_sets(bool hold) {
@@ -1557,7 +1576,12 @@ void ContactConstraint::evaluate_facets(Side& s, std::vector<std::int64_t> ids,
     // step read its normals before the next search.
     std::vector<mortar::CandidatePair> pairs;
     s.search->to_interface(s.search->self_pairs(), pairs);
+    // set_candidates averages the normals anew over the side as made (reference coordinates):
+    // the normals kept through the cut are read until the next placement (the frictional work
+    // of the step, summed by the owners).
+    const std::vector<double> normals(s.itf.normals().begin(), s.itf.normals().end());
     s.itf.set_candidates(pairs);
+    s.itf.set_normals(normals);
   }
   s.distributed = true;
 }
@@ -1598,9 +1622,15 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
   std::sort(evaluated.begin(), evaluated.end());
   // With friction this rank's part of M^n (summed by slave node into the slip increments)
   // keeps its slave nodes held until it is replaced.
-  if (s.friction)
+  if (s.friction) {
     for (const auto* m : {&s.M_old, &s.part.M})
       for (const auto& e : *m) kept.push_back(s.node_keys[static_cast<std::size_t>(e.slave)]);
+    // Standard multipliers: its part of D^n_jk and D_jk (j != k) too, both nodes.
+    for (const auto* d : {&s.D_coupling_old, &s.part.D_coupling})
+      for (const auto& e : *d)
+        for (const auto j : {e.row, e.col})
+          kept.push_back(s.node_keys[static_cast<std::size_t>(j)]);
+  }
   // The facets it evaluates: from its mesh, or sent from the facet directory.
   std::vector<SlaveFacet> held;
   std::vector<std::int64_t> asked;
@@ -1731,7 +1761,38 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
     }
     m->resize(k);
   }
+  // Standard multipliers: its parts of D^n_jk and D_jk by their nodes' new indices (held with
+  // friction; without, D_jk is read no more before the next evaluation).
+  const auto index_after = [&](std::int32_t j) -> std::int32_t {
+    const auto id = before[static_cast<std::size_t>(j)];
+    const auto it = std::lower_bound(after.begin(), after.end(), id);
+    return it != after.end() && *it == id ? static_cast<std::int32_t>(it - after.begin()) : -1;
+  };
+  for (auto* d : {&s.D_coupling_old, &s.part.D_coupling}) {
+    std::size_t k = 0;
+    for (auto e : *d) {
+      e.row = index_after(e.row);
+      e.col = index_after(e.col);
+      SEAM_CHECK((e.row >= 0 && e.col >= 0) || !s.friction, InternalError, "contact: a slave node ",
+                 "of D_jk is not held after the distribution");
+      if (e.row >= 0 && e.col >= 0) (*d)[k++] = e;
+    }
+    d->resize(k);
+  }
   for (auto* v : {&s.part.D, &s.part.gap}) moved(*v, 1);
+  if (s.discrete_gradient) {
+    // The gap rows and the discrete gradients of the last evaluation (the owner's nodes, which
+    // it holds before and after: read by the reports of the step).
+    moved(s.em_row, 1);
+    if (s.friction) moved(s.em_gap_mid, dim);
+    for (auto& e : s.em_gradient) {
+      const auto j = index_after(static_cast<std::int32_t>(e.j));
+      SEAM_CHECK(j >= 0, InternalError, "contact: an owned slave node is not held after the ",
+                 "distribution");
+      e.j = static_cast<std::size_t>(j);
+    }
+  }
+  if (lm_numbered_) number_multipliers(s);
   s.cycles = {};
   s.held_frames.clear();
   collect_interface_nodes();
@@ -1869,6 +1930,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
     const std::string arrays =
         std::string("the nodal arrays per slave node (D, g~, multipliers, active set") +
         (s.friction ? ", friction history" : "") + ")";
+    // Saddle point: the multiplier rows of the nodes it holds (numbered by their owners).
+    const std::string rows = saddle_point_ ? ", multiplier rows" : "";
     const std::string read =
         std::string("; read per rank: the displacement of the nodes of its slave elements, of "
                     "their neighbours and of its master facets and ghosts (energy-momentum "
@@ -1891,7 +1954,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              " surface facets, the others it pairs read as ghosts), the facing pairs of each "
              "search by facet id (gathered for the roles, O(pairs)), the nodal arrays per held "
              "surface node (D, g~, multipliers, active set" +
-             (s.friction ? ", friction history" : "") + "; the owners' values published)" + read +
+             (s.friction ? ", friction history" : "") + rows + "; the owners' values published)" +
+             read +
              "; distributed: the search (own surface facets against the surface facets "
              "ghosted by bounding boxes" +
              reused + ") and the mortar integration of the own slave elements";
@@ -1916,7 +1980,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              std::to_string(s.itf.n_master_facets()) + " of " + std::to_string(s.master_facets) +
              " master facets, the other master facets read as ghosts), the nodal arrays per "
              "held slave node (D, g~, multipliers, active set" +
-             (s.friction ? ", friction history" : "") + "; the owners' values published)" + read +
+             (s.friction ? ", friction history" : "") + rows + "; the owners' values published)" +
+             read +
              "; distributed: the search (own slave elements against the master facets "
              "ghosted by bounding boxes" +
              reused + ") and the mortar integration of the own slave elements";
@@ -1933,9 +1998,8 @@ std::vector<std::string> ContactConstraint::held_whole() const {
               "elements (against the ghosted master facets)";
     else if (s.search)
       text += "both sides (" + n_slave + " slave and " + std::to_string(s.master_facets) +
-              " master facets, their nodes and positions; the master side whole with "
-              "standard multipliers or energy-momentum contact), " +
-              arrays + read +
+              " master facets, their nodes and positions; held in part at np > 1), " + arrays +
+              read +
               "; distributed: the search (own slave elements against the master facets "
               "ghosted by bounding boxes" +
               reused +
@@ -1951,13 +2015,12 @@ std::vector<std::string> ContactConstraint::held_whole() const {
              ": " + n_slave + " of " + std::to_string(s.slave_facets) +
              " slave facets), the nodal arrays per held slave node (D, g~, multipliers, active "
              "set" +
-             (s.friction ? ", friction history" : "") + "; the owners' values published)" +
+             (s.friction ? ", friction history" : "") + rows + "; the owners' values published)" +
              "; on every rank: " + s.itf.obstacle().name() + read +
              "; distributed: the search and the integration of the own slave elements";
     else
-      text += "the slave side (" + n_slave + " facets, nodes, positions; held in part with " +
-              "dual multipliers outside saddle-point runs and energy-momentum contact), " +
-              s.itf.obstacle().name() + ", " + arrays + read +
+      text += "the slave side (" + n_slave + " facets, nodes, positions; held in part at " +
+              "np > 1), " + s.itf.obstacle().name() + ", " + arrays + read +
               "; distributed: the search and the integration of the slave elements";
     out.push_back(std::move(text));
   }

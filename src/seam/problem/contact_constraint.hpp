@@ -81,6 +81,9 @@ class Checkpoints;
 class ContactConstraint {
 public:
   ContactConstraint(const io::Config& config, const Discretization& disc, const Model& model);
+  /// Not copied nor moved: the interfaces point at reference_x_.
+  ContactConstraint(const ContactConstraint&) = delete;
+  ContactConstraint& operator=(const ContactConstraint&) = delete;
 
   bool active() const { return !sides_.empty(); }
 
@@ -274,8 +277,11 @@ private:
     std::vector<mortar::Triplet> T_inverse;
     double area = 0.0;
     bool frozen = false; ///< active set frozen after cycling was detected in this step
-    /// Saddle point: global multiplier index of every slave node (replicated).
+    /// Saddle point: the global multiplier row of every slave node the side holds (numbered by
+    /// the node's owner from lm_first, published to its holders: number_multipliers), and the
+    /// first row of the slave nodes this rank owns.
     std::vector<PetscInt> lm_index;
+    PetscInt lm_first = 0;
     double ncp_norm2 = 0.0; ///< complementarity residual squared (force units)
 
     // Distribution of the slave facets over the ranks.
@@ -467,8 +473,13 @@ private:
                        std::vector<double>& cv, std::vector<PetscInt>& ei,
                        std::vector<PetscInt>& ej, std::vector<double>& ev,
                        std::vector<double>& lm_rhs) const;
-  /// The mean nodal weight of side s: the weight of inactive rows outside the contact zone.
-  static double mean_weight(const Side& s);
+  /// The mean nodal weight D_jj > 0 of side s (each node counted by its owner): the weight of
+  /// inactive rows outside the contact zone. Collective.
+  double mean_weight(const Side& s) const;
+  /// Saddle point: the multiplier rows of the slave nodes side s holds. The owner of a node
+  /// numbers it (from s.lm_first, the nodes it owns in side order: node id order, the same on
+  /// every part) and publishes the row to the node's holders. Collective.
+  void number_multipliers(Side& s) const;
   /// This rank's rows of a frictional side in the condensed system (see the header comment).
   void condense_friction(Side& s, std::vector<char>& replaced, std::vector<PetscInt>& li,
                          std::vector<PetscInt>& lj, std::vector<double>& lv,
@@ -615,6 +626,9 @@ private:
     double x[3] = {0, 0, 0}; ///< reference coordinates
   };
   std::vector<OutsideNode> outside_;
+  /// Reference coordinates of the mesh nodes, then of the outside nodes (dim per node): what
+  /// the interfaces' gap blocks read (ContactInterface::set_reference_coordinates).
+  std::vector<double> reference_x_;
   std::vector<std::pair<std::int64_t, std::int32_t>> outside_index_; ///< (id, node), sorted
   std::vector<OutsideNode> directory_; ///< this rank's part of the directory, sorted by id
   bool directory_made_ = false;
@@ -628,6 +642,7 @@ private:
   double last_solve_residual_ = -1.0; ///< last_solve_residual()
   PetscInt n_lm_ = 0;                 ///< multipliers this rank owns (those of its slave nodes)
   PetscInt first_lm_ = 0;             ///< global index of the first of them
+  bool lm_numbered_ = false;          ///< the sides' multiplier rows are numbered
 };
 
 } // namespace seam::problem

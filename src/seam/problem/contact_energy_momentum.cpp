@@ -230,10 +230,13 @@ int ContactConstraint::n_end_of_step() const {
 void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const double> u,
                                                    bool tangent) {
   const int dim = disc_.dim();
-  const auto& X = disc_.mesh().x;
+  const auto& X = reference_x_; // mesh and outside nodes
   s.em_gradient.clear();
   s.em_tangent.clear();
-  if (u_mesh_start_.size() != u.size()) u_mesh_start_.assign(u.begin(), u.end());
+  // Before the first step: the start is u. Nodes found outside this part since the start was
+  // read (map_nodes below numbers the dofs of the discrete gradients) are not read by it.
+  if (u_mesh_start_.empty()) u_mesh_start_.assign(u.begin(), u.end());
+  if (u_mesh_start_.size() < u.size()) u_mesh_start_.resize(u.size(), 0.0);
   const std::vector<double>& u0 = u_mesh_start_;
   std::vector<double> mid(u.size());
   for (std::size_t i = 0; i < u.size(); ++i) mid[i] = 0.5 * (u[i] + u0[i]);
@@ -263,7 +266,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   const auto key = [&](local_index j) { return s.slave_ids.nodes[static_cast<std::size_t>(j)]; };
   const auto at = [&](std::int64_t d, local_index j, Kind kind, double value) {
     const auto i = static_cast<std::size_t>(d);
-    const std::int64_t id = disc_.node_gid(static_cast<std::int32_t>(d / dim)) * dim + d % dim;
+    const std::int64_t id = node_id(static_cast<std::int32_t>(d / dim)) * dim + d % dim;
     return Entry{id, key(j), kind, 0, value, u[i] - u0[i], X[i] + mid[i]};
   };
   s.em_blocks = end.size();
@@ -330,18 +333,43 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       parallel::allgatherv<Entry>(disc_.comm().get(), std::span<const Entry>(local), offsets);
   const auto& nodes = s.itf.slave().mesh_nodes;
   const Invariance invariance = invariance_of(s.itf, dim);
+  // The side-local index of a slave node id, -1 for a node this part does not hold (a side
+  // held in part: its entries are read by the ranks that hold it).
+  const auto held = [&](std::int64_t id) -> std::int64_t {
+    const auto& ids = s.slave_ids.nodes;
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? it - ids.begin() : -1;
+  };
   // The weighted gaps at x_{n+1} that the active set and the gap rows use, and which slave
   // nodes have a gap row at all: the segmentation's D_jj can be positive where these blocks
   // integrate nothing (their own pre-checks), and such a node must stay inactive.
   std::fill(s.gap.begin(), s.gap.end(), 0.0);
   s.em_row.assign(s.gap.size(), 0);
   for (const auto& e : all) {
-    const auto j = static_cast<std::size_t>(s.slave_ids.node(e.node));
+    const auto jj = held(e.node);
+    if (jj < 0) continue;
+    const auto j = static_cast<std::size_t>(jj);
     if (e.kind == g1) s.gap[j] += e.value;
     if (e.kind == end_gradient && e.value != 0.0) s.em_row[j] = 1;
   }
   std::stable_sort(all.begin(), all.end(),
                    [](const Entry& a, const Entry& b) { return a.node < b.node; });
+  // The nodes of the dofs of the slave nodes this rank owns: mesh nodes, or on sides held in
+  // part nodes outside its part (map_nodes, collective: the same decision on every rank).
+  std::vector<std::int64_t> dof_ids;
+  for (const auto& e : all)
+    if (e.kind >= mid_gradient && held(e.node) >= 0 &&
+        owns(nodes[static_cast<std::size_t>(held(e.node))]))
+      dof_ids.push_back(e.dof / dim);
+  std::sort(dof_ids.begin(), dof_ids.end());
+  dof_ids.erase(std::unique(dof_ids.begin(), dof_ids.end()), dof_ids.end());
+  std::vector<std::int32_t> dof_nodes;
+  if (s.slave_in_part || s.master_in_part) {
+    map_nodes(dof_ids, dof_nodes);
+  } else {
+    dof_nodes.resize(dof_ids.size());
+    for (std::size_t i = 0; i < dof_ids.size(); ++i) dof_nodes[i] = node_of_gid(dof_ids[i]);
+  }
   // SEAM_CONTACT_TRACE=2 (docs/contact_dynamics.md, "Diagnosing a stalled Newton step"): the
   // slave nodes with the largest correction force lambda_j |N| / sqrt(den) at each Newton
   // matrix, with |w|, |dx|, N and the gaps at both ends of the step.
@@ -357,8 +385,9 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   for (std::size_t begin = 0; begin < all.size();) {
     std::size_t stop = begin;
     while (stop < all.size() && all[stop].node == all[begin].node) ++stop;
-    const auto j = static_cast<std::size_t>(s.slave_ids.node(all[begin].node));
-    if (!disc_.owns_node(nodes[j])) {
+    const auto jj = held(all[begin].node);
+    const auto j = static_cast<std::size_t>(jj);
+    if (jj < 0 || !owns(nodes[j])) {
       begin = stop;
       continue;
     }
@@ -387,7 +416,9 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
     }
     // Their mesh dofs (the gradient and the tangent are kept in mesh dofs).
     for (auto& d : dofs) {
-      const auto node = node_of_gid(d / dim);
+      const auto at_id = std::lower_bound(dof_ids.begin(), dof_ids.end(), d / dim);
+      SEAM_ASSERT(at_id != dof_ids.end() && *at_id == d / dim);
+      const auto node = dof_nodes[static_cast<std::size_t>(at_id - dof_ids.begin())];
       SEAM_ASSERT(node >= 0);
       d = static_cast<std::int64_t>(node) * dim + d % dim;
     }
@@ -397,7 +428,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       traced.push_back(
           {std::abs(lambda[j] * dg.ratio) *
                std::sqrt(dg.w_norm * dg.w_norm + 1e-6 * dg.dx_norm * dg.dx_norm),
-           disc_.node_gid(nodes[j]), lambda[j], dg.w_norm, dg.dx_norm, dg.N, gap_start, gap_end,
+           node_id(nodes[j]), lambda[j], dg.w_norm, dg.dx_norm, dg.N, gap_start, gap_end,
            static_cast<int>(n / dim), [&] {
              // The nodes of g~_j with |G| and |H dx| per node.
              std::string list;

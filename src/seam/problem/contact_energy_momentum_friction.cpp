@@ -160,7 +160,7 @@ void ContactConstraint::energy_momentum_slip(Side& s, std::span<const double> u_
   // around j. A rigid rotation then slips nowhere, and the work conjugate force (the mortar
   // force of lambda_t and the couple -Omega x y_b, add_energy_momentum_friction_force) has no
   // moment about the midpoint.
-  const auto& X = disc_.mesh().x;
+  const auto& X = reference_x_; // mesh and outside nodes
   std::vector<double> g(s.slip.size(), 0.0);
   for_each_mean_operator(s, [&](std::size_t j, std::int32_t node, double w) {
     for (int c = 0; c < dim; ++c) {
@@ -177,7 +177,7 @@ void ContactConstraint::energy_momentum_slip(Side& s, std::span<const double> u_
         ring_of(s.itf, j, dim, X, u_mesh, u_mesh_start_).theta.cross(G);
     for (int c = 0; c < dim; ++c) s.slip[j * dim + c] -= correction(c);
   }
-  parallel::publish_from_owners(disc_.comm().get(), s.node_keys, s.node_owners, g, dim);
+  publish(s, g, dim);
   s.em_gap_mid = std::move(g);
 }
 
@@ -195,7 +195,7 @@ void ContactConstraint::add_energy_momentum_friction_force(const Side& s,
     const Eigen::Vector3d G = vector3(&s.em_gap_mid[j * dim], dim);
     const Eigen::Vector3d lt = vector3(&lambda_t[j * dim], dim);
     if (G.isZero(0.0) || lt.isZero(0.0)) continue;
-    const Ring r = ring_of(s.itf, j, dim, disc_.mesh().x, s.em_displacement, u_mesh_start_);
+    const Ring r = ring_of(s.itf, j, dim, reference_x_, s.em_displacement, u_mesh_start_);
     const Eigen::Vector3d omega = r.J_inv * G.cross(lt);
     for (std::size_t b = 0; b < r.nodes.size(); ++b) {
       const Eigen::Vector3d fb = -omega.cross(r.y[b]);
@@ -270,7 +270,7 @@ void ContactConstraint::energy_momentum_friction_tangent(Side& s) {
 
   // The frame-indifference correction (energy_momentum_slip): u~_j -= theta_j x G_j and the
   // couple -Omega_j x y_b on the ring of j, Omega_j = J^-1 (G_j x lambda_t,j).
-  const auto& X = disc_.mesh().x;
+  const auto& X = reference_x_; // mesh and outside nodes
   const std::span<const double> u = s.em_displacement;
   std::map<std::size_t, Ring> rings;
   const auto ring = [&](std::size_t j) -> const Ring& {
@@ -385,7 +385,7 @@ void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vec
       for (int a = 0; a < dim; ++a) {
         const double v = weight * ((a == c ? 1.0 : 0.0) - n[a] * n[c]);
         if (v == 0.0) continue;
-        bi.push_back(disc_.global_dof(node, a));
+        bi.push_back(dof_of(node, a));
         bj.push_back(s.lm_index[j] + c);
         bv.push_back(v);
       }
@@ -396,7 +396,7 @@ void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vec
     if (s.node_owners[j] != disc_.comm().rank()) continue;
     const Eigen::Vector3d G = vector3(&s.em_gap_mid[j * dim], dim);
     if (G.isZero(0.0)) continue;
-    const Ring r = ring_of(s.itf, j, dim, disc_.mesh().x, s.em_displacement, u_mesh_start_);
+    const Ring r = ring_of(s.itf, j, dim, reference_x_, s.em_displacement, u_mesh_start_);
     const Eigen::Vector3d n = vector3(&normals[j * dim], dim);
     for (int c = 0; c < dim; ++c) {
       Eigen::Vector3d p = -n(c) * n;
@@ -406,7 +406,7 @@ void ContactConstraint::energy_momentum_friction_columns(const Side& s, std::vec
         const Eigen::Vector3d fb = -omega.cross(r.y[b]);
         for (int a = 0; a < dim; ++a)
           if (fb(a) != 0.0) {
-            bi.push_back(disc_.global_dof(r.nodes[b], a));
+            bi.push_back(dof_of(r.nodes[b], a));
             bj.push_back(s.lm_index[j] + c);
             bv.push_back(fb(a));
           }

@@ -30,12 +30,13 @@ std::vector<double> ContactConstraint::rigid_motion_weighted(const Side& s) cons
   for (std::size_t i = 0; i < d.size(); ++i)
     d[i] = s.x[i] - s.x_old[i] - (obstacle[i % dim] - s.plane_old[i % dim]);
   if (s.itf.standard()) {
-    // This rank's coupling entries D_jk, k != j.
+    // This rank's coupling entries D_jk, k != j, summed on the owners of the nodes j (the
+    // only values read: dissipation_increment).
     for (const auto& e : s.part.D_coupling)
       for (int c = 0; c < dim; ++c)
         w[static_cast<std::size_t>(e.row) * dim + c] +=
             e.value * d[static_cast<std::size_t>(e.col) * dim + c];
-    disc_.comm().sum_in_place(w);
+    parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, w, dim);
   }
   for (std::size_t i = 0; i < d.size(); ++i) w[i] += s.D_diag[i / dim] * d[i];
   return w;

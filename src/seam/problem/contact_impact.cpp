@@ -11,6 +11,8 @@
 // x_{n+1}, and the impulse keeps both momenta.
 #include "seam/problem/contact_constraint.hpp"
 
+#include "seam/parallel/exchange.hpp"
+
 #include <algorithm>
 
 namespace seam::problem {
@@ -36,11 +38,18 @@ ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) cons
     for (const auto& b : start)
       for (std::size_t r = 0; r < b.slave.size(); ++r)
         gap_start[static_cast<std::size_t>(b.slave[r])] += b.gap[r];
-    disc_.comm().sum_in_place(gap_start);
+    // Summed on the owners of the nodes and published to their holders (a side held in part
+    // holds its part's nodes only).
+    parallel::sum_on_owners(disc_.comm().get(), s.node_keys, s.node_owners, gap_start, 1);
+    publish(s, gap_start, 1);
     std::vector<double> e(gap_start.size(), 0.0);
     for (std::size_t j = 0; j < e.size(); ++j) {
       e[j] = std::max(0.0, -lambda[j] * gap_start[j]);
-      out.gain += e[j];
+      // Each node's gain counted by its owner.
+      if (s.node_owners[j] == disc_.comm().rank()) {
+        out.gain += e[j];
+        gains.push_back(e[j]);
+      }
     }
     // This rank's part of grad g~_j(x_{n+1}) (the gap rows of the last evaluate()).
     for (const auto& g : s.lin.gap_gradient)
@@ -48,10 +57,10 @@ ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) cons
         rows.push_back(global_dof(g.col));
         values.push_back(w * g.value);
       }
-    gains.insert(gains.end(), e.begin(), e.end());
   }
-  out.nodes = static_cast<int>(
-      std::count_if(gains.begin(), gains.end(), [&](double x) { return x > 1e-6 * out.gain; }));
+  out.gain = disc_.comm().sum(out.gain);
+  out.nodes = static_cast<int>(disc_.comm().sum(static_cast<double>(
+      std::count_if(gains.begin(), gains.end(), [&](double x) { return x > 1e-6 * out.gain; }))));
   d.add_values(rows, values);
   d.assemble();
   return out;

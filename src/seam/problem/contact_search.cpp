@@ -32,28 +32,13 @@ struct GlobalFacingPair {
 
 } // namespace
 
-namespace {
-
-/// Contact with dual multipliers, condensed: no interface of the run has standard multipliers
-/// (a saddle point) and the run is not energy-momentum contact (gap blocks over the start of
-/// the step).
-bool condensed_dual(const io::Interface& itf, const io::Config& config) {
-  for (const auto& other : config.interfaces)
-    if (other.type == io::InterfaceType::contact && other.multiplier != io::Multiplier::dual)
-      return false;
-  return itf.type == io::InterfaceType::contact && itf.multiplier == io::Multiplier::dual &&
-         config.time.integrator != io::Integrator::energy_momentum;
+bool master_held_in_part(const io::Interface& itf, const io::Config&) {
+  return itf.type == io::InterfaceType::contact && itf.master && itf.surface.empty();
 }
 
-} // namespace
-
-bool master_held_in_part(const io::Interface& itf, const io::Config& config) {
-  return itf.master && itf.surface.empty() && condensed_dual(itf, config);
-}
-
-bool slave_held_in_part(const io::Interface& itf, const io::Config& config) {
+bool slave_held_in_part(const io::Interface& itf, const io::Config&) {
   const bool rigid = itf.rigid_plane.has_value() || itf.rigid_obstacle.has_value();
-  return (itf.master || rigid || !itf.surface.empty()) && condensed_dual(itf, config);
+  return itf.type == io::InterfaceType::contact && (itf.master || rigid || !itf.surface.empty());
 }
 
 local_index SideIds::facet(std::int64_t id) const {

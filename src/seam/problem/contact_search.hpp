@@ -15,9 +15,8 @@
 // gathered by facet id (the contact graph, O(pairs)) and every rank assigns the roles as one
 // whole search does (contact::orient_pairs over the facets of the pairs, numbered in the order
 // of their ids). The roles of a step's first search are kept through the step (start_step), so
-// that a facet's role changes only between steps. With dual multipliers outside
-// energy-momentum contact the surface is held in part (slave_held_in_part): the ghosts' nodes
-// are then mesh or outside nodes of the rank (as for a master side held in part).
+// that a facet's role changes only between steps. The surface is held in part (slave_held_in_part):
+// the ghosts' nodes are then mesh or outside nodes of the rank (as for a master side held in part).
 //
 // The ghosting is reused between searches (parallel::VerletGhosts): boxes widened by a skin of
 // a fraction of the mean facet size, exchanged anew only when a surface node has moved more
@@ -61,9 +60,10 @@ struct FacetIdPair {
 /// facets of its own and ghost cells (the distributed mesh no longer sends every rank the
 /// whole side) and reads every other master facet through the ghosts of the search, whose
 /// nodes need not be nodes of its part (ContactConstraint numbers them after the mesh nodes,
-/// with their global dofs). Two-body contact with dual multipliers (with or without friction)
-/// outside energy-momentum contact and runs with a saddle point (standard multipliers on some
-/// interface); every other interface keeps its master side whole.
+/// with their global dofs). Every two-body contact interface: with or without friction, dual
+/// or standard multipliers (the saddle point's multiplier rows are numbered by the slave
+/// nodes' owners and reached by node id), static, dynamic and energy-momentum contact (its gap
+/// blocks read the reference coordinates of mesh and outside nodes). `config` is not read.
 bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 
 /// Whether the slave side of interface `itf` is held in part too: the distributed mesh holds
@@ -75,8 +75,7 @@ bool master_held_in_part(const io::Interface& itf, const io::Config& config);
 /// nodes' ids, global dofs and coordinates (ContactConstraint::hold_slave_part; with friction
 /// also the rings of the slave nodes of its part of M^n); the nodal arrays are per held slave
 /// node. Two-body contact whose master side is held in part, and contact against a rigid
-/// plane, sphere or cylinder under the same conditions (dual multipliers, no saddle point in
-/// the run, not energy-momentum contact), with or without friction, with either distribution
+/// plane, sphere or cylinder, with or without friction, with either distribution
 /// of the interface (`parallel: interface_distribution`); and the surface of self contact
 /// (`surface:`) under the same conditions, the rank's own surface facets handed in to the
 /// search and the surface facets it pairs beyond its part read as ghosts. Every other
