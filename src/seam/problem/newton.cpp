@@ -164,6 +164,7 @@ const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool fir
     }
     state.status_changes = state.changes - contact_.n_inconsistent();
     state.decided = true;
+    if (state.changes != 0) statuses_changed_ = true;
   }
   // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
   la::Vector* r_sys = &r_;
@@ -202,6 +203,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
   int stalled = 0;     // consecutive converged iterations changed only by frozen frictional nodes
   bool search = false; // the last correction may be shortened (line search)
   solver_.rebuild_preconditioner();
+  statuses_changed_ = true;
   for (int it = 0; it <= nc.max_iterations; ++it) {
     State state;
     const char* failure = evaluate_state(u, t, it == 0, false, evaluate, state);
@@ -381,7 +383,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         res.failure = "the linear solver failed";
         return res;
       }
-      if (logging_) out_.linear_solve(solver_.last_iterations());
+      if (logging_) out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
       if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
       if (check) check_correction(u, t, step, it, evaluate, lambda_old);
       if (search) {
@@ -414,9 +416,14 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       if (iterative_ && K_sys != &K_) K_sys->share_near_null_space(K_);
       ScopedTimer timer(out_.timers(), "linear_solve");
       d_sys->zero();
+      // While no contact status has changed since the last factorization, the new tangent
+      // differs from the factored one by the change of the state alone: GMRES preconditioned
+      // by that factorization solves it exactly at the cost of a few triangular solves.
+      solver_.allow_factor_reuse(!iterative_ && !statuses_changed_ && !predictor);
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
+      if (solver_.last_solve_built()) statuses_changed_ = false;
     }
-    if (logging_) out_.linear_solve(solver_.last_iterations());
+    if (logging_) out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
     if (solved && tying_.active()) tying_.expand(dut_, du_);
     // A corrector leaves the prescribed values as they are. Its constrained rows return zero
     // only up to the Krylov tolerance of an iterative solve; left in, those errors would move

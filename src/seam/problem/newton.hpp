@@ -206,6 +206,9 @@ private:
   std::vector<double> lambda_base_, lambda_full_, lambda_trial_;
   double full_increment_ = 0.0; ///< |du_| of the last correction in full
   std::vector<PetscInt> dirichlet_rows_;
+  /// A contact status changed at an evaluation since the last factorization (or the step
+  /// began): the direct solver must factor the next matrix (la::LinearSolver::allow_factor_reuse).
+  bool statuses_changed_ = true;
   double last_increment_ = 0.0;
   double last_norm_ = 0.0; // residual norm of the previous iteration
   std::string failure_;    // the message of the last failed evaluation that names a node
