@@ -344,8 +344,8 @@ private:
   bool last_built_ = false;
   bool reuse_allowed_ = false;
   bool reuse_enabled_ = true; ///< -factor_reuse false turns it off
-  int first_iterations_ = 0; ///< Krylov iterations of the solve that built the kept one
-  double first_rtol_ = 0.0;  ///< and its relative tolerance
+  int first_iterations_ = 0;  ///< Krylov iterations of the solve that built the kept one
+  double first_rtol_ = 0.0;   ///< and its relative tolerance
 };
 
 } // namespace seam::la
