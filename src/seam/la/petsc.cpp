@@ -1017,12 +1017,15 @@ bool LinearSolver::solve_once(const Matrix& A, const Matrix& P, const Vector& b,
     check(PCShellSetName(schur, "seam Schur preconditioner"), "PCShellSetName");
     schur_installed_ = true;
   }
-  PetscErrorCode ierr = KSPSolve(ksp_, b.get(), x.get());
+  return finish_solve(ksp_, KSPSolve(ksp_, b.get(), x.get()));
+}
+
+bool LinearSolver::finish_solve(KSP ksp, PetscErrorCode ierr) {
   if (ierr) return false; // e.g. a zero pivot in the factorization: the caller cuts the step
   KSPConvergedReason reason;
-  check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+  check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
   PetscInt its = 0;
-  check(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber");
+  check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
   iterations_ = static_cast<int>(its);
   return reason > 0;
 }
@@ -1035,13 +1038,7 @@ bool LinearSolver::solve_reusing_factors(const Matrix& A, const Vector& b, Vecto
   last_built_ = false;
   const PetscErrorCode ierr = KSPSolve(reuse_ksp_, b.get(), x.get());
   check(PCSetReusePreconditioner(pc, PETSC_FALSE), "PCSetReusePreconditioner");
-  if (ierr) return false;
-  KSPConvergedReason reason;
-  check(KSPGetConvergedReason(reuse_ksp_, &reason), "KSPGetConvergedReason");
-  PetscInt its = 0;
-  check(KSPGetIterationNumber(reuse_ksp_, &its), "KSPGetIterationNumber");
-  iterations_ = static_cast<int>(its);
-  return reason > 0;
+  return finish_solve(reuse_ksp_, ierr);
 }
 
 bool LinearSolver::solve(const Matrix& A, const Matrix& P, const Vector& b, Vector& x) {

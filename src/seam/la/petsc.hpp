@@ -329,6 +329,8 @@ private:
   /// allow_factor_reuse: GMRES on A preconditioned by the kept factorization. Returns whether
   /// it converged within factor_reuse_max_iterations.
   bool solve_reusing_factors(const Matrix& A, const Vector& b, Vector& x);
+  /// After KSPSolve on `ksp` returned `ierr`: its iterations kept, whether it converged.
+  bool finish_solve(KSP ksp, PetscErrorCode ierr);
   double relative_tolerance() const;
 
   KSP ksp_ = nullptr;
