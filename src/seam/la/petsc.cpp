@@ -780,6 +780,23 @@ LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
   check(PetscOptionsHasName(nullptr, nullptr, "-ksp_reuse_preconditioner", &set),
         "PetscOptionsHasName");
   user_reuse_set_ = set;
+  PetscBool reuse = PETSC_TRUE;
+  check(PetscOptionsGetBool(nullptr, nullptr, "-factor_reuse", &reuse, nullptr),
+        "PetscOptionsGetBool");
+  reuse_enabled_ = reuse == PETSC_TRUE && !user_reuse_set_;
+  if (kind == SolverKind::direct) {
+    // GMRES over the factorization of ksp_ (its PC, shared): right-preconditioned, so that
+    // the tolerance applies to the true residual b - A x.
+    check(KSPCreate(comm, &reuse_ksp_), "KSPCreate");
+    check(KSPSetType(reuse_ksp_, KSPGMRES), "KSPSetType");
+    check(KSPGMRESSetRestart(reuse_ksp_, factor_reuse_max_iterations), "KSPGMRESSetRestart");
+    check(KSPSetPCSide(reuse_ksp_, PC_RIGHT), "KSPSetPCSide");
+    check(KSPSetNormType(reuse_ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    check(KSPSetTolerances(reuse_ksp_, factor_reuse_rtol, 1e-300, PETSC_DEFAULT,
+                           factor_reuse_max_iterations),
+          "KSPSetTolerances");
+    check(KSPSetPC(reuse_ksp_, pc), "KSPSetPC");
+  }
 }
 
 namespace {
@@ -960,6 +977,7 @@ void LinearSolver::set_relative_tolerance(double rtol) {
 }
 
 LinearSolver::~LinearSolver() {
+  if (reuse_ksp_) KSPDestroy(&reuse_ksp_);
   if (ksp_) KSPDestroy(&ksp_);
 }
 
@@ -982,6 +1000,7 @@ bool LinearSolver::solve_once(const Matrix& A, const Matrix& P, const Vector& b,
           "PCSetReusePreconditioner");
   check(KSPSetOperators(ksp_, A.get(), P.get()), "KSPSetOperators");
   if (!reuse) ++builds_;
+  last_built_ = !reuse;
   if (schur_apply_ && !schur_installed_) {
     // The Schur block's solver exists after PCFIELDSPLIT's set-up; the shell stays on it
     // through later set-ups (PCFIELDSPLIT reads the block's options once).
@@ -998,19 +1017,47 @@ bool LinearSolver::solve_once(const Matrix& A, const Matrix& P, const Vector& b,
     check(PCShellSetName(schur, "seam Schur preconditioner"), "PCShellSetName");
     schur_installed_ = true;
   }
-  PetscErrorCode ierr = KSPSolve(ksp_, b.get(), x.get());
+  return finish_solve(ksp_, KSPSolve(ksp_, b.get(), x.get()));
+}
+
+bool LinearSolver::finish_solve(KSP ksp, PetscErrorCode ierr) {
   if (ierr) return false; // e.g. a zero pivot in the factorization: the caller cuts the step
   KSPConvergedReason reason;
-  check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+  check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
   PetscInt its = 0;
-  check(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber");
+  check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
   iterations_ = static_cast<int>(its);
   return reason > 0;
 }
 
+bool LinearSolver::solve_reusing_factors(const Matrix& A, const Vector& b, Vector& x) {
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  check(PCSetReusePreconditioner(pc, PETSC_TRUE), "PCSetReusePreconditioner");
+  check(KSPSetOperators(reuse_ksp_, A.get(), A.get()), "KSPSetOperators");
+  last_built_ = false;
+  const PetscErrorCode ierr = KSPSolve(reuse_ksp_, b.get(), x.get());
+  check(PCSetReusePreconditioner(pc, PETSC_FALSE), "PCSetReusePreconditioner");
+  return finish_solve(reuse_ksp_, ierr);
+}
+
 bool LinearSolver::solve(const Matrix& A, const Matrix& P, const Vector& b, Vector& x) {
-  if (!keep_ || user_reuse_set_ || kind_ == SolverKind::direct)
-    return solve_once(A, P, b, x, false);
+  if (kind_ == SolverKind::direct) {
+    const bool reuse = reuse_allowed_ && reuse_enabled_ && !stale_ && A.get() == P.get();
+    reuse_allowed_ = false;
+    if (reuse) {
+      if (solve_reusing_factors(A, b, x)) {
+        // Converged, but slowly: the factorization is too far from the matrices now.
+        stale_ = iterations_ > factor_reuse_refactor_iterations;
+        return true;
+      }
+      x.zero(); // abandoned: the matrix is factored
+    }
+    const bool ok = solve_once(A, P, b, x, false);
+    stale_ = !ok;
+    return ok;
+  }
+  if (!keep_ || user_reuse_set_) return solve_once(A, P, b, x, false);
   const double rtol = relative_tolerance();
   if (stale_) {
     const bool ok = solve_once(A, P, b, x, false);

@@ -299,6 +299,22 @@ public:
   void keep_preconditioner(bool on) { keep_ = on; }
   /// The next solve builds the preconditioner from its matrix.
   void rebuild_preconditioner() { stale_ = true; }
+  /// The direct kind: the next solve may take the factorization of an earlier solve (whose
+  /// matrix differs) as the preconditioner of GMRES, right-preconditioned, to the relative
+  /// residual 1e-13 of the right-hand side, as far as the factorization itself reaches
+  /// (1e-14 to 4e-14 on the hex20 torus), instead of factoring its own matrix: an exact solve
+  /// of the new matrix at the cost of a few triangular solves. The caller allows it where
+  /// the new matrix differs little from the factored one (Newton corrections of a load step
+  /// whose contact statuses have not changed since the factorization). A GMRES that needs
+  /// more than factor_reuse_max_iterations is abandoned and the matrix factored; one that
+  /// needs more than factor_reuse_refactor_iterations converges, but the next solve factors
+  /// anew. -ksp_reuse_preconditioner or -factor_reuse false on the command line turn it off.
+  void allow_factor_reuse(bool on) { reuse_allowed_ = on; }
+  static constexpr int factor_reuse_max_iterations = 20;
+  static constexpr int factor_reuse_refactor_iterations = 8;
+  static constexpr double factor_reuse_rtol = 1e-13;
+  /// Whether the last solve set up its preconditioner (factored its matrix).
+  bool last_solve_built() const { return last_built_; }
   /// Preconditioner set-ups since construction.
   int preconditioner_builds() const { return builds_; }
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).
@@ -310,9 +326,15 @@ public:
 private:
   /// One KSPSolve; `reuse`: with the preconditioner kept. Returns whether it converged.
   bool solve_once(const Matrix& A, const Matrix& P, const Vector& b, Vector& x, bool reuse);
+  /// allow_factor_reuse: GMRES on A preconditioned by the kept factorization. Returns whether
+  /// it converged within factor_reuse_max_iterations.
+  bool solve_reusing_factors(const Matrix& A, const Vector& b, Vector& x);
+  /// After KSPSolve on `ksp` returned `ierr`: its iterations kept, whether it converged.
+  bool finish_solve(KSP ksp, PetscErrorCode ierr);
   double relative_tolerance() const;
 
   KSP ksp_ = nullptr;
+  KSP reuse_ksp_ = nullptr; ///< the direct kind: GMRES sharing ksp_'s PC (allow_factor_reuse)
   SolverKind kind_;
   SchurApply schur_apply_;
   bool schur_installed_ = false; ///< the PCSHELL sits on the Schur block
@@ -321,8 +343,11 @@ private:
   bool stale_ = true;           ///< the next solve builds the preconditioner
   bool user_reuse_set_ = false; ///< -ksp_reuse_preconditioner given: PETSc decides alone
   int builds_ = 0;
-  int first_iterations_ = 0; ///< Krylov iterations of the solve that built the kept one
-  double first_rtol_ = 0.0;  ///< and its relative tolerance
+  bool last_built_ = false;
+  bool reuse_allowed_ = false;
+  bool reuse_enabled_ = true; ///< -factor_reuse false turns it off
+  int first_iterations_ = 0;  ///< Krylov iterations of the solve that built the kept one
+  double first_rtol_ = 0.0;   ///< and its relative tolerance
 };
 
 } // namespace seam::la

@@ -135,13 +135,22 @@ std::string describe_linear_solver(const io::Config& config, const Discretizatio
   return describe(solid_linear_solver(config, disc, saddle_point));
 }
 
+bool NewtonSolver::expect_convergence(int it, double tolerance, double reference) const {
+  if (it < 2 || constant_tangent_ || saddle_.active() || tying_.active() ||
+      contact_.saddle_point() || last_changes_ != 0 || !(older_norm_ > 0.0))
+    return false;
+  return last_norm_ * last_norm_ / older_norm_ <= 0.1 * tolerance * reference;
+}
+
 const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool first, bool retrial,
-                                         const Evaluator& evaluate, State& state) {
+                                         const Evaluator& evaluate, State& state, bool tangent) {
   {
     ScopedTimer timer(out_.timers(), "assembly");
     // A constant tangent keeps the one of the first iteration. The plain system may zero the
     // fixed rows and columns of K_ itself: doing that again changes nothing.
-    state.assembly = evaluate(u, r_, constant_tangent_ && !first ? nullptr : &K_, f_ext_);
+    const bool keep = (constant_tangent_ && !first) || !tangent;
+    state.assembly = evaluate(u, r_, keep ? nullptr : &K_, f_ext_);
+    tangent_current_ = tangent || constant_tangent_;
   }
   parallel::mark_memory(disc_.comm().get(), "first_assembly", true);
   if (disc_.comm().any(state.assembly.inverted)) return "an element is inverted (det F <= 0)";
@@ -164,6 +173,7 @@ const char* NewtonSolver::evaluate_state(const la::Vector& u, double t, bool fir
     }
     state.status_changes = state.changes - contact_.n_inconsistent();
     state.decided = true;
+    if (state.changes != 0) statuses_changed_ = true;
   }
   // The Newton system: condensed by T when mesh tying is condensed, else K and r as they are.
   la::Vector* r_sys = &r_;
@@ -202,9 +212,13 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
   int stalled = 0;     // consecutive converged iterations changed only by frozen frictional nodes
   bool search = false; // the last correction may be shortened (line search)
   solver_.rebuild_preconditioner();
+  statuses_changed_ = true;
   for (int it = 0; it <= nc.max_iterations; ++it) {
     State state;
-    const char* failure = evaluate_state(u, t, it == 0, false, evaluate, state);
+    // The evaluation that ends a step needs no tangent: where convergence is expected, the
+    // residual alone, and the tangent after all if the iterate does not converge.
+    const char* failure = evaluate_state(u, t, it == 0, false, evaluate, state,
+                                         !expect_convergence(it, nc.tolerance, reference));
     // Relative residual: against the first residual of the step and the force level of
     // the system (reactions and external loads), so that a step with a tiny increment is
     // not asked to go below round-off.
@@ -329,7 +343,9 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
                     step, it, released);
       out_.note(line);
     }
+    older_norm_ = it == 0 ? 0.0 : last_norm_;
     last_norm_ = norm;
+    last_changes_ = changes;
     res.residual = reference > 0 ? norm / reference : 0.0;
     res.iterations = it;
     res.strain_energy = disc_.comm().sum(state.assembly.strain_energy);
@@ -381,7 +397,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         res.failure = "the linear solver failed";
         return res;
       }
-      if (logging_) out_.linear_solve(solver_.last_iterations());
+      if (logging_) out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
       if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
       if (check) check_correction(u, t, step, it, evaluate, lambda_old);
       if (search) {
@@ -392,6 +408,13 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       apply_increment(u, t, predictor);
       full_increment_ = last_increment_;
       continue;
+    }
+    if (!tangent_current_) {
+      // Convergence was expected at this iterate: its tangent now (the same residual with it).
+      ScopedTimer timer(out_.timers(), "assembly");
+      evaluate(u, r_, &K_, f_ext_);
+      if (!contact_.active()) zero_dirichlet_rows(model_, disc_, r_);
+      tangent_current_ = true;
     }
     la::Matrix* K_sys = tying_.active() ? &Kt_ : &K_;
     la::Vector* r_sys = tying_.active() ? &rt_ : &r_;
@@ -414,9 +437,14 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       if (iterative_ && K_sys != &K_) K_sys->share_near_null_space(K_);
       ScopedTimer timer(out_.timers(), "linear_solve");
       d_sys->zero();
+      // While no contact status has changed since the last factorization, the new tangent
+      // differs from the factored one by the change of the state alone: GMRES preconditioned
+      // by that factorization solves it exactly at the cost of a few triangular solves.
+      solver_.allow_factor_reuse(!iterative_ && !statuses_changed_ && !predictor);
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
+      if (solver_.last_solve_built()) statuses_changed_ = false;
     }
-    if (logging_) out_.linear_solve(solver_.last_iterations());
+    if (logging_) out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
     if (solved && tying_.active()) tying_.expand(dut_, du_);
     // A corrector leaves the prescribed values as they are. Its constrained rows return zero
     // only up to the Krylov tolerance of an iterative solve; left in, those errors would move

@@ -172,9 +172,15 @@ private:
   /// Evaluates the iterate u: r_, K_, f_ext_ (condensed by the tying into rt_, Kt_), the
   /// contact state with its statuses decided there (`first`: the first iteration of the step;
   /// `retrial`: a shortened correction, ContactConstraint::evaluate), r_full_ and the norms.
-  /// Returns why the iterate is unusable, or "".
+  /// Returns why the iterate is unusable, or "". `tangent` false: the residual alone, K_ is
+  /// left as it was (tangent_current_ says so).
   const char* evaluate_state(const la::Vector& u, double t, bool first, bool retrial,
-                             const Evaluator& evaluate, State& state);
+                             const Evaluator& evaluate, State& state, bool tangent = true);
+  /// Whether iteration `it` is expected to converge, so that its evaluation may leave out the
+  /// tangent: the last correction changed no contact status and, extrapolated quadratically
+  /// from the last two residuals (|r_k| ~ |r_k-1|^2 / |r_k-2|), the residual falls below a
+  /// tenth of the tolerance. Plain and condensed systems only (no saddle point, no tying).
+  bool expect_convergence(int it, double tolerance, double reference) const;
   /// Diagnostics (newton_diagnostics.cpp): SEAM_CONTACT_TRACE=1 (or 2) and
   /// SEAM_NEWTON_CHECK=STEP:IT.
   static bool trace_contact();
@@ -206,9 +212,15 @@ private:
   std::vector<double> lambda_base_, lambda_full_, lambda_trial_;
   double full_increment_ = 0.0; ///< |du_| of the last correction in full
   std::vector<PetscInt> dirichlet_rows_;
+  /// A contact status changed at an evaluation since the last factorization (or the step
+  /// began): the direct solver must factor the next matrix (la::LinearSolver::allow_factor_reuse).
+  bool statuses_changed_ = true;
   double last_increment_ = 0.0;
-  double last_norm_ = 0.0; // residual norm of the previous iteration
-  std::string failure_;    // the message of the last failed evaluation that names a node
+  double last_norm_ = 0.0;      // residual norm of the previous iteration
+  double older_norm_ = 0.0;     // and of the one before (0 at the first two iterations)
+  int last_changes_ = 0;        // contact status changes of the previous iteration
+  bool tangent_current_ = true; ///< K_ belongs to the last evaluated state
+  std::string failure_;         // the message of the last failed evaluation that names a node
   bool logging_ = true;
   bool iterative_ = false;             // the Newton systems go to GMRES + GAMG (inexact Newton)
   bool constant_tangent_ = false;      // set_constant_tangent

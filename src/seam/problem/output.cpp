@@ -683,6 +683,7 @@ void Output::finish(bool converged, int n_steps) {
   j["wall_seconds"] = wall;
   j["linear_solves"] = linear_solves_;
   j["linear_iterations"] = linear_iterations_;
+  j["preconditioner_builds"] = preconditioner_builds_;
   // Both members exist before either is referenced: adding a member may move the others.
   j["timings"] = io::Json::object();
   j["cpu_timings"] = io::Json::object();

@@ -181,10 +181,12 @@ public:
   /// One Newton iteration (newton.csv; the terminal table when it is not quiet).
   void newton(const NewtonRecord& r);
   /// One linear solve of a Newton system and its Krylov iterations (a direct solve counts
-  /// one): summed into summary.json's linear_solves and linear_iterations.
-  void linear_solve(int iterations) {
+  /// one), and whether it set up its preconditioner (a factorization, GAMG's hierarchy):
+  /// summed into summary.json's linear_solves, linear_iterations and preconditioner_builds.
+  void linear_solve(int iterations, bool built) {
     ++linear_solves_;
     linear_iterations_ += iterations;
+    if (built) ++preconditioner_builds_;
   }
   /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due
   /// (every n-th, and always `force_fields`). `reactions` holds dim values per reaction region
@@ -242,7 +244,7 @@ private:
   double start_wall_;
   // Wall clock and simulated time where the stepping began (the estimate of the time left).
   double progress_wall_ = 0.0, progress_time_ = 0.0;
-  long long linear_solves_ = 0, linear_iterations_ = 0;
+  long long linear_solves_ = 0, linear_iterations_ = 0, preconditioner_builds_ = 0;
   std::vector<LocatedProbe> probes_;
   std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_,
       parallel_;
