@@ -4,10 +4,12 @@
 // outer radius R and inner radius r, meshed with nc quadrilaterals per quarter circle and nr
 // through the wall. The rings are 2 (R + s) apart (s: half the gap between neighbours), the
 // lowest row s above the floor y = 0; the box's walls are x = 0 and x = W = 2 k (R + s) + 2 s,
-// so the rings of a full row just fit between them.
+// so the rings of a full row just fit between them. A file that sets s before
+// `Include "rings.geo";` keeps its value (rings200.geo).
 N = 200; k = 10;
 nc = 6; nr = 2;
-R = 1.0; r = 0.8; s = 0.1;
+R = 1.0; r = 0.8;
+If (!Exists(s)) s = 0.1; EndIf
 p = 2 * (R + s);             // pitch within a row
 h = p * Sqrt(3) / 2;         // pitch between rows: neighbours of adjacent rows touch at 2 s
 outer[] = {}; inner[] = {}; cells[] = {};

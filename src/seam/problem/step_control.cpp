@@ -26,8 +26,10 @@ bool StepControl::cut(const char* failure, double t_new, const Comm& comm) {
 void StepControl::accept(double t_new) {
   t_ = t_new;
   if (cuts_ > 0) {
-    dt_ = std::min(2.0 * dt_, tc_.dt); // grow back after a successful cut step
-    if (dt_ >= tc_.dt) cuts_ = 0;
+    // Grow back after a successful cut step, one halving at a time: cuts_ stays the number of
+    // halvings in effect, so a later failure may halve down to dt / 2^max_step_cuts again.
+    dt_ = std::min(2.0 * dt_, tc_.dt);
+    cuts_ = dt_ >= tc_.dt ? 0 : cuts_ - 1;
   }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Step size control shared by the solid, dynamic and fluid-structure drivers (docs/input.md
 // §6.3): steps land on the nominal times k dt; a failed step is halved and retried, the size
-// grows back after success; the run gives up when one step has used all its cuts.
+// grows back after success (a halving taken back with each doubling); the run gives up when a
+// step fails at dt / 2^max_step_cuts.
 #include "seam/common/mpi.hpp"
 #include "seam/io/config.hpp"
 
