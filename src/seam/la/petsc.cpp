@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -751,6 +752,59 @@ void default_option(const char* name, const char* value) {
   own_defaults().insert(name);
 }
 
+/// An option of the database set for a scope and restored after it, unless the command line
+/// gave it (then the user's value stays).
+class ScopedOption {
+public:
+  ScopedOption(const char* name, const char* value) : name_(name) {
+    PetscBool set = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
+    if (set) return;
+    check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+    own_ = true;
+  }
+  ~ScopedOption() {
+    if (own_) PetscOptionsClearValue(nullptr, name_);
+  }
+  ScopedOption(const ScopedOption&) = delete;
+  ScopedOption& operator=(const ScopedOption&) = delete;
+
+private:
+  const char* name_;
+  bool own_ = false;
+};
+
+/// The Galerkin products of GAMG's set-up on several ranks (P^T A P per level). PETSc 3.18's
+/// "allatonce", which seam used for its low memory, took 4.2 times the time of one rank's
+/// product at np 2 and made two ranks slower than one on the 2e6-dof contact cube; most of the
+/// memory of the faster algorithms is the intermediate data they keep with the product for a
+/// later numeric phase, which GAMG never asks for (it rebuilds its hierarchy): freed
+/// (-mat_product_clear), "nonscalable" costs 7 % more memory than "allatonce" at 0.42 of its
+/// time (docs/performance.md, "The largest contact problem of the machine"). "nonscalable"
+/// keeps an array over the coarse level's global columns on each rank: up to 5e7 rows of A
+/// (a few times 1e6 coarse columns, tens of MB), "scalable" beyond.
+struct GalerkinOptions {
+  std::optional<ScopedOption> via, clear;
+};
+void galerkin_options(KSP ksp, const Mat A, GalerkinOptions& options) {
+  PC pc = nullptr;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  PetscBool gamg = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCGAMG, &gamg),
+        "PetscObjectTypeCompare");
+  int size = 1;
+  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(A)), &size);
+  if (!gamg || size == 1) return;
+  PetscInt rows = 0;
+  check(MatGetSize(A, &rows, nullptr), "MatGetSize");
+  options.via.emplace("-matptap_via", rows <= 50000000 ? "nonscalable" : "scalable");
+  // Reusing the interpolation runs the numeric phase of the kept products again.
+  PetscBool reuse = PETSC_FALSE;
+  check(PetscOptionsGetBool(nullptr, nullptr, "-pc_gamg_reuse_interpolation", &reuse, nullptr),
+        "PetscOptionsGetBool");
+  if (!reuse) options.clear.emplace("-mat_product_clear", "true");
+}
+
 } // namespace
 
 LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
@@ -766,14 +820,7 @@ LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
     check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
     check(PCSetType(pc, PCGAMG), "PCSetType");
     check(KSPSetTolerances(ksp_, 1e-10, 1e-50, PETSC_DEFAULT, 2000), "KSPSetTolerances");
-    // GAMG's Galerkin products P^T A P on several ranks: PETSc's default algorithm for these
-    // sizes keeps more intermediate data with the product than "allatonce" (the same product,
-    // as the condensation T^T K T uses). On the tied blocks at 68 799 dofs, np 4, the largest
-    // rank's peak fell from 214 to 186 MB (docs/parallel.md, "Memory per rank at np 4 against
-    // np 1"). -matptap_via on the command line overrides it.
-    int size = 1;
-    MPI_Comm_size(comm, &size);
-    if (size > 1) default_option("-matptap_via", "allatonce");
+    // GAMG's Galerkin products P^T A P on several ranks: see galerkin_options() below.
   }
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   PetscBool set = PETSC_FALSE;
@@ -1001,6 +1048,12 @@ bool LinearSolver::solve_once(const Matrix& A, const Matrix& P, const Vector& b,
   check(KSPSetOperators(ksp_, A.get(), P.get()), "KSPSetOperators");
   if (!reuse) ++builds_;
   last_built_ = !reuse;
+  if (!reuse) {
+    // GAMG's hierarchy is built here, its Galerkin products with the options above only.
+    GalerkinOptions options;
+    galerkin_options(ksp_, P.get(), options);
+    if (options.via && KSPSetUp(ksp_)) return false;
+  }
   if (schur_apply_ && !schur_installed_) {
     // The Schur block's solver exists after PCFIELDSPLIT's set-up; the shell stays on it
     // through later set-ups (PCFIELDSPLIT reads the block's options once).
