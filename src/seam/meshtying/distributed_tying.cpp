@@ -3,6 +3,7 @@
 // facets ghosted to it by bounding boxes; the rows of D and M are summed on the owners of their
 // slave nodes, and every rank then receives the complete rows of the slave nodes it holds.
 #include "seam/common/error.hpp"
+#include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
 #include "seam/meshtying/tied_interface.hpp"
 #include "seam/meshtying/tied_interface_detail.hpp"
@@ -10,8 +11,6 @@
 #include "seam/parallel/exchange.hpp"
 #include "seam/parallel/ghosting.hpp"
 #include "seam/search/interface_search.hpp"
-
-#include <petscksp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -100,10 +99,6 @@ std::vector<T> by_rank(int size, const std::vector<std::pair<int, T>>& items,
   return out;
 }
 
-void petsc_check(PetscErrorCode code, const char* what) {
-  SEAM_CHECK(code == 0, InternalError, "PETSc error ", static_cast<int>(code), " in ", what);
-}
-
 /// Mesh initialization with a non-diagonal D (standard multipliers): D_SS X_S = M X_M - D_SB X_B
 /// over the whole side as one distributed linear system, its rows the slave nodes with a row of
 /// D on their owners (`rows`: the complete rows of the nodes this rank owns, sorted), solved by
@@ -168,50 +163,50 @@ standard_initialization(MPI_Comm comm, const TiedInterface& t, const std::vector
     ++(col >= first && col < first + n_local ? d_nnz[i] : o_nnz[i]);
   }
   Mat D = nullptr;
-  petsc_check(MatCreateAIJ(comm, n_local, n_local, PETSC_DETERMINE, PETSC_DETERMINE, 0,
-                           d_nnz.data(), 0, o_nnz.data(), &D),
-              "MatCreateAIJ");
+  la::check(MatCreateAIJ(comm, n_local, n_local, PETSC_DETERMINE, PETSC_DETERMINE, 0, d_nnz.data(),
+                         0, o_nnz.data(), &D),
+            "MatCreateAIJ");
   for (const auto& e : rows) {
     if (e.kind != 0 || number.at(e.col) < 0) continue;
     const PetscInt row = number_of_mine(e.row), col = number.at(e.col);
-    petsc_check(MatSetValue(D, row, col, e.value, ADD_VALUES), "MatSetValue");
+    la::check(MatSetValue(D, row, col, e.value, ADD_VALUES), "MatSetValue");
   }
-  petsc_check(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  petsc_check(MatAssemblyEnd(D, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  la::check(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  la::check(MatAssemblyEnd(D, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   KSP ksp = nullptr;
   PC pc = nullptr;
-  petsc_check(KSPCreate(comm, &ksp), "KSPCreate");
-  petsc_check(KSPSetOperators(ksp, D, D), "KSPSetOperators");
-  petsc_check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-  petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
-  petsc_check(PCSetType(pc, PCLU), "PCSetType");
-  petsc_check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-  petsc_check(KSPSetOptionsPrefix(ksp, "mesh_initialization_"), "KSPSetOptionsPrefix");
-  petsc_check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+  la::check(KSPCreate(comm, &ksp), "KSPCreate");
+  la::check(KSPSetOperators(ksp, D, D), "KSPSetOperators");
+  la::check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+  la::check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  la::check(PCSetType(pc, PCLU), "PCSetType");
+  la::check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  la::check(KSPSetOptionsPrefix(ksp, "mesh_initialization_"), "KSPSetOptionsPrefix");
+  la::check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   PetscErrorCode setup = KSPSetUp(ksp);
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
   std::vector<double> delta(t.slave.mesh_nodes.size() * dim, 0.0);
   Vec b = nullptr, x = nullptr;
-  petsc_check(MatCreateVecs(D, &x, &b), "MatCreateVecs");
+  la::check(MatCreateVecs(D, &x, &b), "MatCreateVecs");
   bool singular = setup != 0;
   for (int c = 0; c < dim && !singular; ++c) {
     PetscScalar* bv = nullptr;
-    petsc_check(VecGetArray(b, &bv), "VecGetArray");
+    la::check(VecGetArray(b, &bv), "VecGetArray");
     for (PetscInt i = 0; i < n_local; ++i) bv[i] = rhs[static_cast<std::size_t>(i) * dim + c];
-    petsc_check(VecRestoreArray(b, &bv), "VecRestoreArray");
+    la::check(VecRestoreArray(b, &bv), "VecRestoreArray");
     singular = KSPSolve(ksp, b, x) != 0;
     if (!singular) {
-      petsc_check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+      la::check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
       singular = reason < 0;
     }
     if (singular) break;
     const PetscScalar* xv = nullptr;
-    petsc_check(VecGetArrayRead(x, &xv), "VecGetArrayRead");
+    la::check(VecGetArrayRead(x, &xv), "VecGetArrayRead");
     for (PetscInt i = 0; i < n_local; ++i) {
       const auto j = static_cast<std::size_t>(slave_local.at(mine[static_cast<std::size_t>(i)]));
       delta[j * dim + c] = xv[i] - t.slave.coordinates[j * dim + c];
     }
-    petsc_check(VecRestoreArrayRead(x, &xv), "VecRestoreArrayRead");
+    la::check(VecRestoreArrayRead(x, &xv), "VecRestoreArrayRead");
   }
   VecDestroy(&b);
   VecDestroy(&x);
@@ -219,7 +214,8 @@ standard_initialization(MPI_Comm comm, const TiedInterface& t, const std::vector
   MatDestroy(&D);
   int bad = singular ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
-  SEAM_CHECK(bad == 0, InputError, "mesh initialization: the mortar matrix D is singular");
+  SEAM_CHECK(bad == 0, InputError, "interface '", t.name,
+             "': mesh initialization: the mortar matrix D is singular");
   return delta;
 }
 
