@@ -128,8 +128,9 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
                                             MeshIdentity& identity,
                                             const std::filesystem::path& scratch, bool quiet) {
   // Sides held whole on every rank: those of contact. The sides of mesh tying (condensed and
-  // saddle point) are set up distributed (meshtying::distributed_tying): each rank needs
-  // only its own cells' facets and the master facets ghosted to it; so are the master side of
+  // saddle point) and of the fsi couplings are set up distributed
+  // (meshtying::distributed_tying): each rank needs only its own cells' facets and the master
+  // facets ghosted to it; so are the master side of
   // two-body contact held in part (master_held_in_part) and the slave side held in part
   // (slave_held_in_part, a self-contact surface too; with the independent distribution the
   // facets a rank needs beyond its own and ghost cells reach it as facets,
