@@ -175,6 +175,70 @@ def check_owners_np3(r1, s1, i1, r3, s3, i3, what):
           % (what, worst))
 
 
+def check_sides_in_part(one, three, what):
+    """The fsi sides held in part at np 3 (docs/fsi.md, "In parallel"): no rank holds more than
+    (its owned + ghost cells) x 1.1 cells (ranks_detail: `ghost_cells` counts every held cell it
+    does not assemble, `interface_cells` those held only for an interface side); each rank
+    integrates only its part of the fluid-side facets (`slave_elements`: they add up to the
+    facets np 1 integrates, and no rank has them all); every output equals np 1 to 1e-10
+    (steps.csv, interfaces.csv, probes.csv, interface_<name>.csv; forces.csv)."""
+    import test_distribution as TD
+    d1 = H.read_json(os.path.join(one, "summary.json"))["ranks_detail"]
+    detail = H.read_json(os.path.join(three, "summary.json"))["ranks_detail"]
+    total = d1[0]["slave_elements"]
+    print("   %s np 3: cells owned / ghost / held for an interface side, fluid facets integrated "
+          "(of %d) per rank: %s" % (what, total, ", ".join(
+              "%d / %d / %d, %d" % (d["cells"], d["ghost_cells"] - d["interface_cells"],
+                                    d["interface_cells"], d["slave_elements"]) for d in detail)))
+    for d in detail:
+        own, ghosts = d["cells"], d["ghost_cells"] - d["interface_cells"]
+        if d["cells"] + d["ghost_cells"] > 1.1 * (own + ghosts):
+            raise AssertionError("%s: rank %d holds %d cells, more than 1.1 x (%d owned + %d "
+                                 "ghost cells)" % (what, d["rank"], d["cells"] + d["ghost_cells"],
+                                                   own, ghosts))
+    integrated = [d["slave_elements"] for d in detail]
+    if total <= 0 or sum(integrated) != total or max(integrated) >= total:
+        raise AssertionError("%s: fluid facets integrated per rank %s, np 1 integrates %d: "
+                             "each rank must integrate a part, together all"
+                             % (what, integrated, total))
+    TD.compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    worst = 0.0
+    f1 = H.read_csv(os.path.join(one, "forces.csv"))
+    f3 = H.read_csv(os.path.join(three, "forces.csv"))
+    scale = max(abs(r[c]) for r in f1 for c in ("fx", "fy"))
+    for a, b in zip(f1, f3):
+        for c in ("fx", "fy"):
+            H.assert_close(b[c], a[c], atol=1e-10 * scale,
+                           what="%s forces.csv step %d %s np 3" % (what, a["step"], c))
+            worst = max(worst, abs(b[c] - a[c]) / scale)
+    print("   %s forces.csv: np 3 equals np 1, largest difference %.1e (relative)" % (what, worst))
+
+
+def test_fsi_sides_in_part_np3():
+    """The fsi sides held in part (check_sides_in_part) at np 3 against np 1: FSI1 (refine 0.5,
+    steady, tri6 fluid and quad9 flag: the modified quadratic basis) and the FSI3 start-up
+    (refine 0.5, 4 generalized-alpha steps: the structure's velocity and history on the
+    structure nodes P reaches beyond a rank's mesh, the work of the transferred force), each
+    with the chunked reader and with the rank-0 reader (METIS: other parts)."""
+    cases = (("FSI1", lambda: fsi_case(refine=0.5)), ("FSI3", lambda: fsi3_case(0.04, 0.01)))
+    for what, make in cases:
+        work, path = make()
+        try:
+            one = H.solve(path, np=1)
+            for reader in (None, "rank0"):
+                if reader:
+                    os.environ["SEAM_MESH_READER"] = reader
+                try:
+                    three = H.solve(path, np=3)
+                finally:
+                    os.environ.pop("SEAM_MESH_READER", None)
+                check_sides_in_part(one, three, what + (", rank-0 reader" if reader else ""))
+                H.cleanup(three)
+            H.cleanup(one)
+        finally:
+            H.cleanup(work)
+
+
 def test_fsi1_fieldsplit():
     """`solver: {linear: iterative}` with an fsi interface: FGMRES with the structure | fluid |
     mesh fieldsplit (GAMG with rigid-body modes, the fluid's Schur fieldsplit, BoomerAMG)
