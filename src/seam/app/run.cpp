@@ -205,7 +205,7 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
-    // Distributed as the fluid runs, the fsi sides held whole on every rank.
+    // Distributed as the fluid runs, the fsi sides held in part as mesh tying's.
     make_output_directory(output_directory(options), comm);
     MeshIdentity identity;
     auto part =
