@@ -11,7 +11,9 @@
     interface force (steps.csv) to 1e-10.
   * 3 ranks equal 1 rank to 1e-10; on 3 ranks each assembles its part of the cells and owns
     its part of the nodes (summary.json ranks_detail), and a Newton iteration exchanges only
-    the unknowns of each rank's cells.
+    the unknowns of each rank's cells. The fsi sides are held in part: at np 3 no rank holds
+    more than (owned + ghost cells) x 1.1 cells, each integrates only its part of the
+    fluid-side facets, and every output equals np 1 to 1e-10 (FSI1 and the FSI3 start-up).
   * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface (the
     same fluid mesh, the flag coarsened or refined) give the matching result within 1.5 %
     (tip u_y), 1 % (lift) and 1e-4 (drag); the force transfer stays exact.
@@ -864,7 +866,8 @@ def test_bad_input():
 
 
 if __name__ == "__main__":
-    tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_fieldsplit,
+    tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_owners_np3,
+             test_fsi_sides_in_part_np3, test_fsi1_fieldsplit,
              test_fsi1_nonmatching,
              test_fsi1_extruded, test_fsi1_extruded_parallel, test_flap3d_energy,
              test_fsi3_startup, test_fsi3_against_cfd3, test_fsi3_step_cut, test_fsi3_restart_other_dt, test_fsi3_energy, test_fsi1_refinement,
