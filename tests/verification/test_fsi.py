@@ -13,7 +13,8 @@
     its part of the nodes (summary.json ranks_detail), and a Newton iteration exchanges only
     the unknowns of each rank's cells. The fsi sides are held in part: at np 3 no rank holds
     more than (owned + ghost cells) x 1.1 cells, each integrates only its part of the
-    fluid-side facets, and every output equals np 1 to 1e-10 (FSI1 and the FSI3 start-up).
+    fluid-side facets, and every output equals np 1 to 1e-10 (FSI1, the FSI3 start-up, the 3D
+    flap with the modified quadratic basis).
   * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface (the
     same fluid mesh, the flag coarsened or refined) give the matching result within 1.5 %
     (tip u_y), 1 % (lift) and 1e-4 (drag); the force transfer stays exact.
@@ -216,18 +217,36 @@ def check_sides_in_part(one, three, what):
     print("   %s forces.csv: np 3 equals np 1, largest difference %.1e (relative)" % (what, worst))
 
 
+def flap_case(end, dt):
+    """examples/flap_3d/flap.yaml to `end` with steps `dt` on a coarse mesh (h = 0.15 and 0.07
+    on the flap): (work folder, input)."""
+    work, path = H.copy_example("flap_3d", "flap.yaml",
+                                [("end: 0.2, dt: 0.02", "end: %g, dt: %g" % (end, dt))])
+    geo = os.path.join(work, "flap.geo")
+    with open(geo) as f:
+        text = f.read()
+    assert "h = 0.1;" in text and "hf = 0.05;" in text
+    with open(geo, "w") as f:
+        f.write(text.replace("h = 0.1;", "h = 0.15;").replace("hf = 0.05;", "hf = 0.07;"))
+    return work, path
+
+
 def test_fsi_sides_in_part_np3():
     """The fsi sides held in part (check_sides_in_part) at np 3 against np 1: FSI1 (refine 0.5,
-    steady, tri6 fluid and quad9 flag: the modified quadratic basis) and the FSI3 start-up
-    (refine 0.5, 4 generalized-alpha steps: the structure's velocity and history on the
-    structure nodes P reaches beyond a rank's mesh, the work of the transferred force), each
-    with the chunked reader and with the rank-0 reader (METIS: other parts)."""
-    cases = (("FSI1", lambda: fsi_case(refine=0.5)), ("FSI3", lambda: fsi3_case(0.04, 0.01)))
-    for what, make in cases:
+    steady, tri6 fluid and quad9 flag) and the FSI3 start-up (refine 0.5, 4 generalized-alpha
+    steps: the structure's velocity and history on the structure nodes P reaches beyond a
+    rank's mesh, the work of the transferred force), each with the chunked reader and with the
+    rank-0 reader (METIS: other parts, the flag on one rank); the 3D flap (tet10 fluid: the
+    modified quadratic basis of its tri6 facets, P = T D^-1 M; hex27 flap, non-matching; 2
+    steps)."""
+    cases = (("FSI1", lambda: fsi_case(refine=0.5), (None, "rank0")),
+             ("FSI3", lambda: fsi3_case(0.04, 0.01), (None, "rank0")),
+             ("flap 3D", lambda: flap_case(0.04, 0.02), (None,)))
+    for what, make, readers in cases:
         work, path = make()
         try:
             one = H.solve(path, np=1)
-            for reader in (None, "rank0"):
+            for reader in readers:
                 if reader:
                     os.environ["SEAM_MESH_READER"] = reader
                 try:
@@ -693,16 +712,9 @@ def test_fsi3_energy():
 
 
 def flap_startup(end, dt, np=1):
-    """examples/flap_3d/flap.yaml to `end` with steps `dt` on a coarse mesh (h = 0.15 and 0.07
-    on the flap): steps.csv, probes.csv, forces.csv."""
-    work, path = H.copy_example("flap_3d", "flap.yaml",
-                                [("end: 0.2, dt: 0.02", "end: %g, dt: %g" % (end, dt))])
-    geo = os.path.join(work, "flap.geo")
-    with open(geo) as f:
-        text = f.read()
-    assert "h = 0.1;" in text and "hf = 0.05;" in text
-    with open(geo, "w") as f:
-        f.write(text.replace("h = 0.1;", "h = 0.15;").replace("hf = 0.05;", "hf = 0.07;"))
+    """examples/flap_3d/flap.yaml to `end` with steps `dt` on a coarse mesh (flap_case):
+    steps.csv, probes.csv, forces.csv."""
+    work, path = flap_case(end, dt)
     return solve_tables(work, path, np)
 
 
