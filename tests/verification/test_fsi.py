@@ -101,13 +101,12 @@ def test_fsi1_coarse():
 def test_fsi1_owners_np3():
     """FSI1 (refine 0.5) on 3 ranks, on the distributed mesh: each rank assembles its part of
     the cells and owns its part of the nodes (summary.json ranks_detail: the parts add up to
-    the mesh), holds its cells, a ghost layer and the fsi sides but not the whole mesh (held
+    the mesh), holds its cells and a ghost layer but not the whole mesh (held
     cells, assembled + ghost_cells, fewer than the mesh's), and the results equal 1 rank's to
     1e-10 with the same Newton iterations: the residual summed on the owners of the nodes and
     the increments scattered to the unknowns of each rank's cells give the 1-rank Newton
     method. Also with the rank-0 reader (METIS), which puts the flag on rank 2, so that rank 0
-    writes the interface file and the work of the transferred force from unknowns of cells it
-    does not assemble."""
+    writes the interface file from rows other ranks own."""
     work, path = fsi_case(refine=0.5)
     try:
         runs = {}
@@ -166,7 +165,7 @@ def check_owners_np3(r1, s1, i1, r3, s3, i3, what):
             H.assert_close(b[key], a[key], rtol=1e-10,
                            what="step %d %s np 3 (%s)" % (a["step"], key, what))
     # The interface file (rank 0 writes every node of the side: its displacement P d and the
-    # traction, from the interface unknowns every rank receives).
+    # traction, the owners' rows gathered).
     if len(i1) != len(i3) or [r["node"] for r in i1] != [r["node"] for r in i3]:
         raise AssertionError("interface_flag.csv: other nodes on 3 ranks")
     for key in ("ux", "uy", "tx", "ty"):

@@ -99,6 +99,20 @@ std::vector<T> by_rank(int size, const std::vector<std::pair<int, T>>& items,
   return out;
 }
 
+/// The entry of a slave x master triplet `e` (side-local slave row, column into t.master_index)
+/// in global node numbers, with the master node's coordinates from `coordinates`.
+RowEntry master_entry(const TiedInterface& t, const mortar::Triplet& e,
+                      const std::vector<double>& coordinates) {
+  RowEntry r;
+  r.row = t.slave_index[static_cast<std::size_t>(e.row)];
+  r.col = t.master_index[static_cast<std::size_t>(e.col)];
+  r.value = e.value;
+  r.kind = 1;
+  const int dim = t.slave.dim;
+  for (int c = 0; c < dim; ++c) r.x[c] = coordinates[static_cast<std::size_t>(e.col) * dim + c];
+  return r;
+}
+
 /// The entries of the rows `ids` (with their owners `owners`) from the owners' `rows` (this
 /// rank's owned rows, sorted by row): one request and one reply exchange.
 std::vector<RowEntry> rows_from_owners(MPI_Comm comm, std::span<const std::int64_t> ids,
@@ -263,16 +277,8 @@ void publish_projection(MPI_Comm comm, TiedInterface& t, const std::vector<int>&
       rows.push_back(r);
     }
   for (const auto& e : P)
-    if (owners[static_cast<std::size_t>(e.row)] == rank) {
-      RowEntry r;
-      r.row = t.slave_index[static_cast<std::size_t>(e.row)];
-      r.col = t.master_index[static_cast<std::size_t>(e.col)];
-      r.value = e.value;
-      r.kind = 1;
-      for (int c = 0; c < dim; ++c)
-        r.x[c] = t.master.coordinates[static_cast<std::size_t>(e.col) * dim + c];
-      rows.push_back(r);
-    }
+    if (owners[static_cast<std::size_t>(e.row)] == rank)
+      rows.push_back(master_entry(t, e, t.master.coordinates));
   std::sort(rows.begin(), rows.end(), entry_less);
   const auto complete = rows_from_owners(comm, t.slave_index, owners, rows);
   std::unordered_map<std::int64_t, local_index> slave_local, master_local;
@@ -400,16 +406,9 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
       r.value = e.value;
       items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
     }
-    for (const auto& e : ops.M) {
-      RowEntry r;
-      r.row = t.slave_index[static_cast<std::size_t>(e.row)];
-      r.col = t.master_index[static_cast<std::size_t>(e.col)];
-      r.value = e.value;
-      r.kind = 1;
-      for (int c = 0; c < dim; ++c)
-        r.x[c] = ghosts.coordinates[static_cast<std::size_t>(e.col) * dim + c];
-      items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
-    }
+    for (const auto& e : ops.M)
+      items.emplace_back(owner(static_cast<std::size_t>(e.row)),
+                         master_entry(t, e, ghosts.coordinates));
     std::vector<std::int64_t> offsets, recv_offsets;
     const auto send = by_rank(size, items, offsets);
     auto received = parallel::alltoallv<RowEntry>(comm, send, offsets, recv_offsets);
