@@ -326,8 +326,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   if (check_only) return info;
 
   const bool root = comm.is_root();
-  // Checkpoints hold the whole state (every rank has it; state.bin only, no part files of
-  // nodal vectors), identified by the mesh after the mesh initialization of the interfaces.
+  // Checkpoints hold the nodal state by global node id (each value written by the owner of
+  // its node into its part file) and rank 0's scalars in state.bin.
   const Checkpoints checkpoints(config, "fluid-structure", identity, comm, sys.raw_order(),
                                 restart.input, dir, restart.checkpoint);
   // A restart continues the tables (rows after its step dropped) and results.pvd; a table
