@@ -1137,6 +1137,9 @@ def test_ironing_master_ghosted():
 # Columns compared against the largest value of their group (a tangential force or a gap of
 # closed contact is round-off next to the normal force or the displacements).
 SCALE_GROUPS = (("ux", "uy", "uz", "gap"), ("normal_traction", "tangential_traction"),
+                ("interface_force_fluid_x", "interface_force_fluid_y", "interface_force_fluid_z",
+                 "interface_force_structure_x", "interface_force_structure_y",
+                 "interface_force_structure_z"),
                 ("fx", "fy", "fz"), ("normal_force", "tangential_force"),
                 ("momentum_x", "momentum_y", "momentum_z"),
                 ("angular_momentum_x", "angular_momentum_y", "angular_momentum_z"),

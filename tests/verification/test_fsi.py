@@ -11,7 +11,10 @@
     interface force (steps.csv) to 1e-10.
   * 3 ranks equal 1 rank to 1e-10; on 3 ranks each assembles its part of the cells and owns
     its part of the nodes (summary.json ranks_detail), and a Newton iteration exchanges only
-    the unknowns of each rank's cells.
+    the unknowns of each rank's cells. The fsi sides are held in part: at np 3 no rank holds
+    more than (owned + ghost cells) x 1.1 cells, each integrates only its part of the
+    fluid-side facets, and every output equals np 1 to 1e-10 (FSI1, the FSI3 start-up, the 3D
+    flap with the modified quadratic basis).
   * Non-matching interfaces: 2 and 1/2 fluid facets per structure facet on the interface (the
     same fluid mesh, the flag coarsened or refined) give the matching result within 1.5 %
     (tip u_y), 1 % (lift) and 1e-4 (drag); the force transfer stays exact.
@@ -98,13 +101,12 @@ def test_fsi1_coarse():
 def test_fsi1_owners_np3():
     """FSI1 (refine 0.5) on 3 ranks, on the distributed mesh: each rank assembles its part of
     the cells and owns its part of the nodes (summary.json ranks_detail: the parts add up to
-    the mesh), holds its cells, a ghost layer and the fsi sides but not the whole mesh (held
+    the mesh), holds its cells and a ghost layer but not the whole mesh (held
     cells, assembled + ghost_cells, fewer than the mesh's), and the results equal 1 rank's to
     1e-10 with the same Newton iterations: the residual summed on the owners of the nodes and
     the increments scattered to the unknowns of each rank's cells give the 1-rank Newton
     method. Also with the rank-0 reader (METIS), which puts the flag on rank 2, so that rank 0
-    writes the interface file and the work of the transferred force from unknowns of cells it
-    does not assemble."""
+    writes the interface file from rows other ranks own."""
     work, path = fsi_case(refine=0.5)
     try:
         runs = {}
@@ -163,7 +165,7 @@ def check_owners_np3(r1, s1, i1, r3, s3, i3, what):
             H.assert_close(b[key], a[key], rtol=1e-10,
                            what="step %d %s np 3 (%s)" % (a["step"], key, what))
     # The interface file (rank 0 writes every node of the side: its displacement P d and the
-    # traction, from the interface unknowns every rank receives).
+    # traction, the owners' rows gathered).
     if len(i1) != len(i3) or [r["node"] for r in i1] != [r["node"] for r in i3]:
         raise AssertionError("interface_flag.csv: other nodes on 3 ranks")
     for key in ("ux", "uy", "tx", "ty"):
@@ -173,6 +175,88 @@ def check_owners_np3(r1, s1, i1, r3, s3, i3, what):
                            what="interface_flag.csv node %d %s np 3 (%s)" % (a["node"], key, what))
     print("   FSI1 refine 0.5, %s: np 3 against np 1, largest relative difference %.1e"
           % (what, worst))
+
+
+def check_sides_in_part(one, three, what):
+    """The fsi sides held in part at np 3 (docs/fsi.md, "In parallel"): no rank holds more than
+    (its owned + ghost cells) x 1.1 cells (ranks_detail: `ghost_cells` counts every held cell it
+    does not assemble, `interface_cells` those held only for an interface side); each rank
+    integrates only its part of the fluid-side facets (`slave_elements`: they add up to the
+    facets np 1 integrates, and no rank has them all); every output equals np 1 to 1e-10
+    (steps.csv, interfaces.csv, probes.csv, interface_<name>.csv; forces.csv)."""
+    import test_distribution as TD
+    d1 = H.read_json(os.path.join(one, "summary.json"))["ranks_detail"]
+    detail = H.read_json(os.path.join(three, "summary.json"))["ranks_detail"]
+    total = d1[0]["slave_elements"]
+    print("   %s np 3: cells owned / ghost / held for an interface side, fluid facets integrated "
+          "(of %d) per rank: %s" % (what, total, ", ".join(
+              "%d / %d / %d, %d" % (d["cells"], d["ghost_cells"] - d["interface_cells"],
+                                    d["interface_cells"], d["slave_elements"]) for d in detail)))
+    for d in detail:
+        own, ghosts = d["cells"], d["ghost_cells"] - d["interface_cells"]
+        if d["cells"] + d["ghost_cells"] > 1.1 * (own + ghosts):
+            raise AssertionError("%s: rank %d holds %d cells, more than 1.1 x (%d owned + %d "
+                                 "ghost cells)" % (what, d["rank"], d["cells"] + d["ghost_cells"],
+                                                   own, ghosts))
+    integrated = [d["slave_elements"] for d in detail]
+    if total <= 0 or sum(integrated) != total or max(integrated) >= total:
+        raise AssertionError("%s: fluid facets integrated per rank %s, np 1 integrates %d: "
+                             "each rank must integrate a part, together all"
+                             % (what, integrated, total))
+    TD.compare_outputs(one, three, 1e-10, what + " np 3 vs np 1")
+    worst = 0.0
+    f1 = H.read_csv(os.path.join(one, "forces.csv"))
+    f3 = H.read_csv(os.path.join(three, "forces.csv"))
+    scale = max(abs(r[c]) for r in f1 for c in ("fx", "fy"))
+    for a, b in zip(f1, f3):
+        for c in ("fx", "fy"):
+            H.assert_close(b[c], a[c], atol=1e-10 * scale,
+                           what="%s forces.csv step %d %s np 3" % (what, a["step"], c))
+            worst = max(worst, abs(b[c] - a[c]) / scale)
+    print("   %s forces.csv: np 3 equals np 1, largest difference %.1e (relative)" % (what, worst))
+
+
+def flap_case(end, dt):
+    """examples/flap_3d/flap.yaml to `end` with steps `dt` on a coarse mesh (h = 0.15 and 0.07
+    on the flap): (work folder, input)."""
+    work, path = H.copy_example("flap_3d", "flap.yaml",
+                                [("end: 0.2, dt: 0.02", "end: %g, dt: %g" % (end, dt))])
+    geo = os.path.join(work, "flap.geo")
+    with open(geo) as f:
+        text = f.read()
+    assert "h = 0.1;" in text and "hf = 0.05;" in text
+    with open(geo, "w") as f:
+        f.write(text.replace("h = 0.1;", "h = 0.15;").replace("hf = 0.05;", "hf = 0.07;"))
+    return work, path
+
+
+def test_fsi_sides_in_part_np3():
+    """The fsi sides held in part (check_sides_in_part) at np 3 against np 1: FSI1 (refine 0.5,
+    steady, tri6 fluid and quad9 flag) and the FSI3 start-up (refine 0.5, 4 generalized-alpha
+    steps: the structure's velocity and history on the structure nodes P reaches beyond a
+    rank's mesh, the work of the transferred force), each with the chunked reader and with the
+    rank-0 reader (METIS: other parts, the flag on one rank); the 3D flap (tet10 fluid: the
+    modified quadratic basis of its tri6 facets, P = T D^-1 M; hex27 flap, non-matching; 2
+    steps)."""
+    cases = (("FSI1", lambda: fsi_case(refine=0.5), (None, "rank0")),
+             ("FSI3", lambda: fsi3_case(0.04, 0.01), (None, "rank0")),
+             ("flap 3D", lambda: flap_case(0.04, 0.02), (None,)))
+    for what, make, readers in cases:
+        work, path = make()
+        try:
+            one = H.solve(path, np=1)
+            for reader in readers:
+                if reader:
+                    os.environ["SEAM_MESH_READER"] = reader
+                try:
+                    three = H.solve(path, np=3)
+                finally:
+                    os.environ.pop("SEAM_MESH_READER", None)
+                check_sides_in_part(one, three, what + (", rank-0 reader" if reader else ""))
+                H.cleanup(three)
+            H.cleanup(one)
+        finally:
+            H.cleanup(work)
 
 
 def test_fsi1_fieldsplit():
@@ -627,16 +711,9 @@ def test_fsi3_energy():
 
 
 def flap_startup(end, dt, np=1):
-    """examples/flap_3d/flap.yaml to `end` with steps `dt` on a coarse mesh (h = 0.15 and 0.07
-    on the flap): steps.csv, probes.csv, forces.csv."""
-    work, path = H.copy_example("flap_3d", "flap.yaml",
-                                [("end: 0.2, dt: 0.02", "end: %g, dt: %g" % (end, dt))])
-    geo = os.path.join(work, "flap.geo")
-    with open(geo) as f:
-        text = f.read()
-    assert "h = 0.1;" in text and "hf = 0.05;" in text
-    with open(geo, "w") as f:
-        f.write(text.replace("h = 0.1;", "h = 0.15;").replace("hf = 0.05;", "hf = 0.07;"))
+    """examples/flap_3d/flap.yaml to `end` with steps `dt` on a coarse mesh (flap_case):
+    steps.csv, probes.csv, forces.csv."""
+    work, path = flap_case(end, dt)
     return solve_tables(work, path, np)
 
 
@@ -800,7 +877,8 @@ def test_bad_input():
 
 
 if __name__ == "__main__":
-    tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_fieldsplit,
+    tests = [test_bad_input, test_coupling_wins, test_fsi1_coarse, test_fsi1_owners_np3,
+             test_fsi_sides_in_part_np3, test_fsi1_fieldsplit,
              test_fsi1_nonmatching,
              test_fsi1_extruded, test_fsi1_extruded_parallel, test_flap3d_energy,
              test_fsi3_startup, test_fsi3_against_cfd3, test_fsi3_step_cut, test_fsi3_restart_other_dt, test_fsi3_energy, test_fsi1_refinement,

@@ -128,8 +128,9 @@ mesh::DistributedMesh load_distributed_mesh(const io::Config& config, const Comm
                                             MeshIdentity& identity,
                                             const std::filesystem::path& scratch, bool quiet) {
   // Sides held whole on every rank: those of contact. The sides of mesh tying (condensed and
-  // saddle point) are set up distributed (meshtying::distributed_tying): each rank needs
-  // only its own cells' facets and the master facets ghosted to it; so are the master side of
+  // saddle point) and of the fsi couplings are set up distributed
+  // (meshtying::distributed_tying): each rank needs only its own cells' facets and the master
+  // facets ghosted to it; so are the master side of
   // two-body contact held in part (master_held_in_part) and the slave side held in part
   // (slave_held_in_part, a self-contact surface too; with the independent distribution the
   // facets a rank needs beyond its own and ghost cells reach it as facets,
@@ -204,7 +205,7 @@ int run(const RunOptions& options, int argc, char** argv) {
   la::Session petsc(argc, argv, options.petsc_args);
   const auto config = io::load_config(options.input);
   if (has_fsi(config)) {
-    // Distributed as the fluid runs, the fsi sides held whole on every rank.
+    // Distributed as the fluid runs, the fsi sides held in part as mesh tying's.
     make_output_directory(output_directory(options), comm);
     MeshIdentity identity;
     auto part =

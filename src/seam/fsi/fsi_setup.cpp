@@ -18,23 +18,13 @@
 #include <limits>
 #include <map>
 #include <span>
+#include <unordered_map>
 
 namespace seam::fsi {
 
 using problem::CanonicalOrder;
 using problem::find_region;
 using problem::to_solid;
-
-namespace {
-
-std::string point_text(const mesh::Mesh& mesh, std::int32_t n) {
-  std::string s = "(";
-  for (int i = 0; i < mesh.dim; ++i)
-    s += (i ? ", " : "") + std::to_string(mesh.x[static_cast<std::size_t>(n) * mesh.dim + i]);
-  return s + ")";
-}
-
-} // namespace
 
 la::Vector FsiSystem::nodal_vector(int width) const {
   std::vector<PetscInt> ghosts;
@@ -132,13 +122,28 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
                      const mesh::DistributedMesh* part)
     : config_(&config), mesh_(&mesh), part_(part), comm_(comm), dim_(mesh.dim) {
   const int dim = dim_;
-  n_nodes_ = static_cast<std::size_t>(mesh.n_nodes());
+  // Distributed: the structure nodes the couplings reach that this rank does not hold follow
+  // the mesh's nodes, in the order first met.
+  std::unordered_map<std::int64_t, std::int32_t> node_of; // global number -> node
+  std::vector<std::int64_t> extra_index;                  // their global numbers
+  if (part) {
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n) node_of.emplace(part->node_index[n], n);
+    for (const auto& t : interfaces)
+      for (const auto& e : t.projection) {
+        const auto g = t.master_index[static_cast<std::size_t>(e.col)];
+        const auto next = static_cast<std::int32_t>(mesh.n_nodes() + extra_index.size());
+        if (!node_of.emplace(g, next).second) continue;
+        extra_index.push_back(g);
+        for (int i = 0; i < dim; ++i)
+          extra_x_.push_back(t.master.coordinates[static_cast<std::size_t>(e.col) * dim + i]);
+      }
+  }
+  n_nodes_ = static_cast<std::size_t>(mesh.n_nodes()) + extra_index.size();
   base_f_ = n_nodes_ * dim;
   base_m_ = base_f_ + n_nodes_ * (dim + 1);
   plane_ = dim == 3                                ? solid::PlaneMode::none
            : config.plane == io::PlaneMode::stress ? solid::PlaneMode::plane_stress
                                                    : solid::PlaneMode::plane_strain;
-  const auto gid = [&](std::int32_t n) { return part ? part->node_gid[n] : std::int64_t{n}; };
 
   // The partition: a distributed mesh's; on the replicated mesh as a fluid run's there
   // (FluidLayout): METIS parts of the cells, each node owned by the lowest part among its cells.
@@ -150,6 +155,12 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     node_owner_ = part->node_owner;
     node_slot_ = part->node_index;
     n_owned_nodes_ = part->node_offsets[rank + 1] - part->node_offsets[rank];
+    for (auto g : extra_index) {
+      node_slot_.push_back(g);
+      node_owner_.push_back(static_cast<int>(
+          std::upper_bound(part->node_offsets.begin(), part->node_offsets.end(), g) -
+          part->node_offsets.begin() - 1));
+    }
   } else {
     if (comm.is_root()) cell_part = mesh::partition_cells(mesh, size);
     comm.broadcast(cell_part);
@@ -169,6 +180,36 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     if (!owns_node(static_cast<std::int32_t>(n)))
       ghost_nodes_.push_back(static_cast<std::int32_t>(n));
   }
+  // The ids of the nodes after the mesh's, from their owners.
+  if (part) {
+    node_gid_ = part->node_gid;
+    std::vector<double> ids(n_nodes_, 0.0);
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+      if (owns_node(n)) ids[static_cast<std::size_t>(n)] = static_cast<double>(node_gid_[n] + 1);
+    ids = share(ids, 1);
+    for (std::size_t n = node_gid_.size(); n < n_nodes_; ++n)
+      node_gid_.push_back(static_cast<std::int64_t>(ids[n]) - 1);
+  }
+  const auto gid = [&](std::int32_t n) { return node_gid(n); };
+  // "node G at (x, y[, z])" of the node with id `id` (found by its owner; collective).
+  const auto node_text = [&](double id) {
+    std::array<double, 3> at{};
+    for (std::size_t n = 0; n < n_nodes_; ++n)
+      if (owns_node(static_cast<std::int32_t>(n)) &&
+          static_cast<double>(gid(static_cast<std::int32_t>(n))) == id)
+        for (int i = 0; i < dim; ++i) at[i] = node_x(n)[i];
+    comm.sum_in_place(at);
+    std::string text = "(";
+    for (int i = 0; i < dim; ++i) text += (i ? ", " : "") + std::to_string(at[i]);
+    return "node " + std::to_string(static_cast<std::int64_t>(id)) + " at " + text + ")";
+  };
+  // The lowest id of the owned nodes among `nodes` with bad(n), over all ranks (inf: none).
+  const auto first_bad = [&](const std::vector<std::int32_t>& nodes, const auto& bad) {
+    double first = std::numeric_limits<double>::infinity();
+    for (auto n : nodes)
+      if (owns_node(n) && bad(n)) first = std::min(first, static_cast<double>(gid(n)));
+    return comm.min(first);
+  };
 
   // Bodies: a fluid or a solid material per cell.
   std::map<std::string, int> fluid_index, solid_index;
@@ -237,26 +278,18 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
       }
     }
   }
+  for (std::size_t n = static_cast<std::size_t>(mesh.n_nodes()); n < n_nodes_; ++n)
+    solid_node_[n] = 1;
   // A node of a fluid and a solid cell: its owner holds every cell around it (collective).
-  double shared = std::numeric_limits<double>::infinity();
-  for (std::size_t n = 0; n < n_nodes_; ++n)
-    if (solid_node_[n] && fluid_node_[n] && owns_node(static_cast<std::int32_t>(n)))
-      shared = std::min(shared, static_cast<double>(gid(static_cast<std::int32_t>(n))));
-  shared = comm.min(shared);
-  if (std::isfinite(shared)) {
-    std::array<double, 3> at{};
-    for (std::size_t n = 0; n < n_nodes_; ++n)
-      if (owns_node(static_cast<std::int32_t>(n)) &&
-          static_cast<double>(gid(static_cast<std::int32_t>(n))) == shared)
-        for (int i = 0; i < dim; ++i) at[i] = mesh.x[n * dim + i];
-    comm.sum_in_place(at);
-    std::string text = "(";
-    for (int i = 0; i < dim; ++i) text += (i ? ", " : "") + std::to_string(at[i]);
+  std::vector<std::int32_t> all_nodes(n_nodes_);
+  for (std::size_t n = 0; n < n_nodes_; ++n) all_nodes[n] = static_cast<std::int32_t>(n);
+  const double shared =
+      first_bad(all_nodes, [&](std::int32_t n) { return solid_node_[n] && fluid_node_[n]; });
+  if (std::isfinite(shared))
     io::fail_at(config.bodies.front().mark,
-                "node " + std::to_string(static_cast<std::int64_t>(shared)) + " at " + text +
-                    ") belongs to a fluid and a solid cell; the fluid and the structure are "
+                node_text(shared) +
+                    " belongs to a fluid and a solid cell; the fluid and the structure are "
                     "separate meshes (own nodes) joined by an 'fsi' interface");
-  }
 
   // The fsi interfaces: sides of the right kind, P = D^-1 M.
   std::size_t k = 0;
@@ -267,55 +300,61 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
                                 "' in a run with an 'fsi' interface: a fluid-structure run "
                                 "holds 'fsi' interfaces only in this version of seam");
     const auto& t = interfaces.at(k++);
-    const auto check_side = [&](const std::vector<std::int32_t>& nodes, const std::vector<char>& ok,
-                                const std::string& group, const char* key, const char* what) {
-      for (auto n : nodes)
-        if (!ok[n])
-          io::fail_at(itf.mark, "interface '" + itf.name + "': its '" + key + "' group '" + group +
-                                    "' has node " + std::to_string(gid(n)) + " at " +
-                                    point_text(mesh, n) + " that is not on a " + what +
-                                    " body; 'fluid' names a boundary group of the fluid, "
-                                    "'structure' one of the structure");
+    // Each side's nodes checked by their owners (who hold every facet around them).
+    const auto check_side = [&](const io::RegionRef& side, const std::vector<char>& ok,
+                                const char* key, const char* what) {
+      const double bad = first_bad(meshtying::side_region(mesh, side).nodes,
+                                   [&](std::int32_t n) { return !ok[n]; });
+      if (std::isfinite(bad))
+        io::fail_at(itf.mark, "interface '" + itf.name + "': its '" + key + "' group '" +
+                                  side.name + "' has " + node_text(bad) + " that is not on a " +
+                                  what +
+                                  " body; 'fluid' names a boundary group of the fluid, "
+                                  "'structure' one of the structure");
     };
-    check_side(t.slave.mesh_nodes, fluid_node_, itf.slave.name, "fluid", "fluid");
-    check_side(t.master.mesh_nodes, solid_node_, itf.master->name, "structure", "solid");
+    check_side(itf.slave, fluid_node_, "fluid", "fluid");
+    check_side(*itf.master, solid_node_, "structure", "solid");
     const auto& ops = t.operators;
     FsiCoupling cp;
     cp.name = t.name;
     cp.fluid_nodes = t.slave.mesh_nodes;
     const std::size_t ns = cp.fluid_nodes.size();
     std::vector<double> diag(ns, 0.0);
-    for (const auto& e : ops.D) {
-      if (e.row != e.col) SEAM_THROW(InternalError, "fsi: D of a dual basis is not diagonal");
-      diag[e.row] = e.value;
-    }
+    for (const auto& e : ops.D) diag[e.row] = e.value;
     double d_max = 0.0;
-    for (double v : diag) d_max = std::max(d_max, std::abs(v));
     for (std::size_t j = 0; j < ns; ++j)
-      if (!(diag[j] > 1e-12 * d_max))
-        io::fail_at(itf.mark, "interface '" + itf.name + "': fluid node " +
-                                  std::to_string(gid(cp.fluid_nodes[j])) + " at " +
-                                  point_text(mesh, cp.fluid_nodes[j]) +
-                                  " faces no structure facet (the fluid group must lie on the "
-                                  "structure group)");
-    // tilde = D^-1 M; with a modified quadratic basis d_S = T d~_S (tying_constraint.cpp).
-    std::vector<std::map<std::int32_t, double>> tilde(ns), P(ns);
-    for (const auto& e : ops.M) tilde[e.row][t.master.mesh_nodes[e.col]] += e.value / diag[e.row];
-    if (ops.T.empty()) {
-      P = tilde;
-    } else {
-      for (const auto& e : ops.T)
-        for (const auto& [m, v] : tilde[e.col]) P[e.row][m] += e.value * v;
-    }
-    for (std::size_t j = 0; j < ns; ++j) {
-      for (const auto& [m, v] : P[j]) {
+      if (owns_node(cp.fluid_nodes[j])) {
+        d_max = std::max(d_max, std::abs(diag[j]));
+        cp.d_total += diag[j];
+      }
+    d_max = comm.max(d_max);
+    cp.d_total = comm.sum(cp.d_total);
+    std::vector<char> faces(n_nodes_, 1);
+    for (std::size_t j = 0; j < ns; ++j) faces[cp.fluid_nodes[j]] = diag[j] > 1e-12 * d_max;
+    const double lone = first_bad(cp.fluid_nodes, [&](std::int32_t n) { return !faces[n]; });
+    if (std::isfinite(lone))
+      io::fail_at(itf.mark, "interface '" + itf.name + "': fluid " + node_text(lone) +
+                                " faces no structure facet (the fluid group must lie on the "
+                                "structure group)");
+    // P = D^-1 M (with a modified quadratic basis T D^-1 M, tying_constraint.cpp): from the
+    // nodes' owners on a distributed mesh; each row's structure nodes in the order of their ids.
+    const auto P = part ? t.projection : meshtying::projection(ops, static_cast<local_index>(ns));
+    std::vector<std::vector<std::pair<std::int32_t, double>>> rows(ns);
+    for (const auto& e : P)
+      rows[static_cast<std::size_t>(e.row)].emplace_back(
+          part ? node_of.at(t.master_index[static_cast<std::size_t>(e.col)])
+               : t.master.mesh_nodes[static_cast<std::size_t>(e.col)],
+          e.value);
+    for (auto& row : rows) {
+      std::sort(row.begin(), row.end(),
+                [&](const auto& p, const auto& q) { return gid(p.first) < gid(q.first); });
+      for (const auto& [m, v] : row) {
         cp.structure_nodes.push_back(m);
         cp.weights.push_back(v);
       }
       cp.offsets.push_back(static_cast<std::int64_t>(cp.structure_nodes.size()));
     }
     cp.d_diagonal = diag;
-    for (double v : diag) cp.d_total += v;
     couplings_.push_back(std::move(cp));
   }
   // Per mesh node: (coupling, side-local index) of a fluid interface node; the first wins.
@@ -371,6 +410,21 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
         }
       }
     }
+  }
+
+  // The prescribed components of the nodes after the mesh's, from their owners.
+  if (part) {
+    std::vector<double> expr(n_nodes_ * static_cast<std::size_t>(dim), 0.0);
+    for (std::int32_t n = 0; n < mesh.n_nodes(); ++n)
+      if (owns_node(n))
+        for (int i = 0; i < dim; ++i)
+          expr[static_cast<std::size_t>(n) * dim + i] = prescribed_[d_dof(n, i)] + 1;
+    expr = share(expr, dim);
+    for (auto n = static_cast<std::int32_t>(mesh.n_nodes());
+         n < static_cast<std::int32_t>(n_nodes_); ++n)
+      for (int i = 0; i < dim; ++i)
+        prescribed_[d_dof(n, i)] =
+            static_cast<int>(expr[static_cast<std::size_t>(n) * dim + i]) - 1;
   }
 
   // Fluid boundary nodes off the interfaces hold their mesh position: in every component, but
@@ -569,9 +623,9 @@ FsiSystem::FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
     }
     for (int c = 0; c <= dim; ++c) scan(f_dof(n, c));
   }
-  // And those of the interfaces' nodes, which every rank holds whole: the interface output and
-  // the work of the transferred force (rank 0) read the structure's displacement on all of
-  // them, the fluid's interface velocity follows it.
+  // And those of the couplings' nodes this rank holds: the structure nodes P reaches (also
+  // beyond the mesh's nodes) have their displacement, velocity and acceleration here (the
+  // fluid's interface velocity and mesh displacement follow them).
   for (const auto& cp : couplings_) {
     for (auto n : cp.fluid_nodes)
       for (int i = 0; i < dim; ++i) {

@@ -129,32 +129,47 @@ void write_fields(const FsiSystem& sys, const std::vector<double>& raw, int step
 }
 
 // interface_<name>.csv: per fluid-side node its reference position, the structure's
-// displacement there (P d), and the traction the fluid exerts, t_j = -r_j / D_jj.
+// displacement there (P d), and the traction the fluid exerts, t_j = -r_j / D_jj. Each rank
+// the rows of the fluid nodes it owns (`r`: the raw residual summed there), gathered to rank 0,
+// which writes them in the order of the node ids. Collective.
 void write_interfaces(const FsiSystem& sys, const std::vector<double>& raw,
                       const std::vector<double>& r, const std::vector<double>& normals,
                       const std::filesystem::path& dir) {
-  const auto& mesh = sys.mesh();
-  const int dim = mesh.dim;
+  const int dim = sys.dim();
+  struct Row {
+    std::int64_t node = 0;
+    double x[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0}, tr[3] = {0.0, 0.0, 0.0};
+    double tn = 0.0, tt = 0.0;
+  };
   for (const auto& cp : sys.couplings()) {
+    std::vector<Row> mine;
+    for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
+      const auto n = cp.fluid_nodes[j];
+      if (!sys.owns_node(n)) continue;
+      Row row;
+      row.node = sys.node_gid(n);
+      for (int i = 0; i < dim; ++i) {
+        row.x[i] = sys.node_x(static_cast<std::size_t>(n))[i];
+        row.u[i] = raw[sys.m_dof(n, i)];
+        row.tr[i] = -r[sys.f_dof(n, i)] / cp.d_diagonal[j];
+      }
+      const double* nv = &normals[static_cast<std::size_t>(n) * 3];
+      row.tn = row.tr[0] * nv[0] + row.tr[1] * nv[1] + row.tr[2] * nv[2];
+      double tt = 0.0;
+      for (int i = 0; i < 3; ++i) tt += (row.tr[i] - row.tn * nv[i]) * (row.tr[i] - row.tn * nv[i]);
+      row.tt = std::sqrt(tt);
+      mine.push_back(row);
+    }
+    auto rows = gather_to_root(sys.comm(), mine);
+    if (!sys.comm().is_root()) continue;
+    std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.node < b.node; });
     std::ostringstream s;
     s.precision(17);
     s << "node,x,y,z,ux,uy,uz,gap,normal_traction,tangential_traction,status,tx,ty,tz\n";
-    for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
-      const auto n = cp.fluid_nodes[j];
-      std::array<double, 3> x{}, u{}, tr{};
-      for (int i = 0; i < dim; ++i) {
-        x[i] = mesh.x[static_cast<std::size_t>(n) * dim + i];
-        u[i] = raw[sys.m_dof(n, i)];
-        tr[i] = -r[sys.f_dof(n, i)] / cp.d_diagonal[j];
-      }
-      const double* nv = &normals[static_cast<std::size_t>(n) * 3];
-      const double tn = tr[0] * nv[0] + tr[1] * nv[1] + tr[2] * nv[2];
-      double tt = 0.0;
-      for (int i = 0; i < 3; ++i) tt += (tr[i] - tn * nv[i]) * (tr[i] - tn * nv[i]);
-      s << sys.part()->node_gid[n] << ',' << x[0] << ',' << x[1] << ',' << x[2] << ',' << u[0]
-        << ',' << u[1] << ',' << u[2] << ",0," << tn << ',' << std::sqrt(tt) << ",tied," << tr[0]
-        << ',' << tr[1] << ',' << tr[2] << '\n';
-    }
+    for (const auto& row : rows)
+      s << row.node << ',' << row.x[0] << ',' << row.x[1] << ',' << row.x[2] << ',' << row.u[0]
+        << ',' << row.u[1] << ',' << row.u[2] << ",0," << row.tn << ',' << row.tt << ",tied,"
+        << row.tr[0] << ',' << row.tr[1] << ',' << row.tr[2] << '\n';
     io::write_file_atomically(dir / ("interface_" + cp.name + ".csv"), s.str());
   }
 }
@@ -278,10 +293,11 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   auto& mesh = part.mesh;
   check_fsi_input(config);
   PhaseTimers timers;
-  // Every rank holds the fsi sides whole: the couplings are set up on each rank's part as on
-  // the whole mesh.
+  // The couplings set up distributed as mesh tying's (docs/parallel.md, "Mesh tying
+  // distributed"): each rank integrates the fluid facets of its cells against the structure
+  // facets ghosted to it; P's rows come from the owners of the fluid nodes.
   const auto tied =
-      meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi, part.node_gid);
+      meshtying::setup_mesh_tying(config, part, comm.get(), timers, io::InterfaceType::fsi);
   FsiSystem sys(config, mesh, tied, comm, &part);
   const long long n_nodes = part.n_global_nodes, n_cells = part.n_global_cells;
   FsiRunInfo info;
@@ -310,8 +326,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   if (check_only) return info;
 
   const bool root = comm.is_root();
-  // Checkpoints hold the whole state (every rank has it; state.bin only, no part files of
-  // nodal vectors), identified by the mesh after the mesh initialization of the interfaces.
+  // Checkpoints hold the nodal state by global node id (each value written by the owner of
+  // its node into its part file) and rank 0's scalars in state.bin.
   const Checkpoints checkpoints(config, "fluid-structure", identity, comm, sys.raw_order(),
                                 restart.input, dir, restart.checkpoint);
   // A restart continues the tables (rows after its step dropped) and results.pvd; a table
@@ -395,15 +411,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   la::Vector r, dx(comm.get(), sys.n_owned()), b(comm.get(), sys.n_owned());
   la::Matrix J;
   double reference = 0.0, work = 0.0;
-  // The structure nodes of the interfaces (the sides are held whole on every rank, in global
-  // order) and, per node and component, the force transferred to them and their displacement
-  // at the last step (the work of the transferred force; rank 0).
-  std::vector<std::int32_t> wet;
-  for (const auto& cp : sys.couplings())
-    wet.insert(wet.end(), cp.structure_nodes.begin(), cp.structure_nodes.end());
-  std::sort(wet.begin(), wet.end());
-  wet.erase(std::unique(wet.begin(), wet.end()), wet.end());
-  std::vector<double> last_force(wet.size() * dim, 0.0), last_raw(wet.size() * dim, 0.0);
+  // Per raw dof of the structure nodes this rank owns: the force transferred to it and its
+  // displacement at the last step (the work of the transferred force).
+  std::vector<double> last_force(sys.n_raw(), 0.0), last_raw(sys.n_raw(), 0.0);
   const auto start = std::chrono::steady_clock::now();
   const auto normals = interface_normals(config, sys);
   const auto& nc = config.solver.newton;
@@ -421,8 +431,9 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   int step = 0, newton_iterations = 0;
   const auto finish = [&](bool ok) {
     // Every rank's share (CONTRACT.md, ranks_detail; output.hpp): the cells it assembles and
-    // the other cells it holds (the rest of the replicated mesh), its peak memory, its owned
-    // nodes, the other nodes of its cells and the nodes it holds.
+    // the other cells it holds (its ghost layer), the couplings' fluid facets it integrated,
+    // the structure facets ghosted to it, its pairs and integration cells, its peak memory,
+    // its owned nodes, the other nodes of its cells and the nodes it holds.
     parallel::mark_memory(comm.get(), "end");
     // And the unknowns a Newton iteration brings to it (held_unknowns), of all.
     constexpr std::size_t n_detail = n_rank_detail_basics + 1;
@@ -432,6 +443,12 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
       mine[n_rank_detail_basics] = static_cast<double>(sys.held_unknowns().size());
       mine[0] = static_cast<double>(sys.local_cells().size());
       mine[1] = static_cast<double>(mesh.n_cells()) - mine[0];
+      for (const auto& t : tied) {
+        mine[2] += static_cast<double>(t.local_slave_facets);
+        mine[3] += static_cast<double>(t.local_master_ghosts);
+        mine[4] += static_cast<double>(t.local_pairs);
+        mine[5] += static_cast<double>(t.local_integration_cells);
+      }
       mine[6] = parallel::peak_rss_mb();
       mine[7] = static_cast<double>(part.count(mesh::CellRole::interface));
       std::vector<char> of_cells(static_cast<std::size_t>(mesh.n_nodes()), 0);
@@ -518,8 +535,7 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
     cw.put("power", powers(power_old));
     cw.put("work", powers(work_sum));
     cw.put_real("structure_work", work);
-    cw.put("last_force", last_force);
-    cw.put("last_raw", last_raw);
+    put_nodal("transferred_force", last_force);
     cw.put("group_force", flat(group_force));
     if (dynamic) {
       put_nodal("history.old", history.old);
@@ -552,8 +568,8 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
     power_old = {p[0], p[1], p[2], p[3]};
     work_sum = {s[0], s[1], s[2], s[3]};
     work = r.real("structure_work");
-    last_force = r.reals("last_force", last_force.size());
-    last_raw = r.reals("last_raw", last_raw.size());
+    get_nodal("transferred_force", last_force);
+    last_raw = state; // the displacement of the step written
     const auto f = r.reals("group_force", group_force.size() * 3);
     for (std::size_t k = 0; k < group_force.size(); ++k)
       for (int i = 0; i < 3; ++i) group_force[k][i] = f[k * 3 + i];
@@ -717,19 +733,55 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
       group_sums.insert(group_sums.end(), f.begin(), f.end());
     }
     comm.sum_in_place(group_sums);
-    // The fluid's interface residual whole (the interface sides are held whole on every rank):
-    // the traction, the force transfer and its work.
-    std::vector<double> interface_residual = res.raw_residual;
+    // The interface forces from the rows of the fluid nodes this rank owns (the raw residual is
+    // summed there), summed over ranks: per coupling the normal force and the tangential force
+    // vector, then the fluid's force and the one the structure receives through P^T (equal,
+    // since the rows of P sum to one). The transferred force P^T f is summed on the owners of
+    // the structure nodes, which take the work increment of their nodes (the trapezoidal rule
+    // over the steps).
+    const auto& couplings = sys.couplings();
+    const std::size_t n_cp = couplings.size();
+    std::vector<double> sums(n_cp * 4 + 6, 0.0);
+    std::vector<double> transferred(sys.n_nodes() * dim, 0.0);
+    for (std::size_t c = 0; c < n_cp; ++c) {
+      const auto& cp = couplings[c];
+      for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
+        const auto n = cp.fluid_nodes[j];
+        if (!sys.owns_node(n)) continue;
+        const double* nv = &normals[static_cast<std::size_t>(n) * 3];
+        double fn = 0.0;
+        std::array<double, 3> f{};
+        for (int i = 0; i < dim; ++i) {
+          f[i] = -res.raw_residual[sys.f_dof(n, i)];
+          fn += f[i] * nv[i];
+          sums[n_cp * 4 + i] += f[i];
+          for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
+            sums[n_cp * 4 + 3 + i] += cp.weights[q] * f[i];
+            transferred[static_cast<std::size_t>(cp.structure_nodes[q]) * dim + i] +=
+                cp.weights[q] * f[i];
+          }
+        }
+        sums[c * 4] += fn;
+        for (int i = 0; i < dim; ++i) sums[c * 4 + 1 + i] += f[i] - fn * nv[i];
+      }
+    }
+    comm.sum_in_place(sums);
+    transferred = sys.share(transferred, dim);
     {
-      std::vector<double> values;
-      for (const auto& cp : sys.couplings())
-        for (auto n : cp.fluid_nodes)
-          for (int i = 0; i < dim; ++i) values.push_back(res.raw_residual[sys.f_dof(n, i)]);
-      comm.sum_in_place(values);
-      std::size_t k = 0;
-      for (const auto& cp : sys.couplings())
-        for (auto n : cp.fluid_nodes)
-          for (int i = 0; i < dim; ++i) interface_residual[sys.f_dof(n, i)] = values[k++];
+      double increment = 0.0;
+      for (std::size_t n = 0; n < sys.n_nodes(); ++n) {
+        const auto node = static_cast<std::int32_t>(n);
+        if (!sys.owns_node(node) || !sys.is_solid_node(node)) continue;
+        for (int i = 0; i < dim; ++i) {
+          const auto a = sys.d_dof(node, i);
+          const double f = transferred[n * dim + i];
+          if (f != 0.0 || last_force[a] != 0.0)
+            increment += 0.5 * (f + last_force[a]) * (raw[a] - last_raw[a]);
+          last_force[a] = f;
+          last_raw[a] = raw[a];
+        }
+      }
+      work += comm.sum(increment);
     }
     if (root) {
       for (std::size_t k = 0; k < w.groups.size(); ++k) {
@@ -742,45 +794,14 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
         group_force[k] = f;
         w.forces->add_row({step, t, w.groups[k].first, f[0], f[1], f[2]});
       }
-      // Force conservation: the fluid's interface force, and the one the structure receives
-      // through P^T (equal, since the rows of P sum to one). The work of the transferred force on
-      // the structure by the trapezoidal rule over the load steps.
-      std::array<double, 3> ff{}, fs{};
-      std::vector<double> transferred(sys.n_raw(), 0.0);
-      for (const auto& cp : sys.couplings()) {
-        double normal = 0.0;
-        std::array<double, 3> tangential{};
-        for (std::size_t j = 0; j < cp.fluid_nodes.size(); ++j) {
-          const double* n = &normals[static_cast<std::size_t>(cp.fluid_nodes[j]) * 3];
-          double fn = 0.0;
-          std::array<double, 3> f{};
-          for (int i = 0; i < dim; ++i) {
-            f[i] = -interface_residual[sys.f_dof(cp.fluid_nodes[j], i)];
-            fn += f[i] * n[i];
-            ff[i] += f[i];
-            for (auto q = cp.offsets[j]; q < cp.offsets[j + 1]; ++q) {
-              fs[i] += cp.weights[q] * f[i];
-              transferred[sys.d_dof(cp.structure_nodes[q], i)] += cp.weights[q] * f[i];
-            }
-          }
-          normal += fn;
-          for (int i = 0; i < dim; ++i) tangential[i] += f[i] - fn * n[i];
-        }
-        w.interfaces->add_row(
-            {step, t, cp.name, normal,
-             std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
-                       tangential[2] * tangential[2]),
-             0, 0, cp.d_total});
+      for (std::size_t c = 0; c < n_cp; ++c) {
+        const double* tv = &sums[c * 4 + 1];
+        w.interfaces->add_row({step, t, couplings[c].name, sums[c * 4],
+                               std::sqrt(tv[0] * tv[0] + tv[1] * tv[1] + tv[2] * tv[2]), 0, 0,
+                               couplings[c].d_total});
       }
-      for (std::size_t q = 0; q < wet.size(); ++q)
-        for (int i = 0; i < dim; ++i) {
-          const auto a = sys.d_dof(wet[q], i);
-          const auto k = q * dim + i;
-          if (transferred[a] != 0.0 || last_force[k] != 0.0)
-            work += 0.5 * (transferred[a] + last_force[k]) * (raw[a] - last_raw[k]);
-          last_force[k] = transferred[a];
-          last_raw[k] = raw[a];
-        }
+      const double* ff = &sums[n_cp * 4];
+      const double* fs = &sums[n_cp * 4 + 3];
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       // clang-format off
@@ -794,16 +815,15 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
         print_step_line(
             step, t, it, rn / std::max(reference, 1e-300), wall,
             time_left(wall_seconds() - progress_wall, t - progress_time, config.time.end - t));
-      if (step % config.output.every == 0 || !control.running()) {
-        ScopedTimer timer(timers, "output");
-        write_interfaces(sys, raw, interface_residual, normals, dir);
-      }
     }
     {
       ScopedTimer timer(timers, "output");
       if (!w.probe_at.empty()) write_probes(sys, raw, step, t, w);
-      // Fields every `output.every` steps and at the end.
-      if (step % config.output.every == 0 || !control.running()) write_fields(sys, raw, step, t, w);
+      // Fields and the interface rows every `output.every` steps and at the end.
+      if (step % config.output.every == 0 || !control.running()) {
+        write_interfaces(sys, raw, res.raw_residual, normals, dir);
+        write_fields(sys, raw, step, t, w);
+      }
     }
     if (checkpoints.due(step)) write_checkpoint();
   }

@@ -31,7 +31,7 @@ struct FsiRunInfo {
 };
 
 /// Checks the input, then runs all steps on `part`, this rank's part of the distributed mesh
-/// (its fsi sides held whole; `identity` the whole mesh's), writing into `dir` (which exists),
+/// (its cells and a ghost layer; `identity` the whole mesh's), writing into `dir` (which exists),
 /// or continues from the checkpoint of `restart` (the tables and results.pvd continue; the
 /// checkpoints of `output.checkpoint_every` hold the nodal state by global node id, written
 /// by the owners, so that any number of ranks continues, fsi_solver.cpp). `check_only` stops

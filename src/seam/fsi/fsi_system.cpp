@@ -63,7 +63,7 @@ std::vector<double> FsiSystem::prescribed(double t) const {
   for (std::size_t a = 0; a < n_raw(); ++a) {
     if (prescribed_[a] < 0) continue;
     const auto n = a < base_f_ ? a / dim : (a - base_f_) / (dim + 1);
-    const double* x = &mesh_->x[n * dim];
+    const double* x = node_x(n);
     g[a] = values_[prescribed_[a]](t, x[0], x[1], dim == 3 ? x[2] : 0.0);
   }
   // m_G = P d_G: prescribed structure displacements move the interface mesh too. u_G = P v

@@ -18,12 +18,16 @@
 // fluid by (u, p), the fluid by the mesh position and velocity (shape derivatives), the
 // pseudo-elastic mesh stiffness, the mass blocks of a time step.
 //
-// The mesh is this rank's part of a distributed mesh (runs: its cells, a ghost layer and the
-// fsi sides whole) or the whole mesh on every rank (the unit tests; then the cells are
-// partitioned by METIS and the nodes numbered as a fluid run's, mesh::number_nodes). Each
-// rank assembles its cells. The condensed unknowns are numbered by the owners of their nodes:
-// each rank's block holds its nodes' structure, then fluid, then mesh unknowns, after the
-// blocks of the lower ranks. The raw residual of a rank's cells is summed on the owners of its
+// The mesh is this rank's part of a distributed mesh (runs: its cells and a ghost layer) or
+// the whole mesh on every rank (the unit tests; then the cells are partitioned by METIS and the
+// nodes numbered as a fluid run's, mesh::number_nodes). Each rank assembles its cells. On a
+// distributed mesh the couplings are those of the fluid nodes this rank holds, their P rows
+// from the nodes' owners (meshtying::TiedInterface::projection); the structure nodes P reaches
+// that the rank does not hold follow the mesh's nodes (node numbers n_mesh_nodes() on), known
+// by their global numbers, their coordinates, and the numbers of their unknowns and their
+// prescribed components from their owners. The condensed unknowns are numbered by the owners of
+// their nodes: each rank's block holds its nodes' structure, then fluid, then mesh unknowns, after
+// the blocks of the lower ranks. The raw residual of a rank's cells is summed on the owners of its
 // nodes (one assembly of a node-laid-out vector), so that a Newton iteration needs the
 // unknowns of the held nodes only (held_unknowns), never all (docs/fsi.md "In parallel").
 #include "seam/common/mpi.hpp"
@@ -58,13 +62,15 @@ struct DofMap {
 };
 
 /// P = D^-1 M of one interface: per fluid interface node its structure nodes and weights.
+/// Distributed: the fluid nodes this rank holds (their rows complete for the nodes of its
+/// cells), the structure nodes possibly beyond the mesh's (FsiSystem::n_mesh_nodes()).
 struct FsiCoupling {
   std::string name;
   std::vector<std::int32_t> fluid_nodes; ///< mesh nodes, sorted
   std::vector<std::int64_t> offsets{0};
   std::vector<std::int32_t> structure_nodes;
   std::vector<double> weights;
-  double d_total = 0.0;           ///< sum of D_jj (the interface's length or area), for tractions
+  double d_total = 0.0;           ///< sum of D_jj over all ranks (the interface's length or area)
   std::vector<double> d_diagonal; ///< D_jj per fluid interface node
 };
 
@@ -72,8 +78,8 @@ class FsiSystem {
 public:
   /// Checks the input for a steady fsi run (InputError, located, on every rank) and builds
   /// the maps. `part` (kept by reference): `mesh` is this rank's part of a distributed mesh
-  /// (part->mesh, its `fsi` interface sides held whole, `interfaces` set up on it); null: the
-  /// mesh is replicated.
+  /// (part->mesh, `interfaces` set up on it distributed, with their `projection`); null: the
+  /// mesh is replicated (`interfaces` set up whole).
   FsiSystem(const io::Config& config, const mesh::Mesh& mesh,
             const std::vector<meshtying::TiedInterface>& interfaces, Comm comm,
             const mesh::DistributedMesh* part = nullptr);
@@ -88,6 +94,16 @@ public:
   /// P the structure nodes of their interface nodes) and those of the interface nodes (held
   /// whole), ascending: what a Newton iteration scatters to this rank.
   const std::vector<PetscInt>& held_unknowns() const { return held_; }
+  /// The mesh's nodes; the nodes from there to n_nodes() are structure nodes of the couplings
+  /// this rank does not hold.
+  std::size_t n_mesh_nodes() const { return static_cast<std::size_t>(mesh_->n_nodes()); }
+  std::size_t n_nodes() const { return n_nodes_; }
+  /// The reference coordinates of node n.
+  const double* node_x(std::size_t n) const {
+    return n < n_mesh_nodes() ? &mesh_->x[n * dim_] : &extra_x_[(n - n_mesh_nodes()) * dim_];
+  }
+  /// Node n's id in the mesh as read (the same on every rank).
+  std::int64_t node_gid(std::int32_t n) const { return part_ ? node_gid_[n] : n; }
   /// Whether this rank owns mesh node n (its raw residual entries are summed here).
   bool owns_node(std::int32_t n) const { return node_owner_[n] == comm_.rank(); }
   /// Whether this rank owns the node of raw dof a.
@@ -100,7 +116,7 @@ public:
   /// A number of raw dof a that is the same on every rank and for any number of ranks.
   std::int64_t raw_id(std::size_t a) const {
     const auto n = raw_node(a);
-    return (part_ ? part_->node_gid[n] : n) * static_cast<std::int64_t>(raw_slots()) +
+    return node_gid(n) * static_cast<std::int64_t>(raw_slots()) +
            static_cast<std::int64_t>(raw_slot(a));
   }
   const mesh::DistributedMesh* part() const { return part_; }
@@ -208,15 +224,16 @@ public:
   fluid::EnergyIntegrals fluid_energy(std::span<const double> raw,
                                       std::span<const double> rate) const;
 
+  /// Per node (width values each, node-major, n_nodes()): the sums over the ranks holding the
+  /// node of their `contributions`, on every rank holding it (distributed mesh). Collective.
+  std::vector<double> share(std::span<const double> contributions, int width) const;
+
 private:
   /// Adds R^T K T_c of one element block to the triplets; I and J null: the values only.
   void add_block(std::span<const std::size_t> rows, std::span<const std::size_t> cols,
                  std::span<const double> K, std::vector<PetscInt>* I, std::vector<PetscInt>* J,
                  std::vector<double>& V) const;
 
-  /// Per node (width values each, node-major): the sums over the ranks holding the node of
-  /// their `contributions`, on every rank holding it (distributed mesh). Collective.
-  std::vector<double> share(std::span<const double> contributions, int width) const;
   /// A vector of `width` values per node laid out as share's (owned nodes, then ghost_nodes_).
   la::Vector nodal_vector(int width) const;
   /// The local index of value k of node n in such a vector, whose first owned row is `first`.
@@ -236,6 +253,8 @@ private:
   std::vector<solid::Material> solids_;
   std::vector<char> solid_node_, fluid_node_, pressure_node_;
   std::vector<std::int32_t> local_cells_;
+  std::vector<std::int64_t> node_gid_; ///< distributed: per node its id in the mesh as read
+  std::vector<double> extra_x_;        ///< the coordinates of the nodes after the mesh's
   std::vector<int> node_owner_;
   /// The node-laid-out vector the raw residual is summed in: node n's slots from
   /// node_slot_[n] * raw_slots(), each rank's owned nodes one contiguous range.

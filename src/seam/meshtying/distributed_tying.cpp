@@ -19,7 +19,7 @@
 namespace seam::meshtying {
 
 bool distributed_tying(const io::Interface& itf) {
-  return itf.type == io::InterfaceType::mesh_tying;
+  return itf.type == io::InterfaceType::mesh_tying || itf.type == io::InterfaceType::fsi;
 }
 
 namespace {
@@ -97,6 +97,45 @@ std::vector<T> by_rank(int size, const std::vector<std::pair<int, T>>& items,
   std::vector<std::int64_t> next(offsets.begin(), offsets.end() - 1);
   for (const auto& [r, x] : items) out[static_cast<std::size_t>(next[r]++)] = x;
   return out;
+}
+
+/// The entry of a slave x master triplet `e` (side-local slave row, column into t.master_index)
+/// in global node numbers, with the master node's coordinates from `coordinates`.
+RowEntry master_entry(const TiedInterface& t, const mortar::Triplet& e,
+                      const std::vector<double>& coordinates) {
+  RowEntry r;
+  r.row = t.slave_index[static_cast<std::size_t>(e.row)];
+  r.col = t.master_index[static_cast<std::size_t>(e.col)];
+  r.value = e.value;
+  r.kind = 1;
+  const int dim = t.slave.dim;
+  for (int c = 0; c < dim; ++c) r.x[c] = coordinates[static_cast<std::size_t>(e.col) * dim + c];
+  return r;
+}
+
+/// The entries of the rows `ids` (with their owners `owners`) from the owners' `rows` (this
+/// rank's owned rows, sorted by row): one request and one reply exchange.
+std::vector<RowEntry> rows_from_owners(MPI_Comm comm, std::span<const std::int64_t> ids,
+                                       std::span<const int> owners,
+                                       const std::vector<RowEntry>& rows) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::vector<std::pair<int, std::int64_t>> requests;
+  for (std::size_t i = 0; i < ids.size(); ++i) requests.emplace_back(owners[i], ids[i]);
+  std::vector<std::int64_t> offsets, recv_offsets;
+  const auto send = by_rank(size, requests, offsets);
+  const auto asked = parallel::alltoallv<std::int64_t>(comm, send, offsets, recv_offsets);
+  std::vector<std::pair<int, RowEntry>> replies;
+  for (int r = 0; r < size; ++r)
+    for (auto k = recv_offsets[r]; k < recv_offsets[r + 1]; ++k) {
+      const auto row = asked[static_cast<std::size_t>(k)];
+      const auto first =
+          std::lower_bound(rows.begin(), rows.end(), row,
+                           [](const RowEntry& e, std::int64_t key) { return e.row < key; });
+      for (auto it = first; it != rows.end() && it->row == row; ++it) replies.emplace_back(r, *it);
+    }
+  const auto reply = by_rank(size, replies, offsets);
+  return parallel::alltoallv<RowEntry>(comm, reply, offsets, recv_offsets);
 }
 
 /// Mesh initialization with a non-diagonal D (standard multipliers): D_SS X_S = M X_M - D_SB X_B
@@ -219,13 +258,55 @@ standard_initialization(MPI_Comm comm, const TiedInterface& t, const std::vector
   return delta;
 }
 
+/// fsi: P = D^-1 M (with a modified quadratic basis T D^-1 M) of the slave nodes this rank
+/// owns, whose rows are complete here, with D_jj, sent to every rank that holds the node (by
+/// node id): t.projection over the held slave nodes, the master nodes its columns reach added
+/// to t.master and t.master_index.
+void publish_projection(MPI_Comm comm, TiedInterface& t, const std::vector<int>& owners) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const int dim = t.slave.dim;
+  const auto n_slave = t.slave.mesh_nodes.size();
+  const auto P = projection(t.operators, static_cast<local_index>(n_slave));
+  std::vector<RowEntry> rows;
+  for (const auto& e : t.operators.D)
+    if (owners[static_cast<std::size_t>(e.row)] == rank) {
+      RowEntry r;
+      r.row = r.col = t.slave_index[static_cast<std::size_t>(e.row)];
+      r.value = e.value;
+      rows.push_back(r);
+    }
+  for (const auto& e : P)
+    if (owners[static_cast<std::size_t>(e.row)] == rank)
+      rows.push_back(master_entry(t, e, t.master.coordinates));
+  std::sort(rows.begin(), rows.end(), entry_less);
+  const auto complete = rows_from_owners(comm, t.slave_index, owners, rows);
+  std::unordered_map<std::int64_t, local_index> slave_local, master_local;
+  for (std::size_t i = 0; i < n_slave; ++i)
+    slave_local.emplace(t.slave_index[i], static_cast<local_index>(i));
+  for (std::size_t i = 0; i < t.master_index.size(); ++i)
+    master_local.emplace(t.master_index[i], static_cast<local_index>(i));
+  t.projection.clear();
+  for (const auto& e : complete) {
+    if (e.kind == 0) continue;
+    const auto [it, added] =
+        master_local.emplace(e.col, static_cast<local_index>(t.master_index.size()));
+    if (added) {
+      t.master_index.push_back(e.col);
+      for (int c = 0; c < dim; ++c) t.master.coordinates.push_back(e.x[c]);
+    }
+    t.projection.push_back({slave_local.at(e.row), it->second, e.value});
+  }
+}
+
 struct SetupResult {
   TiedInterface t;
   std::vector<std::int32_t> owned_master_nodes; ///< master side nodes this rank owns
 };
 
 SetupResult setup_distributed(const io::Config& config, const io::Interface& itf,
-                              mesh::DistributedMesh& part, MPI_Comm comm, PhaseTimers& timers) {
+                              mesh::DistributedMesh& part, MPI_Comm comm, PhaseTimers& timers,
+                              io::InterfaceType type) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -290,7 +371,10 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   auto options = detail::mortar_options(itf, t.slave, ghosts);
   // Curved facets anywhere on the interface raise the quadrature everywhere, as when whole.
   MPI_Allreduce(MPI_IN_PLACE, &options.pair.cell_quadrature_degree, 1, MPI_INT, MPI_MAX, comm);
-  const auto bound = detail::bound_slave_nodes(config, mesh, t.slave, options.multiplier);
+  // An fsi coupling wins over velocity conditions: no bound slave nodes (as when whole).
+  const auto bound = type == io::InterfaceType::fsi
+                         ? std::vector<char>{}
+                         : detail::bound_slave_nodes(config, mesh, t.slave, options.multiplier);
   auto ops = mortar::assemble_mortar_operators(t.slave.facet_set(), ghosts.facet_set(), candidates,
                                                options, bound);
   t.local_slave_facets = slave_part.n_facets();
@@ -322,16 +406,9 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
       r.value = e.value;
       items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
     }
-    for (const auto& e : ops.M) {
-      RowEntry r;
-      r.row = t.slave_index[static_cast<std::size_t>(e.row)];
-      r.col = t.master_index[static_cast<std::size_t>(e.col)];
-      r.value = e.value;
-      r.kind = 1;
-      for (int c = 0; c < dim; ++c)
-        r.x[c] = ghosts.coordinates[static_cast<std::size_t>(e.col) * dim + c];
-      items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
-    }
+    for (const auto& e : ops.M)
+      items.emplace_back(owner(static_cast<std::size_t>(e.row)),
+                         master_entry(t, e, ghosts.coordinates));
     std::vector<std::int64_t> offsets, recv_offsets;
     const auto send = by_rank(size, items, offsets);
     auto received = parallel::alltoallv<RowEntry>(comm, send, offsets, recv_offsets);
@@ -348,27 +425,9 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   }
 
   // 2. The complete rows of every held slave node, from their owners.
-  std::vector<RowEntry> complete;
-  {
-    std::vector<std::pair<int, std::int64_t>> requests;
-    for (std::size_t i = 0; i < n_slave; ++i) requests.emplace_back(owner(i), t.slave_index[i]);
-    std::vector<std::int64_t> offsets, recv_offsets;
-    const auto send = by_rank(size, requests, offsets);
-    const auto asked = parallel::alltoallv<std::int64_t>(comm, send, offsets, recv_offsets);
-    std::vector<std::pair<int, RowEntry>> replies;
-    for (int r = 0; r < size; ++r)
-      for (auto k = recv_offsets[r]; k < recv_offsets[r + 1]; ++k) {
-        RowEntry key;
-        key.row = asked[static_cast<std::size_t>(k)];
-        const auto first =
-            std::lower_bound(rows.begin(), rows.end(), key.row,
-                             [](const RowEntry& e, std::int64_t row) { return e.row < row; });
-        for (auto it = first; it != rows.end() && it->row == key.row; ++it)
-          replies.emplace_back(r, *it);
-      }
-    const auto reply = by_rank(size, replies, offsets);
-    complete = parallel::alltoallv<RowEntry>(comm, reply, offsets, recv_offsets);
-  }
+  std::vector<int> owners(n_slave);
+  for (std::size_t i = 0; i < n_slave; ++i) owners[i] = owner(i);
+  const auto complete = rows_from_owners(comm, t.slave_index, owners, rows);
 
   // 3. The operators over the held slave nodes and the master nodes their rows reach. A row
   // with a column outside the held side (a bound neighbour beyond the ghost layer) is dropped;
@@ -439,6 +498,7 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   t.operators = std::move(ops);
   t.master = std::move(master);
   t.master_index = std::move(master_index);
+  if (type == io::InterfaceType::fsi) publish_projection(comm, t, owners);
 
   // Mesh initialization (D X_S = M X_M). Dual multipliers (D diagonal): from the complete
   // rows, for the nodes of the rank's cells; every rank that holds such a node computes the
@@ -447,8 +507,6 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   std::vector<double> moved;
   std::vector<char> update(n_slave, 0);
   if (t.operators.multiplier == mortar::Multiplier::standard) {
-    std::vector<int> owners(n_slave);
-    for (std::size_t i = 0; i < n_slave; ++i) owners[i] = owner(i);
     auto delta = standard_initialization(comm, t, rows, slave_local, owners);
     parallel::HolderPublisher(comm, t.slave_index, owners).publish(delta, dim);
     moved = t.slave.coordinates;
@@ -480,17 +538,18 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
 } // namespace
 
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::DistributedMesh& part,
-                                            MPI_Comm comm, PhaseTimers& timers) {
+                                            MPI_Comm comm, PhaseTimers& timers,
+                                            io::InterfaceType type) {
   std::vector<TiedInterface> out;
   std::vector<std::vector<std::int32_t>> owned_master_nodes;
   for (const auto& itf : config.interfaces) {
-    if (itf.type != io::InterfaceType::mesh_tying) continue;
+    if (itf.type != type) continue;
     if (!distributed_tying(itf)) {
       out.push_back(detail::setup_whole(config, itf, part.mesh, timers, itf.type, part.node_gid));
       owned_master_nodes.emplace_back();
       continue;
     }
-    auto r = setup_distributed(config, itf, part, comm, timers);
+    auto r = setup_distributed(config, itf, part, comm, timers, type);
     out.push_back(std::move(r.t));
     owned_master_nodes.push_back(std::move(r.owned_master_nodes));
   }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace seam::meshtying {
@@ -182,6 +183,32 @@ const mesh::Region& side_region(const mesh::Mesh& mesh, const io::RegionRef& ref
     io::fail_at(ref.mark, "no boundary region '" + ref.name + "' of dimension " +
                               std::to_string(mesh.dim - 1) + " in the mesh");
   return *r;
+}
+
+std::vector<mortar::Triplet> projection(const mortar::MortarOperators& ops, local_index n_rows) {
+  const auto n = static_cast<std::size_t>(n_rows);
+  std::vector<double> diag(n, 0.0);
+  for (const auto& e : ops.D) {
+    if (e.row != e.col) SEAM_THROW(InternalError, "fsi: D of a dual basis is not diagonal");
+    diag[static_cast<std::size_t>(e.row)] = e.value;
+  }
+  std::vector<std::map<local_index, double>> tilde(n), P;
+  for (const auto& e : ops.M) {
+    const double d = diag[static_cast<std::size_t>(e.row)];
+    if (d != 0.0) tilde[static_cast<std::size_t>(e.row)][e.col] += e.value / d;
+  }
+  if (ops.T.empty()) {
+    P = std::move(tilde);
+  } else {
+    P.resize(n);
+    for (const auto& e : ops.T)
+      for (const auto& [m, v] : tilde[static_cast<std::size_t>(e.col)])
+        P[static_cast<std::size_t>(e.row)][m] += e.value * v;
+  }
+  std::vector<mortar::Triplet> out;
+  for (std::size_t j = 0; j < n; ++j)
+    for (const auto& [m, v] : P[j]) out.push_back({static_cast<local_index>(j), m, v});
+  return out;
 }
 
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh& mesh,

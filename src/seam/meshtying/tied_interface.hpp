@@ -42,6 +42,10 @@ struct TiedInterface {
   bool distributed = false;
   std::vector<std::int64_t> slave_index;  ///< distributed: slave node -> global node number
   std::vector<std::int64_t> master_index; ///< distributed: master node -> global node number
+  /// Distributed fsi: P = D^-1 M (T D^-1 M with a modified quadratic basis) of every held slave
+  /// node, (slave node, master node, weight), computed by the node's owner and sent to the
+  /// ranks that hold it (the master nodes its columns reach are in `master`, `master_index`).
+  std::vector<mortar::Triplet> projection;
   /// This rank's share (distributed; the whole interface when replicated): slave facets it
   /// integrated, master facets ghosted to it, candidate pairs, integration cells.
   std::int64_t local_slave_facets = 0, local_master_ghosts = 0, local_pairs = 0,
@@ -82,8 +86,13 @@ std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::Mesh
                                             io::InterfaceType type = io::InterfaceType::mesh_tying,
                                             std::span<const std::int64_t> node_gid = {});
 
-/// True for the mesh-tying interfaces set up distributed on a distributed mesh (condensed and
-/// saddle point): their sides need not be held whole on every rank.
+/// P = D^-1 M of a dual basis over the rows [0, n_rows) of `ops` (with a modified quadratic
+/// basis, d_S = T d~_S: T D^-1 M), rows with D_jj = 0 left empty: (row, master column, weight),
+/// each row's columns ascending.
+std::vector<mortar::Triplet> projection(const mortar::MortarOperators& ops, local_index n_rows);
+
+/// True for the interfaces set up distributed on a distributed mesh (mesh tying, condensed and
+/// saddle point, and the `fsi` couplings): their sides need not be held whole on every rank.
 bool distributed_tying(const io::Interface& interface);
 
 /// Collective. The mesh-tying interfaces on a distributed mesh: the distributed_tying ones
@@ -91,8 +100,10 @@ bool distributed_tying(const io::Interface& interface);
 /// to them by bounding boxes, the rows of D and M summed on the slave nodes' owners and sent to
 /// the ranks that hold the nodes. Relocates the slave nodes of `part` like the replicated
 /// set-up; with standard multipliers (D not diagonal) by one distributed solve of D on the
-/// slave nodes' owners.
+/// slave nodes' owners. `type` fsi: the `fsi` interfaces (no bound slave nodes), each with its
+/// `projection`.
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::DistributedMesh& part,
-                                            MPI_Comm comm, PhaseTimers& timers);
+                                            MPI_Comm comm, PhaseTimers& timers,
+                                            io::InterfaceType type = io::InterfaceType::mesh_tying);
 
 } // namespace seam::meshtying

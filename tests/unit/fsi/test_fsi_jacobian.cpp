@@ -102,8 +102,8 @@ struct Errors {
   double rest_norm = 0.0;
 };
 
-/// `distributed`: on each rank's part of the distributed mesh (mesh::distribute_mesh, the fsi
-/// sides held whole), else on the replicated mesh.
+/// `distributed`: on each rank's part of the distributed mesh (mesh::distribute_mesh, its own
+/// cells and a ghost layer; the couplings set up distributed), else on the replicated mesh.
 Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane,
              bool distributed = false) {
   Comm comm;
@@ -147,12 +147,14 @@ Errors check(int order, bool dynamic = false, Shape shape_of = Shape::plane,
   mesh::DistributedMesh part;
   if (distributed) {
     if (!comm.is_root()) whole = mesh::Mesh{};
-    const std::vector<std::string> sides{"wet_fluid", "wet"};
-    part = mesh::distribute_mesh(whole, comm.get(), sides);
+    part = mesh::distribute_mesh(whole, comm.get());
   }
   auto& mesh = distributed ? part.mesh : whole;
   PhaseTimers timers;
-  const auto tied = meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
+  const auto tied =
+      distributed
+          ? meshtying::setup_mesh_tying(config, part, comm.get(), timers, io::InterfaceType::fsi)
+          : meshtying::setup_mesh_tying(config, mesh, timers, io::InterfaceType::fsi);
   FsiSystem sys(config, mesh, tied, comm, distributed ? &part : nullptr);
   // Dynamics: a step from a state at t_n that is not at rest (random, the same on every rank):
   // the inertia of both fields, the mesh velocity's derivatives and u_G = P v(d) enter.
