@@ -286,7 +286,9 @@ public:
   void set_fsi_fields(std::span<const PetscInt> structure, std::span<const PetscInt> fluid,
                       std::span<const PetscInt> mesh, std::span<const double> modes,
                       VelocityBlock velocity);
-  /// The relative tolerance of the next solves, unless the command line set -ksp_rtol.
+  /// The relative tolerance of the next solves, unless the command line set -ksp_rtol. The
+  /// direct kind: that of the next GMRES over a kept factorization (allow_factor_reuse), not
+  /// below factor_reuse_rtol.
   void set_relative_tolerance(double rtol);
   /// Keeps the preconditioner (GAMG's hierarchy, a factorization) from one solve to the next
   /// although the matrix changes (PCSetReusePreconditioner), until rebuild_preconditioner()
@@ -326,8 +328,9 @@ public:
 private:
   /// One KSPSolve; `reuse`: with the preconditioner kept. Returns whether it converged.
   bool solve_once(const Matrix& A, const Matrix& P, const Vector& b, Vector& x, bool reuse);
-  /// allow_factor_reuse: GMRES on A preconditioned by the kept factorization. Returns whether
-  /// it converged within factor_reuse_max_iterations.
+  /// allow_factor_reuse: GMRES on A preconditioned by the kept factorization, to the relative
+  /// tolerance of set_relative_tolerance (factor_reuse_rtol unless set). Returns whether it
+  /// converged within factor_reuse_max_iterations.
   bool solve_reusing_factors(const Matrix& A, const Vector& b, Vector& x);
   /// After KSPSolve on `ksp` returned `ierr`: its iterations kept, whether it converged.
   bool finish_solve(KSP ksp, PetscErrorCode ierr);
@@ -345,9 +348,10 @@ private:
   int builds_ = 0;
   bool last_built_ = false;
   bool reuse_allowed_ = false;
-  bool reuse_enabled_ = true; ///< -factor_reuse false turns it off
-  int first_iterations_ = 0;  ///< Krylov iterations of the solve that built the kept one
-  double first_rtol_ = 0.0;   ///< and its relative tolerance
+  bool reuse_enabled_ = true;             ///< -factor_reuse false turns it off
+  double reuse_rtol_ = factor_reuse_rtol; ///< set_relative_tolerance, the direct kind
+  int first_iterations_ = 0; ///< Krylov iterations of the solve that built the kept one
+  double first_rtol_ = 0.0;  ///< and its relative tolerance
 };
 
 } // namespace seam::la
