@@ -303,9 +303,10 @@ public:
   void rebuild_preconditioner() { stale_ = true; }
   /// The direct kind: the next solve may take the factorization of an earlier solve (whose
   /// matrix differs) as the preconditioner of GMRES, right-preconditioned, to the relative
-  /// residual 1e-13 of the right-hand side, as far as the factorization itself reaches
-  /// (1e-14 to 4e-14 on the hex20 torus), instead of factoring its own matrix: an exact solve
-  /// of the new matrix at the cost of a few triangular solves. The caller allows it where
+  /// residual of set_relative_tolerance, never below factor_reuse_rtol = 1e-13 (that one if
+  /// none was set; a factorization itself reaches 1e-14 to 4e-14 on the hex20 torus),
+  /// instead of factoring its own matrix: the solve of the new matrix at the cost of a few
+  /// triangular solves. The caller allows it where
   /// the new matrix differs little from the factored one (Newton corrections of a load step
   /// whose contact statuses have not changed since the factorization). A GMRES that needs
   /// more than factor_reuse_max_iterations is abandoned and the matrix factored; one that
