@@ -1,7 +1,8 @@
 """The direct solver's kept factorization (la::LinearSolver::allow_factor_reuse, docs/performance.md
 "Kept factorizations"): while no contact status has changed since the last MUMPS factorization
 of a load step, Newton's next tangent is solved by GMRES preconditioned by that factorization,
-to the relative residual 1e-13 that the factorization itself reaches, instead of being factored.
+to Newton's inexact tolerance (at most 1e-13, what the factorization itself reaches), instead of
+being factored.
 
 On examples/torus/torus_hex20.yaml with a coarse mesh (768 hex20 cells, 5 of its 25 load steps,
 the example's extrapolated start and c_n):

@@ -1016,6 +1016,10 @@ void LinearSolver::set_fsi_fields(std::span<const PetscInt> structure,
 }
 
 void LinearSolver::set_relative_tolerance(double rtol) {
+  if (kind_ == SolverKind::direct) {
+    reuse_rtol_ = std::max(rtol, factor_reuse_rtol);
+    return;
+  }
   PetscBool set = PETSC_FALSE;
   check(PetscOptionsHasName(nullptr, nullptr, "-ksp_rtol", &set), "PetscOptionsHasName");
   if (!set)
@@ -1088,6 +1092,9 @@ bool LinearSolver::solve_reusing_factors(const Matrix& A, const Vector& b, Vecto
   check(KSPGetPC(ksp_, &pc), "KSPGetPC");
   check(PCSetReusePreconditioner(pc, PETSC_TRUE), "PCSetReusePreconditioner");
   check(KSPSetOperators(reuse_ksp_, A.get(), A.get()), "KSPSetOperators");
+  check(
+      KSPSetTolerances(reuse_ksp_, reuse_rtol_, 1e-300, PETSC_DEFAULT, factor_reuse_max_iterations),
+      "KSPSetTolerances");
   last_built_ = false;
   const PetscErrorCode ierr = KSPSolve(reuse_ksp_, b.get(), x.get());
   check(PCSetReusePreconditioner(pc, PETSC_FALSE), "PCSetReusePreconditioner");

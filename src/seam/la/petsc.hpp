@@ -286,7 +286,9 @@ public:
   void set_fsi_fields(std::span<const PetscInt> structure, std::span<const PetscInt> fluid,
                       std::span<const PetscInt> mesh, std::span<const double> modes,
                       VelocityBlock velocity);
-  /// The relative tolerance of the next solves, unless the command line set -ksp_rtol.
+  /// The relative tolerance of the next solves, unless the command line set -ksp_rtol. The
+  /// direct kind: that of the next GMRES over a kept factorization (allow_factor_reuse), not
+  /// below factor_reuse_rtol.
   void set_relative_tolerance(double rtol);
   /// Keeps the preconditioner (GAMG's hierarchy, a factorization) from one solve to the next
   /// although the matrix changes (PCSetReusePreconditioner), until rebuild_preconditioner()
@@ -301,9 +303,10 @@ public:
   void rebuild_preconditioner() { stale_ = true; }
   /// The direct kind: the next solve may take the factorization of an earlier solve (whose
   /// matrix differs) as the preconditioner of GMRES, right-preconditioned, to the relative
-  /// residual 1e-13 of the right-hand side, as far as the factorization itself reaches
-  /// (1e-14 to 4e-14 on the hex20 torus), instead of factoring its own matrix: an exact solve
-  /// of the new matrix at the cost of a few triangular solves. The caller allows it where
+  /// residual of set_relative_tolerance, never below factor_reuse_rtol = 1e-13 (that one if
+  /// none was set; a factorization itself reaches 1e-14 to 4e-14 on the hex20 torus),
+  /// instead of factoring its own matrix: the solve of the new matrix at the cost of a few
+  /// triangular solves. The caller allows it where
   /// the new matrix differs little from the factored one (Newton corrections of a load step
   /// whose contact statuses have not changed since the factorization). A GMRES that needs
   /// more than factor_reuse_max_iterations is abandoned and the matrix factored; one that
@@ -326,8 +329,9 @@ public:
 private:
   /// One KSPSolve; `reuse`: with the preconditioner kept. Returns whether it converged.
   bool solve_once(const Matrix& A, const Matrix& P, const Vector& b, Vector& x, bool reuse);
-  /// allow_factor_reuse: GMRES on A preconditioned by the kept factorization. Returns whether
-  /// it converged within factor_reuse_max_iterations.
+  /// allow_factor_reuse: GMRES on A preconditioned by the kept factorization, to the relative
+  /// tolerance of set_relative_tolerance (factor_reuse_rtol unless set). Returns whether it
+  /// converged within factor_reuse_max_iterations.
   bool solve_reusing_factors(const Matrix& A, const Vector& b, Vector& x);
   /// After KSPSolve on `ksp` returned `ierr`: its iterations kept, whether it converged.
   bool finish_solve(KSP ksp, PetscErrorCode ierr);
@@ -345,9 +349,10 @@ private:
   int builds_ = 0;
   bool last_built_ = false;
   bool reuse_allowed_ = false;
-  bool reuse_enabled_ = true; ///< -factor_reuse false turns it off
-  int first_iterations_ = 0;  ///< Krylov iterations of the solve that built the kept one
-  double first_rtol_ = 0.0;   ///< and its relative tolerance
+  bool reuse_enabled_ = true;             ///< -factor_reuse false turns it off
+  double reuse_rtol_ = factor_reuse_rtol; ///< set_relative_tolerance, the direct kind
+  int first_iterations_ = 0; ///< Krylov iterations of the solve that built the kept one
+  double first_rtol_ = 0.0;  ///< and its relative tolerance
 };
 
 } // namespace seam::la

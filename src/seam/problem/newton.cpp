@@ -375,11 +375,10 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
     // forcing term from the residual decrease; here it is bounded by the target instead).
     // Between 1e-10 (the exact solve of `linear: iterative`) and 1e-3; -ksp_rtol overrides.
     // A predictor's right-hand side carries the prescribed motion, not the residual: exact.
-    if (iterative_)
-      solver_.set_relative_tolerance(
-          predictor || norm <= 0.0
-              ? 1e-10
-              : std::clamp(1e-2 * nc.tolerance * reference / norm, 1e-10, 1e-3));
+    // The direct solver takes it for its GMRES over a kept factorization (not below 1e-13).
+    solver_.set_relative_tolerance(
+        predictor || norm <= 0.0 ? 1e-10
+                                 : std::clamp(1e-2 * nc.tolerance * reference / norm, 1e-10, 1e-3));
     if (contact_.saddle_point()) {
       // Standard multipliers: displacements and multipliers together (contact_constraint.hpp).
       rt_.copy_from(r_);

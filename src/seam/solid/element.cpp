@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+
 namespace seam::solid {
 
 namespace {
@@ -131,6 +133,111 @@ ElementResult internal_force_impl(const ElementInput& in, int n, std::span<doubl
   return result;
 }
 
+// The 3D kernel in the form of the first elasticity tensor A = dP/dF, P = F S:
+//   A_iJkL = F_iI C_IJKL F_kK + delta_ik S_JL,   K_ab,ik = int G_aJ A_iJkL G_bL dV,
+// the same tangent as B_a^T C B_b + (G_a . S G_b) I of internal_force_impl, in fewer operations
+// (no 6 x 3 B per node and pair). The quadrature points are taken in chunks: for each
+// component pair (i, k) the rows of G_q A_ik,q dV_q (n x 3 per point) of a chunk form one
+// matrix and its product with the stacked G_q^T (3 x n per point) adds the chunk's share of
+// K_ik, so the work is a few dense products of fixed-capacity matrices. K is symmetric:
+// the pairs i <= k are computed, K_ki = K_ik^T.
+constexpr int chunk_points = 9;
+constexpr std::array<std::array<int, 3>, 3> voigt_index = {{{0, 3, 5}, {3, 1, 4}, {5, 4, 2}}};
+constexpr std::array<int, 6> pair_i = {0, 1, 2, 0, 1, 0};
+constexpr std::array<int, 6> pair_k = {0, 1, 2, 1, 2, 2};
+
+ElementResult internal_force_3d(const ElementInput& in, int n, std::span<double> r,
+                                std::span<double> K) {
+  constexpr int N = fem::max_cell_nodes;
+  constexpr int W = 3 * chunk_points;
+  using Stacked = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 6 * N, W>;
+  using Gradients = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, W, N>;
+  using Result = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 6 * N, N>;
+  using Tensor9 = Eigen::Matrix<double, 9, 9>;
+
+  const int nd = n * 3;
+  const bool linear = in.material.model == MaterialModel::linear_elastic;
+  const bool want_r = !r.empty(), want_K = !K.empty();
+  if (want_r) std::fill(r.begin(), r.end(), 0.0);
+
+  ElementResult result;
+  const fem::QuadratureRule rule = fem::quadrature(in.cell, degree_of(in));
+  detail::NodalGradients<3> G;
+  PointResponse resp;
+  Stacked GA;
+  Gradients Gt;
+  Result R;
+  if (want_K) R.setZero(6 * n, n);
+  for (int q0 = 0; q0 < rule.n_points; q0 += chunk_points) {
+    const int m = std::min(chunk_points, rule.n_points - q0);
+    if (want_K) {
+      GA.resize(6 * n, 3 * m);
+      Gt.resize(3 * m, n);
+    }
+    for (int c = 0; c < m; ++c) {
+      const int q = q0 + c;
+      const double detJ = detail::reference_gradients<3>(in.cell, n, &rule.points[q * 3], in.X, G);
+      if (!(detJ > 0.0)) return {KernelStatus::inverted_reference, 0.0};
+      const double dV = rule.weights[q] * detJ;
+
+      const Eigen::Matrix3d F = deformation_gradient<3>(n, in.u, G);
+      const PointStatus ps = evaluate(in.material, in.plane, F, resp, want_K);
+      if (ps != PointStatus::ok) return {to_kernel_status(ps), 0.0};
+      result.energy += resp.energy * dV;
+      if (!want_r && !want_K) continue;
+
+      const Eigen::Matrix3d Fb = linear ? Eigen::Matrix3d::Identity().eval() : F;
+      if (want_r) {
+        const Eigen::Matrix3d P = Fb * resp.stress * dV;
+        for (int a = 0; a < n; ++a)
+          for (int i = 0; i < 3; ++i) r[a * 3 + i] += P.row(i).dot(G.row(a));
+      }
+      if (!want_K) continue;
+
+      // T(IJ, kL) = C_IJKL F_kK, then A(iJ, kL) = F_iI T(IJ, kL), times dV.
+      Tensor9 T, A;
+      for (int I = 0; I < 3; ++I)
+        for (int J = 0; J < 3; ++J)
+          for (int k = 0; k < 3; ++k)
+            for (int L = 0; L < 3; ++L) {
+              double s = 0.0;
+              for (int Kc = 0; Kc < 3; ++Kc)
+                s += resp.tangent(voigt_index[I][J], voigt_index[Kc][L]) * Fb(k, Kc);
+              T(I * 3 + J, k * 3 + L) = s;
+            }
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J)
+          for (int kL = 0; kL < 9; ++kL) {
+            double s = 0.0;
+            for (int I = 0; I < 3; ++I) s += Fb(i, I) * T(I * 3 + J, kL);
+            A(i * 3 + J, kL) = s * dV;
+          }
+      if (!linear) {
+        const Eigen::Matrix3d S = resp.stress * dV;
+        for (int i = 0; i < 3; ++i) A.block<3, 3>(i * 3, i * 3) += S;
+      }
+      Gt.block(3 * c, 0, 3, n) = G.transpose();
+      for (int p = 0; p < 6; ++p)
+        GA.block(p * n, 3 * c, n, 3).noalias() = G * A.block<3, 3>(pair_i[p] * 3, pair_k[p] * 3);
+    }
+    if (want_K) R.noalias() += GA * Gt;
+  }
+  if (want_K) {
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Km(K.data(),
+                                                                                          nd, nd);
+    for (int p = 0; p < 6; ++p) {
+      const int i = pair_i[p], k = pair_k[p];
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          const double v = R(p * n + a, b);
+          Km(a * 3 + i, b * 3 + k) = v;
+          if (i != k) Km(b * 3 + k, a * 3 + i) = v;
+        }
+    }
+  }
+  return result;
+}
+
 template <int D> ElementStress element_stress_impl(const ElementInput& in, int n) {
   ElementStress out;
   const bool linear = in.material.model == MaterialModel::linear_elastic;
@@ -187,7 +294,7 @@ ElementResult internal_force(const ElementInput& in, std::span<double> r, std::s
              "solid::internal_force: residual buffer needs ", nd, " values, got ", r.size());
   SEAM_CHECK(K.empty() || K.size() == nd * nd, InternalError,
              "solid::internal_force: tangent buffer needs ", nd * nd, " values, got ", K.size());
-  return in.dim == 3 ? internal_force_impl<3>(in, n, r, K) : internal_force_impl<2>(in, n, r, K);
+  return in.dim == 3 ? internal_force_3d(in, n, r, K) : internal_force_impl<2>(in, n, r, K);
 }
 
 ElementStress element_stress(const ElementInput& in) {
