@@ -2192,6 +2192,8 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_side_facets_held =
         s.itf.slave().n_facets() + (two_bodies ? s.itf.n_master_facets() : 0);
     rep.local_slave_facets_held = s.itf.slave().n_facets();
+    rep.local_em_entries_sent = s.em_entries_sent;
+    rep.local_em_entries_received = s.em_entries_received;
     rep.local_side_facets_read =
         all_read(s.itf.slave()) + (two_bodies ? all_read(s.itf.master()) : 0);
     out.push_back(std::move(rep));
