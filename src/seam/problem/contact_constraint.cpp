@@ -1038,7 +1038,7 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
     dLP.axpy_any_pattern(1.0, dP_);
     dLP.axpy_any_pattern(1.0, la::Matrix::multiply(dL, dP_));
   }
-  auto S = la::Matrix::multiply(dLP, K);
+  auto S = la::Matrix::multiply_sparse_left(dLP, K);
   S.axpy_any_pattern(1.0, la::Matrix::multiply(dL, Kc_));
   S.axpy_any_pattern(1.0, Kc_);
   S.axpy_any_pattern(1.0, la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv));
