@@ -362,11 +362,20 @@ Matrix Matrix::multiply(const Matrix& A, const Matrix& B) {
 }
 
 Matrix Matrix::multiply_sparse_left(const Matrix& A, const Matrix& B) {
-  // This rank's rows of A that have entries, with their (sorted global) columns and values.
-  PetscInt lo = 0, hi = 0, m = 0, n = 0, n_cols = 0;
-  check(MatGetOwnershipRange(A.m_, &lo, &hi), "MatGetOwnershipRange");
+  PetscInt m = 0, n = 0;
   check(MatGetLocalSize(A.m_, &m, nullptr), "MatGetLocalSize");
   check(MatGetLocalSize(B.m_, nullptr, &n), "MatGetLocalSize");
+  std::vector<PetscInt> ci, cj;
+  std::vector<double> cv;
+  append_product(A, B, ci, cj, cv);
+  return from_triplets(PetscObjectComm(reinterpret_cast<PetscObject>(A.m_)), m, ci, cj, cv, n);
+}
+
+void Matrix::append_product(const Matrix& A, const Matrix& B, std::vector<PetscInt>& ci,
+                            std::vector<PetscInt>& cj, std::vector<double>& cv) {
+  // This rank's rows of A that have entries, with their (sorted global) columns and values.
+  PetscInt lo = 0, hi = 0, n_cols = 0;
+  check(MatGetOwnershipRange(A.m_, &lo, &hi), "MatGetOwnershipRange");
   check(MatGetSize(B.m_, nullptr, &n_cols), "MatGetSize");
   std::vector<PetscInt> a_rows, a_offsets{0}, a_cols;
   std::vector<double> a_values;
@@ -400,8 +409,6 @@ Matrix Matrix::multiply_sparse_left(const Matrix& A, const Matrix& B) {
   ISDestroy(&cols);
   // Row i of A B: the terms A_ic B_cj in the order of c, then summed per column j in that
   // order (a stable sort by j).
-  std::vector<PetscInt> ci, cj;
-  std::vector<double> cv;
   std::vector<std::pair<PetscInt, double>> terms;
   for (std::size_t r = 0; r < a_rows.size(); ++r) {
     terms.clear();
@@ -426,7 +433,6 @@ Matrix Matrix::multiply_sparse_left(const Matrix& A, const Matrix& B) {
     }
   }
   check(MatDestroySubMatrices(1, &sub), "MatDestroySubMatrices");
-  return from_triplets(PetscObjectComm(reinterpret_cast<PetscObject>(A.m_)), m, ci, cj, cv, n);
 }
 
 Matrix Matrix::from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
