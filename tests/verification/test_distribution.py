@@ -1273,6 +1273,22 @@ def two_rings_em_case(np):
     return run_case(test_rings.ring_geo(test_rings.CENTRES, 8, 2), yaml, np)
 
 
+def check_em_entries(out, what):
+    """The entries of the discrete gradients go to the owners of their slave nodes only
+    (docs/parallel.md, "Contact: sums and decisions on the owners"): every rank receives fewer
+    than all the ranks sent, which a gather on every rank would bring each of them."""
+    detail = ranks_detail(out)
+    sent = [r["contact_em_entries_sent"] for r in detail]
+    received = [r["contact_em_entries_received"] for r in detail]
+    print("   %s: discrete-gradient entries sent %s, received %s"
+          % (what, " / ".join(map(str, sent)), " / ".join(map(str, received))))
+    if sum(received) != sum(sent) or sum(sent) == 0:
+        raise AssertionError("%s: entries sent %s, received %s" % (what, sent, received))
+    if max(received) >= sum(sent):
+        raise AssertionError("%s: a rank received %d of the %d entries sent: gathered"
+                             % (what, max(received), sum(sent)))
+
+
 def test_energy_momentum_held_in_part_np3():
     """Energy-momentum contact with its sides held in part (docs/parallel.md, "Converting the
     contact sides", step 6): the gap blocks read the reference coordinates of mesh and outside
@@ -1284,7 +1300,8 @@ def test_energy_momentum_held_in_part_np3():
     redistributed after several steps: at np 3 no rank holds more than
     (owned + ghost cells) * 1.1 cells, no rank holds the contact sides whole (side facets
     held below np 1's) and every output equals np 1 to 1e-10 (the free rings' momenta against
-    one ring's, 0.5). Before, every rank held every cell with a contact facet."""
+    one ring's, 0.5); each rank receives fewer discrete-gradient entries than the ranks sent
+    (check_em_entries). Before, every rank held every cell with a contact facet."""
     for what, case, floor in (
             ("7-ring pile, energy-momentum", pile_case, 0.0),
             ("two rings as two bodies, energy-momentum", two_rings_em_case, 0.5),
@@ -1302,6 +1319,7 @@ def test_energy_momentum_held_in_part_np3():
         if max(held) >= whole:
             raise AssertionError("%s: side facets held per rank %s of %d: not in part"
                                  % (what, held, whole))
+        check_em_entries(three, what + " np 3")
         compare_outputs(one, three, 1e-10, what + " np 3 vs np 1", floor)
     H.cleanup(*_dirs)
 

@@ -361,6 +361,80 @@ Matrix Matrix::multiply(const Matrix& A, const Matrix& B) {
   return adopt(C);
 }
 
+Matrix Matrix::multiply_sparse_left(const Matrix& A, const Matrix& B) {
+  PetscInt m = 0, n = 0;
+  check(MatGetLocalSize(A.m_, &m, nullptr), "MatGetLocalSize");
+  check(MatGetLocalSize(B.m_, nullptr, &n), "MatGetLocalSize");
+  std::vector<PetscInt> ci, cj;
+  std::vector<double> cv;
+  append_product(A, B, ci, cj, cv);
+  return from_triplets(PetscObjectComm(reinterpret_cast<PetscObject>(A.m_)), m, ci, cj, cv, n);
+}
+
+void Matrix::append_product(const Matrix& A, const Matrix& B, std::vector<PetscInt>& ci,
+                            std::vector<PetscInt>& cj, std::vector<double>& cv) {
+  // This rank's rows of A that have entries, with their (sorted global) columns and values.
+  PetscInt lo = 0, hi = 0, n_cols = 0;
+  check(MatGetOwnershipRange(A.m_, &lo, &hi), "MatGetOwnershipRange");
+  check(MatGetSize(B.m_, nullptr, &n_cols), "MatGetSize");
+  std::vector<PetscInt> a_rows, a_offsets{0}, a_cols;
+  std::vector<double> a_values;
+  for (PetscInt i = lo; i < hi; ++i) {
+    PetscInt nc = 0;
+    const PetscInt* c = nullptr;
+    const PetscScalar* v = nullptr;
+    check(MatGetRow(A.m_, i, &nc, &c, &v), "MatGetRow");
+    if (nc > 0) {
+      a_rows.push_back(i);
+      a_cols.insert(a_cols.end(), c, c + nc);
+      a_values.insert(a_values.end(), v, v + nc);
+      a_offsets.push_back(static_cast<PetscInt>(a_cols.size()));
+    }
+    check(MatRestoreRow(A.m_, i, &nc, &c, &v), "MatRestoreRow");
+  }
+  // The rows of B they name, all columns (a stride over every column: PETSc then keeps the
+  // global column numbers and builds no map over them).
+  std::vector<PetscInt> needed(a_cols);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  IS rows = nullptr, cols = nullptr;
+  check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(needed.size()), needed.data(),
+                        PETSC_COPY_VALUES, &rows),
+        "ISCreateGeneral");
+  check(ISCreateStride(PETSC_COMM_SELF, n_cols, 0, 1, &cols), "ISCreateStride");
+  Mat* sub = nullptr;
+  check(MatCreateSubMatrices(B.m_, 1, &rows, &cols, MAT_INITIAL_MATRIX, &sub),
+        "MatCreateSubMatrices");
+  ISDestroy(&rows);
+  ISDestroy(&cols);
+  // Row i of A B: the terms A_ic B_cj in the order of c, then summed per column j in that
+  // order (a stable sort by j).
+  std::vector<std::pair<PetscInt, double>> terms;
+  for (std::size_t r = 0; r < a_rows.size(); ++r) {
+    terms.clear();
+    for (auto k = a_offsets[r]; k < a_offsets[r + 1]; ++k) {
+      const auto at = std::lower_bound(needed.begin(), needed.end(), a_cols[k]) - needed.begin();
+      PetscInt nc = 0;
+      const PetscInt* c = nullptr;
+      const PetscScalar* v = nullptr;
+      check(MatGetRow(sub[0], static_cast<PetscInt>(at), &nc, &c, &v), "MatGetRow");
+      for (PetscInt e = 0; e < nc; ++e) terms.emplace_back(c[e], a_values[k] * v[e]);
+      check(MatRestoreRow(sub[0], static_cast<PetscInt>(at), &nc, &c, &v), "MatRestoreRow");
+    }
+    std::stable_sort(terms.begin(), terms.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (std::size_t e = 0; e < terms.size();) {
+      double sum = 0.0;
+      const PetscInt j = terms[e].first;
+      for (; e < terms.size() && terms[e].first == j; ++e) sum += terms[e].second;
+      ci.push_back(a_rows[r]);
+      cj.push_back(j);
+      cv.push_back(sum);
+    }
+  }
+  check(MatDestroySubMatrices(1, &sub), "MatDestroySubMatrices");
+}
+
 Matrix Matrix::from_triplets(MPI_Comm comm, PetscInt n_owned, std::span<const PetscInt> rows,
                              std::span<const PetscInt> cols, std::span<const double> values,
                              PetscInt n_owned_cols) {

@@ -144,6 +144,18 @@ public:
   static Matrix ptap(const Matrix& A, const Matrix& P);
   /// A B as a new matrix.
   static Matrix multiply(const Matrix& A, const Matrix& B);
+  /// A B as a new matrix for an A with few nonzeros (a contact condensation's rows): each
+  /// rank fetches only the rows of B that the columns of its rows of A name
+  /// (MatCreateSubMatrices), where MatMatMult on several ranks copies all its rows of B
+  /// (MatMPIAIJGetLocalMat) in the symbolic and again in the numeric product. The pattern is
+  /// MatMatMult's (structural zeros kept); each entry sums its terms in the order of A's
+  /// columns, on any number of ranks. Collective.
+  static Matrix multiply_sparse_left(const Matrix& A, const Matrix& B);
+  /// The same product as triplets (global rows and columns, this rank's rows of A B, one per
+  /// entry), appended to ci, cj, cv: several products and entries summed by one from_triplets
+  /// instead of MatAXPY with different patterns. Collective.
+  static void append_product(const Matrix& A, const Matrix& B, std::vector<PetscInt>& ci,
+                             std::vector<PetscInt>& cj, std::vector<double>& cv);
   /// A matrix with n_owned local rows (and n_owned local columns, or n_owned_cols if given)
   /// from coordinate triplets in global indices (any rank may give entries of any row;
   /// repeated entries are summed). Collective.

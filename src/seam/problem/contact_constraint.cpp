@@ -1038,10 +1038,20 @@ void ContactConstraint::condense(const la::Matrix& K, const la::Vector& r, la::M
     dLP.axpy_any_pattern(1.0, dP_);
     dLP.axpy_any_pattern(1.0, la::Matrix::multiply(dL, dP_));
   }
-  auto S = la::Matrix::multiply(dLP, K);
-  S.axpy_any_pattern(1.0, la::Matrix::multiply(dL, Kc_));
-  S.axpy_any_pattern(1.0, Kc_);
-  S.axpy_any_pattern(1.0, la::Matrix::from_triplets(mpi, n_owned, gi, gj, gv));
+  // S = dLP K + dL Kc + Kc + G from one set of triplets (products: this rank's rows of them,
+  // each entry once; Kc and G: the triplets as given, on any rank). Each entry of S sums its
+  // parts in that order.
+  std::vector<PetscInt> si, sj;
+  std::vector<double> sv;
+  la::Matrix::append_product(dLP, K, si, sj, sv);
+  la::Matrix::append_product(dL, Kc_, si, sj, sv);
+  si.insert(si.end(), ki.begin(), ki.end());
+  sj.insert(sj.end(), kj.begin(), kj.end());
+  sv.insert(sv.end(), kv.begin(), kv.end());
+  si.insert(si.end(), gi.begin(), gi.end());
+  sj.insert(sj.end(), gj.begin(), gj.end());
+  sv.insert(sv.end(), gv.begin(), gv.end());
+  const auto S = la::Matrix::from_triplets(mpi, n_owned, si, sj, sv);
   // In place while the pattern holds (the matrix object and a kept preconditioner stay).
   Ksys.assign_sum(K, S);
   dLP.mult(r, rsys);
@@ -2192,6 +2202,8 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_side_facets_held =
         s.itf.slave().n_facets() + (two_bodies ? s.itf.n_master_facets() : 0);
     rep.local_slave_facets_held = s.itf.slave().n_facets();
+    rep.local_em_entries_sent = s.em_entries_sent;
+    rep.local_em_entries_received = s.em_entries_received;
     rep.local_side_facets_read =
         all_read(s.itf.slave()) + (two_bodies ? all_read(s.itf.master()) : 0);
     out.push_back(std::move(rep));

@@ -392,6 +392,9 @@ private:
     /// Pairs without a block then: dropped by the pre-check, without overlap, and of those
     /// with an unconverged projection (line2).
     long em_rejections[3] = {0, 0, 0};
+    /// The entries of the discrete gradients this rank sent to the slave nodes' owners and
+    /// those it received as an owner, summed over the evaluations of the run.
+    std::int64_t em_entries_sent = 0, em_entries_received = 0;
   };
   NodeFrame frame(const Side& s, std::size_t j) const;
   /// Whether slave node j has a pair at the last evaluate(): a nodal weight D_jj above 1e-12

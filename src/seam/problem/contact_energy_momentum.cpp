@@ -292,17 +292,24 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
               {b.slave[r], dof,
                b.gradient[r * static_cast<std::size_t>(nv) + static_cast<std::size_t>(v)]});
   }
+  // This rank's entries and, for each, the rank it goes to: the owner of its slave node,
+  // which alone assembles the node's discrete gradient.
   std::vector<Entry> local;
+  std::vector<int> to;
+  const auto add = [&](local_index j, const Entry& e) {
+    local.push_back(e);
+    to.push_back(s.node_owners[static_cast<std::size_t>(j)]);
+  };
   for (const auto& b : start)
     for (std::size_t r = 0; r < b.slave.size(); ++r)
-      local.push_back({0, key(b.slave[r]), g0, 0, b.gap[r]});
+      add(b.slave[r], {0, key(b.slave[r]), g0, 0, b.gap[r]});
   for (const auto& b : end) {
     const auto nv = static_cast<std::size_t>(b.n_variables());
     for (std::size_t r = 0; r < b.slave.size(); ++r) {
-      local.push_back({0, key(b.slave[r]), g1, 0, b.gap[r]});
+      add(b.slave[r], {0, key(b.slave[r]), g1, 0, b.gap[r]});
       for (std::size_t v = 0; v < nv; ++v)
         if (const auto dof = dof_of(b, static_cast<int>(v)); dof >= 0)
-          local.push_back(at(dof, b.slave[r], end_gradient, b.gradient[r * nv + v]));
+          add(b.slave[r], at(dof, b.slave[r], end_gradient, b.gradient[r * nv + v]));
     }
   }
   for (const auto& b : middle) {
@@ -312,7 +319,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
       for (std::size_t v = 0; v < nv; ++v) {
         const auto dof = dof_of(b, static_cast<int>(v));
         if (dof < 0) continue;
-        local.push_back(at(dof, b.slave[r], mid_gradient, b.gradient[r * nv + v]));
+        add(b.slave[r], at(dof, b.slave[r], mid_gradient, b.gradient[r * nv + v]));
         if (!tangent || b.hessian.empty()) continue;
         double hdx = 0.0;
         for (std::size_t k = 0; k < nv; ++k)
@@ -323,18 +330,32 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
             if (lambda[j] != 0.0 && h != 0.0)
               s.em_tangent.push_back({dof, col, -0.5 * lambda[j] * h});
           }
-        local.push_back(at(dof, b.slave[r], hessian_dx, hdx));
+        add(b.slave[r], at(dof, b.slave[r], hessian_dx, hdx));
       }
     }
   }
-  // Every rank's entries; the owner of slave node j assembles its discrete gradient.
-  std::vector<std::int64_t> offsets;
-  std::vector<Entry> all =
-      parallel::allgatherv<Entry>(disc_.comm().get(), std::span<const Entry>(local), offsets);
+  // Each entry to the owner of its slave node only (one Alltoallv), in this rank's order:
+  // the owner receives them by source rank, so that every sum below runs in the same order at
+  // every np (by node id, then source rank, then the sender's order).
+  const int size = disc_.comm().size();
+  std::vector<std::int64_t> send_offsets(static_cast<std::size_t>(size) + 1, 0);
+  for (const int r : to) ++send_offsets[static_cast<std::size_t>(r) + 1];
+  for (int r = 0; r < size; ++r) send_offsets[r + 1] += send_offsets[r];
+  std::vector<Entry> send(local.size());
+  {
+    std::vector<std::int64_t> next(send_offsets.begin(), send_offsets.end() - 1);
+    for (std::size_t e = 0; e < local.size(); ++e)
+      send[static_cast<std::size_t>(next[static_cast<std::size_t>(to[e])]++)] = local[e];
+  }
+  std::vector<std::int64_t> recv_offsets;
+  std::vector<Entry> all = parallel::alltoallv<Entry>(
+      disc_.comm().get(), std::span<const Entry>(send), send_offsets, recv_offsets);
+  s.em_entries_sent += static_cast<std::int64_t>(send.size());
+  s.em_entries_received += static_cast<std::int64_t>(all.size());
   const auto& nodes = s.itf.slave().mesh_nodes;
   const Invariance invariance = invariance_of(s.itf, dim);
-  // The side-local index of a slave node id, -1 for a node this part does not hold (a side
-  // held in part: its entries are read by the ranks that hold it).
+  // The side-local index of a slave node id (every node an entry reaches is held by its
+  // owner, the receiver).
   const auto held = [&](std::int64_t id) -> std::int64_t {
     const auto& ids = s.slave_ids.nodes;
     const auto it = std::lower_bound(ids.begin(), ids.end(), id);
@@ -342,15 +363,23 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   };
   // The weighted gaps at x_{n+1} that the active set and the gap rows use, and which slave
   // nodes have a gap row at all: the segmentation's D_jj can be positive where these blocks
-  // integrate nothing (their own pre-checks), and such a node must stay inactive.
-  std::fill(s.gap.begin(), s.gap.end(), 0.0);
-  s.em_row.assign(s.gap.size(), 0);
+  // integrate nothing (their own pre-checks), and such a node must stay inactive. Summed by
+  // the owners and published to the nodes' holders (the cycling guard reads the gap rows of
+  // every held node).
+  const auto n_side = s.gap.size();
+  std::vector<double> sums(n_side * 2, 0.0);
   for (const auto& e : all) {
     const auto jj = held(e.node);
-    if (jj < 0) continue;
+    SEAM_ASSERT(jj >= 0 && owns(nodes[static_cast<std::size_t>(jj)]));
     const auto j = static_cast<std::size_t>(jj);
-    if (e.kind == g1) s.gap[j] += e.value;
-    if (e.kind == end_gradient && e.value != 0.0) s.em_row[j] = 1;
+    if (e.kind == g1) sums[j * 2] += e.value;
+    if (e.kind == end_gradient && e.value != 0.0) sums[j * 2 + 1] = 1.0;
+  }
+  publish(s, sums, 2);
+  s.em_row.assign(n_side, 0);
+  for (std::size_t j = 0; j < n_side; ++j) {
+    s.gap[j] = sums[j * 2];
+    s.em_row[j] = sums[j * 2 + 1] != 0.0;
   }
   std::stable_sort(all.begin(), all.end(),
                    [](const Entry& a, const Entry& b) { return a.node < b.node; });
@@ -358,9 +387,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   // part nodes outside its part (map_nodes, collective: the same decision on every rank).
   std::vector<std::int64_t> dof_ids;
   for (const auto& e : all)
-    if (e.kind >= mid_gradient && held(e.node) >= 0 &&
-        owns(nodes[static_cast<std::size_t>(held(e.node))]))
-      dof_ids.push_back(e.dof / dim);
+    if (e.kind >= mid_gradient) dof_ids.push_back(e.dof / dim);
   std::sort(dof_ids.begin(), dof_ids.end());
   dof_ids.erase(std::unique(dof_ids.begin(), dof_ids.end()), dof_ids.end());
   std::vector<std::int32_t> dof_nodes;
@@ -385,12 +412,7 @@ void ContactConstraint::evaluate_discrete_gradient(Side& s, std::span<const doub
   for (std::size_t begin = 0; begin < all.size();) {
     std::size_t stop = begin;
     while (stop < all.size() && all[stop].node == all[begin].node) ++stop;
-    const auto jj = held(all[begin].node);
-    const auto j = static_cast<std::size_t>(jj);
-    if (jj < 0 || !owns(nodes[j])) {
-      begin = stop;
-      continue;
-    }
+    const auto j = static_cast<std::size_t>(held(all[begin].node));
     // The node's dofs (by node id, so in the same order at every np), node-major with all dim
     // components.
     std::map<std::int64_t, int> index;

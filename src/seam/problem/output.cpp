@@ -624,7 +624,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 28;
+  constexpr std::size_t n_counts = 30;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -660,6 +660,8 @@ void Output::finish(bool converged, int n_steps) {
       mine[25] += static_cast<double>(c.local_side_facets_held);
       mine[26] += static_cast<double>(c.local_side_facets_read);
       mine[27] += static_cast<double>(c.local_slave_facets_held);
+      mine[28] += static_cast<double>(c.local_em_entries_sent);
+      mine[29] += static_cast<double>(c.local_em_entries_received);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -752,6 +754,8 @@ void Output::finish(bool converged, int n_steps) {
     e["contact_side_facets_held"] = static_cast<std::int64_t>(d[25]);
     e["contact_side_facets_read"] = static_cast<std::int64_t>(d[26]);
     e["contact_slave_facets_held"] = static_cast<std::int64_t>(d[27]);
+    e["contact_em_entries_sent"] = static_cast<std::int64_t>(d[28]);
+    e["contact_em_entries_received"] = static_cast<std::int64_t>(d[29]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

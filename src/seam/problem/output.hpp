@@ -121,6 +121,9 @@ struct ContactReport {
   std::int64_t local_side_facets_read = 0;
   /// The slave facets among them (a self-contact surface counted once, as a slave side).
   std::int64_t local_slave_facets_held = 0;
+  /// Energy-momentum contact: the entries of the discrete gradients this rank sent to the slave
+  /// nodes' owners and those it received, since the start of the run (or the restart).
+  std::int64_t local_em_entries_sent = 0, local_em_entries_received = 0;
   /// Self contact: the facets' role changes so far within a step attempt and between steps
   /// (ContactSearch::role_changes; the same on every rank).
   std::int64_t role_changes_within_step = 0, role_changes_between_steps = 0;

@@ -1,10 +1,14 @@
 // la::Matrix::assign_sum (this = A + B in place while the pattern holds), as the condensed
-// contact system uses it: against A x + B x computed separately, on 1 and 3 ranks.
+// contact system uses it: against A x + B x computed separately, on 1 and 3 ranks; and
+// la::Matrix::multiply_sparse_left (A B fetching only the rows of B that A's columns name), as
+// the condensation forms dLP K: against MatMatMult (Matrix::multiply), the same pattern and
+// values, with A's columns on other ranks and a rank whose rows of A are all empty.
 #include "seam/la/petsc.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -99,6 +103,72 @@ TEST(MatrixAssignSum, InPlaceWhileThePatternHolds) {
   const Matrix A2 = tridiagonal();
   EXPECT_FALSE(S.assign_sum(A2, B2));
   EXPECT_LT(sum_error(S, A2, B2), 1e-12);
+}
+
+/// A banded "stiffness" on this rank's rows (bandwidth 2, plus a coupling to the last row),
+/// with values that round differently in another order of summation.
+Matrix banded() {
+  const PetscInt n = rows_per_rank * size(), first = rows_per_rank * rank();
+  Triplets t;
+  for (PetscInt r = first; r < first + rows_per_rank; ++r) {
+    for (PetscInt c = r - 2; c <= r + 2; ++c)
+      if (c >= 0 && c < n) t.add(r, c, c == r ? 4.0 + 0.3 * r : -1.0 / (3.0 + r + 0.7 * c));
+    if (r != n - 1) t.add(r, n - 1, 0.1 / (1.0 + r));
+  }
+  return t.matrix();
+}
+
+/// Entries of A at (row, col) on the rank owning the row: a few rows, columns anywhere, one
+/// explicit zero (its products are kept in the pattern, as MatMatMult keeps them).
+Matrix few_rows() {
+  const PetscInt n = rows_per_rank * size(), first = rows_per_rank * rank();
+  const std::vector<std::pair<PetscInt, PetscInt>> at = {
+      {0, 0}, {0, n - 1}, {0, n / 2}, {1, 3}, {n / 2, 1}, {n / 2, n / 2 + 1}, {n - 2, n - 2}};
+  Triplets t;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    const auto [r, c] = at[k];
+    // Rank 1 of 3 owns rows 6..11: only n / 2 = 9 has entries there; none on the last rows
+    // but n - 2. An explicit zero at (1, 3).
+    if (r >= first && r < first + rows_per_rank) t.add(r, c, k == 3 ? 0.0 : 1.0 / (1.0 + k));
+  }
+  return t.matrix();
+}
+
+TEST(MatrixSparseLeft, EqualsMatMatMult) {
+  const Matrix A = few_rows(), B = banded();
+  const Matrix C = Matrix::multiply_sparse_left(A, B), R = Matrix::multiply(A, B);
+  PetscInt lo = 0, hi = 0;
+  ASSERT_EQ(MatGetOwnershipRange(R.get(), &lo, &hi), 0);
+  int rows_with_entries = 0;
+  for (PetscInt i = lo; i < hi; ++i) {
+    PetscInt nc = 0, nr = 0;
+    const PetscInt *cc = nullptr, *cr = nullptr;
+    const PetscScalar *vc = nullptr, *vr = nullptr;
+    ASSERT_EQ(MatGetRow(C.get(), i, &nc, &cc, &vc), 0);
+    ASSERT_EQ(MatGetRow(R.get(), i, &nr, &cr, &vr), 0);
+    EXPECT_EQ(nc, nr) << "row " << i;
+    for (PetscInt k = 0; k < std::min(nc, nr); ++k) {
+      EXPECT_EQ(cc[k], cr[k]) << "row " << i;
+      EXPECT_LE(std::abs(vc[k] - vr[k]), 1e-15 * std::max(1.0, std::abs(vr[k])))
+          << "row " << i << " column " << cr[k];
+    }
+    rows_with_entries += nr > 0;
+    MatRestoreRow(C.get(), i, &nc, &cc, &vc);
+    MatRestoreRow(R.get(), i, &nr, &cr, &vr);
+  }
+  // The case covers rows with products (the explicit zero's row included) on some ranks and
+  // none on others.
+  int total = 0;
+  MPI_Allreduce(&rows_with_entries, &total, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_EQ(total, 4);
+}
+
+TEST(MatrixSparseLeft, EmptyLeftFactor) {
+  const Matrix A = Triplets{}.matrix(), B = banded();
+  const Matrix C = Matrix::multiply_sparse_left(A, B);
+  MatInfo info;
+  ASSERT_EQ(MatGetInfo(C.get(), MAT_GLOBAL_SUM, &info), 0);
+  EXPECT_EQ(info.nz_used, 0.0);
 }
 
 } // namespace
