@@ -166,3 +166,51 @@ def plate_with_inclusion(h_plate, h_disk, order=1, radius=0.5):
               'Physical Curve("hole") = {5, 6, 7, 8};', 'Physical Curve("rim") = {9, 10, 11, 12};',
               "Mesh.ElementOrder = %d;" % order]
     return "\n".join(lines) + "\n"
+
+
+def block_with_cylinder(h_block, h_cylinder, order=1, radius=0.5, height=1.0):
+    """The block [-1, 1]^2 x [0, height] with a cylindrical hole along z and a cylinder filling
+    it, meshed independently by tetrahedra (non-matching curved interface; plate_with_inclusion
+    in 3D). Regions: block, cylinder; left, right, bottom, top (the block's sides at x = -1,
+    x = 1, y = -1, y = 1), base (z = 0, both bodies); hole (the block's cylindrical face),
+    mantle (the cylinder's)."""
+    r, H, e = radius, height, 1e-3
+    lines = ['SetFactory("OpenCASCADE");',
+             "Box(1) = {-1, -1, 0, 2, 2, %g};" % H,
+             "Cylinder(2) = {0, 0, 0, 0, 0, %g, %g};" % (H, r),
+             "BooleanDifference(3) = {Volume{1}; Delete;}{Volume{2}; Delete;};",
+             # A new cylinder: its faces are not the hole's (the tool's would be).
+             "Cylinder(2) = {0, 0, 0, 0, 0, %g, %g};" % (H, r),
+             "MeshSize{PointsOf{Volume{3};}} = %g;" % h_block,
+             "MeshSize{PointsOf{Volume{2};}} = %g;" % h_cylinder,
+             # The curved faces: those of each volume that are not horizontal (the block's
+             # narrower than its sides).
+             "hole = -1; mantle = -1;",
+             "s[] = Boundary{Volume{3};};",
+             "For i In {0:#s[]-1}",
+             "  bb[] = BoundingBox Surface{s[i]};",
+             "  If (bb[5] - bb[2] > %g && bb[3] - bb[0] < 1.5 && bb[4] - bb[1] < 1.5)" % (H / 2),
+             "    hole = s[i];",
+             "  EndIf",
+             "EndFor",
+             "s[] = Boundary{Volume{2};};",
+             "For i In {0:#s[]-1}",
+             "  bb[] = BoundingBox Surface{s[i]};",
+             "  If (bb[5] - bb[2] > %g)" % (H / 2),
+             "    mantle = s[i];",
+             "  EndIf",
+             "EndFor",
+             'Physical Volume("block") = {3};', 'Physical Volume("cylinder") = {2};',
+             'Physical Surface("left") = Surface In BoundingBox{%g, %g, %g, %g, %g, %g};'
+             % (-1 - e, -1 - e, -e, -1 + e, 1 + e, H + e),
+             'Physical Surface("right") = Surface In BoundingBox{%g, %g, %g, %g, %g, %g};'
+             % (1 - e, -1 - e, -e, 1 + e, 1 + e, H + e),
+             'Physical Surface("bottom") = Surface In BoundingBox{%g, %g, %g, %g, %g, %g};'
+             % (-1 - e, -1 - e, -e, 1 + e, -1 + e, H + e),
+             'Physical Surface("top") = Surface In BoundingBox{%g, %g, %g, %g, %g, %g};'
+             % (-1 - e, 1 - e, -e, 1 + e, 1 + e, H + e),
+             'Physical Surface("base") = Surface In BoundingBox{%g, %g, %g, %g, %g, %g};'
+             % (-1 - e, -1 - e, -e, 1 + e, 1 + e, e),
+             'Physical Surface("hole") = {hole};', 'Physical Surface("mantle") = {mantle};',
+             "Mesh.ElementOrder = %d;" % order]
+    return "\n".join(lines) + "\n"

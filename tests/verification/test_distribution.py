@@ -34,6 +34,12 @@ Each test can fail:
   facet is integrated on exactly one rank, the ranks hold no cells for the interface sides, the
   interface elements they hold (slave facets integrated, master facets ghosted) add up to at
   most 1.25 x the interface's and no rank holds 0.75 of it; results equal np = 1 to 1e-10;
+- the slave facets of tied interfaces cut by RCB on their own (`interface_distribution:
+  independent`, the default): on the tied blocks example at np 3 and np 4 and on a cylinder
+  tied into a block (tet10, tri6 slave facets with the modified dual basis, bound slave nodes)
+  at np 3, the slave facets integrated per rank have max/mean <= 1.1 and add up to np 1's
+  (with main's binary before the cut: 0 / 118 / 0 and 97 / 0 / 3), outputs equal np 1 to
+  1e-10; with `bulk` the facets of each rank's cells, outputs equal np 1;
 - the two-body contact search distributed (Hertz sphere on a block in 3D, 2D ironing with
   friction; np = 1, 2, 3): every rank receives strictly fewer master facets than the master
   surface has (at np = 3 at most 0.65 / 0.5 of it), each rank every master facet its pairs
@@ -486,8 +492,8 @@ def wide_tied_case(replace=()):
 
 def test_tied_interface_part_np3():
     """Mesh tying distributed (docs/parallel.md, "Mesh tying distributed"). Bounds: each
-    slave facet is integrated by the rank owning its cell, so the slave counts add up to the
-    interface's exactly; a master facet is ghosted to every rank whose slave part its box
+    slave facet is integrated by one rank (its part of the RCB cut), so the slave counts add
+    up to the interface's exactly; a master facet is ghosted to every rank whose slave part its box
     overlaps: one rank, two or three near the cuts between the parts, so the master copies
     exceed the master facets only by the facets along the cuts (1.25 x the whole interface
     bounds both together). Replicated, every rank held all interface cells."""
@@ -528,7 +534,7 @@ def test_saddle_point_mesh_initialization_np3():
     distributed"), linear and quadratic curved interfaces: the relocated slave nodes
     (interface_tie.csv's x, y), the largest move and the results at np 3 equal np 1; the
     slave nodes move (1.8e-3 and 1.3e-6 of the radius 0.5), and each slave facet is integrated
-    once."""
+    once, the facets per rank max/mean <= 1.1 (the independent distribution)."""
     import geometry
     for order, slave, master in ((1, "rim", "hole"), (2, "hole", "rim")):
         geo = geometry.plate_with_inclusion(0.1, 0.06, order)
@@ -549,6 +555,9 @@ def test_saddle_point_mesh_initialization_np3():
                 d["slave_elements"] for d in detail) == n_s:
             raise AssertionError("%s: slave facets per rank %s of %d"
                                  % (what, [d["slave_elements"] for d in detail], n_s))
+        # Cut by RCB (the facets arrive with those around their nodes, whose averaged normals
+        # the 2D projection reads): balanced to max/mean 1.1.
+        tied_share(outs[1], outs[3], what, 1.1)
         compare_tied(outs[1], outs[3], what)
     H.cleanup(*_dirs)
 
@@ -614,6 +623,84 @@ def check_tied_part(path):
     if max(held) >= 0.75 * total:
         raise AssertionError("a rank holds %d of the %d interface elements" % (max(held), total))
     compare_tied(outs[1], outs[3], "np 3")
+    H.cleanup(*_dirs)
+
+
+def tied_share(serial, out, what, balance):
+    """Slave facets integrated per rank (ranks_detail slave_elements): they, the pairs and the
+    integration cells add up to np 1's; with `balance`, max/mean of the facets is at most it.
+    Returns max/mean."""
+    n_s = H.read_json(os.path.join(out, "summary.json"))["interfaces"][0]["slave_elements"]
+    detail, one = ranks_detail(out), ranks_detail(serial)[0]
+    share = [d["slave_elements"] for d in detail]
+    ratio = max(share) * len(share) / float(sum(share))
+    print("   %s: slave facets integrated per rank %s of %d, max/mean %.3f"
+          % (what, share, n_s, ratio))
+    if sum(share) != n_s or n_s != one["slave_elements"]:
+        raise AssertionError("%s: slave facets %s add up to %d, the interface has %d (np 1: %d)"
+                             % (what, share, sum(share), n_s, one["slave_elements"]))
+    for key in ("pairs", "integration_cells"):
+        if sum(d[key] for d in detail) != one[key]:
+            raise AssertionError("%s: %s %d over the ranks, %d at np 1"
+                                 % (what, key, sum(d[key] for d in detail), one[key]))
+    if balance is not None and ratio > balance:
+        raise AssertionError("%s: slave facets per rank %s: max/mean %.3f above %.2f"
+                             % (what, share, ratio, balance))
+    return ratio
+
+
+def test_tied_independent_np3():
+    """The slave facets of a tied interface cut by RCB over all ranks (`interface_distribution:
+    independent`, the default; docs/parallel.md "Mesh tying distributed"): on the tied blocks
+    example (118 slave facets on the plane z = 1, which the bulk partition gives to one or two
+    of the ranks' cells), at np 3 and np 4 the slave facets integrated per rank have max/mean
+    <= 1.1, they, the pairs and the integration cells add up to np 1's, and every output equals
+    np 1 to 1e-10; with `interface_distribution: bulk` the facets of each rank's cells (the
+    imbalance printed), the same sums and equality."""
+    work, path = H.copy_example("tied_blocks", "blocks.yaml", (("steps: 5}", "steps: 1}"),))
+    _dirs.append(work)
+    bulk = H.write_case(work, "bulk.yaml", open(path).read().replace(
+        "time:", "parallel: {interface_distribution: bulk}\ntime:", 1))
+    outs = {}
+    for key, yaml, np in ((1, path, 1), (3, path, 3), (4, path, 4), ("bulk", bulk, 3)):
+        outs[key] = H.solve(yaml, np=np)
+        _dirs.append(outs[key])
+    for np in (3, 4):
+        tied_share(outs[1], outs[np], "independent, np %d" % np, 1.1)
+        compare_tied(outs[1], outs[np], "independent, np %d" % np)
+    tied_share(outs[1], outs["bulk"], "bulk, np 3", None)
+    compare_tied(outs[1], outs["bulk"], "bulk, np 3")
+    H.cleanup(*_dirs)
+
+
+def test_tied_curved_quadratic_independent_np3():
+    """A cylinder tied into a block's hole (non-matching curved interface, tetrahedra of order
+    2: tri6 slave facets with dual multipliers, whose displacement basis is modified, d = T d~,
+    and whose nodal normals average the facets around each node), the base clamped (the slave
+    nodes at z = 0 bound) and the block pulled sideways and up: with the independent
+    distribution at np 3 the slave facets integrated per rank have max/mean <= 1.1, add up
+    to np 1's, and every output (the relocated slave nodes included) equals np 1 to 1e-10."""
+    import geometry
+    geo = geometry.block_with_cylinder(0.5, 0.3, 2)
+    yaml = "\n".join([
+        "dimension: 3", "mesh: {geo: case.geo}",
+        "materials: {m: {model: linear_elastic, young: 100, poisson: 0.3}}",
+        "bodies: [{region: block, material: m}, {region: cylinder, material: m}]",
+        "boundary_conditions:",
+        "  - {region: base, type: dirichlet, components: [x, y, z], value: [0, 0, 0]}",
+        "  - {region: right, type: traction, value: [2, 0, 1]}",
+        "interfaces:",
+        "  - {name: tie, type: mesh_tying, slave: mantle, master: hole, multiplier: dual, "
+        "strategy: condensed}",
+        "time: {integrator: static, end: 1, steps: 1}",
+        "output: {probes: [[0.1, 0.2, 0.5], [0.45, 0.1, 0.9], [-0.8, 0.7, 0.5], [0.0, 0.5, 1.0]]}"]) + "\n"
+    outs = {np: run_case(geo, yaml, np) for np in (1, 3)}
+    moved = H.read_json(os.path.join(outs[1], "summary.json"))["interfaces"][0]["max_slave_relocation"]
+    print("   slave nodes moved by at most %.3e at np 1" % moved)
+    if not moved > 1e-9:
+        raise AssertionError("the slave nodes did not move (%.3e)" % moved)
+    tied_share(outs[1], outs[3], "curved quadratic, np 3", 1.1)
+    compare_tied(outs[1], outs[3], "curved quadratic, np 3")
     H.cleanup(*_dirs)
 
 
@@ -1458,6 +1545,7 @@ if __name__ == "__main__":
             test_slave_side_in_part_independent_np3, test_rings_self_search_np3, test_two_blocks_self_search_np3,
             test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3,
             test_check_distributed_np3, test_tied_interface_part_np3, test_saddle_point_tying_part_np3,
+            test_tied_independent_np3, test_tied_curved_quadratic_independent_np3,
             test_saddle_point_mesh_initialization_np3,
             test_contact_interface_part_np3, test_contact_friction_part_np3,
             test_hertz_independent_against_bulk_np4,

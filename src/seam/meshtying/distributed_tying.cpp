@@ -1,7 +1,9 @@
 // Mesh tying on a distributed mesh (issue 12, item 3; docs/parallel.md, "Mesh tying
-// distributed"): every rank integrates the slave facets of the cells it owns against the master
-// facets ghosted to it by bounding boxes; the rows of D and M are summed on the owners of their
-// slave nodes, and every rank then receives the complete rows of the slave nodes it holds.
+// distributed"): the slave facets of each interface are cut by a weighted RCB over all ranks
+// (`parallel.interface_distribution: independent`, the default) or stay on the owners of their
+// cells (`bulk`); every rank integrates its slave facets against the master facets ghosted to it
+// by bounding boxes; the rows of D and M are summed on the owners of their slave nodes, and
+// every rank then receives the complete rows of the slave nodes it holds.
 #include "seam/common/error.hpp"
 #include "seam/la/petsc.hpp"
 #include "seam/mesh/distribute.hpp"
@@ -10,6 +12,7 @@
 #include "seam/parallel/distributed_search.hpp"
 #include "seam/parallel/exchange.hpp"
 #include "seam/parallel/ghosting.hpp"
+#include "seam/parallel/load_balance.hpp"
 #include "seam/search/interface_search.hpp"
 
 #include <algorithm>
@@ -99,16 +102,129 @@ std::vector<T> by_rank(int size, const std::vector<std::pair<int, T>>& items,
   return out;
 }
 
-/// The entry of a slave x master triplet `e` (side-local slave row, column into t.master_index)
-/// in global node numbers, with the master node's coordinates from `coordinates`.
-RowEntry master_entry(const TiedInterface& t, const mortar::Triplet& e,
+/// A surface part as an interface side over its own node table (no mesh nodes), the facet
+/// types from their node counts.
+InterfaceSide side_of(parallel::SurfacePart&& p) {
+  InterfaceSide side;
+  side.dim = p.dim;
+  side.coordinates = std::move(p.coords);
+  side.offsets = std::move(p.offsets);
+  side.nodes = std::move(p.connectivity);
+  for (std::size_t f = 0; f + 1 < side.offsets.size(); ++f)
+    side.types.push_back(
+        facet_type_of(side.dim, static_cast<std::size_t>(side.offsets[f + 1] - side.offsets[f])));
+  return side;
+}
+
+/// The slave facets a rank integrates with the independent distribution, and what
+/// integrating them needs.
+struct SlaveShare {
+  parallel::SurfacePart assigned; ///< the facets this rank integrates (sorted by id)
+  parallel::SurfacePart facets;   ///< those and the facets around their nodes (unique ids)
+  std::vector<char> integrate;    ///< per facet of `facets`: one of `assigned`
+  std::vector<char> bound;        ///< per node of `facets` (empty: none bound)
+};
+
+/// Collective. Cuts the slave facets of the cells the ranks own (`owned`: this rank's, facets
+/// of the held side `held` as `held_part`, facet for facet) by weighted RCB over all ranks (unit
+/// weights: every facet of a tied interface is integrated) and sends each facet to its rank
+/// with the facets around its nodes, which the averaged nodal normals and the modified basis of
+/// its nodes read, and the bound flags `bound` (per held node) of its nodes. The owner of a
+/// facet's cell holds every slave facet around the facet's nodes (the ghost layer) and has
+/// their flags complete, so what it sends is what the whole side gives.
+SlaveShare share_slave_facets(MPI_Comm comm, const InterfaceSide& held,
+                              const parallel::SurfacePart& held_part,
+                              const parallel::SurfacePart& owned_part,
+                              std::span<const local_index> owned, const std::vector<char>& bound) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  const int dim = held.dim;
+  SlaveShare share;
+  std::vector<double> centroids;
+  parallel::facet_centroids(owned_part, centroids);
+  const std::vector<double> work(owned.size(), 1.0);
+  std::vector<int> parts(owned.size(), 0);
+  parallel::ProximityPartition(dim).partition(comm, centroids, work, owned_part.facet_ids, parts);
+  share.assigned = parallel::migrate(comm, owned_part, parts);
+
+  // Each owned facet and the held facets around its nodes, to its rank.
+  const auto n_nodes = held.mesh_nodes.size();
+  std::vector<std::int64_t> around_offsets(n_nodes + 1, 0);
+  for (auto n : held.nodes) ++around_offsets[static_cast<std::size_t>(n) + 1];
+  for (std::size_t n = 0; n < n_nodes; ++n) around_offsets[n + 1] += around_offsets[n];
+  std::vector<local_index> around(held.nodes.size());
+  {
+    std::vector<std::int64_t> next(around_offsets.begin(), around_offsets.end() - 1);
+    for (local_index f = 0; f < held.n_facets(); ++f)
+      for (auto k = held.offsets[static_cast<std::size_t>(f)];
+           k < held.offsets[static_cast<std::size_t>(f) + 1]; ++k)
+        around[static_cast<std::size_t>(next[static_cast<std::size_t>(held.nodes[k])]++)] = f;
+  }
+  std::vector<std::pair<int, local_index>> send;
+  std::vector<std::pair<int, std::int64_t>> bound_ids;
+  for (std::size_t i = 0; i < owned.size(); ++i) {
+    const auto f = static_cast<std::size_t>(owned[i]);
+    for (auto k = held.offsets[f]; k < held.offsets[f + 1]; ++k) {
+      const auto n = static_cast<std::size_t>(held.nodes[static_cast<std::size_t>(k)]);
+      for (auto a = around_offsets[n]; a < around_offsets[n + 1]; ++a)
+        send.emplace_back(parts[i], around[static_cast<std::size_t>(a)]);
+      if (!bound.empty() && bound[n])
+        bound_ids.emplace_back(parts[i], held_part.node_ids[static_cast<std::size_t>(
+                                             held_part.connectivity[static_cast<std::size_t>(k)])]);
+    }
+  }
+  std::sort(send.begin(), send.end());
+  send.erase(std::unique(send.begin(), send.end()), send.end());
+  std::vector<std::int64_t> offsets, recv_offsets;
+  const auto facets = by_rank(size, send, offsets);
+  auto received = parallel::send_facets(comm, held_part, offsets, facets);
+  // A facet around the nodes of facets from several ranks comes from each of them: kept once.
+  auto& out = share.facets;
+  out.dim = dim;
+  out.node_ids = std::move(received.node_ids);
+  out.coords = std::move(received.coords);
+  for (local_index f = 0; f < received.n_facets(); ++f) {
+    const auto id = received.facet_ids[static_cast<std::size_t>(f)];
+    if (!out.facet_ids.empty() && out.facet_ids.back() == id) continue;
+    out.facet_ids.push_back(id);
+    for (auto k = received.offsets[static_cast<std::size_t>(f)];
+         k < received.offsets[static_cast<std::size_t>(f) + 1]; ++k)
+      out.connectivity.push_back(received.connectivity[static_cast<std::size_t>(k)]);
+    out.offsets.push_back(static_cast<local_index>(out.connectivity.size()));
+  }
+  share.integrate.assign(out.facet_ids.size(), 0);
+  for (const auto id : share.assigned.facet_ids) {
+    const auto it = std::lower_bound(out.facet_ids.begin(), out.facet_ids.end(), id);
+    SEAM_ASSERT(it != out.facet_ids.end() && *it == id);
+    share.integrate[static_cast<std::size_t>(it - out.facet_ids.begin())] = 1;
+  }
+  // The bound flags of the nodes of the facets sent (a node of several facets more than once).
+  std::sort(bound_ids.begin(), bound_ids.end());
+  bound_ids.erase(std::unique(bound_ids.begin(), bound_ids.end()), bound_ids.end());
+  const auto bound_send = by_rank(size, bound_ids, offsets);
+  const auto bound_recv =
+      parallel::alltoallv<std::int64_t>(comm, bound_send, offsets, recv_offsets);
+  if (!bound_recv.empty()) {
+    share.bound.assign(out.node_ids.size(), 0);
+    for (const auto id : bound_recv) {
+      const auto it = std::lower_bound(out.node_ids.begin(), out.node_ids.end(), id);
+      SEAM_ASSERT(it != out.node_ids.end() && *it == id);
+      share.bound[static_cast<std::size_t>(it - out.node_ids.begin())] = 1;
+    }
+  }
+  return share;
+}
+
+/// The entry of a slave x master triplet `e` (slave row into `rows`, column into
+/// `columns`) in global node numbers, with the master node's coordinates from `coordinates`.
+RowEntry master_entry(int dim, std::span<const std::int64_t> rows,
+                      std::span<const std::int64_t> columns, const mortar::Triplet& e,
                       const std::vector<double>& coordinates) {
   RowEntry r;
-  r.row = t.slave_index[static_cast<std::size_t>(e.row)];
-  r.col = t.master_index[static_cast<std::size_t>(e.col)];
+  r.row = rows[static_cast<std::size_t>(e.row)];
+  r.col = columns[static_cast<std::size_t>(e.col)];
   r.value = e.value;
   r.kind = 1;
-  const int dim = t.slave.dim;
   for (int c = 0; c < dim; ++c) r.x[c] = coordinates[static_cast<std::size_t>(e.col) * dim + c];
   return r;
 }
@@ -278,7 +394,7 @@ void publish_projection(MPI_Comm comm, TiedInterface& t, const std::vector<int>&
     }
   for (const auto& e : P)
     if (owners[static_cast<std::size_t>(e.row)] == rank)
-      rows.push_back(master_entry(t, e, t.master.coordinates));
+      rows.push_back(master_entry(dim, t.slave_index, t.master_index, e, t.master.coordinates));
   std::sort(rows.begin(), rows.end(), entry_less);
   const auto complete = rows_from_owners(comm, t.slave_index, owners, rows);
   std::unordered_map<std::int64_t, local_index> slave_local, master_local;
@@ -338,50 +454,6 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
     if (part.node_owner[static_cast<std::size_t>(n)] == rank)
       result.owned_master_nodes.push_back(n);
 
-  // This rank's slave facets and the master facets that can meet them.
-  const auto slave_part = side_part(t.slave, part, slave_region, slave_owned);
-  const auto master_part = side_part(master_held, part, master_region, master_owned);
-  std::vector<mortar::CandidatePair> candidates;
-  InterfaceSide ghosts;
-  ghosts.dim = dim;
-  {
-    ScopedTimer timer(timers, "search");
-    // The inflation of the whole interface (0.3 of the shortest edge of both sides), as the
-    // replicated search takes it, so that the ranks' pairs together are the serial ones.
-    const double eps = parallel::global_inflation(comm, slave_part, master_part, 0.3);
-    auto g = parallel::ghost_masters(comm, slave_part, master_part, eps);
-    ghosts.coordinates = std::move(g.coords);
-    ghosts.offsets = std::move(g.offsets);
-    ghosts.nodes = std::move(g.connectivity);
-    for (std::size_t f = 0; f + 1 < ghosts.offsets.size(); ++f)
-      ghosts.types.push_back(
-          facet_type_of(dim, static_cast<std::size_t>(ghosts.offsets[f + 1] - ghosts.offsets[f])));
-    t.master_index = std::move(g.node_ids);
-    if (slave_part.n_facets() > 0 && ghosts.n_facets() > 0) {
-      search::SearchOptions options;
-      options.inflation = eps;
-      search::InterfaceSearch finder(t.slave.surface(), ghosts.surface(), options);
-      for (const auto& p : finder.find_pairs())
-        if (slave_owned[static_cast<std::size_t>(p.slave)])
-          candidates.push_back({p.slave, p.master});
-    }
-  }
-
-  ScopedTimer timer(timers, "mortar");
-  auto options = detail::mortar_options(itf, t.slave, ghosts);
-  // Curved facets anywhere on the interface raise the quadrature everywhere, as when whole.
-  MPI_Allreduce(MPI_IN_PLACE, &options.pair.cell_quadrature_degree, 1, MPI_INT, MPI_MAX, comm);
-  // An fsi coupling wins over velocity conditions: no bound slave nodes (as when whole).
-  const auto bound = type == io::InterfaceType::fsi
-                         ? std::vector<char>{}
-                         : detail::bound_slave_nodes(config, mesh, t.slave, options.multiplier);
-  auto ops = mortar::assemble_mortar_operators(t.slave.facet_set(), ghosts.facet_set(), candidates,
-                                               options, bound);
-  t.local_slave_facets = slave_part.n_facets();
-  t.local_master_ghosts = ghosts.n_facets();
-  t.local_pairs = static_cast<std::int64_t>(candidates.size());
-  t.local_integration_cells = ops.n_integration_cells;
-
   // Global node numbers of the held slave nodes.
   const auto n_slave = t.slave.mesh_nodes.size();
   t.slave_index.resize(n_slave);
@@ -393,6 +465,75 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
   const auto owner = [&](std::size_t i) {
     return part.node_owner[static_cast<std::size_t>(t.slave.mesh_nodes[i])];
   };
+  // The owner of a global node number (ranks own consecutive numbers).
+  const auto owner_of = [&](std::int64_t node) {
+    const auto it = std::upper_bound(part.node_offsets.begin(), part.node_offsets.end(), node);
+    return static_cast<int>(it - part.node_offsets.begin()) - 1;
+  };
+  // An fsi coupling wins over velocity conditions: no bound slave nodes (as when whole).
+  const auto multiplier = itf.multiplier == io::Multiplier::dual ? mortar::Multiplier::dual
+                                                                 : mortar::Multiplier::standard;
+  const auto bound = type == io::InterfaceType::fsi
+                         ? std::vector<char>{}
+                         : detail::bound_slave_nodes(config, mesh, t.slave, multiplier);
+
+  // The slave facets of this rank's cells and the master facets it holds; with the independent
+  // distribution the slave facets it integrates are cut anew over all ranks and arrive with the
+  // facets around their nodes (`integrated`: those, over their own node table `integrated_ids`).
+  // With `bulk` (or on one rank) a rank integrates the slave facets of the cells it owns.
+  const auto slave_part = side_part(t.slave, part, slave_region, slave_owned);
+  const auto master_part = side_part(master_held, part, master_region, master_owned);
+  const bool independent =
+      size > 1 && config.parallel.interface_distribution == io::InterfaceDistribution::independent;
+  SlaveShare share;
+  InterfaceSide shared_side;
+  if (independent) {
+    ScopedTimer timer(timers, "search");
+    std::vector<local_index> owned_list;
+    for (local_index f = 0; f < t.slave.n_facets(); ++f)
+      if (slave_owned[static_cast<std::size_t>(f)]) owned_list.push_back(f);
+    const auto held_part =
+        side_part(t.slave, part, slave_region,
+                  std::vector<char>(static_cast<std::size_t>(t.slave.n_facets()), 1));
+    share = share_slave_facets(comm, t.slave, held_part, slave_part, owned_list, bound);
+    shared_side = side_of(parallel::SurfacePart(share.facets));
+  }
+  const InterfaceSide& integrated = independent ? shared_side : t.slave;
+  const std::vector<std::int64_t>& integrated_ids =
+      independent ? share.facets.node_ids : t.slave_index;
+  const std::vector<char>& integrate = independent ? share.integrate : slave_owned;
+  const parallel::SurfacePart& integrated_part = independent ? share.assigned : slave_part;
+
+  std::vector<mortar::CandidatePair> candidates;
+  InterfaceSide ghosts;
+  {
+    ScopedTimer timer(timers, "search");
+    // The inflation of the whole interface (0.3 of the shortest edge of both sides), as the
+    // replicated search takes it, so that the ranks' pairs together are the serial ones.
+    const double eps = parallel::global_inflation(comm, slave_part, master_part, 0.3);
+    auto g = parallel::ghost_masters(comm, integrated_part, master_part, eps);
+    t.master_index = g.node_ids;
+    ghosts = side_of(std::move(g));
+    if (integrated_part.n_facets() > 0 && ghosts.n_facets() > 0) {
+      search::SearchOptions options;
+      options.inflation = eps;
+      search::InterfaceSearch finder(integrated.surface(), ghosts.surface(), options);
+      for (const auto& p : finder.find_pairs())
+        if (integrate[static_cast<std::size_t>(p.slave)]) candidates.push_back({p.slave, p.master});
+    }
+  }
+
+  ScopedTimer timer(timers, "mortar");
+  auto options = detail::mortar_options(itf, integrated, ghosts);
+  // Curved facets anywhere on the interface raise the quadrature everywhere, as when whole.
+  MPI_Allreduce(MPI_IN_PLACE, &options.pair.cell_quadrature_degree, 1, MPI_INT, MPI_MAX, comm);
+  auto ops =
+      mortar::assemble_mortar_operators(integrated.facet_set(), ghosts.facet_set(), candidates,
+                                        options, independent ? share.bound : bound);
+  t.local_slave_facets = integrated_part.n_facets();
+  t.local_master_ghosts = ghosts.n_facets();
+  t.local_pairs = static_cast<std::int64_t>(candidates.size());
+  t.local_integration_cells = ops.n_integration_cells;
 
   // 1. This rank's contributions to the rows of D and M, to the owners of the rows' nodes.
   std::vector<RowEntry> rows; // complete rows of the owned slave nodes, sorted
@@ -401,14 +542,15 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
     items.reserve(ops.D.size() + ops.M.size());
     for (const auto& e : ops.D) {
       RowEntry r;
-      r.row = t.slave_index[static_cast<std::size_t>(e.row)];
-      r.col = t.slave_index[static_cast<std::size_t>(e.col)];
+      r.row = integrated_ids[static_cast<std::size_t>(e.row)];
+      r.col = integrated_ids[static_cast<std::size_t>(e.col)];
       r.value = e.value;
-      items.emplace_back(owner(static_cast<std::size_t>(e.row)), r);
+      items.emplace_back(owner_of(r.row), r);
     }
-    for (const auto& e : ops.M)
-      items.emplace_back(owner(static_cast<std::size_t>(e.row)),
-                         master_entry(t, e, ghosts.coordinates));
+    for (const auto& e : ops.M) {
+      auto r = master_entry(dim, integrated_ids, t.master_index, e, ghosts.coordinates);
+      items.emplace_back(owner_of(r.row), r);
+    }
     std::vector<std::int64_t> offsets, recv_offsets;
     const auto send = by_rank(size, items, offsets);
     auto received = parallel::alltoallv<RowEntry>(comm, send, offsets, recv_offsets);
@@ -422,6 +564,19 @@ SetupResult setup_distributed(const io::Config& config, const io::Interface& itf
         rows.push_back(r);
       }
     }
+  }
+
+  if (independent) {
+    // The averaged nodal normals, the nodal transformation T and the bound flags over the held
+    // side (as with `bulk`); D and M come from the rows below, the counts from the integration.
+    auto held = mortar::assemble_mortar_operators(t.slave.facet_set(), ghosts.facet_set(), {},
+                                                  options, bound);
+    held.n_candidates = ops.n_candidates;
+    held.n_pairs_integrated = ops.n_pairs_integrated;
+    held.n_integration_cells = ops.n_integration_cells;
+    held.n_projection_failures = ops.n_projection_failures;
+    held.integrated_area = ops.integrated_area;
+    ops = std::move(held);
   }
 
   // 2. The complete rows of every held slave node, from their owners.

@@ -96,12 +96,13 @@ std::vector<mortar::Triplet> projection(const mortar::MortarOperators& ops, loca
 bool distributed_tying(const io::Interface& interface);
 
 /// Collective. The mesh-tying interfaces on a distributed mesh: the distributed_tying ones
-/// integrated by the ranks that own their slave facets' cells against the master facets ghosted
-/// to them by bounding boxes, the rows of D and M summed on the slave nodes' owners and sent to
-/// the ranks that hold the nodes. Relocates the slave nodes of `part` like the replicated
-/// set-up; with standard multipliers (D not diagonal) by one distributed solve of D on the
-/// slave nodes' owners. `type` fsi: the `fsi` interfaces (no bound slave nodes), each with its
-/// `projection`.
+/// integrated, each slave facet by its rank of an RCB cut over all ranks
+/// (`parallel.interface_distribution: independent`) or by the owner of its cell (`bulk`, or one
+/// rank), against the master facets ghosted to it by bounding boxes, the rows of D and M summed on
+/// the slave nodes' owners and sent to the ranks that hold the nodes. Relocates the slave nodes of
+/// `part` like the replicated set-up; with standard multipliers (D not diagonal) by one distributed
+/// solve of D on the slave nodes' owners. `type` fsi: the `fsi` interfaces (no bound slave nodes),
+/// each with its `projection`.
 std::vector<TiedInterface> setup_mesh_tying(const io::Config& config, mesh::DistributedMesh& part,
                                             MPI_Comm comm, PhaseTimers& timers,
                                             io::InterfaceType type = io::InterfaceType::mesh_tying);
