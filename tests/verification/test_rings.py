@@ -691,18 +691,13 @@ def test_rings_example():
         raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
 
 
-def role_changes(np=1, anew=False, per_step=False):
-    """The role changes (within a step attempt, between steps) of the `rings` interface of the
-    10-ring pile to t = 0.25 (summary.json), the roles assigned anew at every search if `anew`,
-    at each step's first search if `per_step`."""
-    names = ("SEAM_SELF_ROLES_ANEW", "SEAM_SELF_ROLES_STEP")
-    saved = {k: os.environ.pop(k, None) for k in names}
-    if anew:
-        os.environ["SEAM_SELF_ROLES_ANEW"] = "1"
-    if per_step:
-        os.environ["SEAM_SELF_ROLES_STEP"] = "1"
+def rings_roles(env, np, end):
+    """rings_case(np=np, end=end) with the variables `env` set: the rows of steps.csv and the
+    `rings` interface of summary.json."""
+    saved = {k: os.environ.get(k) for k in env}
+    os.environ.update(env)
     try:
-        _, _, work, out, _ = rings_case(np=np, end=0.25)
+        rows, _, work, out, _ = rings_case(np=np, end=end)
     finally:
         for k, v in saved.items():
             os.environ.pop(k, None)
@@ -711,6 +706,15 @@ def role_changes(np=1, anew=False, per_step=False):
     with open(os.path.join(out, "summary.json")) as f:
         itf = {i["name"]: i for i in json.load(f)["interfaces"]}["rings"]
     H.cleanup(work, out)
+    return rows, itf
+
+
+def role_changes(np=1, anew=False, per_step=False):
+    """The role changes (within a step attempt, between steps) of the `rings` interface of the
+    10-ring pile to t = 0.25 (summary.json), the roles assigned anew at every search if `anew`,
+    at each step's first search if `per_step`."""
+    _, itf = rings_roles({"SEAM_SELF_ROLES_ANEW": "1" if anew else "0",
+                          "SEAM_SELF_ROLES_STEP": "1" if per_step else "0"}, np, 0.25)
     changes = itf["role_changes_within_step"], itf["role_changes_between_steps"]
     print("   np %d, roles %s: role changes within a step %d, between steps %d"
           % (np, "anew at every search" if anew else "anew at each step" if per_step
@@ -747,19 +751,8 @@ def kept_across_steps(np=1, per_step=False):
     total_energy - external_work in a step, the external work at the end, and the role changes
     of the `rings` interface (summary.json); the roles assigned anew at each step if
     `per_step`."""
-    saved = {k: os.environ.get(k) for k in ("SEAM_KEEP_CONTACT_GAIN", "SEAM_SELF_ROLES_STEP")}
-    os.environ["SEAM_KEEP_CONTACT_GAIN"] = "1"
-    os.environ["SEAM_SELF_ROLES_STEP"] = "1" if per_step else "0"
-    try:
-        rows, _, work, out, _ = rings_case(np=np)
-    finally:
-        for k, v in saved.items():
-            os.environ.pop(k, None)
-            if v is not None:
-                os.environ[k] = v
-    with open(os.path.join(out, "summary.json")) as f:
-        itf = {i["name"]: i for i in json.load(f)["interfaces"]}["rings"]
-    H.cleanup(work, out)
+    rows, itf = rings_roles({"SEAM_KEEP_CONTACT_GAIN": "1",
+                             "SEAM_SELF_ROLES_STEP": "1" if per_step else "0"}, np, 0.3725)
     balance = [r["total_energy"] - r["external_work"] for r in rows]
     rise = max(b - a for a, b in zip([0.0] + balance, balance))
     exchanged = itf.get("role_changes_of_persisting_pairs", -1)
