@@ -659,9 +659,10 @@ def check_rings(rows, planes, out, rings, k, width):
         raise AssertionError("momentum balance residual %.3e of m g dt" % worst)
     if above > 1e-10 * energy[-1][2]:
         raise AssertionError("the energy exceeds the work of gravity by %.3e" % above)
-    # The steps to t = 0.36, 0.3625 and 0.37 start with slave nodes beyond the other ring's
-    # surface; without the contact velocity update they gain 4.4, 4.0 and 5.1
-    # (docs/contact_dynamics.md §5).
+    # With the roles assigned anew at each step the steps to t = 0.36, 0.3625 and 0.37 started
+    # with slave nodes beyond the other ring's surface and, without the contact velocity update,
+    # gained 4.4, 4.0 and 5.1 (docs/contact_dynamics.md §5); with the roles kept across steps
+    # they do not (test_roles_kept_across_steps).
     if max(rises) > 1e-9 * energy[-1][2]:
         raise AssertionError("a step raised the energy above the work of gravity by %.3e"
                              % max(rises))
