@@ -538,7 +538,7 @@ def test_ring_on_obstacles_3d():
 G, RHO, R_OUT, R_IN, NC = 10.0, 1.0, 1.0, 0.8, 6
 
 
-def rings_case(np=1, rings=10, k=4, end=0.3725):
+def rings_case(np=1, rings=10, k=4, end=0.3725, checkpoint_every=None):
     """examples/rings with N rings in rows of k, run to `end` (the lowest row lands at 0.14,
     the walls are reached at about 0.37). Returns the rows of steps.csv, the plane forces per
     step, the folders and the right wall's position."""
@@ -546,7 +546,8 @@ def rings_case(np=1, rings=10, k=4, end=0.3725):
     work, yaml = H.copy_example("rings", "rings.yaml", [
         ("point: [22.2, 0]", "point: [%r, 0]" % width),
         ("end: 1.5, dt: 0.0025", "end: %r, dt: 0.0025" % end),
-        ("every: 20", "every: 1000")])
+        ("every: 20", "every: 1000" + ("\n  checkpoint_every: %d" % checkpoint_every
+                                       if checkpoint_every else ""))])
     geo = os.path.join(work, "rings.geo")
     with open(geo) as f:
         text = f.read()
@@ -793,8 +794,26 @@ def test_roles_kept_across_steps():
                              % (exchanged, rise))
 
 
+def test_roles_restart():
+    """The kept roles (and the pairs they were kept with) go into checkpoints: the 10-ring pile
+    restarted from its checkpoint at step 100 (t = 0.25) repeats the uninterrupted run's steps
+    101 to 149 exactly (energy, momenta, Newton iterations; without the kept pairs in the
+    checkpoint the first restarted step took 4 iterations instead of 3 and the energy differed
+    by 1.9e-2 of it, measured with the contact velocity update off)."""
+    rows, _, work, out, _ = rings_case(checkpoint_every=100)
+    restart = H.solve(os.path.join(work, "rings.yaml"),
+                      extra=["--restart", os.path.join(out, "checkpoint_00100")])
+    again = H.read_csv(os.path.join(restart, "steps.csv"))
+    H.cleanup(work, out, restart)
+    columns = ("total_energy", "momentum_x", "momentum_y", "newton_iterations")
+    worst = max(abs(a[c] - b[c]) for a, b in zip(rows[100:], again) for c in columns)
+    print("   restart at step 100: %d steps, largest difference %.2e" % (len(again), worst))
+    if len(again) != len(rows) - 100 or worst != 0.0:
+        raise AssertionError("the restart differs from the uninterrupted run by %.3e" % worst)
+
+
 if __name__ == "__main__":
     H.main([test_free_bodies_2d, test_free_bodies_3d, test_start_inside_energy_momentum,
             test_ring_on_obstacles_2d,
             test_ring_on_obstacles_3d, test_rings_example, test_roles_fixed_within_a_step,
-            test_roles_kept_across_steps])
+            test_roles_kept_across_steps, test_roles_restart])

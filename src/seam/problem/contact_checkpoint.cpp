@@ -143,10 +143,11 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
     out.put_part(p + "cut.facets", evaluated);
     // Self contact: the roles kept into the next step, of the facets this rank hands in.
     if (s.search && s.search->self()) {
-      std::vector<std::int64_t> facets, roles;
-      s.search->accepted_roles(facets, roles, true);
+      std::vector<std::int64_t> facets, roles, pairs;
+      s.search->accepted_roles(facets, roles, pairs, true);
       out.put_part(p + "roles.facets", facets);
       out.put_part(p + "roles.values", roles);
+      out.put_part(p + "roles.pairs", pairs);
     }
     if (!s.friction) continue;
     out.put(p + "plane_old", std::span<const double>(s.plane_old));
@@ -302,7 +303,7 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
     // Self contact: the roles kept into the next step (none in a checkpoint written before
     // seam kept them: the first step assigns them anew). Collective.
     if (s.search && s.search->self()) {
-      std::vector<std::int64_t> facets, roles;
+      std::vector<std::int64_t> facets, roles, pairs;
       bool found = false;
       checkpoints.read_parts([&](const RecordReader& part) {
         if (!part.has(p + "roles.facets")) return;
@@ -312,10 +313,13 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
         for (const auto v : r)
           if (v != 0 && v != 1)
             part.fail("record '" + p + "roles.values' holds a value not 0 or 1");
+        const auto q = part.integers(p + "roles.pairs");
+        if (q.size() % 2 != 0) part.fail("record '" + p + "roles.pairs' has an odd length");
         facets.insert(facets.end(), f.begin(), f.end());
         roles.insert(roles.end(), r.begin(), r.end());
+        pairs.insert(pairs.end(), q.begin(), q.end());
       });
-      s.search->restore_roles(facets, roles);
+      s.search->restore_roles(facets, roles, pairs);
       if (comm.max(found ? 1.0 : 0.0) == 0.0)
         notes.push_back(which + ": the checkpoint has no self-contact roles; the first step "
                                 "assigns them anew");

@@ -246,20 +246,31 @@ void ContactSearch::accept_step() {
 }
 
 void ContactSearch::accepted_roles(std::vector<std::int64_t>& ids, std::vector<std::int64_t>& roles,
-                                   bool held) const {
+                                   std::vector<std::int64_t>& pairs, bool held) const {
+  const auto mine = [&](std::int64_t id) {
+    return !held || std::binary_search(held_ids_.begin(), held_ids_.end(), id);
+  };
   ids.clear();
   roles.clear();
+  pairs.clear();
   for (const auto& [id, role] : roles_accepted_) {
-    if (held && !std::binary_search(held_ids_.begin(), held_ids_.end(), id)) continue;
+    if (!mine(id)) continue;
     ids.push_back(id);
     roles.push_back(static_cast<std::int64_t>(role));
+  }
+  for (const auto& p : pairs_accepted_) {
+    if (!mine(std::min(p.slave, p.master))) continue;
+    pairs.push_back(p.slave);
+    pairs.push_back(p.master);
   }
 }
 
 void ContactSearch::restore_roles(std::span<const std::int64_t> ids,
-                                  std::span<const std::int64_t> roles) {
-  SEAM_CHECK(ids.size() == roles.size(), InternalError, "contact search: ", ids.size(),
-             " facets for ", roles.size(), " roles");
+                                  std::span<const std::int64_t> roles,
+                                  std::span<const std::int64_t> pairs) {
+  SEAM_CHECK(ids.size() == roles.size() && pairs.size() % 2 == 0, InternalError,
+             "contact search: ", ids.size(), " facets for ", roles.size(), " roles, ", pairs.size(),
+             " pair ids");
   std::vector<FacetIdPair> mine(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) mine[i] = {ids[i], roles[i]};
   std::vector<std::int64_t> offsets;
@@ -267,6 +278,13 @@ void ContactSearch::restore_roles(std::span<const std::int64_t> ids,
   roles_accepted_.clear();
   for (const auto& [id, role] : all)
     roles_accepted_[id] = role == 0 ? search::Role::slave : search::Role::master;
+  mine.resize(pairs.size() / 2);
+  for (std::size_t i = 0; i < mine.size(); ++i) mine[i] = {pairs[2 * i], pairs[2 * i + 1]};
+  pairs_accepted_ = parallel::allgatherv<FacetIdPair>(comm_, mine, offsets);
+  std::sort(pairs_accepted_.begin(), pairs_accepted_.end(),
+            [](const FacetIdPair& a, const FacetIdPair& b) {
+              return by_ids(unordered(a), unordered(b));
+            });
   roles_.clear();
 }
 

@@ -159,13 +159,15 @@ public:
   /// facets are dropped.
   void accept_step();
   /// Self contact: the roles accept_step() kept, by facet id (sorted), as 0 (slave) and 1
-  /// (master); the same on every rank. For checkpoints: `held` gives those of the facets this
-  /// rank hands in (each facet on one rank).
+  /// (master), and the pairs they were kept with (slave, master facet id, flat); the same on
+  /// every rank. For checkpoints: `held` gives those of the facets this rank hands in (each
+  /// facet on one rank; a pair with its lower facet).
   void accepted_roles(std::vector<std::int64_t>& ids, std::vector<std::int64_t>& roles,
-                      bool held) const;
-  /// Self contact: the kept roles of a checkpoint (any subset of the facets on each rank;
+                      std::vector<std::int64_t>& pairs, bool held) const;
+  /// Self contact: the kept roles and pairs of a checkpoint (any part on each rank;
   /// collective: the union over the ranks is kept on every rank).
-  void restore_roles(std::span<const std::int64_t> ids, std::span<const std::int64_t> roles);
+  void restore_roles(std::span<const std::int64_t> ids, std::span<const std::int64_t> roles,
+                     std::span<const std::int64_t> pairs);
   /// Self contact: the role changes of the surface's facets so far (the same on every rank).
   /// A facet's role at a search is read from the oriented pairs: slave (master) if it is the
   /// slave (master) of each of its pairs; a facet without a pair, or slave of one pair and
