@@ -10,7 +10,8 @@
 // slave nodes of the current search; every other node of the surface has D_jj = 0 and stays
 // inactive. In a run (problem/contact_search.hpp) the roles are kept within a time step: those of
 // the step's first search hold through its Newton iterations, and a facet that meets anew later
-// in the step takes a role once; roles change only between steps.
+// in the step takes a role once; and from step to step: a facet of a pair that persists from the
+// last converged step keeps its role.
 #include "seam/io/config.hpp"
 #include "seam/mesh/mesh.hpp"
 #include "seam/meshtying/interface_side.hpp"

@@ -141,6 +141,14 @@ void ContactConstraint::write_checkpoint(RecordWriter& out) const {
         evaluated.push_back(s.slave_ids.facets[static_cast<std::size_t>(f)]);
     std::sort(evaluated.begin(), evaluated.end());
     out.put_part(p + "cut.facets", evaluated);
+    // Self contact: the roles kept into the next step, of the facets this rank hands in.
+    if (s.search && s.search->self()) {
+      std::vector<std::int64_t> facets, roles, pairs;
+      s.search->accepted_roles(facets, roles, pairs, true);
+      out.put_part(p + "roles.facets", facets);
+      out.put_part(p + "roles.values", roles);
+      out.put_part(p + "roles.pairs", pairs);
+    }
     if (!s.friction) continue;
     out.put(p + "plane_old", std::span<const double>(s.plane_old));
     out.put_real(p + "dissipation", s.dissipation);
@@ -292,6 +300,30 @@ std::vector<std::string> ContactConstraint::read_checkpoint(const Checkpoints& c
     // below with the slave nodes of M^n.
     const auto cut = read_cut(checkpoints, s, k, notes);
     if (cut && !(s.friction && s.slave_region)) evaluate_facets(s, *cut, {});
+    // Self contact: the roles kept into the next step (none in a checkpoint written before
+    // seam kept them: the first step assigns them anew). Collective.
+    if (s.search && s.search->self()) {
+      std::vector<std::int64_t> facets, roles, pairs;
+      bool found = false;
+      checkpoints.read_parts([&](const RecordReader& part) {
+        if (!part.has(p + "roles.facets")) return;
+        found = true;
+        const auto f = part.integers(p + "roles.facets");
+        const auto r = part.integers(p + "roles.values", f.size());
+        for (const auto v : r)
+          if (v != 0 && v != 1)
+            part.fail("record '" + p + "roles.values' holds a value not 0 or 1");
+        const auto q = part.integers(p + "roles.pairs");
+        if (q.size() % 2 != 0) part.fail("record '" + p + "roles.pairs' has an odd length");
+        facets.insert(facets.end(), f.begin(), f.end());
+        roles.insert(roles.end(), r.begin(), r.end());
+        pairs.insert(pairs.end(), q.begin(), q.end());
+      });
+      s.search->restore_roles(facets, roles, pairs);
+      if (comm.max(found ? 1.0 : 0.0) == 0.0)
+        notes.push_back(which + ": the checkpoint has no self-contact roles; the first step "
+                                "assigns them anew");
+    }
     if (!s.friction) continue;
     for (std::size_t j = 0; j < n; ++j) s.status[j] = static_cast<char>(flags[j * 3 + 1]);
     s.status_previous = s.status;

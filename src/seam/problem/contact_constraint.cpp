@@ -616,7 +616,8 @@ int ContactConstraint::evaluate(const la::Vector& u, double t, bool first, Phase
     if (first) {
       s.pair_history.clear();
       s.pairs_held = false;
-      // Self contact: the roles of this search are kept through the step's iterations.
+      // Self contact: the roles of the last converged step's pairs and of this search are kept
+      // through the step's iterations.
       if (s.search) s.search->start_step();
       s.itf.forget_prechecked_pairs();
     } else if (retrial && !s.pairs_held && !s.pair_history.empty()) {
@@ -1851,6 +1852,8 @@ void ContactConstraint::balance() {
 
 void ContactConstraint::save() {
   for (auto& s : sides_) {
+    // Self contact: the roles of this step's pairs carry into the next step.
+    if (s.search) s.search->accept_step();
     s.lambda_saved = s.lambda;
     s.active_accepted = s.active;
     if (s.friction) {
@@ -2174,6 +2177,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     if (s.search && s.search->self()) {
       rep.role_changes_within_step = s.search->role_changes().within;
       rep.role_changes_between_steps = s.search->role_changes().between;
+      rep.role_changes_persisting = s.search->role_changes().persisting;
     }
     rep.local_pairs = s.part.n_pairs;
     rep.local_integration_cells = s.part.n_cells;

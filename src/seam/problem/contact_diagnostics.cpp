@@ -81,15 +81,25 @@ std::vector<std::string> ContactConstraint::trace() const {
       active += s.active[j] != 0;
       rows += s.discrete_gradient && s.em_row[j] != 0;
     }
-    char line[320];
+    char roles[200] = "";
+    if (s.search && s.search->self()) {
+      const auto c = s.search->role_changes();
+      std::snprintf(roles, sizeof roles,
+                    ", role changes so far: between steps %lld (pairs found again exchanged %lld), "
+                    "within %lld; pairs of facets of the same role %lld",
+                    static_cast<long long>(c.between), static_cast<long long>(c.persisting),
+                    static_cast<long long>(c.within),
+                    static_cast<long long>(s.search->same_role_pairs()));
+    }
+    char line[480];
     std::snprintf(line, sizeof line,
                   "%s: pairs %zu (hash %016llx%s), gap blocks %zu (hash %016llx; pairs "
                   "dropped: pre-check %ld, no overlap %ld, of which unconverged projections "
-                  "%ld), active %d, gap rows %d",
+                  "%ld), active %d, gap rows %d%s",
                   s.itf.name().c_str(), pairs, static_cast<unsigned long long>(hash),
                   s.pairs_held ? ", held" : "", s.em_blocks,
                   static_cast<unsigned long long>(s.em_blocks_hash), s.em_rejections[0],
-                  s.em_rejections[1], s.em_rejections[2], active, rows);
+                  s.em_rejections[1], s.em_rejections[2], active, rows, roles);
     out.emplace_back(line);
   }
   return out;

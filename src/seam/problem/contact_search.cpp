@@ -83,6 +83,16 @@ bool ContactSearch::roles_kept() {
   return value == "0";
 }
 
+bool ContactSearch::roles_kept_across_steps() {
+  const char* text = std::getenv("SEAM_SELF_ROLES_STEP");
+  if (text == nullptr || *text == '\0') return true;
+  const std::string value = text;
+  SEAM_CHECK(value == "0" || value == "1", InputError, "SEAM_SELF_ROLES_STEP='", value,
+             "': expected 0 or 1 (1: self-contact roles assigned anew at each step's first "
+             "search)");
+  return value == "0";
+}
+
 ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
                              std::vector<local_index> held, SideIds slave, SideIds master,
                              bool master_in_part)
@@ -98,6 +108,7 @@ ContactSearch::ContactSearch(MPI_Comm comm, contact::ContactInterface& itf,
   if (itf.self_contact()) {
     ghosts_.emplace(comm, itf.search_inflation(), skin_);
     keep_roles_ = roles_kept();
+    keep_across_ = keep_roles_ && roles_kept_across_steps();
     // The facets handed in by id: a surface held in part changes with each distribution.
     for (const auto f : held_) held_ids_.push_back(slave_ids_.facets[static_cast<std::size_t>(f)]);
   } else {
@@ -194,13 +205,102 @@ void ContactSearch::hand_in_part(contact::ContactInterface& itf,
 
 void ContactSearch::start_step() {
   if (!ghosts_) return;
-  roles_.clear();
+  // A new attempt starts from the roles of the last converged step, as the first did.
+  if (keep_across_)
+    roles_ = roles_accepted_;
+  else
+    roles_.clear();
   roles_started_ = keep_roles_;
+  first_find_ = true;
   for (const auto& [id, role] : role_in_step_) role_before_[id] = role;
   role_in_step_.clear();
 }
 
+namespace {
+
+FacetIdPair unordered(const FacetIdPair& p) {
+  return {std::min(p.slave, p.master), std::max(p.slave, p.master)};
+}
+
+bool by_ids(const FacetIdPair& a, const FacetIdPair& b) {
+  return a.slave != b.slave ? a.slave < b.slave : a.master < b.master;
+}
+
+} // namespace
+
+void ContactSearch::accept_step() {
+  if (!ghosts_) return;
+  roles_accepted_.clear();
+  pairs_accepted_.clear();
+  for (const auto& p : pair_ids_) {
+    for (const auto id : {p.slave, p.master}) {
+      const auto it = roles_.find(id);
+      if (it != roles_.end()) roles_accepted_[id] = it->second;
+    }
+    pairs_accepted_.push_back(p);
+  }
+  std::sort(pairs_accepted_.begin(), pairs_accepted_.end(),
+            [](const FacetIdPair& a, const FacetIdPair& b) {
+              return by_ids(unordered(a), unordered(b));
+            });
+}
+
+void ContactSearch::accepted_roles(std::vector<std::int64_t>& ids, std::vector<std::int64_t>& roles,
+                                   std::vector<std::int64_t>& pairs, bool held) const {
+  const auto mine = [&](std::int64_t id) {
+    return !held || std::binary_search(held_ids_.begin(), held_ids_.end(), id);
+  };
+  ids.clear();
+  roles.clear();
+  pairs.clear();
+  for (const auto& [id, role] : roles_accepted_) {
+    if (!mine(id)) continue;
+    ids.push_back(id);
+    roles.push_back(static_cast<std::int64_t>(role));
+  }
+  for (const auto& p : pairs_accepted_) {
+    if (!mine(std::min(p.slave, p.master))) continue;
+    pairs.push_back(p.slave);
+    pairs.push_back(p.master);
+  }
+}
+
+void ContactSearch::restore_roles(std::span<const std::int64_t> ids,
+                                  std::span<const std::int64_t> roles,
+                                  std::span<const std::int64_t> pairs) {
+  SEAM_CHECK(ids.size() == roles.size() && pairs.size() % 2 == 0, InternalError,
+             "contact search: ", ids.size(), " facets for ", roles.size(), " roles, ", pairs.size(),
+             " pair ids");
+  std::vector<FacetIdPair> mine(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) mine[i] = {ids[i], roles[i]};
+  std::vector<std::int64_t> offsets;
+  const auto all = parallel::allgatherv<FacetIdPair>(comm_, mine, offsets);
+  roles_accepted_.clear();
+  for (const auto& [id, role] : all)
+    roles_accepted_[id] = role == 0 ? search::Role::slave : search::Role::master;
+  mine.resize(pairs.size() / 2);
+  for (std::size_t i = 0; i < mine.size(); ++i) mine[i] = {pairs[2 * i], pairs[2 * i + 1]};
+  pairs_accepted_ = parallel::allgatherv<FacetIdPair>(comm_, mine, offsets);
+  std::sort(pairs_accepted_.begin(), pairs_accepted_.end(),
+            [](const FacetIdPair& a, const FacetIdPair& b) {
+              return by_ids(unordered(a), unordered(b));
+            });
+  roles_.clear();
+}
+
 void ContactSearch::count_role_changes() {
+  // At the first search of a step attempt: the pairs of the last converged step that persist
+  // with the other facet as slave.
+  if (first_find_)
+    for (const auto& p : pair_ids_) {
+      const auto it = std::lower_bound(pairs_accepted_.begin(), pairs_accepted_.end(), p,
+                                       [](const FacetIdPair& a, const FacetIdPair& b) {
+                                         return by_ids(unordered(a), unordered(b));
+                                       });
+      role_changes_.persisting +=
+          it != pairs_accepted_.end() && unordered(*it) == unordered(p) && it->slave != p.slave;
+    }
+  first_find_ = false;
   // Per facet: bit 0 slave of a pair, bit 1 master of a pair.
   std::map<std::int64_t, std::uint8_t> seen;
   for (const auto& p : pair_ids_) {
@@ -318,6 +418,25 @@ void ContactSearch::find_self(contact::ContactInterface& itf, std::span<const do
   for (std::size_t i = 0; i < all.size(); ++i)
     with[i] = {
         {number(all[i].slave), number(all[i].master)}, all[i].slave_axis, all[i].master_axis};
+  // The first search of a step attempt keeps the roles of the last converged step only for
+  // the facets of pairs that persist: a facet whose pairs are all new takes a role anew.
+  if (first_find_ && keep_across_) {
+    std::vector<std::int64_t> persisting;
+    for (const auto& p : all) {
+      const FacetIdPair key = unordered({p.slave, p.master});
+      const auto it = std::lower_bound(
+          pairs_accepted_.begin(), pairs_accepted_.end(), key,
+          [](const FacetIdPair& a, const FacetIdPair& b) { return by_ids(unordered(a), b); });
+      if (it != pairs_accepted_.end() && unordered(*it) == key) {
+        persisting.push_back(p.slave);
+        persisting.push_back(p.master);
+      }
+    }
+    std::sort(persisting.begin(), persisting.end());
+    std::erase_if(roles_, [&](const auto& entry) {
+      return !std::binary_search(persisting.begin(), persisting.end(), entry.first);
+    });
+  }
   std::vector<search::Role> roles;
   if (roles_started_) {
     roles.resize(ids.size(), search::Role::none);
@@ -327,6 +446,10 @@ void ContactSearch::find_self(contact::ContactInterface& itf, std::span<const do
     }
   }
   contact::orient_pairs(static_cast<local_index>(ids.size()), with, pairs_, roles);
+  same_roles_ = 0;
+  for (const auto& p : pairs_)
+    same_roles_ += !roles.empty() && roles[static_cast<std::size_t>(p.slave)] ==
+                                         roles[static_cast<std::size_t>(p.master)];
   for (std::size_t f = 0; f < roles.size(); ++f)
     if (roles[f] != search::Role::none) roles_[ids[f]] = roles[f];
   pair_ids_.resize(pairs_.size());

@@ -14,8 +14,11 @@
 // of its lower facet, so that every pair is found once. The facing pairs of all ranks are
 // gathered by facet id (the contact graph, O(pairs)) and every rank assigns the roles as one
 // whole search does (contact::orient_pairs over the facets of the pairs, numbered in the order
-// of their ids). The roles of a step's first search are kept through the step (start_step), so
-// that a facet's role changes only between steps. The surface is held in part (slave_held_in_part):
+// of their ids). The roles are kept through a step (start_step), so that a facet's role changes
+// only between steps, and from step to step (accept_step): a facet paired at the last converged
+// step keeps its role in the next, so that a master node never becomes a slave node while its
+// contact persists; a facet takes a role anew only when it meets after a step without a pair.
+// The surface is held in part (slave_held_in_part):
 // the ghosts' nodes are then mesh or outside nodes of the rank (as for a master side held in part).
 //
 // The ghosting is reused between searches (parallel::VerletGhosts): boxes widened by a skin of
@@ -93,6 +96,12 @@ public:
   /// assigned anew at every search, as before the roles were kept). InputError for a value
   /// other than 0 or 1.
   static bool roles_kept();
+  /// Whether self contact keeps the roles of the facets paired at the last converged step
+  /// (accept_step) into the next step: yes, unless SEAM_SELF_ROLES_STEP=1 is in the
+  /// environment (a diagnostic: the roles are then assigned anew at each step's first search
+  /// and kept within the step only, as before the roles were kept across steps). InputError
+  /// for a value other than 0 or 1.
+  static bool roles_kept_across_steps();
 
   /// `held`: the facets (side-local: master facets of two bodies, surface facets of self
   /// contact) this rank hands in to the ghosting, each on one rank (e.g. those of the cells it
@@ -138,20 +147,38 @@ public:
   std::int64_t n_searches() const;
   /// The absolute skin of the ghosting.
   double skin() const { return skin_; }
-  /// Self contact: a new time step. The roles the step's first find() assigns are kept through
-  /// the step's later finds (its Newton iterations): a facet that has been slave or master in
-  /// the step keeps that role, one that meets anew takes a role once (search::assign_roles with
-  /// roles kept). Without a call the roles are assigned anew at every find().
+  /// Self contact: a new time step (or a new attempt of it). The step starts from the roles
+  /// accept_step() kept (none unless roles_kept_across_steps()); the roles the step's finds
+  /// assign are kept through its later finds (its Newton iterations): a facet that has been
+  /// slave or master in the step keeps that role, one that meets anew takes a role once
+  /// (search::assign_roles with roles kept). Without a call the roles are assigned anew at
+  /// every find().
   void start_step();
+  /// Self contact: the step is converged. The roles of the facets of the last find()'s pairs
+  /// are kept for the next steps (a facet's colour in search::assign_roles), those of the other
+  /// facets are dropped.
+  void accept_step();
+  /// Self contact: the roles accept_step() kept, by facet id (sorted), as 0 (slave) and 1
+  /// (master), and the pairs they were kept with (slave, master facet id, flat); the same on
+  /// every rank. For checkpoints: `held` gives those of the facets this rank hands in (each
+  /// facet on one rank; a pair with its lower facet).
+  void accepted_roles(std::vector<std::int64_t>& ids, std::vector<std::int64_t>& roles,
+                      std::vector<std::int64_t>& pairs, bool held) const;
+  /// Self contact: the kept roles and pairs of a checkpoint (any part on each rank;
+  /// collective: the union over the ranks is kept on every rank).
+  void restore_roles(std::span<const std::int64_t> ids, std::span<const std::int64_t> roles,
+                     std::span<const std::int64_t> pairs);
   /// Self contact: the role changes of the surface's facets so far (the same on every rank).
   /// A facet's role at a search is read from the oriented pairs: slave (master) if it is the
   /// slave (master) of each of its pairs; a facet without a pair, or slave of one pair and
   /// master of another (an odd cycle), has none then. `within`: changes against its role at the
   /// latest earlier search of the same step attempt (between two start_step()); `between`: at
   /// the first search of a step attempt that gives it a role, changes against the role it had
-  /// at the last search that gave it one before the attempt.
+  /// at the last search that gave it one before the attempt. `persisting`: at the first search
+  /// of a step attempt, the pairs of the last converged step's last search that it finds again
+  /// with the slave and master facets exchanged.
   struct RoleChanges {
-    std::int64_t within = 0, between = 0;
+    std::int64_t within = 0, between = 0, persisting = 0;
   };
   RoleChanges role_changes() const { return role_changes_; }
   /// Self contact: the oriented pairs of all ranks found by the last find() (the same on every
@@ -164,6 +191,9 @@ public:
   /// evaluate).
   void to_interface(std::span<const FacetIdPair> pairs, std::vector<mortar::CandidatePair>& out);
   bool self() const { return ghosts_.has_value(); }
+  /// Self contact: the pairs of the last find() whose facets have the same role (odd cycles,
+  /// or two facets that kept the same role from earlier searches): oriented lower id slave.
+  std::int64_t same_role_pairs() const { return same_roles_; }
   /// Periods of the search's pair set that the pair cycling guard recognizes (2 .. 8).
   static constexpr std::size_t max_pair_period = 8;
 
@@ -201,7 +231,14 @@ private:
   /// met in the step), the same on every rank.
   std::map<std::int64_t, search::Role> roles_;
   bool keep_roles_ = true;     ///< roles_kept()
+  bool keep_across_ = true;    ///< roles_kept_across_steps()
   bool roles_started_ = false; ///< start_step() was called
+  /// Self contact: the roles of the facets paired at the last converged step (accept_step),
+  /// and those pairs (oriented), sorted by (lower, higher) facet id.
+  std::map<std::int64_t, search::Role> roles_accepted_;
+  std::vector<FacetIdPair> pairs_accepted_;
+  bool first_find_ = false;     ///< the next find() is the first of a step attempt
+  std::int64_t same_roles_ = 0; ///< same_role_pairs()
   /// Self contact, by facet id: its role at the latest search of the current step attempt
   /// that gave it one, and at the last such search before the attempt (none if none).
   std::map<std::int64_t, search::Role> role_in_step_, role_before_;

@@ -727,6 +727,7 @@ void Output::finish(bool converged, int n_steps) {
     if (c.surface_facets > 0) { // a surface: interface (docs/input.md)
       e["role_changes_within_step"] = c.role_changes_within_step;
       e["role_changes_between_steps"] = c.role_changes_between_steps;
+      e["role_changes_of_persisting_pairs"] = c.role_changes_persisting;
     }
     itfs.push_back(std::move(e));
   }

@@ -125,8 +125,10 @@ struct ContactReport {
   /// nodes' owners and those it received, since the start of the run (or the restart).
   std::int64_t local_em_entries_sent = 0, local_em_entries_received = 0;
   /// Self contact: the facets' role changes so far within a step attempt and between steps
-  /// (ContactSearch::role_changes; the same on every rank).
+  /// (ContactSearch::role_changes; the same on every rank), and the pairs of a converged step
+  /// found again at the next step's first search with the roles exchanged.
   std::int64_t role_changes_within_step = 0, role_changes_between_steps = 0;
+  std::int64_t role_changes_persisting = 0;
 };
 
 /// The rows of all ranks on rank 0 in their order (empty on the other ranks). Collective.
