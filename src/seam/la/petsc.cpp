@@ -1089,6 +1089,48 @@ void LinearSolver::set_fsi_fields(std::span<const PetscInt> structure,
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 }
 
+void LinearSolver::set_saddle_point_fields(PetscInt n_first, PetscInt n_second, const Matrix& K) {
+  if (kind_ != SolverKind::iterative || saddle_fields_) return;
+  saddle_fields_ = true;
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PC pc = fieldsplit_pc(ksp_, comm);
+  PetscInt first = 0, mine = n_first + n_second;
+  MPI_Exscan(&mine, &first, 1, MPIU_INT, MPI_SUM, comm);
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0) first = 0;
+  PetscInt bs = 1;
+  check(MatGetBlockSize(K.get(), &bs), "MatGetBlockSize");
+  MatNullSpace nsp = nullptr;
+  check(MatGetNearNullSpace(K.get(), &nsp), "MatGetNearNullSpace");
+  const PetscInt starts[2] = {first, first + n_first}, sizes[2] = {n_first, n_second};
+  const char* names[2] = {"u", "lm"};
+  for (int k = 0; k < 2; ++k) {
+    IS is = nullptr;
+    check(ISCreateStride(comm, sizes[k], starts[k], 1, &is), "ISCreateStride");
+    if (k == 0) {
+      // The displacement block keeps the nodes' block size and rigid-body modes for GAMG.
+      if (n_first % bs == 0) check(ISSetBlockSize(is, bs), "ISSetBlockSize");
+      if (nsp)
+        check(PetscObjectCompose(reinterpret_cast<PetscObject>(is), "nearnullspace",
+                                 reinterpret_cast<PetscObject>(nsp)),
+              "PetscObjectCompose");
+    }
+    check(PCFieldSplitSetIS(pc, names[k], is), "PCFieldSplitSetIS");
+    check(ISDestroy(&is), "ISDestroy");
+  }
+  check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
+  check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER),
+        "PCFieldSplitSetSchurFactType");
+  check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr),
+        "PCFieldSplitSetSchurPre");
+  for (const char* name : {"-fieldsplit_u_ksp_type", "-fieldsplit_lm_ksp_type"})
+    default_option(name, "preonly");
+  default_option("-fieldsplit_u_pc_type", "gamg");
+  default_option("-fieldsplit_lm_pc_type", "bjacobi");
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+}
+
 void LinearSolver::set_relative_tolerance(double rtol) {
   if (kind_ == SolverKind::direct) {
     reuse_rtol_ = std::max(rtol, factor_reuse_rtol);

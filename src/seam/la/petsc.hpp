@@ -298,6 +298,17 @@ public:
   void set_fsi_fields(std::span<const PetscInt> structure, std::span<const PetscInt> fluid,
                       std::span<const PetscInt> mesh, std::span<const double> modes,
                       VelocityBlock velocity);
+  /// A saddle point [K B^T; C E] assembled as one AIJ matrix whose rows per rank are the
+  /// `n_first` owned rows of K, then the `n_second` owned multiplier rows, for the iterative
+  /// kind: FGMRES preconditioned by PCFIELDSPLIT's lower-triangular Schur factorization (fields
+  /// u | lm): GAMG on K with the near-null space and block size of `K` (the displacement
+  /// block, whose rows are those of the u field), on the Schur block the assembled
+  /// approximation S = E - C diag(K)^-1 B^T (selfp) with block Jacobi ILU(0). The first call
+  /// sets the fields, later calls (the same layout) nothing; the direct kind ignores it.
+  /// Options with the prefixes -fieldsplit_u_, -fieldsplit_lm_ and -pc_fieldsplit_ override
+  /// the defaults. Collective.
+  void set_saddle_point_fields(PetscInt n_first, PetscInt n_second, const Matrix& K);
+  SolverKind kind() const { return kind_; }
   /// The relative tolerance of the next solves, unless the command line set -ksp_rtol. The
   /// direct kind: that of the next GMRES over a kept factorization (allow_factor_reuse), not
   /// below factor_reuse_rtol.
@@ -354,6 +365,7 @@ private:
   SolverKind kind_;
   SchurApply schur_apply_;
   bool schur_installed_ = false; ///< the PCSHELL sits on the Schur block
+  bool saddle_fields_ = false;   ///< set_saddle_point_fields has set the fields
   int iterations_ = 0;
   bool keep_ = false;
   bool stale_ = true;           ///< the next solve builds the preconditioner

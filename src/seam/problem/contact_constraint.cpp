@@ -1401,9 +1401,34 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     for (PetscInt i = 0; i < n_disp; ++i) xl[i] = gl[i];
   }
   A.zero_rows_columns(rows, g ? &gx : nullptr, g ? &b : nullptr);
+  // The unknowns are the new multipliers, whose rows of b hold the whole interface force: a
+  // Krylov solve solves for their change from the present ones instead, so that its relative
+  // tolerance applies to the Newton residual (the inexact-Newton forcing), not to b.
+  const bool incremental = solver.kind() == la::SolverKind::iterative;
+  la::Vector x0(mpi, n_disp + n_lm_);
+  if (incremental) {
+    {
+      la::Vector::LocalView x0w(x0, true);
+      auto x0l = x0w.values();
+      PetscInt at = n_disp;
+      for (const auto& s : sides_) {
+        const auto& nodes = s.itf.slave().mesh_nodes;
+        const std::size_t per_node = s.friction ? static_cast<std::size_t>(dim) : 1;
+        const bool known = s.lambda.size() == nodes.size() * per_node;
+        for (std::size_t j = 0; j < nodes.size(); ++j)
+          if (owns(nodes[j]))
+            for (std::size_t c = 0; c < per_node; ++c)
+              x0l[at++] = known ? s.lambda[j * per_node + c] : 0.0;
+      }
+    }
+    la::Vector Ax0(mpi, n_disp + n_lm_);
+    A.mult(x0, Ax0);
+    b.axpy(-1.0, Ax0);
+  }
   assembly.reset();
   {
     ScopedTimer solve_timer(timers, "linear_solve");
+    solver.set_saddle_point_fields(n_disp, n_lm_, K);
     if (!solver.solve(A, b, x)) return false;
   }
   static const bool measure = std::getenv("SEAM_NEWTON_CHECK") != nullptr;
@@ -1413,6 +1438,7 @@ bool ContactConstraint::solve_saddle_point(const la::Matrix& K, const la::Vector
     Ax.axpy(-1.0, b);
     last_solve_residual_ = Ax.norm() / b.norm();
   }
+  if (incremental) x.axpy(1.0, x0);
   la::Vector::LocalView xv(x, false), dw(dd, true);
   const auto xl = xv.values();
   auto dl = dw.values();

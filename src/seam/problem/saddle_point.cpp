@@ -153,6 +153,7 @@ bool SaddlePoint::solve(const la::Matrix& K, const la::Vector& minus_r, const la
     for (PetscInt i = 0; i < n_disp; ++i) xl[i] = gl[i];
   }
   A.zero_rows_columns(rows, g ? &gx : nullptr, g ? &b : nullptr);
+  solver.set_saddle_point_fields(n_disp, n_lm_, K);
   if (!solver.solve(A, b, x)) return false;
   {
     la::Vector::LocalView xv(x, false), dv(du, true), lv(lambda_, true);
