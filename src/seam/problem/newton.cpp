@@ -132,7 +132,10 @@ la::SolverKind linear_solver_kind(const io::Config& config, const Discretization
 
 std::string describe_linear_solver(const io::Config& config, const Discretization& disc,
                                    bool saddle_point) {
-  return describe(solid_linear_solver(config, disc, saddle_point));
+  if (saddle_point)
+    return describe(solid_linear_solver(config, disc, true),
+                    "FGMRES + Schur fieldsplit: GAMG, selfp ILU(0)");
+  return describe(solid_linear_solver(config, disc, false));
 }
 
 bool NewtonSolver::expect_convergence(int it, double tolerance, double reference) const {
