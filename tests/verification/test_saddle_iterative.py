@@ -4,7 +4,8 @@ approximation S = E - C diag(K)^-1 B^T on the multipliers) solves the systems [K
 contact with standard multipliers and of saddle-point mesh tying. The Krylov solve stops at the
 inexact-Newton forcing of the iterative path, which keeps Newton's convergence: each case
 needs the same number of Newton iterations per step as MUMPS (within one) and gives the same
-reactions to 1e-8 of the largest, on 1 and on 3 ranks. GMRES + GAMG on the whole indefinite
+reactions to 1e-8 of the largest, on 1 and on 3 ranks (Coulomb friction, whose multipliers
+have normal and tangential components, on one). GMRES + GAMG on the whole indefinite
 matrix failed every solve of the Hertz case ("the linear solver failed", five step cuts).
 """
 import csv
@@ -39,8 +40,8 @@ def rows(out, name):
         return list(csv.DictReader(f))
 
 
-def compare(case):
-    for np in (1, 3):
+def compare(case, nps=(1, 3)):
+    for np in nps:
         outs = {lin: H.solve(case(lin), np=np) for lin in ("direct", "iterative")}
         steps = {lin: [int(r["newton_iterations"]) for r in rows(o, "steps.csv")]
                  for lin, o in outs.items()}
@@ -66,5 +67,20 @@ def test_saddle_point_tying():
     compare(tied_case)
 
 
+def friction_case(linear):
+    """Cattaneo-Mindlin (examples/cattaneo_mindlin/cattaneo.yaml, 2D, Coulomb friction) with
+    standard multipliers: normal and tangential multipliers per slave node."""
+    _, path = H.copy_example("cattaneo_mindlin", "cattaneo.yaml", (
+        ("    friction: {model: coulomb, coefficient: 0.3}",
+         "    friction: {model: coulomb, coefficient: 0.3}\n    multiplier: standard"),
+        ("  newton:", "  linear: %s\n  newton:" % linear)))
+    return path
+
+
+def test_friction_standard_multipliers():
+    compare(friction_case, nps=(1,))
+
+
 if __name__ == "__main__":
-    H.main([test_hertz_standard_multipliers, test_saddle_point_tying])
+    H.main([test_hertz_standard_multipliers, test_saddle_point_tying,
+            test_friction_standard_multipliers])

@@ -965,6 +965,16 @@ PC fieldsplit_pc(KSP ksp, MPI_Comm& comm) {
   return pc;
 }
 
+// A Schur fieldsplit of two fields, lower-triangular factorization, with the assembled
+// approximation S = A11 - A10 diag(A00)^-1 A01 (selfp) as the Schur block's matrix.
+void lower_schur_selfp(PC pc) {
+  check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
+  check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER),
+        "PCFieldSplitSetSchurFactType");
+  check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr),
+        "PCFieldSplitSetSchurPre");
+}
+
 } // namespace
 
 void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const PetscInt> second,
@@ -980,11 +990,7 @@ void LinearSolver::set_fields(std::span<const PetscInt> first, std::span<const P
     check(PCFieldSplitSetIS(pc, names[k], is), "PCFieldSplitSetIS");
     check(ISDestroy(&is), "ISDestroy");
   }
-  check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
-  check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER),
-        "PCFieldSplitSetSchurFactType");
-  check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr),
-        "PCFieldSplitSetSchurPre");
+  lower_schur_selfp(pc);
   // The blocks' solvers are only reachable after the set-up; their defaults go to the
   // options database, where the command line wins. Measured on DFG 2D-1 and 2D-3
   // (docs/fluid.md, "Solving"): the selfp Schur approximation is a pressure Laplacian-like
@@ -1119,11 +1125,7 @@ void LinearSolver::set_saddle_point_fields(PetscInt n_first, PetscInt n_second, 
     check(PCFieldSplitSetIS(pc, names[k], is), "PCFieldSplitSetIS");
     check(ISDestroy(&is), "ISDestroy");
   }
-  check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
-  check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER),
-        "PCFieldSplitSetSchurFactType");
-  check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr),
-        "PCFieldSplitSetSchurPre");
+  lower_schur_selfp(pc);
   for (const char* name : {"-fieldsplit_u_ksp_type", "-fieldsplit_lm_ksp_type"})
     default_option(name, "preonly");
   default_option("-fieldsplit_u_pc_type", "gamg");
