@@ -547,6 +547,13 @@ FsiRunInfo run_fsi(const io::Config& config, mesh::DistributedMesh& part,
   };
   if (checkpoints.restarting()) {
     const auto& r = checkpoints.restart();
+    // Checkpoints of fluid-structure runs before the interface sides were held in part kept
+    // the transferred force per wet node in state.bin (read the same on every rank).
+    if (r.has("last_force"))
+      SEAM_THROW(InputError,
+                 "the checkpoint was written by an earlier version of seam (its fluid-structure "
+                 "state holds the interface force per wet node, 'last_force', where this version "
+                 "reads the nodal 'transferred_force'): run the input from the start");
     step = checkpoints.restart_step();
     control.set_state({checkpoints.restart_time(), r.real("control.dt"),
                        static_cast<int>(r.integer("control.cuts"))});
