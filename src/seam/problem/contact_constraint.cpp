@@ -788,8 +788,10 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
   // zone, gap of the central node +0.026 without them and -0.032 with them, 30 iterations).
   // When the pairs of this search equal those of k = 2 .. 8 searches ago and differ from the
   // last ones, the largest set of the cycle is held for the rest of the step (the same on every
-  // rank: the pairs are those of the whole surface). Its pairs without overlap add nothing.
+  // rank: the sets are compared by their number of pairs and hashes over all ranks, and each
+  // rank holds its pairs of the set).
   const auto current = s.search->self_pairs();
+  const auto set = s.search->pair_set();
   auto& history = s.pair_history;
   // For tests (docs/contact_dynamics.md, "Pair cycling"): SEAM_HOLD_SELF_PAIRS=1 holds the
   // pairs of each step's second search, so that the held path runs on small cases.
@@ -802,24 +804,22 @@ void ContactConstraint::search(Side& s, std::span<const double> u, double t) {
     s.pairs_held = true;
     return;
   }
-  const auto same = [](std::span<const FacetIdPair> a, std::span<const FacetIdPair> b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
-  };
   const std::size_t n = history.size();
   for (std::size_t k = 2; k <= std::min(ContactSearch::max_pair_period, n); ++k) {
-    if (!same(history[n - k], current) || same(history[n - 1], current)) continue;
+    if (!(history[n - k].set == set) || history[n - 1].set == set) continue;
     std::size_t largest = n; // the current set
     for (std::size_t i = n - k + 1; i < n; ++i)
-      if (history[i].size() > (largest == n ? current.size() : history[largest].size()))
+      if (history[i].set.count > (largest == n ? set.count : history[largest].set.count))
         largest = i;
     // In the interface's indices (the ghosts are those of this search until the step ends).
-    s.search->to_interface(largest == n ? current : std::span<const FacetIdPair>(history[largest]),
+    s.search->to_interface(largest == n ? current
+                                        : std::span<const FacetIdPair>(history[largest].pairs),
                            s.held_pairs);
     s.pairs_held = true;
     if (largest != n) s.itf.set_candidates(s.held_pairs);
     return;
   }
-  history.emplace_back(current.begin(), current.end());
+  history.push_back({set, {current.begin(), current.end()}});
   if (history.size() > ContactSearch::max_pair_period + 1) history.pop_front();
 }
 
@@ -1612,6 +1612,7 @@ void ContactConstraint::evaluate_facets(Side& s, std::vector<std::int64_t> ids,
     // The slave patch of the last search's pairs over the new part: the output rows of the
     // step read its normals before the next search.
     std::vector<mortar::CandidatePair> pairs;
+    s.search->route_self_pairs();
     s.search->to_interface(s.search->self_pairs(), pairs);
     // set_candidates averages the normals anew over the side as made (reference coordinates):
     // the normals kept through the cut are read until the next placement (the frictional work
@@ -1861,6 +1862,10 @@ void ContactConstraint::balance() {
                               : s.search           ? s.search->n_received()
                                                    : s.itf.n_master_facets();
     s.share.surface_received = s.itf.self_contact() ? s.search->n_received() : 0;
+    if (s.itf.self_contact()) {
+      s.share.self_pairs_received = s.search->self_pairs_received();
+      s.share.self_pairs_returned = s.search->self_pairs_returned();
+    }
     if (s.search) {
       s.share.ghost_exchanges = s.search->n_exchanges();
       s.share.searches = s.search->n_searches();
@@ -2195,6 +2200,8 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_master_ghosts = s.share.master_ghosts;
     rep.local_master_received = s.share.master_received;
     rep.local_surface_received = s.share.surface_received;
+    rep.local_self_pairs_received = s.share.self_pairs_received;
+    rep.local_self_pairs_returned = s.share.self_pairs_returned;
     rep.surface_facets = !s.itf.self_contact() ? 0
                          : s.slave_in_part     ? s.slave_facets
                                                : static_cast<int>(s.itf.slave().n_facets());

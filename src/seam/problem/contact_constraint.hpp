@@ -322,7 +322,13 @@ private:
     /// Self contact: the oriented pairs of the searches of the current step (newest last, at
     /// most ContactSearch::max_pair_period + 1) and the pairs held for the rest of the step
     /// once the search returned to an earlier set (pair cycling guard, see search()).
-    std::deque<std::vector<FacetIdPair>> pair_history;
+    /// Self contact: the pair sets of the step's searches (over all ranks) with this rank's
+    /// pairs of each.
+    struct PairsFound {
+      ContactSearch::PairSet set;
+      std::vector<FacetIdPair> pairs;
+    };
+    std::deque<PairsFound> pair_history;
     std::vector<mortar::CandidatePair> held_pairs;
     bool pairs_held = false;
     bool distributed = false;  ///< the first distribution is done
@@ -330,10 +336,12 @@ private:
     parallel::BalanceDecision balance;
     bool redistributed = false; ///< in the last balance()
     struct {
-      int slave_elements = 0;           ///< this rank's, in the last balanced step
-      int master_ghosts = 0;            ///< distinct master facets of its pairs
-      int master_received = 0;          ///< master facets it searched at the last search
-      int surface_received = 0;         ///< self contact: surface facets it searched then
+      int slave_elements = 0;   ///< this rank's, in the last balanced step
+      int master_ghosts = 0;    ///< distinct master facets of its pairs
+      int master_received = 0;  ///< master facets it searched at the last search
+      int surface_received = 0; ///< self contact: surface facets it searched then
+      /// Self contact, at the last search: pairs it received to decide, and back.
+      std::int64_t self_pairs_received = 0, self_pairs_returned = 0;
       std::int64_t ghost_exchanges = 0; ///< of the distributed search, so far
       std::int64_t searches = 0;        ///< of the distributed search, so far
       std::int64_t candidates = 0;      ///< candidate pairs of all ranks

@@ -69,12 +69,10 @@ std::vector<std::string> ContactConstraint::trace() const {
     std::uint64_t hash = 1469598103934665603ull;
     std::size_t pairs = s.itf.n_candidates();
     if (s.search && s.search->self()) {
-      const auto oriented = s.search->self_pairs();
-      pairs = oriented.size();
-      for (const auto& p : oriented) {
-        hash = (hash ^ static_cast<std::uint64_t>(p.slave)) * 1099511628211ull;
-        hash = (hash ^ static_cast<std::uint64_t>(p.master)) * 1099511628211ull;
-      }
+      // The pair set over all ranks (the same on every rank).
+      const auto set = s.search->pair_set();
+      pairs = static_cast<std::size_t>(set.count);
+      hash = set.hash;
     }
     int active = 0, rows = 0;
     for (std::size_t j = 0; j < s.active.size(); ++j) {

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <numeric>
 #include <string>
 
 namespace seam::problem {
@@ -24,12 +25,64 @@ local_index index_of(std::span<const std::int64_t> ids, std::int64_t id, const c
   return static_cast<local_index>(it - ids.begin());
 }
 
-/// A facing pair as it crosses the ranks: its facets by global id.
-struct GlobalFacingPair {
-  std::int64_t slave = 0, master = 0;
-  std::array<double, 3> slave_axis, master_axis;
+/// The rank that keeps the self-contact records of facet `id` (its kept roles, the ranks that
+/// hold it, the pairs of which it is slave) and decides the roles of a connected group of
+/// pairs whose lowest facet is `id`: a hash of the id, so that the records and the decisions
+/// spread over the ranks whatever the distribution.
+int home_of(std::int64_t id, int size) {
+  auto z = static_cast<std::uint64_t>(id) + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  return static_cast<int>(z % static_cast<std::uint64_t>(size));
+}
+
+/// Records sorted by destination rank, sent with one alltoallv; what arrives comes in rank
+/// order, each source's records in the order it put them.
+template <class T> class Outbox {
+public:
+  explicit Outbox(MPI_Comm comm) : comm_(comm) {
+    int size = 1;
+    MPI_Comm_size(comm, &size);
+    to_.resize(static_cast<std::size_t>(size));
+  }
+  int size() const { return static_cast<int>(to_.size()); }
+  void put(int rank, const T& record) { to_[static_cast<std::size_t>(rank)].push_back(record); }
+  /// Collective. `sources` (optional): the source rank of every record received.
+  std::vector<T> exchange(std::vector<int>* sources = nullptr) {
+    std::vector<T> flat;
+    std::vector<std::int64_t> offsets{0}, recv_offsets;
+    for (auto& part : to_) {
+      flat.insert(flat.end(), part.begin(), part.end());
+      offsets.push_back(static_cast<std::int64_t>(flat.size()));
+      part.clear();
+    }
+    auto received = parallel::alltoallv<T>(comm_, flat, offsets, recv_offsets);
+    if (sources) {
+      sources->clear();
+      for (std::size_t r = 0; r + 1 < recv_offsets.size(); ++r)
+        sources->insert(sources->end(),
+                        static_cast<std::size_t>(recv_offsets[r + 1] - recv_offsets[r]),
+                        static_cast<int>(r));
+    }
+    return received;
+  }
+
+private:
+  MPI_Comm comm_;
+  std::vector<std::vector<T>> to_;
 };
 
+struct IdValue {
+  std::int64_t id = 0, value = 0;
+};
+
+/// The hash of one oriented pair in the fingerprint of a pair set (summed over the pairs).
+std::uint64_t mix(std::uint64_t a, std::uint64_t b, std::uint64_t salt) {
+  auto z = a * 0x9e3779b97f4a7c15ull ^ (b + salt) * 0xc2b2ae3d27d4eb4full;
+  z = (z ^ (z >> 31)) * 0xbf58476d1ce4e5b9ull;
+  return z ^ (z >> 29);
+}
 } // namespace
 
 bool master_held_in_part(const io::Interface& itf, const io::Config&) {
@@ -230,15 +283,13 @@ bool by_ids(const FacetIdPair& a, const FacetIdPair& b) {
 
 void ContactSearch::accept_step() {
   if (!ghosts_) return;
+  // The records of this rank (the facets and pairs it keeps): no exchange.
   roles_accepted_.clear();
-  pairs_accepted_.clear();
-  for (const auto& p : pair_ids_) {
-    for (const auto id : {p.slave, p.master}) {
-      const auto it = roles_.find(id);
-      if (it != roles_.end()) roles_accepted_[id] = it->second;
-    }
-    pairs_accepted_.push_back(p);
+  for (const auto& [id, bits] : paired_) {
+    const auto it = roles_.find(id);
+    if (it != roles_.end()) roles_accepted_[id] = it->second;
   }
+  pairs_accepted_ = pairs_kept_;
   std::sort(pairs_accepted_.begin(), pairs_accepted_.end(),
             [](const FacetIdPair& a, const FacetIdPair& b) {
               return by_ids(unordered(a), unordered(b));
@@ -246,20 +297,16 @@ void ContactSearch::accept_step() {
 }
 
 void ContactSearch::accepted_roles(std::vector<std::int64_t>& ids, std::vector<std::int64_t>& roles,
-                                   std::vector<std::int64_t>& pairs, bool held) const {
-  const auto mine = [&](std::int64_t id) {
-    return !held || std::binary_search(held_ids_.begin(), held_ids_.end(), id);
-  };
+                                   std::vector<std::int64_t>& pairs, bool) const {
+  // Each facet's role and each pair are kept on one rank (home_of): the records of this rank.
   ids.clear();
   roles.clear();
   pairs.clear();
   for (const auto& [id, role] : roles_accepted_) {
-    if (!mine(id)) continue;
     ids.push_back(id);
     roles.push_back(static_cast<std::int64_t>(role));
   }
   for (const auto& p : pairs_accepted_) {
-    if (!mine(std::min(p.slave, p.master))) continue;
     pairs.push_back(p.slave);
     pairs.push_back(p.master);
   }
@@ -271,54 +318,53 @@ void ContactSearch::restore_roles(std::span<const std::int64_t> ids,
   SEAM_CHECK(ids.size() == roles.size() && pairs.size() % 2 == 0, InternalError,
              "contact search: ", ids.size(), " facets for ", roles.size(), " roles, ", pairs.size(),
              " pair ids");
-  std::vector<FacetIdPair> mine(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) mine[i] = {ids[i], roles[i]};
-  std::vector<std::int64_t> offsets;
-  const auto all = parallel::allgatherv<FacetIdPair>(comm_, mine, offsets);
+  // Each record to the rank that keeps it (a checkpoint of any number of ranks).
+  Outbox<IdValue> out(comm_);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    out.put(home_of(ids[i], out.size()), {ids[i], roles[i]});
   roles_accepted_.clear();
-  for (const auto& [id, role] : all)
+  for (const auto& [id, role] : out.exchange())
     roles_accepted_[id] = role == 0 ? search::Role::slave : search::Role::master;
-  mine.resize(pairs.size() / 2);
-  for (std::size_t i = 0; i < mine.size(); ++i) mine[i] = {pairs[2 * i], pairs[2 * i + 1]};
-  pairs_accepted_ = parallel::allgatherv<FacetIdPair>(comm_, mine, offsets);
+  Outbox<FacetIdPair> pair_out(comm_);
+  for (std::size_t i = 0; i < pairs.size() / 2; ++i)
+    pair_out.put(home_of(pairs[2 * i], pair_out.size()), {pairs[2 * i], pairs[2 * i + 1]});
+  pairs_accepted_ = pair_out.exchange();
   std::sort(pairs_accepted_.begin(), pairs_accepted_.end(),
             [](const FacetIdPair& a, const FacetIdPair& b) {
               return by_ids(unordered(a), unordered(b));
             });
+  pairs_accepted_.erase(std::unique(pairs_accepted_.begin(), pairs_accepted_.end()),
+                        pairs_accepted_.end());
   roles_.clear();
 }
 
-void ContactSearch::count_role_changes() {
-  // At the first search of a step attempt: the pairs of the last converged step that persist
-  // with the other facet as slave.
-  if (first_find_)
-    for (const auto& p : pair_ids_) {
-      const auto it = std::lower_bound(pairs_accepted_.begin(), pairs_accepted_.end(), p,
-                                       [](const FacetIdPair& a, const FacetIdPair& b) {
-                                         return by_ids(unordered(a), unordered(b));
-                                       });
-      role_changes_.persisting +=
-          it != pairs_accepted_.end() && unordered(*it) == unordered(p) && it->slave != p.slave;
-    }
-  first_find_ = false;
-  // Per facet: bit 0 slave of a pair, bit 1 master of a pair.
-  std::map<std::int64_t, std::uint8_t> seen;
-  for (const auto& p : pair_ids_) {
-    seen[p.slave] |= 1;
-    seen[p.master] |= 2;
+void ContactSearch::register_holders() {
+  // Collective. Whether any rank's side changed since the ranks said which facets they hold.
+  int mine = holders_stale_ ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm_);
+  if (!any) return;
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  Outbox<IdValue> out(comm_);
+  for (const auto id : slave_ids_.facets) out.put(home_of(id, out.size()), {id, rank});
+  holders_.clear();
+  for (const auto& [id, holder] : out.exchange()) holders_[id].push_back(holder);
+  holders_stale_ = false;
+}
+
+void ContactSearch::route_self_pairs() {
+  if (!ghosts_) return;
+  register_holders();
+  // The pairs of the last find() to the ranks that hold their slave facet now.
+  Outbox<FacetIdPair> out(comm_);
+  for (const auto& p : pairs_kept_) {
+    const auto it = holders_.find(p.slave);
+    if (it == holders_.end()) continue;
+    for (const auto rank : it->second) out.put(static_cast<int>(rank), p);
   }
-  for (const auto& [id, bits] : seen) {
-    if (bits != 1 && bits != 2) continue;
-    const auto role = bits == 1 ? search::Role::slave : search::Role::master;
-    const auto in_step = role_in_step_.find(id);
-    if (in_step != role_in_step_.end()) {
-      role_changes_.within += in_step->second != role;
-    } else {
-      const auto before = role_before_.find(id);
-      if (before != role_before_.end()) role_changes_.between += before->second != role;
-    }
-    role_in_step_[id] = role;
-  }
+  pair_ids_ = out.exchange();
+  std::sort(pair_ids_.begin(), pair_ids_.end(), by_ids);
+  pairs_returned_ = static_cast<std::int64_t>(pair_ids_.size());
 }
 
 void ContactSearch::to_interface(std::span<const FacetIdPair> pairs,
@@ -392,73 +438,287 @@ void ContactSearch::find_self(contact::ContactInterface& itf, std::span<const do
       mine.push_back({lo, std::max(p.slave, p.master)});
   }
   contact::keep_facing_pairs(surface, itf.search_inflation(), mine, facing);
-  // The contact graph of all ranks: the roles of a group of pairs depend on the whole group.
-  // Each pair comes with its facets' normal axes from the rank that found it (which reads
-  // both facets; the others' positions of them may be stale).
+  // Each pair with its facets' normal axes from the rank that found it (which reads both
+  // facets; the others' positions of them may be stale), by facet id.
   std::vector<contact::FacingPair> with;
   contact::with_axes(surface, facing, with);
-  std::vector<GlobalFacingPair> send(with.size());
+  std::vector<GlobalFacingPair> found_pairs(with.size());
   for (std::size_t i = 0; i < with.size(); ++i)
-    send[i] = {ghosts.facet_ids[static_cast<std::size_t>(with[i].pair.slave)],
-               ghosts.facet_ids[static_cast<std::size_t>(with[i].pair.master)], with[i].slave_axis,
-               with[i].master_axis};
-  std::vector<std::int64_t> offsets;
-  const auto all = parallel::allgatherv<GlobalFacingPair>(comm_, send, offsets);
-  // The roles over the facets of the pairs only (O(pairs), not O(surface)), numbered in the
-  // order of their ids, so that "the lowest facet" is the one of lowest id.
+    found_pairs[i] = {ghosts.facet_ids[static_cast<std::size_t>(with[i].pair.slave)],
+                      ghosts.facet_ids[static_cast<std::size_t>(with[i].pair.master)],
+                      with[i].slave_axis, with[i].master_axis};
+  decide_roles(found_pairs);
+  to_interface(pair_ids_, pairs_);
+  itf.set_candidates(pairs_);
+}
+
+std::vector<std::int64_t> ContactSearch::group_labels(std::span<const std::int64_t> facets,
+                                                      std::vector<local_index>& group,
+                                                      std::span<const GlobalFacingPair> pairs) {
+  // The roles of a connected group of pairs depend on the whole group, which may span the
+  // ranks: each group is named by its lowest facet id. Groups of this rank's pairs first
+  // (union-find), then rounds in which each rank says the label of the group of each of its
+  // facets to the facet's home rank and takes back the lowest label any rank said for it,
+  // until no label falls.
+  const auto n = facets.size();
+  const auto number = [&](std::int64_t id) { return index_of(facets, id, "paired facet"); };
+  std::vector<local_index> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](local_index f) {
+    while (parent[static_cast<std::size_t>(f)] != f)
+      f = parent[static_cast<std::size_t>(f)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
+    return f;
+  };
+  for (const auto& p : pairs) {
+    const auto a = root(number(p.slave)), b = root(number(p.master));
+    parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  // The facets are sorted by id: a group's root is its lowest facet.
+  group.resize(n);
+  std::vector<std::int64_t> label;
+  std::vector<local_index> group_of_root(n, -1);
+  for (std::size_t f = 0; f < n; ++f) {
+    const auto r = static_cast<std::size_t>(root(static_cast<local_index>(f)));
+    if (group_of_root[r] < 0) {
+      group_of_root[r] = static_cast<local_index>(label.size());
+      label.push_back(facets[r]);
+    }
+    group[f] = group_of_root[r];
+  }
+  label_rounds_ = 0;
+  for (;;) {
+    ++label_rounds_;
+    Outbox<IdValue> out(comm_);
+    for (std::size_t f = 0; f < n; ++f)
+      out.put(home_of(facets[f], out.size()),
+              {facets[f], label[static_cast<std::size_t>(group[f])]});
+    std::vector<int> sources;
+    const auto said = out.exchange(&sources);
+    std::map<std::int64_t, std::int64_t> lowest;
+    for (const auto& [id, value] : said) {
+      const auto [it, fresh] = lowest.emplace(id, value);
+      if (!fresh) it->second = std::min(it->second, value);
+    }
+    for (std::size_t i = 0; i < said.size(); ++i)
+      out.put(sources[i], {said[i].id, lowest[said[i].id]});
+    int fell = 0;
+    for (const auto& [id, value] : out.exchange()) {
+      auto& l = label[static_cast<std::size_t>(group[static_cast<std::size_t>(number(id))])];
+      if (value < l) {
+        l = value;
+        fell = 1;
+      }
+    }
+    int any = 0;
+    MPI_Allreduce(&fell, &any, 1, MPI_INT, MPI_MAX, comm_);
+    if (!any) break;
+  }
+  return label;
+}
+
+void ContactSearch::decide_roles(std::span<const GlobalFacingPair> found) {
+  register_holders();
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  // The labels of the groups of this rank's pairs.
+  std::vector<std::int64_t> facets;
+  for (const auto& p : found) {
+    facets.push_back(p.slave);
+    facets.push_back(p.master);
+  }
+  std::sort(facets.begin(), facets.end());
+  facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+  std::vector<local_index> group;
+  const auto label = group_labels(facets, group, found);
+  const auto decider = [&](std::int64_t id, int size) {
+    return home_of(label[static_cast<std::size_t>(
+                       group[static_cast<std::size_t>(index_of(facets, id, "paired facet"))])],
+                   size);
+  };
+  // Each pair to the rank that decides its group (home_of its label); the kept roles and the
+  // holders of its facets and whether it is a pair of the last converged step, asked of their
+  // home ranks for the deciding rank.
+  Outbox<GlobalFacingPair> pair_out(comm_);
+  Outbox<IdValue> facet_asks(comm_);
+  struct PairAsk {
+    FacetIdPair key; // (lower, higher facet)
+    std::int64_t to = 0;
+  };
+  Outbox<PairAsk> pair_asks(comm_);
+  const int size = pair_out.size();
+  for (const auto& p : found) pair_out.put(decider(p.slave, size), p);
+  for (const auto id : facets) facet_asks.put(home_of(id, size), {id, decider(id, size)});
+  for (const auto& p : found) {
+    const auto key = unordered({p.slave, p.master});
+    const auto d = decider(p.slave, size);
+    for (const auto h : {home_of(key.slave, size), home_of(key.master, size)}) {
+      pair_asks.put(h, {key, d});
+      if (home_of(key.slave, size) == home_of(key.master, size)) break;
+    }
+  }
+  const auto pairs = pair_out.exchange();
+  pairs_received_ = static_cast<std::int64_t>(pairs.size());
+  const auto asked = facet_asks.exchange();
+  const auto asked_pairs = pair_asks.exchange();
+  // The answers of the home ranks: per facet its kept role (-1: none) and one record per
+  // rank holding it (holder -1: none); per pair of the last converged step its slave.
+  struct FacetRecord {
+    std::int64_t id = 0, role = -1, holder = -1;
+  };
+  Outbox<FacetRecord> facet_answers(comm_);
+  for (const auto& [id, to] : asked) {
+    const auto r = roles_.find(id);
+    const std::int64_t role = r == roles_.end() ? -1 : static_cast<std::int64_t>(r->second);
+    const auto h = holders_.find(id);
+    if (h == holders_.end() || h->second.empty())
+      facet_answers.put(static_cast<int>(to), {id, role, -1});
+    else
+      for (const auto holder : h->second)
+        facet_answers.put(static_cast<int>(to), {id, role, holder});
+  }
+  Outbox<FacetIdPair> pair_answers(comm_);
+  for (const auto& [key, to] : asked_pairs) {
+    const auto it = std::lower_bound(
+        pairs_accepted_.begin(), pairs_accepted_.end(), key,
+        [](const FacetIdPair& a, const FacetIdPair& b) { return by_ids(unordered(a), b); });
+    if (it != pairs_accepted_.end() && unordered(*it) == key)
+      pair_answers.put(static_cast<int>(to), *it);
+  }
+  const auto facet_records = facet_answers.exchange();
+  auto accepted = pair_answers.exchange();
+  std::sort(accepted.begin(), accepted.end(), [](const FacetIdPair& a, const FacetIdPair& b) {
+    return by_ids(unordered(a), unordered(b));
+  });
+  const auto accepted_slave = [&](const FacetIdPair& key) -> std::int64_t {
+    const auto it = std::lower_bound(
+        accepted.begin(), accepted.end(), key,
+        [](const FacetIdPair& a, const FacetIdPair& b) { return by_ids(unordered(a), b); });
+    return it != accepted.end() && unordered(*it) == key ? it->slave : -1;
+  };
+
+  // The decision over the groups this rank decides, as one whole search does it over all
+  // groups (contact::orient_pairs: the roles of a group depend on its pairs only): the facets
+  // numbered in the order of their ids, so that "the lowest facet" is the one of lowest id, and
+  // the pairs in the order of the ranks that found them.
   std::vector<std::int64_t> ids;
-  for (const auto& p : all) {
+  for (const auto& p : pairs) {
     ids.push_back(p.slave);
     ids.push_back(p.master);
   }
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   const auto number = [&](std::int64_t id) { return index_of(ids, id, "paired facet"); };
-  with.resize(all.size());
-  for (std::size_t i = 0; i < all.size(); ++i)
-    with[i] = {
-        {number(all[i].slave), number(all[i].master)}, all[i].slave_axis, all[i].master_axis};
+  std::vector<contact::FacingPair> with(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    with[i] = {{number(pairs[i].slave), number(pairs[i].master)},
+               pairs[i].slave_axis,
+               pairs[i].master_axis};
+  std::vector<search::Role> kept(ids.size(), search::Role::none);
+  std::vector<std::vector<std::int64_t>> holders(ids.size());
+  for (const auto& r : facet_records) {
+    const auto f = static_cast<std::size_t>(number(r.id));
+    if (r.role >= 0) kept[f] = static_cast<search::Role>(r.role);
+    if (r.holder >= 0) holders[f].push_back(r.holder);
+  }
+  for (auto& h : holders) { // a facet asked for by several ranks is answered to each
+    std::sort(h.begin(), h.end());
+    h.erase(std::unique(h.begin(), h.end()), h.end());
+  }
   // The first search of a step attempt keeps the roles of the last converged step only for
   // the facets of pairs that persist: a facet whose pairs are all new takes a role anew.
   if (first_find_ && keep_across_) {
-    std::vector<std::int64_t> persisting;
-    for (const auto& p : all) {
-      const FacetIdPair key = unordered({p.slave, p.master});
-      const auto it = std::lower_bound(
-          pairs_accepted_.begin(), pairs_accepted_.end(), key,
-          [](const FacetIdPair& a, const FacetIdPair& b) { return by_ids(unordered(a), b); });
-      if (it != pairs_accepted_.end() && unordered(*it) == key) {
-        persisting.push_back(p.slave);
-        persisting.push_back(p.master);
-      }
-    }
-    std::sort(persisting.begin(), persisting.end());
-    std::erase_if(roles_, [&](const auto& entry) {
-      return !std::binary_search(persisting.begin(), persisting.end(), entry.first);
-    });
+    std::vector<char> persisting(ids.size(), 0);
+    for (const auto& p : pairs)
+      if (accepted_slave(unordered({p.slave, p.master})) >= 0)
+        persisting[static_cast<std::size_t>(number(p.slave))] =
+            persisting[static_cast<std::size_t>(number(p.master))] = 1;
+    for (std::size_t f = 0; f < ids.size(); ++f)
+      if (!persisting[f]) kept[f] = search::Role::none;
   }
   std::vector<search::Role> roles;
-  if (roles_started_) {
-    roles.resize(ids.size(), search::Role::none);
-    for (std::size_t f = 0; f < ids.size(); ++f) {
-      const auto it = roles_.find(ids[f]);
-      if (it != roles_.end()) roles[f] = it->second;
+  if (roles_started_) roles = kept;
+  std::vector<mortar::CandidatePair> oriented;
+  contact::orient_pairs(static_cast<local_index>(ids.size()), with, oriented, roles);
+
+  // Counted here, summed over the ranks below: pairs of facets of the same role; at the first
+  // search of a step attempt the pairs of the last converged step found again exchanged; the
+  // fingerprint of the pair set.
+  std::int64_t counts[5] = {0, 0, static_cast<std::int64_t>(oriented.size()), 0, 0};
+  std::uint64_t hashes[2] = {0, 0};
+  Outbox<FacetIdPair> pairs_back(comm_), pairs_home(comm_);
+  std::vector<std::uint8_t> bits(ids.size(), 0); // bit 0 slave of a pair, bit 1 master
+  for (const auto& p : oriented) {
+    const auto s = static_cast<std::size_t>(p.slave), m = static_cast<std::size_t>(p.master);
+    counts[0] += !roles.empty() && roles[s] == roles[m];
+    const FacetIdPair by_id{ids[s], ids[m]};
+    if (first_find_) {
+      const auto slave = accepted_slave(unordered(by_id));
+      counts[1] += slave >= 0 && slave != by_id.slave;
     }
+    hashes[0] += mix(static_cast<std::uint64_t>(by_id.slave),
+                     static_cast<std::uint64_t>(by_id.master), 0x51ed27u);
+    hashes[1] += mix(static_cast<std::uint64_t>(by_id.master),
+                     static_cast<std::uint64_t>(by_id.slave), 0x2545f491u);
+    for (const auto holder : holders[s]) pairs_back.put(static_cast<int>(holder), by_id);
+    pairs_home.put(home_of(by_id.slave, size), by_id);
+    bits[s] |= 1;
+    bits[m] |= 2;
   }
-  contact::orient_pairs(static_cast<local_index>(ids.size()), with, pairs_, roles);
-  same_roles_ = 0;
-  for (const auto& p : pairs_)
-    same_roles_ += !roles.empty() && roles[static_cast<std::size_t>(p.slave)] ==
-                                         roles[static_cast<std::size_t>(p.master)];
-  for (std::size_t f = 0; f < roles.size(); ++f)
-    if (roles[f] != search::Role::none) roles_[ids[f]] = roles[f];
-  pair_ids_.resize(pairs_.size());
-  for (std::size_t i = 0; i < pairs_.size(); ++i)
-    pair_ids_[i] = {ids[static_cast<std::size_t>(pairs_[i].slave)],
-                    ids[static_cast<std::size_t>(pairs_[i].master)]};
-  count_role_changes();
-  to_interface(pair_ids_, pairs_);
-  itf.set_candidates(pairs_);
+  // Per facet to its home: its role bits at this search and its role kept (-1: none).
+  struct FacetBits {
+    std::int64_t id = 0, bits = 0, role = -1;
+  };
+  Outbox<FacetBits> facet_out(comm_);
+  for (std::size_t f = 0; f < ids.size(); ++f)
+    facet_out.put(home_of(ids[f], size),
+                  {ids[f], bits[f], roles.empty() ? -1 : static_cast<std::int64_t>(roles[f])});
+  pair_ids_ = pairs_back.exchange();
+  std::sort(pair_ids_.begin(), pair_ids_.end(), by_ids);
+  pair_ids_.erase(std::unique(pair_ids_.begin(), pair_ids_.end()), pair_ids_.end());
+  pairs_returned_ = static_cast<std::int64_t>(pair_ids_.size());
+  pairs_kept_ = pairs_home.exchange();
+  // The records of this rank's facets: the roles kept in the step (at the first search of a
+  // step attempt those of the facets of persisting pairs and of the new ones only), and the
+  // role changes (count_role_changes).
+  if (first_find_ && keep_across_) roles_.clear();
+  paired_.clear();
+  for (const auto& r : facet_out.exchange()) {
+    paired_[r.id] = static_cast<std::uint8_t>(r.bits);
+    if (r.role >= 0) roles_[r.id] = static_cast<search::Role>(r.role);
+  }
+  const auto changes = count_role_changes();
+  counts[3] = changes.within;
+  counts[4] = changes.between;
+  first_find_ = false;
+  std::int64_t sums[5];
+  std::uint64_t hash_sums[2];
+  MPI_Allreduce(counts, sums, 5, MPI_INT64_T, MPI_SUM, comm_);
+  MPI_Allreduce(hashes, hash_sums, 2, MPI_UINT64_T, MPI_SUM, comm_);
+  same_roles_ = sums[0];
+  role_changes_.persisting += sums[1];
+  pair_set_ = {sums[2], hash_sums[0], hash_sums[1]};
+  role_changes_.within += sums[3];
+  role_changes_.between += sums[4];
+}
+
+ContactSearch::RoleChanges ContactSearch::count_role_changes() {
+  // The facets this rank keeps the records of, with their roles at this search: slave (master)
+  // if slave (master) of each of its pairs.
+  RoleChanges changes;
+  for (const auto& [id, bits] : paired_) {
+    if (bits != 1 && bits != 2) continue;
+    const auto role = bits == 1 ? search::Role::slave : search::Role::master;
+    const auto in_step = role_in_step_.find(id);
+    if (in_step != role_in_step_.end()) {
+      changes.within += in_step->second != role;
+    } else {
+      const auto before = role_before_.find(id);
+      if (before != role_before_.end()) changes.between += before->second != role;
+    }
+    role_in_step_[id] = role;
+  }
+  return changes;
 }
 
 } // namespace seam::problem

@@ -11,10 +11,15 @@
 // Self and multi-body contact (`surface:`): each rank searches the surface facets it evaluates
 // against the surface facets ghosted to it by bounding boxes, with the self-contact tests of
 // one whole search (normal cones, no neighbouring facets, facing); a pair is kept by the rank
-// of its lower facet, so that every pair is found once. The facing pairs of all ranks are
-// gathered by facet id (the contact graph, O(pairs)) and every rank assigns the roles as one
-// whole search does (contact::orient_pairs over the facets of the pairs, numbered in the order
-// of their ids). The roles are kept through a step (start_step), so that a facet's role changes
+// of its lower facet, so that every pair is found once. The roles of a connected group of pairs
+// depend on the whole group (contact::orient_pairs), which may span the ranks: the groups are
+// named by their lowest facet id (a union-find over each rank's pairs, then rounds of lowest
+// labels through the facets' home ranks), each group's pairs go to one deciding rank (a hash of
+// the label), which orients them as one whole search does, and the oriented pairs go to the
+// ranks whose side holds their slave facet. No rank gathers the pairs of all ranks. The records
+// the decisions read and keep (kept roles, pairs of the last converged step, role changes, which
+// ranks hold a facet) live on the home rank of the facet (a hash of its id). The roles are kept
+// through a step (start_step), so that a facet's role changes
 // only between steps, and from step to step (accept_step): a facet paired at the last converged
 // step keeps its role in the next, so that a master node never becomes a slave node while its
 // contact persists; a facet takes a role anew only when it meets after a step without a pair.
@@ -35,6 +40,7 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -57,6 +63,13 @@ struct SideIds {
 struct FacetIdPair {
   std::int64_t slave = 0, master = 0;
   friend bool operator==(const FacetIdPair&, const FacetIdPair&) = default;
+};
+
+/// A facing self pair as it crosses the ranks: its facets by global id, with the axes of their
+/// normal cones as the rank that found it has them (contact::FacingPair).
+struct GlobalFacingPair {
+  std::int64_t slave = 0, master = 0;
+  std::array<double, 3> slave_axis, master_axis;
 };
 
 /// Whether the master side of interface `itf` is held in part: each rank holds the master
@@ -125,7 +138,10 @@ public:
             const NodeMap& mesh_nodes = {});
   bool master_in_part() const { return in_part_; }
   /// The slave side `itf` holds changed (ContactInterface::hold_slave_facets): its ids.
-  void set_slave_ids(SideIds slave) { slave_ids_ = std::move(slave); }
+  void set_slave_ids(SideIds slave) {
+    slave_ids_ = std::move(slave);
+    holders_stale_ = true;
+  }
   /// The master facets ghosted to this rank at the last find() (two bodies).
   const parallel::SurfacePart& master_ghosts() const { return search_->ghosts(); }
   /// A master side held in part: the ghosts and pairs of the last find() to `itf`, with the
@@ -159,13 +175,13 @@ public:
   /// facets are dropped.
   void accept_step();
   /// Self contact: the roles accept_step() kept, by facet id (sorted), as 0 (slave) and 1
-  /// (master), and the pairs they were kept with (slave, master facet id, flat); the same on
-  /// every rank. For checkpoints: `held` gives those of the facets this rank hands in (each
-  /// facet on one rank; a pair with its lower facet).
+  /// (master), and the pairs they were kept with (slave, master facet id, flat), of the facets
+  /// (pairs by their slave facet) whose records this rank keeps: each facet's on one rank (a
+  /// hash of its id), whatever the distribution. For checkpoints; `held` is not read.
   void accepted_roles(std::vector<std::int64_t>& ids, std::vector<std::int64_t>& roles,
                       std::vector<std::int64_t>& pairs, bool held) const;
-  /// Self contact: the kept roles and pairs of a checkpoint (any part on each rank;
-  /// collective: the union over the ranks is kept on every rank).
+  /// Self contact: the kept roles and pairs of a checkpoint (any part on each rank, of a run on
+  /// any number of ranks; collective: each record is sent to the rank that keeps it).
   void restore_roles(std::span<const std::int64_t> ids, std::span<const std::int64_t> roles,
                      std::span<const std::int64_t> pairs);
   /// Self contact: the role changes of the surface's facets so far (the same on every rank).
@@ -181,9 +197,27 @@ public:
     std::int64_t within = 0, between = 0, persisting = 0;
   };
   RoleChanges role_changes() const { return role_changes_; }
-  /// Self contact: the oriented pairs of all ranks found by the last find() (the same on every
-  /// rank), by facet id, sorted by (slave, master).
+  /// Self contact: the oriented pairs found by the last find() whose slave facet this rank's
+  /// side holds (those the interface reads), by facet id, sorted by (slave, master).
   std::span<const FacetIdPair> self_pairs() const { return pair_ids_; }
+  /// Self contact: the pair set of the last find() over all ranks (the same on every rank):
+  /// its number of pairs and two sums of a hash of each oriented pair, so that two searches'
+  /// sets are compared without gathering them.
+  struct PairSet {
+    std::int64_t count = 0;
+    std::uint64_t hash = 0, hash2 = 0;
+    friend bool operator==(const PairSet&, const PairSet&) = default;
+  };
+  PairSet pair_set() const { return pair_set_; }
+  /// Self contact, collective: the oriented pairs of the last find() to the ranks that hold
+  /// their slave facet now (self_pairs() anew, after set_slave_ids()).
+  void route_self_pairs();
+  /// Self contact, this rank at the last find(): pairs it received to decide their roles (the
+  /// pairs of the groups it decides), pairs it received back (self_pairs()), and the rounds
+  /// the labels of the groups took.
+  std::int64_t self_pairs_received() const { return pairs_received_; }
+  std::int64_t self_pairs_returned() const { return pairs_returned_; }
+  int label_rounds() const { return label_rounds_; }
   /// Self contact: `pairs` (e.g. of an earlier find() of the step) in the indices of the
   /// interface: slave facets side-local (pairs of facets the side does not hold left out),
   /// master facets side-local or, the surface held in part, indices into the ghosts of the
@@ -205,8 +239,18 @@ private:
   std::span<const double> reused_positions(const contact::ContactInterface& itf,
                                            const parallel::SurfacePart& ghosts,
                                            std::span<const double> positions);
-  /// Counts the role changes of the pairs of the last find_self() (role_changes()).
-  void count_role_changes();
+  /// The roles of the facing pairs `found` by this rank (each pair on one rank), decided by
+  /// connected group of pairs over all ranks: sets pair_ids_ and the records of the facets.
+  void decide_roles(std::span<const GlobalFacingPair> found);
+  /// The label (lowest facet id over all ranks) of each group of `pairs`; `facets`: those of
+  /// the pairs (sorted ids), `group`: per facet its group here. Collective.
+  std::vector<std::int64_t> group_labels(std::span<const std::int64_t> facets,
+                                         std::vector<local_index>& group,
+                                         std::span<const GlobalFacingPair> pairs);
+  /// The ranks holding which facets to their home ranks, if any side changed. Collective.
+  void register_holders();
+  /// The role changes of this rank's facets at the last find_self() (within, between).
+  RoleChanges count_role_changes();
   /// The ghosts to the interface's integration, in side-local ids.
   void hand_ghosts(contact::ContactInterface& itf, const parallel::SurfacePart& ghosts);
 
@@ -227,8 +271,10 @@ private:
   std::optional<parallel::VerletGhosts> ghosts_;
   std::optional<search::Tree> tree_;
   std::vector<global_index> tree_facets_;
+  // Self contact: the records of a facet are kept on its home rank (a hash of its id), those of
+  // a pair on the home rank of its slave facet.
   /// Self contact: the roles kept in the current step by facet id (those of the facets that
-  /// met in the step), the same on every rank.
+  /// met in the step).
   std::map<std::int64_t, search::Role> roles_;
   bool keep_roles_ = true;     ///< roles_kept()
   bool keep_across_ = true;    ///< roles_kept_across_steps()
@@ -242,7 +288,15 @@ private:
   /// Self contact, by facet id: its role at the latest search of the current step attempt
   /// that gave it one, and at the last such search before the attempt (none if none).
   std::map<std::int64_t, search::Role> role_in_step_, role_before_;
-  std::vector<FacetIdPair> pair_ids_;  ///< self contact: the oriented pairs by facet id
+  std::vector<FacetIdPair> pair_ids_;           ///< self contact: the oriented pairs by facet id
+  std::vector<FacetIdPair> pairs_kept_;         ///< the pairs of the last find() kept here
+  std::map<std::int64_t, std::uint8_t> paired_; ///< facets kept here paired then: role bits
+  /// Per facet kept here: the ranks whose side holds it (register_holders()).
+  std::map<std::int64_t, std::vector<std::int64_t>> holders_;
+  bool holders_stale_ = true;
+  PairSet pair_set_;
+  std::int64_t pairs_received_ = 0, pairs_returned_ = 0;
+  int label_rounds_ = 0;
   std::vector<std::int64_t> held_ids_; ///< self contact: the facets handed in, by id
   RoleChanges role_changes_;
 };

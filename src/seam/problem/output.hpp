@@ -93,6 +93,9 @@ struct ContactReport {
   /// Self contact: surface facets this rank searched at the last search (its own and those
   /// ghosted to it), and the surface's facets.
   int local_surface_received = 0;
+  /// Self contact, at the last search: the pairs this rank received to decide their roles
+  /// (those of the groups of pairs it decides), and the oriented pairs it received back.
+  std::int64_t local_self_pairs_received = 0, local_self_pairs_returned = 0;
   int surface_facets = 0;
   /// Ghost exchanges and searches of the distributed search so far.
   std::int64_t local_ghost_exchanges = 0;
