@@ -1287,6 +1287,79 @@ def check_surface_received(out, what):
     return detail
 
 
+def check_self_decisions(one, three, what, groups_at_least=2):
+    """The roles of the self-contact pairs decided by connected group of pairs, each group on
+    one rank (docs/parallel.md, "Self contact searched distributed"): at the last search the
+    pairs the ranks received to decide (`contact_self_pairs_received`) add up at np 3 to the
+    pairs np 1 found, every rank got pairs back only of those, and when there are
+    `groups_at_least` groups or more, no rank received all pairs and more than one rank
+    decided: no rank gathers the pairs of all ranks."""
+    d1, d3 = ranks_detail(one), ranks_detail(three)
+    found = d1[0]["contact_self_pairs_received"]
+    received = [r["contact_self_pairs_received"] for r in d3]
+    returned = [r["contact_self_pairs_returned"] for r in d3]
+    groups = [r["contact_self_groups_decided"] for r in d3]
+    print("   %s np 3: pairs received to decide per rank %s (groups %s) of %d; pairs back %s"
+          % (what, "/".join(map(str, received)), "/".join(map(str, groups)), found,
+             "/".join(map(str, returned))))
+    if found <= 0 or d1[0]["contact_self_pairs_returned"] != found:
+        raise AssertionError("%s np 1: %d pairs decided, %d back"
+                             % (what, found, d1[0]["contact_self_pairs_returned"]))
+    if sum(received) != found or max(returned) > found or min(returned) < 0:
+        raise AssertionError("%s: pairs received to decide %s, back %s, np 1 found %d"
+                             % (what, received, returned, found))
+    if sum(groups) != d1[0]["contact_self_groups_decided"]:
+        raise AssertionError("%s: groups %s at np 3, %d at np 1"
+                             % (what, groups, d1[0]["contact_self_groups_decided"]))
+    if sum(groups) >= groups_at_least:
+        if max(received) >= found:
+            raise AssertionError("%s: one rank received all %d pairs (%s) of %d groups"
+                                 % (what, found, received, sum(groups)))
+        if sum(g > 0 for g in groups) < 2:
+            raise AssertionError("%s: one rank decided all %d groups" % (what, sum(groups)))
+    return sum(groups)
+
+
+def two_pairs_case(np, end=0.2, steps=20):
+    """Two copies of test_rings.py's two free rings, the second 4 higher: two separate groups
+    of contact pairs on one surface (energy-momentum, 8 cells per quarter circle, 20 steps to
+    t = 0.2, both pairs touching from t ~ 0.1)."""
+    import test_rings as R
+    centres = list(R.CENTRES) + [(x, y + 4.0) for x, y in R.CENTRES]
+    va, vb = R.VELOCITIES[2]
+    shift = lambda v: v.replace("y", "(y - 4)")  # noqa: E731
+    yaml = R.FREE_YAML.replace("DIM", "2").replace("INTEGRATOR", "energy_momentum")
+    yaml = yaml.replace("STEPS", str(steps)).replace("end: 0.4", "end: %r" % end)
+    yaml = yaml.replace("SETFACTORY\n", "")
+    yaml = yaml.replace("  - {region: r1, material: rubber}\n",
+                        "  - {region: r1, material: rubber}\n"
+                        "  - {region: r2, material: rubber}\n"
+                        "  - {region: r3, material: rubber}\n")
+    yaml = yaml.replace("  - {region: r1, velocity: [VB]}\n",
+                        "  - {region: r1, velocity: [VB]}\n"
+                        "  - {region: r2, velocity: [%s]}\n"
+                        "  - {region: r3, velocity: [%s]}\n" % (shift(va), shift(vb)))
+    yaml = yaml.replace("VA", va).replace("VB", vb)
+    yaml = yaml.replace("surface: [r0_boundary, r1_boundary]",
+                        "surface: [r0_boundary, r1_boundary, r2_boundary, r3_boundary]")
+    work, out = R.T.run_case(R.ring_geo(centres, 8, 2), yaml, np=np)
+    _dirs.extend([work, out])
+    return out
+
+
+def test_self_roles_decided_by_group_np3():
+    """Two separate pairs of rings on one surface: at np 3 the two groups of contact pairs
+    are decided on different ranks (each group's pairs on one rank, none receives all pairs),
+    and every output equals np 1 to 1e-10."""
+    one, three = two_pairs_case(1), two_pairs_case(3)
+    if max(r["active_nodes"] for r in rows_of(one, "steps.csv")) == 0:
+        raise AssertionError("two pairs of rings: no contact")
+    if check_self_decisions(one, three, "two pairs of rings") != 2:
+        raise AssertionError("two pairs of rings: not two groups at the last search")
+    compare_outputs(one, three, 1e-10, "two pairs of rings np 3 vs np 1", 0.5)
+    H.cleanup(*_dirs)
+
+
 def pile_case(np):
     """7 rings of examples/rings (rows of 4 and 3) to t = 0.3: the second row lands on the
     first at t = 0.25, so the last 20 steps have ring-ring contact."""
@@ -1310,6 +1383,7 @@ def test_rings_self_search_np3():
             "contact_surface_facets"]:
         raise AssertionError("np 1 searched a part of the surface: %s" % ranks_detail(one)[0])
     check_surface_received(three, "rings np 3")
+    check_self_decisions(one, three, "rings")
     check_part_read(ranks_detail(three), "rings np 3 (energy-momentum)")
     compare_outputs(one, three, 1e-10, "rings np 3 vs np 1")
     H.cleanup(*_dirs)
@@ -1407,6 +1481,8 @@ def test_energy_momentum_held_in_part_np3():
             raise AssertionError("%s: side facets held per rank %s of %d: not in part"
                                  % (what, held, whole))
         check_em_entries(three, what + " np 3")
+        if "surface" in what or "pile" in what:
+            check_self_decisions(one, three, what)
         compare_outputs(one, three, 1e-10, what + " np 3 vs np 1", floor)
     H.cleanup(*_dirs)
 
@@ -1443,6 +1519,7 @@ def test_two_blocks_self_search_np3():
     if active == 0:
         raise AssertionError("no active contact node")
     check_surface_received(three, "two blocks np 3")
+    check_self_decisions(one, three, "two blocks")
     compare_outputs(one, three, 1e-10, "two blocks np 3 vs np 1")
     H.cleanup(*_dirs)
 

@@ -531,11 +531,11 @@ void ContactSearch::decide_roles(std::span<const GlobalFacingPair> found) {
   facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
   std::vector<local_index> group;
   const auto label = group_labels(facets, group, found);
-  const auto decider = [&](std::int64_t id, int size) {
-    return home_of(label[static_cast<std::size_t>(
-                       group[static_cast<std::size_t>(index_of(facets, id, "paired facet"))])],
-                   size);
+  const auto label_of = [&](std::int64_t id) {
+    return label[static_cast<std::size_t>(
+        group[static_cast<std::size_t>(index_of(facets, id, "paired facet"))])];
   };
+  const auto decider = [&](std::int64_t id, int size) { return home_of(label_of(id), size); };
   // Each pair to the rank that decides its group (home_of its label); the kept roles and the
   // holders of its facets and whether it is a pair of the last converged step, asked of their
   // home ranks for the deciding rank.
@@ -547,7 +547,10 @@ void ContactSearch::decide_roles(std::span<const GlobalFacingPair> found) {
   };
   Outbox<PairAsk> pair_asks(comm_);
   const int size = pair_out.size();
-  for (const auto& p : found) pair_out.put(decider(p.slave, size), p);
+  for (auto p : found) {
+    p.group = label_of(p.slave);
+    pair_out.put(home_of(p.group, size), p);
+  }
   for (const auto id : facets) facet_asks.put(home_of(id, size), {id, decider(id, size)});
   for (const auto& p : found) {
     const auto key = unordered({p.slave, p.master});
@@ -559,6 +562,12 @@ void ContactSearch::decide_roles(std::span<const GlobalFacingPair> found) {
   }
   const auto pairs = pair_out.exchange();
   pairs_received_ = static_cast<std::int64_t>(pairs.size());
+  {
+    std::vector<std::int64_t> groups;
+    for (const auto& p : pairs) groups.push_back(p.group);
+    std::sort(groups.begin(), groups.end());
+    groups_decided_ = std::unique(groups.begin(), groups.end()) - groups.begin();
+  }
   const auto asked = facet_asks.exchange();
   const auto asked_pairs = pair_asks.exchange();
   // The answers of the home ranks: per facet its kept role (-1: none) and one record per

@@ -66,10 +66,12 @@ struct FacetIdPair {
 };
 
 /// A facing self pair as it crosses the ranks: its facets by global id, with the axes of their
-/// normal cones as the rank that found it has them (contact::FacingPair).
+/// normal cones as the rank that found it has them (contact::FacingPair), and the label of
+/// its connected group of pairs (the group's lowest facet id; set when the labels are known).
 struct GlobalFacingPair {
   std::int64_t slave = 0, master = 0;
   std::array<double, 3> slave_axis, master_axis;
+  std::int64_t group = -1;
 };
 
 /// Whether the master side of interface `itf` is held in part: each rank holds the master
@@ -213,9 +215,10 @@ public:
   /// their slave facet now (self_pairs() anew, after set_slave_ids()).
   void route_self_pairs();
   /// Self contact, this rank at the last find(): pairs it received to decide their roles (the
-  /// pairs of the groups it decides), pairs it received back (self_pairs()), and the rounds
-  /// the labels of the groups took.
+  /// pairs of the groups it decides), the groups it decided, pairs it received back
+  /// (self_pairs()), and the rounds the labels of the groups took.
   std::int64_t self_pairs_received() const { return pairs_received_; }
+  std::int64_t self_groups_decided() const { return groups_decided_; }
   std::int64_t self_pairs_returned() const { return pairs_returned_; }
   int label_rounds() const { return label_rounds_; }
   /// Self contact: `pairs` (e.g. of an earlier find() of the step) in the indices of the
@@ -295,7 +298,7 @@ private:
   std::map<std::int64_t, std::vector<std::int64_t>> holders_;
   bool holders_stale_ = true;
   PairSet pair_set_;
-  std::int64_t pairs_received_ = 0, pairs_returned_ = 0;
+  std::int64_t pairs_received_ = 0, pairs_returned_ = 0, groups_decided_ = 0;
   int label_rounds_ = 0;
   std::vector<std::int64_t> held_ids_; ///< self contact: the facets handed in, by id
   RoleChanges role_changes_;
