@@ -1389,6 +1389,37 @@ def test_rings_self_search_np3():
     H.cleanup(*_dirs)
 
 
+def test_roles_restart_across_np():
+    """The kept self-contact roles and pairs of a checkpoint are written by the ranks that keep
+    them and routed at a restart by facet id to the ranks that keep them then, at any np: the
+    7-ring pile (contact from step 100) checkpointed at step 110 at np 1 and restarted at np 3,
+    and checkpointed at np 3 and restarted at np 1, repeats the uninterrupted np 1 run's steps
+    111 to 120 (energy and momenta to 1e-10, Newton iterations exactly)."""
+    import test_rings
+    rows, _, work, one, _ = test_rings.rings_case(1, rings=7, k=4, end=0.3,
+                                                  checkpoint_every=110)
+    _, _, work3, three, _ = test_rings.rings_case(3, rings=7, k=4, end=0.3,
+                                                  checkpoint_every=110)
+    _dirs.extend((work, one, work3, three))
+    columns = ("total_energy", "momentum_x", "momentum_y")
+    for what, source, np in (("np 1 -> np 3", one, 3), ("np 3 -> np 1", three, 1)):
+        again = H.solve(os.path.join(work, "rings.yaml"), np=np,
+                        extra=["--restart", os.path.join(source, "checkpoint_00110")])
+        _dirs.append(again)
+        steps = rows_of(again, "steps.csv")
+        scale = max(abs(r[c]) for r in rows for c in columns)
+        worst = max(abs(a[c] - b[c]) for a, b in zip(rows[110:], steps) for c in columns)
+        iterations = [(a["newton_iterations"], b["newton_iterations"])
+                      for a, b in zip(rows[110:], steps)]
+        print("   restart %s at step 110: %d steps, largest difference %.2e of %.2e"
+              % (what, len(steps), worst, scale))
+        if (len(steps) != len(rows) - 110 or worst > 1e-10 * scale
+                or any(a != b for a, b in iterations)):
+            raise AssertionError("restart %s differs from the uninterrupted run: %.3e, "
+                                 "iterations %s" % (what, worst, iterations))
+    H.cleanup(*_dirs)
+
+
 def friction_rings_case(np, interface="surface"):
     """test_friction_dynamics.py's two free rings with energy-momentum contact and Coulomb
     friction (`surface:`, dual multipliers, or with interface "two_bodies" slave and master
@@ -1620,6 +1651,7 @@ def test_ghosting_reused_np3():
 if __name__ == "__main__":
     H.main([test_hertz_master_side_in_part_np3, test_slave_side_in_part_np3,
             test_slave_side_in_part_independent_np3, test_rings_self_search_np3, test_two_blocks_self_search_np3,
+            test_self_roles_decided_by_group_np3, test_roles_restart_across_np,
             test_ghosting_reused_np3, test_hertz_master_ghosted, test_ironing_master_ghosted, test_held_cells_np3,
             test_check_distributed_np3, test_tied_interface_part_np3, test_saddle_point_tying_part_np3,
             test_tied_independent_np3, test_tied_curved_quadratic_independent_np3,
