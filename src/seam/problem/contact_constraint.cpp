@@ -1866,6 +1866,7 @@ void ContactConstraint::balance() {
       s.share.self_pairs_received = s.search->self_pairs_received();
       s.share.self_pairs_returned = s.search->self_pairs_returned();
       s.share.self_groups = s.search->self_groups_decided();
+      s.share.label_rounds = s.search->label_rounds();
     }
     if (s.search) {
       s.share.ghost_exchanges = s.search->n_exchanges();
@@ -2204,6 +2205,7 @@ std::vector<ContactReport> ContactConstraint::reports(const la::Vector& u) {
     rep.local_self_pairs_received = s.share.self_pairs_received;
     rep.local_self_pairs_returned = s.share.self_pairs_returned;
     rep.local_self_groups = s.share.self_groups;
+    rep.self_label_rounds = s.share.label_rounds;
     rep.surface_facets = !s.itf.self_contact() ? 0
                          : s.slave_in_part     ? s.slave_facets
                                                : static_cast<int>(s.itf.slave().n_facets());

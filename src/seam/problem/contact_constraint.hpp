@@ -342,6 +342,7 @@ private:
       int surface_received = 0; ///< self contact: surface facets it searched then
       /// Self contact, at the last search: pairs it received to decide, and back.
       std::int64_t self_pairs_received = 0, self_pairs_returned = 0, self_groups = 0;
+      int label_rounds = 0; ///< self contact: rounds of the group labels at the last search
       std::int64_t ghost_exchanges = 0; ///< of the distributed search, so far
       std::int64_t searches = 0;        ///< of the distributed search, so far
       std::int64_t candidates = 0;      ///< candidate pairs of all ranks

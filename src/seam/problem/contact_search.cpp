@@ -73,6 +73,18 @@ private:
   std::vector<std::vector<T>> to_;
 };
 
+/// The facets of `pairs` by id, sorted, each once.
+std::vector<std::int64_t> facets_of(std::span<const GlobalFacingPair> pairs) {
+  std::vector<std::int64_t> ids;
+  for (const auto& p : pairs) {
+    ids.push_back(p.slave);
+    ids.push_back(p.master);
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
 struct IdValue {
   std::int64_t id = 0, value = 0;
 };
@@ -519,16 +531,8 @@ std::vector<std::int64_t> ContactSearch::group_labels(std::span<const std::int64
 
 void ContactSearch::decide_roles(std::span<const GlobalFacingPair> found) {
   register_holders();
-  int rank = 0;
-  MPI_Comm_rank(comm_, &rank);
   // The labels of the groups of this rank's pairs.
-  std::vector<std::int64_t> facets;
-  for (const auto& p : found) {
-    facets.push_back(p.slave);
-    facets.push_back(p.master);
-  }
-  std::sort(facets.begin(), facets.end());
-  facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+  const auto facets = facets_of(found);
   std::vector<local_index> group;
   const auto label = group_labels(facets, group, found);
   const auto label_of = [&](std::int64_t id) {
@@ -610,13 +614,7 @@ void ContactSearch::decide_roles(std::span<const GlobalFacingPair> found) {
   // groups (contact::orient_pairs: the roles of a group depend on its pairs only): the facets
   // numbered in the order of their ids, so that "the lowest facet" is the one of lowest id, and
   // the pairs in the order of the ranks that found them.
-  std::vector<std::int64_t> ids;
-  for (const auto& p : pairs) {
-    ids.push_back(p.slave);
-    ids.push_back(p.master);
-  }
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  const auto ids = facets_of(pairs);
   const auto number = [&](std::int64_t id) { return index_of(ids, id, "paired facet"); };
   std::vector<contact::FacingPair> with(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i)

@@ -624,7 +624,7 @@ void Output::finish(bool converged, int n_steps) {
   // The peak over the phases (memory_trace.hpp): each phase mark resets the kernel's peak.
   parallel::mark_memory(comm.get(), "end");
   const auto& memory = parallel::memory_phases(); // the same phases on every rank
-  constexpr std::size_t n_counts = 33;
+  constexpr std::size_t n_counts = 34;
   const std::size_t n_detail = n_counts + 2 * memory.size();
   std::vector<double> detail(static_cast<std::size_t>(comm.size()) * n_detail, 0.0);
   {
@@ -665,6 +665,7 @@ void Output::finish(bool converged, int n_steps) {
       mine[30] += static_cast<double>(c.local_self_pairs_received);
       mine[31] += static_cast<double>(c.local_self_pairs_returned);
       mine[32] += static_cast<double>(c.local_self_groups);
+      mine[33] += static_cast<double>(c.self_label_rounds);
     }
     mine[6] = parallel::peak_rss_mb();
     // What the rank holds beyond its share (issue 12): cells held only for an interface
@@ -763,6 +764,7 @@ void Output::finish(bool converged, int n_steps) {
     e["contact_self_pairs_received"] = static_cast<std::int64_t>(d[30]);
     e["contact_self_pairs_returned"] = static_cast<std::int64_t>(d[31]);
     e["contact_self_groups_decided"] = static_cast<std::int64_t>(d[32]);
+    e["contact_self_label_rounds"] = static_cast<std::int64_t>(d[33]);
     // Per phase of the run: the peak since the previous phase and the resident set at its end.
     auto& phases = e["memory_phases"];
     phases = io::Json::array();

@@ -97,6 +97,7 @@ struct ContactReport {
   /// (those of the groups of pairs it decides), and the oriented pairs it received back.
   std::int64_t local_self_pairs_received = 0, local_self_pairs_returned = 0;
   std::int64_t local_self_groups = 0; ///< the groups of pairs whose roles it decided then
+  int self_label_rounds = 0;          ///< rounds the groups' labels took then (every rank)
   int surface_facets = 0;
   /// Ghost exchanges and searches of the distributed search so far.
   std::int64_t local_ghost_exchanges = 0;
