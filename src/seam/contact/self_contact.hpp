@@ -80,6 +80,10 @@ void with_axes(const meshtying::InterfaceSide& side, std::span<const search::Can
 /// orient_pairs with the axes given with the pairs; `n_facets`: the surface's facets.
 /// `roles` (empty, or one per facet): the roles kept from the earlier searches of the step
 /// (search::assign_roles with roles kept), completed with those of the facets that meet anew.
+/// The roles of a connected group of pairs depend on its pairs (their order among themselves)
+/// and its facets' kept roles only: the pairs of some whole groups, their facets numbered in
+/// the same order, are oriented as in the whole graph (the distributed search decides each
+/// group on one rank: problem/contact_search.hpp).
 void orient_pairs(local_index n_facets, std::span<const FacingPair> pairs,
                   std::vector<mortar::CandidatePair>& out, std::span<search::Role> roles = {});
 
