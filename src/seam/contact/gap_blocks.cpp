@@ -436,10 +436,14 @@ bool ContactInterface::has_gap_blocks() const {
     return dim() == 2 ? t == line && (t == fem::CellType::line2 || t == fem::CellType::line3)
                       : t == fem::CellType::tri3 || t == fem::CellType::quad4;
   };
-  // Against a rigid obstacle the slave side only (its whole-facet kernel; quadratic 3D faces
-  // not: rigid_obstacle_facet.cpp).
+  // Against a rigid obstacle the slave side only, with its whole-facet kernel
+  // (rigid_obstacle_facet.cpp), which takes quadratic 3D faces as well.
+  const auto quadratic_3d = [this](fem::CellType t) {
+    return dim() == 3 &&
+           (t == fem::CellType::tri6 || t == fem::CellType::quad8 || t == fem::CellType::quad9);
+  };
   for (const auto t : slave_.types)
-    if (!supported(t)) return false;
+    if (!supported(t) && !(rigid_ && quadratic_3d(t))) return false;
   if (rigid_) return true;
   for (const auto t : master_.types)
     if (!supported(t)) return false;

@@ -185,7 +185,11 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                                     "gaps of no fixed sign at the vertices, with or without "
                                     "friction; use multiplier: dual");
     }
-    s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
+    // The discrete gradient of energy-momentum contact (below) is the gradient of the weighted
+    // gaps in the nodal positions, of the modified dual basis on tri6/quad8 faces as they are
+    // weighted: its force needs no transformation of the slave displacements.
+    if (config.time.integrator != io::Integrator::energy_momentum || !s.itf.has_gap_blocks())
+      s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     s.compact =
         slave_part && s.itf.rigid() && disc.comm().max(s.T_inverse.empty() ? 0.0 : 1.0) == 0.0;
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain;
@@ -1534,6 +1538,7 @@ la::Matrix ContactConstraint::transformation_delta() const {
   std::vector<PetscInt> pi, pj;
   std::vector<double> pv;
   for (const auto& s : sides_) {
+    if (s.T_inverse.empty()) continue; // untransformed (energy-momentum contact)
     const auto& nodes = s.itf.slave().mesh_nodes;
     const auto& facets = s.itf.slave().facet_set();
     std::vector<char> zone(nodes.size(), 0);
@@ -1742,7 +1747,7 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
   const std::vector<std::int64_t> before = s.node_keys;
   s.itf.hold_slave_facets(slave_side_of(held));
   index_slave_side(s, std::move(facet_ids));
-  s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
+  if (!s.discrete_gradient) s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
   const auto& after = s.node_keys;
   const auto moved = [&](auto& values, std::size_t width) {
     values.resize(before.size() * width, {}); // D and g~ are sized at the first sums

@@ -1,0 +1,167 @@
+"""Energy-momentum contact on quadratic 3D faces (issue 13; docs/contact_dynamics.md §5).
+
+Against a rigid obstacle the weighted gaps of a quadratic slave facet (tri6, quad8, quad9),
+g~_j = int Phi_j g da with the dual basis of the modified shape functions on tri6/quad8
+(Phi_j = A_jk N~_k) or N_j (standard, quad9), have exact second derivatives in the facet's
+nodal positions (contact/rigid_obstacle_facet.cpp), so the contact force of the step is their
+discrete gradient: the energy never rises by more than the Newton tolerance's scale and in
+persistent contact it stays constant to it; against a plane the momentum along it and against
+a sphere the angular momentum about its centre stay those of the start to 1e-12; np = 3
+equals np = 1. Cases: the ring of test_rings.py extruded (hex27: quad9 faces; hex20: quad8)
+and a ball of tet10 (tri6 faces).
+
+With the force of the end of the step (main's build, SEAM=/work/main/build/bin/seam) the same
+cases gain up to the figures printed by each test in a step (docs/contact_dynamics.md §5).
+"""
+import math
+import os
+import re
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness as H  # noqa: E402
+import test_contact as T  # noqa: E402
+import test_rings as R  # noqa: E402
+
+# A ball of radius 0.5 around (0, 0.55, 0.25), tetrahedra of second order (tri6 faces).
+BALL_GEO = """SetFactory("OpenCASCADE");
+Sphere(1) = {0, 0.55, 0.25, 0.5};
+Mesh.CharacteristicLengthMax = 0.3;
+Mesh.ElementOrder = 2;
+Physical Volume("r0") = {1};
+Physical Surface("r0_boundary") = {1};
+"""
+
+
+def run(geo, yaml, np):
+    work, out = T.run_case(geo, yaml, np=np)
+    rows = H.read_csv(os.path.join(out, "steps.csv"))
+    itf = H.read_csv(os.path.join(out, "interfaces.csv"))
+    newton = H.read_csv(os.path.join(out, "newton.csv"))
+    H.cleanup(work, out)
+    return rows, itf, newton
+
+
+def obstacle_case(body, obstacle, multiplier="dual", steps=30, end=0.2):
+    """The geometry and input of the ring ("quad9": hex27, "quad8": hex20) or the ball
+    ("tri6") thrown obliquely and spinning onto a rigid plane or sphere under it
+    (test_rings.ring_on_obstacle)."""
+    if body == "tri6":
+        geo = BALL_GEO
+        velocity = '"0.4 - 0.5*(y - 0.55)", "-1 + 0.5*x", "0.1"'
+    else:
+        geo = R.ring_geo_3d(((0.0, 1.05),), 3, 1) + "Mesh.ElementOrder = 2;\n"
+        if body == "quad8":
+            geo += "Mesh.SecondOrderIncomplete = 1;\n"
+        velocity = R.OBSTACLE_VELOCITY[3]
+    yaml = (R.OBSTACLE_YAML.replace("DIM", "3").replace("VELOCITY", velocity)
+            .replace("MULTIPLIER", "multiplier: %s," % multiplier)
+            .replace("OBSTACLE", R.OBSTACLES[obstacle][3]).replace("STEPS", str(steps))
+            .replace("END", str(end)))
+    return geo, yaml
+
+
+def on_obstacle(body, obstacle, multiplier="dual", np=1):
+    """obstacle_case run; the energy figures of check_obstacle_energy."""
+    geo, yaml = obstacle_case(body, obstacle, multiplier)
+    rows, itf, newton = run(geo, yaml, np)
+    e = [r["total_energy"] for r in rows]
+    force = [r["normal_force"] for r in itf]
+    persistent = R.persistent_steps(rows, newton)
+    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
+    change = max([abs(e[k] - e[k - 1]) / e[0] for k in persistent] or [0.0])
+    print("   %s faces on a rigid %s, %s multipliers, np %d: contact in %d of %d steps, %d "
+          "persistent; largest energy rise in a step %.2e, largest change in persistent "
+          "contact %.2e; energy end/start %.8f"
+          % (body, obstacle, multiplier, np, sum(f > 0 for f in force), len(rows),
+             len(persistent), rise, change, e[-1] / e[0]))
+    return dict(rows=rows, energy=e, force=force, rise=rise, change=change,
+                persistent=persistent, body=body)
+
+
+def check(r, obstacle):
+    """check_obstacle_energy and, against the plane, the momentum along it (x, z); against
+    the sphere the angular momentum about its centre, both to 1e-12 of m |v| (times 7)."""
+    R.check_obstacle_energy(r)
+    rows = r["rows"]
+    # m |v| of the first step's momentum (the ball's or ring's mass times its speed).
+    p0 = [rows[0]["momentum_%s" % c] for c in "xyz"]
+    scale = math.sqrt(sum(x * x for x in p0))
+    if obstacle == "plane":
+        drift = max(abs(q["momentum_%s" % c] - rows[0]["momentum_%s" % c])
+                    for q in rows for c in "xz") / scale
+        what = "momentum along the plane"
+    else:
+        def about_centre(q):
+            p = [q["momentum_%s" % c] for c in "xyz"]
+            l = [q["angular_momentum_%s" % c] for c in "xyz"]
+            c = (0.0, -6.0, 0.25)
+            cxp = (c[1] * p[2] - c[2] * p[1], c[2] * p[0] - c[0] * p[2],
+                   c[0] * p[1] - c[1] * p[0])
+            return [l[k] - cxp[k] for k in range(3)]
+        l0 = about_centre(rows[0])
+        drift = max(abs(a - b) for q in rows for a, b in zip(about_centre(q), l0)) / (scale * 7)
+        what = "angular momentum about the sphere's centre"
+    print("   %s kept to %.2e (relative)" % (what, drift))
+    if drift > 1e-12:
+        raise AssertionError("%s drifts by %.3e" % (what, drift))
+
+
+def test_quad9_on_obstacles():
+    """quad9 faces (hex27 ring) on a rigid sphere (dual multipliers, np 1 and 3) and a plane
+    (standard multipliers)."""
+    r1 = on_obstacle("quad9", "sphere")
+    check(r1, "sphere")
+    r3 = on_obstacle("quad9", "sphere", np=3)
+    check(r3, "sphere")
+    R.check_np3_equals_np1(r3, r1)
+    check(on_obstacle("quad9", "plane", multiplier="standard"), "plane")
+
+
+def test_quad8_tri6_on_obstacles():
+    """quad8 faces (hex20 ring) and tri6 faces (tet10 ball) on a rigid sphere and plane (dual
+    multipliers of the modified basis)."""
+    check(on_obstacle("quad8", "sphere"), "sphere")
+    check(on_obstacle("tri6", "sphere"), "sphere")
+    check(on_obstacle("tri6", "plane"), "plane")
+
+
+def test_quadratic_newton_check():
+    """The Newton matrix of the discrete gradient on quad9 faces against the rigid sphere is
+    the derivative of the residual: SEAM_NEWTON_CHECK=15:0 (the first correction of step 15,
+    in persistent contact) compares it with central differences of the whole residual along
+    it, whose error falls as a^2: by 1e2 (to 2e-2) from a = 0.1 to 0.01 in the displacement
+    and the constraint rows (these relative to |F| of the constraint rows, 4e-17 there: the
+    gaps hold at the start of the iteration), and below 1e-8 of |F| in the displacement rows
+    at a = 0.01."""
+    geo, yaml = obstacle_case("quad9", "sphere")
+    work = tempfile.mkdtemp(prefix="seam_quadratic_")
+    H.write_case(work, "case.geo", geo)
+    path = H.write_case(work, "case.yaml", yaml)
+    os.environ["SEAM_NEWTON_CHECK"] = "15:0"
+    try:
+        code, out, err = H.run(["run", path, "-o", os.path.join(work, "out"), "--quiet"],
+                               check=False)
+    finally:
+        del os.environ["SEAM_NEWTON_CHECK"]
+    H.cleanup(work)
+    if code != 3:
+        raise AssertionError("the Newton check did not run (exit %d): %s" % (code, err[-2000:]))
+    central = {}
+    for line in out.splitlines():
+        m = re.match(r"\s*a = +([0-9.e+-]+) .* central ([0-9.e+-]+) / ([0-9.e+-]+)", line)
+        if m:
+            central[float(m.group(1))] = (float(m.group(2)), float(m.group(3)))
+    for a in (0.1, 0.01, 0.001):
+        print("   a = %.0e: central difference error %.2e (displacement rows), %.2e "
+              "(constraint rows) of |F|" % ((a,) + central[a]))
+    for k in range(2):
+        coarse, fine = central[0.1][k], central[0.01][k]
+        if not (fine < 2e-2 * coarse and (k == 1 or fine < 1e-8)):
+            raise AssertionError("the central differences do not converge to the correction "
+                                 "at second order: %.3e at a = 0.1, %.3e at a = 0.01"
+                                 % (coarse, fine))
+
+if __name__ == "__main__":
+    H.main([test_quad9_on_obstacles, test_quad8_tri6_on_obstacles, test_quadratic_newton_check])
