@@ -1,5 +1,12 @@
 """Energy-momentum contact on quadratic 3D faces (issue 13; docs/contact_dynamics.md §5).
 
+Between two bodies (and as one `surface:` interface) the weighted gaps of a pair of quadratic
+facets have exact second derivatives through the kernel of contact/gap_blocks_3d.cpp on
+Hyper<81>, so the contact force is their discrete gradient: two blocks of one hex27 (quad9
+faces) or hex20 (quad8) cell each, thrown at each other obliquely and spinning, keep the linear
+and angular momentum to 1e-12 and no step gains more than 1e-10 of the energy (Newton
+tolerance 1e-12); np = 3 equals np = 1.
+
 Against a rigid obstacle the weighted gaps of a quadratic slave facet (tri6, quad8, quad9),
 g~_j = int Phi_j g da with the dual basis of the modified shape functions on tri6/quad8
 (Phi_j = A_jk N~_k) or N_j (standard, quad9), have exact second derivatives in the facet's
@@ -127,6 +134,102 @@ def test_quad8_tri6_on_obstacles():
     check(on_obstacle("tri6", "plane"), "plane")
 
 
+# Two unit cubes of one cell each, b's face x = 1.01 facing a's x = 1 (0.01 apart), offset by
+# (0.2, 0.1) in y and z; they close at 1 and spin, so the contact is eccentric.
+BLOCKS_GEO = """SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Box(2) = {1.01, 0.2, 0.1, 1, 1, 1};
+Transfinite Curve{:} = 2;
+Transfinite Surface{:};
+Transfinite Volume{:};
+Recombine Surface{:};
+Mesh.ElementOrder = 2;
+SERENDIPITY
+Physical Volume("a") = {1};
+Physical Volume("b") = {2};
+Physical Surface("a_right") = {2};
+Physical Surface("b_left") = {7};
+Physical Surface("faces") = {2, 7};
+"""
+BLOCKS_YAML = """dimension: 3
+mesh: {geo: case.geo}
+materials:
+  rubber: {model: neo_hooke, young: 100, poisson: 0.3, density: 1}
+bodies:
+  - {region: a, material: rubber}
+  - {region: b, material: rubber}
+initial_conditions:
+  - {region: a, velocity: ["0.5 - 0.3*(y - 0.5)", "0.3*(x - 0.5)", "0.1"]}
+  - {region: b, velocity: ["-0.5", "0.1*(z - 0.6)", "-0.1 - 0.1*(y - 0.7)"]}
+interfaces:
+  - INTERFACE
+time: {integrator: energy_momentum, end: 0.06, steps: 6}
+solver: {newton: {tolerance: 1.0e-12, max_iterations: 30}}
+output: {every: 1000}
+"""
+INTERFACES = {
+    "two bodies": "{name: impact, type: contact, slave: b_left, master: a_right, MULTIPLIER}",
+    "surface": "{name: impact, type: contact, surface: faces, MULTIPLIER}",
+}
+
+
+def two_blocks(faces="quad9", interface="two bodies", multiplier="dual", np=1):
+    """The two blocks (quad9: hex27 cells, quad8: hex20) colliding; the energy and momentum
+    figures of the run."""
+    geo = BLOCKS_GEO.replace("SERENDIPITY", "Mesh.SecondOrderIncomplete = 1;"
+                             if faces == "quad8" else "")
+    yaml = BLOCKS_YAML.replace("INTERFACE", INTERFACES[interface]).replace(
+        "MULTIPLIER", "multiplier: %s" % multiplier)
+    rows, itf, newton = run(geo, yaml, np)
+    e = [r["total_energy"] for r in rows]
+    force = [r["normal_force"] for r in itf]
+    p0 = [rows[0]["momentum_%s" % c] for c in "xyz"]
+    l0 = [rows[0]["angular_momentum_%s" % c] for c in "xyz"]
+    scale_p = 0.5  # m |v| of one block
+    scale_l = max(math.sqrt(sum(x * x for x in l0)), 2 * scale_p)
+    dp = max(abs(r["momentum_%s" % c] - p0[k]) for r in rows
+             for k, c in enumerate("xyz")) / scale_p
+    dl = max(abs(r["angular_momentum_%s" % c] - l0[k]) for r in rows
+             for k, c in enumerate("xyz")) / scale_l
+    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
+    persistent = R.persistent_steps(rows, newton)
+    change = max([abs(e[k] - e[k - 1]) / e[0] for k in persistent] or [0.0])
+    print("   %s faces, %s, %s multipliers, np %d: contact in %d of %d steps, %d persistent; "
+          "largest energy rise in a step %.2e, largest change in persistent contact %.2e; "
+          "linear momentum kept to %.2e, angular to %.2e (relative)"
+          % (faces, interface, multiplier, np, sum(f > 0 for f in force), len(rows),
+             len(persistent), rise, change, dp, dl))
+    return dict(rows=rows, energy=e, force=force, rise=rise, change=change, dp=dp, dl=dl,
+                persistent=persistent)
+
+
+def check_blocks(r):
+    if sum(f > 0 for f in r["force"]) < 4 or len(r["persistent"]) < 2:
+        raise AssertionError("contact in %d steps, %d persistent: too few"
+                             % (sum(f > 0 for f in r["force"]), len(r["persistent"])))
+    if r["rise"] > 1e-10 or r["change"] > 1e-10:
+        raise AssertionError("a step gained %.3e of the energy; %.3e in persistent contact"
+                             % (r["rise"], r["change"]))
+    if r["dp"] > 1e-12 or r["dl"] > 1e-12:
+        raise AssertionError("momentum drift %.3e, angular %.3e" % (r["dp"], r["dl"]))
+
+
+def test_quad9_blocks():
+    """Two hex27 blocks (quad9 faces), two bodies, dual multipliers, np 1 and 3."""
+    r1 = two_blocks()
+    check_blocks(r1)
+    r3 = two_blocks(np=3)
+    check_blocks(r3)
+    R.check_np3_equals_np1(r3, r1)
+
+
+def test_quad9_quad8_blocks_surface():
+    """The hex27 blocks as one `surface:` interface (standard multipliers) and the hex20
+    blocks (quad8 faces, dual multipliers of the modified basis) between two bodies."""
+    check_blocks(two_blocks(interface="surface", multiplier="standard"))
+    check_blocks(two_blocks(faces="quad8"))
+
+
 def test_quadratic_newton_check():
     """The Newton matrix of the discrete gradient on quad9 faces against the rigid sphere is
     the derivative of the residual: SEAM_NEWTON_CHECK=15:0 (the first correction of step 15,
@@ -164,4 +267,5 @@ def test_quadratic_newton_check():
                                  % (coarse, fine))
 
 if __name__ == "__main__":
-    H.main([test_quad9_on_obstacles, test_quad8_tri6_on_obstacles, test_quadratic_newton_check])
+    H.main([test_quad9_on_obstacles, test_quad8_tri6_on_obstacles, test_quad9_blocks,
+            test_quad9_quad8_blocks_surface, test_quadratic_newton_check])

@@ -432,18 +432,14 @@ bool ContactInterface::has_gap_blocks() const {
     line = slave_.types.front();
   else if (!rigid_ && !master_.types.empty())
     line = master_.types.front();
+  // 3D: linear and quadratic faces, mixed too (gap_blocks_3d.cpp; against a rigid obstacle
+  // the slave side's whole-facet kernel, rigid_obstacle_facet.cpp).
   const auto supported = [this, line](fem::CellType t) {
     return dim() == 2 ? t == line && (t == fem::CellType::line2 || t == fem::CellType::line3)
-                      : t == fem::CellType::tri3 || t == fem::CellType::quad4;
-  };
-  // Against a rigid obstacle the slave side only, with its whole-facet kernel
-  // (rigid_obstacle_facet.cpp), which takes quadratic 3D faces as well.
-  const auto quadratic_3d = [this](fem::CellType t) {
-    return dim() == 3 &&
-           (t == fem::CellType::tri6 || t == fem::CellType::quad8 || t == fem::CellType::quad9);
+                      : mortar::is_interface_facet(t, 3);
   };
   for (const auto t : slave_.types)
-    if (!supported(t) && !(rigid_ && quadratic_3d(t))) return false;
+    if (!supported(t)) return false;
   if (rigid_) return true;
   for (const auto t : master_.types)
     if (!supported(t)) return false;
