@@ -88,31 +88,9 @@ def on_obstacle(body, obstacle, multiplier="dual", np=1):
 
 
 def check(r, obstacle):
-    """check_obstacle_energy and, against the plane, the momentum along it (x, z); against
-    the sphere the angular momentum about its centre, both to 1e-12 of m |v| (times 7)."""
-    R.check_obstacle_energy(r)
-    rows = r["rows"]
-    # m |v| of the first step's momentum (the ball's or ring's mass times its speed).
-    p0 = [rows[0]["momentum_%s" % c] for c in "xyz"]
-    scale = math.sqrt(sum(x * x for x in p0))
-    if obstacle == "plane":
-        drift = max(abs(q["momentum_%s" % c] - rows[0]["momentum_%s" % c])
-                    for q in rows for c in "xz") / scale
-        what = "momentum along the plane"
-    else:
-        def about_centre(q):
-            p = [q["momentum_%s" % c] for c in "xyz"]
-            l = [q["angular_momentum_%s" % c] for c in "xyz"]
-            c = (0.0, -6.0, 0.25)
-            cxp = (c[1] * p[2] - c[2] * p[1], c[2] * p[0] - c[0] * p[2],
-                   c[0] * p[1] - c[1] * p[0])
-            return [l[k] - cxp[k] for k in range(3)]
-        l0 = about_centre(rows[0])
-        drift = max(abs(a - b) for q in rows for a, b in zip(about_centre(q), l0)) / (scale * 7)
-        what = "angular momentum about the sphere's centre"
-    print("   %s kept to %.2e (relative)" % (what, drift))
-    if drift > 1e-12:
-        raise AssertionError("%s drifts by %.3e" % (what, drift))
+    """test_rings.check_ring_on_obstacle (the ring's m |v| as the scale of the ball's
+    momenta too, half of its own)."""
+    R.check_ring_on_obstacle(r, 3, obstacle)
 
 
 def test_quad9_on_obstacles():
@@ -236,19 +214,13 @@ def test_quad9_quad8_blocks_surface():
     check_blocks(two_blocks(faces="quad8"))
 
 
-def test_quadratic_newton_check():
-    """The Newton matrix of the discrete gradient on quad9 faces against the rigid sphere is
-    the derivative of the residual: SEAM_NEWTON_CHECK=15:0 (the first correction of step 15,
-    in persistent contact) compares it with central differences of the whole residual along
-    it, whose error falls as a^2: by 1e2 (to 2e-2) from a = 0.1 to 0.01 in the displacement
-    and the constraint rows (these relative to |F| of the constraint rows, 4e-17 there: the
-    gaps hold at the start of the iteration), and below 1e-8 of |F| in the displacement rows
-    at a = 0.01."""
-    geo, yaml = obstacle_case("quad9", "sphere")
+def newton_check(geo, yaml, at):
+    """The central-difference errors of SEAM_NEWTON_CHECK=`at` by step length a:
+    (displacement rows, constraint rows), relative to |F| of each."""
     work = tempfile.mkdtemp(prefix="seam_quadratic_")
     H.write_case(work, "case.geo", geo)
     path = H.write_case(work, "case.yaml", yaml)
-    os.environ["SEAM_NEWTON_CHECK"] = "15:0"
+    os.environ["SEAM_NEWTON_CHECK"] = at
     try:
         code, out, err = H.run(["run", path, "-o", os.path.join(work, "out"), "--quiet"],
                                check=False)
@@ -262,15 +234,33 @@ def test_quadratic_newton_check():
         m = re.match(r"\s*a = +([0-9.e+-]+) .* central ([0-9.e+-]+) / ([0-9.e+-]+)", line)
         if m:
             central[float(m.group(1))] = (float(m.group(2)), float(m.group(3)))
-    for a in (0.1, 0.01, 0.001):
-        print("   a = %.0e: central difference error %.2e (displacement rows), %.2e "
-              "(constraint rows) of |F|" % ((a,) + central[a]))
-    for k in range(2):
-        coarse, fine = central[0.1][k], central[0.01][k]
-        if not (fine < 2e-2 * coarse and (k == 1 or fine < 1e-8)):
-            raise AssertionError("the central differences do not converge to the correction "
-                                 "at second order: %.3e at a = 0.1, %.3e at a = 0.01"
-                                 % (coarse, fine))
+    return central
+
+
+def test_quadratic_newton_check():
+    """The Newton matrix of the discrete gradient on quad9 faces is the derivative of the
+    residual: SEAM_NEWTON_CHECK compares the first correction of a step in persistent contact
+    (step 15 of the hex27 ring on the rigid sphere; step 3 of the two hex27 blocks) with central
+    differences of the whole residual along it, whose error falls as a^2: by 1e2 (to 2e-2)
+    from a = 0.1 to 0.01 in the displacement and the constraint rows (these relative to |F| of
+    the constraint rows, about 1e-17 there: the gaps hold at the start of the iteration), and
+    below 1e-8 of |F| in the displacement rows at a = 0.01."""
+    geo, yaml = obstacle_case("quad9", "sphere")
+    blocks_yaml = BLOCKS_YAML.replace("INTERFACE", INTERFACES["two bodies"]).replace(
+        "MULTIPLIER", "multiplier: dual")
+    for what, case, at in (("ring on the sphere", (geo, yaml), "15:0"),
+                           ("two blocks", (BLOCKS_GEO.replace("SERENDIPITY", ""), blocks_yaml),
+                            "3:0")):
+        central = newton_check(case[0], case[1], at)
+        for a in (0.1, 0.01, 0.001):
+            print("   %s, a = %.0e: central difference error %.2e (displacement rows), %.2e "
+                  "(constraint rows) of |F|" % ((what, a) + central[a]))
+        for k in range(2):
+            coarse, fine = central[0.1][k], central[0.01][k]
+            if not (fine < 2e-2 * coarse and (k == 1 or fine < 1e-8)):
+                raise AssertionError("%s: the central differences do not converge to the "
+                                     "correction at second order: %.3e at a = 0.1, %.3e at "
+                                     "a = 0.01" % (what, coarse, fine))
 
 if __name__ == "__main__":
     H.main([test_quad9_on_obstacles, test_quad8_tri6_on_obstacles, test_quad9_blocks,

@@ -250,6 +250,40 @@ double longest_edge_squared(const std::array<Eigen::Vector3d, mortar::max_facet_
   return longest;
 }
 
+/// The auxiliary plane of a linear piece with vertices x[v[0..nv)] (geometry::make_plane
+/// through the vertex mean; the normal from the triangle's edges or the quadrilateral's
+/// diagonals) on S, and the projection into it: in-plane coordinates and height.
+template <class S> struct AuxPlane {
+  V3<S> center, np, t1, t2;
+
+  template <class X> bool set(const X& x, const std::array<int, 4>& v, int nv) {
+    const auto at = [&](int k) -> const V3<S>& {
+      return x[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
+    };
+    center = V3<S>();
+    for (int k = 0; k < nv; ++k) center = center + at(k);
+    center = center * (1.0 / nv);
+    const V3<S> raw =
+        nv == 3 ? cross(at(1) - at(0), at(2) - at(0)) : cross(at(2) - at(0), at(3) - at(1));
+    const S raw_length = norm(raw);
+    if (!(value_of(raw_length) > 0.0)) return false;
+    np = raw * (1.0 / raw_length);
+    const Eigen::Vector3d npv = value(np);
+    int axis = 0;
+    npv.cwiseAbs().minCoeff(&axis);
+    V3<S> e = np * (-component(np, axis));
+    (axis == 0 ? e.x : axis == 1 ? e.y : e.z) += 1.0;
+    t1 = e * (1.0 / norm(e));
+    t2 = cross(np, t1);
+    return true;
+  }
+  void into(const V3<S>& x, V2<S>& u, S& h) const {
+    const V3<S> r = x - center;
+    u = {dot(r, t1), dot(r, t2)};
+    h = dot(r, np);
+  }
+};
+
 template <class S>
 void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::array<S, 4>& g) {
   g = {S(0.0), S(0.0), S(0.0), S(0.0)};
@@ -273,31 +307,15 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
     xm[static_cast<std::size_t>(l)] =
         seeded<S>(in.xm[static_cast<std::size_t>(l)], master_offset + 3 * l);
 
-  // The auxiliary plane (geometry::make_plane through the vertex mean).
-  V3<S> center;
-  for (int k = 0; k < ns; ++k) center = center + xs[static_cast<std::size_t>(k)];
-  center = center * (1.0 / ns);
-  const V3<S> raw =
-      ns == 3 ? cross(xs[1] - xs[0], xs[2] - xs[0]) : cross(xs[2] - xs[0], xs[3] - xs[1]);
-  const S raw_length = norm(raw);
-  if (!(value_of(raw_length) > 0.0)) return;
-  const V3<S> np = raw * (1.0 / raw_length);
+  // The auxiliary plane of the facet.
+  AuxPlane<S> plane;
+  if (!plane.set(xs, {0, 1, 2, 3}, ns)) return;
+  const V3<S>& np = plane.np;
   const Eigen::Vector3d npv = value(np);
-  int axis = 0;
-  npv.cwiseAbs().minCoeff(&axis);
-  V3<S> e = np * (-component(np, axis));
-  (axis == 0 ? e.x : axis == 1 ? e.y : e.z) += 1.0;
-  const V3<S> t1 = e * (1.0 / norm(e));
-  const V3<S> t2 = cross(np, t1);
   std::array<V2<S>, 4> us, um;
   std::array<S, 4> hs, hm;
-  const auto into_plane = [&](const V3<S>& x, V2<S>& u, S& h) {
-    const V3<S> r = x - center;
-    u = {dot(r, t1), dot(r, t2)};
-    h = dot(r, np);
-  };
-  for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) into_plane(xs[k], us[k], hs[k]);
-  for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) into_plane(xm[l], um[l], hm[l]);
+  for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) plane.into(xs[k], us[k], hs[k]);
+  for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) plane.into(xm[l], um[l], hm[l]);
   // Boxes in the plane and the facing test, on values.
   Eigen::Vector2d slo = value(us[0]), shi = slo, mlo = value(um[0]), mhi = mlo;
   for (int k = 1; k < ns; ++k) {
@@ -613,34 +631,18 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
     const auto& v = sp.nodes;
     const int nv = sp.n_vertices;
     // The auxiliary plane of the piece (make_piece, geometry::make_plane).
-    V3<S> center;
-    for (int k = 0; k < nv; ++k) center = center + xs[static_cast<std::size_t>(v[k])];
-    center = center * (1.0 / nv);
-    const V3<S> raw = nv == 3 ? cross(xs[v[1]] - xs[v[0]], xs[v[2]] - xs[v[0]])
-                              : cross(xs[v[2]] - xs[v[0]], xs[v[3]] - xs[v[1]]);
-    const S raw_length = norm(raw);
-    if (!(value_of(raw_length) > 0.0)) continue;
-    const V3<S> np = raw * (1.0 / raw_length);
+    AuxPlane<S> aux;
+    if (!aux.set(xs, v, nv)) continue;
+    const V3<S>& np = aux.np;
     const Eigen::Vector3d npv = value(np);
-    int axis = 0;
-    npv.cwiseAbs().minCoeff(&axis);
-    V3<S> e = np * (-component(np, axis));
-    (axis == 0 ? e.x : axis == 1 ? e.y : e.z) += 1.0;
-    const V3<S> t1 = e * (1.0 / norm(e));
-    const V3<S> t2 = cross(np, t1);
-    const auto into_plane = [&](const V3<S>& x, V2<S>& u, S& h) {
-      const V3<S> r = x - center;
-      u = {dot(r, t1), dot(r, t2)};
-      h = dot(r, np);
-    };
-    for (std::size_t k = 0; k < ms; ++k) into_plane(xs[k], us[k], hs[k]);
-    for (std::size_t l = 0; l < mm; ++l) into_plane(xm[l], um[l], hm[l]);
+    for (std::size_t k = 0; k < ms; ++k) aux.into(xs[k], us[k], hs[k]);
+    for (std::size_t l = 0; l < mm; ++l) aux.into(xm[l], um[l], hm[l]);
     // The same plane and the facets in it on values (for the Newton iterations).
     geometry::Plane plane;
-    plane.origin = value(center);
+    plane.origin = value(aux.center);
     plane.normal = npv;
-    plane.t1 = value(t1);
-    plane.t2 = value(t2);
+    plane.t1 = value(aux.t1);
+    plane.t2 = value(aux.t2);
     const mortar::detail::PlanarFacet slave_plane(slave_facet, plane);
     const mortar::detail::PlanarFacet master_plane(master_facet, plane);
     Polygon<S> subject;
