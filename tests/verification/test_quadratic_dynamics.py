@@ -262,6 +262,32 @@ def test_quadratic_newton_check():
                                      "correction at second order: %.3e at a = 0.1, %.3e at "
                                      "a = 0.01" % (what, coarse, fine))
 
+
+def test_quadratic_check_names_force():
+    """`seam check` names the force of each interface: the discrete gradient on the hex27
+    blocks (quad9 faces) and on the hex20 blocks (quad8), the force of the end of the step
+    with friction on them (not built)."""
+    cases = (("quad9", "", "discrete gradient of the weighted gaps"),
+             ("quad8", "", "discrete gradient of the weighted gaps"),
+             ("quad9", "friction: {model: coulomb, coefficient: 0.3}, ",
+              "contact force of the end of the step"))
+    for faces, friction, expected in cases:
+        geo = BLOCKS_GEO.replace("SERENDIPITY", "Mesh.SecondOrderIncomplete = 1;"
+                                 if faces == "quad8" else "")
+        yaml = BLOCKS_YAML.replace("INTERFACE", INTERFACES["two bodies"]).replace(
+            "MULTIPLIER", friction + "multiplier: dual")
+        work = tempfile.mkdtemp(prefix="seam_quadratic_")
+        H.write_case(work, "case.geo", geo)
+        path = H.write_case(work, "case.yaml", yaml)
+        code, out, err = H.run(["check", path])
+        H.cleanup(work)
+        line = next((l for l in out.splitlines() if "interface impact" in l), "")
+        print("   %s%s: %s" % (faces, " with friction" if friction else "", line.strip()[:160]))
+        if expected not in line:
+            raise AssertionError("seam check does not name '%s' for %s faces%s: %s"
+                                 % (expected, faces, " with friction" if friction else "", line))
+
 if __name__ == "__main__":
     H.main([test_quad9_on_obstacles, test_quad8_tri6_on_obstacles, test_quad9_blocks,
-            test_quad9_quad8_blocks_surface, test_quadratic_newton_check])
+            test_quad9_quad8_blocks_surface, test_quadratic_newton_check,
+            test_quadratic_check_names_force])
