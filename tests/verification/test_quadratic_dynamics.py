@@ -287,7 +287,40 @@ def test_quadratic_check_names_force():
             raise AssertionError("seam check does not name '%s' for %s faces%s: %s"
                                  % (expected, faces, " with friction" if friction else "", line))
 
+
+def test_quadratic_gaps_equal_mortar():
+    """The weighted gaps of the energy-momentum kernel (gap_blocks_3d.cpp, `pair_gaps_quadratic`)
+    are those of the mortar integration (integration_3d.cpp): the two cubes at rest 0.03
+    apart (offset (0.2, 0.1)), one step with energy_momentum (the gaps of the kernel) and with
+    generalized_alpha (the mortar's), the gaps of interface_impact.csv equal to 1e-14 on quad9,
+    quad8 and tri6 faces (tet10 cells; the dual basis of tri6/quad8 modified)."""
+    for faces in ("quad9", "quad8", "tri6"):
+        geo = BLOCKS_GEO.replace("Box(2) = {1.002,", "Box(2) = {1.03,").replace(
+            "SERENDIPITY", "Mesh.SecondOrderIncomplete = 1;" if faces == "quad8" else "")
+        if faces == "tri6":
+            geo = geo.replace("Recombine Surface{:};\n", "")
+        gaps = {}
+        for integrator in ("energy_momentum", "generalized_alpha"):
+            yaml = (BLOCKS_YAML.replace("INTERFACE", INTERFACES["two bodies"])
+                    .replace("MULTIPLIER", "multiplier: dual")
+                    .replace("integrator: energy_momentum", "integrator: " + integrator)
+                    .replace("end: 0.04, steps: 4", "end: 0.01, steps: 1")
+                    .replace("every: 1000", "every: 1"))
+            yaml = "\n".join(l for l in yaml.splitlines() if "velocity" not in l and
+                              "initial_conditions" not in l) + "\n"
+            work, out = T.run_case(geo, yaml)
+            rows = H.read_csv(os.path.join(out, "interface_impact.csv"))
+            H.cleanup(work, out)
+            gaps[integrator] = [r["gap"] for r in rows]
+        a, b = gaps["energy_momentum"], gaps["generalized_alpha"]
+        worst = max(abs(x - y) for x, y in zip(a, b))
+        print("   %s faces: %d slave nodes, gaps %.4f to %.4f, kernel - mortar at most %.2e"
+              % (faces, len(a), min(b), max(b), worst))
+        if len(a) != len(b) or max(b) < 0.02 or worst > 1e-14:
+            raise AssertionError("%s faces: the kernel's weighted gaps differ from the mortar's "
+                                 "by %.3e" % (faces, worst))
+
 if __name__ == "__main__":
     H.main([test_quad9_on_obstacles, test_quad8_tri6_on_obstacles, test_quad9_blocks,
             test_quad9_quad8_blocks_surface, test_quadratic_newton_check,
-            test_quadratic_check_names_force])
+            test_quadratic_check_names_force, test_quadratic_gaps_equal_mortar])
