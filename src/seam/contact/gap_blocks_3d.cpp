@@ -153,6 +153,41 @@ struct CellRule {
   }
 };
 
+/// The cells of a clip polygon, its fan about the area centroid (a triangle stays one cell),
+/// and the rule's points in them: f(u, area, weight) with the point u, its cell's area and its
+/// weight in the rule.
+template <class S, class F>
+void for_each_point(const Polygon<S>& polygon, const CellRule& rule, F&& f) {
+  const std::size_t nv = polygon.size();
+  const V2<S> c = nv == 3 ? polygon[0] : mortar::ad::centroid_of(polygon);
+  for (std::size_t i = 0; i < (nv == 3 ? 1 : nv); ++i) {
+    const V2<S> a = nv == 3 ? polygon[0] : c, b = nv == 3 ? polygon[1] : polygon[i],
+                cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
+    const S area = 0.5 * cross(b - a, cc - a);
+    for (const auto& point : rule.points)
+      f(V2<S>(a * point[0] + b * point[1] + cc * point[2]), area, point[3]);
+  }
+}
+
+/// The gap of one point times its weight, w (h_m - h_s) n . n_p / |n| with the interpolated
+/// nodal normal n = N_k n_k and the heights h above the plane (slave shape values Ns over ns
+/// nodes, master Nm over nm).
+template <class S, class Normals, class Heights, class Shapes>
+S weighted_point_gap(std::size_t ns, const Normals& nn, const Heights& hs, const Shapes& Ns,
+                     std::size_t nm, const Heights& hm, const Shapes& Nm, const V3<S>& np,
+                     const S& area, double weight) {
+  V3<S> n;
+  S h_s = 0.0, h_m = 0.0;
+  for (std::size_t k = 0; k < ns; ++k) {
+    add_product(n.x, nn[k].x, Ns[k]);
+    add_product(n.y, nn[k].y, Ns[k]);
+    add_product(n.z, nn[k].z, Ns[k]);
+    add_product(h_s, hs[k], Ns[k]);
+  }
+  for (std::size_t l = 0; l < nm; ++l) add_product(h_m, hm[l], Nm[l]);
+  return weight * area * (h_m - h_s) * dot(n, np) / norm(n);
+}
+
 /// Reference coordinates (s, t) of the plane point p on the facet with plane images u: the
 /// closed-form inverse in doubles, then Newton steps on S with the Jacobian of the values (a
 /// chord step: from the exact value, each step makes one more order of derivatives exact, so
@@ -353,36 +388,20 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   if (in.dual) dual_coefficients(ns, xs, A);
   const int degree = options.cell_quadrature_degree > 0 ? options.cell_quadrature_degree : 5;
   const CellRule rule(degree);
-  // The fan about the area centroid (a triangle stays one cell).
-  const std::size_t nv = polygon.size();
-  const V2<S> c = nv == 3 ? polygon[0] : mortar::ad::centroid_of(polygon);
-  for (std::size_t i = 0; i < (nv == 3 ? 1 : nv); ++i) {
-    const V2<S> a = nv == 3 ? polygon[0] : c, b = nv == 3 ? polygon[1] : polygon[i],
-                cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
-    const S area = 0.5 * cross(b - a, cc - a);
-    for (const auto& point : rule.points) {
-      const V2<S> u = a * point[0] + b * point[1] + cc * point[2];
-      S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
-      if (!slave_valid || !master_valid || !locate(ns, us, slave_inverse, u, s1, s2) ||
-          !locate(nm, um, master_inverse, u, m1, m2))
-        continue;
-      std::array<S, 4> Ns, Nm;
-      shape_values<S>(ns, s1, s2, Ns);
-      shape_values<S>(nm, m1, m2, Nm);
-      V3<S> n;
-      S h_s = 0.0, h_m = 0.0;
-      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) {
-        add_product(n.x, nn[k].x, Ns[k]);
-        add_product(n.y, nn[k].y, Ns[k]);
-        add_product(n.z, nn[k].z, Ns[k]);
-        add_product(h_s, hs[k], Ns[k]);
-      }
-      for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) add_product(h_m, hm[l], Nm[l]);
-      const S wg = point[3] * area * (h_m - h_s) * dot(n, np) / norm(n);
-      // Phi_j = A_jk N_k with A constant over the pair: sum w g N_k first, apply A once.
-      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) add_product(g[k], wg, Ns[k]);
-    }
-  }
+  // The fan about the area centroid and its points.
+  for_each_point(polygon, rule, [&](const V2<S>& u, const S& area, double weight) {
+    S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
+    if (!slave_valid || !master_valid || !locate(ns, us, slave_inverse, u, s1, s2) ||
+        !locate(nm, um, master_inverse, u, m1, m2))
+      return;
+    std::array<S, 4> Ns, Nm;
+    shape_values<S>(ns, s1, s2, Ns);
+    shape_values<S>(nm, m1, m2, Nm);
+    const S wg = weighted_point_gap(static_cast<std::size_t>(ns), nn, hs, Ns,
+                                    static_cast<std::size_t>(nm), hm, Nm, np, area, weight);
+    // Phi_j = A_jk N_k with A constant over the pair: sum w g N_k first, apply A once.
+    for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) add_product(g[k], wg, Ns[k]);
+  });
   if (!in.dual) return;
   const std::array<S, 4> weighted = g;
   for (std::size_t j = 0; j < static_cast<std::size_t>(ns); ++j) {
@@ -687,43 +706,25 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
       mortar::detail::PieceInverse master_inverse;
       const bool master_valid =
           master_inverse.set(mp.n_vertices, mu, piece_xi(mp, master_reference), master_linear);
-      const std::size_t nc = polygon.size();
-      const V2<S> c = nc == 3 ? polygon[0] : mortar::ad::centroid_of(polygon);
-      for (std::size_t f = 0; f < (nc == 3 ? 1 : nc); ++f) {
-        const V2<S> pa = nc == 3 ? polygon[0] : c, pb = nc == 3 ? polygon[1] : polygon[f],
-                    pc = nc == 3 ? polygon[2] : polygon[(f + 1) % nc];
-        const S area = 0.5 * cross(pb - pa, pc - pa);
-        for (const auto& point : rule.points) {
-          const V2<S> u = pa * point[0] + pb * point[1] + pc * point[2];
-          S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
-          if (!slave_valid || !master_valid ||
-              !locate_on(slave_plane, us, slave_inverse, slave_linear, options.newton, u, s1, s2) ||
-              !locate_on(master_plane, um, master_inverse, master_linear, options.newton, u, m1,
-                         m2))
-            continue;
-          facet_shape_values<S>(in.slave_type, s1, s2, Ns);
-          facet_shape_values<S>(in.master_type, m1, m2, Nm);
-          V3<S> n;
-          S h_s = 0.0, h_m = 0.0;
-          for (std::size_t k = 0; k < ms; ++k) {
-            add_product(n.x, nn[k].x, Ns[k]);
-            add_product(n.y, nn[k].y, Ns[k]);
-            add_product(n.z, nn[k].z, Ns[k]);
-            add_product(h_s, hs[k], Ns[k]);
+      for_each_point(polygon, rule, [&](const V2<S>& u, const S& area, double weight) {
+        S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
+        if (!slave_valid || !master_valid ||
+            !locate_on(slave_plane, us, slave_inverse, slave_linear, options.newton, u, s1, s2) ||
+            !locate_on(master_plane, um, master_inverse, master_linear, options.newton, u, m1, m2))
+          return;
+        facet_shape_values<S>(in.slave_type, s1, s2, Ns);
+        facet_shape_values<S>(in.master_type, m1, m2, Nm);
+        const S wg = weighted_point_gap(ms, nn, hs, Ns, mm, hm, Nm, np, area, weight);
+        // The modified basis N~ of dual multipliers on tri6/quad8 (modify_basis).
+        if (a != 0.0)
+          for (const auto& edge : mortar::edge_nodes(in.slave_type)) {
+            const S edge_value = Ns[static_cast<std::size_t>(edge.node)];
+            add_product(Ns[static_cast<std::size_t>(edge.v0)], edge_value, a);
+            add_product(Ns[static_cast<std::size_t>(edge.v1)], edge_value, a);
+            Ns[static_cast<std::size_t>(edge.node)] = edge_value * (1.0 - 2.0 * a);
           }
-          for (std::size_t l = 0; l < mm; ++l) add_product(h_m, hm[l], Nm[l]);
-          // The modified basis N~ of dual multipliers on tri6/quad8 (modify_basis).
-          if (a != 0.0)
-            for (const auto& edge : mortar::edge_nodes(in.slave_type)) {
-              const S edge_value = Ns[static_cast<std::size_t>(edge.node)];
-              add_product(Ns[static_cast<std::size_t>(edge.v0)], edge_value, a);
-              add_product(Ns[static_cast<std::size_t>(edge.v1)], edge_value, a);
-              Ns[static_cast<std::size_t>(edge.node)] = edge_value * (1.0 - 2.0 * a);
-            }
-          const S wg = point[3] * area * (h_m - h_s) * dot(n, np) / norm(n);
-          for (std::size_t k = 0; k < ms; ++k) add_product(weighted[k], wg, Ns[k]);
-        }
-      }
+        for (std::size_t k = 0; k < ms; ++k) add_product(weighted[k], wg, Ns[k]);
+      });
     }
   }
   if (!in.dual) {
