@@ -1,6 +1,6 @@
-// The weighted gaps of 3D contact on tri3 and quad4 facets as functions of the nodal positions,
-// with exact first and second derivatives (energy-momentum contact, docs/contact_dynamics.md
-// §5).
+// The weighted gaps of 3D contact on tri3 and quad4 facets (and, further below, on quadratic
+// facets: tri6, quad8, quad9) as functions of the nodal positions, with exact first and second
+// derivatives (energy-momentum contact, docs/contact_dynamics.md §5).
 //
 // The kernel follows integrate_pair of mortar/integration_3d.cpp step by step on a scalar type
 // S (double, Dual<36> or Hyper<36>): the auxiliary plane of the slave facet (vertex mean,
