@@ -365,9 +365,9 @@ public:
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
                  Linearization& out, std::span<const double> step_start = {}) const;
 
-  /// Whether gap_blocks is available: line2 or line3 facets (2D) or tri3 and quad4 facets (3D) on
-  /// both sides, two bodies or self contact, or the slave side against a rigid plane, sphere or
-  /// cylinder.
+  /// Whether gap_blocks is available: line2 or line3 facets (2D, one kind) or any surface facets
+  /// (3D: tri3, quad4, tri6, quad8, quad9) on both sides, two bodies or self contact, or the
+  /// slave side against a rigid plane, sphere or cylinder.
   bool has_gap_blocks() const;
   /// The weighted gaps g~_j as functions of the positions: each candidate pair of the owned
   /// slave facets of the last update (same pairs, slave patch and nodal normal averaging),

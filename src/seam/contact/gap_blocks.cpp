@@ -432,12 +432,12 @@ bool ContactInterface::has_gap_blocks() const {
     line = slave_.types.front();
   else if (!rigid_ && !master_.types.empty())
     line = master_.types.front();
+  // 3D: linear and quadratic faces, mixed too (gap_blocks_3d.cpp; against a rigid obstacle
+  // the slave side's whole-facet kernel, rigid_obstacle_facet.cpp).
   const auto supported = [this, line](fem::CellType t) {
     return dim() == 2 ? t == line && (t == fem::CellType::line2 || t == fem::CellType::line3)
-                      : t == fem::CellType::tri3 || t == fem::CellType::quad4;
+                      : mortar::is_interface_facet(t, 3);
   };
-  // Against a rigid obstacle the slave side only (its whole-facet kernel; quadratic 3D faces
-  // not: rigid_obstacle_facet.cpp).
   for (const auto t : slave_.types)
     if (!supported(t)) return false;
   if (rigid_) return true;

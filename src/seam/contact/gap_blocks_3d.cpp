@@ -1,6 +1,6 @@
-// The weighted gaps of 3D contact on tri3 and quad4 facets as functions of the nodal positions,
-// with exact first and second derivatives (energy-momentum contact, docs/contact_dynamics.md
-// §5).
+// The weighted gaps of 3D contact on tri3 and quad4 facets (and, further below, on quadratic
+// facets: tri6, quad8, quad9) as functions of the nodal positions, with exact first and second
+// derivatives (energy-momentum contact, docs/contact_dynamics.md §5).
 //
 // The kernel follows integrate_pair of mortar/integration_3d.cpp step by step on a scalar type
 // S (double, Dual<36> or Hyper<36>): the auxiliary plane of the slave facet (vertex mean,
@@ -28,6 +28,9 @@
 #include "seam/common/hyper_dual.hpp"
 #include "seam/contact/gap_vectors.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
+#include "seam/geometry/plane.hpp"
+#include "seam/mortar/dual_basis.hpp"
+#include "seam/mortar/facet.hpp"
 #include "seam/mortar/linearization_clip.hpp"
 #include "seam/mortar/normals.hpp"
 #include "seam/mortar/pair_integration_detail.hpp"
@@ -35,6 +38,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <type_traits>
 #include <vector>
 
 namespace seam::contact {
@@ -50,6 +54,9 @@ constexpr int max_ring_nodes = 16; ///< nodes of the facets around one slave nod
 constexpr int ring_variables = 3 * max_ring_nodes;
 
 using namespace gap_vectors;
+
+template <class S> constexpr bool is_hyper = false;
+template <int N> constexpr bool is_hyper<Hyper<N>> = true;
 
 template <class S> S component(const V3<S>& a, int c) {
   return c == 0 ? a.x : c == 1 ? a.y : a.z;
@@ -87,17 +94,18 @@ fem::CellType linear_type(int n) {
   return n == 3 ? fem::CellType::tri3 : fem::CellType::quad4;
 }
 
-/// The unit normal x_xi x x_eta / |.| of a facet (positions x, n nodes) at its node i, as
-/// mortar::averaged_nodal_normals evaluates it.
-template <class S> V3<S> facet_unit_normal(const std::array<V3<S>, 4>& x, int n, int i) {
-  const double* reference = fem::reference_nodes(linear_type(n)).data();
-  std::array<double, 4> N;
-  std::array<double, 8> dN;
-  shape<double>(n, reference[2 * i], reference[2 * i + 1], N, dN);
+/// The unit normal x_xi x x_eta / |.| of a facet of type `type` (positions x) at its node i,
+/// as mortar::averaged_nodal_normals evaluates it.
+template <class S> V3<S> facet_unit_normal(const std::vector<V3<S>>& x, fem::CellType type, int i) {
+  const double* reference = fem::reference_nodes(type).data();
+  mortar::NodalVector N;
+  std::array<double, 2 * mortar::max_facet_nodes> dN;
+  mortar::detail::shape_functions<true>(
+      type, Eigen::Vector2d(reference[2 * i], reference[2 * i + 1]), N, dN);
   V3<S> a, b;
-  for (int k = 0; k < n; ++k) {
-    a = a + x[static_cast<std::size_t>(k)] * dN[static_cast<std::size_t>(2 * k)];
-    b = b + x[static_cast<std::size_t>(k)] * dN[static_cast<std::size_t>(2 * k + 1)];
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    a = a + x[k] * dN[2 * k];
+    b = b + x[k] * dN[2 * k + 1];
   }
   const V3<S> c = cross(a, b);
   return c * (1.0 / norm(c));
@@ -116,7 +124,8 @@ struct NormalJet {
 /// One pair in the frame of the slave facet's first node.
 struct PairInput {
   int ns = 0, nm = 0;
-  std::array<Eigen::Vector3d, 4> xs, xm, normal;
+  fem::CellType slave_type = fem::CellType::tri3, master_type = fem::CellType::tri3;
+  std::array<Eigen::Vector3d, mortar::max_facet_nodes> xs, xm, normal;
   bool dual = true;
 };
 
@@ -143,6 +152,41 @@ struct CellRule {
     }
   }
 };
+
+/// The cells of a clip polygon, its fan about the area centroid (a triangle stays one cell),
+/// and the rule's points in them: f(u, area, weight) with the point u, its cell's area and its
+/// weight in the rule.
+template <class S, class F>
+void for_each_point(const Polygon<S>& polygon, const CellRule& rule, F&& f) {
+  const std::size_t nv = polygon.size();
+  const V2<S> c = nv == 3 ? polygon[0] : mortar::ad::centroid_of(polygon);
+  for (std::size_t i = 0; i < (nv == 3 ? 1 : nv); ++i) {
+    const V2<S> a = nv == 3 ? polygon[0] : c, b = nv == 3 ? polygon[1] : polygon[i],
+                cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
+    const S area = 0.5 * cross(b - a, cc - a);
+    for (const auto& point : rule.points)
+      f(V2<S>(a * point[0] + b * point[1] + cc * point[2]), area, point[3]);
+  }
+}
+
+/// The gap of one point times its weight, w (h_m - h_s) n . n_p / |n| with the interpolated
+/// nodal normal n = N_k n_k and the heights h above the plane (slave shape values Ns over ns
+/// nodes, master Nm over nm).
+template <class S, class Normals, class Heights, class Shapes>
+S weighted_point_gap(std::size_t ns, const Normals& nn, const Heights& hs, const Shapes& Ns,
+                     std::size_t nm, const Heights& hm, const Shapes& Nm, const V3<S>& np,
+                     const S& area, double weight) {
+  V3<S> n;
+  S h_s = 0.0, h_m = 0.0;
+  for (std::size_t k = 0; k < ns; ++k) {
+    add_product(n.x, nn[k].x, Ns[k]);
+    add_product(n.y, nn[k].y, Ns[k]);
+    add_product(n.z, nn[k].z, Ns[k]);
+    add_product(h_s, hs[k], Ns[k]);
+  }
+  for (std::size_t l = 0; l < nm; ++l) add_product(h_m, hm[l], Nm[l]);
+  return weight * area * (h_m - h_s) * dot(n, np) / norm(n);
+}
 
 /// Reference coordinates (s, t) of the plane point p on the facet with plane images u: the
 /// closed-form inverse in doubles, then Newton steps on S with the Jacobian of the values (a
@@ -232,7 +276,7 @@ void dual_coefficients(int n, const std::array<V3<S>, 4>& x, std::array<std::arr
     for (std::size_t k = 0; k < m; ++k) A[j][k] = D[j] * inv[j][k];
 }
 
-double longest_edge_squared(const std::array<Eigen::Vector3d, 4>& x, int n) {
+double longest_edge_squared(const std::array<Eigen::Vector3d, mortar::max_facet_nodes>& x, int n) {
   double longest = (x[0] - x[static_cast<std::size_t>(n - 1)]).squaredNorm();
   for (int i = 0; i + 1 < n; ++i)
     longest = std::max(
@@ -240,6 +284,40 @@ double longest_edge_squared(const std::array<Eigen::Vector3d, 4>& x, int n) {
         (x[static_cast<std::size_t>(i + 1)] - x[static_cast<std::size_t>(i)]).squaredNorm());
   return longest;
 }
+
+/// The auxiliary plane of a linear piece with vertices x[v[0..nv)] (geometry::make_plane
+/// through the vertex mean; the normal from the triangle's edges or the quadrilateral's
+/// diagonals) on S, and the projection into it: in-plane coordinates and height.
+template <class S> struct AuxPlane {
+  V3<S> center, np, t1, t2;
+
+  template <class X> bool set(const X& x, const std::array<int, 4>& v, int nv) {
+    const auto at = [&](int k) -> const V3<S>& {
+      return x[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
+    };
+    center = V3<S>();
+    for (int k = 0; k < nv; ++k) center = center + at(k);
+    center = center * (1.0 / nv);
+    const V3<S> raw =
+        nv == 3 ? cross(at(1) - at(0), at(2) - at(0)) : cross(at(2) - at(0), at(3) - at(1));
+    const S raw_length = norm(raw);
+    if (!(value_of(raw_length) > 0.0)) return false;
+    np = raw * (1.0 / raw_length);
+    const Eigen::Vector3d npv = value(np);
+    int axis = 0;
+    npv.cwiseAbs().minCoeff(&axis);
+    V3<S> e = np * (-component(np, axis));
+    (axis == 0 ? e.x : axis == 1 ? e.y : e.z) += 1.0;
+    t1 = e * (1.0 / norm(e));
+    t2 = cross(np, t1);
+    return true;
+  }
+  void into(const V3<S>& x, V2<S>& u, S& h) const {
+    const V3<S> r = x - center;
+    u = {dot(r, t1), dot(r, t2)};
+    h = dot(r, np);
+  }
+};
 
 template <class S>
 void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::array<S, 4>& g) {
@@ -264,31 +342,15 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
     xm[static_cast<std::size_t>(l)] =
         seeded<S>(in.xm[static_cast<std::size_t>(l)], master_offset + 3 * l);
 
-  // The auxiliary plane (geometry::make_plane through the vertex mean).
-  V3<S> center;
-  for (int k = 0; k < ns; ++k) center = center + xs[static_cast<std::size_t>(k)];
-  center = center * (1.0 / ns);
-  const V3<S> raw =
-      ns == 3 ? cross(xs[1] - xs[0], xs[2] - xs[0]) : cross(xs[2] - xs[0], xs[3] - xs[1]);
-  const S raw_length = norm(raw);
-  if (!(value_of(raw_length) > 0.0)) return;
-  const V3<S> np = raw * (1.0 / raw_length);
+  // The auxiliary plane of the facet.
+  AuxPlane<S> plane;
+  if (!plane.set(xs, {0, 1, 2, 3}, ns)) return;
+  const V3<S>& np = plane.np;
   const Eigen::Vector3d npv = value(np);
-  int axis = 0;
-  npv.cwiseAbs().minCoeff(&axis);
-  V3<S> e = np * (-component(np, axis));
-  (axis == 0 ? e.x : axis == 1 ? e.y : e.z) += 1.0;
-  const V3<S> t1 = e * (1.0 / norm(e));
-  const V3<S> t2 = cross(np, t1);
   std::array<V2<S>, 4> us, um;
   std::array<S, 4> hs, hm;
-  const auto into_plane = [&](const V3<S>& x, V2<S>& u, S& h) {
-    const V3<S> r = x - center;
-    u = {dot(r, t1), dot(r, t2)};
-    h = dot(r, np);
-  };
-  for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) into_plane(xs[k], us[k], hs[k]);
-  for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) into_plane(xm[l], um[l], hm[l]);
+  for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) plane.into(xs[k], us[k], hs[k]);
+  for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) plane.into(xm[l], um[l], hm[l]);
   // Boxes in the plane and the facing test, on values.
   Eigen::Vector2d slo = value(us[0]), shi = slo, mlo = value(um[0]), mhi = mlo;
   for (int k = 1; k < ns; ++k) {
@@ -326,36 +388,20 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   if (in.dual) dual_coefficients(ns, xs, A);
   const int degree = options.cell_quadrature_degree > 0 ? options.cell_quadrature_degree : 5;
   const CellRule rule(degree);
-  // The fan about the area centroid (a triangle stays one cell).
-  const std::size_t nv = polygon.size();
-  const V2<S> c = nv == 3 ? polygon[0] : mortar::ad::centroid_of(polygon);
-  for (std::size_t i = 0; i < (nv == 3 ? 1 : nv); ++i) {
-    const V2<S> a = nv == 3 ? polygon[0] : c, b = nv == 3 ? polygon[1] : polygon[i],
-                cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
-    const S area = 0.5 * cross(b - a, cc - a);
-    for (const auto& point : rule.points) {
-      const V2<S> u = a * point[0] + b * point[1] + cc * point[2];
-      S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
-      if (!slave_valid || !master_valid || !locate(ns, us, slave_inverse, u, s1, s2) ||
-          !locate(nm, um, master_inverse, u, m1, m2))
-        continue;
-      std::array<S, 4> Ns, Nm;
-      shape_values<S>(ns, s1, s2, Ns);
-      shape_values<S>(nm, m1, m2, Nm);
-      V3<S> n;
-      S h_s = 0.0, h_m = 0.0;
-      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) {
-        add_product(n.x, nn[k].x, Ns[k]);
-        add_product(n.y, nn[k].y, Ns[k]);
-        add_product(n.z, nn[k].z, Ns[k]);
-        add_product(h_s, hs[k], Ns[k]);
-      }
-      for (std::size_t l = 0; l < static_cast<std::size_t>(nm); ++l) add_product(h_m, hm[l], Nm[l]);
-      const S wg = point[3] * area * (h_m - h_s) * dot(n, np) / norm(n);
-      // Phi_j = A_jk N_k with A constant over the pair: sum w g N_k first, apply A once.
-      for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) add_product(g[k], wg, Ns[k]);
-    }
-  }
+  // The fan about the area centroid and its points.
+  for_each_point(polygon, rule, [&](const V2<S>& u, const S& area, double weight) {
+    S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
+    if (!slave_valid || !master_valid || !locate(ns, us, slave_inverse, u, s1, s2) ||
+        !locate(nm, um, master_inverse, u, m1, m2))
+      return;
+    std::array<S, 4> Ns, Nm;
+    shape_values<S>(ns, s1, s2, Ns);
+    shape_values<S>(nm, m1, m2, Nm);
+    const S wg = weighted_point_gap(static_cast<std::size_t>(ns), nn, hs, Ns,
+                                    static_cast<std::size_t>(nm), hm, Nm, np, area, weight);
+    // Phi_j = A_jk N_k with A constant over the pair: sum w g N_k first, apply A once.
+    for (std::size_t k = 0; k < static_cast<std::size_t>(ns); ++k) add_product(g[k], wg, Ns[k]);
+  });
   if (!in.dual) return;
   const std::array<S, 4> weighted = g;
   for (std::size_t j = 0; j < static_cast<std::size_t>(ns); ++j) {
@@ -365,30 +411,360 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
   }
 }
 
-/// The averaged unit normal of slave node `node` (side-local) on S over its ring's positions.
+// ---------------------------------------------------------------------------------------------
+// Quadratic facets (tri6, quad8, quad9 on either side; a linear facet against a quadratic one
+// too): integrate_pair's path for them, per linear piece of the slave facet an auxiliary plane,
+// the clip against each master piece and the back-projection onto the parent facets by Newton
+// in the plane. The pair's independents: the slave positions (27), the slave nodal normals (27)
+// and the master positions (27), Hyper<81>. Storage of the scalar type on the heap (a
+// Hyper<81> takes 53 kB).
+
+constexpr int quadratic_slots = mortar::max_facet_nodes;
+constexpr int quadratic_variables = 9 * quadratic_slots;
+constexpr int quadratic_normal_offset = 3 * quadratic_slots;
+constexpr int quadratic_master_offset = 6 * quadratic_slots;
+constexpr int max_ring_nodes_quadratic = 27;
+constexpr int quadratic_ring_variables = 3 * max_ring_nodes_quadratic;
+
+/// Shape values of a surface facet at (s, t) on T: mortar::detail::shape_functions' formulas.
+template <class T>
+void facet_shape_values(fem::CellType type, const T& s, const T& t,
+                        std::array<T, mortar::max_facet_nodes>& N) {
+  switch (type) {
+  case fem::CellType::tri3:
+    N[0] = 1.0 - s - t;
+    N[1] = s;
+    N[2] = t;
+    return;
+  case fem::CellType::quad4: {
+    const T sm = 1.0 - s, sp = 1.0 + s, tm = 1.0 - t, tp = 1.0 + t;
+    N[0] = 0.25 * sm * tm;
+    N[1] = 0.25 * sp * tm;
+    N[2] = 0.25 * sp * tp;
+    N[3] = 0.25 * sm * tp;
+    return;
+  }
+  case fem::CellType::tri6: {
+    const T l0 = 1.0 - s - t;
+    N[0] = l0 * (2.0 * l0 - 1.0);
+    N[1] = s * (2.0 * s - 1.0);
+    N[2] = t * (2.0 * t - 1.0);
+    N[3] = 4.0 * l0 * s;
+    N[4] = 4.0 * s * t;
+    N[5] = 4.0 * t * l0;
+    return;
+  }
+  case fem::CellType::quad8: {
+    constexpr std::array<double, 4> cx{-1.0, 1.0, 1.0, -1.0}, cy{-1.0, -1.0, 1.0, 1.0};
+    for (std::size_t v = 0; v < 4; ++v)
+      N[v] = 0.25 * (1.0 + cx[v] * s) * (1.0 + cy[v] * t) * (cx[v] * s + cy[v] * t - 1.0);
+    const T bx = 1.0 - s * s, by = 1.0 - t * t;
+    N[4] = 0.5 * bx * (1.0 - t);
+    N[5] = 0.5 * (1.0 + s) * by;
+    N[6] = 0.5 * bx * (1.0 + t);
+    N[7] = 0.5 * (1.0 - s) * by;
+    return;
+  }
+  default: {
+    SEAM_ASSERT(type == fem::CellType::quad9);
+    const std::array<T, 3> lx{0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s};
+    const std::array<T, 3> ly{0.5 * t * (t - 1.0), 0.5 * t * (t + 1.0), 1.0 - t * t};
+    constexpr std::array<int, 9> ix{0, 1, 1, 0, 2, 1, 2, 0, 2}, iy{0, 0, 1, 1, 0, 2, 1, 2, 2};
+    for (std::size_t k = 0; k < 9; ++k)
+      N[k] = lx[static_cast<std::size_t>(ix[k])] * ly[static_cast<std::size_t>(iy[k])];
+    return;
+  }
+  }
+}
+
+/// The dual coefficients A = D_e M_e^-1 of a slave facet of any type with the basis
+/// modification a (dual_basis.cpp: the rule of degree 4 p, the modified shape functions N~),
+/// on S; row-major n x n.
 template <class S>
+void dual_coefficients_of(fem::CellType type, const std::vector<V3<S>>& x, double a,
+                          std::vector<S>& A) {
+  const auto n = x.size();
+  const fem::QuadratureRule rule = fem::quadrature(type, 4 * fem::order(type));
+  std::vector<S> M(n * n, S(0.0)), D(n, S(0.0)), inv(n * n, S(0.0));
+  for (int q = 0; q < rule.n_points; ++q) {
+    mortar::NodalVector N;
+    std::array<double, 2 * mortar::max_facet_nodes> dN;
+    mortar::detail::shape_functions<true>(
+        type,
+        Eigen::Vector2d(rule.points[static_cast<std::size_t>(2 * q)],
+                        rule.points[static_cast<std::size_t>(2 * q + 1)]),
+        N, dN);
+    mortar::modify_basis(type, a, N.data());
+    V3<S> ta, tb;
+    for (std::size_t k = 0; k < n; ++k) {
+      ta = ta + x[k] * dN[2 * k];
+      tb = tb + x[k] * dN[2 * k + 1];
+    }
+    const S jw = norm(cross(ta, tb)) * rule.weights[static_cast<std::size_t>(q)];
+    for (std::size_t j = 0; j < n; ++j) {
+      add_product(D[j], jw, N(static_cast<Eigen::Index>(j)));
+      for (std::size_t k = 0; k < n; ++k)
+        add_product(M[j * n + k], jw,
+                    N(static_cast<Eigen::Index>(j)) * N(static_cast<Eigen::Index>(k)));
+    }
+  }
+  // Gauss-Jordan (M symmetric positive definite: no pivoting), then A = D M^-1.
+  for (std::size_t j = 0; j < n; ++j) inv[j * n + j] = 1.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const S pivot = 1.0 / M[p * n + p];
+    for (std::size_t k = 0; k < n; ++k) {
+      M[p * n + k] = M[p * n + k] * pivot;
+      inv[p * n + k] = inv[p * n + k] * pivot;
+    }
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == p) continue;
+      const S f = M[r * n + p];
+      for (std::size_t k = 0; k < n; ++k) {
+        M[r * n + k] -= f * M[p * n + k];
+        inv[r * n + k] -= f * inv[p * n + k];
+      }
+    }
+  }
+  A.assign(n * n, S(0.0));
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k) A[j * n + k] = D[j] * inv[j * n + k];
+}
+
+/// x(xi_c) at the reference centre of a facet, on values (integrate_pair's pre-check).
+Eigen::Vector3d centre_of(fem::CellType type, const std::array<Eigen::Vector3d, 9>& x, int n) {
+  const auto c = mortar::reference_center(type);
+  mortar::NodalVector N;
+  std::array<double, 2 * mortar::max_facet_nodes> dN;
+  mortar::detail::shape_functions<false>(type, Eigen::Vector2d(c[0], c[1]), N, dN);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) sum += N(k) * x[static_cast<std::size_t>(k)];
+  return sum;
+}
+
+/// Reference coordinates (s, t) on a facet of the plane point p: the piece's inverse and Newton
+/// in the plane on values (integration_3d.cpp's locate), then chord Newton steps on S with the
+/// Jacobian there (locate above).
+template <class S>
+bool locate_on(const mortar::detail::PlanarFacet& facet, const std::vector<V2<S>>& u,
+               const mortar::detail::PieceInverse& inverse, bool linear,
+               const geometry::NewtonOptions& newton, const V2<S>& p, S& s, S& t) {
+  Eigen::Vector2d xi;
+  if (!inverse.parent_coordinates(value(p), xi)) return false;
+  if (!linear && !mortar::detail::newton_in_plane(facet, value(p), xi, newton)) return false;
+  s = xi.x();
+  t = xi.y();
+  if constexpr (!std::is_same_v<S, double>) {
+    mortar::NodalVector N0;
+    std::array<double, 2 * mortar::max_facet_nodes> dN;
+    mortar::detail::shape_functions<true>(facet.type, xi, N0, dN);
+    Eigen::Vector2d j0 = Eigen::Vector2d::Zero(), j1 = Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < u.size(); ++k) {
+      j0 += value(u[k]) * dN[2 * k];
+      j1 += value(u[k]) * dN[2 * k + 1];
+    }
+    const double det = j0.x() * j1.y() - j0.y() * j1.x();
+    const int steps = is_dual<S> ? 1 : 2;
+    std::array<S, mortar::max_facet_nodes> N;
+    for (int it = 0; it < steps; ++it) {
+      facet_shape_values<S>(facet.type, s, t, N);
+      S rx = -p.x, ry = -p.y;
+      for (std::size_t k = 0; k < u.size(); ++k) {
+        add_product(rx, u[k].x, N[k]);
+        add_product(ry, u[k].y, N[k]);
+      }
+      s = s - (rx * j1.y() - ry * j1.x()) * (1.0 / det);
+      t = t - (ry * j0.x() - rx * j0.y()) * (1.0 / det);
+    }
+  }
+  return true;
+}
+
+/// The corner positions of a piece and its normal on values (make_piece of
+/// integration_3d.cpp): the triangle's cross product, the quadrilateral's diagonals'.
+Eigen::Vector3d piece_normal(const mortar::SubFacet& piece,
+                             const std::array<Eigen::Vector3d, 9>& x) {
+  const auto& v = piece.nodes;
+  const Eigen::Vector3d n = piece.n_vertices == 3
+                                ? Eigen::Vector3d((x[v[1]] - x[v[0]]).cross(x[v[2]] - x[v[0]]))
+                                : Eigen::Vector3d((x[v[2]] - x[v[0]]).cross(x[v[3]] - x[v[1]]));
+  const double length = n.norm();
+  return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+}
+
+template <class S>
+void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options,
+                         std::vector<S>& g) {
+  const int ns = in.ns, nm = in.nm;
+  const auto ms = static_cast<std::size_t>(ns), mm = static_cast<std::size_t>(nm);
+  g.assign(ms, S(0.0));
+  // Centre distance against the reach from the corner edges (integrate_pair's pre-check).
+  const double factor = options.max_center_distance_factor;
+  const double reach_squared =
+      factor * factor *
+      std::max(longest_edge_squared(in.xs, fem::n_vertices(in.slave_type)),
+               longest_edge_squared(in.xm, fem::n_vertices(in.master_type)));
+  if ((centre_of(in.slave_type, in.xs, ns) - centre_of(in.master_type, in.xm, nm)).squaredNorm() >
+      reach_squared)
+    return;
+  const bool slave_linear = fem::order(in.slave_type) == 1;
+  const bool master_linear = fem::order(in.master_type) == 1;
+  std::vector<V3<S>> xs(ms), nn(ms), xm(mm);
+  for (std::size_t k = 0; k < ms; ++k) {
+    xs[k] = seeded<S>(in.xs[k], 3 * static_cast<int>(k));
+    nn[k] = seeded<S>(in.normal[k], quadratic_normal_offset + 3 * static_cast<int>(k));
+  }
+  for (std::size_t l = 0; l < mm; ++l)
+    xm[l] = seeded<S>(in.xm[l], quadratic_master_offset + 3 * static_cast<int>(l));
+  const double a = mortar::basis_modification(
+      in.slave_type, in.dual ? mortar::Multiplier::dual : mortar::Multiplier::standard);
+  const int degree = options.cell_quadrature_degree > 0 ? options.cell_quadrature_degree
+                     : slave_linear && master_linear    ? 5
+                                                        : 8;
+  const CellRule rule(degree);
+  const auto master_pieces = mortar::linear_subfacets(in.master_type);
+  std::vector<Eigen::Vector3d> master_normals;
+  for (const auto& mp : master_pieces) master_normals.push_back(piece_normal(mp, in.xm));
+  mortar::Facet<3> slave_facet, master_facet;
+  slave_facet.type = in.slave_type;
+  slave_facet.n_nodes = ns;
+  master_facet.type = in.master_type;
+  master_facet.n_nodes = nm;
+  for (int k = 0; k < ns; ++k) slave_facet.x.col(k) = in.xs[static_cast<std::size_t>(k)];
+  for (int l = 0; l < nm; ++l) master_facet.x.col(l) = in.xm[static_cast<std::size_t>(l)];
+  const double* slave_reference = fem::reference_nodes(in.slave_type).data();
+  const double* master_reference = fem::reference_nodes(in.master_type).data();
+  const auto piece_xi = [](const mortar::SubFacet& piece, const double* reference) {
+    std::array<Eigen::Vector2d, 4> xi;
+    xi.fill(Eigen::Vector2d::Zero());
+    for (int v = 0; v < piece.n_vertices; ++v) {
+      const int node = piece.nodes[static_cast<std::size_t>(v)];
+      xi[static_cast<std::size_t>(v)] = {reference[2 * node], reference[2 * node + 1]};
+    }
+    return xi;
+  };
+  std::vector<S> weighted(ms, S(0.0));
+  std::vector<V2<S>> us(ms), um(mm);
+  std::vector<S> hs(ms), hm(mm);
+  std::array<S, mortar::max_facet_nodes> Ns, Nm;
+  for (const auto& sp : mortar::linear_subfacets(in.slave_type)) {
+    const auto& v = sp.nodes;
+    const int nv = sp.n_vertices;
+    // The auxiliary plane of the piece (make_piece, geometry::make_plane).
+    AuxPlane<S> aux;
+    if (!aux.set(xs, v, nv)) continue;
+    const V3<S>& np = aux.np;
+    const Eigen::Vector3d npv = value(np);
+    for (std::size_t k = 0; k < ms; ++k) aux.into(xs[k], us[k], hs[k]);
+    for (std::size_t l = 0; l < mm; ++l) aux.into(xm[l], um[l], hm[l]);
+    // The same plane and the facets in it on values (for the Newton iterations).
+    geometry::Plane plane;
+    plane.origin = value(aux.center);
+    plane.normal = npv;
+    plane.t1 = value(aux.t1);
+    plane.t2 = value(aux.t2);
+    const mortar::detail::PlanarFacet slave_plane(slave_facet, plane);
+    const mortar::detail::PlanarFacet master_plane(master_facet, plane);
+    Polygon<S> subject;
+    Eigen::Vector2d slo = value(us[v[0]]), shi = slo;
+    std::array<Eigen::Vector2d, 4> su;
+    for (int k = 0; k < nv; ++k) {
+      subject.push_back(us[static_cast<std::size_t>(v[k])]);
+      su[static_cast<std::size_t>(k)] = value(us[static_cast<std::size_t>(v[k])]);
+      slo = slo.cwiseMin(su[static_cast<std::size_t>(k)]);
+      shi = shi.cwiseMax(su[static_cast<std::size_t>(k)]);
+    }
+    // Every master piece lies in the box of all master nodes.
+    Eigen::Vector2d mlo = value(um[0]), mhi = mlo;
+    for (std::size_t l = 1; l < mm; ++l) {
+      mlo = mlo.cwiseMin(value(um[l]));
+      mhi = mhi.cwiseMax(value(um[l]));
+    }
+    if ((mlo.array() > shi.array()).any() || (slo.array() > mhi.array()).any()) continue;
+    mortar::detail::PieceInverse slave_inverse;
+    bool slave_inverse_set = false, slave_valid = false;
+    for (std::size_t i = 0; i < master_pieces.size(); ++i) {
+      const auto& mp = master_pieces[i];
+      if (!(master_normals[i].dot(npv) < -1e-12)) continue;
+      Polygon<S> clipper;
+      std::array<Eigen::Vector2d, 4> mu;
+      Eigen::Vector2d plo = value(um[static_cast<std::size_t>(mp.nodes[0])]), phi = plo;
+      for (int k = 0; k < mp.n_vertices; ++k) {
+        const auto node = static_cast<std::size_t>(mp.nodes[static_cast<std::size_t>(k)]);
+        clipper.push_back(um[node]);
+        mu[static_cast<std::size_t>(k)] = value(um[node]);
+        plo = plo.cwiseMin(mu[static_cast<std::size_t>(k)]);
+        phi = phi.cwiseMax(mu[static_cast<std::size_t>(k)]);
+      }
+      if ((plo.array() > shi.array()).any() || (slo.array() > phi.array()).any()) continue;
+      const Polygon<S> polygon =
+          mortar::ad::clip_polygons_in<Polygon<S>>(subject, clipper, options.clip);
+      if (polygon.empty()) continue;
+      if (!slave_inverse_set) {
+        slave_valid = slave_inverse.set(nv, su, piece_xi(sp, slave_reference), slave_linear);
+        slave_inverse_set = true;
+      }
+      mortar::detail::PieceInverse master_inverse;
+      const bool master_valid =
+          master_inverse.set(mp.n_vertices, mu, piece_xi(mp, master_reference), master_linear);
+      for_each_point(polygon, rule, [&](const V2<S>& u, const S& area, double weight) {
+        S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
+        if (!slave_valid || !master_valid ||
+            !locate_on(slave_plane, us, slave_inverse, slave_linear, options.newton, u, s1, s2) ||
+            !locate_on(master_plane, um, master_inverse, master_linear, options.newton, u, m1, m2))
+          return;
+        facet_shape_values<S>(in.slave_type, s1, s2, Ns);
+        facet_shape_values<S>(in.master_type, m1, m2, Nm);
+        const S wg = weighted_point_gap(ms, nn, hs, Ns, mm, hm, Nm, np, area, weight);
+        // The modified basis N~ of dual multipliers on tri6/quad8 (modify_basis).
+        if (a != 0.0)
+          for (const auto& edge : mortar::edge_nodes(in.slave_type)) {
+            const S edge_value = Ns[static_cast<std::size_t>(edge.node)];
+            add_product(Ns[static_cast<std::size_t>(edge.v0)], edge_value, a);
+            add_product(Ns[static_cast<std::size_t>(edge.v1)], edge_value, a);
+            Ns[static_cast<std::size_t>(edge.node)] = edge_value * (1.0 - 2.0 * a);
+          }
+        for (std::size_t k = 0; k < ms; ++k) add_product(weighted[k], wg, Ns[k]);
+      });
+    }
+  }
+  if (!in.dual) {
+    g = std::move(weighted);
+    return;
+  }
+  // Phi_j = A_jk N~_k with A constant over the pair: sum w g N~_k first, apply A once.
+  std::vector<S> A;
+  dual_coefficients_of(in.slave_type, xs, a, A);
+  for (std::size_t j = 0; j < ms; ++j)
+    for (std::size_t k = 0; k < ms; ++k) add_product(g[j], A[j * ms + k], weighted[k]);
+}
+
+/// The averaged unit normal of slave node `node` (side-local) on S over its ring's positions.
+template <class Out>
 void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacency,
                local_index node, const std::vector<Eigen::Vector3d>& ring_x,
-               const std::vector<local_index>& ring, std::array<S, 3>& n) {
+               const std::vector<local_index>& ring, Out& n) {
+  using S = std::decay_t<decltype(n[0])>;
   std::vector<V3<S>> x(ring.size());
   for (std::size_t r = 0; r < ring.size(); ++r)
     x[r] = seeded<S>(ring_x[r], 3 * static_cast<int>(r));
   V3<S> sum;
   for (const auto f : adjacency.of(node)) {
     const auto nodes = slaves.facet_nodes(f);
-    std::array<V3<S>, 4> fx;
+    std::vector<V3<S>> fx(nodes.size());
     int here = -1;
     for (std::size_t k = 0; k < nodes.size(); ++k) {
       const auto slot = std::find(ring.begin(), ring.end(), nodes[k]) - ring.begin();
       fx[k] = x[static_cast<std::size_t>(slot)];
       if (nodes[k] == node) here = static_cast<int>(k);
     }
-    sum = sum + facet_unit_normal(fx, static_cast<int>(nodes.size()), here);
+    sum = sum + facet_unit_normal(fx, slaves.types[static_cast<std::size_t>(f)], here);
   }
   const S length = norm(sum);
   SEAM_CHECK(value_of(length) > mortar::min_normal_sum, InputError, "slave node ", node,
              ": the normals of its facets cancel (the surface folds back onto itself)");
-  n = {sum.x / length, sum.y / length, sum.z / length};
+  n[0] = sum.x / length;
+  n[1] = sum.y / length;
+  n[2] = sum.z / length;
 }
 
 } // namespace
@@ -416,9 +792,9 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
     for (const auto f : adjacency.of(node))
       for (const auto k : slaves.facet_nodes(f))
         if (std::find(ring.begin(), ring.end(), k) == ring.end()) ring.push_back(k);
-    SEAM_CHECK(static_cast<int>(ring.size()) <= max_ring_nodes, InputError, "interface '", name_,
-               "': energy-momentum contact: a slave node has more than ", max_ring_nodes,
-               " nodes on its facets");
+    SEAM_CHECK(static_cast<int>(ring.size()) <= max_ring_nodes_quadratic, InputError, "interface '",
+               name_, "': energy-momentum contact: a slave node has more than ",
+               max_ring_nodes_quadratic, " nodes on its facets");
     std::vector<Eigen::Vector3d> ring_x;
     for (const auto k : ring) {
       const auto mesh_node = slave_.mesh_nodes[static_cast<std::size_t>(k)];
@@ -430,35 +806,44 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
       std::array<double, 3> n;
       normal_of(slaves, adjacency, node, ring_x, ring, n);
       jet.value = n;
-    } else if (need == GapOrder::gradient) {
-      std::array<Dual<ring_variables>, 3> n;
-      normal_of(slaves, adjacency, node, ring_x, ring, n);
-      jet.gradient.resize(3 * nr);
-      for (std::size_t a = 0; a < 3; ++a) {
-        jet.value[a] = n[a].value;
-        for (std::size_t v = 0; v < nr; ++v) jet.gradient[a * nr + v] = n[a].gradient[v];
-      }
     } else {
-      std::array<Hyper<ring_variables>, 3> n;
-      normal_of(slaves, adjacency, node, ring_x, ring, n);
-      jet.gradient.resize(3 * nr);
-      jet.hessian.resize(3 * nr * nr);
-      for (std::size_t a = 0; a < 3; ++a) {
-        jet.value[a] = n[a].value;
-        for (std::size_t v = 0; v < nr; ++v) {
-          jet.gradient[a * nr + v] = n[a].gradient[v];
-          for (std::size_t w = 0; w < nr; ++w)
-            jet.hessian[(a * nr + v) * nr + w] = n[a].hessian[v * ring_variables + w];
+      // Hyper<48> for up to 16 ring nodes (linear facets), Hyper<81> beyond (quadratic).
+      const auto derivatives = [&]<int RV>() {
+        const auto take = [&](const auto& n) {
+          jet.gradient.resize(3 * nr);
+          for (std::size_t a = 0; a < 3; ++a) {
+            jet.value[a] = n[a].value;
+            for (std::size_t v = 0; v < nr; ++v) jet.gradient[a * nr + v] = n[a].gradient[v];
+          }
+        };
+        if (need == GapOrder::gradient) {
+          std::array<Dual<RV>, 3> n;
+          normal_of(slaves, adjacency, node, ring_x, ring, n);
+          take(n);
+          return;
         }
-      }
+        std::vector<Hyper<RV>> n(3);
+        normal_of(slaves, adjacency, node, ring_x, ring, n);
+        take(n);
+        jet.hessian.resize(3 * nr * nr);
+        for (std::size_t a = 0; a < 3; ++a)
+          for (std::size_t v = 0; v < nr; ++v)
+            for (std::size_t w = 0; w < nr; ++w)
+              jet.hessian[(a * nr + v) * nr + w] = n[a].hessian[v * RV + w];
+      };
+      if (ring.size() <= static_cast<std::size_t>(max_ring_nodes))
+        derivatives.template operator()<ring_variables>();
+      else
+        derivatives.template operator()<quadratic_ring_variables>();
     }
     return jets.insert_or_assign(node, std::move(jet)).first->second;
   };
 
   for (const auto f : owned_)
     for (const auto& pair : pairs_of(f)) {
-      const auto sn = slaves.facet_nodes(slave_index(pair.slave));
-      const auto mn = masters.facet_nodes(integration_facet(pair.master));
+      const local_index sf = slave_index(pair.slave), mf = integration_facet(pair.master);
+      const auto sn = slaves.facet_nodes(sf);
+      const auto mn = masters.facet_nodes(mf);
       GapOrder order = requested;
       if (order == GapOrder::hessian && !hessian_rows.empty() &&
           std::none_of(sn.begin(), sn.end(), [&](local_index k) {
@@ -468,7 +853,14 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
       PairInput in;
       in.ns = static_cast<int>(sn.size());
       in.nm = static_cast<int>(mn.size());
+      in.slave_type = slaves.types[static_cast<std::size_t>(sf)];
+      in.master_type = masters.types[static_cast<std::size_t>(mf)];
       in.dual = dual;
+      // Linear facets on both sides: the kernel above on 36 variables; else the quadratic one
+      // on 81 (slave positions, slave normals, master positions: 3 x 9 slots each).
+      const bool quadratic = fem::order(in.slave_type) > 1 || fem::order(in.master_type) > 1;
+      const int n_slots = quadratic ? quadratic_slots : 4;
+      const int pv = 9 * n_slots, n_offset = 3 * n_slots, m_offset = 6 * n_slots;
       GapBlock b;
       b.dim = 3;
       // Slots: the slave facet's nodes, the master facet's nodes, then the other ring nodes.
@@ -479,7 +871,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
         slots.push_back(mesh_node);
         return static_cast<int>(slots.size()) - 1;
       };
-      std::array<int, 4> slave_slot{}, master_slot{};
+      std::array<int, mortar::max_facet_nodes> slave_slot{}, master_slot{};
       for (std::size_t k = 0; k < sn.size(); ++k) {
         const auto node = slave_.mesh_nodes[static_cast<std::size_t>(sn[k])];
         slave_slot[k] = slot_of(node);
@@ -493,9 +885,9 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
       }
       // The frame of the slave facet's first node (as integrate_pair's callers).
       const Eigen::Vector3d origin = in.xs[0];
-      for (auto& x : in.xs) x -= origin;
-      for (auto& x : in.xm) x -= origin;
-      std::array<std::vector<int>, 4> ring_slots;
+      for (int k = 0; k < in.ns; ++k) in.xs[static_cast<std::size_t>(k)] -= origin;
+      for (int l = 0; l < in.nm; ++l) in.xm[static_cast<std::size_t>(l)] -= origin;
+      std::array<std::vector<int>, mortar::max_facet_nodes> ring_slots;
       if (order != GapOrder::value)
         for (std::size_t k = 0; k < sn.size(); ++k)
           for (const auto node : jet_of(sn[k], order).ring) ring_slots[k].push_back(slot_of(node));
@@ -505,10 +897,10 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
       for (std::size_t s = 0; s < slots.size(); ++s)
         b.dofs[s] = static_cast<std::int64_t>(slots[s]) * 3;
       b.gap.assign(sn.size(), 0.0);
-      // y -> slot variables: J (pair_variables x nv) of positions and normals.
+      // y -> slot variables: J (pv x nv) of positions and normals.
       Eigen::MatrixXd J;
       if (order != GapOrder::value) {
-        J = Eigen::MatrixXd::Zero(pair_variables, static_cast<Eigen::Index>(nv));
+        J = Eigen::MatrixXd::Zero(pv, static_cast<Eigen::Index>(nv));
         for (std::size_t k = 0; k < sn.size(); ++k) {
           const NormalJet& jet = jet_of(sn[k], order);
           const std::size_t nr = 3 * jet.ring.size();
@@ -516,47 +908,81 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
             J(3 * static_cast<int>(k) + a, 3 * slave_slot[k] + a) = 1.0;
             for (std::size_t r = 0; r < jet.ring.size(); ++r)
               for (int c = 0; c < 3; ++c)
-                J(normal_offset + 3 * static_cast<int>(k) + a, 3 * ring_slots[k][r] + c) =
+                J(n_offset + 3 * static_cast<int>(k) + a, 3 * ring_slots[k][r] + c) =
                     jet.gradient[static_cast<std::size_t>(a) * nr + 3 * r +
                                  static_cast<std::size_t>(c)];
           }
         }
         for (std::size_t l = 0; l < mn.size(); ++l)
           for (int a = 0; a < 3; ++a)
-            J(master_offset + 3 * static_cast<int>(l) + a, 3 * master_slot[l] + a) = 1.0;
+            J(m_offset + 3 * static_cast<int>(l) + a, 3 * master_slot[l] + a) = 1.0;
       }
-      bool nonzero = false;
-      if (order == GapOrder::value) {
-        std::array<double, 4> g{};
-        pair_gaps(in, options_.pair, g);
-        for (std::size_t j = 0; j < sn.size(); ++j) b.gap[j] = g[j];
-        for (std::size_t j = 0; j < sn.size(); ++j) nonzero = nonzero || g[j] != 0.0;
-      } else if (order == GapOrder::gradient) {
-        std::array<Dual<pair_variables>, 4> g;
-        pair_gaps(in, options_.pair, g);
-        b.gradient.assign(sn.size() * nv, 0.0);
+      // The kernel's gaps with their derivatives in the pair variables y: gy (pv per slave
+      // node) and Hy (pv x pv, row-major).
+      std::vector<double> gy, Hy;
+      // The linear kernel's gaps on S (4 slots).
+      const auto linear = [&]<class S>() {
+        std::array<S, 4> g4;
+        pair_gaps(in, options_.pair, g4);
+        return std::vector<S>(g4.begin(), g4.begin() + in.ns);
+      };
+      const auto take = [&]<class S>(const std::vector<S>& g) {
+        gy.assign(sn.size() * static_cast<std::size_t>(pv), 0.0);
+        if constexpr (is_hyper<S>) Hy.assign(sn.size() * static_cast<std::size_t>(pv * pv), 0.0);
         for (std::size_t j = 0; j < sn.size(); ++j) {
           b.gap[j] = g[j].value;
-          const Eigen::VectorXd gx = J.transpose() * Eigen::Map<const Eigen::VectorXd>(
-                                                         g[j].gradient.data(), pair_variables);
+          std::copy_n(g[j].gradient.begin(), pv,
+                      gy.begin() + static_cast<std::ptrdiff_t>(j * static_cast<std::size_t>(pv)));
+          if constexpr (is_hyper<S>)
+            std::copy_n(g[j].hessian.begin(), pv * pv,
+                        Hy.begin() +
+                            static_cast<std::ptrdiff_t>(j * static_cast<std::size_t>(pv * pv)));
+        }
+      };
+      bool nonzero = false;
+      if (order == GapOrder::value) {
+        std::vector<double> g;
+        if (quadratic)
+          pair_gaps_quadratic(in, options_.pair, g);
+        else
+          g = linear.template operator()<double>();
+        for (std::size_t j = 0; j < sn.size(); ++j) {
+          b.gap[j] = g[j];
+          nonzero = nonzero || g[j] != 0.0;
+        }
+      } else if (order == GapOrder::gradient) {
+        if (quadratic) {
+          std::vector<Dual<quadratic_variables>> g;
+          pair_gaps_quadratic(in, options_.pair, g);
+          take(g);
+        } else {
+          take(linear.template operator()<Dual<pair_variables>>());
+        }
+      } else {
+        if (quadratic) {
+          std::vector<Hyper<quadratic_variables>> g;
+          pair_gaps_quadratic(in, options_.pair, g);
+          take(g);
+        } else {
+          take(linear.template operator()<Hyper<pair_variables>>());
+        }
+      }
+      if (order != GapOrder::value) {
+        b.gradient.assign(sn.size() * nv, 0.0);
+        if (order == GapOrder::hessian) b.hessian.assign(sn.size() * nv * nv, 0.0);
+        for (std::size_t j = 0; j < sn.size(); ++j) {
+          const auto gyj =
+              Eigen::Map<const Eigen::VectorXd>(gy.data() + j * static_cast<std::size_t>(pv), pv);
+          const Eigen::VectorXd gx = J.transpose() * gyj;
           for (std::size_t v = 0; v < nv; ++v) {
             b.gradient[j * nv + v] = gx(static_cast<Eigen::Index>(v));
             nonzero = nonzero || gx(static_cast<Eigen::Index>(v)) != 0.0;
           }
-        }
-      } else {
-        std::array<Hyper<pair_variables>, 4> g;
-        pair_gaps(in, options_.pair, g);
-        b.gradient.assign(sn.size() * nv, 0.0);
-        b.hessian.assign(sn.size() * nv * nv, 0.0);
-        for (std::size_t j = 0; j < sn.size(); ++j) {
-          b.gap[j] = g[j].value;
-          const auto gy = Eigen::Map<const Eigen::VectorXd>(g[j].gradient.data(), pair_variables);
-          const auto Hy = Eigen::Map<
-              const Eigen::Matrix<double, pair_variables, pair_variables, Eigen::RowMajor>>(
-              g[j].hessian.data());
-          const Eigen::VectorXd gx = J.transpose() * gy;
-          Eigen::MatrixXd Hx = J.transpose() * Hy * J;
+          if (order != GapOrder::hessian) continue;
+          const auto Hyj = Eigen::Map<
+              const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+              Hy.data() + j * static_cast<std::size_t>(pv * pv), pv, pv);
+          Eigen::MatrixXd Hx = J.transpose() * Hyj * J;
           // sum_i dg/dn_i H(n_i): the normals' curvature in the ring positions.
           const bool curvature = detail::gap_hessian_terms == detail::GapHessianTerms::all;
           if (detail::gap_hessian_terms == detail::GapHessianTerms::none) Hx.setZero();
@@ -564,7 +990,8 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
             const NormalJet& jet = jet_of(sn[k], order);
             const std::size_t nr = 3 * jet.ring.size();
             for (std::size_t a = 0; a < 3; ++a) {
-              const double weight = gy(static_cast<Eigen::Index>(normal_offset + 3 * k + a));
+              const double weight =
+                  gyj(static_cast<Eigen::Index>(static_cast<std::size_t>(n_offset) + 3 * k + a));
               if (weight == 0.0) continue;
               for (std::size_t v = 0; v < nr; ++v)
                 for (std::size_t w = 0; w < nr; ++w)
@@ -573,13 +1000,10 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
                       weight * jet.hessian[(a * nr + v) * nr + w];
             }
           }
-          for (std::size_t v = 0; v < nv; ++v) {
-            b.gradient[j * nv + v] = gx(static_cast<Eigen::Index>(v));
-            nonzero = nonzero || gx(static_cast<Eigen::Index>(v)) != 0.0;
+          for (std::size_t v = 0; v < nv; ++v)
             for (std::size_t w = 0; w < nv; ++w)
               b.hessian[(j * nv + v) * nv + w] =
                   Hx(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(w));
-          }
         }
       }
       if (!nonzero) continue; // no overlap: the pair adds nothing

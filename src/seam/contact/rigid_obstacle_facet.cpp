@@ -1,3 +1,7 @@
+// Quadratic 3D facets put Hyper<18> and Hyper<27> (6 kB each) into the kernel's 9 x 9 matrices,
+// beyond Eigen's default limit of 128 kB for one fixed-size object on the stack; the kernel
+// takes about 3 MB of stack there (docs/contact_dynamics.md §5).
+#define EIGEN_STACK_ALLOCATION_LIMIT 0
 #include "seam/contact/rigid_obstacle_facet.hpp"
 
 #include "seam/common/hyper_dual.hpp"
@@ -88,14 +92,16 @@ void with_derivatives(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
   }
 }
 
-/// The gaps on Hyper<K> (K = Dim * nodes): values, gradients and Hessians.
+/// The gaps on Hyper<K> (K >= nv = Dim * nodes; the variables past nv stay unseeded): values,
+/// gradients and Hessians.
 template <int Dim, int K>
 void with_hessians(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
                    mortar::Multiplier multiplier, std::vector<double>& gap,
                    std::vector<double>& gradient, std::vector<double>& hessian) {
   using S = Hyper<K>;
   const int n = facet.n_nodes;
-  SEAM_ASSERT(Dim * n == K);
+  const int nv = Dim * n;
+  SEAM_ASSERT(nv <= K);
   ad::FacetT<S, Dim> f;
   f.type = facet.type;
   f.n_nodes = n;
@@ -106,13 +112,14 @@ void with_hessians(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
   double area = 0.0;
   kernel<S, Dim>(f, obstacle, multiplier, D, g, area);
   gap.resize(static_cast<std::size_t>(n));
-  gradient.resize(static_cast<std::size_t>(n * K));
-  hessian.resize(static_cast<std::size_t>(n * K * K));
+  gradient.resize(static_cast<std::size_t>(n * nv));
+  hessian.resize(static_cast<std::size_t>(n * nv * nv));
   for (int j = 0; j < n; ++j) {
     gap[static_cast<std::size_t>(j)] = g(j).value;
-    std::copy_n(g(j).gradient.begin(), K, gradient.begin() + static_cast<std::ptrdiff_t>(j * K));
-    std::copy_n(g(j).hessian.begin(), K * K,
-                hessian.begin() + static_cast<std::ptrdiff_t>(j * K * K));
+    std::copy_n(g(j).gradient.begin(), nv, gradient.begin() + static_cast<std::ptrdiff_t>(j * nv));
+    for (int v = 0; v < nv; ++v)
+      std::copy_n(g(j).hessian.begin() + static_cast<std::ptrdiff_t>(v * K), nv,
+                  hessian.begin() + static_cast<std::ptrdiff_t>((j * nv + v) * nv));
   }
 }
 
@@ -132,16 +139,17 @@ void rigid_obstacle_gap_hessians(const mortar::Facet<Dim>& facet, const Obstacle
     else
       with_hessians<2, 6>(facet, obstacle, multiplier, gap, gradient, hessian);
   } else {
-    // Quadratic 3D facets would need Hyper<18> to Hyper<27> in the kernel's 9 x 9 matrices,
-    // beyond Eigen's stack allocation limit: tri3 and quad4 only (has_gap_blocks).
-    SEAM_CHECK(nv == 9 || nv == 12, InputError,
-               "energy-momentum contact against a rigid obstacle: tri3 and quad4 slave facets "
-               "only");
-    if (nv == 9) {
+    SEAM_CHECK(nv == 9 || nv == 12 || nv == 18 || nv == 24 || nv == 27, InputError,
+               "energy-momentum contact against a rigid obstacle: tri3, quad4, tri6, quad8 and "
+               "quad9 slave facets only");
+    if (nv == 9)
       with_hessians<3, 9>(facet, obstacle, multiplier, gap, gradient, hessian);
-    } else {
+    else if (nv == 12)
       with_hessians<3, 12>(facet, obstacle, multiplier, gap, gradient, hessian);
-    }
+    else if (nv == 18)
+      with_hessians<3, 18>(facet, obstacle, multiplier, gap, gradient, hessian);
+    else
+      with_hessians<3, 27>(facet, obstacle, multiplier, gap, gradient, hessian); // quad8, quad9
   }
 }
 

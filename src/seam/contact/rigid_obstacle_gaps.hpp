@@ -10,7 +10,8 @@ namespace seam::contact {
 
 /// g~_j = int Phi_j g da of the facet's nodes j (rigid_obstacle_facet.hpp, the same kernel),
 /// dg~_j/dx_v at j * nv + v and d2 g~_j/dx_v dx_w at (j * nv + v) * nv + w, nv = Dim * nodes
-/// (node i, component a is variable Dim * i + a). Facets: line2, line3 (2D); tri3, quad4 (3D).
+/// (node i, component a is variable Dim * i + a). Facets: line2, line3 (2D); tri3, quad4, tri6,
+/// quad8, quad9 (3D).
 template <int Dim>
 void rigid_obstacle_gap_hessians(const mortar::Facet<Dim>& facet, const Obstacle& obstacle,
                                  mortar::Multiplier multiplier, std::vector<double>& gap,

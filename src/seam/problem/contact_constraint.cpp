@@ -185,7 +185,23 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                                     "gaps of no fixed sign at the vertices, with or without "
                                     "friction; use multiplier: dual");
     }
-    s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
+    // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
+    // second derivatives (contact/gap_blocks.cpp); with friction (its normal part) on linear
+    // 3D faces only. Quadratic 3D faces on any rank decide for all (a side held in part).
+    bool quadratic_3d = false;
+    if (disc.dim() == 3) {
+      for (const auto t : s.itf.slave().types) quadratic_3d = quadratic_3d || fem::order(t) > 1;
+      if (!s.itf.rigid())
+        for (const auto t : s.itf.master().types) quadratic_3d = quadratic_3d || fem::order(t) > 1;
+      quadratic_3d = disc.comm().max(quadratic_3d ? 1.0 : 0.0) > 0.0;
+    }
+    const bool em_gaps = config.time.integrator == io::Integrator::energy_momentum &&
+                         s.itf.has_gap_blocks() &&
+                         !(quadratic_3d && itf.friction.model != io::FrictionModel::frictionless);
+    // The discrete gradient is the gradient of the weighted gaps in the nodal positions, of the
+    // modified dual basis on tri6/quad8 faces as they are weighted: its force needs no
+    // transformation of the slave displacements.
+    if (!em_gaps) s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     s.compact =
         slave_part && s.itf.rigid() && disc.comm().max(s.T_inverse.empty() ? 0.0 : 1.0) == 0.0;
     // c_n ~ E / h makes c_n g and lambda_n the same size for a gap of one element's strain;
@@ -223,11 +239,9 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
     s.dirichlet.assign(n * dim, 0);
     for (std::size_t i = 0; i < fixed.size(); ++i) s.dirichlet[i] = fixed[i] > 0.0;
     if (itf.friction.model != io::FrictionModel::frictionless) init_friction(s, itf, s.c_n);
-    // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
-    // second derivatives (contact/gap_blocks.cpp); its multipliers are saddle-point unknowns.
-    // With friction the normal part (contact_energy_momentum_friction.cpp).
-    s.discrete_gradient =
-        config.time.integrator == io::Integrator::energy_momentum && s.itf.has_gap_blocks();
+    // Its multipliers are saddle-point unknowns; with friction the normal part
+    // (contact_energy_momentum_friction.cpp).
+    s.discrete_gradient = em_gaps;
     saddle_point_ = saddle_point_ || s.discrete_gradient;
     if (parallel_.interface_distribution == io::InterfaceDistribution::independent &&
         disc.comm().size() > 1)
@@ -1534,6 +1548,7 @@ la::Matrix ContactConstraint::transformation_delta() const {
   std::vector<PetscInt> pi, pj;
   std::vector<double> pv;
   for (const auto& s : sides_) {
+    if (s.T_inverse.empty()) continue; // untransformed (energy-momentum contact)
     const auto& nodes = s.itf.slave().mesh_nodes;
     const auto& facets = s.itf.slave().facet_set();
     std::vector<char> zone(nodes.size(), 0);
@@ -1743,7 +1758,7 @@ void ContactConstraint::hold_slave_part(Side& s, std::vector<std::int64_t> evalu
   const std::vector<std::int64_t> before = s.node_keys;
   s.itf.hold_slave_facets(slave_side_of(held));
   index_slave_side(s, std::move(facet_ids));
-  s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
+  if (!s.discrete_gradient) s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
   const auto& after = s.node_keys;
   const auto moved = [&](auto& values, std::size_t width) {
     values.resize(before.size() * width, {}); // D and g~ are sized at the first sums
@@ -1953,9 +1968,8 @@ std::vector<std::string> ContactConstraint::describe() const {
                                      "step's mean D and M)")
                   : ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
-      text += ", contact force of the end of the step (energy-momentum contact needs line2 "
-              "or line3 faces in 2D or tri3/quad4 faces in 3D, two bodies, self contact or a "
-              "rigid plane, sphere or cylinder)";
+      text += ", contact force of the end of the step (energy-momentum contact needs one kind "
+              "of faces in 2D, line2 or line3, and no friction on quadratic 3D faces)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",
