@@ -32,18 +32,8 @@ def line3_ring_on_obstacle(obstacle, multiplier="dual", np=1, n=6, steps=60):
             .replace("OBSTACLE", R.OBSTACLES[obstacle][2]).replace("STEPS", str(steps))
             .replace("END", "0.3"))
     rows, itf, newton = R.run_rings(2, ((0.0, 1.05),), n, yaml, np, order=2)
-    e = [r["total_energy"] for r in rows]
-    force = [r["normal_force"] for r in itf]
-    persistent = R.persistent_steps(rows, newton)
-    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
-    change = max([abs(e[k] - e[k - 1]) / e[0] for k in persistent] or [0.0])
-    print("   line3 ring on a rigid %s, %s multipliers, np %d: contact in %d of %d steps, %d "
-          "persistent; largest energy rise in a step %.2e, largest change in persistent "
-          "contact %.2e; energy end/start %.8f"
-          % (obstacle, multiplier, np, sum(f > 0 for f in force), len(rows), len(persistent),
-             rise, change, e[-1] / e[0]))
-    return dict(rows=rows, energy=e, force=force, rise=rise, change=change,
-                persistent=persistent)
+    return R.obstacle_energy(rows, itf, newton, "line3 ring on a rigid %s, %s multipliers, np %d"
+                             % (obstacle, multiplier, np))
 
 
 def test_line3_ring_on_obstacles():

@@ -43,15 +43,6 @@ Physical Surface("r0_boundary") = {1};
 """
 
 
-def run(geo, yaml, np):
-    work, out = T.run_case(geo, yaml, np=np)
-    rows = H.read_csv(os.path.join(out, "steps.csv"))
-    itf = H.read_csv(os.path.join(out, "interfaces.csv"))
-    newton = H.read_csv(os.path.join(out, "newton.csv"))
-    H.cleanup(work, out)
-    return rows, itf, newton
-
-
 def obstacle_case(body, obstacle, multiplier="dual", steps=30, end=0.2):
     """The geometry and input of the ring ("quad9": hex27, "quad8": hex20) or the ball
     ("tri6") thrown obliquely and spinning onto a rigid plane or sphere under it
@@ -74,19 +65,11 @@ def obstacle_case(body, obstacle, multiplier="dual", steps=30, end=0.2):
 def on_obstacle(body, obstacle, multiplier="dual", np=1):
     """obstacle_case run; the energy figures of check_obstacle_energy."""
     geo, yaml = obstacle_case(body, obstacle, multiplier)
-    rows, itf, newton = run(geo, yaml, np)
-    e = [r["total_energy"] for r in rows]
-    force = [r["normal_force"] for r in itf]
-    persistent = R.persistent_steps(rows, newton)
-    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
-    change = max([abs(e[k] - e[k - 1]) / e[0] for k in persistent] or [0.0])
-    print("   %s faces on a rigid %s, %s multipliers, np %d: contact in %d of %d steps, %d "
-          "persistent; largest energy rise in a step %.2e, largest change in persistent "
-          "contact %.2e; energy end/start %.8f"
-          % (body, obstacle, multiplier, np, sum(f > 0 for f in force), len(rows),
-             len(persistent), rise, change, e[-1] / e[0]))
-    return dict(rows=rows, energy=e, force=force, rise=rise, change=change,
-                persistent=persistent, body=body)
+    rows, itf, newton = R.run_geo(geo, yaml, np)
+    r = R.obstacle_energy(rows, itf, newton, "%s faces on a rigid %s, %s multipliers, np %d"
+                          % (body, obstacle, multiplier, np))
+    r["body"] = body
+    return r
 
 
 def check(r, obstacle):
@@ -163,7 +146,7 @@ def two_blocks(faces="quad9", interface="two bodies", multiplier="dual", np=1):
                              if faces == "quad8" else "")
     yaml = BLOCKS_YAML.replace("INTERFACE", INTERFACES[interface]).replace(
         "MULTIPLIER", "multiplier: %s" % multiplier)
-    rows, itf, newton = run(geo, yaml, np)
+    rows, itf, newton = R.run_geo(geo, yaml, np)
     e = [r["total_energy"] for r in rows]
     force = [r["normal_force"] for r in itf]
     p0 = [rows[0]["momentum_%s" % c] for c in "xyz"]

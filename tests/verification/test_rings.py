@@ -130,12 +130,35 @@ def run_rings(dimension, centres, n, yaml, np, order=1):
     geo = ring_geo(centres, n, 2) if dimension == 2 else ring_geo_3d(centres, n, 2)
     if order == 2:
         geo += "Mesh.ElementOrder = 2;\n"
+    return run_geo(geo, yaml, np)
+
+
+def run_geo(geo, yaml, np):
+    """The rows of steps.csv, interfaces.csv and newton.csv of the run of `yaml` on `geo`."""
     work, out = T.run_case(geo, yaml, np=np)
     rows = H.read_csv(os.path.join(out, "steps.csv"))
     itf = H.read_csv(os.path.join(out, "interfaces.csv"))
     newton = H.read_csv(os.path.join(out, "newton.csv"))
     H.cleanup(work, out)
     return rows, itf, newton
+
+
+def obstacle_energy(rows, itf, newton, label):
+    """The energy figures of a body thrown at a rigid obstacle (check_obstacle_energy), printed
+    after `label`: the largest rise in a step and change in persistent contact, relative to the
+    start, the energy lost at first touches."""
+    e = [r["total_energy"] for r in rows]
+    force = [r["normal_force"] for r in itf]
+    persistent = persistent_steps(rows, newton)
+    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
+    change = max([abs(e[k] - e[k - 1]) / e[0] for k in persistent] or [0.0])
+    loss = sum(max(a - b, 0.0) for a, b in zip(e, e[1:])) / e[0]
+    print("   %s: contact in %d of %d steps, %d persistent; largest energy rise in a step %.2e, "
+          "largest change in persistent contact %.2e, dissipated at first touches %.2e; energy "
+          "end/start %.8f" % (label, sum(f > 0 for f in force), len(rows), len(persistent), rise,
+                              change, loss, e[-1] / e[0]))
+    return dict(rows=rows, energy=e, force=force, rise=rise, change=change,
+                persistent=persistent)
 
 
 def free_bodies(dimension, integrator, np=1, n=4, steps=40, centres=CENTRES, order=1):
@@ -438,19 +461,8 @@ def ring_on_obstacle(dimension, obstacle, multiplier="dual", np=1, n=8, steps=60
             .replace("OBSTACLE", OBSTACLES[obstacle][dimension]).replace("STEPS", str(steps))
             .replace("END", str(end)))
     rows, itf, newton = run_rings(dimension, ((0.0, 1.05),), n, yaml, np)
-    e = [r["total_energy"] for r in rows]
-    force = [r["normal_force"] for r in itf]
-    persistent = persistent_steps(rows, newton)
-    rise = max(b - a for a, b in zip(e, e[1:])) / e[0]
-    change = max([abs(e[k] - e[k - 1]) / e[0] for k in persistent] or [0.0])
-    loss = sum(max(a - b, 0.0) for a, b in zip(e, e[1:])) / e[0]
-    print("   %dD ring on a rigid %s, %s multipliers, np %d: contact in %d of %d steps, %d "
-          "persistent; largest energy rise in a step %.2e, largest change in persistent "
-          "contact %.2e, dissipated at first touches %.2e; energy end/start %.8f"
-          % (dimension, obstacle, multiplier, np, sum(f > 0 for f in force), len(rows),
-             len(persistent), rise, change, loss, e[-1] / e[0]))
-    return dict(rows=rows, energy=e, force=force, rise=rise, change=change,
-                persistent=persistent)
+    return obstacle_energy(rows, itf, newton, "%dD ring on a rigid %s, %s multipliers, np %d"
+                           % (dimension, obstacle, multiplier, np))
 
 
 def check_obstacle_energy(r):
