@@ -31,11 +31,10 @@ def arrays(path):
     return out
 
 
-def inside_other_ring(path):
-    a = arrays(path)
-    x = a["Points"][:, :2]
-    cells = a["connectivity"].reshape(-1, 4)
-    parent = np.arange(len(x))
+def rings(cells, n):
+    """The ring of each of the n nodes: the connected groups of `cells`, numbered 0, 1, ... by
+    their lowest node."""
+    parent = np.arange(n)
 
     def find(i):
         while parent[i] != i:
@@ -47,7 +46,15 @@ def inside_other_ring(path):
         roots = [find(i) for i in c]
         for r in roots[1:]:
             parent[r] = roots[0]
-    ring = np.array([find(i) for i in range(len(x))])
+    roots = np.array([find(i) for i in range(n)])
+    return np.unique(roots, return_inverse=True)[1]
+
+
+def inside_other_ring(path):
+    a = arrays(path)
+    x = a["Points"][:, :2]
+    cells = a["connectivity"].reshape(-1, 4)
+    ring = rings(cells, len(x))
     cell_ring = ring[cells[:, 0]]
     edges = Counter(tuple(sorted((c[k], c[(k + 1) % 4]))) for c in cells for k in range(4))
     surface = sorted({i for e, n in edges.items() if n == 1 for i in e})

@@ -26,16 +26,23 @@
   external_work by more than 1e-9 of the external work; with the roles assigned anew at each
   step (SEAM_SELF_ROLES_STEP=1, a diagnostic: the former behaviour) the same run exchanges the
   roles of persisting pairs and gains energy in steps.
+- The inverted element named: SEAM_CONTACT_TRACE prints the cell an energy-momentum iterate
+  inverts, with its nodes' positions at the start of the step and at the trial point; on a
+  ring squeezed into inversion the nodes must be that cell's and the trial quad must have a
+  non-positive det dx/dxi.
 """
 import json
 import math
 import os
+import re
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import contact_analysis as C  # noqa: E402
 import harness as H  # noqa: E402
 import test_contact as T  # noqa: E402
+import vtu_reader as V  # noqa: E402
 
 
 def ring_geo(centres, nc, nr, radius=1.0, inner=0.6):
@@ -824,8 +831,72 @@ def test_roles_restart():
         raise AssertionError("the restart differs from the uninterrupted run by %.3e" % worst)
 
 
+# One ring squeezed along x (no interface): OBSTACLE_YAML without the obstacle, one step.
+SQUEEZE_YAML = (OBSTACLE_YAML.replace("DIM", "2").replace("VELOCITY", '"-40*x", "0"')
+                .replace("interfaces:\n  - {name: floor, type: contact, slave: r0_boundary, "
+                         "MULTIPLIER OBSTACLE}\n", "")
+                .replace("END", "0.05").replace("STEPS", "1"))
+
+
+def quad_jacobians(x):
+    """det dx/dxi of the quad with corners x (VTK order) at its 2 x 2 Gauss points."""
+    g = 1.0 / math.sqrt(3.0)
+    dets = []
+    for xi, eta in ((-g, -g), (g, -g), (g, g), (-g, g)):
+        dxi = [(-(1 - eta), (1 - eta), (1 + eta), -(1 + eta))[a] / 4.0 for a in range(4)]
+        deta = [(-(1 - xi), -(1 + xi), (1 + xi), (1 - xi))[a] / 4.0 for a in range(4)]
+        j = [[sum(d[a] * x[a][i] for a in range(4)) for d in (dxi, deta)] for i in range(2)]
+        dets.append(j[0][0] * j[1][1] - j[0][1] * j[1][0])
+    return dets
+
+
+def test_inverted_cell_trace():
+    """SEAM_CONTACT_TRACE=1 names the inverted element of an energy-momentum step: a ring
+    squeezed along x at 40 x its distance from the centre, dt = 0.05 (the first correction
+    crushes it by twice its width), inverts cells. Each `inverted cell C:` line must list the
+    nodes of cell C of the mesh (results_00000.vtu), their positions at the start of the step
+    (the first line's: the reference positions, step 1's first attempt) with every
+    Gauss-point det dx/dxi > 0, and at the trial end point with one det dx/dxi <= 0; a line
+    that named another cell or other positions fails."""
+    work = tempfile.mkdtemp(prefix="seam_rings_")
+    H.write_case(work, "case.geo", ring_geo(((0.0, 0.0),), 4, 2))
+    path = H.write_case(work, "case.yaml", SQUEEZE_YAML)
+    out = tempfile.mkdtemp(prefix="seam_verif_")
+    os.environ["SEAM_CONTACT_TRACE"] = "1"
+    try:
+        code, stdout, stderr = H.run(["run", path, "-o", out], check=False, timeout=300)
+    finally:
+        del os.environ["SEAM_CONTACT_TRACE"]
+    mesh = V.read_piece(os.path.join(out, "results_00000.vtu"))
+    H.cleanup(work, out)
+    lines = [l for l in stdout.splitlines() if l.startswith("  inverted cell ")]
+    if "an element is inverted" not in stdout + stderr or not lines:
+        raise AssertionError("no inverted cell named (exit %d):\n%s%s"
+                             % (code, stdout[-3000:], stderr[-2000:]))
+    number = r"(-?[0-9.]+(?:e[-+][0-9]+)?)"
+    node = re.compile(r" node (\d+) \(%s, %s\) \(%s, %s\)" % (number, number, number, number))
+    for line in lines:
+        cell = int(re.match(r"  inverted cell (\d+):", line).group(1))
+        found = node.findall(line)
+        nodes = [int(f[0]) for f in found]
+        start = [(float(f[1]), float(f[2])) for f in found]
+        trial = [(float(f[3]), float(f[4])) for f in found]
+        reference = [mesh["points"][n][:2] for n in nodes]
+        if nodes != list(mesh["cells"][cell]):
+            raise AssertionError("cell %d has nodes %s, the line lists %s"
+                                 % (cell, list(mesh["cells"][cell]), nodes))
+        if line is lines[0] and max(abs(a - b) for p, q in zip(start, reference)
+                                    for a, b in zip(p, q)) > 1e-6:
+            raise AssertionError("start positions %s are not the reference %s" % (start, reference))
+        if min(quad_jacobians(start)) <= 0.0 or min(quad_jacobians(trial)) > 0.0:
+            raise AssertionError("cell %d: det at the start %s, at the trial point %s"
+                                 % (cell, quad_jacobians(start), quad_jacobians(trial)))
+    print("   %d inverted-cell lines (exit %d), each a cell of the mesh inverted at its trial point"
+          % (len(lines), code))
+
+
 if __name__ == "__main__":
     H.main([test_free_bodies_2d, test_free_bodies_3d, test_start_inside_energy_momentum,
             test_ring_on_obstacles_2d,
             test_ring_on_obstacles_3d, test_rings_example, test_roles_fixed_within_a_step,
-            test_roles_kept_across_steps, test_roles_restart])
+            test_roles_kept_across_steps, test_roles_restart, test_inverted_cell_trace])

@@ -2,12 +2,14 @@
 
 #include "seam/common/error.hpp"
 #include "seam/fem/cell.hpp"
+#include "seam/problem/diagnostics.hpp"
 #include "seam/solid/algorithmic_force.hpp"
 #include "seam/solid/element.hpp"
 #include "seam/solid/loads.hpp"
 #include "seam/solid/mass.hpp"
 
 #include <array>
+#include <cstdio>
 #include <optional>
 
 namespace seam::problem {
@@ -37,6 +39,27 @@ void gather(const Discretization& disc, std::span<const double> u_local,
       d.u[a * dim + i] = u_local[disc.local_dof(node, i)];
       d.dofs[a * dim + i] = disc.global_dof(node, i);
     }
+}
+
+/// SEAM_CONTACT_TRACE: the cell of an inverted element, its nodes and their positions at the
+/// start of the step and at the trial end point (docs/contact_dynamics.md, "Diagnosing a
+/// stalled Newton step").
+void trace_inverted_cell(const Discretization& disc, std::int32_t c, const CellData& n,
+                         const CellData& next) {
+  const int dim = disc.dim();
+  const auto nodes = disc.mesh().cell(c);
+  std::printf("  inverted cell %lld:", static_cast<long long>(disc.cell_gid(c)));
+  for (int a = 0; a < n.n; ++a) {
+    std::printf(" node %lld", static_cast<long long>(disc.node_gid(nodes[a])));
+    for (const auto* dd : {&n, &next}) {
+      std::printf(" (");
+      for (int i = 0; i < dim; ++i)
+        std::printf("%s%.6f", i ? ", " : "", dd->X[a * dim + i] + dd->u[a * dim + i]);
+      std::printf(")");
+    }
+  }
+  std::printf("\n");
+  std::fflush(stdout);
 }
 
 } // namespace
@@ -234,6 +257,7 @@ AssemblyStatus assemble_algorithmic(const Model& model, const Discretization& di
                 : std::span<double>());
     if (res.status != solid::KernelStatus::ok) {
       status.inverted = true;
+      if (contact_trace_level() >= 1) trace_inverted_cell(disc, c, d, d_next);
       continue;
     }
     status.strain_energy += res.energy_next;
