@@ -699,9 +699,12 @@ def test_rings_example():
     energy never exceeds the work of gravity and no step raises it by more than 1e-9 of that
     work (three steps after t = 0.35 start with slave nodes beyond the other surface: the
     contact velocity update), no ring node lies inside another ring by more than 2 % of the
-    wall thickness nor beyond the floor or a wall; np = 3 equals np = 1."""
+    wall thickness nor beyond the floor or a wall; np = 3 equals np = 1. The VTU contact
+    fields show every node active on an interface, also where the self contact and a plane
+    share it (check_contact_fields)."""
     rows, planes, work, out, width = rings_case()
     check_rings(rows, planes, out, 10, 4, width)
+    check_contact_fields(out)
     H.cleanup(work, out)
     three, _, work, out, _ = rings_case(np=3)
     H.cleanup(work, out)
@@ -710,6 +713,44 @@ def test_rings_example():
     print("   np 3 vs np 1: energy and momentum max rel. diff %.2e" % worst)
     if worst > 1e-6 or len(rows) != len(three):
         raise AssertionError("np 3 differs from np 1 by %.3e" % worst)
+
+
+def check_contact_fields(out):
+    """The contact fields of the last VTU output against the interface_<name>.csv files of the
+    same step: the nodes with contact_status >= 1 are exactly those active on some interface
+    (a ring's outer nodes are slave nodes of the self contact and of the floor and walls: none
+    may hide another's state), and where one interface holds a node active the multiplier's
+    length is its normal traction. Nodes matched by their current positions (the VTU points)."""
+    with open(os.path.join(out, "results.pvd")) as f:
+        last = re.findall(r'file="([^"]+)"', f.read())[-1]
+    pieces = V.read_pieces(os.path.join(out, last))
+    key = lambda x, y: (round(x, 8), round(y, 8))  # noqa: E731
+    active = {}
+    for name in os.listdir(out):
+        if name.startswith("interface_") and name.endswith(".csv"):
+            for r in H.read_csv(os.path.join(out, name)):
+                if r["status"] != "inactive":
+                    active.setdefault(key(r["x"] + r["ux"], r["y"] + r["uy"]), []).append(
+                        r["normal_traction"])
+    shown, worst = set(), 0.0
+    for p in pieces:
+        pd = p["point_data"]
+        for x, status, lam in zip(p["points"], pd["contact_status"], pd["lagrange_multiplier"]):
+            k = key(x[0], x[1])
+            if status >= 1:
+                shown.add(k)
+            if len(active.get(k, [])) == 1:
+                t = abs(active[k][0])
+                worst = max(worst, abs(math.sqrt(sum(c * c for c in lam)) - t) / max(t, 1e-300))
+    both = sum(len(v) > 1 for v in active.values())
+    print("   contact fields of %s: %d nodes shown active, %d active on some interface (%d on "
+          "two), multiplier vs normal traction %.1e" % (last, len(shown), len(active), both,
+                                                         worst))
+    if shown != set(active):
+        raise AssertionError("contact_status >= 1 at %d nodes, %d active on the interfaces (%d "
+                             "missing)" % (len(shown), len(active), len(set(active) - shown)))
+    if worst > 1e-8:
+        raise AssertionError("multiplier differs from the normal traction by %.3e" % worst)
 
 
 def rings_roles(env, np, end):

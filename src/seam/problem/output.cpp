@@ -540,7 +540,10 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
   piece.point_data.emplace_back("displacement", 3, std::span<const double>(disp));
   piece.point_data.emplace_back("velocity", 3, std::span<const double>(vel));
   // Interface fields on the slave nodes: multiplier, weighted gap, status (-1 off the
-  // interface, 0 inactive, 1 tied / stick, 2 slip).
+  // interface, 0 inactive, 1 tied / stick, 2 slip). A node that is a slave node of several
+  // interfaces (a ring's outer surface in self contact and against the floor) shows the sum
+  // of their multipliers, the highest status and the gap of the interface that gives it (the
+  // smaller gap where two give it).
   std::vector<double> lambda(n_points * 3, 0.0), gap(n_points, 0.0);
   std::vector<std::int32_t> status(n_points, -1);
   if (!tied_.empty() || !contact_.empty()) {
@@ -554,23 +557,30 @@ void Output::write_fields(int step, double time, const la::Vector& u, const la::
       auto g = gv.values();
       std::fill(l.begin(), l.end(), 0.0);
       std::fill(g.begin(), g.end(), 0.0);
+      const auto put = [&](auto node, std::span<const double> multiplier, double node_gap,
+                           double node_status) {
+        for (int c = 0; c < dim; ++c) l[disc_.local_dof(node, c)] += multiplier[c];
+        double& s = g[disc_.local_dof(node, 1)];
+        double& gn = g[disc_.local_dof(node, 0)];
+        if (s == 0.0 || node_status > s || (node_status == s && node_gap < gn)) {
+          gn = node_gap;
+          s = node_status;
+        }
+      };
       for (std::size_t k = 0; k < tied_.size(); ++k) {
         const auto& t = tied_[k];
         for (std::size_t j = 0; j < t.slave.mesh_nodes.size(); ++j) {
           const auto node = t.slave.mesh_nodes[j];
           if (!disc_.owns_node(node)) continue;
-          for (int c = 0; c < dim; ++c) l[disc_.local_dof(node, c)] = states[k].lambda[j * dim + c];
-          g[disc_.local_dof(node, 0)] = states[k].gap[j];
-          g[disc_.local_dof(node, 1)] = tied_rows_[k][j] ? 3.0 : 2.0;
+          put(node, std::span<const double>(states[k].lambda).subspan(j * dim, dim),
+              states[k].gap[j], tied_rows_[k][j] ? 3.0 : 2.0);
         }
       }
       for (const auto& c : contact_)
         for (std::size_t j = 0; j < c.slave_nodes.size(); ++j) {
           if (!c.owned[j]) continue;
-          const auto node = c.slave_nodes[j];
-          for (int k = 0; k < dim; ++k) l[disc_.local_dof(node, k)] = c.lambda[j * dim + k];
-          g[disc_.local_dof(node, 0)] = c.weighted_gap[j];
-          g[disc_.local_dof(node, 1)] = 2.0 + c.status[j];
+          put(c.slave_nodes[j], std::span<const double>(c.lambda).subspan(j * dim, dim),
+              c.weighted_gap[j], 2.0 + c.status[j]);
         }
     }
     lambda_v.update_ghosts();
