@@ -707,6 +707,7 @@ def test_rings_example():
     check_contact_fields(out)
     H.cleanup(work, out)
     three, _, work, out, _ = rings_case(np=3)
+    check_contact_fields(out)  # the pieces of the ranks: each node from its owner's sums
     H.cleanup(work, out)
     worst = max(abs(a[c] - b[c]) for a, b in zip(rows, three)
                 for c in ("total_energy", "momentum_x", "momentum_y")) / rows[-1]["total_energy"]
