@@ -343,6 +343,20 @@ public:
   bool last_solve_built() const { return last_built_; }
   /// Preconditioner set-ups since construction.
   int preconditioner_builds() const { return builds_; }
+  /// The direct kind: symbolic analyses since construction. A factorization of a matrix whose
+  /// nonzero pattern differs from that of the last one (or another matrix) orders and analyses
+  /// it anew before factoring it.
+  int symbolic_analyses() const { return analyses_; }
+  /// The direct kind: MUMPS's fill-reducing ordering of the next analysis, ICNTL(7): "default"
+  /// (7, MUMPS's choice: PORD's nested dissection with Debian's MUMPS, which has neither METIS
+  /// nor SCOTCH), "qamd" (6), or "command line" when -mat_mumps_icntl_7 was given. The default
+  /// is kept unless the pattern changes at consecutive factorizations and a set-up with an
+  /// analysis costs more than twice one without (or none without was seen): then one analysis
+  /// is made with QAMD, and QAMD is kept if its set-up cost less than 0.8 of the default's
+  /// (CPU seconds of the set-up, the largest over the ranks). Decided once per solver.
+  std::string ordering() const;
+  /// A sentence saying that the last solve changed the ordering, and why, once; else empty.
+  std::string take_ordering_note() { return std::exchange(ordering_note_, {}); }
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).
   bool solve(const Matrix& A, const Vector& b, Vector& x);
   /// The same with the preconditioner built from P instead of A.
@@ -356,6 +370,11 @@ private:
   /// tolerance of set_relative_tolerance (factor_reuse_rtol unless set). Returns whether it
   /// converged within factor_reuse_max_iterations.
   bool solve_reusing_factors(const Matrix& A, const Vector& b, Vector& x);
+  /// The direct kind: KSPSetUp of a fresh factorization of P, timed, with the ordering chosen
+  /// by ordering(). Returns false if it failed (a zero pivot: the caller cuts the step).
+  bool set_up_factorization(const Matrix& P);
+  /// After a set-up that took `cost` CPU seconds, with or without an analysis: ordering().
+  void choose_ordering(bool analysed, double cost);
   /// After KSPSolve on `ksp` returned `ierr`: its iterations kept, whether it converged.
   bool finish_solve(KSP ksp, PetscErrorCode ierr);
   double relative_tolerance() const;
@@ -377,6 +396,17 @@ private:
   double reuse_rtol_ = factor_reuse_rtol; ///< set_relative_tolerance, the direct kind
   int first_iterations_ = 0; ///< Krylov iterations of the solve that built the kept one
   double first_rtol_ = 0.0;  ///< and its relative tolerance
+  // The ordering of the direct kind (ordering()).
+  bool ordering_auto_ = false; ///< no -mat_mumps_icntl_7 on the command line
+  bool qamd_ = false;          ///< the next analysis orders with QAMD
+  bool ordering_decided_ = false;
+  int analyses_ = 0;
+  int analyses_in_row_ = 0;                ///< consecutive fresh set-ups with an analysis
+  Mat analysed_ = nullptr;                 ///< the matrix of the last analysis (held by the PC)
+  PetscObjectState analysed_state_ = 0;    ///< and its nonzero state then
+  double analysed_cost_[2] = {-1.0, -1.0}; ///< set-up CPU seconds with an analysis: default, QAMD
+  double numeric_cost_ = -1.0;             ///< without one, default ordering
+  std::string ordering_note_;
 };
 
 } // namespace seam::la

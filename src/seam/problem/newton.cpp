@@ -399,7 +399,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
         res.failure = "the linear solver failed";
         return res;
       }
-      if (logging_) out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
+      count_linear_solve();
       if (!predictor) zero_dirichlet_rows(model_, disc_, du_);
       if (check) check_correction(u, t, step, it, evaluate, lambda_old);
       if (search) {
@@ -446,7 +446,7 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
       solved = solver_.solve(*K_sys, *r_sys, *d_sys);
       if (solver_.last_solve_built()) statuses_changed_ = false;
     }
-    if (logging_) out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
+    count_linear_solve();
     if (solved && tying_.active()) tying_.expand(dut_, du_);
     // A corrector leaves the prescribed values as they are. Its constrained rows return zero
     // only up to the Krylov tolerance of an iterative solve; left in, those errors would move
@@ -475,6 +475,13 @@ NewtonResult NewtonSolver::solve(la::Vector& u, double t, int step, const Evalua
   }
   res.failure = "Newton's method did not converge";
   return res;
+}
+
+void NewtonSolver::count_linear_solve() {
+  if (!logging_) return;
+  out_.linear_solve(solver_.last_iterations(), solver_.last_solve_built());
+  out_.factorizations(solver_.symbolic_analyses(), solver_.ordering());
+  if (auto note = solver_.take_ordering_note(); !note.empty()) out_.note(note);
 }
 
 void NewtonSolver::apply_increment(la::Vector& u, double t, bool predictor) {

@@ -190,6 +190,9 @@ private:
   [[noreturn]] void check_correction(la::Vector& u, double t, int step, int it,
                                      const Evaluator& evaluate,
                                      const std::vector<double>& lambda_old);
+  /// The last linear solve into summary.json's counts; a change of the factorization's
+  /// ordering on the terminal.
+  void count_linear_solve();
   /// u += du_ (and the prescribed values made exact after a predictor); ghosts updated.
   void apply_increment(la::Vector& u, double t, bool predictor);
 

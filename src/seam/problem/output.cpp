@@ -700,6 +700,10 @@ void Output::finish(bool converged, int n_steps) {
   j["linear_solves"] = linear_solves_;
   j["linear_iterations"] = linear_iterations_;
   j["preconditioner_builds"] = preconditioner_builds_;
+  if (!factor_ordering_.empty()) {
+    j["symbolic_analyses"] = symbolic_analyses_;
+    j["factor_ordering"] = factor_ordering_;
+  }
   // Both members exist before either is referenced: adding a member may move the others.
   j["timings"] = io::Json::object();
   j["cpu_timings"] = io::Json::object();

@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace seam::io {
@@ -198,6 +199,13 @@ public:
     linear_iterations_ += iterations;
     if (built) ++preconditioner_builds_;
   }
+  /// The direct solver's symbolic analyses so far and the ordering of its next one
+  /// (la::LinearSolver::symbolic_analyses, ordering): summary.json's symbolic_analyses and
+  /// factor_ordering.
+  void factorizations(int analyses, std::string ordering) {
+    symbolic_analyses_ = analyses;
+    factor_ordering_ = std::move(ordering);
+  }
   /// A converged step: steps.csv, reactions.csv, probes.csv, and the fields if the step is due
   /// (every n-th, and always `force_fields`). `reactions` holds dim values per reaction region
   /// (summed over ranks), `u` and `v` are ghosted and up to date, `multipliers` holds per
@@ -255,6 +263,8 @@ private:
   // Wall clock and simulated time where the stepping began (the estimate of the time left).
   double progress_wall_ = 0.0, progress_time_ = 0.0;
   long long linear_solves_ = 0, linear_iterations_ = 0, preconditioner_builds_ = 0;
+  long long symbolic_analyses_ = 0;
+  std::string factor_ordering_;
   std::vector<LocatedProbe> probes_;
   std::unique_ptr<io::CsvTable> steps_, newton_, reactions_, probes_table_, interfaces_, errors_,
       parallel_;
