@@ -109,10 +109,14 @@ std::vector<double> ContactConstraint::tangential_multipliers(const Side& s) con
 void ContactConstraint::for_each_mean_operator(
     const Side& s, const std::function<void(std::size_t, std::int32_t, double)>& visit) const {
   const auto& nodes = s.itf.slave().mesh_nodes;
+  // With the modified basis of tri6/quad8 faces D_jj weighs x~_j = sum_m (T^-1)_jm x_m.
+  const contact::InverseTransformationRows rows(s.itf.transformation_inverse(), nodes.size());
+  const auto diagonal = [&](std::size_t j, double d) {
+    if (d != 0.0) rows.visit(j, [&](std::size_t m, double t) { visit(j, nodes[m], 0.5 * d * t); });
+  };
   for (std::size_t j = 0; j < nodes.size(); ++j) {
-    if (s.part.D[j] != 0.0) visit(j, nodes[j], 0.5 * s.part.D[j]);
-    if (s.D_diag_old[j] != 0.0 && s.node_owners[j] == disc_.comm().rank())
-      visit(j, nodes[j], 0.5 * s.D_diag_old[j]);
+    diagonal(j, s.part.D[j]);
+    if (s.node_owners[j] == disc_.comm().rank()) diagonal(j, s.D_diag_old[j]);
   }
   for (const auto* coupling : {&s.part.D_coupling, &s.D_coupling_old})
     for (const auto& e : *coupling)
