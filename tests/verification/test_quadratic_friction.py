@@ -99,11 +99,11 @@ def blocks(faces="quad9", interface="two bodies", np=1):
     return r
 
 
-def check_blocks(r):
-    """Contact in every step, check_energy, both momenta to MOMENTUM_BOUND."""
+def check_blocks(r, persistent=2):
+    """Contact in 3 steps or more, check_energy, both momenta to MOMENTUM_BOUND."""
     if sum(f > 0 for f in r["force"]) < 3:
         raise AssertionError("contact in %d steps only" % sum(f > 0 for f in r["force"]))
-    check_energy(r)
+    check_energy(r, persistent)
     if r["dp"] > MOMENTUM_BOUND or r["dl"] > MOMENTUM_BOUND:
         raise AssertionError("momentum drift %.3e, angular %.3e" % (r["dp"], r["dl"]))
 
@@ -125,24 +125,31 @@ def test_quad9_blocks_friction():
 
 
 @H.full_only
-def test_quad9_blocks_friction_np3():
-    """The hex27 blocks at np 3: check_blocks, equal to np 1 (contact force, energy,
-    dissipation). About 80 s on the loaded machine: SEAM_FULL=1."""
+def test_quad9_blocks_friction_np3_surface():
+    """The hex27 blocks at np 3 (check_blocks, equal to np 1: contact force, energy,
+    dissipation) and as one `surface:` interface (one persistent step: the roles of the pairs
+    are assigned anew). About 150 s on the loaded machine: SEAM_FULL=1."""
     r1 = blocks()
     r3 = blocks(np=3)
     check_blocks(r3)
     check_np3_equals_np1(r3, r1)
+    check_blocks(blocks(interface="surface"), persistent=1)
 
 
-def test_quad8_tri6_blocks_friction():
-    """The same with hex20 cells (quad8 faces) and tet10 cells (tri6 faces), dual multipliers of
-    the modified basis (the slip in the positions x~ = T^-1 x), and the hex27 blocks as one
-    `surface:` interface. With the force of the end of the step E + D rose by 9.8e-2 (quad8)
-    and 1.1e-2 (tri6) of E_0 in a step."""
-    check_blocks(blocks(faces="quad8"))
-    check_blocks(blocks(faces="tri6"))
-    r = blocks(interface="surface")
-    check_blocks(r)
+def test_quad8_blocks_friction():
+    """The blocks of hex20 cells (quad8 faces), dual multipliers of the modified basis (the
+    slip in the positions x~ = T^-1 x): check_blocks. Their steps count as changes of the set
+    (the nodes sliding at the end of a step sit on the cone with a zero slip increment at the
+    start of the next one and are held in stick for an iteration): E + D never rising is what
+    is checked there. With the force of the end of the step (main) E + D rose by 1.7e-1 of E_0
+    in a step, the angular momentum by 9.1e-3."""
+    check_blocks(blocks(faces="quad8"), persistent=0)
+
+
+def test_tri6_blocks_friction():
+    """The same with tet10 cells (tri6 faces, modified dual basis). With the force of the end
+    of the step (main) E + D rose by 5.8e-2 of E_0 in a step, the angular momentum by 1.6e-2."""
+    check_blocks(blocks(faces="tri6"), persistent=0)
 
 
 def obstacle_case(body, obstacle):
@@ -299,7 +306,7 @@ def test_quadratic_friction_newton_check():
 
 
 if __name__ == "__main__":
-    H.main([test_quad9_blocks_friction, test_quad9_blocks_friction_np3,
-            test_quad8_tri6_blocks_friction,
+    H.main([test_quad9_blocks_friction, test_quad9_blocks_friction_np3_surface,
+            test_quad8_blocks_friction, test_tri6_blocks_friction,
             test_friction_on_obstacles, test_stick_on_incline,
             test_quadratic_friction_newton_check])
