@@ -22,6 +22,7 @@ import harness as H  # noqa: E402
 import test_contact as T  # noqa: E402
 import test_quadratic_dynamics as Q  # noqa: E402
 import test_rings as R  # noqa: E402
+from test_obstacle_dynamics import CYLINDER  # noqa: E402
 
 MU = 0.3
 FRICTION = "friction: {model: coulomb, coefficient: %r}, " % MU
@@ -162,7 +163,7 @@ def obstacle_case(body, obstacle):
 
 def test_friction_on_obstacles():
     """The hex20 ring (quad8 faces, modified dual basis) onto the rigid plane and the hex27 ring
-    (quad9 faces) onto the rigid sphere, mu = 0.3: check_energy (on the plane no step is
+    (quad9 faces) onto the rigid sphere and cylinder, mu = 0.3: check_energy (on the plane no step is
     persistent: the ring rolls onto new nodes and the sliding nodes, exactly on the cone at the
     start of a step, count as changes in its first iteration; E + D never rising is checked
     there). On the plane (normal y) the tangential contact force lies in the plane: each step's
@@ -170,8 +171,8 @@ def test_friction_on_obstacles():
     normal one (the change of p_y; 2 % for the mean operators against the discrete gradient)
     and the friction brakes the sliding (p_x falls); np 3 (the ring's slave side split over the
     ranks) equals np 1. With the force of the end of the step (main) E + D rose by 3.7e-5 of
-    E_0 in a step on the sphere (1.9e-4 in a persistent step; on the plane, with dual
-    multipliers, 3.5e-12: consistent already)."""
+    E_0 in a step on the sphere (1.9e-4 in a persistent step), 2.9e-6 on the cylinder (1.7e-5;
+    on the plane, with dual multipliers, 3.5e-12: consistent already)."""
     rows, itf, newton = R.run_geo(*obstacle_case("quad8", "plane"), 1)
     r1 = energy_figures(rows, itf, newton, "quad8 faces on the rigid plane")
     check_energy(r1, persistent=0)
@@ -194,6 +195,10 @@ def test_friction_on_obstacles():
                              "steps" % (worst, braked))
     rows, itf, newton = R.run_geo(*obstacle_case("quad9", "sphere"), 1)
     check_energy(energy_figures(rows, itf, newton, "quad9 faces on the rigid sphere"),
+                 persistent=10)
+    R.OBSTACLES.setdefault("cylinder", {3: CYLINDER})
+    rows, itf, newton = R.run_geo(*obstacle_case("quad9", "cylinder"), 1)
+    check_energy(energy_figures(rows, itf, newton, "quad9 faces on the rigid cylinder"),
                  persistent=10)
 
 
