@@ -1,5 +1,6 @@
 // Friction in energy-momentum contact (docs/contact_dynamics.md §5, "Friction"): two bodies,
-// self contact and rigid obstacles with line2 or line3 (2D) or tri3/quad4 (3D) faces.
+// self contact and rigid obstacles with line2 or line3 (2D) or tri3, quad4, tri6, quad8 or
+// quad9 (3D) faces.
 //
 // The Cartesian multiplier lambda_j of slave node j splits along the averaged normal n_j of
 // x_{n+1} into lambda_n,j = n_j . lambda_j and lambda_t,j = P_j lambda_j (P_j = I - n_j n_j^T).
@@ -21,6 +22,10 @@
 // Against a rigid obstacle (M = 0) the obstacle is the frame: u~_j = G_j(dx) - (sum_k D_jk) dc
 // with dc the obstacle's displacement in the step, no rotation taken out and no couple; the
 // energy statement is the same, and the frictional force changes the momenta as it should.
+// With the modified dual basis of tri6/quad8 faces D_jj weighs the positions of that basis,
+// x~ = T^-1 x (the basis the weighted gaps are taken in): the slave part of G_j is
+// D_jj (T^-1 y)_j and the force D_jj lambda_t,j acts on node m by (T^-1)_jm. T is constant and
+// the rows of T^-1 sum to one, so all of the above holds unchanged.
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/parallel/exchange.hpp"
