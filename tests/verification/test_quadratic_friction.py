@@ -202,6 +202,32 @@ def test_friction_on_obstacles():
                  persistent=10)
 
 
+def test_restart_quadratic_friction_np3():
+    """The hex20 ring on the rigid sphere (quad8 faces, modified basis) with a checkpoint every
+    5 steps, continued from the checkpoint of step 15 (sliding) on 3 ranks: the step's mean
+    operators need the last converged step's D (the checkpoint's friction history), the slip
+    T^-1 of the side split over the ranks. Energy and dissipation of the continued steps equal
+    the uninterrupted run's to 1e-10 of E_0, and E + D never rises in them by more than
+    ENERGY_BOUND of the energy. With the force of the end of the step (main) E + D rose by
+    7.6e-5 of the energy in a continued step."""
+    import test_friction_dynamics as FD
+    geo, yaml = obstacle_case("quad8", "sphere")
+    yaml = yaml.replace("output: {every: 1000}", "output: {every: 1000, checkpoint_every: 5}")
+    work = tempfile.mkdtemp(prefix="seam_quadratic_friction_")
+    H.write_case(work, "case.geo", geo)
+    path = H.write_case(work, "case.yaml", yaml)
+    b, bi, de, dd = FD.continued_on_3_ranks(work, path, "checkpoint_00015")
+    slipping = sum(bi[k]["slip_nodes"] > 0 for k in bi)
+    total = [b[k]["total_energy"] + bi[k]["frictional_dissipation"] for k in sorted(b)]
+    rise = max(y - x for x, y in zip(total, total[1:])) / total[0]
+    print("   restart from step 15 on 3 ranks: %d steps (%d with slip), energy %.2e, "
+          "dissipation %.2e of E_0; largest rise of E + D in a continued step %.2e"
+          % (len(b), slipping, de, dd, rise))
+    if len(b) < 15 or slipping == 0 or de > 1e-10 or dd > 1e-10 or rise > ENERGY_BOUND:
+        raise AssertionError("restart: %d steps, %d with slip, energy %.3e, dissipation %.3e, "
+                             "rise of E + D %.3e" % (len(b), slipping, de, dd, rise))
+
+
 # A hex20 block (quad8 faces, modified dual basis), 2 x 1 x 2 cells of 1 x 0.5 x 1, resting on
 # the rigid plane y = 0 under a gravity g = 10 tilted by the angle alpha about z (the plane
 # inclined by alpha), ramped in over 0.1 and held to 0.6.
@@ -319,5 +345,6 @@ def test_quadratic_friction_newton_check():
 if __name__ == "__main__":
     H.main([test_quad9_blocks_friction, test_quad9_blocks_friction_np3_surface,
             test_quad8_blocks_friction, test_tri6_blocks_friction,
-            test_friction_on_obstacles, test_stick_on_incline,
+            test_friction_on_obstacles, test_restart_quadratic_friction_np3,
+            test_stick_on_incline,
             test_quadratic_friction_newton_check])
