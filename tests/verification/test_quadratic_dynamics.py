@@ -253,12 +253,12 @@ def test_quadratic_newton_check():
 
 def test_quadratic_check_names_force():
     """`seam check` names the force of each interface: the discrete gradient on the hex27
-    blocks (quad9 faces) and on the hex20 blocks (quad8), the force of the end of the step
-    with friction on them (not built)."""
+    blocks (quad9 faces) and on the hex20 blocks (quad8), with friction on them its normal part
+    and the frame-indifferent slip (test_quadratic_friction.py)."""
     cases = (("quad9", "", "discrete gradient of the weighted gaps"),
              ("quad8", "", "discrete gradient of the weighted gaps"),
              ("quad9", "friction: {model: coulomb, coefficient: 0.3}, ",
-              "contact force of the end of the step"))
+              "weighted gaps; friction: frame-indifferent slip"))
     for faces, friction, expected in cases:
         geo = BLOCKS_GEO.replace("SERENDIPITY", "Mesh.SecondOrderIncomplete = 1;"
                                  if faces == "quad8" else "")

@@ -289,6 +289,32 @@ void apply_inverse_transformation(std::span<const mortar::Triplet> T_inverse, in
           e.value * x[static_cast<std::size_t>(e.col) * dim + c];
 }
 
+InverseTransformationRows::InverseTransformationRows(std::span<const mortar::Triplet> T_inverse,
+                                                     std::size_t n_nodes)
+    : begin_(n_nodes + 1, 0), col_(T_inverse.size()), value_(T_inverse.size()) {
+  for (const auto& e : T_inverse) ++begin_[static_cast<std::size_t>(e.row) + 1];
+  for (std::size_t k = 0; k < n_nodes; ++k) begin_[k + 1] += begin_[k];
+  std::vector<std::size_t> next(begin_.begin(), begin_.end() - 1);
+  for (const auto& e : T_inverse) {
+    const auto i = next[static_cast<std::size_t>(e.row)]++;
+    col_[i] = static_cast<std::size_t>(e.col);
+    value_[i] = e.value;
+  }
+}
+
+std::vector<double> ContactInterface::modified_increment(std::span<const double> step_start) const {
+  if (step_start.empty()) return {};
+  const int dim = this->dim();
+  std::vector<double> dx(slave_.coordinates.size()), out(dx.size());
+  for (std::size_t k = 0; k < slave_.mesh_nodes.size(); ++k)
+    for (int a = 0; a < dim; ++a) {
+      const auto i = static_cast<std::size_t>(slave_.mesh_nodes[k]) * dim + a;
+      dx[k * dim + a] = slave_.coordinates[k * dim + a] - reference_x()[i] - step_start[i];
+    }
+  apply_inverse_transformation(transformation_inverse_, dim, dx, out);
+  return out;
+}
+
 std::vector<double> ContactInterface::transformed_slave_positions() const {
   std::vector<double> y(slave_.coordinates.size());
   apply_inverse_transformation(transformation_inverse_, dim(), slave_.coordinates, y);
@@ -776,6 +802,10 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
   const int dim = this->dim();
   RigidObstacleFacet rf;
   std::vector<std::int64_t> column;
+  const auto increment = modified_increment(step_start);
+  const InverseTransformationRows rows(step_start.empty() ? std::span<const mortar::Triplet>{}
+                                                          : transformation_inverse_,
+                                       slave_.mesh_nodes.size());
   for (const auto f : owned_) {
     if (pair_offsets_[static_cast<std::size_t>(f)] ==
         pair_offsets_[static_cast<std::size_t>(f) + 1])
@@ -810,18 +840,11 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
             const double* dD = rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv);
             push_row(out.D_gradient, static_cast<std::int64_t>(sj), dD, 1.0);
             if (step_start.empty()) continue;
-            // Energy-momentum friction: d(sum_k D_jk dx_k) at fixed dx.
-            const auto mk = static_cast<std::size_t>(
-                slave_.mesh_nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)])]);
-            for (int a = 0; a < dim; ++a) {
-              const auto i = mk * dim + static_cast<std::size_t>(a);
-              const double dx =
-                  slave_.coordinates[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)]) *
-                                         dim +
-                                     a] -
-                  reference_x()[i] - step_start[i];
-              push_row(out.operator_gradient, static_cast<std::int64_t>(sj * dim) + a, dD, dx);
-            }
+            // Energy-momentum friction: d(sum_k D_jk dx~_k) at fixed dx.
+            const auto sk = static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)]);
+            for (int a = 0; a < dim; ++a)
+              push_row(out.operator_gradient, static_cast<std::int64_t>(sj * dim) + a, dD,
+                       increment[sk * dim + static_cast<std::size_t>(a)]);
           }
       }
       if (!carries_multiplier(lambda, static_cast<local_index>(sj))) continue;
@@ -834,16 +857,17 @@ void ContactInterface::linearize_rigid(std::span<const double> lambda,
         current_.contact_normal(dim, &slave_.coordinates[sj * dim], nj, dn);
       }
       const auto dof_j = static_cast<std::int64_t>(slave_.mesh_nodes[sj]) * dim;
-      // Slave node k: D_jk lambda_j (dual: k = j only).
+      // Slave node k: D_jk lambda_j (dual: k = j only); energy-momentum friction: on the
+      // nodes m by (T^-1)_km.
       for (int k = standard() ? 0 : j; k < (standard() ? n : j + 1); ++k) {
-        const auto row0 =
-            static_cast<std::int64_t>(
-                slave_.mesh_nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)])]) *
-            dim;
-        for (int a = 0; a < dim; ++a)
-          push_row(out.force_tangent, row0 + a,
-                   rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv),
-                   multiplier(lambda, sj, a));
+        const auto sk = static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)]);
+        const double* dD = rf.dD.data() + static_cast<std::size_t>((j * n + k) * nv);
+        rows.visit(sk, [&](std::size_t m, double t) {
+          const auto row0 = static_cast<std::int64_t>(slave_.mesh_nodes[m]) * dim;
+          for (int a = 0; a < dim; ++a)
+            push_row(out.force_tangent, row0 + a, dD, t * multiplier(lambda, sj, a));
+        });
+        const auto row0 = static_cast<std::int64_t>(slave_.mesh_nodes[sk]) * dim;
         if (!turning) continue;
         const double scale = rf.D[static_cast<std::size_t>(j * n + k)] * lambda[sj];
         for (int a = 0; a < dim; ++a)
@@ -867,9 +891,14 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
     return;
   }
   mortar::SlaveFacetLinearization lin;
-  // D_jj multiplies the positions of the modified basis in the slip increment.
+  // D_jj multiplies the positions of the modified basis in the slip increment (with
+  // `step_start`: their increments in the step).
   const std::vector<double> x_slave =
-      frictional_ ? transformed_slave_positions() : std::vector<double>{};
+      frictional_ && step_start.empty() ? transformed_slave_positions() : std::vector<double>{};
+  const auto increment = modified_increment(step_start);
+  const InverseTransformationRows rows(step_start.empty() ? std::span<const mortar::Triplet>{}
+                                                          : transformation_inverse_,
+                                       slave_.mesh_nodes.size());
   std::vector<local_index> masters;
   std::vector<std::int64_t> column; // mesh dof of every variable, -1 for rigid ones
   for (const auto f : owned_) {
@@ -926,15 +955,10 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
             for (int k = k_begin; k < k_end; ++k) {
               const auto sk =
                   static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(k)]);
-              // With step_start: +dx_k (the operators applied to the step's increment).
-              const double xk = x_slave[sk * dim + static_cast<std::size_t>(a)];
-              const double w =
-                  step_start.empty()
-                      ? -xk
-                      : xk -
-                            reference_x()[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim +
-                                          a] -
-                            step_start[static_cast<std::size_t>(slave_.mesh_nodes[sk]) * dim + a];
+              // With step_start: +dx~_k (the operators applied to the step's increment).
+              const double w = step_start.empty()
+                                   ? -x_slave[sk * dim + static_cast<std::size_t>(a)]
+                                   : increment[sk * dim + static_cast<std::size_t>(a)];
               add_row(out.operator_gradient, row, lin.dD(j, k), w, nullptr, 0.0);
             }
             for (int p = 0; p < lin.n_master_nodes(); ++p) {
@@ -962,11 +986,14 @@ void ContactInterface::linearize(std::span<const double> lambda, std::span<const
       for (int k = 0; k < ns; ++k) {
         const double Djk = lin.D[static_cast<std::size_t>(j * ns + k)];
         const auto sk = static_cast<std::size_t>(lin.slave_nodes[static_cast<std::size_t>(k)]);
-        const auto row0 = static_cast<std::int64_t>(slave_.mesh_nodes[sk]) * dim;
-        for (int a = 0; a < dim; ++a)
-          add_row(out.force_tangent, row0 + a, lin.dD(j, k), multiplier(lambda, sj, a),
-                  lin.normal_jacobian.data() + static_cast<std::size_t>(j * dim + a) * nv,
-                  lambda_n * Djk);
+        // Energy-momentum friction: on the nodes m by (T^-1)_km.
+        rows.visit(sk, [&](std::size_t m, double t) {
+          const auto row0 = static_cast<std::int64_t>(slave_.mesh_nodes[m]) * dim;
+          for (int a = 0; a < dim; ++a)
+            add_row(out.force_tangent, row0 + a, lin.dD(j, k), t * multiplier(lambda, sj, a),
+                    lin.normal_jacobian.data() + static_cast<std::size_t>(j * dim + a) * nv,
+                    t * lambda_n * Djk);
+        });
       }
       // Master node p: -M_jp lambda_j.
       for (int p = 0; p < lin.n_master_nodes(); ++p) {

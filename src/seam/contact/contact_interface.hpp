@@ -124,6 +124,26 @@ enum class GapOrder { value, gradient, hessian };
 void apply_inverse_transformation(std::span<const mortar::Triplet> T_inverse, int dim,
                                   std::span<const double> x, std::span<double> y);
 
+/// The rows of T^-1 (side-local triplets, mortar::inverse_transformation) by slave node: with a
+/// modified slave basis node k's position in it is x~_k = sum_m (T^-1)_km x_m, and the force
+/// D_kk lambda_k on it acts on the nodes m by (T^-1)_km. A node without a row stands for itself.
+class InverseTransformationRows {
+public:
+  InverseTransformationRows(std::span<const mortar::Triplet> T_inverse, std::size_t n_nodes);
+  /// f(m, (T^-1)_km) for the entries of row k.
+  template <class F> void visit(std::size_t k, F&& f) const {
+    if (begin_[k] == begin_[k + 1]) {
+      f(k, 1.0);
+      return;
+    }
+    for (auto i = begin_[k]; i < begin_[k + 1]; ++i) f(col_[i], value_[i]);
+  }
+
+private:
+  std::vector<std::size_t> begin_, col_;
+  std::vector<double> value_;
+};
+
 class ContactInterface {
 public:
   /// The sides of `config` (a `type: contact` interface) in `mesh` (kept by reference).
@@ -252,6 +272,10 @@ public:
   /// quad8 facets; mortar::MortarOperators::T), side-local; empty when T = I. D, M and g~
   /// then refer to the modified basis and the slave contact force is T^-T (D lambda n).
   const std::vector<mortar::Triplet>& transformation() const { return transformation_; }
+  /// T^-1 of transformation() (side-local; empty when T = I).
+  const std::vector<mortar::Triplet>& transformation_inverse() const {
+    return transformation_inverse_;
+  }
 
   /// The current slave positions in the modified basis, x~ = T^-1 x (dim per slave node;
   /// x itself when T = I): the objective slip increment is built from them.
@@ -361,7 +385,9 @@ public:
   /// two bodies, self contact and rigid obstacles) operator_gradient is instead the derivative
   /// of sum_k D_jk dx_k - sum_l M_jl dx_l at fixed dx = x - x_start (the slip increment of
   /// energy-momentum friction, problem/contact_energy_momentum_friction.cpp; no M against an
-  /// obstacle).
+  /// obstacle). With a modified slave basis (transformation()) the slave positions and rows
+  /// are then those of the modified basis: D_jj (T^-1 dx)_j, and the force D_jj lambda_j on
+  /// node m by (T^-1)_jm.
   void linearize(std::span<const double> lambda_n, std::span<const char> want_gap,
                  Linearization& out, std::span<const double> step_start = {}) const;
 
@@ -416,6 +442,8 @@ private:
   /// integrated (slave_set(), integration_master()).
   void index_prechecked();
   void evaluate_rigid(NodalValues& out) const;
+  /// T^-1 (x - x_ref - step_start) over the slave nodes (dim each); empty without step_start.
+  std::vector<double> modified_increment(std::span<const double> step_start) const;
   void linearize_rigid(std::span<const double> lambda_n, std::span<const char> want_gap,
                        Linearization& out, std::span<const double> step_start) const;
   /// The slave facets the mortar integration and the nodal normals use: the whole slave side,

@@ -186,21 +186,13 @@ ContactConstraint::ContactConstraint(const io::Config& config, const Discretizat
                                     "friction; use multiplier: dual");
     }
     // Energy-momentum contact: the discrete gradient force where the weighted gaps have exact
-    // second derivatives (contact/gap_blocks.cpp); with friction (its normal part) on linear
-    // 3D faces only. Quadratic 3D faces on any rank decide for all (a side held in part).
-    bool quadratic_3d = false;
-    if (disc.dim() == 3) {
-      for (const auto t : s.itf.slave().types) quadratic_3d = quadratic_3d || fem::order(t) > 1;
-      if (!s.itf.rigid())
-        for (const auto t : s.itf.master().types) quadratic_3d = quadratic_3d || fem::order(t) > 1;
-      quadratic_3d = disc.comm().max(quadratic_3d ? 1.0 : 0.0) > 0.0;
-    }
-    const bool em_gaps = config.time.integrator == io::Integrator::energy_momentum &&
-                         s.itf.has_gap_blocks() &&
-                         !(quadratic_3d && itf.friction.model != io::FrictionModel::frictionless);
+    // second derivatives (contact/gap_blocks.cpp); with friction its normal part.
+    const bool em_gaps =
+        config.time.integrator == io::Integrator::energy_momentum && s.itf.has_gap_blocks();
     // The discrete gradient is the gradient of the weighted gaps in the nodal positions, of the
     // modified dual basis on tri6/quad8 faces as they are weighted: its force needs no
-    // transformation of the slave displacements.
+    // transformation of the slave displacements (the frictional slip takes T^-1 itself,
+    // contact_energy_momentum_friction.cpp).
     if (!em_gaps) s.T_inverse = mortar::inverse_transformation(s.itf.transformation());
     s.compact =
         slave_part && s.itf.rigid() && disc.comm().max(s.T_inverse.empty() ? 0.0 : 1.0) == 0.0;
@@ -1969,7 +1961,7 @@ std::vector<std::string> ContactConstraint::describe() const {
                   : ", energy-momentum contact force (discrete gradient of the weighted gaps)";
     else if (energy_momentum_)
       text += ", contact force of the end of the step (energy-momentum contact needs one kind "
-              "of faces in 2D, line2 or line3, and no friction on quadratic 3D faces)";
+              "of faces in 2D, line2 or line3)";
     if (s.friction) {
       std::snprintf(line, sizeof line, ", %s friction %s = %.4g, c_t = %.4g",
                     s.law.model == io::FrictionModel::coulomb ? "Coulomb" : "Tresca",

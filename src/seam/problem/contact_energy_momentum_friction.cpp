@@ -1,5 +1,6 @@
 // Friction in energy-momentum contact (docs/contact_dynamics.md §5, "Friction"): two bodies,
-// self contact and rigid obstacles with line2 or line3 (2D) or tri3/quad4 (3D) faces.
+// self contact and rigid obstacles with line2 or line3 (2D) or tri3, quad4, tri6, quad8 or
+// quad9 (3D) faces.
 //
 // The Cartesian multiplier lambda_j of slave node j splits along the averaged normal n_j of
 // x_{n+1} into lambda_n,j = n_j . lambda_j and lambda_t,j = P_j lambda_j (P_j = I - n_j n_j^T).
@@ -21,6 +22,10 @@
 // Against a rigid obstacle (M = 0) the obstacle is the frame: u~_j = G_j(dx) - (sum_k D_jk) dc
 // with dc the obstacle's displacement in the step, no rotation taken out and no couple; the
 // energy statement is the same, and the frictional force changes the momenta as it should.
+// With the modified dual basis of tri6/quad8 faces D_jj weighs the positions of that basis,
+// x~ = T^-1 x (the basis the weighted gaps are taken in): the slave part of G_j is
+// D_jj (T^-1 y)_j and the force D_jj lambda_t,j acts on node m by (T^-1)_jm. T is constant and
+// the rows of T^-1 sum to one, so all of the above holds unchanged.
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/parallel/exchange.hpp"
@@ -109,10 +114,14 @@ std::vector<double> ContactConstraint::tangential_multipliers(const Side& s) con
 void ContactConstraint::for_each_mean_operator(
     const Side& s, const std::function<void(std::size_t, std::int32_t, double)>& visit) const {
   const auto& nodes = s.itf.slave().mesh_nodes;
+  // With the modified basis of tri6/quad8 faces D_jj weighs x~_j = sum_m (T^-1)_jm x_m.
+  const contact::InverseTransformationRows rows(s.itf.transformation_inverse(), nodes.size());
+  const auto diagonal = [&](std::size_t j, double d) {
+    if (d != 0.0) rows.visit(j, [&](std::size_t m, double t) { visit(j, nodes[m], 0.5 * d * t); });
+  };
   for (std::size_t j = 0; j < nodes.size(); ++j) {
-    if (s.part.D[j] != 0.0) visit(j, nodes[j], 0.5 * s.part.D[j]);
-    if (s.D_diag_old[j] != 0.0 && s.node_owners[j] == disc_.comm().rank())
-      visit(j, nodes[j], 0.5 * s.D_diag_old[j]);
+    diagonal(j, s.part.D[j]);
+    if (s.node_owners[j] == disc_.comm().rank()) diagonal(j, s.D_diag_old[j]);
   }
   for (const auto* coupling : {&s.part.D_coupling, &s.D_coupling_old})
     for (const auto& e : *coupling)

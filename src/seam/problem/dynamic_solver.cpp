@@ -301,9 +301,8 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
   if (emm && contact.n_end_of_step() > 0 && disc.comm().is_root())
     std::printf(
         "seam: energy_momentum: %d contact interface(s) keep the contact force of the end "
-        "of the step (2D faces mixing line2 and line3, friction on quadratic 3D faces): momentum "
-        "and "
-        "energy are not conserved there (docs/contact_dynamics.md)\n",
+        "of the step (2D faces mixing line2 and line3): momentum and energy are not conserved "
+        "there (docs/contact_dynamics.md)\n",
         contact.n_end_of_step());
   StepControl control(tc);
   int step = 0;
