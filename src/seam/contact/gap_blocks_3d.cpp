@@ -18,7 +18,7 @@
 //
 // The pair kernel's independents are the slave positions, the slave nodal normals and the
 // master positions (36 with quad4 on both sides). The averaged unit nodal normal of a slave
-// node is a function of the nodes of the facets around it (up to 16 nodes, Hyper<48>); the
+// node is a function of the nodes of the facets around it (up to 16 nodes, SymHyper<48>); the
 // chain rule H_X = J^T H_y J + sum_i (dg/dy_i) H_X(y_i) takes both to the positions of the
 // pair's slots in doubles.
 #include "seam/contact/contact_interface.hpp"
@@ -807,6 +807,30 @@ void add_weighted_packed(std::vector<SymHyper<N>>& weighted, const SymHyper<N>& 
   }
 }
 
+/// f(y_0, ..., y_{M-1}) on SymHyper<N> for M numbers y_j: f's own derivatives on Hyper<M>,
+/// then the chain rule, grad f = sum_j f_j grad y_j and
+/// H(f) = sum_j f_j H(y_j) + sum_jl f_jl grad y_j grad y_l^T, in one pass.
+template <int N, int M, class F>
+SymHyper<N> compose(const std::array<const SymHyper<N>*, M>& y, F&& f) {
+  std::array<Hyper<M>, M> local;
+  for (int j = 0; j < M; ++j)
+    local[static_cast<std::size_t>(j)] =
+        Hyper<M>::variable(y[static_cast<std::size_t>(j)]->value, j);
+  const Hyper<M> r = f(local);
+  SymHyper<N> out(r.value, typename SymHyper<N>::Uninitialized{});
+  out.gradient.fill(0.0);
+  std::array<const double*, M> w;
+  std::array<std::array<double, M>, M> C;
+  for (std::size_t j = 0; j < M; ++j) {
+    const auto& gj = y[j]->gradient;
+    for (int i = 0; i < N; ++i) out.gradient[i] += r.gradient[j] * gj[i];
+    w[j] = gj.data();
+    for (std::size_t l = 0; l < M; ++l) C[j][l] = r.hessian[j * M + l];
+  }
+  combine_hessians<N, M>(out, false, M, r.gradient.data(), y.data(), w, C);
+  return out;
+}
+
 template <class S> constexpr bool is_sym_hyper = false;
 template <int N> constexpr bool is_sym_hyper<SymHyper<N>> = true;
 
@@ -964,7 +988,13 @@ void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& opti
           const S h_s = interpolate_packed(slave_jet, ms, c, true, xs_ref);
           for (std::size_t l = 0; l < mm; ++l) c[l] = &hm[l];
           const S h_m = interpolate_packed(master_jet, mm, c, true, xm_ref);
-          const S wg = weight * area * (h_m - h_s) * dot(n, np) / norm(n);
+          // weight area (h_m - h_s) n . n_p / |n| (weighted_point_gap).
+          const S wg = compose<S::n_variables, 9>(
+              {&area, &h_m, &h_s, &n.x, &n.y, &n.z, &np.x, &np.y, &np.z}, [&](const auto& y) {
+                using L = std::decay_t<decltype(y[0])>;
+                const V3<L> ny{y[3], y[4], y[5]}, py{y[6], y[7], y[8]};
+                return weight * y[0] * (y[1] - y[2]) * dot(ny, py) / norm(ny);
+              });
           add_weighted_packed(weighted, wg,
                               a != 0.0 ? ShapeJet(in.slave_type, slave_xi, a) : slave_jet, ms,
                               xs_ref);
@@ -1153,7 +1183,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
       normal_of(slaves, adjacency, node, ring_x, ring, n);
       jet.value = n;
     } else {
-      // Hyper<48> for up to 16 ring nodes (linear facets), Hyper<81> beyond (quadratic).
+      // 48 variables for up to 16 ring nodes (linear facets), 81 beyond (quadratic).
       const auto derivatives = [&]<int RV>() {
         const auto take = [&](const auto& n) {
           jet.gradient.resize(3 * nr);
@@ -1168,14 +1198,16 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
           take(n);
           return;
         }
-        std::vector<Hyper<RV>> n(3);
+        // Packed Hessians (sym_hyper.hpp): the same numbers for half the memory traffic.
+        std::vector<SymHyper<RV>> n(3);
         normal_of(slaves, adjacency, node, ring_x, ring, n);
         take(n);
         jet.hessian.resize(3 * nr * nr);
         for (std::size_t a = 0; a < 3; ++a)
           for (std::size_t v = 0; v < nr; ++v)
             for (std::size_t w = 0; w < nr; ++w)
-              jet.hessian[(a * nr + v) * nr + w] = n[a].hessian[v * RV + w];
+              jet.hessian[(a * nr + v) * nr + w] =
+                  n[a].second(static_cast<int>(v), static_cast<int>(w));
       };
       if (ring.size() <= static_cast<std::size_t>(max_ring_nodes))
         derivatives.template operator()<ring_variables>();
