@@ -59,6 +59,8 @@ using namespace gap_vectors;
 
 template <class S> constexpr bool is_hyper = false;
 template <int N> constexpr bool is_hyper<Hyper<N>> = true;
+template <class S> constexpr bool is_sym_hyper = false;
+template <int N> constexpr bool is_sym_hyper<SymHyper<N>> = true;
 
 template <class S> S component(const V3<S>& a, int c) {
   return c == 0 ? a.x : c == 1 ? a.y : a.z;
@@ -158,6 +160,11 @@ struct CellRule {
 /// The cells of a clip polygon, its fan about the area centroid (a triangle stays one cell),
 /// and the rule's points in them: f(u, area, weight) with the point u, its cell's area and its
 /// weight in the rule.
+/// a b_0 + b b_1 + c b_2 on packed Hessians in one pass (defined with the packed path below).
+template <int N>
+V2<SymHyper<N>> barycentric_packed(const V2<SymHyper<N>>& a, const V2<SymHyper<N>>& b,
+                                   const V2<SymHyper<N>>& c, const std::array<double, 4>& point);
+
 template <class S, class F>
 void for_each_point(const Polygon<S>& polygon, const CellRule& rule, F&& f) {
   const std::size_t nv = polygon.size();
@@ -167,7 +174,10 @@ void for_each_point(const Polygon<S>& polygon, const CellRule& rule, F&& f) {
                 cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
     const S area = 0.5 * cross(b - a, cc - a);
     for (const auto& point : rule.points)
-      f(V2<S>(a * point[0] + b * point[1] + cc * point[2]), area, point[3]);
+      if constexpr (is_sym_hyper<S>)
+        f(barycentric_packed(a, b, cc, point), area, point[3]);
+      else
+        f(V2<S>(a * point[0] + b * point[1] + cc * point[2]), area, point[3]);
   }
 }
 
@@ -622,12 +632,29 @@ struct ShapeJet {
   }
 };
 
+/// The rows of x's packed Hessian that hold a nonzero: the plane images and heights of the
+/// nodes depend on the piece's corners and the node alone (15 of 81 variables for quad9).
+template <int N> std::array<bool, N> nonzero_rows(const SymHyper<N>& x) {
+  std::array<bool, N> rows{};
+  for (int i = 0; i < N; ++i) {
+    const double* h = x.hessian.data() + SymHyper<N>::row(i) - i;
+    for (int k = i; k < N && !rows[static_cast<std::size_t>(i)]; ++k)
+      rows[static_cast<std::size_t>(i)] = h[k] != 0.0;
+  }
+  return rows;
+}
+
+/// The nonzero rows of the Hessians of a node's plane image (x, y) and height.
+template <int N> using NodeRows = std::array<std::array<bool, N>, 3>;
+
 /// out's Hessian = (out's +) sum_j alpha_j H(x_j) + sum_pq C_pq w_p w_q^T for L gradient-sized
-/// vectors w (C symmetric), row by row of the packed triangle.
+/// vectors w (C symmetric), row by row of the packed triangle; rows[j] (if given and not null)
+/// the nonzero rows of H(x_j).
 template <int N, int L>
 void combine_hessians(SymHyper<N>& out, bool accumulate, int n_inputs, const double* alpha,
                       const SymHyper<N>* const* x, const std::array<const double*, L>& w,
-                      const std::array<std::array<double, L>, L>& C) {
+                      const std::array<std::array<double, L>, L>& C,
+                      const bool* const* rows = nullptr) {
   for (int i = 0; i < N; ++i) {
     const std::ptrdiff_t o = SymHyper<N>::row(i) - i;
     double* r = out.hessian.data() + o;
@@ -635,7 +662,7 @@ void combine_hessians(SymHyper<N>& out, bool accumulate, int n_inputs, const dou
       for (int k = i; k < N; ++k) r[k] = 0.0;
     for (int j = 0; j < n_inputs; ++j) {
       const double a = alpha[j];
-      if (a == 0.0) continue;
+      if (a == 0.0 || (rows != nullptr && rows[j] != nullptr && !rows[j][i])) continue;
       const double* h = x[j]->hessian.data() + o;
       for (int k = i; k < N; ++k) r[k] += a * h[k];
     }
@@ -655,6 +682,7 @@ template <int N>
 bool locate_packed(const mortar::detail::PlanarFacet& facet, const std::vector<V2<SymHyper<N>>>& u,
                    const mortar::detail::PieceInverse& inverse, bool linear,
                    const geometry::NewtonOptions& newton, const V2<SymHyper<N>>& p,
+                   const std::type_identity_t<std::vector<NodeRows<N>>>& rows,
                    std::array<SymHyper<N>, 2>& xi, Eigen::Vector2d& xi_value) {
   using H = SymHyper<N>;
   Eigen::Vector2d x0;
@@ -666,6 +694,7 @@ bool locate_packed(const mortar::detail::PlanarFacet& facet, const std::vector<V
   std::array<H, 2> r;
   std::array<double, mortar::max_facet_nodes + 1> alpha{};
   std::array<const H*, mortar::max_facet_nodes + 1> inputs{};
+  std::array<const bool*, mortar::max_facet_nodes + 1> input_rows{};
   Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
   std::array<std::array<double, 2>, 3> R{}; // R_ab,d for ab = ss, st, tt
   for (std::size_t k = 0; k < n; ++k) {
@@ -687,10 +716,13 @@ bool locate_packed(const mortar::detail::PlanarFacet& facet, const std::vector<V
       for (int i = 0; i < N; ++i) rd.gradient[i] += jet.N[k] * ukd.gradient[i];
       alpha[k] = jet.N[k];
       inputs[k] = &ukd;
+      input_rows[k] = rows[k][static_cast<std::size_t>(d)].data();
     }
     alpha[n] = -1.0;
     inputs[n] = &pd;
-    combine_hessians<N, 0>(rd, false, static_cast<int>(n + 1), alpha.data(), inputs.data(), {}, {});
+    input_rows[n] = nullptr;
+    combine_hessians<N, 0>(rd, false, static_cast<int>(n + 1), alpha.data(), inputs.data(), {}, {},
+                           input_rows.data());
   }
   const Eigen::Matrix2d Ji = J.inverse();
   // z_a = grad xi_a; G_ad = sum_k dN_k/dxi_a grad u_kd.
@@ -733,12 +765,13 @@ bool locate_packed(const mortar::detail::PlanarFacet& facet, const std::vector<V
   return true;
 }
 
-/// Q = sum_k c_k N_k(xi) over the n nodes of the jet; the c_k's Hessians are zero unless
-/// `curved` (the nodal normals are independents).
+/// Q = sum_k c_k N_k(xi) over the n nodes of the jet; the c_k's Hessians have the nonzero rows
+/// rows[k][2] or, without rows, are zero (the nodal normals are independents).
 template <int N>
 SymHyper<N> interpolate_packed(const ShapeJet& jet, std::size_t n,
                                const std::array<const SymHyper<N>*, mortar::max_facet_nodes>& c,
-                               bool curved, const std::array<SymHyper<N>, 2>& xi) {
+                               const std::type_identity_t<std::vector<NodeRows<N>>>* rows,
+                               const std::array<SymHyper<N>, 2>& xi) {
   using H = SymHyper<N>;
   H q(0.0, typename H::Uninitialized{});
   std::array<double, 2> qa{};
@@ -760,14 +793,16 @@ SymHyper<N> interpolate_packed(const ShapeJet& jet, std::size_t n,
     q.gradient[i] += qa[0] * xi[0].gradient[i] + qa[1] * xi[1].gradient[i];
   std::array<double, mortar::max_facet_nodes + 2> alpha{};
   std::array<const H*, mortar::max_facet_nodes + 2> inputs{};
+  std::array<const bool*, mortar::max_facet_nodes + 2> input_rows{};
   int m = 0;
   for (std::size_t a = 0; a < 2; ++a) {
     alpha[static_cast<std::size_t>(m)] = qa[a];
     inputs[static_cast<std::size_t>(m++)] = &xi[a];
   }
-  if (curved)
+  if (rows != nullptr)
     for (std::size_t k = 0; k < n; ++k) {
       alpha[static_cast<std::size_t>(m)] = jet.N[k];
+      input_rows[static_cast<std::size_t>(m)] = (*rows)[k][2].data();
       inputs[static_cast<std::size_t>(m++)] = c[k];
     }
   std::array<std::array<double, 4>, 4> C{};
@@ -777,34 +812,61 @@ SymHyper<N> interpolate_packed(const ShapeJet& jet, std::size_t n,
   }
   combine_hessians<N, 4>(q, false, m, alpha.data(), inputs.data(),
                          {xi[0].gradient.data(), xi[1].gradient.data(), D[0].data(), D[1].data()},
-                         C);
+                         C, input_rows.data());
   return q;
 }
 
-/// weighted_k += g N~_k(xi) for the k < n nodes of the jet (of the modified basis).
+/// weighted_k += g N~_k(xi) for the k < n nodes of the jet (of the modified basis): per node
+/// H += N~_k H(g) + g sum_a N~_k,a H(xi_a) + sum_a N~_k,a (grad g z_a^T + z_a grad g^T)
+///      + g sum_ab N~_k,ab z_a z_b^T, all nodes in one sweep over the rows of the inputs.
 template <int N>
 void add_weighted_packed(std::vector<SymHyper<N>>& weighted, const SymHyper<N>& g,
                          const ShapeJet& jet, std::size_t n, const std::array<SymHyper<N>, 2>& xi) {
-  using H = SymHyper<N>;
-  const std::array<const H*, 3> inputs{&g, &xi[0], &xi[1]};
+  const double gv = g.value;
+  const double* z0 = xi[0].gradient.data();
+  const double* z1 = xi[1].gradient.data();
+  const double* gg = g.gradient.data();
   for (std::size_t k = 0; k < n; ++k) {
-    H& out = weighted[k];
+    SymHyper<N>& out = weighted[k];
     const double Nk = jet.N[k], d0 = jet.d[0][k], d1 = jet.d[1][k];
-    out.value += g.value * Nk;
-    for (int i = 0; i < N; ++i)
-      out.gradient[i] +=
-          Nk * g.gradient[i] + g.value * (d0 * xi[0].gradient[i] + d1 * xi[1].gradient[i]);
-    const std::array<double, 3> alpha{Nk, g.value * d0, g.value * d1};
-    std::array<std::array<double, 3>, 3> C{};
-    for (int a = 0; a < 2; ++a) {
-      for (int b = 0; b < 2; ++b)
-        C[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = g.value * jet.second(a, b, k);
-      C[static_cast<std::size_t>(a)][2] = C[2][static_cast<std::size_t>(a)] =
-          jet.d[static_cast<std::size_t>(a)][k];
-    }
-    combine_hessians<N, 3>(out, true, 3, alpha.data(), inputs.data(),
-                           {xi[0].gradient.data(), xi[1].gradient.data(), g.gradient.data()}, C);
+    out.value += gv * Nk;
+    for (int i = 0; i < N; ++i) out.gradient[i] += Nk * gg[i] + gv * (d0 * z0[i] + d1 * z1[i]);
   }
+  for (int i = 0; i < N; ++i) {
+    const std::ptrdiff_t o = SymHyper<N>::row(i) - i;
+    const double* hg = g.hessian.data() + o;
+    const double* h0 = xi[0].hessian.data() + o;
+    const double* h1 = xi[1].hessian.data() + o;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double Nk = jet.N[k], d0 = jet.d[0][k], d1 = jet.d[1][k];
+      const double a0 = gv * d0, a1 = gv * d1;
+      const double s00 = gv * jet.second(0, 0, k), s01 = gv * jet.second(0, 1, k),
+                   s11 = gv * jet.second(1, 1, k);
+      // Row i of the low-rank terms: c_z0 z0 + c_z1 z1 + c_g grad g.
+      const double c0 = s00 * z0[i] + s01 * z1[i] + d0 * gg[i];
+      const double c1 = s01 * z0[i] + s11 * z1[i] + d1 * gg[i];
+      const double cg = d0 * z0[i] + d1 * z1[i];
+      double* r = weighted[k].hessian.data() + o;
+      for (int m = i; m < N; ++m)
+        r[m] += Nk * hg[m] + a0 * h0[m] + a1 * h1[m] + c0 * z0[m] + c1 * z1[m] + cg * gg[m];
+    }
+  }
+}
+
+template <int N>
+V2<SymHyper<N>> barycentric_packed(const V2<SymHyper<N>>& a, const V2<SymHyper<N>>& b,
+                                   const V2<SymHyper<N>>& c, const std::array<double, 4>& point) {
+  V2<SymHyper<N>> p;
+  for (int d = 0; d < 2; ++d) {
+    const std::array<const SymHyper<N>*, 3> x{&a(d), &b(d), &c(d)};
+    SymHyper<N>& out = d == 0 ? p.x : p.y;
+    out.value = point[0] * x[0]->value + point[1] * x[1]->value + point[2] * x[2]->value;
+    for (int i = 0; i < N; ++i)
+      out.gradient[i] = point[0] * x[0]->gradient[i] + point[1] * x[1]->gradient[i] +
+                        point[2] * x[2]->gradient[i];
+    combine_hessians<N, 0>(out, false, 3, point.data(), x.data(), {}, {});
+  }
+  return p;
 }
 
 /// f(y_0, ..., y_{M-1}) on SymHyper<N> for M numbers y_j: f's own derivatives on Hyper<M>,
@@ -831,8 +893,8 @@ SymHyper<N> compose(const std::array<const SymHyper<N>*, M>& y, F&& f) {
   return out;
 }
 
-template <class S> constexpr bool is_sym_hyper = false;
-template <int N> constexpr bool is_sym_hyper<SymHyper<N>> = true;
+template <class S> struct RowsOf { using type = char; };
+template <int N> struct RowsOf<SymHyper<N>> { using type = NodeRows<N>; };
 
 /// The corner positions of a piece and its normal on values (make_piece of
 /// integration_3d.cpp): the triangle's cross product, the quadrilateral's diagonals'.
@@ -903,6 +965,8 @@ void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& opti
   std::vector<V2<S>> us(ms), um(mm);
   std::vector<S> hs(ms), hm(mm);
   std::array<S, mortar::max_facet_nodes> Ns, Nm;
+  // The nonzero rows of the nodes' plane images and heights (the packed path).
+  std::vector<typename RowsOf<S>::type> slave_rows(ms), master_rows(mm);
   for (const auto& sp : mortar::linear_subfacets(in.slave_type)) {
     const auto& v = sp.nodes;
     const int nv = sp.n_vertices;
@@ -913,6 +977,12 @@ void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& opti
     const Eigen::Vector3d npv = value(np);
     for (std::size_t k = 0; k < ms; ++k) aux.into(xs[k], us[k], hs[k]);
     for (std::size_t l = 0; l < mm; ++l) aux.into(xm[l], um[l], hm[l]);
+    if constexpr (is_sym_hyper<S>) {
+      for (std::size_t k = 0; k < ms; ++k)
+        slave_rows[k] = {nonzero_rows(us[k].x), nonzero_rows(us[k].y), nonzero_rows(hs[k])};
+      for (std::size_t l = 0; l < mm; ++l)
+        master_rows[l] = {nonzero_rows(um[l].x), nonzero_rows(um[l].y), nonzero_rows(hm[l])};
+    }
     // The same plane and the facets in it on values (for the Newton iterations).
     geometry::Plane plane;
     plane.origin = value(aux.center);
@@ -969,9 +1039,9 @@ void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& opti
           Eigen::Vector2d slave_xi, master_xi;
           if (!slave_valid || !master_valid ||
               !locate_packed(slave_plane, us, slave_inverse, slave_linear, options.newton, u,
-                             xs_ref, slave_xi) ||
+                             slave_rows, xs_ref, slave_xi) ||
               !locate_packed(master_plane, um, master_inverse, master_linear, options.newton, u,
-                             xm_ref, master_xi))
+                             master_rows, xm_ref, master_xi))
             return;
           const ShapeJet slave_jet(in.slave_type, slave_xi, 0.0);
           const ShapeJet master_jet(in.master_type, master_xi, 0.0);
@@ -982,12 +1052,12 @@ void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& opti
               c[k] = axis == 0 ? &nn[k].x : axis == 1 ? &nn[k].y : &nn[k].z;
             (axis == 0   ? n.x
              : axis == 1 ? n.y
-                         : n.z) = interpolate_packed(slave_jet, ms, c, false, xs_ref);
+                         : n.z) = interpolate_packed(slave_jet, ms, c, nullptr, xs_ref);
           }
           for (std::size_t k = 0; k < ms; ++k) c[k] = &hs[k];
-          const S h_s = interpolate_packed(slave_jet, ms, c, true, xs_ref);
+          const S h_s = interpolate_packed(slave_jet, ms, c, &slave_rows, xs_ref);
           for (std::size_t l = 0; l < mm; ++l) c[l] = &hm[l];
-          const S h_m = interpolate_packed(master_jet, mm, c, true, xm_ref);
+          const S h_m = interpolate_packed(master_jet, mm, c, &master_rows, xm_ref);
           // weight area (h_m - h_s) n . n_p / |n| (weighted_point_gap).
           const S wg = compose<S::n_variables, 9>(
               {&area, &h_m, &h_s, &n.x, &n.y, &n.z, &np.x, &np.y, &np.z}, [&](const auto& y) {
