@@ -428,8 +428,11 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
 // too): integrate_pair's path for them, per linear piece of the slave facet an auxiliary plane,
 // the clip against each master piece and the back-projection onto the parent facets by Newton
 // in the plane. The pair's independents: the slave positions (27), the slave nodal normals (27)
-// and the master positions (27), Hyper<81>. Storage of the scalar type on the heap (a
-// Hyper<81> takes 53 kB).
+// and the master positions (27). Hessians: on SymHyper<9 n> over the n slots the facets seed
+// (pair_gaps_quadratic_packed), each point by the chain rule through its reference
+// coordinates (locate_packed and below); the plain forward path on Hyper<81> stays for the
+// tests and seam-bench (detail::quadratic_pair_derivatives). Storage of the scalar type on the
+// heap (a Hyper<81> takes 53 kB, a SymHyper<81> 27 kB).
 
 constexpr int quadratic_slots = mortar::max_facet_nodes;
 constexpr int quadratic_variables = 9 * quadratic_slots;
