@@ -4,7 +4,8 @@
 // numbers instead of N^2. Every operation then runs over contiguous memory (Hyper's products
 // write the lower triangle by columns) and moves half the bytes: on the kernels with many
 // variables (the weighted gaps of quadratic contact facets, 81 variables) the time goes into
-// memory traffic, not arithmetic. Same chain rules, same values to round-off.
+// memory traffic, not arithmetic. Same chain rules, same values to round-off; the operations
+// that follow from value, chain() and the product are hyper_dual.hpp's (SecondOrder).
 #include "seam/common/hyper_dual.hpp"
 
 #include <array>
@@ -72,18 +73,10 @@ template <int N> struct SymHyper {
   }
 };
 
-template <int N> SymHyper<N> operator-(SymHyper<N> a) {
-  a *= -1.0;
-  return a;
-}
-template <int N> SymHyper<N> operator+(SymHyper<N> a, const SymHyper<N>& b) {
-  return a += b;
-}
-template <int N> SymHyper<N> operator-(SymHyper<N> a, const SymHyper<N>& b) {
-  return a -= b;
-}
+template <int N> inline constexpr bool is_second_order<SymHyper<N>> = true;
 
-/// acc = alpha acc + a b over the Hessian (alpha 0: overwrite), the product rule's terms.
+/// The gradient and Hessian of a b (the product rule) added to acc's or, without Accumulate,
+/// written over them.
 template <int N, bool Accumulate>
 void product_into(SymHyper<N>& acc, const SymHyper<N>& a, const SymHyper<N>& b) {
   const double av = a.value, bv = b.value;
@@ -114,64 +107,4 @@ template <int N> void add_product(SymHyper<N>& acc, const SymHyper<N>& a, const 
   acc.value += a.value * b.value;
   product_into<N, true>(acc, a, b);
 }
-template <int N> void add_product(SymHyper<N>& acc, const SymHyper<N>& a, double b) {
-  acc.value += a.value * b;
-  for (int i = 0; i < N; ++i) acc.gradient[i] += b * a.gradient[i];
-  for (int i = 0; i < SymHyper<N>::n_packed; ++i) acc.hessian[i] += b * a.hessian[i];
-}
-template <int N> void add_product(SymHyper<N>& acc, double a, const SymHyper<N>& b) {
-  add_product(acc, b, a);
-}
-
-template <int N> SymHyper<N> inverse(const SymHyper<N>& b) {
-  const double q = 1.0 / b.value;
-  return b.chain(q, -q * q, 2.0 * q * q * q);
-}
-template <int N> SymHyper<N> operator/(const SymHyper<N>& a, const SymHyper<N>& b) {
-  return a * inverse(b);
-}
-template <int N> SymHyper<N> operator+(SymHyper<N> a, double b) {
-  a.value += b;
-  return a;
-}
-template <int N> SymHyper<N> operator+(double a, SymHyper<N> b) {
-  b.value += a;
-  return b;
-}
-template <int N> SymHyper<N> operator-(SymHyper<N> a, double b) {
-  a.value -= b;
-  return a;
-}
-template <int N> SymHyper<N> operator-(double a, const SymHyper<N>& b) {
-  SymHyper<N> r = -b;
-  r.value += a;
-  return r;
-}
-template <int N> SymHyper<N> operator*(SymHyper<N> a, double b) {
-  return a *= b;
-}
-template <int N> SymHyper<N> operator*(double a, SymHyper<N> b) {
-  return b *= a;
-}
-template <int N> SymHyper<N> operator/(SymHyper<N> a, double b) {
-  return a *= 1.0 / b;
-}
-template <int N> SymHyper<N> operator/(double a, const SymHyper<N>& b) {
-  return inverse(b) * a;
-}
-template <int N> SymHyper<N> sqrt(const SymHyper<N>& a) {
-  const double s = std::sqrt(a.value);
-  return a.chain(s, 0.5 / s, -0.25 / (s * a.value));
-}
-
-template <int N> bool operator<(const SymHyper<N>& a, double b) {
-  return a.value < b;
-}
-template <int N> bool operator>(const SymHyper<N>& a, double b) {
-  return a.value > b;
-}
-template <int N> double value_of(const SymHyper<N>& x) {
-  return x.value;
-}
-
 } // namespace seam
