@@ -3,7 +3,7 @@
 // function theorem, docs/contact_dynamics.md "Quadratic 3D faces") on random curved pairs:
 // - its gaps, gradients and Hessians equal those of the plain forward kernel on Hyper<81> to
 //   round-off (quad9, tri6 on both sides; with SEAM_FULL=1 also quad8 on both sides and quad9
-//   against tri6 with the standard basis);
+//   against tri6 with the standard basis, quad4 against quad9);
 // - its Hessian columns equal central differences of its own gradient, and its gradient
 //   central differences of its gaps, in slave positions, slave normals and master positions.
 #include "seam/contact/quadratic_pair_kernel.hpp"
@@ -43,7 +43,7 @@ double max_abs(const std::vector<double>& a) {
 void perturb(detail::QuadraticPair& pair, int v, double h) {
   const int group = v / 27, node = v % 27 / 3, axis = v % 3;
   auto& x = group == 0 ? pair.xs : group == 1 ? pair.normals : pair.xm;
-  x[static_cast<std::size_t>(node)][axis] += h;
+  x.at(static_cast<std::size_t>(node))[axis] += h;
 }
 
 struct Case {
@@ -85,9 +85,10 @@ TEST_P(QuadraticPairKernel, CentralDifferences) {
   const std::size_t ns = d.gap.size();
   const double gradient_scale = max_abs(d.gradient), hessian_scale = max_abs(d.hessian);
   const double h = 1e-5;
-  // A slave position of a mid-side node, a slave normal, a master position.
-  const int mid = 3 * fem::n_vertices(c.slave) + 2;
-  for (const int v : {mid, 27 + 3 * fem::n_vertices(c.slave) + 1, 54 + 4}) {
+  // A slave position and a slave normal of the last node (mid-side or centre on a quadratic
+  // facet), a master position.
+  const int last = 3 * (fem::n_nodes(c.slave) - 1);
+  for (const int v : {last + 2, 27 + last + 1, 54 + 4}) {
     auto plus = pair, minus = pair;
     perturb(plus, v, h);
     perturb(minus, v, -h);
@@ -110,7 +111,8 @@ INSTANTIATE_TEST_SUITE_P(Pairs, QuadraticPairKernel,
                          ::testing::Values(Case{CellType::quad9, CellType::quad9, true},
                                            Case{CellType::quad8, CellType::quad8, true},
                                            Case{CellType::tri6, CellType::tri6, true},
-                                           Case{CellType::quad9, CellType::tri6, false}));
+                                           Case{CellType::quad9, CellType::tri6, false},
+                                           Case{CellType::quad4, CellType::quad9, true}));
 
 } // namespace
 } // namespace seam::contact
