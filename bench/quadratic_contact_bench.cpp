@@ -3,7 +3,8 @@
 // gaps of one slave/master pair with their gradients and Hessians in the 81 variables, by the
 // kernel gap_blocks_3d runs (packed Hessians over the seeded variables) and by the forward
 // kernel on Hyper<81> it replaced, on the curved pairs of detail::curved_pair (quad9, quad8,
-// tri6 on both sides, and quad9 against tri6), with the largest difference of the two.
+// tri6 on both sides, and quad9 against tri6), with the largest difference of the two; and the
+// gradient path (Dual<81>) that residual evaluations run.
 //   seam-bench quadratic_contact [repeat] [packed]   (packed: the new kernel alone, for perf)
 #include "registry.hpp"
 
@@ -66,22 +67,24 @@ int run(int argc, char** argv) {
                         {"quad8/quad8", CellType::quad8, CellType::quad8},
                         {"tri6/tri6", CellType::tri6, CellType::tri6},
                         {"quad9/tri6", CellType::quad9, CellType::tri6}};
-  std::printf("%-12s %12s %12s %8s %12s %12s\n", "pair", "forward ms", "packed ms", "ratio",
-              "|dH|/|H|", "|dg'|/|g'|");
+  std::printf("%-12s %12s %12s %8s %12s %12s %12s\n", "pair", "forward ms", "packed ms", "ratio",
+              "|dH|/|H|", "|dg'|/|g'|", "gradient ms");
   for (const auto& c : cases) {
     const auto pair = detail::curved_pair(c.slave, c.master, 1);
-    Result forward, packed;
+    Result forward, packed, gradient;
     const double tp = time_kernel(pair, detail::QuadraticKernel::packed, repeat, packed);
+    const double tg = time_kernel(pair, detail::QuadraticKernel::gradient, repeat, gradient);
     if (packed_only) {
-      std::printf("%-12s %12s %12.2f\n", c.name, "-", 1e3 * tp);
+      std::printf("%-12s %12s %12.2f %8s %12s %12s %12.2f\n", c.name, "-", 1e3 * tp, "-", "-", "-",
+                  1e3 * tg);
       continue;
     }
     const double tf = time_kernel(pair, detail::QuadraticKernel::forward, repeat, forward);
     double hs = 0.0, gs = 0.0;
     const double dh = largest_difference(packed.hessian, forward.hessian, hs);
     const double dg = largest_difference(packed.gradient, forward.gradient, gs);
-    std::printf("%-12s %12.2f %12.2f %8.2f %12.2e %12.2e\n", c.name, 1e3 * tf, 1e3 * tp, tf / tp,
-                dh / std::max(hs, 1e-300), dg / std::max(gs, 1e-300));
+    std::printf("%-12s %12.2f %12.2f %8.2f %12.2e %12.2e %12.2f\n", c.name, 1e3 * tf, 1e3 * tp,
+                tf / tp, dh / std::max(hs, 1e-300), dg / std::max(gs, 1e-300), 1e3 * tg);
   }
   return 0;
 }

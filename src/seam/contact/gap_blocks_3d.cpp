@@ -579,11 +579,21 @@ bool locate_on(const mortar::detail::PlanarFacet& facet, const std::vector<V2<S>
     const int steps = is_dual<S> ? 1 : 2;
     std::array<S, mortar::max_facet_nodes> N;
     for (int it = 0; it < steps; ++it) {
-      facet_shape_values<S>(facet.type, s, t, N);
       S rx = -p.x, ry = -p.y;
-      for (std::size_t k = 0; k < u.size(); ++k) {
-        add_product(rx, u[k].x, N[k]);
-        add_product(ry, u[k].y, N[k]);
+      if constexpr (is_dual<S>) {
+        // One step from the values: the shape values are numbers (the same sums).
+        std::array<double, mortar::max_facet_nodes> Nv;
+        facet_shape_values<double>(facet.type, xi.x(), xi.y(), Nv);
+        for (std::size_t k = 0; k < u.size(); ++k) {
+          add_product(rx, u[k].x, Nv[k]);
+          add_product(ry, u[k].y, Nv[k]);
+        }
+      } else {
+        facet_shape_values<S>(facet.type, s, t, N);
+        for (std::size_t k = 0; k < u.size(); ++k) {
+          add_product(rx, u[k].x, N[k]);
+          add_product(ry, u[k].y, N[k]);
+        }
       }
       s = s - (rx * j1.y() - ry * j1.x()) * (1.0 / det);
       t = t - (ry * j0.x() - rx * j0.y()) * (1.0 / det);
@@ -649,6 +659,20 @@ template <int N> std::array<bool, N> nonzero_rows(const SymHyper<N>& x) {
 
 /// The nonzero rows of the Hessians of a node's plane image (x, y) and height.
 template <int N> using NodeRows = std::array<std::array<bool, N>, 3>;
+
+/// The shape values N_k(s, t) on Dual by the chain rule: N_k and dN_k/dxi at the values.
+template <int N>
+void shape_values_chain(fem::CellType type, const Dual<N>& s, const Dual<N>& t,
+                        std::array<Dual<N>, mortar::max_facet_nodes>& out) {
+  const ShapeJet jet(type, Eigen::Vector2d(s.value, t.value), 0.0);
+  for (std::size_t k = 0; k < static_cast<std::size_t>(fem::n_nodes(type)); ++k) {
+    out[k].value = jet.N[k];
+    for (int i = 0; i < N; ++i)
+      out[k].gradient[static_cast<std::size_t>(i)] =
+          jet.d[0][k] * s.gradient[static_cast<std::size_t>(i)] +
+          jet.d[1][k] * t.gradient[static_cast<std::size_t>(i)];
+  }
+}
 
 /// out's Hessian = (out's +) sum_j alpha_j H(x_j) + sum_pq C_pq w_p w_q^T for L gradient-sized
 /// vectors w (C symmetric), row by row of the packed triangle; rows[j] (if given and not null)
@@ -1080,8 +1104,13 @@ void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& opti
             !locate_on(slave_plane, us, slave_inverse, slave_linear, options.newton, u, s1, s2) ||
             !locate_on(master_plane, um, master_inverse, master_linear, options.newton, u, m1, m2))
           return;
-        facet_shape_values<S>(in.slave_type, s1, s2, Ns);
-        facet_shape_values<S>(in.master_type, m1, m2, Nm);
+        if constexpr (is_dual<S>) {
+          shape_values_chain(in.slave_type, s1, s2, Ns);
+          shape_values_chain(in.master_type, m1, m2, Nm);
+        } else {
+          facet_shape_values<S>(in.slave_type, s1, s2, Ns);
+          facet_shape_values<S>(in.master_type, m1, m2, Nm);
+        }
         const S wg = weighted_point_gap(ms, nn, hs, Ns, mm, hm, Nm, np, area, weight);
         // The modified basis N~ of dual multipliers on tri6/quad8 (modify_basis).
         if (a != 0.0)
@@ -1199,13 +1228,26 @@ void detail::quadratic_pair_derivatives(const QuadraticPair& pair,
   for (int l = 0; l < in.nm; ++l)
     in.xm[static_cast<std::size_t>(l)] = pair.xm[static_cast<std::size_t>(l)];
   in.dual = pair.dual;
+  constexpr auto n = static_cast<std::size_t>(quadratic_variables);
+  if (kernel == QuadraticKernel::gradient) {
+    std::vector<Dual<quadratic_variables>> g;
+    pair_gaps_quadratic(in, options, g);
+    gap.assign(g.size(), 0.0);
+    gradient.assign(g.size() * n, 0.0);
+    hessian.clear();
+    for (std::size_t j = 0; j < g.size(); ++j) {
+      gap[j] = g[j].value;
+      std::copy(g[j].gradient.begin(), g[j].gradient.end(),
+                gradient.begin() + static_cast<std::ptrdiff_t>(j * n));
+    }
+    return;
+  }
   using H = Hyper<quadratic_variables>;
   std::vector<H> g;
   if (kernel == QuadraticKernel::packed)
     pair_gaps_quadratic(in, options, g);
   else
     pair_gaps_quadratic_on(in, options, g, quadratic_slots);
-  constexpr auto n = static_cast<std::size_t>(quadratic_variables);
   gap.assign(g.size(), 0.0);
   gradient.assign(g.size() * n, 0.0);
   hessian.assign(g.size() * n * n, 0.0);

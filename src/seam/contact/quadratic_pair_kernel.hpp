@@ -20,7 +20,9 @@ struct QuadraticPair {
   bool dual = true;
 };
 
-enum class QuadraticKernel { packed, forward };
+/// packed: the Hessian path gap_blocks_3d runs; forward: the plain one on Hyper<81>;
+/// gradient: the gradient path on Dual<81> (no Hessians).
+enum class QuadraticKernel { packed, forward, gradient };
 
 /// The weighted gaps g_j of the slave nodes, their gradients (ns x 81, row-major) and Hessians
 /// (ns x 81 x 81) in the variables: 27 slave positions, 27 slave normals, 27 master positions

@@ -5,7 +5,8 @@
 //   round-off (quad9, tri6 on both sides; with SEAM_FULL=1 also quad8 on both sides and quad9
 //   against tri6 with the standard basis, quad4 against quad9);
 // - its Hessian columns equal central differences of its own gradient, and its gradient
-//   central differences of its gaps, in slave positions, slave normals and master positions.
+//   central differences of its gaps, in slave positions, slave normals and master positions;
+// - the gradient path (Dual<81>, the residuals) gives the Hessian path's gaps and gradients.
 #include "seam/contact/quadratic_pair_kernel.hpp"
 
 #include <gtest/gtest.h>
@@ -105,6 +106,22 @@ TEST_P(QuadraticPairKernel, CentralDifferences) {
             << "gap " << j << " variables " << v << ", " << w;
     }
   }
+}
+
+TEST_P(QuadraticPairKernel, GradientPathEqualsHessianPath) {
+  const Case c = GetParam();
+  auto pair = detail::curved_pair(c.slave, c.master, 5);
+  pair.dual = c.dual;
+  const Derivatives packed = evaluate(pair, QuadraticKernel::packed);
+  const Derivatives gradient = evaluate(pair, QuadraticKernel::gradient);
+  ASSERT_EQ(gradient.gap.size(), packed.gap.size());
+  ASSERT_GT(max_abs(packed.gap), 1e-3);
+  for (std::size_t j = 0; j < packed.gap.size(); ++j)
+    EXPECT_NEAR(gradient.gap[j], packed.gap[j], 1e-14 * max_abs(packed.gap)) << "node " << j;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < packed.gradient.size(); ++i)
+    worst = std::max(worst, std::abs(gradient.gradient[i] - packed.gradient[i]));
+  EXPECT_LT(worst, 1e-13 * max_abs(packed.gradient));
 }
 
 INSTANTIATE_TEST_SUITE_P(Pairs, QuadraticPairKernel,
