@@ -10,6 +10,7 @@
 // f'(v) H + f''(v) g g^T; of a product: H_ab = a H_b + b H_a + g_a g_b^T + g_b g_a^T.
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <type_traits>
 
 namespace seam {
@@ -66,16 +67,6 @@ template <int N> struct Hyper {
   }
 };
 
-template <int N> Hyper<N> operator-(Hyper<N> a) {
-  a *= -1.0;
-  return a;
-}
-template <int N> Hyper<N> operator+(Hyper<N> a, const Hyper<N>& b) {
-  return a += b;
-}
-template <int N> Hyper<N> operator-(Hyper<N> a, const Hyper<N>& b) {
-  return a -= b;
-}
 template <int N> Hyper<N> operator*(const Hyper<N>& a, const Hyper<N>& b) {
   Hyper<N> r(a.value * b.value, typename Hyper<N>::Uninitialized{});
   for (int i = 0; i < N; ++i) r.gradient[i] = a.value * b.gradient[i] + b.value * a.gradient[i];
@@ -103,65 +94,84 @@ template <int N> void add_product(Hyper<N>& acc, const Hyper<N>& a, const Hyper<
     }
   }
 }
-template <int N> void add_product(Hyper<N>& acc, const Hyper<N>& a, double b) {
-  acc.value += a.value * b;
-  for (int i = 0; i < N; ++i) acc.gradient[i] += b * a.gradient[i];
-  for (int i = 0; i < N * N; ++i) acc.hessian[i] += b * a.hessian[i];
-}
-template <int N> void add_product(Hyper<N>& acc, double a, const Hyper<N>& b) {
-  add_product(acc, b, a);
-}
+/// The second-order numbers: Hyper<N> and SymHyper<N> (sym_hyper.hpp), whose sums,
+/// arithmetic with doubles, inverse, quotient, sqrt and comparisons below follow from their
+/// value, chain(), +=, -=, *= and product.
+template <class T> inline constexpr bool is_second_order = false;
+template <int N> inline constexpr bool is_second_order<Hyper<N>> = true;
+template <class T>
+concept SecondOrder = is_second_order<T>;
 
-template <int N> Hyper<N> inverse(const Hyper<N>& b) {
+template <SecondOrder T> T operator-(T a) {
+  a *= -1.0;
+  return a;
+}
+template <SecondOrder T> T operator+(T a, const T& b) {
+  return a += b;
+}
+template <SecondOrder T> T operator-(T a, const T& b) {
+  return a -= b;
+}
+template <SecondOrder T> T inverse(const T& b) {
   const double q = 1.0 / b.value;
   return b.chain(q, -q * q, 2.0 * q * q * q);
 }
-template <int N> Hyper<N> operator/(const Hyper<N>& a, const Hyper<N>& b) {
+template <SecondOrder T> T operator/(const T& a, const T& b) {
   return a * inverse(b);
 }
-template <int N> Hyper<N> operator+(Hyper<N> a, double b) {
+template <SecondOrder T> T operator+(T a, double b) {
   a.value += b;
   return a;
 }
-template <int N> Hyper<N> operator+(double a, Hyper<N> b) {
+template <SecondOrder T> T operator+(double a, T b) {
   b.value += a;
   return b;
 }
-template <int N> Hyper<N> operator-(Hyper<N> a, double b) {
+template <SecondOrder T> T operator-(T a, double b) {
   a.value -= b;
   return a;
 }
-template <int N> Hyper<N> operator-(double a, const Hyper<N>& b) {
-  Hyper<N> r = -b;
+template <SecondOrder T> T operator-(double a, const T& b) {
+  T r = -b;
   r.value += a;
   return r;
 }
-template <int N> Hyper<N> operator*(Hyper<N> a, double b) {
+template <SecondOrder T> T operator*(T a, double b) {
   return a *= b;
 }
-template <int N> Hyper<N> operator*(double a, Hyper<N> b) {
+template <SecondOrder T> T operator*(double a, T b) {
   return b *= a;
 }
-template <int N> Hyper<N> operator/(Hyper<N> a, double b) {
+template <SecondOrder T> T operator/(T a, double b) {
   return a *= 1.0 / b;
 }
-template <int N> Hyper<N> operator/(double a, const Hyper<N>& b) {
+template <SecondOrder T> T operator/(double a, const T& b) {
   return inverse(b) * a;
 }
-template <int N> Hyper<N> sqrt(const Hyper<N>& a) {
+template <SecondOrder T> T sqrt(const T& a) {
   const double s = std::sqrt(a.value);
   return a.chain(s, 0.5 / s, -0.25 / (s * a.value));
 }
 
-template <int N> bool operator<(const Hyper<N>& a, double b) {
+template <SecondOrder T> bool operator<(const T& a, double b) {
   return a.value < b;
 }
-template <int N> bool operator>(const Hyper<N>& a, double b) {
+template <SecondOrder T> bool operator>(const T& a, double b) {
   return a.value > b;
 }
 
-template <int N> double value_of(const Hyper<N>& x) {
+template <SecondOrder T> double value_of(const T& x) {
   return x.value;
+}
+
+/// acc += a b for a number b.
+template <SecondOrder T> void add_product(T& acc, const T& a, double b) {
+  acc.value += a.value * b;
+  for (std::size_t i = 0; i < a.gradient.size(); ++i) acc.gradient[i] += b * a.gradient[i];
+  for (std::size_t i = 0; i < a.hessian.size(); ++i) acc.hessian[i] += b * a.hessian[i];
+}
+template <SecondOrder T> void add_product(T& acc, double a, const T& b) {
+  add_product(acc, b, a);
 }
 
 /// Independent variable i of value v on the scalar type S: S::variable(v, i) for Dual<N> and

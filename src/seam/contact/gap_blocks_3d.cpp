@@ -18,7 +18,7 @@
 //
 // The pair kernel's independents are the slave positions, the slave nodal normals and the
 // master positions (36 with quad4 on both sides). The averaged unit nodal normal of a slave
-// node is a function of the nodes of the facets around it (up to 16 nodes, Hyper<48>); the
+// node is a function of the nodes of the facets around it (up to 16 nodes, SymHyper<48>); the
 // chain rule H_X = J^T H_y J + sum_i (dg/dy_i) H_X(y_i) takes both to the positions of the
 // pair's slots in doubles.
 #include "seam/contact/contact_interface.hpp"
@@ -26,7 +26,9 @@
 #include "seam/common/dual_number.hpp"
 #include "seam/common/error.hpp"
 #include "seam/common/hyper_dual.hpp"
+#include "seam/common/sym_hyper.hpp"
 #include "seam/contact/gap_vectors.hpp"
+#include "seam/contact/quadratic_pair_kernel.hpp"
 #include "seam/geometry/cell_quadrature.hpp"
 #include "seam/geometry/plane.hpp"
 #include "seam/mortar/dual_basis.hpp"
@@ -57,6 +59,8 @@ using namespace gap_vectors;
 
 template <class S> constexpr bool is_hyper = false;
 template <int N> constexpr bool is_hyper<Hyper<N>> = true;
+template <class S> constexpr bool is_sym_hyper = false;
+template <int N> constexpr bool is_sym_hyper<SymHyper<N>> = true;
 
 template <class S> S component(const V3<S>& a, int c) {
   return c == 0 ? a.x : c == 1 ? a.y : a.z;
@@ -156,6 +160,11 @@ struct CellRule {
 /// The cells of a clip polygon, its fan about the area centroid (a triangle stays one cell),
 /// and the rule's points in them: f(u, area, weight) with the point u, its cell's area and its
 /// weight in the rule.
+/// a b_0 + b b_1 + c b_2 on packed Hessians in one pass (defined with the packed path below).
+template <int N>
+V2<SymHyper<N>> barycentric_packed(const V2<SymHyper<N>>& a, const V2<SymHyper<N>>& b,
+                                   const V2<SymHyper<N>>& c, const std::array<double, 4>& point);
+
 template <class S, class F>
 void for_each_point(const Polygon<S>& polygon, const CellRule& rule, F&& f) {
   const std::size_t nv = polygon.size();
@@ -165,7 +174,10 @@ void for_each_point(const Polygon<S>& polygon, const CellRule& rule, F&& f) {
                 cc = nv == 3 ? polygon[2] : polygon[(i + 1) % nv];
     const S area = 0.5 * cross(b - a, cc - a);
     for (const auto& point : rule.points)
-      f(V2<S>(a * point[0] + b * point[1] + cc * point[2]), area, point[3]);
+      if constexpr (is_sym_hyper<S>)
+        f(barycentric_packed(a, b, cc, point), area, point[3]);
+      else
+        f(V2<S>(a * point[0] + b * point[1] + cc * point[2]), area, point[3]);
   }
 }
 
@@ -416,13 +428,14 @@ void pair_gaps(const PairInput& in, const mortar::PairOptions& options, std::arr
 // too): integrate_pair's path for them, per linear piece of the slave facet an auxiliary plane,
 // the clip against each master piece and the back-projection onto the parent facets by Newton
 // in the plane. The pair's independents: the slave positions (27), the slave nodal normals (27)
-// and the master positions (27), Hyper<81>. Storage of the scalar type on the heap (a
-// Hyper<81> takes 53 kB).
+// and the master positions (27). Hessians: on SymHyper<9 n> over the n slots the facets seed
+// (pair_gaps_quadratic_packed), each point by the chain rule through its reference
+// coordinates (locate_packed and below); the plain forward path on Hyper<81> stays for the
+// tests and seam-bench (detail::quadratic_pair_derivatives). Storage of the scalar type on the
+// heap (a Hyper<81> takes 53 kB, a SymHyper<81> 27 kB).
 
 constexpr int quadratic_slots = mortar::max_facet_nodes;
 constexpr int quadratic_variables = 9 * quadratic_slots;
-constexpr int quadratic_normal_offset = 3 * quadratic_slots;
-constexpr int quadratic_master_offset = 6 * quadratic_slots;
 constexpr int max_ring_nodes_quadratic = 27;
 constexpr int quadratic_ring_variables = 3 * max_ring_nodes_quadratic;
 
@@ -566,11 +579,21 @@ bool locate_on(const mortar::detail::PlanarFacet& facet, const std::vector<V2<S>
     const int steps = is_dual<S> ? 1 : 2;
     std::array<S, mortar::max_facet_nodes> N;
     for (int it = 0; it < steps; ++it) {
-      facet_shape_values<S>(facet.type, s, t, N);
       S rx = -p.x, ry = -p.y;
-      for (std::size_t k = 0; k < u.size(); ++k) {
-        add_product(rx, u[k].x, N[k]);
-        add_product(ry, u[k].y, N[k]);
+      if constexpr (is_dual<S>) {
+        // One step from the values: the shape values are numbers (the same sums).
+        std::array<double, mortar::max_facet_nodes> Nv;
+        facet_shape_values<double>(facet.type, xi.x(), xi.y(), Nv);
+        for (std::size_t k = 0; k < u.size(); ++k) {
+          add_product(rx, u[k].x, Nv[k]);
+          add_product(ry, u[k].y, Nv[k]);
+        }
+      } else {
+        facet_shape_values<S>(facet.type, s, t, N);
+        for (std::size_t k = 0; k < u.size(); ++k) {
+          add_product(rx, u[k].x, N[k]);
+          add_product(ry, u[k].y, N[k]);
+        }
       }
       s = s - (rx * j1.y() - ry * j1.x()) * (1.0 / det);
       t = t - (ry * j0.x() - rx * j0.y()) * (1.0 / det);
@@ -578,6 +601,327 @@ bool locate_on(const mortar::detail::PlanarFacet& facet, const std::vector<V2<S>
   }
   return true;
 }
+
+// The points of the Hessian path on SymHyper (pair_gaps_quadratic_packed): the chain rule
+// through the reference coordinates instead of arithmetic on whole Hessians. At a point the
+// back-projection xi of the plane point p solves R(xi) = sum_k N_k(xi) u_k - p = 0; with the
+// residual r = R(xi_0) on S at the converged values xi_0 (N_k(xi_0) constant), J = dR/dxi,
+// z_a = grad xi_a = -(J^-1 grad r)_a and, from the second derivative of R(xi(X), X) = 0,
+//   H(xi_c) = -sum_d J^-1_cd [H(r_d) + sum_a (G_ad z_a^T + z_a G_ad^T)
+//                             + sum_ab R_abd z_a z_b^T],
+// G_ad = sum_k dN_k/dxi_a grad u_kd, R_abd = sum_k d2N_k/dxi_a dxi_b u_kd: what the chord
+// steps of locate_on give (one step per order), in one pass over the Hessian. Interpolated
+// nodal quantities Q = sum_k c_k N_k(xi) and the products g N~_k(xi) follow the same way;
+// every Hessian is written once, by combine_hessians, row by row.
+
+/// Shape values, first and second reference derivatives of a facet at xi, in doubles (the
+/// formulas of facet_shape_values on Hyper<2>), optionally of the modified basis N~.
+struct ShapeJet {
+  std::array<double, mortar::max_facet_nodes> N{};
+  std::array<std::array<double, mortar::max_facet_nodes>, 2> d{};  ///< d/ds, d/dt
+  std::array<std::array<double, mortar::max_facet_nodes>, 3> dd{}; ///< ss, st, tt
+
+  ShapeJet(fem::CellType type, const Eigen::Vector2d& xi, double modification) {
+    std::array<Hyper<2>, mortar::max_facet_nodes> h;
+    facet_shape_values<Hyper<2>>(type, Hyper<2>::variable(xi.x(), 0), Hyper<2>::variable(xi.y(), 1),
+                                 h);
+    const auto n = static_cast<std::size_t>(fem::n_nodes(type));
+    for (std::size_t k = 0; k < n; ++k) {
+      N[k] = h[k].value;
+      d[0][k] = h[k].gradient[0];
+      d[1][k] = h[k].gradient[1];
+      dd[0][k] = h[k].second(0, 0);
+      dd[1][k] = h[k].second(0, 1);
+      dd[2][k] = h[k].second(1, 1);
+    }
+    if (modification == 0.0) return;
+    mortar::modify_basis(type, modification, N.data());
+    for (auto& a : d) mortar::modify_basis(type, modification, a.data());
+    for (auto& a : dd) mortar::modify_basis(type, modification, a.data());
+  }
+  /// The second derivative (a, b) of N_k.
+  double second(int a, int b, std::size_t k) const {
+    return dd[static_cast<std::size_t>(a + b)][k];
+  }
+};
+
+/// The rows of x's packed Hessian that hold a nonzero: the plane images and heights of the
+/// nodes depend on the piece's corners and the node alone (15 of 81 variables for quad9).
+template <int N> std::array<bool, N> nonzero_rows(const SymHyper<N>& x) {
+  std::array<bool, N> rows{};
+  for (int i = 0; i < N; ++i) {
+    const double* h = x.hessian.data() + SymHyper<N>::row(i) - i;
+    for (int k = i; k < N && !rows[static_cast<std::size_t>(i)]; ++k)
+      rows[static_cast<std::size_t>(i)] = h[k] != 0.0;
+  }
+  return rows;
+}
+
+/// The nonzero rows of the Hessians of a node's plane image (x, y) and height.
+template <int N> using NodeRows = std::array<std::array<bool, N>, 3>;
+
+/// The shape values N_k(s, t) on Dual by the chain rule: N_k and dN_k/dxi at the values.
+template <int N>
+void shape_values_chain(fem::CellType type, const Dual<N>& s, const Dual<N>& t,
+                        std::array<Dual<N>, mortar::max_facet_nodes>& out) {
+  const ShapeJet jet(type, Eigen::Vector2d(s.value, t.value), 0.0);
+  for (std::size_t k = 0; k < static_cast<std::size_t>(fem::n_nodes(type)); ++k) {
+    out[k].value = jet.N[k];
+    for (int i = 0; i < N; ++i)
+      out[k].gradient[static_cast<std::size_t>(i)] =
+          jet.d[0][k] * s.gradient[static_cast<std::size_t>(i)] +
+          jet.d[1][k] * t.gradient[static_cast<std::size_t>(i)];
+  }
+}
+
+/// out's Hessian = (out's +) sum_j alpha_j H(x_j) + sum_pq C_pq w_p w_q^T for L gradient-sized
+/// vectors w (C symmetric), row by row of the packed triangle; rows[j] (if given and not null)
+/// the nonzero rows of H(x_j).
+template <int N, int L>
+void combine_hessians(SymHyper<N>& out, bool accumulate, int n_inputs, const double* alpha,
+                      const SymHyper<N>* const* x, const std::array<const double*, L>& w,
+                      const std::array<std::array<double, L>, L>& C,
+                      const bool* const* rows = nullptr) {
+  for (int i = 0; i < N; ++i) {
+    const std::ptrdiff_t o = SymHyper<N>::row(i) - i;
+    double* r = out.hessian.data() + o;
+    if (!accumulate)
+      for (int k = i; k < N; ++k) r[k] = 0.0;
+    for (int j = 0; j < n_inputs; ++j) {
+      const double a = alpha[j];
+      if (a == 0.0 || (rows != nullptr && rows[j] != nullptr && !rows[j][i])) continue;
+      const double* h = x[j]->hessian.data() + o;
+      for (int k = i; k < N; ++k) r[k] += a * h[k];
+    }
+    for (int q = 0; q < L; ++q) {
+      double c = 0.0;
+      for (int p = 0; p < L; ++p) c += C[p][q] * w[p][i];
+      if (c == 0.0) continue;
+      const double* wq = w[q];
+      for (int k = i; k < N; ++k) r[k] += c * wq[k];
+    }
+  }
+}
+
+/// The reference coordinates of the plane point p on a facet with plane images u (locate_on's
+/// values and derivatives, see above) and the shape jet there; false where locate_on fails.
+template <int N>
+bool locate_packed(const mortar::detail::PlanarFacet& facet, const std::vector<V2<SymHyper<N>>>& u,
+                   const mortar::detail::PieceInverse& inverse, bool linear,
+                   const geometry::NewtonOptions& newton, const V2<SymHyper<N>>& p,
+                   const std::type_identity_t<std::vector<NodeRows<N>>>& rows,
+                   std::array<SymHyper<N>, 2>& xi, Eigen::Vector2d& xi_value) {
+  using H = SymHyper<N>;
+  Eigen::Vector2d x0;
+  if (!inverse.parent_coordinates(value(p), x0)) return false;
+  if (!linear && !mortar::detail::newton_in_plane(facet, value(p), x0, newton)) return false;
+  const ShapeJet jet(facet.type, x0, 0.0);
+  const std::size_t n = u.size();
+  // r_d = sum_k N_k u_kd - p_d on S (N_k constant).
+  std::array<H, 2> r;
+  std::array<double, mortar::max_facet_nodes + 1> alpha{};
+  std::array<const H*, mortar::max_facet_nodes + 1> inputs{};
+  std::array<const bool*, mortar::max_facet_nodes + 1> input_rows{};
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  std::array<std::array<double, 2>, 3> R{}; // R_ab,d for ab = ss, st, tt
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d uk = value(u[k]);
+    for (int a = 0; a < 2; ++a) J.col(a) += jet.d[static_cast<std::size_t>(a)][k] * uk;
+    for (std::size_t ab = 0; ab < 3; ++ab) {
+      R[ab][0] += jet.dd[ab][k] * uk.x();
+      R[ab][1] += jet.dd[ab][k] * uk.y();
+    }
+  }
+  for (int d = 0; d < 2; ++d) {
+    H& rd = r[static_cast<std::size_t>(d)];
+    const H& pd = d == 0 ? p.x : p.y;
+    rd.value = -pd.value;
+    for (int i = 0; i < N; ++i) rd.gradient[i] = -pd.gradient[i];
+    for (std::size_t k = 0; k < n; ++k) {
+      const H& ukd = d == 0 ? u[k].x : u[k].y;
+      rd.value += jet.N[k] * ukd.value;
+      for (int i = 0; i < N; ++i) rd.gradient[i] += jet.N[k] * ukd.gradient[i];
+      alpha[k] = jet.N[k];
+      inputs[k] = &ukd;
+      input_rows[k] = rows[k][static_cast<std::size_t>(d)].data();
+    }
+    alpha[n] = -1.0;
+    inputs[n] = &pd;
+    input_rows[n] = nullptr;
+    combine_hessians<N, 0>(rd, false, static_cast<int>(n + 1), alpha.data(), inputs.data(), {}, {},
+                           input_rows.data());
+  }
+  const Eigen::Matrix2d Ji = J.inverse();
+  // z_a = grad xi_a; G_ad = sum_k dN_k/dxi_a grad u_kd.
+  std::array<std::array<double, N>, 2> z;
+  std::array<std::array<std::array<double, N>, 2>, 2> G{};
+  for (int i = 0; i < N; ++i) {
+    for (int a = 0; a < 2; ++a)
+      z[static_cast<std::size_t>(a)][i] =
+          -(Ji(a, 0) * r[0].gradient[i] + Ji(a, 1) * r[1].gradient[i]);
+    for (std::size_t a = 0; a < 2; ++a)
+      for (std::size_t k = 0; k < n; ++k) {
+        G[a][0][i] += jet.d[a][k] * u[k].x.gradient[i];
+        G[a][1][i] += jet.d[a][k] * u[k].y.gradient[i];
+      }
+  }
+  for (int c = 0; c < 2; ++c) {
+    H& x = xi[static_cast<std::size_t>(c)];
+    x.value = x0[c] - (Ji(c, 0) * r[0].value + Ji(c, 1) * r[1].value);
+    x.gradient = z[static_cast<std::size_t>(c)];
+    // P_a = -sum_d J^-1_cd G_ad; w = (z_0, z_1, P_0, P_1).
+    std::array<std::array<double, N>, 2> P;
+    for (std::size_t a = 0; a < 2; ++a)
+      for (int i = 0; i < N; ++i) P[a][i] = -(Ji(c, 0) * G[a][0][i] + Ji(c, 1) * G[a][1][i]);
+    std::array<std::array<double, 4>, 4> C{};
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        const auto& Rab = R[static_cast<std::size_t>(a + b)];
+        C[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] =
+            -(Ji(c, 0) * Rab[0] + Ji(c, 1) * Rab[1]);
+      }
+      C[static_cast<std::size_t>(a)][static_cast<std::size_t>(a + 2)] = 1.0;
+      C[static_cast<std::size_t>(a + 2)][static_cast<std::size_t>(a)] = 1.0;
+    }
+    const std::array<double, 2> beta{-Ji(c, 0), -Ji(c, 1)};
+    const std::array<const H*, 2> rs{&r[0], &r[1]};
+    combine_hessians<N, 4>(x, false, 2, beta.data(), rs.data(),
+                           {z[0].data(), z[1].data(), P[0].data(), P[1].data()}, C);
+  }
+  xi_value = {xi[0].value, xi[1].value};
+  return true;
+}
+
+/// Q = sum_k c_k N_k(xi) over the n nodes of the jet; the c_k's Hessians have the nonzero rows
+/// rows[k][2] or, without rows, are zero (the nodal normals are independents).
+template <int N>
+SymHyper<N> interpolate_packed(const ShapeJet& jet, std::size_t n,
+                               const std::array<const SymHyper<N>*, mortar::max_facet_nodes>& c,
+                               const std::type_identity_t<std::vector<NodeRows<N>>>* rows,
+                               const std::array<SymHyper<N>, 2>& xi) {
+  using H = SymHyper<N>;
+  H q(0.0, typename H::Uninitialized{});
+  std::array<double, 2> qa{};
+  std::array<double, 3> qab{};
+  std::array<std::array<double, N>, 2> D{};
+  q.gradient.fill(0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const H& ck = *c[k];
+    q.value += jet.N[k] * ck.value;
+    for (std::size_t a = 0; a < 2; ++a) qa[a] += jet.d[a][k] * ck.value;
+    for (std::size_t ab = 0; ab < 3; ++ab) qab[ab] += jet.dd[ab][k] * ck.value;
+    for (int i = 0; i < N; ++i) {
+      q.gradient[i] += jet.N[k] * ck.gradient[i];
+      D[0][i] += jet.d[0][k] * ck.gradient[i];
+      D[1][i] += jet.d[1][k] * ck.gradient[i];
+    }
+  }
+  for (int i = 0; i < N; ++i)
+    q.gradient[i] += qa[0] * xi[0].gradient[i] + qa[1] * xi[1].gradient[i];
+  std::array<double, mortar::max_facet_nodes + 2> alpha{};
+  std::array<const H*, mortar::max_facet_nodes + 2> inputs{};
+  std::array<const bool*, mortar::max_facet_nodes + 2> input_rows{};
+  int m = 0;
+  for (std::size_t a = 0; a < 2; ++a) {
+    alpha[static_cast<std::size_t>(m)] = qa[a];
+    inputs[static_cast<std::size_t>(m++)] = &xi[a];
+  }
+  if (rows != nullptr)
+    for (std::size_t k = 0; k < n; ++k) {
+      alpha[static_cast<std::size_t>(m)] = jet.N[k];
+      input_rows[static_cast<std::size_t>(m)] = (*rows)[k][2].data();
+      inputs[static_cast<std::size_t>(m++)] = c[k];
+    }
+  std::array<std::array<double, 4>, 4> C{};
+  for (std::size_t a = 0; a < 2; ++a) {
+    for (std::size_t b = 0; b < 2; ++b) C[a][b] = qab[a + b];
+    C[a][a + 2] = C[a + 2][a] = 1.0;
+  }
+  combine_hessians<N, 4>(q, false, m, alpha.data(), inputs.data(),
+                         {xi[0].gradient.data(), xi[1].gradient.data(), D[0].data(), D[1].data()},
+                         C, input_rows.data());
+  return q;
+}
+
+/// weighted_k += g N~_k(xi) for the k < n nodes of the jet (of the modified basis): per node
+/// H += N~_k H(g) + g sum_a N~_k,a H(xi_a) + sum_a N~_k,a (grad g z_a^T + z_a grad g^T)
+///      + g sum_ab N~_k,ab z_a z_b^T, all nodes in one sweep over the rows of the inputs.
+template <int N>
+void add_weighted_packed(std::vector<SymHyper<N>>& weighted, const SymHyper<N>& g,
+                         const ShapeJet& jet, std::size_t n, const std::array<SymHyper<N>, 2>& xi) {
+  const double gv = g.value;
+  const double* z0 = xi[0].gradient.data();
+  const double* z1 = xi[1].gradient.data();
+  const double* gg = g.gradient.data();
+  for (std::size_t k = 0; k < n; ++k) {
+    SymHyper<N>& out = weighted[k];
+    const double Nk = jet.N[k], d0 = jet.d[0][k], d1 = jet.d[1][k];
+    out.value += gv * Nk;
+    for (int i = 0; i < N; ++i) out.gradient[i] += Nk * gg[i] + gv * (d0 * z0[i] + d1 * z1[i]);
+  }
+  for (int i = 0; i < N; ++i) {
+    const std::ptrdiff_t o = SymHyper<N>::row(i) - i;
+    const double* hg = g.hessian.data() + o;
+    const double* h0 = xi[0].hessian.data() + o;
+    const double* h1 = xi[1].hessian.data() + o;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double Nk = jet.N[k], d0 = jet.d[0][k], d1 = jet.d[1][k];
+      const double a0 = gv * d0, a1 = gv * d1;
+      const double s00 = gv * jet.second(0, 0, k), s01 = gv * jet.second(0, 1, k),
+                   s11 = gv * jet.second(1, 1, k);
+      // Row i of the low-rank terms: c_z0 z0 + c_z1 z1 + c_g grad g.
+      const double c0 = s00 * z0[i] + s01 * z1[i] + d0 * gg[i];
+      const double c1 = s01 * z0[i] + s11 * z1[i] + d1 * gg[i];
+      const double cg = d0 * z0[i] + d1 * z1[i];
+      double* r = weighted[k].hessian.data() + o;
+      for (int m = i; m < N; ++m)
+        r[m] += Nk * hg[m] + a0 * h0[m] + a1 * h1[m] + c0 * z0[m] + c1 * z1[m] + cg * gg[m];
+    }
+  }
+}
+
+template <int N>
+V2<SymHyper<N>> barycentric_packed(const V2<SymHyper<N>>& a, const V2<SymHyper<N>>& b,
+                                   const V2<SymHyper<N>>& c, const std::array<double, 4>& point) {
+  V2<SymHyper<N>> p;
+  for (int d = 0; d < 2; ++d) {
+    const std::array<const SymHyper<N>*, 3> x{&a(d), &b(d), &c(d)};
+    SymHyper<N>& out = d == 0 ? p.x : p.y;
+    out.value = point[0] * x[0]->value + point[1] * x[1]->value + point[2] * x[2]->value;
+    for (int i = 0; i < N; ++i)
+      out.gradient[i] = point[0] * x[0]->gradient[i] + point[1] * x[1]->gradient[i] +
+                        point[2] * x[2]->gradient[i];
+    combine_hessians<N, 0>(out, false, 3, point.data(), x.data(), {}, {});
+  }
+  return p;
+}
+
+/// f(y_0, ..., y_{M-1}) on SymHyper<N> for M numbers y_j: f's own derivatives on Hyper<M>,
+/// then the chain rule, grad f = sum_j f_j grad y_j and
+/// H(f) = sum_j f_j H(y_j) + sum_jl f_jl grad y_j grad y_l^T, in one pass.
+template <int N, int M, class F>
+SymHyper<N> compose(const std::array<const SymHyper<N>*, M>& y, F&& f) {
+  std::array<Hyper<M>, M> local;
+  for (int j = 0; j < M; ++j)
+    local[static_cast<std::size_t>(j)] =
+        Hyper<M>::variable(y[static_cast<std::size_t>(j)]->value, j);
+  const Hyper<M> r = f(local);
+  SymHyper<N> out(r.value, typename SymHyper<N>::Uninitialized{});
+  out.gradient.fill(0.0);
+  std::array<const double*, M> w;
+  std::array<std::array<double, M>, M> C;
+  for (std::size_t j = 0; j < M; ++j) {
+    const auto& gj = y[j]->gradient;
+    for (int i = 0; i < N; ++i) out.gradient[i] += r.gradient[j] * gj[i];
+    w[j] = gj.data();
+    for (std::size_t l = 0; l < M; ++l) C[j][l] = r.hessian[j * M + l];
+  }
+  combine_hessians<N, M>(out, false, M, r.gradient.data(), y.data(), w, C);
+  return out;
+}
+
+template <class S> struct RowsOf { using type = char; };
+template <int N> struct RowsOf<SymHyper<N>> { using type = NodeRows<N>; };
 
 /// The corner positions of a piece and its normal on values (make_piece of
 /// integration_3d.cpp): the triangle's cross product, the quadrilateral's diagonals'.
@@ -591,9 +935,11 @@ Eigen::Vector3d piece_normal(const mortar::SubFacet& piece,
   return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
+/// The kernel on S with the independents laid out in groups of 3 n_slots (slave positions,
+/// slave normals, master positions).
 template <class S>
-void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options,
-                         std::vector<S>& g) {
+void pair_gaps_quadratic_on(const PairInput& in, const mortar::PairOptions& options,
+                            std::vector<S>& g, int n_slots) {
   const int ns = in.ns, nm = in.nm;
   const auto ms = static_cast<std::size_t>(ns), mm = static_cast<std::size_t>(nm);
   g.assign(ms, S(0.0));
@@ -611,10 +957,10 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
   std::vector<V3<S>> xs(ms), nn(ms), xm(mm);
   for (std::size_t k = 0; k < ms; ++k) {
     xs[k] = seeded<S>(in.xs[k], 3 * static_cast<int>(k));
-    nn[k] = seeded<S>(in.normal[k], quadratic_normal_offset + 3 * static_cast<int>(k));
+    nn[k] = seeded<S>(in.normal[k], 3 * n_slots + 3 * static_cast<int>(k));
   }
   for (std::size_t l = 0; l < mm; ++l)
-    xm[l] = seeded<S>(in.xm[l], quadratic_master_offset + 3 * static_cast<int>(l));
+    xm[l] = seeded<S>(in.xm[l], 6 * n_slots + 3 * static_cast<int>(l));
   const double a = mortar::basis_modification(
       in.slave_type, in.dual ? mortar::Multiplier::dual : mortar::Multiplier::standard);
   const int degree = options.cell_quadrature_degree > 0 ? options.cell_quadrature_degree
@@ -646,6 +992,8 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
   std::vector<V2<S>> us(ms), um(mm);
   std::vector<S> hs(ms), hm(mm);
   std::array<S, mortar::max_facet_nodes> Ns, Nm;
+  // The nonzero rows of the nodes' plane images and heights (the packed path).
+  std::vector<typename RowsOf<S>::type> slave_rows(ms), master_rows(mm);
   for (const auto& sp : mortar::linear_subfacets(in.slave_type)) {
     const auto& v = sp.nodes;
     const int nv = sp.n_vertices;
@@ -656,6 +1004,12 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
     const Eigen::Vector3d npv = value(np);
     for (std::size_t k = 0; k < ms; ++k) aux.into(xs[k], us[k], hs[k]);
     for (std::size_t l = 0; l < mm; ++l) aux.into(xm[l], um[l], hm[l]);
+    if constexpr (is_sym_hyper<S>) {
+      for (std::size_t k = 0; k < ms; ++k)
+        slave_rows[k] = {nonzero_rows(us[k].x), nonzero_rows(us[k].y), nonzero_rows(hs[k])};
+      for (std::size_t l = 0; l < mm; ++l)
+        master_rows[l] = {nonzero_rows(um[l].x), nonzero_rows(um[l].y), nonzero_rows(hm[l])};
+    }
     // The same plane and the facets in it on values (for the Newton iterations).
     geometry::Plane plane;
     plane.origin = value(aux.center);
@@ -706,14 +1060,57 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
       mortar::detail::PieceInverse master_inverse;
       const bool master_valid =
           master_inverse.set(mp.n_vertices, mu, piece_xi(mp, master_reference), master_linear);
+      if constexpr (is_sym_hyper<S>) {
+        for_each_point(polygon, rule, [&](const V2<S>& u, const S& area, double weight) {
+          std::array<S, 2> xs_ref, xm_ref;
+          Eigen::Vector2d slave_xi, master_xi;
+          if (!slave_valid || !master_valid ||
+              !locate_packed(slave_plane, us, slave_inverse, slave_linear, options.newton, u,
+                             slave_rows, xs_ref, slave_xi) ||
+              !locate_packed(master_plane, um, master_inverse, master_linear, options.newton, u,
+                             master_rows, xm_ref, master_xi))
+            return;
+          const ShapeJet slave_jet(in.slave_type, slave_xi, 0.0);
+          const ShapeJet master_jet(in.master_type, master_xi, 0.0);
+          std::array<const S*, mortar::max_facet_nodes> c{};
+          V3<S> n;
+          for (int axis = 0; axis < 3; ++axis) {
+            for (std::size_t k = 0; k < ms; ++k)
+              c[k] = axis == 0 ? &nn[k].x : axis == 1 ? &nn[k].y : &nn[k].z;
+            (axis == 0   ? n.x
+             : axis == 1 ? n.y
+                         : n.z) = interpolate_packed(slave_jet, ms, c, nullptr, xs_ref);
+          }
+          for (std::size_t k = 0; k < ms; ++k) c[k] = &hs[k];
+          const S h_s = interpolate_packed(slave_jet, ms, c, &slave_rows, xs_ref);
+          for (std::size_t l = 0; l < mm; ++l) c[l] = &hm[l];
+          const S h_m = interpolate_packed(master_jet, mm, c, &master_rows, xm_ref);
+          // weight area (h_m - h_s) n . n_p / |n| (weighted_point_gap).
+          const S wg = compose<S::n_variables, 9>(
+              {&area, &h_m, &h_s, &n.x, &n.y, &n.z, &np.x, &np.y, &np.z}, [&](const auto& y) {
+                using L = std::decay_t<decltype(y[0])>;
+                const V3<L> ny{y[3], y[4], y[5]}, py{y[6], y[7], y[8]};
+                return weight * y[0] * (y[1] - y[2]) * dot(ny, py) / norm(ny);
+              });
+          add_weighted_packed(weighted, wg,
+                              a != 0.0 ? ShapeJet(in.slave_type, slave_xi, a) : slave_jet, ms,
+                              xs_ref);
+        });
+        continue;
+      }
       for_each_point(polygon, rule, [&](const V2<S>& u, const S& area, double weight) {
         S s1 = 0.0, s2 = 0.0, m1 = 0.0, m2 = 0.0;
         if (!slave_valid || !master_valid ||
             !locate_on(slave_plane, us, slave_inverse, slave_linear, options.newton, u, s1, s2) ||
             !locate_on(master_plane, um, master_inverse, master_linear, options.newton, u, m1, m2))
           return;
-        facet_shape_values<S>(in.slave_type, s1, s2, Ns);
-        facet_shape_values<S>(in.master_type, m1, m2, Nm);
+        if constexpr (is_dual<S>) {
+          shape_values_chain(in.slave_type, s1, s2, Ns);
+          shape_values_chain(in.master_type, m1, m2, Nm);
+        } else {
+          facet_shape_values<S>(in.slave_type, s1, s2, Ns);
+          facet_shape_values<S>(in.master_type, m1, m2, Nm);
+        }
         const S wg = weighted_point_gap(ms, nn, hs, Ns, mm, hm, Nm, np, area, weight);
         // The modified basis N~ of dual multipliers on tri6/quad8 (modify_basis).
         if (a != 0.0)
@@ -736,6 +1133,49 @@ void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options
   dual_coefficients_of(in.slave_type, xs, a, A);
   for (std::size_t j = 0; j < ms; ++j)
     for (std::size_t k = 0; k < ms; ++k) add_product(g[j], A[j * ms + k], weighted[k]);
+}
+
+/// The Hessian path on SymHyper<9 n> (n slots per group: as many as the larger facet has
+/// nodes), spread into the 81 variables of the callers.
+template <int M>
+void pair_gaps_quadratic_packed(const PairInput& in, const mortar::PairOptions& options,
+                                std::vector<Hyper<quadratic_variables>>& g) {
+  constexpr int n_slots = M / 9;
+  std::vector<SymHyper<M>> packed;
+  pair_gaps_quadratic_on(in, options, packed, n_slots);
+  std::array<int, M> full;
+  for (int v = 0; v < M; ++v) full[v] = v / (3 * n_slots) * 3 * quadratic_slots + v % (3 * n_slots);
+  g.assign(packed.size(), Hyper<quadratic_variables>(0.0));
+  for (std::size_t j = 0; j < packed.size(); ++j) {
+    const SymHyper<M>& p = packed[j];
+    auto& h = g[j];
+    h.value = p.value;
+    for (int i = 0; i < M; ++i) {
+      h.gradient[full[i]] = p.gradient[i];
+      for (int k = i; k < M; ++k)
+        h.hessian[full[i] * quadratic_variables + full[k]] =
+            h.hessian[full[k] * quadratic_variables + full[i]] = p.hessian[SymHyper<M>::at(i, k)];
+    }
+  }
+}
+
+/// The gaps of one pair of facets of which one at least is quadratic on S: values (double),
+/// gradients (Dual<81>) or Hessians (Hyper<81>; computed on packed Hessians over the variables
+/// the facets seed).
+template <class S>
+void pair_gaps_quadratic(const PairInput& in, const mortar::PairOptions& options,
+                         std::vector<S>& g) {
+  if constexpr (std::is_same_v<S, Hyper<quadratic_variables>>) {
+    const int n = std::max(in.ns, in.nm);
+    if (n <= 6)
+      pair_gaps_quadratic_packed<54>(in, options, g);
+    else if (n <= 8)
+      pair_gaps_quadratic_packed<72>(in, options, g);
+    else
+      pair_gaps_quadratic_packed<81>(in, options, g);
+  } else {
+    pair_gaps_quadratic_on(in, options, g, quadratic_slots);
+  }
 }
 
 /// The averaged unit normal of slave node `node` (side-local) on S over its ring's positions.
@@ -768,6 +1208,57 @@ void normal_of(const mortar::FacetSet& slaves, const mortar::NodeFacets& adjacen
 }
 
 } // namespace
+
+void detail::quadratic_pair_derivatives(const QuadraticPair& pair,
+                                        const mortar::PairOptions& options, QuadraticKernel kernel,
+                                        std::vector<double>& gap, std::vector<double>& gradient,
+                                        std::vector<double>& hessian) {
+  PairInput in;
+  in.slave_type = pair.slave_type;
+  in.master_type = pair.master_type;
+  in.ns = static_cast<int>(pair.xs.size());
+  in.nm = static_cast<int>(pair.xm.size());
+  SEAM_CHECK(in.ns == fem::n_nodes(in.slave_type) && in.nm == fem::n_nodes(in.master_type) &&
+                 pair.normals.size() == pair.xs.size(),
+             InputError, "quadratic_pair_derivatives: node counts do not match the facet types");
+  for (int k = 0; k < in.ns; ++k) {
+    in.xs[static_cast<std::size_t>(k)] = pair.xs[static_cast<std::size_t>(k)];
+    in.normal[static_cast<std::size_t>(k)] = pair.normals[static_cast<std::size_t>(k)];
+  }
+  for (int l = 0; l < in.nm; ++l)
+    in.xm[static_cast<std::size_t>(l)] = pair.xm[static_cast<std::size_t>(l)];
+  in.dual = pair.dual;
+  constexpr auto n = static_cast<std::size_t>(quadratic_variables);
+  if (kernel == QuadraticKernel::gradient) {
+    std::vector<Dual<quadratic_variables>> g;
+    pair_gaps_quadratic(in, options, g);
+    gap.assign(g.size(), 0.0);
+    gradient.assign(g.size() * n, 0.0);
+    hessian.clear();
+    for (std::size_t j = 0; j < g.size(); ++j) {
+      gap[j] = g[j].value;
+      std::copy(g[j].gradient.begin(), g[j].gradient.end(),
+                gradient.begin() + static_cast<std::ptrdiff_t>(j * n));
+    }
+    return;
+  }
+  using H = Hyper<quadratic_variables>;
+  std::vector<H> g;
+  if (kernel == QuadraticKernel::packed)
+    pair_gaps_quadratic(in, options, g);
+  else
+    pair_gaps_quadratic_on(in, options, g, quadratic_slots);
+  gap.assign(g.size(), 0.0);
+  gradient.assign(g.size() * n, 0.0);
+  hessian.assign(g.size() * n * n, 0.0);
+  for (std::size_t j = 0; j < g.size(); ++j) {
+    gap[j] = g[j].value;
+    std::copy(g[j].gradient.begin(), g[j].gradient.end(),
+              gradient.begin() + static_cast<std::ptrdiff_t>(j * n));
+    std::copy(g[j].hessian.begin(), g[j].hessian.end(),
+              hessian.begin() + static_cast<std::ptrdiff_t>(j * n * n));
+  }
+}
 
 void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder requested,
                                      std::vector<GapBlock>& out,
@@ -807,7 +1298,7 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
       normal_of(slaves, adjacency, node, ring_x, ring, n);
       jet.value = n;
     } else {
-      // Hyper<48> for up to 16 ring nodes (linear facets), Hyper<81> beyond (quadratic).
+      // 48 variables for up to 16 ring nodes (linear facets), 81 beyond (quadratic).
       const auto derivatives = [&]<int RV>() {
         const auto take = [&](const auto& n) {
           jet.gradient.resize(3 * nr);
@@ -822,14 +1313,16 @@ void ContactInterface::gap_blocks_3d(std::span<const double> u, GapOrder request
           take(n);
           return;
         }
-        std::vector<Hyper<RV>> n(3);
+        // Packed Hessians (sym_hyper.hpp): the same numbers for half the memory traffic.
+        std::vector<SymHyper<RV>> n(3);
         normal_of(slaves, adjacency, node, ring_x, ring, n);
         take(n);
         jet.hessian.resize(3 * nr * nr);
         for (std::size_t a = 0; a < 3; ++a)
           for (std::size_t v = 0; v < nr; ++v)
             for (std::size_t w = 0; w < nr; ++w)
-              jet.hessian[(a * nr + v) * nr + w] = n[a].hessian[v * RV + w];
+              jet.hessian[(a * nr + v) * nr + w] =
+                  n[a].second(static_cast<int>(v), static_cast<int>(w));
       };
       if (ring.size() <= static_cast<std::size_t>(max_ring_nodes))
         derivatives.template operator()<ring_variables>();
