@@ -5,6 +5,8 @@
 // factorization. Every solve is checked by its true residual, on 1 and 3 ranks.
 #include "seam/la/petsc.hpp"
 
+#include "relative_residual.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -61,13 +63,7 @@ Matrix blocks(std::uint32_t seed, int couplings) {
   return Matrix::from_triplets(PETSC_COMM_WORLD, rows_per_rank, i, j, v);
 }
 
-/// |A x - b| / |b|.
-double relative_residual(const Matrix& A, const Vector& x, const Vector& b) {
-  Vector y = b.duplicate();
-  A.mult(x, y);
-  y.axpy(-1.0, b);
-  return y.norm() / b.norm();
-}
+using testing::relative_residual;
 
 Vector right_hand_side() {
   Vector b(PETSC_COMM_WORLD, rows_per_rank);

@@ -3,6 +3,8 @@
 // below factor_reuse_rtol), checked by the true residual of each solve, on 1 and 3 ranks.
 #include "seam/la/petsc.hpp"
 
+#include "relative_residual.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -32,13 +34,7 @@ Matrix tridiagonal(double shift) {
   return Matrix::from_triplets(PETSC_COMM_WORLD, rows_per_rank, i, j, v);
 }
 
-/// |A x - b| / |b|.
-double relative_residual(const Matrix& A, const Vector& x, const Vector& b) {
-  Vector y = b.duplicate();
-  A.mult(x, y);
-  y.axpy(-1.0, b);
-  return y.norm() / b.norm();
-}
+using testing::relative_residual;
 
 TEST(KeptFactorization, SolvesToTheToleranceItIsGiven) {
   const Matrix A = tridiagonal(0.0), A2 = tridiagonal(1e-3);
