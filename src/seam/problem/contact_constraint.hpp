@@ -101,13 +101,15 @@ public:
   /// After a converged energy-momentum step, at its last evaluate(): the energy the step gained
   /// through contact, G = sum_j e_j with e_j = max(0, -lambda_j g~_j(x_n)), over the slave nodes
   /// of the discrete-gradient interfaces between deformable bodies (a node that started the step
-  /// beyond the other surface and took contact), and d += sum_j e_j grad g~_j(x_{n+1}) (mesh
-  /// dofs as global rows; contact_impact.cpp, docs/contact_dynamics.md §5). Collective.
+  /// beyond the other surface and took contact, or one held active with lambda_j < 0 from a
+  /// positive gap) and, against rigid obstacles, over the nodes with lambda_j < 0; d += sum_j
+  /// e_j grad g~_j(x_{n+1}) between bodies, `obstacle` the same against obstacles (mesh dofs as
+  /// global rows; contact_impact.cpp, docs/contact_dynamics.md §5). Collective.
   struct ImpactGain {
     double gain = 0.0;
     int nodes = 0; ///< slave nodes whose e_j exceeds 1e-6 of G
   };
-  ImpactGain impact_gain(la::Vector& d) const;
+  ImpactGain impact_gain(la::Vector& d, la::Vector& obstacle) const;
 
   /// The state at displacement u (ghosted, up to date) and time t with the current
   /// multipliers: geometry, search, D, g~; the active set from the complementarity function.

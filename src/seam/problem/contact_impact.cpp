@@ -9,6 +9,11 @@
 // impulse along d = sum_j e_j grad g~_j(x_{n+1}) (dynamic_solver.cpp): each g~_j between two
 // deformable bodies is invariant under rigid motions, so d has no resultant and no moment about
 // x_{n+1}, and the impulse keeps both momenta.
+// A node held active with a tensile multiplier (lambda_j < 0: the cycling guard's union of a
+// chattering active set, kept for the rest of the step) pulls the surfaces together, and its
+// work -lambda_j g~_j(x_n) > 0 from a positive gap is created energy as well, also against a
+// rigid obstacle; there its rows go to `obstacle` (the patch of the update's second stage only:
+// an impulse along them would change the momenta, which the obstacle's force does not account).
 #include "seam/problem/contact_constraint.hpp"
 
 #include "seam/parallel/exchange.hpp"
@@ -17,19 +22,28 @@
 
 namespace seam::problem {
 
-ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) const {
+ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d,
+                                                             la::Vector& obstacle) const {
   ImpactGain out;
-  std::vector<PetscInt> rows;
-  std::vector<double> values, gains;
+  std::vector<PetscInt> rows, obstacle_rows;
+  std::vector<double> values, obstacle_values, gains;
   for (const auto& s : sides_) {
-    // Against a rigid obstacle g~_j(x_n) < 0 only where the obstacle moved into the body in the
-    // step (every converged state has g~_j >= 0 against the obstacle's position then): that
-    // gain is the obstacle's work, not an error of the step.
-    if (!s.discrete_gradient || s.itf.rigid()) continue;
+    if (!s.discrete_gradient) continue;
     // With friction the normal part n_j . lambda_j takes the discrete gradient; the tangential
     // part's work is the step's dissipation, lambda_t,j . u~_j, a function of the positions
     // only, so the update (velocities only) leaves it as interfaces.csv reports it.
     const auto lambda = normal_multipliers(s);
+    // Against a rigid obstacle g~_j(x_n) < 0 with lambda_j > 0 only where the obstacle moved
+    // into the body in the step (every converged state has g~_j >= 0 against the obstacle's
+    // position then): that gain is the obstacle's work, not an error of the step. Only tensile
+    // multipliers count there.
+    const bool rigid = s.itf.rigid();
+    if (rigid) {
+      bool tensile = false;
+      for (std::size_t j = 0; j < lambda.size(); ++j)
+        tensile = tensile || (lambda[j] < 0.0 && s.node_owners[j] == disc_.comm().rank());
+      if (disc_.comm().max(tensile ? 1.0 : 0.0) == 0.0) continue;
+    }
     // The weighted gaps at x_n of the pairs of the last evaluate(), as the discrete gradient
     // took them (the same blocks at the same displacement), summed over the ranks.
     std::vector<contact::GapBlock> start;
@@ -44,7 +58,7 @@ ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) cons
     publish(s, gap_start, 1);
     std::vector<double> e(gap_start.size(), 0.0);
     for (std::size_t j = 0; j < e.size(); ++j) {
-      e[j] = std::max(0.0, -lambda[j] * gap_start[j]);
+      e[j] = rigid && !(lambda[j] < 0.0) ? 0.0 : std::max(0.0, -lambda[j] * gap_start[j]);
       // Each node's gain counted by its owner.
       if (s.node_owners[j] == disc_.comm().rank()) {
         out.gain += e[j];
@@ -54,8 +68,8 @@ ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) cons
     // This rank's part of grad g~_j(x_{n+1}) (the gap rows of the last evaluate()).
     for (const auto& g : s.lin.gap_gradient)
       if (const double w = e[static_cast<std::size_t>(g.row)]; w > 0.0) {
-        rows.push_back(global_dof(g.col));
-        values.push_back(w * g.value);
+        (rigid ? obstacle_rows : rows).push_back(global_dof(g.col));
+        (rigid ? obstacle_values : values).push_back(w * g.value);
       }
   }
   out.gain = disc_.comm().sum(out.gain);
@@ -63,6 +77,8 @@ ContactConstraint::ImpactGain ContactConstraint::impact_gain(la::Vector& d) cons
       std::count_if(gains.begin(), gains.end(), [&](double x) { return x > 1e-6 * out.gain; }))));
   d.add_values(rows, values);
   d.assemble();
+  obstacle.add_values(obstacle_rows, obstacle_values);
+  obstacle.assemble();
   return out;
 }
 

@@ -153,8 +153,8 @@ remove_contact_gain(const Discretization& disc, const ContactConstraint& contact
                     double energy, const std::function<bool(la::Vector&, la::Vector&)>& mass_solve,
                     la::Vector& v) {
   ContactGainRemoval r;
-  la::Vector d = disc.make_vector();
-  const auto gain = contact.impact_gain(d);
+  la::Vector d = disc.make_vector(), obstacle = disc.make_vector();
+  const auto gain = contact.impact_gain(d, obstacle);
   r.gain = gain.gain;
   r.nodes = gain.nodes;
   if (!(gain.gain > 1e-13 * energy)) return r;
@@ -167,9 +167,17 @@ remove_contact_gain(const Discretization& disc, const ContactConstraint& contact
   if (!mass_solve(b, y))
     SEAM_THROW(SolverError, "the mass matrix solve of the contact velocity update failed");
   r.impulse = remove_along(M, y, gain.gain, v, work, r.mu);
-  if (r.impulse < gain.gain)
-    r.patch = remove_from_patch(disc, M, prescribed, u, d, layers, gain.gain - r.impulse, v,
+  if (r.impulse < gain.gain) {
+    // The patch around the nodes of both (the obstacles' rows take no impulse).
+    la::Vector seed = disc.make_vector();
+    {
+      const la::Vector::LocalView a(d, false), o(obstacle, false), out(seed, true);
+      for (std::size_t i = 0; i < out.values().size(); ++i)
+        out.values()[i] = std::abs(a.values()[i]) + std::abs(o.values()[i]);
+    }
+    r.patch = remove_from_patch(disc, M, prescribed, u, seed, layers, gain.gain - r.impulse, v,
                                 r.patch_nodes, r.s);
+  }
   return r;
 }
 

@@ -176,7 +176,8 @@ void log_contact_gain(const ContactGainRemoval& r, int step, double t, const Out
   char line[400];
   std::snprintf(line, sizeof line,
                 "step %5d  contact velocity update: energy %.4e gained at %d slave node(s) that "
-                "started the step beyond the other surface; removed %.4e by the impulse "
+                "started the step beyond the other surface or were held active in tension; "
+                "removed %.4e by the impulse "
                 "(mu = %.4e), %.4e from the patch of %lld nodes (s = %.4e)",
                 step, r.gain, r.nodes, r.impulse, r.mu, r.patch,
                 static_cast<long long>(r.patch_nodes), r.s);
