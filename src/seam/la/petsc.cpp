@@ -931,8 +931,9 @@ LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
                            factor_reuse_max_iterations),
           "KSPSetTolerances");
     check(KSPSetPC(reuse_ksp_, pc), "KSPSetPC");
+    ordering_option_ = ordering_option(ksp_);
     PetscBool ordered = PETSC_FALSE;
-    check(PetscOptionsHasName(nullptr, nullptr, ordering_option(ksp_).c_str(), &ordered),
+    check(PetscOptionsHasName(nullptr, nullptr, ordering_option_.c_str(), &ordered),
           "PetscOptionsHasName");
     ordering_auto_ = !ordered;
   }
@@ -1220,7 +1221,8 @@ bool LinearSolver::set_up_factorization(const Matrix& P) {
   // What PCSetUp compares: the matrix (the PC holds a reference to it) and its nonzero state.
   const bool analysed = P.get() != analysed_ || state != analysed_state_;
   std::optional<ScopedOption> ordering;
-  if (ordering_auto_ && qamd_) ordering.emplace(ordering_option(ksp_).c_str(), "6");
+  // (ScopedOption keeps the name's pointer: the member outlives it.)
+  if (ordering_auto_ && qamd_) ordering.emplace(ordering_option_.c_str(), "6");
   const double start = thread_cpu_seconds();
   const PetscErrorCode ierr = KSPSetUp(ksp_);
   double cost = thread_cpu_seconds() - start;
@@ -1254,7 +1256,11 @@ void LinearSolver::choose_ordering(bool analysed, double cost) {
     // next analysis tries QAMD (its analysis is one pass of approximate minimum degree; PORD's
     // nested dissection took 0.72 s against QAMD's 0.016 s on the 200 rings' matrix, whose
     // factorization takes 0.06 s with either: docs/performance.md).
-    if (analyses_in_row_ >= 2 && (numeric_cost_ < 0.0 || cost > 2.0 * numeric_cost_)) qamd_ = true;
+    // Set-ups below ordering_trial_seconds are not worth a trial (small problems keep the
+    // default, so that their runs and restarts are what they were).
+    if (analyses_in_row_ >= 2 && cost > ordering_trial_seconds &&
+        (numeric_cost_ < 0.0 || cost > 2.0 * numeric_cost_))
+      qamd_ = true;
     return;
   }
   ordering_decided_ = true;

@@ -351,10 +351,12 @@ public:
   /// (7, MUMPS's choice: PORD's nested dissection with Debian's MUMPS, which has neither METIS
   /// nor SCOTCH), "qamd" (6), or "command line" when -mat_mumps_icntl_7 was given. The default
   /// is kept unless the pattern changes at consecutive factorizations and a set-up with an
-  /// analysis costs more than twice one without (or none without was seen): then one analysis
+  /// analysis costs more than ordering_trial_seconds and more than twice one without (or none
+  /// without was seen): then one analysis
   /// is made with QAMD, and QAMD is kept if its set-up cost less than 0.8 of the default's
   /// (CPU seconds of the set-up, the largest over the ranks). Decided once per solver.
   std::string ordering() const;
+  static constexpr double ordering_trial_seconds = 0.05;
   /// A sentence saying that the last solve changed the ordering, and why, once; else empty.
   std::string take_ordering_note() { return std::exchange(ordering_note_, {}); }
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).
@@ -407,6 +409,7 @@ private:
   double analysed_cost_[2] = {-1.0, -1.0}; ///< set-up CPU seconds with an analysis: default, QAMD
   double numeric_cost_ = -1.0;             ///< without one, default ordering
   std::string ordering_note_;
+  std::string ordering_option_; ///< -[prefix]mat_mumps_icntl_7
 };
 
 } // namespace seam::la

@@ -2,7 +2,8 @@
 // same is analysed once and keeps the default ordering; one that changes at every
 // factorization is analysed every time, and on a matrix of many separate blocks (as the 200
 // rings' matrix) QAMD is taken because the default's nested dissection costs far more than the
-// factorization. Every solve is checked by its true residual, on 1 and 3 ranks.
+// factorization; a small one keeps the default (below ordering_trial_seconds). Every solve is
+// checked by its true residual, on 1 and 3 ranks.
 #include "seam/la/petsc.hpp"
 
 #include "relative_residual.hpp"
@@ -20,16 +21,16 @@ namespace {
 
 constexpr PetscInt side = 8; // a block: side x side grid, 5-point stencil
 constexpr PetscInt block_rows = side * side;
-constexpr PetscInt blocks_per_rank = 120;
-constexpr PetscInt rows_per_rank = blocks_per_rank * block_rows;
+constexpr PetscInt blocks_per_rank = 600;
 
 /// The blocks' Laplacians shifted to be nonsingular, and `couplings` entries per rank joining
 /// the first row of one of its blocks to a row of another block, chosen from `seed` (another
 /// seed: another pattern). The diagonal dominates.
-Matrix blocks(std::uint32_t seed, int couplings) {
+Matrix blocks(std::uint32_t seed, int couplings, PetscInt n_blocks = blocks_per_rank) {
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  const PetscInt rows_per_rank = n_blocks * block_rows;
   const PetscInt n = rows_per_rank * size, first = rows_per_rank * rank;
   std::vector<PetscInt> i, j;
   std::vector<double> v;
@@ -38,7 +39,7 @@ Matrix blocks(std::uint32_t seed, int couplings) {
     j.push_back(c);
     v.push_back(value);
   };
-  for (PetscInt b = 0; b < blocks_per_rank; ++b)
+  for (PetscInt b = 0; b < n_blocks; ++b)
     for (PetscInt y = 0; y < side; ++y)
       for (PetscInt x = 0; x < side; ++x) {
         const PetscInt r = first + b * block_rows + y * side + x;
@@ -54,7 +55,7 @@ Matrix blocks(std::uint32_t seed, int couplings) {
     return state >> 8;
   };
   for (int k = 0; k < couplings; ++k) {
-    const PetscInt r = first + static_cast<PetscInt>(next() % blocks_per_rank) * block_rows;
+    const PetscInt r = first + static_cast<PetscInt>(next() % n_blocks) * block_rows;
     const PetscInt c = static_cast<PetscInt>(next() % static_cast<std::uint32_t>(n));
     if (c / block_rows == r / block_rows) continue;
     add(r, c, -0.5);
@@ -65,8 +66,8 @@ Matrix blocks(std::uint32_t seed, int couplings) {
 
 using testing::relative_residual;
 
-Vector right_hand_side() {
-  Vector b(PETSC_COMM_WORLD, rows_per_rank);
+Vector right_hand_side(PetscInt n_blocks = blocks_per_rank) {
+  Vector b(PETSC_COMM_WORLD, n_blocks * block_rows);
   Vector::LocalView view(b, true);
   auto values = view.values();
   for (std::size_t k = 0; k < values.size(); ++k) values[k] = 1.0 + 0.3 * double(k % 11);
@@ -108,6 +109,21 @@ TEST(FactorOrdering, APatternChangingAtEverySolveOfManyBlocksTakesQamd) {
   EXPECT_EQ(solver.symbolic_analyses(), 6);
   EXPECT_EQ(solver.ordering(), "qamd") << note;
   EXPECT_NE(note.find("QAMD from here"), std::string::npos) << note;
+}
+
+TEST(FactorOrdering, ASmallMatrixKeepsTheDefault) {
+  // 20 blocks per rank: a set-up far below ordering_trial_seconds, no trial.
+  const Vector b = right_hand_side(20);
+  Vector x = b.duplicate();
+  LinearSolver solver(PETSC_COMM_WORLD, SolverKind::direct);
+  for (std::uint32_t k = 0; k < 6; ++k) {
+    const Matrix A = blocks(k + 1, 10, 20);
+    ASSERT_TRUE(solver.solve(A, b, x));
+    EXPECT_LE(relative_residual(A, x, b), 1e-12);
+  }
+  EXPECT_EQ(solver.symbolic_analyses(), 6);
+  EXPECT_EQ(solver.ordering(), "default");
+  EXPECT_TRUE(solver.take_ordering_note().empty());
 }
 
 TEST(FactorOrdering, TheCommandLineDecides) {
