@@ -723,14 +723,30 @@ def test_factor_ordering_rings():
     its many separate blocks: the solver measures both orderings and takes QAMD
     (summary.json factor_ordering). 60 rings in rows of 10 to t = 0.2 (the lowest row lands at
     0.14) with that choice and with the default forced (-mat_mumps_icntl_7 7): the same Newton
-    iterations per step, energies and momenta to 1e-9 of the energy. (The 10-ring pile's
-    matrix is small enough for PORD's analysis: there the default is kept.)"""
+    iterations per step, energies and momenta to 1e-9 of the energy. The choice is kept in
+    checkpoints: a restart after it repeats the run bit for bit. (The 10-ring pile's matrix is
+    small enough for PORD's analysis: there the default is kept.)"""
     runs = {}
     for label, extra in (("chosen", ()), ("default", ["--", "-mat_mumps_icntl_7", "7"])):
-        rows, _, work, out, _ = rings_case(rings=60, k=10, end=0.2, extra=extra)
+        rows, _, work, out, _ = rings_case(rings=60, k=10, end=0.2, extra=extra,
+                                           checkpoint_every=70 if not extra else None)
         with open(os.path.join(out, "summary.json")) as f:
             summary = json.load(f)
         runs[label] = (rows, summary)
+        if not extra:
+            # The choice goes into checkpoints: restarted at step 70 (after it), the run
+            # repeats steps 71 to 80 bit for bit.
+            restart = H.solve(os.path.join(work, "rings.yaml"),
+                              extra=["--restart", os.path.join(out, "checkpoint_00070")])
+            again = H.read_csv(os.path.join(restart, "steps.csv"))
+            H.cleanup(restart)
+            columns = ("total_energy", "momentum_x", "momentum_y", "newton_iterations")
+            worst = max(abs(a[c] - b[c]) for a, b in zip(rows[70:], again) for c in columns)
+            print("   restart at step 70 with the choice kept: %d steps, largest difference "
+                  "%.2e" % (len(again), worst))
+            if len(again) != len(rows) - 70 or worst != 0.0:
+                raise AssertionError("the restart differs from the uninterrupted run by %.3e"
+                                     % worst)
         print("   %s ordering: factor_ordering %s, %d symbolic analyses, %d factorizations, "
               "%d linear solves, linear solve %.2f s CPU" % (
                   label, summary.get("factor_ordering"), summary.get("symbolic_analyses", -1),

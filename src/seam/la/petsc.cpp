@@ -1281,6 +1281,25 @@ void LinearSolver::choose_ordering(bool analysed, double cost) {
   ordering_note_ = text;
 }
 
+std::vector<double> LinearSolver::ordering_state() const {
+  return {ordering_decided_ ? 1.0 : 0.0,
+          qamd_ ? 1.0 : 0.0,
+          static_cast<double>(analyses_in_row_),
+          analysed_cost_[0],
+          analysed_cost_[1],
+          numeric_cost_};
+}
+
+void LinearSolver::restore_ordering_state(std::span<const double> state) {
+  if (!ordering_auto_ || state.size() != 6) return;
+  ordering_decided_ = state[0] != 0.0;
+  qamd_ = state[1] != 0.0;
+  analyses_in_row_ = static_cast<int>(state[2]);
+  analysed_cost_[0] = state[3];
+  analysed_cost_[1] = state[4];
+  numeric_cost_ = state[5];
+}
+
 std::string LinearSolver::ordering() const {
   if (kind_ != SolverKind::direct) return "";
   if (!ordering_auto_) return "command line";

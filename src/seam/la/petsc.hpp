@@ -357,6 +357,12 @@ public:
   /// (CPU seconds of the set-up, the largest over the ranks). Decided once per solver.
   std::string ordering() const;
   static constexpr double ordering_trial_seconds = 0.05;
+  /// The choice's state (decided, QAMD, analyses in a row, the measured costs), for a
+  /// checkpoint, and its restoration at a restart, so that the restarted run orders its
+  /// matrices as the uninterrupted one (bit for bit). Ignored with the ordering on the command
+  /// line or a state of another size.
+  std::vector<double> ordering_state() const;
+  void restore_ordering_state(std::span<const double> state);
   /// A sentence saying that the last solve changed the ordering, and why, once; else empty.
   std::string take_ordering_note() { return std::exchange(ordering_note_, {}); }
   /// Solves A x = b. Returns false if the solver did not converge (the caller cuts the step).

@@ -328,6 +328,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     step = state.step;
     external_work = state.external_work;
     restored_transient = state.impact_transient;
+    newton.restore_ordering_state(state.ordering);
   } else {
     out.initial(u);
   }
@@ -566,6 +567,7 @@ void run_dynamic(const io::Config& config, const Model& model, const Discretizat
     control.accept(t_new);
     DriverState written{step, external_work};
     written.impact_transient = energy_bound && transient;
+    written.ordering = newton.ordering_state();
     write_checkpoint(checkpoints, written, control, contact, saddle, tied, out, state_out);
   }
   out.finish(true, step);

@@ -108,6 +108,9 @@ public:
   void set_logging(bool on) { logging_ = on; }
 
   /// A converged step: its multipliers are where the next failed attempt returns to.
+  /// The linear solver's ordering choice (la::LinearSolver::ordering_state), for checkpoints.
+  std::vector<double> ordering_state() const { return solver_.ordering_state(); }
+  void restore_ordering_state(std::span<const double> s) { solver_.restore_ordering_state(s); }
   void accept() {
     saddle_.save();
     contact_.save();

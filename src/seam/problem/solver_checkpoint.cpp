@@ -37,6 +37,7 @@ void write_checkpoint(const Checkpoints& checkpoints, const DriverState& state,
   w.put_real("guess.t_oldest", state.t_oldest);
   w.put_integer("guess.known", state.n_known);
   w.put_integer("energy_bound.transient", state.impact_transient ? 1 : 0);
+  if (!state.ordering.empty()) w.put("linear_solver.ordering", std::span(state.ordering));
   for (const auto& [name, v] : vectors) checkpoints.put_vector(w, name, *v);
   if (contact.active()) contact.write_checkpoint(w);
   if (saddle.active())
@@ -61,6 +62,8 @@ DriverState read_checkpoint(const Checkpoints& checkpoints, StepControl& control
   state.t_oldest = r.real("guess.t_oldest");
   state.n_known = static_cast<int>(r.integer("guess.known"));
   state.impact_transient = r.integer("energy_bound.transient") != 0;
+  // Checkpoints of earlier versions have none: the choice starts anew.
+  if (r.has("linear_solver.ordering")) state.ordering = r.reals("linear_solver.ordering", 6);
   control.set_state({checkpoints.restart_time(), r.real("control.dt"),
                      static_cast<int>(r.integer("control.cuts"))});
   for (const auto& [name, v] : vectors) checkpoints.get_vector(name, *v);

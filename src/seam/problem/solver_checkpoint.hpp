@@ -26,6 +26,8 @@ struct DriverState {
   /// Dynamic runs with generalized-alpha's energy bound at impacts: whether the impact's
   /// transient (from the first active node through the release's ringing) still lasts.
   bool impact_transient = false;
+  /// The linear solver's ordering choice (NewtonSolver::ordering_state); empty: none recorded.
+  std::vector<double> ordering = {};
 };
 
 /// Writes checkpoint_NNNNN/ after converged step `state.step` if one is due. Collective.

@@ -48,6 +48,7 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     t_older = state.t_older;
     t_oldest = state.t_oldest;
     n_known = state.n_known;
+    newton.restore_ordering_state(state.ordering);
   } else {
     out.initial(u);
   }
@@ -128,9 +129,10 @@ void run_static(const io::Config& config, const Model& model, const Discretizati
     out.step(rec, u, nullptr, reactions, newton.multipliers(tied), last);
     newton.accept();
     control.accept(t_new);
+    DriverState written{step, external_work, t_older, t_oldest, n_known};
+    written.ordering = newton.ordering_state();
     write_checkpoint(
-        checkpoints, {step, external_work, t_older, t_oldest, n_known}, control, contact, saddle,
-        tied, out,
+        checkpoints, written, control, contact, saddle, tied, out,
         {{"u", &u}, {"force_old", &force_old}, {"u_older", &u_older}, {"u_oldest", &u_oldest}});
   }
   out.finish(true, step);
