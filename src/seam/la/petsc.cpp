@@ -1,6 +1,7 @@
 #include "seam/la/petsc.hpp"
 
 #include "seam/common/error.hpp"
+#include "seam/common/timer.hpp"
 
 #include <dlfcn.h>
 #include <petscsys.h>
@@ -9,7 +10,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <optional>
 #include <set>
 #include <string>
@@ -887,12 +887,6 @@ std::string ordering_option(KSP ksp) {
   return std::string("-") + (prefix ? prefix : "") + "mat_mumps_icntl_7";
 }
 
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 } // namespace
 
 LinearSolver::LinearSolver(MPI_Comm comm, SolverKind kind) : kind_(kind) {
@@ -1223,9 +1217,9 @@ bool LinearSolver::set_up_factorization(const Matrix& P) {
   std::optional<ScopedOption> ordering;
   // (ScopedOption keeps the name's pointer: the member outlives it.)
   if (ordering_auto_ && qamd_) ordering.emplace(ordering_option_.c_str(), "6");
-  const double start = thread_cpu_seconds();
+  const double start = cpu_seconds();
   const PetscErrorCode ierr = KSPSetUp(ksp_);
-  double cost = thread_cpu_seconds() - start;
+  double cost = cpu_seconds() - start;
   MPI_Allreduce(MPI_IN_PLACE, &cost, 1, MPI_DOUBLE, MPI_MAX,
                 PetscObjectComm(reinterpret_cast<PetscObject>(ksp_)));
   if (ierr) {
